@@ -1,0 +1,134 @@
+#include "lang/checker.hpp"
+
+#include "lang/element_schema.hpp"
+#include "lang/model_builder.hpp"
+#include "lang/names.hpp"
+#include "lang/protocol_schema.hpp"
+
+#include <fmt/format.h>
+
+#include <map>
+
+namespace rheo::lang {
+namespace {
+
+class Checker {
+ public:
+  Checker(std::vector<Diagnostic>& errors) : errors_(errors) {}
+
+  void declare(const ast::Model& m) {
+    auto [it, fresh] = declared_.emplace(m.name, &m);
+    if (!fresh) {
+      const auto& first = it->second->where;
+      errors_.push_back({m.where, fmt::format("duplicate model '{}' (first defined at {}:{}); rename one", m.name, first.file, first.line)});
+      return;
+    }
+    order_.push_back(&m);
+  }
+
+  // Checks every declared model (instantiated ones on demand, before their users).
+  std::vector<CheckedModel> check_models() {
+    for (const auto* m : order_) check(*m);
+    std::vector<CheckedModel> out;
+    for (const auto* m : order_) out.push_back(done_.at(m->name).model);
+    return out;
+  }
+
+  bool known_model(const std::string& name) const { return declared_.count(name) != 0; }
+  std::vector<std::string> model_names() const {
+    std::vector<std::string> out;
+    for (const auto* m : order_) out.push_back(m->name);
+    return out;
+  }
+
+ private:
+  const ModelInfo& check(const ast::Model& m) {
+    if (auto it = done_.find(m.name); it != done_.end()) return it->second;
+    in_progress_.push_back(m.name);
+    ModelLookup lookup = [this](const ast::Element& e) { return instantiate(e); };
+    ModelInfo info = build_model(m, lookup, errors_);
+    in_progress_.pop_back();
+    return done_.emplace(m.name, std::move(info)).first->second;
+  }
+
+  const ModelInfo* instantiate(const ast::Element& e) {
+    auto it = declared_.find(e.kind);
+    if (it == declared_.end()) {
+      std::vector<std::string> known;
+      for (const auto& s : element_specs()) known.emplace_back(s.kind);
+      for (const auto& [name, model] : declared_) known.push_back(name);
+      errors_.push_back({e.where, fmt::format("unknown element kind or model '{}';{} known: {} (and parallel, series blocks); "
+                                              "stdlib models need `import NAME`",
+                                              e.kind, did_you_mean(e.kind, known), join(known))});
+      return nullptr;
+    }
+    if (auto cycle = std::find(in_progress_.begin(), in_progress_.end(), e.kind); cycle != in_progress_.end()) {
+      std::string chain;
+      for (auto c = cycle; c != in_progress_.end(); ++c) chain += *c + " -> ";
+      errors_.push_back({e.where, fmt::format("recursive instantiation: {}{}; a model cannot contain itself", chain, e.kind)});
+      return nullptr;
+    }
+    const ModelInfo& info = check(*it->second);
+    return info.ok ? &info : nullptr;
+  }
+
+  std::vector<Diagnostic>& errors_;
+  std::map<std::string, const ast::Model*> declared_;
+  std::vector<const ast::Model*> order_;
+  std::map<std::string, ModelInfo> done_;
+  std::vector<std::string> in_progress_;
+};
+
+// `simulate [MODEL] { ... }`: the model defaults to the file's only (non-imported) model.
+SimulateDirective check_simulate(const ast::Simulate& s, const ast::File& file, const Checker& checker, std::vector<Diagnostic>& errors) {
+  SimulateDirective out{s.model, {}, s.where};
+  if (!s.model.empty()) {
+    if (!checker.known_model(s.model))
+      errors.push_back({s.model_where, fmt::format("simulate names unknown model '{}';{} known: {}", s.model,
+                                                   did_you_mean(s.model, checker.model_names()), join(checker.model_names()))});
+  } else if (file.models.size() == 1) {
+    out.model = file.models.front().name;
+  } else if (file.models.empty()) {
+    errors.push_back({s.where, "this file defines no model; name the one to simulate: simulate NAME { ... }"});
+  } else {
+    errors.push_back({s.where, "this file defines several models; name one: simulate NAME { ... }"});
+  }
+  enum class Last { nothing, protocol, unknown_protocol, output } last = Last::nothing;
+  for (const auto& line : s.lines) {
+    if (line.output) {
+      if (last == Last::protocol) out.protocols.back().output = line.file;
+      else if (last == Last::nothing)
+        errors.push_back({line.where, "'output' names the results of the protocol line before it, but there is none; put it after a protocol line"});
+      else if (last == Last::output)
+        errors.push_back({line.where, "a protocol line has only one 'output'; remove this one"});
+      last = Last::output;
+      continue;
+    }
+    auto kind = protocol_kind(line.kind);
+    if (!kind) {
+      errors.push_back({line.where, fmt::format("unknown protocol '{}';{} known: {}", line.kind, did_you_mean(line.kind, protocol_names()),
+                                                join(protocol_names()))});
+      last = Last::unknown_protocol;
+      continue;
+    }
+    out.protocols.push_back(check_protocol(*kind, line.settings, line.where, errors));
+    last = Last::protocol;
+  }
+  if (s.lines.empty()) errors.push_back({s.where, "empty simulate block; add a protocol line such as `harmonic frequency = 10 Hz, amplitude = 1 mm`"});
+  return out;
+}
+
+}  // namespace
+
+Program check(const ast::File& file, const std::vector<const ast::File*>& imported, std::vector<Diagnostic>& errors) {
+  Checker checker(errors);
+  for (const auto* module : imported)
+    for (const auto& m : module->models) checker.declare(m);
+  for (const auto& m : file.models) checker.declare(m);
+  Program program;
+  program.models = checker.check_models();
+  for (const auto& s : file.simulations) program.simulations.push_back(check_simulate(s, file, checker, errors));
+  return program;
+}
+
+}  // namespace rheo::lang

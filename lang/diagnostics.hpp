@@ -1,0 +1,44 @@
+// Compiler diagnostics: `file:line:col: error: message`, then the source line and a caret
+// under the column.
+#pragma once
+
+#include "lang/model.hpp"
+
+#include <map>
+#include <stdexcept>
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace rheo::lang {
+
+struct Diagnostic {
+  SourceLocation where;
+  std::string message;
+};
+
+// Source texts by file name, so diagnostics can quote the offending line.
+class SourceSet {
+ public:
+  void add(const std::string& file, std::string text) { texts_[file] = std::move(text); }
+  // The line (1-based) of FILE without its newline; empty when unknown.
+  std::string_view line(const std::string& file, int line) const;
+
+ private:
+  std::map<std::string, std::string> texts_;
+};
+
+// "file:line:col: error: message\n  <source line>\n  <caret>\n"
+std::string format(const Diagnostic& d, const SourceSet& sources);
+
+// Every diagnostic of a failed compilation; what() is all of them formatted.
+class CompileError : public std::runtime_error {
+ public:
+  CompileError(std::vector<Diagnostic> diagnostics, const SourceSet& sources);
+  const std::vector<Diagnostic>& diagnostics() const { return diagnostics_; }
+
+ private:
+  std::vector<Diagnostic> diagnostics_;
+};
+
+}  // namespace rheo::lang

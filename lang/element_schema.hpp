@@ -1,0 +1,51 @@
+// Built-in element kinds: their parameters, dimensions and slot layout (see model.hpp).
+#pragma once
+
+#include "lang/model.hpp"
+
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace rheo::lang {
+
+struct ParameterSpec {
+  std::string_view name;      // "k"
+  Dimension dimension;
+  bool positive;              // value must be > 0
+  std::string_view quantity;  // "stiffness", for messages
+};
+
+struct ElementSpec {
+  std::string_view kind;  // "maxwell"
+  ElementKind element_kind;
+  std::vector<ParameterSpec> slots;  // in slot order
+  // Optional alternative for the last slot: given instead of it, the slot is derived as
+  // slots[0] * alternative (maxwell: c = k * tau; friction: fy = k * uy). Exactly one of the
+  // two must be given.
+  std::vector<ParameterSpec> alternative;
+};
+
+inline const std::vector<ElementSpec>& element_specs() {
+  static const std::vector<ElementSpec> specs{
+      {"spring", ElementKind::spring, {{"k", dim::stiffness, true, "stiffness"}}, {}},
+      {"yeoh", ElementKind::yeoh,
+       {{"D10", dim::stiffness, true, "coefficient"}, {"D20", {1, -3, 0}, false, "coefficient"}, {"D30", {1, -5, 0}, false, "coefficient"}},
+       {}},
+      {"dashpot", ElementKind::dashpot, {{"c", dim::damping, true, "damping"}}, {}},
+      {"maxwell", ElementKind::maxwell, {{"k", dim::stiffness, true, "stiffness"}, {"c", dim::damping, true, "damping"}},
+       {{"tau", dim::time, true, "time constant"}}},
+      {"friction", ElementKind::friction, {{"k", dim::stiffness, true, "stiffness"}, {"fy", dim::force, true, "yield force"}},
+       {{"uy", dim::length, true, "yield displacement"}}},
+      {"slider", ElementKind::slider, {{"fy", dim::force, true, "yield force"}}, {}},
+  };
+  return specs;
+}
+
+inline const ElementSpec* find_element_spec(std::string_view kind) {
+  for (const auto& s : element_specs())
+    if (s.kind == kind) return &s;
+  return nullptr;
+}
+
+}  // namespace rheo::lang

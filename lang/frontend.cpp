@@ -1,0 +1,79 @@
+#include "lang/frontend.hpp"
+
+#include "lang/checker.hpp"
+#include "lang/names.hpp"
+#include "lang/parser.hpp"
+#include "lang/protocol_schema.hpp"
+#include "lang/stdlib.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <fstream>
+#include <list>
+#include <set>
+#include <sstream>
+#include <stdexcept>
+
+namespace rheo::lang {
+
+Program load_program(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw std::runtime_error(fmt::format("cannot read '{}'", path));
+  std::ostringstream text;
+  text << in.rdbuf();
+  if (in.bad()) throw std::runtime_error(fmt::format("cannot read '{}'", path));
+  return compile_source(path, text.str());
+}
+
+Program compile_source(const std::string& file_name, std::string_view text) {
+  SourceSet sources;
+  sources.add(file_name, std::string(text));
+  std::vector<Diagnostic> errors;
+  const ast::File file = parse(file_name, text);
+
+  // Imports, including those of imported modules, each module once.
+  std::list<ast::File> modules;  // stable addresses
+  std::set<std::string> seen;
+  std::vector<const ast::File*> pending{&file};
+  while (!pending.empty()) {
+    const ast::File* f = pending.back();
+    pending.pop_back();
+    for (const auto& import : f->imports) {
+      if (!seen.insert(import.name).second) continue;
+      auto source = stdlib_source(import.name);
+      if (!source) {
+        errors.push_back({import.where, fmt::format("unknown import '{}';{} the standard library has: {}", import.name,
+                                                    did_you_mean(import.name, stdlib_names()), join(stdlib_names()))});
+        continue;
+      }
+      const std::string path = stdlib_path(import.name);
+      sources.add(path, std::string(*source));
+      pending.push_back(&modules.emplace_back(parse(path, *source)));
+    }
+  }
+  std::vector<const ast::File*> imported;
+  for (const auto& m : modules) imported.push_back(&m);
+
+  Program program = check(file, imported, errors);
+  if (!errors.empty()) {
+    std::stable_sort(errors.begin(), errors.end(), [](const Diagnostic& a, const Diagnostic& b) {
+      return std::tie(a.where.file, a.where.line, a.where.column) < std::tie(b.where.file, b.where.line, b.where.column);
+    });
+    throw CompileError(std::move(errors), sources);
+  }
+  return program;
+}
+
+Setting parse_setting(ProtocolKind kind, std::string_view text) {
+  const std::string file_name = "<command line>";
+  SourceSet sources;
+  sources.add(file_name, std::string(text));
+  const ast::SettingNode node = parse_setting_text(file_name, text);
+  std::vector<Diagnostic> errors;
+  auto setting = check_setting(kind, node, errors);
+  if (!setting || !errors.empty()) throw CompileError(std::move(errors), sources);
+  return *setting;
+}
+
+}  // namespace rheo::lang

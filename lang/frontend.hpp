@@ -1,0 +1,23 @@
+// The language front-end's public API: source -> checked Program.
+#pragma once
+
+#include "lang/diagnostics.hpp"
+#include "lang/model.hpp"
+
+#include <string>
+#include <string_view>
+
+namespace rheo::lang {
+
+// Reads, parses and checks FILE (imports resolved from the embedded stdlib). Throws
+// CompileError with EVERY semantic error found (parse errors: the first). Throws
+// std::runtime_error naming the file if it cannot be read.
+Program load_program(const std::string& path);
+Program compile_source(const std::string& file_name, std::string_view text);
+
+// Parses one protocol setting given on the command line, e.g.
+// "frequency = 1 Hz .. 51 Hz step 2 Hz", with the same value grammar and the schema of KIND;
+// throws CompileError (file name "<command line>").
+Setting parse_setting(ProtocolKind kind, std::string_view text);
+
+}  // namespace rheo::lang

@@ -1,0 +1,193 @@
+// The rheo grammar (PEGTL). One rule per concept; actions (parser.cpp) build the AST;
+// every must<> point has its message in grammar_errors.hpp.
+//
+//   file      := sep (import | model | simulate)* eof
+//   import    := 'import' NAME
+//   model     := 'model' NAME '{' (param | element)* '}'
+//   param     := 'param' argument
+//   element   := ('parallel'|'series') [NAME] '{' element* '}'  |  KIND [NAME] '(' [argument (',' argument)*] ')'
+//   argument  := PATH '=' expression ['in' '[' expression ',' expression ']']
+//   simulate  := 'simulate' [NAME] '{' (output | protocol)* '}'
+//   protocol  := KIND setting (',' setting)*          output := 'output' STRING
+//   setting   := KEY '=' (STRING | list | expression ['..' expression 'step' expression])
+//   list      := '[' expression (',' expression)* ']' [UNIT]
+//   expression:= term (('+'|'-') term)*   term := factor (('*'|'/') factor)*
+//   factor    := '-' factor | '(' expression ')' | NUMBER [UNIT] | PATH
+// Statements are not newline-terminated: every statement starts with a keyword or a name that
+// cannot continue the previous expression (expressions continue only with an operator).
+#pragma once
+
+#include "lang/units.hpp"
+
+#include <tao/pegtl.hpp>
+
+#include <string_view>
+
+namespace rheo::lang::grammar {
+
+namespace pegtl = tao::pegtl;
+using namespace pegtl;
+
+// --- lexical -------------------------------------------------------------------------------
+struct comment : seq<one<'#'>, until<eolf>> {};
+struct sep : star<sor<ascii::space, comment>> {};
+
+struct kw_import : TAO_PEGTL_KEYWORD("import") {};
+struct kw_model : TAO_PEGTL_KEYWORD("model") {};
+struct kw_simulate : TAO_PEGTL_KEYWORD("simulate") {};
+struct kw_param : TAO_PEGTL_KEYWORD("param") {};
+struct kw_parallel : TAO_PEGTL_KEYWORD("parallel") {};
+struct kw_series : TAO_PEGTL_KEYWORD("series") {};
+struct kw_in : TAO_PEGTL_KEYWORD("in") {};
+struct kw_step : TAO_PEGTL_KEYWORD("step") {};
+struct kw_output : TAO_PEGTL_KEYWORD("output") {};
+struct keyword : sor<kw_import, kw_model, kw_simulate, kw_param, kw_parallel, kw_series, kw_in, kw_step, kw_output> {};
+
+struct name : seq<not_at<keyword>, identifier> {};
+struct path : list<identifier, one<'.'>> {};
+
+// 12, 1.5, 4., .5, 1e-3 ; a '.' followed by '.' belongs to a range, not the number.
+struct exponent : seq<one<'e', 'E'>, opt<one<'+', '-'>>, plus<digit>> {};
+struct fraction : seq<one<'.'>, not_at<one<'.'>>, star<digit>> {};
+struct number : seq<sor<seq<plus<digit>, opt<fraction>>, seq<one<'.'>, plus<digit>>>, opt<exponent>> {};
+
+// A word of the unit table (units.hpp). `in` (inch) is not a unit when it opens bounds `in [`.
+struct unit_word {
+  using rule_t = unit_word;
+  using subs_t = type_list<>;
+  template <typename ParseInput>
+  static bool match(ParseInput& in) {
+    std::size_t n = 0;
+    while (n < in.size(n + 1) && is_word_char(in.peek_char(n))) ++n;
+    if (n == 0) return false;
+    std::string_view word(in.current(), n);
+    if (!unit_atom(word)) return false;
+    if (word == "in") {
+      std::size_t k = n;
+      while (k < in.size(k + 1) && (in.peek_char(k) == ' ' || in.peek_char(k) == '\t' || in.peek_char(k) == '\n' || in.peek_char(k) == '\r')) ++k;
+      if (k < in.size(k + 1) && in.peek_char(k) == '[') return false;
+    }
+    in.bump_in_this_line(n);
+    return true;
+  }
+  static bool is_word_char(char c) {
+    return (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9') || c == '_';
+  }
+};
+struct unit_power : seq<one<'^'>, opt<one<'-'>>, plus<digit>> {};
+struct unit_factor : seq<unit_word, opt<unit_power>> {};
+struct unit : seq<unit_factor, star<one<'*', '/'>, unit_factor>> {};
+
+struct string_open : one<'"'> {};
+struct string_body : until<one<'"'>, not_one<'\n', '\r'>> {};
+struct string_literal : seq<string_open, must<string_body>> {};
+
+// --- expressions ---------------------------------------------------------------------------
+struct expression;
+struct quantity_unit : seq<sep, unit> {};
+struct quantity : seq<number, opt<quantity_unit>> {};
+struct reference : path {};
+struct paren_close : one<')'> {};
+struct paren_expression;
+struct parenthesized : if_must<one<'('>, sep, paren_expression, sep, paren_close> {};
+struct factor;
+struct negative_sign : one<'-'> {};
+struct operand;
+struct negation : if_must<negative_sign, sep, operand> {};
+struct factor : sor<negation, parenthesized, quantity, reference> {};
+struct operand : factor {};
+struct times_sign : one<'*'> {};
+struct divide_sign : one<'/'> {};
+struct plus_sign : one<'+'> {};
+struct minus_sign : one<'-'> {};
+struct times : if_must<seq<sep, times_sign>, sep, operand> {};
+struct divided : if_must<seq<sep, divide_sign>, sep, operand> {};
+struct term : seq<factor, star<sor<times, divided>>> {};
+struct term_operand : term {};
+struct added : if_must<seq<sep, plus_sign>, sep, term_operand> {};
+struct subtracted : if_must<seq<sep, minus_sign>, sep, term_operand> {};
+struct expression : seq<term, star<sor<added, subtracted>>> {};
+struct paren_expression : expression {};
+
+// --- arguments and elements ----------------------------------------------------------------
+struct bounds_open : one<'['> {};
+struct bounds_comma : one<','> {};
+struct bounds_close : one<']'> {};
+struct bounds_lower : expression {};
+struct bounds_upper : expression {};
+struct bounds : if_must<seq<sep, kw_in>, sep, bounds_open, sep, bounds_lower, sep, bounds_comma, sep, bounds_upper, sep, bounds_close> {};
+struct argument_name : path {};
+struct argument_equals : one<'='> {};
+struct argument_value : expression {};
+struct argument : seq<argument_name, sep, must<argument_equals>, sep, must<argument_value>, opt<bounds>> {};
+struct element_argument : argument {};
+struct param_argument : argument {};
+struct next_argument : argument {};
+
+struct argument_next : if_must<seq<sep, one<','>>, sep, next_argument> {};
+struct arguments_close : one<')'> {};
+struct argument_list : seq<one<'('>, sep, opt<element_argument, star<argument_next>>, sep, must<arguments_close>> {};
+struct element_kind : name {};
+struct element_name : name {};
+struct leaf_open : one<'('> {};
+struct leaf_header : seq<element_kind, opt<sep, element_name>> {};
+struct leaf_open_ahead : at<leaf_open> {};
+struct leaf : seq<leaf_header, sep, must<leaf_open_ahead>, argument_list> {};
+
+struct element;
+struct block_kind : sor<kw_parallel, kw_series> {};
+struct block_open : one<'{'> {};
+struct block_close : one<'}'> {};
+struct block_header : seq<block_kind, opt<sep, element_name>> {};
+struct block : if_must<block_header, sep, block_open, star<sep, element>, sep, block_close> {};
+struct element : sor<block, leaf> {};
+
+// --- models --------------------------------------------------------------------------------
+struct param_decl : if_must<kw_param, sep, param_argument> {};
+struct model_name : name {};
+struct model_open : one<'{'> {};
+struct model_close : one<'}'> {};
+struct model_item : sor<param_decl, element> {};
+struct model_decl : if_must<kw_model, sep, model_name, sep, model_open, star<sep, model_item>, sep, model_close> {};
+
+struct import_name : name {};
+struct import_decl : if_must<kw_import, sep, import_name> {};
+
+// --- directives ----------------------------------------------------------------------------
+struct list_open : one<'['> {};
+struct list_item : expression {};
+struct list_close : one<']'> {};
+struct list_unit : seq<sep, unit> {};
+struct value_list : if_must<list_open, sep, list_item, star<sep, one<','>, sep, must<list_item>>, sep, list_close, opt<list_unit>> {};
+struct range_dots : seq<sep, two<'.'>> {};
+struct range_end : expression {};
+struct range_step_keyword : kw_step {};
+struct range_step : expression {};
+struct range_tail : if_must<range_dots, sep, range_end, sep, range_step_keyword, sep, range_step> {};
+struct single_value : success {};
+struct scalar_value : seq<expression, sor<range_tail, single_value>> {};
+struct setting_string : string_literal {};
+struct setting_value : sor<setting_string, value_list, scalar_value> {};
+struct setting_key : name {};
+struct setting_equals : one<'='> {};
+struct setting : seq<setting_key, sep, must<setting_equals>, sep, must<setting_value>> {};
+struct protocol_kind : identifier {};  // `step` is both a protocol and a keyword
+struct setting_next : if_must<seq<sep, one<','>>, sep, setting> {};
+struct protocol_line : seq<protocol_kind, sep, must<setting>, star<setting_next>> {};
+struct output_file : string_literal {};
+struct output_line : if_must<kw_output, sep, output_file> {};
+struct directive_line : sor<output_line, protocol_line> {};
+struct simulate_model : name {};
+struct simulate_open : one<'{'> {};
+struct simulate_close : one<'}'> {};
+struct simulate_decl : if_must<kw_simulate, sep, opt<simulate_model, sep>, simulate_open, star<sep, directive_line>, sep, simulate_close> {};
+
+struct top_item : sor<import_decl, model_decl, simulate_decl> {};
+struct file_end : eof {};
+struct file : seq<sep, star<top_item, sep>, must<file_end>> {};
+
+// A protocol setting given on the command line: `frequency = 1 Hz .. 51 Hz step 2 Hz`.
+struct setting_end : eof {};
+struct command_line_setting : seq<sep, must<setting>, sep, must<setting_end>> {};
+
+}  // namespace rheo::lang::grammar

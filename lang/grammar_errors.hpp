@@ -1,0 +1,60 @@
+// The one table of parse error messages, keyed by the grammar rule that failed under must<>.
+// Placeholders, substituted by the parser when the error is reported:
+//   {found}    what stands at the error position ("'}'", "end of file", "'spring'")
+//   {element}  the innermost element being parsed ("'maxwell m1'", "the 'parallel' block")
+//   {model}    the model being parsed
+#pragma once
+
+#include "lang/grammar.hpp"
+
+namespace rheo::lang::grammar {
+
+struct errors {
+  template <typename Rule>
+  static constexpr const char* message = nullptr;
+};
+
+// clang-format off
+template <> inline constexpr const char* errors::message<string_body> = "unterminated string literal; close it with '\"' on the same line";
+template <> inline constexpr const char* errors::message<paren_expression> = "expected an expression after '(', found {found}";
+template <> inline constexpr const char* errors::message<paren_close> = "expected ')' to close the parenthesized expression, found {found}";
+template <> inline constexpr const char* errors::message<operand> = "expected a number, a parameter name or '(' after the operator, found {found}";
+template <> inline constexpr const char* errors::message<term_operand> = "expected a number, a parameter name or '(' after the operator, found {found}";
+template <> inline constexpr const char* errors::message<bounds_open> = "expected '[' after 'in' to open the bounds [LO, HI], found {found}";
+template <> inline constexpr const char* errors::message<bounds_lower> = "expected the lower bound after 'in [', found {found}";
+template <> inline constexpr const char* errors::message<bounds_comma> = "expected ',' between the lower and upper bound, found {found}";
+template <> inline constexpr const char* errors::message<bounds_upper> = "expected the upper bound after ',', found {found}";
+template <> inline constexpr const char* errors::message<bounds_close> = "expected ']' to close the bounds [LO, HI], found {found}";
+template <> inline constexpr const char* errors::message<argument_equals> = "expected '=' after the parameter name, found {found}";
+template <> inline constexpr const char* errors::message<argument_value> = "expected a value (e.g. 5 N/mm) after '=', found {found}";
+template <> inline constexpr const char* errors::message<next_argument> = "expected a parameter `NAME = VALUE` after ',' in the argument list of {element}, found {found}";
+template <> inline constexpr const char* errors::message<param_argument> = "expected `NAME = VALUE` after 'param', found {found}";
+template <> inline constexpr const char* errors::message<arguments_close> = "expected ')' to close the argument list of {element}, found {found}";
+template <> inline constexpr const char* errors::message<leaf_open_ahead> = "expected '(' to open the argument list of {element}, found {found}";
+template <> inline constexpr const char* errors::message<block_open> = "expected '{' to open {element}, found {found}";
+template <> inline constexpr const char* errors::message<block_close> = "expected an element or '}' to close {element}, found {found}";
+template <> inline constexpr const char* errors::message<model_name> = "expected a model name after 'model', found {found}";
+template <> inline constexpr const char* errors::message<model_open> = "expected '{' to open the body of model '{model}', found {found}";
+template <> inline constexpr const char* errors::message<model_close> = "expected an element, a 'param' declaration or '}' to close model '{model}', found {found}";
+template <> inline constexpr const char* errors::message<import_name> = "expected a model name after 'import', found {found}";
+template <> inline constexpr const char* errors::message<list_item> = "expected a value in the list after ',', found {found}";
+template <> inline constexpr const char* errors::message<list_close> = "expected ',' or ']' to close the list, found {found}";
+template <> inline constexpr const char* errors::message<range_end> = "expected the end of the range after '..', found {found}";
+template <> inline constexpr const char* errors::message<range_step_keyword> = "expected 'step' after the end of the range (FROM .. TO step STEP), found {found}";
+template <> inline constexpr const char* errors::message<range_step> = "expected the step of the range after 'step', found {found}";
+template <> inline constexpr const char* errors::message<setting> = "expected a setting `KEY = VALUE`, found {found}";
+template <> inline constexpr const char* errors::message<setting_equals> = "expected '=' after the setting name, found {found}";
+template <> inline constexpr const char* errors::message<setting_value> = "expected a value, a list [..], a range FROM .. TO step STEP or a \"string\" after '=', found {found}";
+template <> inline constexpr const char* errors::message<output_file> = "expected a file name in double quotes after 'output', found {found}";
+template <> inline constexpr const char* errors::message<simulate_open> = "expected '{' to open the simulate block, found {found}";
+template <> inline constexpr const char* errors::message<simulate_close> = "expected a protocol line, 'output' or '}' to close the simulate block, found {found}";
+template <> inline constexpr const char* errors::message<file_end> = "expected 'import', 'model' or 'simulate' at the top level, found {found}";
+template <> inline constexpr const char* errors::message<setting_end> = "unexpected text after the setting value: {found}";
+// clang-format on
+
+// must_if raises for a rule with a message wherever it fails, so messages go only to rules
+// used solely under must<>. Rules under must<> that can never fail (sep, star, opt) need none.
+template <typename Rule>
+using control = tao::pegtl::must_if<errors, tao::pegtl::normal, false>::control<Rule>;
+
+}  // namespace rheo::lang::grammar

@@ -1,0 +1,49 @@
+#include "lang/model.hpp"
+
+namespace rheo::lang {
+
+double Expression::evaluate(const std::vector<double>& parameter_values) const {
+  std::vector<double> stack;
+  stack.reserve(code.size());
+  auto pop = [&] {
+    double v = stack.back();
+    stack.pop_back();
+    return v;
+  };
+  for (const auto& i : code) {
+    switch (i.op) {
+      case Op::constant: stack.push_back(i.constant); break;
+      case Op::parameter: stack.push_back(parameter_values.at(static_cast<std::size_t>(i.parameter))); break;
+      case Op::negate: stack.back() = -stack.back(); break;
+      default: {
+        double rhs = pop();
+        double lhs = pop();
+        if (i.op == Op::add) stack.push_back(lhs + rhs);
+        else if (i.op == Op::subtract) stack.push_back(lhs - rhs);
+        else if (i.op == Op::multiply) stack.push_back(lhs * rhs);
+        else stack.push_back(lhs / rhs);  // IEEE: x/0 = +-inf
+      }
+    }
+  }
+  return stack.empty() ? 0.0 : stack.back();
+}
+
+bool Expression::is_constant() const {
+  for (const auto& i : code)
+    if (i.op == Op::parameter) return false;
+  return true;
+}
+
+const Setting* Protocol::find(const std::string& key) const {
+  for (const auto& s : settings)
+    if (s.key == key) return &s;
+  return nullptr;
+}
+
+const CheckedModel* Program::find_model(const std::string& name) const {
+  for (const auto& m : models)
+    if (m.name == name) return &m;
+  return nullptr;
+}
+
+}  // namespace rheo::lang

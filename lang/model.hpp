@@ -1,0 +1,117 @@
+// The checked program: what the language front-end hands to the runtime.
+//
+// Contract: a Program is produced only by check() (checker.hpp) from source that parsed and
+// passed every semantic check. Every value in it is in the internal unit system
+//   force N, length mm, time s  (so stiffness N/mm, damping N*s/mm, frequency Hz = 1/s)
+// and every dimension has been verified. The runtime may trust it without re-checking.
+#pragma once
+
+#include "lang/units.hpp"
+
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace rheo::lang {
+
+struct SourceLocation {
+  std::string file;  // as given on the command line, or "<stdlib>/NAME.rheo"
+  int line = 0;      // 1-based
+  int column = 0;    // 1-based, in bytes
+};
+
+// A parameter value that may depend on other parameters of the same model, kept as a
+// postfix program so that fitting can re-evaluate derived parameters when free ones change.
+struct Expression {
+  enum class Op : std::uint8_t { constant, parameter, add, subtract, multiply, divide, negate };
+  struct Instruction {
+    Op op;
+    double constant = 0.0;  // Op::constant, internal units
+    int parameter = -1;     // Op::parameter: index into CheckedModel::parameters
+  };
+  std::vector<Instruction> code;  // evaluated left to right on a stack
+
+  // Evaluates with the given parameter values (internal units). Division by zero yields inf.
+  double evaluate(const std::vector<double>& parameter_values) const;
+  bool is_constant() const;  // true when no Op::parameter occurs
+};
+
+struct Parameter {
+  std::string path;          // "m1.tau", "rubber.D10", or a model parameter "k0"
+  Dimension dimension;       // e.g. stiffness
+  double value = 0.0;        // evaluated, internal units
+  Expression expression;     // how value is computed (a single constant for literals)
+  bool free = false;         // declared with bounds: identified by `rheo fit`
+  double lower = 0.0;        // bounds, internal units; meaningful when free
+  double upper = 0.0;
+  std::string unit;          // the unit the user wrote ("N/mm"), for reporting; may be empty
+  SourceLocation where;
+};
+
+enum class ElementKind : std::uint8_t {
+  spring,    // k [N/mm]:               F = k e
+  yeoh,      // D10 [N/mm], D20 [N/mm^3], D30 [N/mm^5]: F = 2 (D10 + 2 D20 e^2 + 3 D30 e^4) e  (eq. 3.3)
+  dashpot,   // c [N*s/mm]:             F = c de/dt
+  maxwell,   // k [N/mm], c [N*s/mm]:   spring k in series with dashpot c (tau = c/k)   (eq. 2.3)
+  friction,  // k [N/mm], fy [N]:       spring k in series with a slider slipping at |F| = fy (eq. 2.9)
+  slider,    // fy [N]:                 rigid-plastic Coulomb slider, |F| <= fy
+  parallel,  // children share the elongation; forces add
+  series,    // children share the force; elongations add
+};
+
+// Parameter slots of each leaf kind, in this order, as indices into CheckedModel::parameters.
+// The checker normalises alternatives: maxwell given tau stores c = k * tau (an Expression),
+// friction given uy stores fy = k * uy.
+//   spring: {k}   yeoh: {D10, D20, D30}   dashpot: {c}   maxwell: {k, c}
+//   friction: {k, fy}   slider: {fy}   parallel/series: {}
+struct Element {
+  ElementKind kind = ElementKind::parallel;
+  std::string name;            // explicit or generated ("maxwell2"); unique in its naming scope
+  std::string path;            // "fluid.cap" from the model root; empty for the root block
+  std::vector<int> parameters; // see the slot table above
+  std::vector<Element> children;
+  SourceLocation where;
+};
+
+struct CheckedModel {
+  std::string name;
+  std::vector<Parameter> parameters;  // every parameter, model-level ones first
+  Element root;                       // a parallel block: a model body's elements act in parallel
+  SourceLocation where;
+};
+
+// One setting of a directive line: `frequency = 1 Hz .. 51 Hz step 2 Hz` or `definition = thesis`.
+struct Setting {
+  std::string key;
+  std::vector<double> values;  // numbers, lists and ranges expanded, internal units
+  Dimension dimension;         // of values (dimensionless for counts)
+  std::string text;            // identifiers and strings: `thesis`, "road.csv"
+  SourceLocation where;
+};
+
+enum class ProtocolKind : std::uint8_t { harmonic, static_triangle, quasistatic, history, step };
+
+struct Protocol {
+  ProtocolKind kind = ProtocolKind::harmonic;
+  std::vector<Setting> settings;  // validated against the protocol's schema by the checker
+  std::string output;             // file named by the `output "..."` line after it; empty: stdout
+  SourceLocation where;
+
+  const Setting* find(const std::string& key) const;
+};
+
+struct SimulateDirective {
+  std::string model;  // resolved model name (the file's only model when the block names none)
+  std::vector<Protocol> protocols;
+  SourceLocation where;
+};
+
+struct Program {
+  std::vector<CheckedModel> models;  // in source order; imported stdlib models are included
+  std::vector<SimulateDirective> simulations;
+
+  const CheckedModel* find_model(const std::string& name) const;
+};
+
+}  // namespace rheo::lang

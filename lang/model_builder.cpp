@@ -1,0 +1,422 @@
+#include "lang/model_builder.hpp"
+
+#include "lang/element_schema.hpp"
+#include "lang/expressions.hpp"
+#include "lang/names.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <optional>
+
+namespace rheo::lang {
+namespace {
+
+// A parameter while its model is being checked: either source (an expression in this model's
+// namespace) or copied from an instantiated model (already compiled, indices remapped).
+struct Entry {
+  Parameter parameter;
+  ParameterMeta meta;
+  bool dimension_known = false;  // element parameters; model `param`s infer theirs
+  const ast::Expr* source = nullptr;
+  const ast::Bounds* bounds = nullptr;
+  enum class State { pending, visiting, done, failed } state = State::pending;
+};
+
+// Names within one naming scope (model root, named block, instance).
+struct Scope {
+  std::string prefix;  // "fluid." ; "" at the model root
+  std::map<std::string, SourceLocation> names;
+  std::map<std::string, int> counters;  // per kind, for generated names
+};
+
+class Builder {
+ public:
+  Builder(const ast::Model& model, const ModelLookup& lookup, std::vector<Diagnostic>& errors)
+      : model_(model), lookup_(lookup), errors_(errors), first_error_(errors.size()) {}
+
+  ModelInfo run() {
+    for (const auto& p : model_.parameters) add_model_parameter(p);
+    Scope root;
+    info_.model.name = model_.name;
+    info_.model.where = model_.where;
+    info_.model.root.kind = ElementKind::parallel;
+    info_.model.root.where = model_.where;
+    if (model_.elements.empty()) error(model_.where, fmt::format("model '{}' has no elements; add at least one element to its body", model_.name));
+    info_.model.root.children = build_scope(model_.elements, root);
+    values_.assign(entries_.size(), 0.0);
+    for (std::size_t i = 0; i < entries_.size(); ++i) resolve(static_cast<int>(i));
+    for (auto& e : entries_) {
+      info_.model.parameters.push_back(std::move(e.parameter));
+      info_.meta.push_back(std::move(e.meta));
+    }
+    info_.ok = errors_.size() == first_error_ && info_.ok;
+    return std::move(info_);
+  }
+
+ private:
+  void error(const SourceLocation& where, std::string message) { errors_.push_back({where, std::move(message)}); }
+
+  int add(Entry e) {
+    int index = static_cast<int>(entries_.size());
+    index_[e.parameter.path] = index;
+    entries_.push_back(std::move(e));
+    return index;
+  }
+
+  // --- declarations ---
+  void add_model_parameter(const ast::Argument& a) {
+    if (auto it = index_.find(a.name); it != index_.end()) {
+      error(a.where, fmt::format("duplicate parameter '{}' (first declared at line {}); rename one",
+                                 a.name, entries_[static_cast<std::size_t>(it->second)].parameter.where.line));
+      return;
+    }
+    if (a.name.find('.') != std::string::npos) {
+      error(a.where, fmt::format("model parameter names cannot contain '.': '{}'", a.name));
+      return;
+    }
+    Entry e;
+    e.parameter.path = a.name;
+    e.parameter.where = a.value_where;
+    e.parameter.unit = literal_unit(*a.value);
+    e.source = a.value.get();
+    e.bounds = a.bounds ? &*a.bounds : nullptr;
+    add(std::move(e));
+  }
+
+  // Registers the explicit names of ELEMENTS (looking through unnamed blocks) in SCOPE.
+  void collect_names(const std::vector<ast::Element>& elements, Scope& scope) {
+    for (const auto& e : elements) {
+      if (!e.name.empty()) {
+        auto [it, fresh] = scope.names.emplace(e.name, e.name_where);
+        if (!fresh)
+          error(e.name_where, fmt::format("duplicate name '{}' (first used at line {}); element names must be unique within their block",
+                                          e.name, it->second.line));
+      } else if (e.block) {
+        collect_names(e.children, scope);
+      }
+    }
+  }
+
+  std::string generate_name(const std::string& kind, Scope& scope) {
+    for (int& n = scope.counters[kind];;) {
+      std::string name = kind + std::to_string(++n);
+      if (scope.names.emplace(name, SourceLocation{}).second) return name;
+    }
+  }
+
+  std::vector<Element> build_scope(const std::vector<ast::Element>& elements, Scope& scope) {
+    collect_names(elements, scope);
+    return build_children(elements, scope);
+  }
+
+  std::vector<Element> build_children(const std::vector<ast::Element>& elements, Scope& scope) {
+    std::vector<Element> out;
+    for (const auto& e : elements) {
+      std::string name = e.name.empty() ? generate_name(e.kind, scope) : e.name;
+      std::string path = scope.prefix + name;
+      if (e.block) {
+        if (e.children.empty()) error(e.where, fmt::format("empty {} block; add elements to it or remove it", e.kind));
+        Element block{e.kind == "series" ? ElementKind::series : ElementKind::parallel, name, path, {}, {}, e.where};
+        if (e.name.empty()) {
+          block.children = build_children(e.children, scope);  // unnamed blocks are transparent
+        } else {
+          Scope inner{path + ".", {}, {}};
+          block.children = build_scope(e.children, inner);
+        }
+        out.push_back(std::move(block));
+      } else if (const ElementSpec* spec = find_element_spec(e.kind)) {
+        if (auto leaf = build_leaf(e, *spec, name, path)) out.push_back(std::move(*leaf));
+      } else if (const ModelInfo* instance = lookup_(e)) {
+        out.push_back(build_instance(e, *instance, name, path));
+      }
+    }
+    return out;
+  }
+
+  static std::string describe_element(std::string_view kind, const std::string& path) { return fmt::format("{} '{}'", kind, path); }
+
+  std::optional<Element> build_leaf(const ast::Element& e, const ElementSpec& spec, const std::string& name, const std::string& path) {
+    std::vector<std::string> accepted;
+    for (const auto& s : spec.slots) accepted.emplace_back(s.name);
+    for (const auto& s : spec.alternative) accepted.emplace_back(s.name);
+    const std::string what = describe_element(spec.kind, path);
+    std::map<std::string, const ast::Argument*> given;
+    for (const auto& a : e.arguments) {
+      if (std::find(accepted.begin(), accepted.end(), a.name) == accepted.end()) {
+        error(a.where, fmt::format("unknown parameter '{}' for {};{} it accepts {}", a.name, what, did_you_mean(a.name, accepted), join(accepted)));
+      } else if (auto [it, fresh] = given.emplace(a.name, &a); !fresh) {
+        error(a.where, fmt::format("duplicate parameter '{}' for {} (first given at line {}); give it once", a.name, what, it->second->where.line));
+      }
+    }
+    bool ok = true;
+    std::optional<std::size_t> derived_slot;
+    for (std::size_t i = 0; i < spec.slots.size(); ++i) {
+      const bool last = i + 1 == spec.slots.size();
+      const bool has_slot = given.count(std::string(spec.slots[i].name)) != 0;
+      if (last && !spec.alternative.empty()) {
+        std::string alt(spec.alternative[0].name);
+        const bool has_alt = given.count(alt) != 0;
+        if (has_slot && has_alt) {
+          const auto* second = std::max(given[alt], given[std::string(spec.slots[i].name)],
+                                        [](auto* a, auto* b) { return a->where.line != b->where.line ? a->where.line < b->where.line : a->where.column < b->where.column; });
+          error(second->where, fmt::format("{} takes either {} or {}, not both; remove one", what, alt, spec.slots[i].name));
+          ok = false;
+        } else if (!has_slot && !has_alt) {
+          error(e.where, fmt::format("{} is missing its {} {} (or {} {}); add `{} = ...`", what, spec.alternative[0].quantity, alt,
+                                     spec.slots[i].quantity, spec.slots[i].name, alt));
+          ok = false;
+        } else if (has_alt) {
+          derived_slot = i;
+        }
+      } else if (!has_slot) {
+        error(e.where, fmt::format("{} is missing its {} {} ({}); add `{} = ...`", what, spec.slots[i].quantity, spec.slots[i].name,
+                                   internal_unit(spec.slots[i].dimension), spec.slots[i].name));
+        ok = false;
+      }
+    }
+    if (!ok) return std::nullopt;
+    Element out{spec.element_kind, name, path, {}, {}, e.where};
+    for (std::size_t i = 0; i < spec.slots.size(); ++i) {
+      if (derived_slot == i) {
+        int alt = add_element_parameter(*given[std::string(spec.alternative[0].name)], spec.alternative[0], spec.kind, path);
+        Entry derived;
+        derived.parameter.path = path + "." + std::string(spec.slots[i].name);
+        derived.parameter.dimension = spec.slots[i].dimension;
+        derived.parameter.expression.code = {{Expression::Op::parameter, 0.0, out.parameters[0]},
+                                             {Expression::Op::parameter, 0.0, alt},
+                                             {Expression::Op::multiply}};
+        derived.parameter.where = entries_[static_cast<std::size_t>(alt)].parameter.where;
+        derived.meta = {false, true, std::string(spec.slots[i].quantity), std::string(spec.kind)};
+        derived.dimension_known = true;
+        out.parameters.push_back(add(std::move(derived)));
+      } else {
+        out.parameters.push_back(add_element_parameter(*given[std::string(spec.slots[i].name)], spec.slots[i], spec.kind, path));
+      }
+    }
+    return out;
+  }
+
+  int add_element_parameter(const ast::Argument& a, const ParameterSpec& spec, std::string_view kind, const std::string& path) {
+    Entry e;
+    e.parameter.path = path + "." + a.name;
+    e.parameter.dimension = spec.dimension;
+    e.parameter.where = a.value_where;
+    e.parameter.unit = literal_unit(*a.value);
+    e.meta = {spec.positive, false, std::string(spec.quantity), std::string(kind)};
+    e.dimension_known = true;
+    e.source = a.value.get();
+    e.bounds = a.bounds ? &*a.bounds : nullptr;
+    return add(std::move(e));
+  }
+
+  // The instantiated model's root becomes a parallel block named by the instance; its
+  // parameters are copied under the instance's path, then overridden by the arguments.
+  Element build_instance(const ast::Element& e, const ModelInfo& instance, const std::string& name, const std::string& path) {
+    const int base = static_cast<int>(entries_.size());
+    for (std::size_t i = 0; i < instance.model.parameters.size(); ++i) {
+      Entry copy;
+      copy.parameter = instance.model.parameters[i];
+      copy.parameter.path = path + "." + copy.parameter.path;
+      for (auto& op : copy.parameter.expression.code)
+        if (op.op == Expression::Op::parameter) op.parameter += base;
+      copy.meta = instance.meta[i];
+      copy.dimension_known = true;
+      add(std::move(copy));
+    }
+    std::vector<std::string> overridable;
+    for (std::size_t i = 0; i < instance.model.parameters.size(); ++i)
+      if (!instance.meta[i].derived) overridable.push_back(instance.model.parameters[i].path);
+    std::map<std::string, const ast::Argument*> given;
+    for (const auto& a : e.arguments) {
+      auto it = index_.find(path + "." + a.name);
+      if (it == index_.end() || it->second < base) {
+        error(a.where, fmt::format("model '{}' has no parameter '{}';{} it has {}", e.kind, a.name, did_you_mean(a.name, overridable), join(overridable)));
+        continue;
+      }
+      Entry& target = entries_[static_cast<std::size_t>(it->second)];
+      if (target.meta.derived) {
+        error(a.where, fmt::format("'{}' of model '{}' is computed from other parameters and cannot be overridden; override those instead", a.name, e.kind));
+      } else if (auto [first, fresh] = given.emplace(a.name, &a); !fresh) {
+        error(a.where, fmt::format("duplicate override of '{}' (first given at line {}); give it once", a.name, first->second->where.line));
+      } else {
+        // Override expressions are written in the enclosing model's namespace.
+        target.source = a.value.get();
+        target.bounds = a.bounds ? &*a.bounds : nullptr;
+        target.parameter.free = false;
+        target.parameter.where = a.value_where;
+        target.parameter.unit = literal_unit(*a.value);
+      }
+    }
+    Element root = instance.model.root;
+    rebase(root, path, base);
+    root.name = name;
+    root.where = e.where;
+    return root;
+  }
+
+  static void rebase(Element& e, const std::string& path, int base) {
+    e.path = e.path.empty() ? path : path + "." + e.path;
+    for (int& p : e.parameters) p += base;
+    for (auto& c : e.children) rebase(c, path, base);
+  }
+
+  // --- resolution: dimensions, expressions, values ---
+  std::string describe_parameter(const Entry& e) const {
+    if (e.meta.owner_kind.empty()) return fmt::format("parameter '{}'", e.parameter.path);
+    auto dot = e.parameter.path.rfind('.');
+    return fmt::format("{} of {}", e.parameter.path.substr(dot + 1), describe_element(e.meta.owner_kind, e.parameter.path.substr(0, dot)));
+  }
+
+  std::optional<ResolvedReference> reference(const ast::Expr& r) {
+    auto it = index_.find(r.path);
+    if (it == index_.end()) {
+      std::vector<std::string> known;
+      for (const auto& [path, index] : index_) known.push_back(path);
+      error(r.where, fmt::format("unknown parameter '{}' in this expression;{} references name parameters of model '{}' by path, e.g. k0 or m1.k",
+                                 r.path, did_you_mean(r.path, known), model_.name));
+      return std::nullopt;
+    }
+    if (!resolve(it->second)) return std::nullopt;
+    return ResolvedReference{it->second, entries_[static_cast<std::size_t>(it->second)].parameter.dimension};
+  }
+
+  // Resolves entry I (and, first, everything it references). False when it failed.
+  bool resolve(int i) {
+    Entry& e = entries_[static_cast<std::size_t>(i)];
+    if (e.state == Entry::State::done) return true;
+    if (e.state == Entry::State::failed) return false;
+    if (e.state == Entry::State::visiting) {
+      report_cycle(i);
+      return false;
+    }
+    e.state = Entry::State::visiting;
+    stack_.push_back(i);
+    bool ok = e.source ? compile_source(i) : resolve_copied(i);
+    stack_.pop_back();
+    Entry& done = entries_[static_cast<std::size_t>(i)];
+    if (done.state == Entry::State::failed) return false;  // part of a reported cycle
+    if (ok) {
+      values_[static_cast<std::size_t>(i)] = done.parameter.value = done.parameter.expression.evaluate(values_);
+      ok = check_value(done) && (!done.bounds || check_bounds(done));
+    }
+    done.state = ok ? Entry::State::done : Entry::State::failed;
+    return ok;
+  }
+
+  void report_cycle(int i) {
+    auto start = std::find(stack_.begin(), stack_.end(), i);
+    std::string chain;
+    for (auto it = start; it != stack_.end(); ++it) {
+      chain += entries_[static_cast<std::size_t>(*it)].parameter.path + " -> ";
+      entries_[static_cast<std::size_t>(*it)].state = Entry::State::failed;
+    }
+    const Entry& e = entries_[static_cast<std::size_t>(i)];
+    error(e.parameter.where, fmt::format("reference cycle: {}{}; a parameter cannot depend on itself", chain, e.parameter.path));
+  }
+
+  bool resolve_copied(int i) {
+    bool ok = true;
+    for (const auto& op : entries_[static_cast<std::size_t>(i)].parameter.expression.code)
+      if (op.op == Expression::Op::parameter) ok = resolve(op.parameter) && ok;
+    return ok;
+  }
+
+  bool compile_source(int i) {
+    const ast::Expr& source = *entries_[static_cast<std::size_t>(i)].source;
+    auto typed = compile_expression(source, [this](const ast::Expr& r) { return reference(r); }, errors_);
+    Entry& e = entries_[static_cast<std::size_t>(i)];
+    if (!typed.ok || e.state == Entry::State::failed) return false;
+    e.parameter.expression = std::move(typed.expression);
+    if (!e.dimension_known) {
+      e.parameter.dimension = typed.free ? dim::none : typed.dimension;
+    } else if (!typed.free && typed.dimension != e.parameter.dimension) {
+      error(e.parameter.where, fmt::format("{} expects {}, got {}", describe_parameter(e), with_article(e.parameter.dimension), with_article(typed.dimension)));
+      return false;
+    }
+    return true;
+  }
+
+  std::string show(const Entry& e, double value) const { return show_value(value, e.parameter.dimension, e.parameter.unit); }
+
+  bool check_value(const Entry& e) {
+    const double v = e.parameter.value;
+    if (!std::isfinite(v)) {
+      error(e.parameter.where, fmt::format("{} evaluates to {}; check for a division by zero", describe_parameter(e), v));
+      return false;
+    }
+    if (e.meta.positive && !(v > 0)) {
+      error(e.parameter.where, fmt::format("{} {} must be positive, got {}", e.meta.quantity, describe_parameter(e), show(e, v)));
+      return false;
+    }
+    return true;
+  }
+
+  // `in [LO, HI]`: plain-number bounds are in the unit of the value; the parameter becomes free.
+  bool check_bounds(Entry& e) {
+    const ast::Bounds& b = *e.bounds;
+    if (!e.parameter.expression.is_constant()) {
+      error(b.where, fmt::format("{} is computed from other parameters, so it cannot have bounds; put the bounds on those parameters",
+                                 describe_parameter(e)));
+      return false;
+    }
+    auto bound = [&](const ast::Expr& x) -> std::optional<double> {
+      auto constant_only = [&](const ast::Expr& r) -> std::optional<ResolvedReference> {
+        error(r.where, fmt::format("bounds must be numbers, not references to parameters ('{}')", r.path));
+        return std::nullopt;
+      };
+      auto typed = compile_expression(x, constant_only, errors_);
+      if (!typed.ok) return std::nullopt;
+      double value = typed.expression.evaluate({});
+      if (typed.free) {
+        auto unit = parse_unit(e.parameter.unit);
+        return unit ? value * unit->scale : value;
+      }
+      if (typed.dimension != e.parameter.dimension) {
+        error(x.where, fmt::format("bound of {} expects {}, got {}", describe_parameter(e), with_article(e.parameter.dimension), with_article(typed.dimension)));
+        return std::nullopt;
+      }
+      return value;
+    };
+    auto lower = bound(*b.lower);
+    auto upper = bound(*b.upper);
+    if (!lower || !upper) return false;
+    if (*lower >= *upper) {
+      error(b.lower->where, fmt::format("lower bound {} of {} must be below its upper bound {}", show(e, *lower), describe_parameter(e), show(e, *upper)));
+      return false;
+    }
+    if (e.meta.positive && !(*lower > 0)) {
+      error(b.lower->where, fmt::format("{} {} must be positive, so its lower bound must be too, got {}", e.meta.quantity, describe_parameter(e), show(e, *lower)));
+      return false;
+    }
+    if (e.parameter.value < *lower || e.parameter.value > *upper) {
+      error(e.parameter.where, fmt::format("{} = {} lies outside its bounds [{}, {}]", describe_parameter(e), show(e, e.parameter.value),
+                                           show(e, *lower), show(e, *upper)));
+      return false;
+    }
+    e.parameter.free = true;
+    e.parameter.lower = *lower;
+    e.parameter.upper = *upper;
+    return true;
+  }
+
+  const ast::Model& model_;
+  const ModelLookup& lookup_;
+  std::vector<Diagnostic>& errors_;
+  std::size_t first_error_;
+  ModelInfo info_;
+  std::vector<Entry> entries_;
+  std::map<std::string, int> index_;  // path -> entry
+  std::vector<double> values_;
+  std::vector<int> stack_;  // entries being resolved, for cycle reports
+};
+
+}  // namespace
+
+ModelInfo build_model(const ast::Model& model, const ModelLookup& lookup, std::vector<Diagnostic>& errors) {
+  return Builder(model, lookup, errors).run();
+}
+
+}  // namespace rheo::lang

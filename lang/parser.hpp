@@ -1,0 +1,18 @@
+// Text -> syntax tree (ast.hpp). Parse errors are fatal at the first one: they throw
+// CompileError holding exactly one Diagnostic.
+#pragma once
+
+#include "lang/ast.hpp"
+#include "lang/diagnostics.hpp"
+
+#include <string>
+#include <string_view>
+
+namespace rheo::lang {
+
+ast::File parse(const std::string& file_name, std::string_view text);
+
+// One `KEY = VALUE` setting as written on a command line (file name "<command line>").
+ast::SettingNode parse_setting_text(const std::string& file_name, std::string_view text);
+
+}  // namespace rheo::lang

@@ -1,0 +1,56 @@
+// Physical dimensions and the unit table.
+//
+// Internal system (the one the runtime computes in): force N, length mm, time s.
+// A Dimension is the exponent triple (force, length, time); e.g. stiffness N/mm = (1,-1,0).
+// Units at the edges (source files, CSV headers, CLI options, reports) convert to and from
+// the internal system with a single scale factor: value_internal = value_in_unit * scale.
+#pragma once
+
+#include <optional>
+#include <string>
+#include <string_view>
+
+namespace rheo::lang {
+
+struct Dimension {
+  int force = 0;
+  int length = 0;
+  int time = 0;
+
+  friend bool operator==(const Dimension&, const Dimension&) = default;
+  Dimension operator*(const Dimension& o) const { return {force + o.force, length + o.length, time + o.time}; }
+  Dimension operator/(const Dimension& o) const { return {force - o.force, length - o.length, time - o.time}; }
+  Dimension pow(int n) const { return {force * n, length * n, time * n}; }
+  bool dimensionless() const { return force == 0 && length == 0 && time == 0; }
+};
+
+namespace dim {
+inline constexpr Dimension none{0, 0, 0};
+inline constexpr Dimension force{1, 0, 0};
+inline constexpr Dimension length{0, 1, 0};
+inline constexpr Dimension time{0, 0, 1};
+inline constexpr Dimension frequency{0, 0, -1};
+inline constexpr Dimension velocity{0, 1, -1};
+inline constexpr Dimension stiffness{1, -1, 0};
+inline constexpr Dimension damping{1, -1, 1};     // N*s/mm
+inline constexpr Dimension mass{1, -1, 2};        // N*s^2/mm (= 1000 kg)
+inline constexpr Dimension energy{1, 1, 0};       // N*mm
+}  // namespace dim
+
+// "stiffness (N/mm)", "length (mm)", or the internal unit for unnamed dimensions ("N/mm^3").
+std::string describe(const Dimension& d);
+// The internal unit of a dimension, e.g. "N*s/mm", "N/mm^5", "1/s", "" for dimensionless.
+std::string internal_unit(const Dimension& d);
+
+struct Unit {
+  Dimension dimension;
+  double scale = 1.0;  // internal value per unit value
+};
+
+// A single unit atom such as "kN", "um", "ms", "Hz", "kg", "deg", "rad". Unknown: nullopt.
+std::optional<Unit> unit_atom(std::string_view name);
+// A compound unit such as "N/mm", "N*s/mm", "N/mm^3", "kN/mm", "N s/mm" is not accepted
+// (use '*'). Grammar: atom ('^' int)? (('*'|'/') atom ('^' int)?)* . Unknown: nullopt.
+std::optional<Unit> parse_unit(std::string_view text);
+
+}  // namespace rheo::lang

@@ -1,0 +1,49 @@
+// rheo: a language and interpreter for 1-D rheological networks of rubber bushings.
+// Exit codes: 0 ok, 1 internal error, 2 usage, 3 model file, 4 data or I/O, 5 numerical.
+#include "lang/diagnostics.hpp"
+#include "runtime/cli/commands.hpp"
+#include "runtime/errors.hpp"
+
+#include <fmt/format.h>
+
+#include <iostream>
+
+int main(int argc, char** argv) {
+  using namespace rheo;
+  CLI::App app{"rheo: model rubber bushings as 1-D rheological networks.\n"
+               "Exit codes: 0 ok, 1 internal error, 2 usage, 3 model file error, 4 data or I/O error,\n"
+               "5 numerical (e.g. a harmonic point did not reach steady state; results are still written)."};
+  app.require_subcommand(1);
+  app.set_version_flag("--version", "rheo 0.1.0");
+  std::vector<std::pair<CLI::App*, cli::Command>> commands;
+  auto* check = app.add_subcommand("check", "Parse and check a .rheo file; report every error found");
+  commands.emplace_back(check, cli::add_check_command(*check));
+  auto* simulate = app.add_subcommand("simulate", "Run the protocols of a .rheo file's simulate blocks");
+  commands.emplace_back(simulate, cli::add_simulate_command(*simulate));
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    const int code = app.exit(e);
+    return code == 0 ? 0 : runtime::exit_code::usage;
+  }
+  try {
+    for (auto& [sub, run] : commands)
+      if (sub->parsed()) return run();
+  } catch (const lang::CompileError& e) {
+    std::cerr << e.what();
+    return runtime::exit_code::model;
+  } catch (const runtime::UsageError& e) {
+    std::cerr << "rheo: error: " << e.what() << "\n";
+    return runtime::exit_code::usage;
+  } catch (const runtime::DataError& e) {
+    std::cerr << e.what() << "\n";
+    return runtime::exit_code::data;
+  } catch (const runtime::NumericalError& e) {
+    std::cerr << "rheo: numerical error: " << e.what() << "\n";
+    return runtime::exit_code::numerical;
+  } catch (const std::exception& e) {
+    std::cerr << "rheo: internal error: " << e.what() << "\nPlease report this with the input that caused it.\n";
+    return runtime::exit_code::internal;
+  }
+  return runtime::exit_code::internal;
+}

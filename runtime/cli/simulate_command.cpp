@@ -1,0 +1,103 @@
+#include "lang/diagnostics.hpp"
+#include "lang/frontend.hpp"
+#include "runtime/cli/commands.hpp"
+#include "runtime/errors.hpp"
+#include "runtime/network.hpp"
+#include "runtime/output.hpp"
+#include "runtime/run_protocols.hpp"
+
+#include <fmt/format.h>
+
+#include <filesystem>
+#include <iostream>
+#include <memory>
+
+namespace rheo::cli {
+namespace {
+
+struct Options {
+  std::string file;
+  std::string output;
+  std::string model;
+  std::string protocol;
+  std::vector<std::string> settings;
+  bool json = false;
+  bool elements = false;
+};
+
+void apply_overrides(lang::Protocol& protocol, const Options& o) {
+  for (const auto& text : o.settings) {
+    lang::Setting setting;
+    try {
+      setting = lang::parse_setting(protocol.kind, text);
+    } catch (const lang::CompileError& e) {
+      throw runtime::UsageError(fmt::format("--set '{}' for protocol {}:\n{}", text, runtime::protocol_name(protocol.kind), e.what()));
+    }
+    bool replaced = false;
+    for (auto& existing : protocol.settings)
+      if (existing.key == setting.key) existing = setting, replaced = true;
+    if (!replaced) protocol.settings.push_back(setting);
+  }
+  if (o.json) protocol.settings.push_back({"format", {}, {}, "json", {}});
+  if (o.elements) protocol.settings.push_back({"elements", {}, {}, "all", {}});
+}
+
+}  // namespace
+
+Command add_simulate_command(CLI::App& app) {
+  auto o = std::make_shared<Options>();
+  app.add_option("file", o->file, "The .rheo file")->required();
+  app.add_option("-o,--output", o->output, "Write the result here ('-' for standard output); needs exactly one protocol to run");
+  app.add_option("--model", o->model, "Run only the simulate blocks of this model");
+  app.add_option("--protocol", o->protocol, "Run only protocols of this kind (harmonic, static, quasistatic, history, step)");
+  app.add_option("--set", o->settings,
+                 "Override a protocol setting, in the file's syntax, e.g. --set 'amplitude = [0.1, 1] mm' "
+                 "--set 'frequency = 1 Hz .. 20 Hz step 1 Hz' --set 'steps_per_cycle = 4096'");
+  app.add_flag("--json", o->json, "Write JSON instead of CSV");
+  app.add_flag("--elements", o->elements, "Time histories: add every element's force and elongation");
+  app.footer("Results go where each protocol's `output \"FILE\"` line says (relative to the .rheo file), "
+             "else to standard output.");
+  return [o] {
+    const lang::Program program = lang::load_program(o->file);
+    struct Job {
+      const lang::CheckedModel* model;
+      lang::Protocol protocol;
+    };
+    std::vector<Job> jobs;
+    for (const auto& sim : program.simulations) {
+      if (!o->model.empty() && sim.model != o->model) continue;
+      for (const auto& protocol : sim.protocols) {
+        if (!o->protocol.empty() && o->protocol != runtime::protocol_name(protocol.kind)) continue;
+        jobs.push_back({program.find_model(sim.model), protocol});
+      }
+    }
+    if (jobs.empty())
+      throw runtime::UsageError(fmt::format("{} has no simulate block{}; add one, e.g.\n  simulate {{\n    harmonic frequency = 1 Hz .. 51 Hz step 2 Hz, amplitude = [0.2, 1.0] mm\n  }}",
+                                            o->file, o->model.empty() && o->protocol.empty() ? "" : " matching --model/--protocol"));
+    if (!o->output.empty() && jobs.size() != 1)
+      throw runtime::UsageError(fmt::format("-o names one output but {} protocols would run; select one with --protocol or --model", jobs.size()));
+    int not_converged = 0;
+    for (auto& job : jobs) {
+      apply_overrides(job.protocol, *o);
+      const runtime::Network network = runtime::Network::compile(*job.model);
+      runtime::ProtocolRun run = runtime::run_protocol(network, job.protocol, o->file);
+      std::string destination = o->output;
+      if (destination.empty() && !run.destination.empty())
+        destination = (std::filesystem::path(o->file).parent_path() / run.destination).string();
+      runtime::write_output(destination, run.content);
+      std::cerr << run.notes;
+      if (!destination.empty() && destination != "-")
+        std::cerr << fmt::format("rheo: {} of model {}: {} {} written to {}\n", runtime::protocol_name(job.protocol.kind),
+                                 job.model->name, run.points,
+                                 job.protocol.kind == lang::ProtocolKind::harmonic ? "points" : "samples", destination);
+      not_converged += run.not_converged;
+    }
+    if (not_converged > 0) {
+      std::cerr << fmt::format("rheo: {} harmonic point(s) did not reach steady state (column 'converged' = 0)\n", not_converged);
+      return runtime::exit_code::numerical;
+    }
+    return runtime::exit_code::ok;
+  };
+}
+
+}  // namespace rheo::cli

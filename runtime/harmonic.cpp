@@ -1,0 +1,115 @@
+#include "runtime/harmonic.hpp"
+
+#include "runtime/simulator.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <complex>
+#include <limits>
+#include <numbers>
+
+namespace rheo::runtime {
+namespace {
+
+void set_periodic_start(const Network& network, const StepPlan& plan, double amplitude, int steps, State& state) {
+  const Topology& t = network.topology();
+  const Coefficients& c = network.coefficients();
+  const double theta = 2.0 * std::numbers::pi / steps;
+  const std::complex<double> z = std::polar(1.0, theta);
+  for (std::size_t i = 0; i < c.maxwell_k.size(); ++i) {
+    const double a = plan.maxwell_a[i], b = plan.maxwell_b[i];
+    state.values[static_cast<std::size_t>(t.maxwell_state()) + i] = b * amplitude * std::imag((z - 1.0) / (z - a));
+  }
+  for (std::size_t i = 0; i < c.friction_k.size(); ++i) {
+    const double k = c.friction_k[i], fy = c.friction_fy[i];
+    state.values[static_cast<std::size_t>(t.friction_state()) + i] = amplitude > fy / k ? std::min(fy, k * amplitude - fy) : 0.0;
+  }
+  for (std::size_t i = 0; i < c.slider_fy.size(); ++i)
+    state.values[static_cast<std::size_t>(t.slider_state()) + i] = -c.slider_fy[i];
+}
+
+// Largest change of any state variable over a cycle, relative to its scale.
+double cycle_change(const Topology& t, const std::vector<double>& start, const std::vector<double>& end,
+                    double force_scale, double length_scale) {
+  double change = 0.0;
+  const std::size_t tree_start = static_cast<std::size_t>(t.slider_state()) + t.sliders.size();
+  for (std::size_t i = 0; i < start.size(); ++i) {
+    const bool is_elongation = i >= tree_start && (i - tree_start) % 2 == 0;
+    const double scale = is_elongation ? length_scale : force_scale;
+    change = std::max(change, std::abs(end[i] - start[i]) / scale);
+  }
+  return change;
+}
+
+}  // namespace
+
+HarmonicPoint simulate_harmonic_point(const Network& network, double amplitude, double frequency,
+                                      const HarmonicOptions& options) {
+  const int n = options.steps_per_cycle;
+  const double period = 1.0 / frequency;
+  const double dt = period / n;
+  const double omega = 2.0 * std::numbers::pi * frequency;
+  const Simulator simulator(network);
+  const StepPlan plan = StepPlan::make(network, dt);
+  const bool midpoints = network.topology().has_rate_jump;
+  const StepPlan half_plan = midpoints ? StepPlan::make(network, 0.5 * dt) : StepPlan{};
+
+  State state = simulator.rest_state();
+  set_periodic_start(network, plan, amplitude, n, state);
+  State next = state, probe = state, cycle_start = state;
+  std::vector<double> phase(static_cast<std::size_t>(n)), displacement(phase.size()), force(phase.size());
+  const bool needs_two_cycles = !network.topology().subtrees.empty();
+
+  HarmonicPoint point;
+  point.amplitude = amplitude;
+  point.frequency = frequency;
+  double previous_change = std::numeric_limits<double>::infinity();
+  for (int cycle = 1; cycle <= options.max_cycles; ++cycle) {
+    cycle_start.values = state.values;
+    for (int k = 0; k < n; ++k) {
+      const double u_next = amplitude * std::sin(omega * (k + 1) * dt);
+      const auto i = static_cast<std::size_t>(k);
+      if (midpoints) {
+        const double u_mid = 0.5 * (state.u + u_next);
+        phase[i] = omega * (k + 0.5) * dt;
+        displacement[i] = u_mid;
+        force[i] = simulator.step(half_plan, state, u_mid, probe);
+      }
+      const double f = simulator.step(plan, state, u_next, next);
+      if (!midpoints) {
+        phase[i] = omega * (k + 1) * dt;
+        displacement[i] = u_next;
+        force[i] = f;
+      }
+      std::swap(state, next);
+    }
+    // The drive returns to exactly 0 after a whole cycle.
+    state.u = 0.0;
+    const CycleSamples samples{phase, displacement, force};
+    point.measures = measure_cycle(samples, amplitude, options.definition);
+    point.cycles = cycle;
+    const double force_scale = std::max(point.measures.force_amplitude, std::numeric_limits<double>::min());
+    const double change = cycle_change(network.topology(), cycle_start.values, state.values, force_scale, amplitude);
+    const double rate = change / previous_change;
+    const double remaining = rate < 1.0 ? change * rate / (1.0 - rate) : change;
+    previous_change = change;
+    point.residual = std::max(change, remaining);
+    if (change <= options.tolerance && (!needs_two_cycles || cycle >= 2) && remaining <= options.tolerance) {
+      point.converged = true;
+      break;
+    }
+  }
+  return point;
+}
+
+std::vector<HarmonicPoint> simulate_harmonic_grid(const Network& network, const std::vector<double>& amplitudes,
+                                                  const std::vector<double>& frequencies,
+                                                  const HarmonicOptions& options) {
+  std::vector<HarmonicPoint> points;
+  points.reserve(amplitudes.size() * frequencies.size());
+  for (double amplitude : amplitudes)
+    for (double frequency : frequencies) points.push_back(simulate_harmonic_point(network, amplitude, frequency, options));
+  return points;
+}
+
+}  // namespace rheo::runtime

@@ -1,0 +1,51 @@
+// Harmonic test protocol: steady-state response to u = u0 sin(2 pi f t) over a grid of
+// amplitudes x frequencies (thesis Table 4.5), characterised per cycle_measures.hpp.
+//
+// Steady state is detected, not assumed. Each point starts from the exact periodic state where
+// one is known in closed form for the sampled drive:
+//   Maxwell element in the root block, drive sampled with theta = w dt = 2 pi / N:
+//     F_0 = b u0 Im[(e^{i theta} - 1) / (e^{i theta} - a)]   (a, b of the exact update, eq. 2.7;
+//     the fixed point of the one-cycle map, tends to k u0 w tau / (1 + w^2 tau^2) as N -> inf);
+//   friction element in the root block: F_0 = min(fy, k u0 - fy) if u0 > fy/k, else 0;
+//   subtrees start at rest.
+// Cycles are repeated until the state at the end of a cycle equals the state at its start
+// within `tolerance` (relative to F^ for forces and u0 for elongations), the error being
+// extrapolated from the per-cycle contraction when the state is still moving; a point that has
+// not converged after `max_cycles` is reported as such.
+// Forces are sampled at the step ends; for networks whose force jumps with the drive rate
+// (a dashpot with no spring in series) at the step midpoints instead, which keeps the
+// characterisation second order in the step.
+#pragma once
+
+#include "runtime/cycle_measures.hpp"
+#include "runtime/network.hpp"
+
+#include <vector>
+
+namespace rheo::runtime {
+
+struct HarmonicOptions {
+  HarmonicDefinition definition = HarmonicDefinition::thesis;
+  int steps_per_cycle = 2048;  // N, a multiple of 4 so that the turning points are sampled
+  int max_cycles = 400;
+  double tolerance = 1e-9;
+};
+
+struct HarmonicPoint {
+  double amplitude = 0.0;  // u0 [mm]
+  double frequency = 0.0;  // f [Hz]
+  CycleMeasures measures;
+  int cycles = 0;          // simulated cycles
+  bool converged = false;
+  double residual = 0.0;   // estimated relative distance from the periodic state
+};
+
+HarmonicPoint simulate_harmonic_point(const Network& network, double amplitude, double frequency,
+                                      const HarmonicOptions& options);
+
+// Amplitude-major order (all frequencies of the first amplitude first), as in the data files.
+std::vector<HarmonicPoint> simulate_harmonic_grid(const Network& network, const std::vector<double>& amplitudes,
+                                                  const std::vector<double>& frequencies,
+                                                  const HarmonicOptions& options);
+
+}  // namespace rheo::runtime

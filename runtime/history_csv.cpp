@@ -1,0 +1,132 @@
+#include "runtime/history_csv.hpp"
+
+#include "lang/units.hpp"
+#include "runtime/errors.hpp"
+
+#include <fmt/format.h>
+
+#include <charconv>
+#include <cmath>
+#include <fstream>
+#include <sstream>
+
+namespace rheo::runtime {
+namespace {
+
+[[noreturn]] void fail(const std::string& path, int row, int column, const std::string& message) {
+  throw DataError(fmt::format("{}:{}:{}: error: {}", path, row, column, message));
+}
+
+std::string trim(std::string_view s) {
+  const auto begin = s.find_first_not_of(" \t");
+  if (begin == std::string_view::npos) return {};
+  const auto end = s.find_last_not_of(" \t");
+  return std::string(s.substr(begin, end - begin + 1));
+}
+
+struct Cell {
+  std::string text;
+  int column;  // 1-based byte column of the cell start
+};
+
+std::vector<Cell> split(const std::string& line) {
+  std::vector<Cell> cells;
+  std::size_t start = 0;
+  while (true) {
+    const auto comma = line.find(',', start);
+    const auto end = comma == std::string::npos ? line.size() : comma;
+    cells.push_back({trim(std::string_view(line).substr(start, end - start)), static_cast<int>(start) + 1});
+    if (comma == std::string::npos) break;
+    start = comma + 1;
+  }
+  return cells;
+}
+
+}  // namespace
+
+int Table::column(const std::string& name) const {
+  for (std::size_t i = 0; i < names.size(); ++i)
+    if (names[i] == name) return static_cast<int>(i);
+  return -1;
+}
+
+Table read_table(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw DataError(fmt::format("{}: error: cannot open the file; check the path", path));
+  std::ostringstream text;
+  text << in.rdbuf();
+  return parse_table(path, text.str());
+}
+
+Table parse_table(const std::string& path, const std::string& raw) {
+  Table table;
+  table.path = path;
+  std::string text = raw;
+  if (text.rfind("\xEF\xBB\xBF", 0) == 0) text.erase(0, 3);
+  if (text.find('\0') != std::string::npos) throw DataError(fmt::format("{}: error: the file holds NUL bytes; it is not a CSV text file", path));
+  std::istringstream lines(text);
+  std::string line;
+  int row = 0;
+  std::vector<double> scales;
+  while (std::getline(lines, line)) {
+    ++row;
+    if (!line.empty() && line.back() == '\r') line.pop_back();
+    const std::string stripped = trim(line);
+    if (stripped.empty() || stripped.front() == '#') continue;
+    const auto cells = split(line);
+    if (table.names.empty()) {
+      for (const auto& cell : cells) {
+        const auto open = cell.text.find('['), close = cell.text.rfind(']');
+        if (open == std::string::npos || close == std::string::npos || close < open)
+          fail(path, row, cell.column, fmt::format("header column '{}' has no unit; write it as 'name [unit]', e.g. 'time [s]'", cell.text));
+        const std::string name = trim(std::string_view(cell.text).substr(0, open));
+        const std::string unit = trim(std::string_view(cell.text).substr(open + 1, close - open - 1));
+        auto parsed = unit.empty() || unit == "-" ? std::optional<lang::Unit>{lang::Unit{}} : lang::parse_unit(unit);
+        if (!parsed) fail(path, row, cell.column + static_cast<int>(open) + 1, fmt::format("unknown unit '{}' in column '{}'; use units such as s, ms, mm, um, m, N, kN, N/mm, Hz, deg", unit, name));
+        if (table.column(name) >= 0) fail(path, row, cell.column, fmt::format("column '{}' appears twice in the header", name));
+        table.names.push_back(name);
+        table.units.push_back(unit);
+        scales.push_back(parsed->scale);
+      }
+      table.columns.resize(table.names.size());
+      continue;
+    }
+    if (cells.size() != table.names.size())
+      fail(path, row, 1, fmt::format("this row has {} values, the header has {} columns", cells.size(), table.names.size()));
+    for (std::size_t c = 0; c < cells.size(); ++c) {
+      const std::string& s = cells[c].text;
+      double value = 0.0;
+      const auto [ptr, ec] = std::from_chars(s.data(), s.data() + s.size(), value);
+      if (s.empty() || ec != std::errc{} || ptr != s.data() + s.size())
+        fail(path, row, cells[c].column, fmt::format("'{}' is not a number (column '{}')", s, table.names[c]));
+      if (!std::isfinite(value))
+        fail(path, row, cells[c].column, fmt::format("'{}' is not a finite number (column '{}'); remove or repair the row", s, table.names[c]));
+      table.columns[c].push_back(value * scales[c]);
+    }
+    table.rows.push_back(row);
+  }
+  if (table.names.empty()) throw DataError(fmt::format("{}: error: no header found; the file is empty or only comments", path));
+  if (table.rows.empty()) throw DataError(fmt::format("{}: error: the table has a header but no data rows", path));
+  return table;
+}
+
+Drive drive_from_table(const Table& table) {
+  const int t = table.column("time"), u = table.column("displacement");
+  if (t < 0 || u < 0)
+    throw DataError(fmt::format("{}: error: a displacement history needs columns 'time [s]' and 'displacement [mm]' (any time and length units)", table.path));
+  const auto& time = table.columns[static_cast<std::size_t>(t)];
+  const auto& disp = table.columns[static_cast<std::size_t>(u)];
+  if (time.size() < 2) throw DataError(fmt::format("{}:{}: error: a history needs at least two rows", table.path, table.rows[0]));
+  if (std::abs(disp[0]) > 1e-9)
+    throw DataError(fmt::format("{}:{}:1: error: the history must start from rest (displacement 0 in its first row, found {} mm); add a first row with displacement 0", table.path, table.rows[0], disp[0]));
+  Drive d;
+  for (std::size_t i = 0; i < time.size(); ++i) {
+    if (i > 0 && !(time[i] > time[i - 1]))
+      throw DataError(fmt::format("{}:{}:1: error: time must increase strictly (row {} has {} s after {} s)", table.path, table.rows[i], table.rows[i], time[i], time[i - 1]));
+    d.time.push_back(time[i] - time[0]);
+    d.displacement.push_back(disp[i]);
+  }
+  return d;
+}
+
+}  // namespace rheo::runtime

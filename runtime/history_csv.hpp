@@ -1,0 +1,33 @@
+// Reading measured/derived tables: CSV with '#' comment lines, a header whose column names
+// carry their unit in brackets ("time [s]", "displacement [um]", "force [kN]"), then numbers.
+// Values are converted to the internal system (N, mm, s). A UTF-8 byte-order mark and CRLF line
+// ends are accepted. Anything malformed is a DataError naming file:row:column and what to do;
+// nothing is guessed.
+#pragma once
+
+#include "runtime/drives.hpp"
+
+#include <string>
+#include <vector>
+
+namespace rheo::runtime {
+
+struct Table {
+  std::string path;
+  std::vector<std::string> names;               // "time", "displacement", ...
+  std::vector<std::string> units;               // as written: "s", "mm"
+  std::vector<std::vector<double>> columns;     // internal units, column-major
+  std::vector<int> rows;                        // 1-based file line of each data row
+
+  int column(const std::string& name) const;    // -1 when absent
+};
+
+Table read_table(const std::string& path);
+Table parse_table(const std::string& path, const std::string& text);
+
+// A displacement history from a table with "time" and "displacement" columns: strictly
+// increasing time, starting from rest (displacement 0 at the first row). Time is shifted so
+// that the drive starts at t = 0.
+Drive drive_from_table(const Table& table);
+
+}  // namespace rheo::runtime

@@ -1,0 +1,297 @@
+#include "runtime/network.hpp"
+
+#include <fmt/format.h>
+
+#include <stdexcept>
+
+namespace rheo::runtime {
+namespace {
+
+using lang::ElementKind;
+
+// Mutable intermediate tree used only while compiling.
+struct Proto {
+  NodeKind kind = NodeKind::parallel;
+  int param[3] = {-1, -1, -1};
+  int probe = -1;           // user element this leaf stands for
+  int fused_dashpot_probe = -1;  // a fused spring+dashpot pair: the dashpot's probe
+  std::vector<Proto> children;
+  bool is_block() const { return kind == NodeKind::parallel || kind == NodeKind::series; }
+};
+
+NodeKind node_kind(ElementKind kind) {
+  switch (kind) {
+    case ElementKind::spring: return NodeKind::spring;
+    case ElementKind::yeoh: return NodeKind::yeoh;
+    case ElementKind::dashpot: return NodeKind::dashpot;
+    case ElementKind::maxwell: return NodeKind::maxwell;
+    case ElementKind::friction: return NodeKind::friction;
+    case ElementKind::slider: return NodeKind::slider;
+    case ElementKind::parallel: return NodeKind::parallel;
+    case ElementKind::series: return NodeKind::series;
+  }
+  return NodeKind::parallel;
+}
+
+Proto convert(const lang::Element& element, std::vector<ElementProbe>& probes) {
+  Proto proto;
+  proto.kind = node_kind(element.kind);
+  if (proto.is_block()) {
+    for (const auto& child : element.children) proto.children.push_back(convert(child, probes));
+    return proto;
+  }
+  for (std::size_t i = 0; i < element.parameters.size() && i < 3; ++i) proto.param[i] = element.parameters[i];
+  proto.probe = static_cast<int>(probes.size());
+  probes.push_back({element.path, element.kind, ElementProbe::Source::tree_node, 0});
+  return proto;
+}
+
+void fuse_spring_dashpot(Proto& series) {
+  int spring = -1, dashpot = -1, springs = 0, dashpots = 0;
+  for (std::size_t i = 0; i < series.children.size(); ++i) {
+    if (series.children[i].kind == NodeKind::spring) { spring = static_cast<int>(i); ++springs; }
+    if (series.children[i].kind == NodeKind::dashpot) { dashpot = static_cast<int>(i); ++dashpots; }
+  }
+  if (springs != 1 || dashpots != 1) return;
+  Proto pair;
+  pair.kind = NodeKind::maxwell;
+  pair.param[0] = series.children[static_cast<std::size_t>(spring)].param[0];
+  pair.param[1] = series.children[static_cast<std::size_t>(dashpot)].param[0];
+  pair.probe = series.children[static_cast<std::size_t>(spring)].probe;
+  pair.fused_dashpot_probe = series.children[static_cast<std::size_t>(dashpot)].probe;
+  std::vector<Proto> rest{pair};
+  for (std::size_t i = 0; i < series.children.size(); ++i)
+    if (static_cast<int>(i) != spring && static_cast<int>(i) != dashpot) rest.push_back(std::move(series.children[i]));
+  series.children = std::move(rest);
+}
+
+Proto canonicalise(Proto proto) {
+  if (!proto.is_block()) return proto;
+  std::vector<Proto> flat;
+  for (auto& child : proto.children) {
+    Proto c = canonicalise(std::move(child));
+    if (c.kind == proto.kind) {
+      for (auto& grandchild : c.children) flat.push_back(std::move(grandchild));
+    } else {
+      flat.push_back(std::move(c));
+    }
+  }
+  proto.children = std::move(flat);
+  if (proto.kind == NodeKind::series) fuse_spring_dashpot(proto);
+  if (proto.children.size() == 1) return std::move(proto.children.front());
+  return proto;
+}
+
+struct TreeBuilder {
+  Topology& topology;
+  int next_state;
+
+  // Appends the subtree rooted at proto; returns its node index.
+  int add(const Proto& proto) {
+    const int index = static_cast<int>(topology.nodes.size());
+    topology.nodes.push_back({});
+    TreeNode node;
+    node.kind = proto.kind;
+    for (int i = 0; i < 3; ++i) node.param[i] = proto.param[i];
+    node.state = next_state;
+    next_state += 2;
+    if (proto.probe >= 0) {
+      auto& probe = topology.probes[static_cast<std::size_t>(proto.probe)];
+      probe.index = index;
+      probe.source = proto.fused_dashpot_probe >= 0 ? ElementProbe::Source::tree_maxwell_spring
+                                                    : ElementProbe::Source::tree_node;
+      if (proto.fused_dashpot_probe >= 0) {
+        auto& dashpot = topology.probes[static_cast<std::size_t>(proto.fused_dashpot_probe)];
+        dashpot.index = index;
+        dashpot.source = ElementProbe::Source::tree_maxwell_dashpot;
+      }
+    }
+    std::vector<int> kids;
+    for (const auto& child : proto.children) kids.push_back(add(child));
+    node.first_child = static_cast<int>(topology.children.size());
+    node.child_count = static_cast<int>(kids.size());
+    topology.children.insert(topology.children.end(), kids.begin(), kids.end());
+    if (proto.kind == NodeKind::series) topology.internal_nodes += node.child_count - 1;
+    switch (proto.kind) {
+      case NodeKind::slider: node.rigid_when_stuck = true; break;
+      case NodeKind::parallel:
+        for (int k : kids) node.rigid_when_stuck |= topology.nodes[static_cast<std::size_t>(k)].rigid_when_stuck;
+        break;
+      case NodeKind::series:
+        node.rigid_when_stuck = true;
+        for (int k : kids) node.rigid_when_stuck &= topology.nodes[static_cast<std::size_t>(k)].rigid_when_stuck;
+        break;
+      default: break;
+    }
+    topology.nodes[static_cast<std::size_t>(index)] = node;
+    return index;
+  }
+};
+
+// A force jump with the drive rate needs a dashpot reachable from the terminal without a
+// compliant (spring-like) member in series.
+bool rate_jump(const Proto& p) {
+  switch (p.kind) {
+    case NodeKind::dashpot: return true;
+    case NodeKind::parallel:
+      for (const auto& c : p.children)
+        if (rate_jump(c)) return true;
+      return false;
+    case NodeKind::series: {
+      bool any = false;
+      for (const auto& c : p.children) {
+        if (c.kind == NodeKind::slider) continue;
+        if (!rate_jump(c)) return false;
+        any = true;
+      }
+      return any;
+    }
+    default: return false;
+  }
+}
+
+bool linear(const Proto& p) {
+  switch (p.kind) {
+    case NodeKind::spring:
+    case NodeKind::dashpot:
+    case NodeKind::maxwell: return true;
+    case NodeKind::parallel:
+    case NodeKind::series:
+      for (const auto& c : p.children)
+        if (!linear(c)) return false;
+      return true;
+    default: return false;
+  }
+}
+
+Coefficients make_coefficients(const Topology& t, const std::vector<double>& p) {
+  auto at = [&](int i) { return p[static_cast<std::size_t>(i)]; };
+  Coefficients c;
+  for (int k : t.springs) c.spring_k += at(k);
+  for (int d : t.dashpots) c.dashpot_c += at(d);
+  for (const auto& y : t.yeohs) {
+    c.yeoh_d10.push_back(at(y[0]));
+    c.yeoh_d20.push_back(at(y[1]));
+    c.yeoh_d30.push_back(at(y[2]));
+  }
+  for (const auto& m : t.maxwells) {
+    c.maxwell_k.push_back(at(m[0]));
+    c.maxwell_c.push_back(at(m[1]));
+  }
+  for (const auto& f : t.frictions) {
+    c.friction_k.push_back(at(f[0]));
+    c.friction_fy.push_back(at(f[1]));
+  }
+  for (int s : t.sliders) {
+    c.slider_fy.push_back(at(s));
+    c.slider_fy_total += at(s);
+  }
+  return c;
+}
+
+}  // namespace
+
+Network Network::compile(const lang::CheckedModel& model) {
+  auto topology = std::make_shared<Topology>();
+  Proto root = canonicalise(convert(model.root, topology->probes));
+  topology->has_rate_jump = rate_jump(root);
+  topology->is_linear = linear(root);
+
+  std::vector<Proto> branches;
+  if (root.kind == NodeKind::parallel) branches = std::move(root.children);
+  else branches.push_back(std::move(root));
+
+  std::vector<const Proto*> trees;
+  for (const auto& b : branches) {
+    auto group = [&](ElementProbe::Source source, int index) {
+      auto& probe = topology->probes[static_cast<std::size_t>(b.probe)];
+      probe.source = source;
+      probe.index = index;
+    };
+    switch (b.kind) {
+      case NodeKind::spring:
+        group(ElementProbe::Source::root_spring, static_cast<int>(topology->springs.size()));
+        topology->springs.push_back(b.param[0]);
+        break;
+      case NodeKind::yeoh:
+        group(ElementProbe::Source::root_yeoh, static_cast<int>(topology->yeohs.size()));
+        topology->yeohs.push_back({b.param[0], b.param[1], b.param[2]});
+        break;
+      case NodeKind::dashpot:
+        group(ElementProbe::Source::root_dashpot, static_cast<int>(topology->dashpots.size()));
+        topology->dashpots.push_back(b.param[0]);
+        break;
+      case NodeKind::maxwell:
+        if (b.fused_dashpot_probe >= 0) { trees.push_back(&b); break; }
+        group(ElementProbe::Source::root_maxwell, static_cast<int>(topology->maxwells.size()));
+        topology->maxwells.push_back({b.param[0], b.param[1]});
+        break;
+      case NodeKind::friction:
+        group(ElementProbe::Source::root_friction, static_cast<int>(topology->frictions.size()));
+        topology->frictions.push_back({b.param[0], b.param[1]});
+        break;
+      case NodeKind::slider:
+        group(ElementProbe::Source::root_slider, static_cast<int>(topology->sliders.size()));
+        topology->sliders.push_back(b.param[0]);
+        break;
+      default: trees.push_back(&b); break;
+    }
+  }
+  TreeBuilder builder{*topology, topology->slider_state() + static_cast<int>(topology->sliders.size())};
+  for (const Proto* tree : trees) topology->subtrees.push_back(builder.add(*tree));
+  topology->state_size = builder.next_state;
+
+  Network network;
+  network.model_ = std::make_shared<const lang::CheckedModel>(model);
+  network.topology_ = std::move(topology);
+  network.parameters_.reserve(model.parameters.size());
+  for (const auto& parameter : model.parameters) network.parameters_.push_back(parameter.value);
+  network.coefficients_ = make_coefficients(*network.topology_, network.parameters_);
+  return network;
+}
+
+Network Network::with_parameters(const std::vector<double>& values) const {
+  if (values.size() != parameters_.size())
+    throw std::invalid_argument(fmt::format("model '{}' has {} parameters, {} values given", model_->name,
+                                            parameters_.size(), values.size()));
+  Network copy = *this;
+  // Parameters are stored in dependency order by the checker only for literals; evaluate
+  // derived ones repeatedly until stable (chains are short and acyclic).
+  copy.parameters_ = values;
+  for (std::size_t pass = 0; pass < copy.parameters_.size() + 1; ++pass) {
+    bool changed = false;
+    for (std::size_t i = 0; i < model_->parameters.size(); ++i) {
+      const auto& expression = model_->parameters[i].expression;
+      if (expression.is_constant()) continue;
+      const double v = expression.evaluate(copy.parameters_);
+      if (v != copy.parameters_[i]) {
+        copy.parameters_[i] = v;
+        changed = true;
+      }
+    }
+    if (!changed) break;
+  }
+  copy.coefficients_ = make_coefficients(*topology_, copy.parameters_);
+  return copy;
+}
+
+std::string Network::describe() const {
+  const Topology& t = *topology_;
+  std::string out = fmt::format("model {}: {} parameters ({} free), {} elements\n", model_->name, parameters_.size(),
+                                [&] {
+                                  int n = 0;
+                                  for (const auto& p : model_->parameters) n += p.free ? 1 : 0;
+                                  return n;
+                                }(),
+                                t.probes.size());
+  out += fmt::format("  nodes: driven terminal, ground, {} internal\n", t.internal_nodes);
+  out += fmt::format("  root branches: {} spring, {} yeoh, {} dashpot, {} maxwell, {} friction, {} slider, {} subtree\n",
+                     t.springs.size(), t.yeohs.size(), t.dashpots.size(), t.maxwells.size(), t.frictions.size(),
+                     t.sliders.size(), t.subtrees.size());
+  out += fmt::format("  state variables: {}\n", t.state_size);
+  out += fmt::format("  linear: {}, force jumps with rate: {}\n", t.is_linear ? "yes" : "no",
+                     t.has_rate_jump ? "yes" : "no");
+  return out;
+}
+
+}  // namespace rheo::runtime

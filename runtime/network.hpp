@@ -1,0 +1,113 @@
+// The compiled network: an immutable state-space graph built once from a checked model.
+//
+// Structure is immutable and shared; only a State (simulator.hpp) changes while simulating.
+// Displacement-driven: the terminal node follows the drive u(t), the other terminal is ground.
+//
+// Compilation canonicalises the element tree:
+//  - blocks with one child are replaced by the child; parallel-in-parallel and
+//    series-in-series are spliced;
+//  - a series chain holding exactly one spring and one dashpot fuses them into a Maxwell
+//    member, so that it gets the exact exponential update (eq. 2.7) rather than an implicit one;
+//  - leaves directly in the root parallel block are grouped by kind into flat arrays
+//    (the hot loop of the thesis models); everything else is a subtree solved by TreeSolver.
+// Internal nodes are the junctions inside series chains: a chain of m members has m-1.
+#pragma once
+
+#include "lang/model.hpp"
+
+#include <array>
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace rheo::runtime {
+
+enum class NodeKind : std::uint8_t { spring, yeoh, dashpot, maxwell, friction, slider, parallel, series };
+
+// A node of a subtree below the root. Leaves carry parameter indices; blocks carry children.
+// Every subtree node owns two state slots: elongation e [mm] and force F [N] at the last step.
+struct TreeNode {
+  NodeKind kind = NodeKind::parallel;
+  int first_child = 0;  // into Topology::children
+  int child_count = 0;
+  int param[3] = {-1, -1, -1};
+  int state = -1;             // offset of (e, F) in State::values
+  bool rigid_when_stuck = false;  // force is set-valued at zero elongation rate (sliders)
+};
+
+// Where the force and elongation of an element the user wrote are read from.
+struct ElementProbe {
+  std::string path;
+  lang::ElementKind kind;
+  enum class Source : std::uint8_t {
+    root_spring, root_yeoh, root_dashpot, root_maxwell, root_friction, root_slider,
+    tree_node,            // a subtree node: its (e, F) slots
+    tree_maxwell_spring,  // the spring of a fused spring+dashpot pair: e = F/k
+    tree_maxwell_dashpot, // the dashpot of a fused pair: e = e_pair - F/k
+  } source;
+  int index = 0;  // into the root group or Topology::nodes
+};
+
+struct Topology {
+  // Root parallel block, grouped by kind; entries are parameter indices.
+  std::vector<int> springs;              // k
+  std::vector<std::array<int, 3>> yeohs; // D10, D20, D30
+  std::vector<int> dashpots;             // c
+  std::vector<std::array<int, 2>> maxwells;   // k, c
+  std::vector<std::array<int, 2>> frictions;  // k, fy
+  std::vector<int> sliders;              // fy
+  std::vector<int> subtrees;             // node indices of subtree roots
+
+  std::vector<TreeNode> nodes;
+  std::vector<int> children;
+  std::vector<ElementProbe> probes;  // one per element the user wrote, in source order
+
+  int internal_nodes = 0;  // junctions inside series chains
+  int state_size = 0;      // maxwell F, friction F, slider F, then 2 per tree node
+  int maxwell_state() const { return 0; }
+  int friction_state() const { return static_cast<int>(maxwells.size()); }
+  int slider_state() const { return friction_state() + static_cast<int>(frictions.size()); }
+
+  bool has_rate_jump = false;  // force can jump with the drive rate (a dashpot with no spring in series)
+  bool is_linear = false;      // only springs, dashpots and Maxwell elements
+};
+
+// Numbers derived from parameter values, laid out per root group (flat arrays for the kernels).
+struct Coefficients {
+  double spring_k = 0.0;                    // sum of root spring stiffnesses [N/mm]
+  double dashpot_c = 0.0;                   // sum of root dashpot coefficients [N*s/mm]
+  std::vector<double> yeoh_d10, yeoh_d20, yeoh_d30;
+  std::vector<double> maxwell_k, maxwell_c;
+  std::vector<double> friction_k, friction_fy;
+  std::vector<double> slider_fy;
+  double slider_fy_total = 0.0;
+};
+
+class Network {
+ public:
+  // Compiles a checked model. Throws std::invalid_argument with advice for networks that
+  // cannot be driven (e.g. a yeoh spring whose force law is not monotone over the range used
+  // is diagnosed at run time, not here).
+  static Network compile(const lang::CheckedModel& model);
+
+  // The same structure with new values for all parameters (internal units); derived
+  // parameters are re-evaluated from their expressions. Used by fitting.
+  Network with_parameters(const std::vector<double>& values) const;
+
+  const lang::CheckedModel& model() const { return *model_; }
+  const Topology& topology() const { return *topology_; }
+  const Coefficients& coefficients() const { return coefficients_; }
+  const std::vector<double>& parameters() const { return parameters_; }
+  double parameter(int index) const { return parameters_[static_cast<std::size_t>(index)]; }
+
+  // A readable description of the compiled graph, for `rheo check --graph`.
+  std::string describe() const;
+
+ private:
+  std::shared_ptr<const lang::CheckedModel> model_;
+  std::shared_ptr<const Topology> topology_;
+  std::vector<double> parameters_;
+  Coefficients coefficients_;
+};
+
+}  // namespace rheo::runtime

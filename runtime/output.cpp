@@ -1,0 +1,120 @@
+#include "runtime/output.hpp"
+
+#include "runtime/errors.hpp"
+
+#include <fmt/format.h>
+#include <nlohmann/json.hpp>
+#include <unistd.h>
+
+#include <cerrno>
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <filesystem>
+#include <iostream>
+#include <numbers>
+
+namespace rheo::runtime {
+namespace {
+
+constexpr double kDegree = 180.0 / std::numbers::pi;
+
+std::string comment_lines(const ResultHeader& h) {
+  return fmt::format("# rheo {}: model {} from {}\n", h.protocol, h.model, h.source);
+}
+
+const char* definition_name(HarmonicDefinition d) {
+  return d == HarmonicDefinition::thesis ? "thesis" : "first_harmonic";
+}
+
+}  // namespace
+
+std::string harmonic_csv(const ResultHeader& header, const std::vector<HarmonicPoint>& points, HarmonicDefinition definition) {
+  std::string out = comment_lines(header);
+  out += definition == HarmonicDefinition::thesis
+             ? "# definition thesis: stiffness = (max F - min F)/(2 u0), phase = asin(U/(pi F^ u0)) (eqs. 1.2, 5.26, 5.27)\n"
+             : "# definition first_harmonic: stiffness = |F1|/u0, phase = arg F1 of the first harmonic of the force\n";
+  out += "amplitude [mm],frequency [Hz],stiffness [N/mm],phase [deg],damping [-],storage [N/mm],loss [N/mm],"
+         "force_amplitude [N],energy [N*mm],cycles [-],converged [-]\n";
+  for (const auto& p : points) {
+    const auto& m = p.measures;
+    out += fmt::format("{:.6g},{:.6g},{:.10g},{:.8g},{:.8g},{:.10g},{:.10g},{:.10g},{:.10g},{},{}\n", p.amplitude,
+                       p.frequency, m.stiffness, m.phase * kDegree, m.damping, m.storage, m.loss, m.force_amplitude,
+                       m.energy, p.cycles, p.converged ? 1 : 0);
+  }
+  return out;
+}
+
+std::string harmonic_json(const ResultHeader& header, const std::vector<HarmonicPoint>& points, HarmonicDefinition definition) {
+  nlohmann::ordered_json j;
+  j["model"] = header.model;
+  j["source"] = header.source;
+  j["protocol"] = "harmonic";
+  j["definition"] = definition_name(definition);
+  j["units"] = {{"amplitude", "mm"}, {"frequency", "Hz"}, {"stiffness", "N/mm"}, {"phase", "deg"},
+                {"storage", "N/mm"}, {"loss", "N/mm"}, {"force_amplitude", "N"}, {"energy", "N*mm"}};
+  auto& list = j["points"] = nlohmann::ordered_json::array();
+  for (const auto& p : points) {
+    const auto& m = p.measures;
+    list.push_back({{"amplitude", p.amplitude}, {"frequency", p.frequency}, {"stiffness", m.stiffness},
+                    {"phase", m.phase * kDegree}, {"damping", m.damping}, {"storage", m.storage}, {"loss", m.loss},
+                    {"force_amplitude", m.force_amplitude}, {"energy", m.energy}, {"cycles", p.cycles},
+                    {"converged", p.converged}});
+  }
+  return j.dump(2) + "\n";
+}
+
+std::string history_csv(const ResultHeader& header, const History& h) {
+  std::string out = comment_lines(header);
+  out += "time [s],displacement [mm],force [N]";
+  for (const auto& path : h.element_paths) out += fmt::format(",{0}.force [N],{0}.elongation [mm]", path);
+  out += "\n";
+  for (std::size_t k = 0; k < h.time.size(); ++k) {
+    out += fmt::format("{:.10g},{:.10g},{:.10g}", h.time[k], h.displacement[k], h.force[k]);
+    for (std::size_t i = 0; i < h.element_paths.size(); ++i)
+      out += fmt::format(",{:.10g},{:.10g}", h.element_force[i][k], h.element_elongation[i][k]);
+    out += "\n";
+  }
+  return out;
+}
+
+std::string history_json(const ResultHeader& header, const History& h) {
+  nlohmann::ordered_json j;
+  j["model"] = header.model;
+  j["source"] = header.source;
+  j["protocol"] = header.protocol;
+  j["units"] = {{"time", "s"}, {"displacement", "mm"}, {"force", "N"}, {"elongation", "mm"}};
+  j["time"] = h.time;
+  j["displacement"] = h.displacement;
+  j["force"] = h.force;
+  auto& elements = j["elements"] = nlohmann::ordered_json::array();
+  for (std::size_t i = 0; i < h.element_paths.size(); ++i)
+    elements.push_back({{"path", h.element_paths[i]}, {"force", h.element_force[i]}, {"elongation", h.element_elongation[i]}});
+  return j.dump() + "\n";
+}
+
+void write_output(const std::string& path, const std::string& content) {
+  if (path.empty() || path == "-") {
+    std::cout << content << std::flush;
+    return;
+  }
+  namespace fs = std::filesystem;
+  const fs::path target(path);
+  const fs::path temporary = target.parent_path() / fmt::format(".{}.rheo-tmp-{}", target.filename().string(), ::getpid());
+  std::FILE* file = std::fopen(temporary.c_str(), "wb");
+  if (!file) throw DataError(fmt::format("{}: error: cannot write output ({}); check that the directory exists and is writable", path, std::strerror(errno)));
+  const bool written = std::fwrite(content.data(), 1, content.size(), file) == content.size();
+  const bool closed = std::fclose(file) == 0;
+  std::error_code ec;
+  if (!written || !closed) {
+    fs::remove(temporary, ec);
+    throw DataError(fmt::format("{}: error: writing the output failed (disk full?); nothing was written", path));
+  }
+  fs::rename(temporary, target, ec);
+  if (ec) {
+    fs::remove(temporary, ec);
+    throw DataError(fmt::format("{}: error: cannot replace the output file ({})", path, ec.message()));
+  }
+}
+
+}  // namespace rheo::runtime

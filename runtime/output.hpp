@@ -1,0 +1,35 @@
+// Result formats and atomic output.
+//
+// Harmonic CSV: the first four columns are exactly
+//   amplitude [mm],frequency [Hz],stiffness [N/mm],phase [deg]
+// (the format of the measured data, so a result can be fitted later), then
+//   damping [-],storage [N/mm],loss [N/mm],force_amplitude [N],energy [N*mm],cycles [-],converged [-]
+// History CSV: time [s],displacement [mm],force [N], then per element "PATH.force [N]" and
+// "PATH.elongation [mm]". '#' lines before the header say what produced the file.
+// Files are written to a temporary sibling and renamed, so a failed run never leaves a
+// half-written file and earlier outputs stay intact.
+#pragma once
+
+#include "runtime/drives.hpp"
+#include "runtime/harmonic.hpp"
+
+#include <string>
+#include <vector>
+
+namespace rheo::runtime {
+
+struct ResultHeader {
+  std::string model;
+  std::string source;    // the .rheo file
+  std::string protocol;  // "harmonic definition=thesis steps_per_cycle=2048"
+};
+
+std::string harmonic_csv(const ResultHeader& header, const std::vector<HarmonicPoint>& points, HarmonicDefinition definition);
+std::string harmonic_json(const ResultHeader& header, const std::vector<HarmonicPoint>& points, HarmonicDefinition definition);
+std::string history_csv(const ResultHeader& header, const History& history);
+std::string history_json(const ResultHeader& header, const History& history);
+
+// Writes `content` to `path` atomically ("-" or empty: standard output). Throws DataError.
+void write_output(const std::string& path, const std::string& content);
+
+}  // namespace rheo::runtime

@@ -1,0 +1,142 @@
+#include "runtime/run_protocols.hpp"
+
+#include "runtime/drives.hpp"
+#include "runtime/errors.hpp"
+#include "runtime/harmonic.hpp"
+#include "runtime/history_csv.hpp"
+#include "runtime/output.hpp"
+
+#include <fmt/format.h>
+
+#include <cmath>
+#include <filesystem>
+
+namespace rheo::runtime {
+namespace {
+
+using lang::Protocol;
+
+double number(const Protocol& p, const char* key, double fallback) {
+  const lang::Setting* s = p.find(key);
+  return s && !s->values.empty() ? s->values.front() : fallback;
+}
+std::vector<double> numbers(const Protocol& p, const char* key) {
+  const lang::Setting* s = p.find(key);
+  return s ? s->values : std::vector<double>{};
+}
+std::string word(const Protocol& p, const char* key, const char* fallback) {
+  const lang::Setting* s = p.find(key);
+  return s && !s->text.empty() ? s->text : fallback;
+}
+
+std::string render_history(const Protocol& p, const ResultHeader& header, const History& h) {
+  return word(p, "format", "csv") == "json" ? history_json(header, h) : history_csv(header, h);
+}
+
+}  // namespace
+
+const char* protocol_name(lang::ProtocolKind kind) {
+  switch (kind) {
+    case lang::ProtocolKind::harmonic: return "harmonic";
+    case lang::ProtocolKind::static_triangle: return "static";
+    case lang::ProtocolKind::quasistatic: return "quasistatic";
+    case lang::ProtocolKind::history: return "history";
+    case lang::ProtocolKind::step: return "step";
+  }
+  return "?";
+}
+
+ProtocolRun run_protocol(const Network& network, const Protocol& p, const std::string& source_file) {
+  ProtocolRun run;
+  run.destination = p.output;
+  ResultHeader header{network.model().name, source_file, protocol_name(p.kind)};
+  const bool elements = word(p, "elements", "none") == "all";
+  switch (p.kind) {
+    case lang::ProtocolKind::harmonic: {
+      HarmonicOptions options;
+      options.definition = word(p, "definition", "thesis") == "first_harmonic" ? HarmonicDefinition::first_harmonic
+                                                                              : HarmonicDefinition::thesis;
+      options.steps_per_cycle = static_cast<int>(number(p, "steps_per_cycle", options.steps_per_cycle));
+      options.max_cycles = static_cast<int>(number(p, "cycles_max", options.max_cycles));
+      options.tolerance = number(p, "tolerance", options.tolerance);
+      const auto points = simulate_harmonic_grid(network, numbers(p, "amplitude"), numbers(p, "frequency"), options);
+      header.protocol = fmt::format("harmonic steps_per_cycle={} tolerance={:g}", options.steps_per_cycle, options.tolerance);
+      for (const auto& point : points)
+        if (!point.converged) {
+          ++run.not_converged;
+          run.notes += fmt::format(
+              "warning: amplitude {:g} mm, frequency {:g} Hz did not reach steady state in {} cycles (residual {:.2e}); "
+              "raise cycles_max or loosen tolerance\n",
+              point.amplitude, point.frequency, point.cycles, point.residual);
+        }
+      for (const auto& point : points)
+        if (point.measures.damping_clamped) {
+          run.notes += fmt::format("warning: amplitude {:g} mm, frequency {:g} Hz: normalised damping {:.4f} > 1, phase reported as 90 deg\n",
+                                   point.amplitude, point.frequency, point.measures.damping);
+          break;
+        }
+      run.points = static_cast<int>(points.size());
+      run.content = word(p, "format", "csv") == "json" ? harmonic_json(header, points, options.definition)
+                                                        : harmonic_csv(header, points, options.definition);
+      return run;
+    }
+    case lang::ProtocolKind::static_triangle: {
+      const auto amplitudes = numbers(p, "amplitude");
+      const double velocity = number(p, "velocity", 0.0);
+      const int cycles = static_cast<int>(number(p, "cycles", 2));
+      Drive drive = static_triangle(amplitudes, velocity, cycles, 400);
+      if (const lang::Setting* dt = p.find("dt")) {
+        // A fixed sample interval: resample each quarter cycle with that step.
+        Drive fine;
+        fine.time.assign(1, 0.0);
+        fine.displacement.assign(1, 0.0);
+        for (std::size_t k = 1; k < drive.time.size(); ++k) {
+          const int parts = std::max(1, static_cast<int>(std::ceil((drive.time[k] - drive.time[k - 1]) / dt->values.front() - 1e-9)));
+          Drive piece{{drive.time[k - 1], drive.time[k]}, {drive.displacement[k - 1], drive.displacement[k]}};
+          Drive refined = refine(piece, parts);
+          fine.time.insert(fine.time.end(), refined.time.begin() + 1, refined.time.end());
+          fine.displacement.insert(fine.displacement.end(), refined.displacement.begin() + 1, refined.displacement.end());
+        }
+        drive = std::move(fine);
+      }
+      header.protocol = fmt::format("static velocity={:g} mm/s cycles={}", velocity, cycles);
+      const History h = run_history(network, drive, elements);
+      run.points = static_cast<int>(h.time.size());
+      run.content = render_history(p, header, h);
+      return run;
+    }
+    case lang::ProtocolKind::quasistatic: {
+      const int cycles = static_cast<int>(number(p, "cycles", 2));
+      const int steps = static_cast<int>(number(p, "steps_per_cycle", 400));
+      const double frequency = number(p, "frequency", 0.0);
+      header.protocol = fmt::format("quasistatic frequency={:g} Hz cycles={}", frequency, cycles);
+      const History h = run_history(network, quasistatic_sine(numbers(p, "amplitude"), frequency, cycles, steps), elements);
+      run.points = static_cast<int>(h.time.size());
+      run.content = render_history(p, header, h);
+      return run;
+    }
+    case lang::ProtocolKind::history: {
+      std::filesystem::path file = word(p, "file", "");
+      if (file.is_relative()) file = std::filesystem::path(source_file).parent_path() / file;
+      const Drive drive = refine(drive_from_table(read_table(file.string())), static_cast<int>(number(p, "substeps", 1)));
+      header.protocol = fmt::format("history file={}", file.string());
+      const History h = run_history(network, drive, elements);
+      run.points = static_cast<int>(h.time.size());
+      run.content = render_history(p, header, h);
+      return run;
+    }
+    case lang::ProtocolKind::step: {
+      const double duration = number(p, "duration", 1.0);
+      const double dt = number(p, "dt", duration / 1000.0);
+      const double amplitude = number(p, "amplitude", 0.0);
+      header.protocol = fmt::format("step amplitude={:g} mm duration={:g} s", amplitude, duration);
+      const History h = run_history(network, step_relaxation(amplitude, number(p, "rise", dt), duration, dt), elements);
+      run.points = static_cast<int>(h.time.size());
+      run.content = render_history(p, header, h);
+      return run;
+    }
+  }
+  throw std::logic_error("unknown protocol");
+}
+
+}  // namespace rheo::runtime

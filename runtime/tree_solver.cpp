@@ -1,0 +1,260 @@
+#include "runtime/tree_solver.hpp"
+
+#include "runtime/monotone_solve.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace rheo::runtime {
+namespace {
+constexpr double kInf = std::numeric_limits<double>::infinity();
+// Relative tolerance of the inner solves, on elongations [mm] and forces [N].
+constexpr double kRelTol = 1e-13;
+}  // namespace
+
+void TreeStepPlan::prepare(const Network& network, double dt) {
+  const auto& nodes = network.topology().nodes;
+  maxwell.assign(nodes.size(), MaxwellStep{0.0, 0.0});
+  c_over_dt.assign(nodes.size(), 0.0);
+  for (std::size_t i = 0; i < nodes.size(); ++i) {
+    const TreeNode& n = nodes[i];
+    if (n.kind == NodeKind::maxwell) maxwell[i] = MaxwellStep::make(network.parameter(n.param[0]), network.parameter(n.param[1]), dt);
+    if (n.kind == NodeKind::dashpot) c_over_dt[i] = network.parameter(n.param[0]) / dt;
+  }
+}
+
+ForceSlope TreeSolver::forward(int node, double de) const {
+  const TreeNode& n = at(node);
+  switch (n.kind) {
+    case NodeKind::spring: return {p(n, 0) * (e_before(n) + de), p(n, 0)};
+    case NodeKind::yeoh: {
+      const YeohLaw law{p(n, 0), p(n, 1), p(n, 2)};
+      const double e = e_before(n) + de;
+      return {law.force(e), law.slope(e)};
+    }
+    case NodeKind::dashpot: return dashpot_step(plan_.c_over_dt[static_cast<std::size_t>(node)], de);
+    case NodeKind::maxwell: return plan_.maxwell[static_cast<std::size_t>(node)](f_before(n), de);
+    case NodeKind::friction: return friction_step(p(n, 0), p(n, 1), f_before(n), de);
+    case NodeKind::slider: {
+      const double fy = p(n, 0);
+      if (de > 0.0) return {fy, 0.0};
+      if (de < 0.0) return {-fy, 0.0};
+      return {std::clamp(f_before(n), -fy, fy), 0.0};
+    }
+    case NodeKind::parallel: {
+      ForceSlope sum{0.0, 0.0};
+      for (int i = 0; i < n.child_count; ++i) {
+        const ForceSlope c = forward(child(n, i), de);
+        sum.force += c.force;
+        sum.slope += c.slope;
+      }
+      return sum;
+    }
+    case NodeKind::series: return series_force(node, de);
+  }
+  return {0.0, 0.0};
+}
+
+Interval TreeSolver::bounds(int node) const {
+  const TreeNode& n = at(node);
+  switch (n.kind) {
+    case NodeKind::friction: return {-p(n, 1), p(n, 1)};
+    case NodeKind::slider: return {-p(n, 0), p(n, 0)};
+    case NodeKind::parallel: {
+      Interval sum{0.0, 0.0};
+      for (int i = 0; i < n.child_count; ++i) {
+        const Interval c = bounds(child(n, i));
+        sum.lo += c.lo;
+        sum.hi += c.hi;
+      }
+      return sum;
+    }
+    case NodeKind::series: {
+      Interval common{-kInf, kInf};
+      for (int i = 0; i < n.child_count; ++i) {
+        const Interval c = bounds(child(n, i));
+        common.lo = std::max(common.lo, c.lo);
+        common.hi = std::min(common.hi, c.hi);
+      }
+      return common;
+    }
+    default: return {-kInf, kInf};
+  }
+}
+
+Interval TreeSolver::zero_rate_interval(int node) const {
+  const TreeNode& n = at(node);
+  if (!n.rigid_when_stuck) {
+    const double f = forward(node, 0.0).force;
+    return {f, f};
+  }
+  switch (n.kind) {
+    case NodeKind::slider: return {-p(n, 0), p(n, 0)};
+    case NodeKind::parallel: {
+      Interval sum{0.0, 0.0};
+      for (int i = 0; i < n.child_count; ++i) {
+        const Interval c = zero_rate_interval(child(n, i));
+        sum.lo += c.lo;
+        sum.hi += c.hi;
+      }
+      return sum;
+    }
+    default: {  // series of rigid members
+      Interval common{-kInf, kInf};
+      for (int i = 0; i < n.child_count; ++i) {
+        const Interval c = zero_rate_interval(child(n, i));
+        common.lo = std::max(common.lo, c.lo);
+        common.hi = std::min(common.hi, c.hi);
+      }
+      return common;
+    }
+  }
+}
+
+ForceSlope TreeSolver::inverse(int node, double force) const {
+  const TreeNode& n = at(node);
+  switch (n.kind) {
+    case NodeKind::spring: return {force / p(n, 0) - e_before(n), 1.0 / p(n, 0)};
+    case NodeKind::yeoh: {
+      const YeohLaw law{p(n, 0), p(n, 1), p(n, 2)};
+      auto residual = [&](double e) { return ForceSlope{law.force(e) - force, law.slope(e)}; };
+      const double tol = kRelTol * (std::abs(force) + 1e-9);
+      const double e = solve_monotone(residual, e_before(n), force / law.slope(0.0), -kInf, kInf, tol);
+      return {e - e_before(n), 1.0 / law.slope(e)};
+    }
+    case NodeKind::dashpot: {
+      const double b = plan_.c_over_dt[static_cast<std::size_t>(node)];
+      return {force / b, 1.0 / b};
+    }
+    case NodeKind::maxwell: {
+      const MaxwellStep& m = plan_.maxwell[static_cast<std::size_t>(node)];
+      return {(force - m.a * f_before(n)) / m.b, 1.0 / m.b};
+    }
+    case NodeKind::friction: {
+      const double k = p(n, 0), fy = p(n, 1);
+      return {(std::clamp(force, -fy, fy) - f_before(n)) / k, 1.0 / k};
+    }
+    case NodeKind::slider: return {0.0, 0.0};
+    case NodeKind::series: {
+      ForceSlope sum{0.0, 0.0};
+      for (int i = 0; i < n.child_count; ++i) {
+        const ForceSlope c = inverse(child(n, i), force);
+        sum.force += c.force;
+        sum.slope += c.slope;
+      }
+      return sum;
+    }
+    case NodeKind::parallel: return parallel_elongation(node, force);
+  }
+  return {0.0, 0.0};
+}
+
+ForceSlope TreeSolver::series_force(int node, double de) const {
+  const TreeNode& n = at(node);
+  const Interval cap = bounds(node);
+  if (n.rigid_when_stuck) {  // only sliders (possibly in parallel): rigid until the cap slips
+    if (de > 0.0) return {cap.hi, 0.0};
+    if (de < 0.0) return {cap.lo, 0.0};
+    const Interval z = zero_rate_interval(node);
+    return {std::clamp(f_before(n), z.lo, z.hi), 0.0};
+  }
+  auto residual = [&](double force) {
+    const ForceSlope e = inverse(node, force);
+    return ForceSlope{e.force - de, e.slope};
+  };
+  const double tol = kRelTol * (std::abs(de) + std::abs(e_before(n)) + 1e-9);
+  if (std::isfinite(cap.hi) && residual(cap.hi).force <= 0.0) return {cap.hi, 0.0};
+  if (std::isfinite(cap.lo) && residual(cap.lo).force >= 0.0) return {cap.lo, 0.0};
+  const double start = std::clamp(f_before(n), cap.lo, cap.hi);
+  const double force = solve_monotone(residual, start, 1.0, cap.lo, cap.hi, tol);
+  const double compliance = inverse(node, force).slope;
+  return {force, compliance > 0.0 ? 1.0 / compliance : kInf};
+}
+
+ForceSlope TreeSolver::parallel_elongation(int node, double force) const {
+  const TreeNode& n = at(node);
+  double lo = -kInf, hi = kInf;
+  bool leftmost = true;
+  if (n.rigid_when_stuck) {
+    const Interval z = zero_rate_interval(node);
+    if (force >= z.lo && force <= z.hi) return {0.0, 0.0};
+    if (force > z.hi) lo = 0.0;
+    else hi = 0.0, leftmost = false;
+  } else {
+    leftmost = force >= forward(node, 0.0).force;
+  }
+  auto residual = [&](double de) {
+    const ForceSlope f = forward(node, de);
+    return ForceSlope{f.force - force, f.slope};
+  };
+  const double tol = kRelTol * (std::abs(force) + 1e-9);
+  const double start = std::isfinite(lo) ? 1e-12 : (std::isfinite(hi) ? -1e-12 : 0.0);
+  const double de = solve_monotone(residual, start, 1e-3, lo, hi, tol, leftmost);
+  const double stiffness = forward(node, de).slope;
+  return {de, stiffness > 0.0 ? 1.0 / stiffness : kInf};
+}
+
+void TreeSolver::assign(int node, double de, double force, double* after) const {
+  const TreeNode& n = at(node);
+  after[n.state] = e_before(n) + de;
+  after[n.state + 1] = force;
+  if (n.kind == NodeKind::parallel) {
+    if (de != 0.0 || !n.rigid_when_stuck) {
+      for (int i = 0; i < n.child_count; ++i) assign(child(n, i), de, forward(child(n, i), de).force, after);
+      return;
+    }
+    // Stuck: rigid children carry whatever the compliant ones leave, within their intervals.
+    double remainder = force;
+    for (int i = 0; i < n.child_count; ++i)
+      if (!at(child(n, i)).rigid_when_stuck) remainder -= forward(child(n, i), 0.0).force;
+    int last_rigid = -1;
+    for (int i = 0; i < n.child_count; ++i) {
+      const int c = child(n, i);
+      if (!at(c).rigid_when_stuck) {
+        assign(c, 0.0, forward(c, 0.0).force, after);
+        continue;
+      }
+      last_rigid = c;
+      const Interval z = zero_rate_interval(c);
+      const double share = std::clamp(remainder, z.lo, z.hi);
+      assign(c, 0.0, share, after);
+      remainder -= share;
+    }
+    if (remainder != 0.0 && last_rigid >= 0) after[at(last_rigid).state + 1] += remainder;
+    return;
+  }
+  if (n.kind == NodeKind::series) {
+    // Members take their elongation at the common force; at the cap, the first member whose
+    // bound is reached slips and takes what the others leave.
+    const Interval cap = bounds(node);
+    const bool capped = force >= cap.hi || force <= cap.lo || n.rigid_when_stuck;
+    int slipping = -1;
+    double taken = 0.0;
+    for (int i = 0; i < n.child_count; ++i) {
+      const int c = child(n, i);
+      const Interval b = bounds(c);
+      if (capped && slipping < 0 && (force >= b.hi || force <= b.lo || (n.rigid_when_stuck && de == 0.0))) {
+        slipping = c;
+        continue;
+      }
+      taken += inverse(c, force).force;
+    }
+    if (slipping < 0) {  // interior: give the rounding remainder to the last member
+      slipping = child(n, n.child_count - 1);
+      taken -= inverse(slipping, force).force;
+    }
+    for (int i = 0; i < n.child_count; ++i) {
+      const int c = child(n, i);
+      assign(c, c == slipping ? de - taken : inverse(c, force).force, force, after);
+    }
+  }
+}
+
+double TreeSolver::advance(int node, double de, double* after) const {
+  const double force = forward(node, de).force;
+  assign(node, de, force, after);
+  return force;
+}
+
+}  // namespace rheo::runtime

@@ -1,0 +1,68 @@
+// Implicit step solution of nested series/parallel subtrees.
+//
+// Every node's step relation F(de) (force at the end of the step against its elongation
+// increment over the step) is monotone non-decreasing, so composition is well posed:
+//   parallel: F(de) = sum_i F_i(de)                  (common elongation, forces add)
+//   series:   de(F) = sum_i de_i(F)                  (common force, elongations add)
+// A series chain's F(de) is found by a safeguarded Newton iteration on de(F) = de in the
+// common force; a parallel block inside a chain is inverted the same way in de. Capped members
+// (friction elements, sliders) bound the chain force to [lo, hi]; when the chain cannot take
+// up de below the cap, the capped member slips and absorbs the rest: the return mapping of
+// section 2.4 generalised to chains with internal nodes. Rigid-plastic sliders make a relation
+// set-valued at de = 0; that case is resolved exactly from the force interval at zero rate.
+//
+// No allocation: recursion over the flat node array, state read from `before`.
+#pragma once
+
+#include "runtime/leaf_kernels.hpp"
+#include "runtime/network.hpp"
+
+#include <vector>
+
+namespace rheo::runtime {
+
+struct Interval {
+  double lo, hi;
+};
+
+// Per-step constants of subtree leaves (depend on dt).
+struct TreeStepPlan {
+  std::vector<MaxwellStep> maxwell;  // per node (unused entries for other kinds)
+  std::vector<double> c_over_dt;     // dashpots, per node
+  void prepare(const Network& network, double dt);
+};
+
+class TreeSolver {
+ public:
+  TreeSolver(const Network& network, const TreeStepPlan& plan, const double* before)
+      : topology_(network.topology()), network_(network), plan_(plan), before_(before) {}
+
+  // Force at the end of the step for an elongation increment de of subtree `node`.
+  double force(int node, double de) const { return forward(node, de).force; }
+
+  // Solves the subtree for increment de and writes every node's new (e, F) into `after`.
+  // Returns the subtree force.
+  double advance(int node, double de, double* after) const;
+
+ private:
+  ForceSlope forward(int node, double de) const;
+  ForceSlope inverse(int node, double force) const;  // {elongation increment, d de / dF}
+  Interval bounds(int node) const;
+  Interval zero_rate_interval(int node) const;  // forces admissible at de = 0 (rigid nodes)
+  ForceSlope series_force(int node, double de) const;
+  ForceSlope parallel_elongation(int node, double force) const;
+  void assign(int node, double de, double force, double* after) const;
+
+  const TreeNode& at(int node) const { return topology_.nodes[static_cast<std::size_t>(node)]; }
+  int child(const TreeNode& n, int i) const { return topology_.children[static_cast<std::size_t>(n.first_child + i)]; }
+  double e_before(const TreeNode& n) const { return before_[n.state]; }
+  double f_before(const TreeNode& n) const { return before_[n.state + 1]; }
+  double p(const TreeNode& n, int slot) const { return network_.parameter(n.param[slot]); }
+
+  const Topology& topology_;
+  const Network& network_;
+  const TreeStepPlan& plan_;
+  const double* before_;
+};
+
+}  // namespace rheo::runtime

@@ -1,0 +1,64 @@
+#include "lang/frontend.hpp"
+
+#include <doctest/doctest.h>
+
+using namespace rheo::lang;
+
+namespace {
+const Parameter* find(const CheckedModel& m, const std::string& path) {
+  for (const auto& p : m.parameters)
+    if (p.path == path) return &p;
+  return nullptr;
+}
+}  // namespace
+
+TEST_CASE("build_model: generated names, transparent unnamed blocks, named scopes") {
+  Program p = compile_source("n.rheo", R"(
+model m {
+  param k0 = 300 N/mm in [10, 5000]
+  spring (k = k0) spring spring1 (k = 1)
+  parallel { maxwell (k = 1, tau = 1) }
+  series fluid { friction cap (k = 2 * k0, fy = 12 N) spring (k = 1) }
+})");
+  const CheckedModel& m = p.models.at(0);
+  CHECK(m.parameters.at(0).path == "k0");  // model-level parameters first
+  CHECK(m.parameters.at(0).free);
+  CHECK(m.parameters.at(0).lower == 10.0);
+  CHECK(m.parameters.at(0).upper == 5000.0);
+  const auto& c = m.root.children;
+  REQUIRE(c.size() == 4);
+  CHECK(c[0].name == "spring2");  // spring1 is taken by the explicit name after it
+  CHECK(c[1].name == "spring1");
+  CHECK(c[2].children.at(0).path == "maxwell1");  // unnamed block: no path prefix
+  CHECK(c[3].children.at(0).path == "fluid.cap");
+  CHECK(c[3].children.at(1).path == "fluid.spring1");
+  REQUIRE(find(m, "fluid.cap.k"));
+  CHECK(find(m, "fluid.cap.k")->value == 600.0);
+  CHECK(find(m, "fluid.cap.k")->expression.evaluate({1000.0}) == 2000.0);  // re-evaluable from k0
+  CHECK(find(m, "maxwell1.c")->value == 1.0);
+}
+
+TEST_CASE("build_model: instantiation flattens with prefixed paths and overrides") {
+  Program p = compile_source("i.rheo", R"(
+model outer { param s = 3  inner a (k0 = s * 10 N/mm, m.tau = 2 ms)  inner b () }
+model inner { param k0 = 5 N/mm  maxwell m (k = k0, tau = 1 ms) }
+simulate outer { step amplitude = 1 mm, duration = 1 s })");
+  const CheckedModel& outer = *p.find_model("outer");
+  const auto& a = outer.root.children.at(0);
+  CHECK(a.kind == ElementKind::parallel);
+  CHECK(a.name == "a");
+  CHECK(a.path == "a");
+  CHECK(a.children.at(0).path == "a.m");
+  const auto& slots = a.children.at(0).parameters;
+  REQUIRE(slots.size() == 2);
+  CHECK(outer.parameters.at(static_cast<std::size_t>(slots[0])).path == "a.m.k");
+  CHECK(outer.parameters.at(static_cast<std::size_t>(slots[0])).value == 30.0);
+  CHECK(outer.parameters.at(static_cast<std::size_t>(slots[1])).value == doctest::Approx(30.0 * 0.002));
+  CHECK(find(outer, "b.m.k")->value == 5.0);
+  CHECK(find(outer, "b.m.c")->value == doctest::Approx(0.005));
+}
+
+TEST_CASE("build_model: values are checked after overrides") {
+  CHECK_THROWS_WITH_AS(compile_source("o.rheo", "model o { inner x (k0 = -1) }\nmodel inner { param k0 = 5 N/mm  spring s (k = k0) }"),
+                       doctest::Contains("stiffness k of spring 'x.s' must be positive, got -1 N/mm"), CompileError);
+}

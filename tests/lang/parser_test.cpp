@@ -1,0 +1,81 @@
+#include "lang/parser.hpp"
+
+#include <doctest/doctest.h>
+
+using namespace rheo::lang;
+
+namespace {
+std::string parse_error(std::string_view text) {
+  try {
+    parse("p.rheo", text);
+  } catch (const CompileError& e) {
+    REQUIRE(e.diagnostics().size() == 1);
+    return e.what();
+  }
+  return "no error";
+}
+}  // namespace
+
+TEST_CASE("parse: statements are free-form; units bind to the number before them") {
+  ast::File f = parse("p.rheo", "import zener model m { param k0 = 300 N/mm in [10, 5000] maxwell m1 (k = 2 * k0, tau = 4.335ms)\n"
+                                 "series s { spring (k=.5) } } simulate m { step amplitude = 1 in, duration = 4. s output \"o.csv\" }");
+  REQUIRE(f.imports.size() == 1);
+  REQUIRE(f.models.size() == 1);
+  const auto& m = f.models[0];
+  REQUIRE(m.parameters.size() == 1);
+  CHECK(m.parameters[0].value->unit == "N/mm");
+  CHECK(m.parameters[0].bounds.has_value());
+  REQUIRE(m.elements.size() == 2);
+  const auto& m1 = m.elements[0];
+  CHECK(m1.kind == "maxwell");
+  CHECK(m1.name == "m1");
+  REQUIRE(m1.arguments.size() == 2);
+  CHECK(m1.arguments[0].value->kind == ast::Expr::Kind::multiply);
+  CHECK(m1.arguments[0].value->rhs->path == "k0");
+  CHECK(m1.arguments[1].value->unit == "ms");
+  CHECK(m.elements[1].block);
+  CHECK(m.elements[1].children.at(0).arguments.at(0).value->number == 0.5);
+  const auto& sim = f.simulations.at(0);
+  CHECK(sim.model == "m");
+  REQUIRE(sim.lines.size() == 2);
+  CHECK(sim.lines[0].kind == "step");
+  CHECK(sim.lines[0].settings.at(0).value.items.at(0)->unit == "in");  // inch, not bounds
+  CHECK(sim.lines[1].output);
+  CHECK(sim.lines[1].file == "o.csv");
+}
+
+TEST_CASE("parse: precedence, unary minus, ranges and lists") {
+  ast::File f = parse("p.rheo", "simulate { h a = -1 + 2 * 3 N, b = 1..5 step 1, c = [1, 2 mm] um, d = \"x\" }");
+  const auto& s = f.simulations.at(0).lines.at(0).settings;
+  REQUIRE(s.size() == 4);
+  const auto& a = *s[0].value.items.at(0);
+  CHECK(a.kind == ast::Expr::Kind::add);
+  CHECK(a.lhs->kind == ast::Expr::Kind::negate);
+  CHECK(a.rhs->kind == ast::Expr::Kind::multiply);
+  CHECK(a.rhs->rhs->unit == "N");
+  CHECK(s[1].value.kind == ast::SettingValue::Kind::range);
+  CHECK(s[1].value.items.size() == 3);
+  CHECK(s[2].value.kind == ast::SettingValue::Kind::list);
+  CHECK(s[2].value.unit == "um");
+  CHECK(s[2].value.items[1]->unit == "mm");
+  CHECK(s[3].value.text == "x");
+}
+
+TEST_CASE("parse: errors name the rule that failed, with position and caret") {
+  CHECK(parse_error("model m {\n  maxwell m1 (k = 1 N/mm, tau = 2 ms\n}\n").find(
+            "p.rheo:3:1: error: expected ')' to close the argument list of 'maxwell m1', found '}'\n  }\n  ^\n") != std::string::npos);
+  CHECK(parse_error("model m { spring s k = 1 }").find("1:20: error: expected '(' to open the argument list of 'spring s'") != std::string::npos);
+  CHECK(parse_error("model { }").find("expected a model name after 'model'") != std::string::npos);
+  CHECK(parse_error("model m { spring (k = 1 in [1 2]) }").find("expected ',' between the lower and upper bound") != std::string::npos);
+  CHECK(parse_error("simulate { h f = 1 .. 2 }").find("expected 'step' after the end of the range") != std::string::npos);
+  CHECK(parse_error("simulate { h f = [1, 2 }").find("expected ',' or ']' to close the list") != std::string::npos);
+  CHECK(parse_error("simulate { output \"a\nb\" }").find("unterminated string literal") != std::string::npos);
+  CHECK(parse_error("model m { spring (k = (1 + 2 }").find("expected ')' to close the parenthesized expression") != std::string::npos);
+}
+
+TEST_CASE("parse_setting_text: one setting and nothing after it") {
+  auto s = parse_setting_text("<command line>", "  amplitude = [1, 2] mm ");
+  CHECK(s.key == "amplitude");
+  CHECK(s.value.items.size() == 2);
+  CHECK_THROWS_AS(parse_setting_text("<command line>", "amplitude = 1 mm, x = 2"), CompileError);
+}

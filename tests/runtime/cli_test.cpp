@@ -1,0 +1,76 @@
+// The binary's exit codes and messages (docs/cli.md): 0 ok, 2 usage, 3 model, 4 data.
+#include <doctest/doctest.h>
+#include <fmt/format.h>
+#include <unistd.h>
+
+#include <array>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+
+namespace fs = std::filesystem;
+
+namespace {
+
+struct Result {
+  int code;
+  std::string output;  // stdout and stderr
+};
+
+Result run(const std::string& arguments) {
+  const std::string command = fmt::format("{} {} 2>&1", RHEO_BINARY, arguments);
+  Result r{-1, ""};
+  FILE* pipe = popen(command.c_str(), "r");
+  std::array<char, 4096> buffer{};
+  while (std::size_t n = std::fread(buffer.data(), 1, buffer.size(), pipe)) r.output.append(buffer.data(), n);
+  const int status = pclose(pipe);
+  r.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  return r;
+}
+
+fs::path write(const std::string& name, const std::string& text) {
+  const fs::path dir = fs::temp_directory_path() / fmt::format("rheo-cli-{}", ::getpid());
+  fs::create_directories(dir);
+  std::ofstream(dir / name) << text;
+  return dir / name;
+}
+
+}  // namespace
+
+TEST_CASE("check: a valid file exits 0, an invalid one 3 with file:line:col and a caret") {
+  CHECK(run(fmt::format("check {}/bushing_d.rheo", RHEO_EXAMPLES_DIR)).code == 0);
+  const auto bad = write("bad.rheo", "model m {\n  spring s (k = 5 mm)\n}\n");
+  const Result r = run("check " + bad.string());
+  CHECK(r.code == 3);
+  CHECK(r.output.find("bad.rheo:2:") != std::string::npos);
+  CHECK(r.output.find("stiffness") != std::string::npos);
+  CHECK(r.output.find('^') != std::string::npos);
+}
+
+TEST_CASE("usage errors exit 2 and say what to do") {
+  CHECK(run("").code == 2);
+  CHECK(run("simulate").code == 2);
+  const auto no_sim = write("nosim.rheo", "model m { spring s (k = 5) }\n");
+  const Result r = run("simulate " + no_sim.string());
+  CHECK(r.code == 2);
+  CHECK(r.output.find("no simulate block") != std::string::npos);
+  const Result bad_set = run(fmt::format("simulate {}/bushing_d.rheo -o - --set 'frequency = 5 mm'", RHEO_EXAMPLES_DIR));
+  CHECK(bad_set.code == 2);
+  CHECK(bad_set.output.find("frequency") != std::string::npos);
+}
+
+TEST_CASE("simulate with overrides writes to standard output") {
+  const Result r = run(fmt::format("simulate {}/bushing_d.rheo -o - --set 'frequency = [5, 10] Hz' --set 'amplitude = 0.2 mm'", RHEO_EXAMPLES_DIR));
+  CHECK(r.code == 0);
+  CHECK(r.output.find("amplitude [mm],frequency [Hz],stiffness [N/mm],phase [deg]") != std::string::npos);
+  CHECK(r.output.find("\n0.2,10,") != std::string::npos);
+}
+
+TEST_CASE("data errors exit 4 and leave no output") {
+  const auto history = write("h.csv", "time [s],displacement [mm]\n0,0\n0.1,oops\n");
+  const auto model = write("h.rheo", fmt::format("model m {{ spring s (k = 5) }}\nsimulate {{ history file = \"{}\"\n output \"h_out.csv\" }}\n", history.string()));
+  const Result r = run("simulate " + model.string());
+  CHECK(r.code == 4);
+  CHECK(r.output.find("h.csv:3:5: error:") != std::string::npos);
+  CHECK_FALSE(fs::exists(model.parent_path() / "h_out.csv"));
+}

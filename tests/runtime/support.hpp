@@ -1,0 +1,27 @@
+// Shared helpers of the runtime tests: compile a model from source text, read tables.
+#pragma once
+
+#include "lang/frontend.hpp"
+#include "runtime/network.hpp"
+
+#include <cmath>
+#include <numbers>
+#include <string>
+
+namespace rheo::test {
+
+inline lang::CheckedModel model_from(const std::string& source, const std::string& name) {
+  const lang::Program program = lang::compile_source("test.rheo", source);
+  const lang::CheckedModel* model = program.find_model(name);
+  if (!model) throw std::runtime_error("test model not found: " + name);
+  return *model;
+}
+
+inline runtime::Network network_from(const std::string& source, const std::string& name) {
+  return runtime::Network::compile(model_from(source, name));
+}
+
+inline double relative_error(double value, double reference) { return std::abs(value / reference - 1.0); }
+inline double degrees(double radians) { return radians * 180.0 / std::numbers::pi; }
+
+}  // namespace rheo::test
