@@ -11,6 +11,34 @@ namespace {
 constexpr double kInf = std::numeric_limits<double>::infinity();
 // Relative tolerance of the inner solves, on elongations [mm] and forces [N].
 constexpr double kRelTol = 1e-13;
+
+// Parallel forces and series compliances add; series force ranges intersect.
+template <class Solver, class Fn>
+ForceSlope add_over_children(const Solver& solver, const TreeNode& n, Fn&& fn) {
+  ForceSlope sum{0.0, 0.0};
+  for (int i = 0; i < n.child_count; ++i) {
+    const ForceSlope c = fn(solver.child_of(n, i));
+    sum.force += c.force;
+    sum.slope += c.slope;
+  }
+  return sum;
+}
+
+template <class Solver, class Fn>
+Interval combine_children(const Solver& solver, const TreeNode& n, bool intersect, Fn&& fn) {
+  Interval r = intersect ? Interval{-kInf, kInf} : Interval{0.0, 0.0};
+  for (int i = 0; i < n.child_count; ++i) {
+    const Interval c = fn(solver.child_of(n, i));
+    if (intersect) {
+      r.lo = std::max(r.lo, c.lo);
+      r.hi = std::min(r.hi, c.hi);
+    } else {
+      r.lo += c.lo;
+      r.hi += c.hi;
+    }
+  }
+  return r;
+}
 }  // namespace
 
 void TreeStepPlan::prepare(const Network& network, double dt) {
@@ -42,15 +70,7 @@ ForceSlope TreeSolver::forward(int node, double de) const {
       if (de < 0.0) return {-fy, 0.0};
       return {std::clamp(f_before(n), -fy, fy), 0.0};
     }
-    case NodeKind::parallel: {
-      ForceSlope sum{0.0, 0.0};
-      for (int i = 0; i < n.child_count; ++i) {
-        const ForceSlope c = forward(child(n, i), de);
-        sum.force += c.force;
-        sum.slope += c.slope;
-      }
-      return sum;
-    }
+    case NodeKind::parallel: return add_over_children(*this, n, [&](int c) { return forward(c, de); });
     case NodeKind::series: return series_force(node, de);
   }
   return {0.0, 0.0};
@@ -61,24 +81,9 @@ Interval TreeSolver::bounds(int node) const {
   switch (n.kind) {
     case NodeKind::friction: return {-p(n, 1), p(n, 1)};
     case NodeKind::slider: return {-p(n, 0), p(n, 0)};
-    case NodeKind::parallel: {
-      Interval sum{0.0, 0.0};
-      for (int i = 0; i < n.child_count; ++i) {
-        const Interval c = bounds(child(n, i));
-        sum.lo += c.lo;
-        sum.hi += c.hi;
-      }
-      return sum;
-    }
-    case NodeKind::series: {
-      Interval common{-kInf, kInf};
-      for (int i = 0; i < n.child_count; ++i) {
-        const Interval c = bounds(child(n, i));
-        common.lo = std::max(common.lo, c.lo);
-        common.hi = std::min(common.hi, c.hi);
-      }
-      return common;
-    }
+    case NodeKind::parallel:
+    case NodeKind::series:
+      return combine_children(*this, n, n.kind == NodeKind::series, [&](int c) { return bounds(c); });
     default: return {-kInf, kInf};
   }
 }
@@ -91,24 +96,8 @@ Interval TreeSolver::zero_rate_interval(int node) const {
   }
   switch (n.kind) {
     case NodeKind::slider: return {-p(n, 0), p(n, 0)};
-    case NodeKind::parallel: {
-      Interval sum{0.0, 0.0};
-      for (int i = 0; i < n.child_count; ++i) {
-        const Interval c = zero_rate_interval(child(n, i));
-        sum.lo += c.lo;
-        sum.hi += c.hi;
-      }
-      return sum;
-    }
-    default: {  // series of rigid members
-      Interval common{-kInf, kInf};
-      for (int i = 0; i < n.child_count; ++i) {
-        const Interval c = zero_rate_interval(child(n, i));
-        common.lo = std::max(common.lo, c.lo);
-        common.hi = std::min(common.hi, c.hi);
-      }
-      return common;
-    }
+    default:  // a parallel block, or a series of rigid members
+      return combine_children(*this, n, n.kind == NodeKind::series, [&](int c) { return zero_rate_interval(c); });
   }
 }
 
@@ -136,15 +125,7 @@ ForceSlope TreeSolver::inverse(int node, double force) const {
       return {(std::clamp(force, -fy, fy) - f_before(n)) / k, 1.0 / k};
     }
     case NodeKind::slider: return {0.0, 0.0};
-    case NodeKind::series: {
-      ForceSlope sum{0.0, 0.0};
-      for (int i = 0; i < n.child_count; ++i) {
-        const ForceSlope c = inverse(child(n, i), force);
-        sum.force += c.force;
-        sum.slope += c.slope;
-      }
-      return sum;
-    }
+    case NodeKind::series: return add_over_children(*this, n, [&](int c) { return inverse(c, force); });
     case NodeKind::parallel: return parallel_elongation(node, force);
   }
   return {0.0, 0.0};

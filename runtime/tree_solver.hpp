@@ -44,6 +44,8 @@ class TreeSolver {
   // Returns the subtree force.
   double advance(int node, double de, double* after) const;
 
+  int child_of(const TreeNode& n, int i) const { return child(n, i); }
+
  private:
   ForceSlope forward(int node, double de) const;
   ForceSlope inverse(int node, double force) const;  // {elongation increment, d de / dF}
