@@ -100,6 +100,16 @@ void write_output(const std::string& path, const std::string& content) {
   }
   namespace fs = std::filesystem;
   const fs::path target(path);
+  std::error_code status_error;
+  const auto status = fs::status(target, status_error);
+  if (fs::exists(status) && !fs::is_regular_file(status)) {
+    // A device or pipe (/dev/null, a FIFO): write in place; renaming over it would replace it.
+    std::FILE* stream = std::fopen(target.c_str(), "wb");
+    const bool ok = stream && std::fwrite(content.data(), 1, content.size(), stream) == content.size();
+    if (stream) std::fclose(stream);
+    if (!ok) throw DataError(fmt::format("{}: error: cannot write output ({})", path, std::strerror(errno)));
+    return;
+  }
   const fs::path temporary = target.parent_path() / fmt::format(".{}.rheo-tmp-{}", target.filename().string(), ::getpid());
   std::FILE* file = std::fopen(temporary.c_str(), "wb");
   if (!file) throw DataError(fmt::format("{}: error: cannot write output ({}); check that the directory exists and is writable", path, std::strerror(errno)));

@@ -7,7 +7,8 @@
 // History CSV: time [s],displacement [mm],force [N], then per element "PATH.force [N]" and
 // "PATH.elongation [mm]". '#' lines before the header say what produced the file.
 // Files are written to a temporary sibling and renamed, so a failed run never leaves a
-// half-written file and earlier outputs stay intact.
+// half-written file and earlier outputs stay intact. Devices and pipes (/dev/null, FIFOs) are
+// written in place.
 #pragma once
 
 #include "runtime/drives.hpp"

@@ -37,3 +37,8 @@ TEST_CASE("outputs are written atomically and a failed write leaves the old file
   CHECK(files == 1);  // no temporary left behind
   fs::remove_all(dir);
 }
+
+TEST_CASE("writing to a device writes through it and leaves it a device") {
+  write_output("/dev/null", "discarded\n");
+  CHECK(fs::is_character_file("/dev/null"));
+}
