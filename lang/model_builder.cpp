@@ -162,8 +162,8 @@ class Builder {
         if (has_slot && has_alt) {
           const auto* second = std::max(given[alt], given[std::string(spec.slots[i].name)],
                                         [](auto* a, auto* b) { return a->where.line != b->where.line ? a->where.line < b->where.line : a->where.column < b->where.column; });
+          // Reported; checking goes on with the primary parameter so its other errors surface too.
           error(second->where, fmt::format("{} takes either {} or {}, not both; remove one", what, alt, spec.slots[i].name));
-          ok = false;
         } else if (!has_slot && !has_alt) {
           error(e.where, fmt::format("{} is missing its {} {} (or {} {}); add `{} = ...`", what, spec.alternative[0].quantity, alt,
                                      spec.slots[i].quantity, spec.slots[i].name, alt));
