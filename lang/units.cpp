@@ -49,6 +49,9 @@ std::optional<Unit> unit_atom(std::string_view name) {
 }
 
 std::optional<Unit> parse_unit(std::string_view text) {
+  // Angular frequency: the internal frequency unit is Hz (cycles per second), so one radian
+  // per second is 1/(2 pi) Hz, not the 1 Hz that rad = 1 would give.
+  if (text == "rad/s") return Unit{dim::frequency, 1.0 / (2.0 * 3.14159265358979323846)};
   Unit result{dim::none, 1.0};
   std::size_t i = 0;
   bool divide = false;

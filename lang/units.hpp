@@ -51,6 +51,7 @@ struct Unit {
 std::optional<Unit> unit_atom(std::string_view name);
 // A compound unit such as "N/mm", "N*s/mm", "N/mm^3", "kN/mm", "N s/mm" is not accepted
 // (use '*'). Grammar: atom ('^' int)? (('*'|'/') atom ('^' int)?)* . Unknown: nullopt.
+// "rad/s" is angular frequency: 1 rad/s = 1/(2 pi) Hz.
 std::optional<Unit> parse_unit(std::string_view text);
 
 }  // namespace rheo::lang

@@ -23,3 +23,10 @@ TEST_CASE("describe and internal_unit") {
   CHECK(internal_unit(dim::damping) == "N*s/mm");
   CHECK(internal_unit(dim::none).empty());
 }
+
+TEST_CASE("angular frequency converts to Hz") {
+  const auto u = rheo::lang::parse_unit("rad/s");
+  REQUIRE(u);
+  CHECK(u->dimension == rheo::lang::dim::frequency);
+  CHECK(10.0 * u->scale == doctest::Approx(10.0 / (2 * 3.14159265358979323846)));
+}
