@@ -1,0 +1,60 @@
+#include "runtime/harmonic_data.hpp"
+
+#include "runtime/errors.hpp"
+
+#include <fmt/format.h>
+#include <fmt/ranges.h>
+
+#include <cmath>
+#include <map>
+#include <utility>
+
+namespace rheo::runtime {
+namespace {
+
+const std::vector<double>& need(const Table& t, const char* name, const char* alternative_hint) {
+  const int c = t.column(name);
+  if (c < 0)
+    throw DataError(fmt::format("{}: error: harmonic data need a column '{}'{}; the header has: {}", t.path, name,
+                                alternative_hint, fmt::join(t.names, ", ")));
+  return t.columns[static_cast<std::size_t>(c)];
+}
+
+}  // namespace
+
+HarmonicData harmonic_data_from_table(const Table& t) {
+  HarmonicData d;
+  d.path = t.path;
+  d.amplitude = need(t, "amplitude", " [mm]");
+  d.frequency = need(t, "frequency", " [Hz]");
+  if (t.column("stiffness") >= 0 || t.column("storage") < 0) {
+    d.stiffness = need(t, "stiffness", " [N/mm] (or storage and loss columns)");
+    d.phase = need(t, "phase", " [deg]");
+  } else {
+    const auto& storage = need(t, "storage", " [N/mm]");
+    const auto& loss = need(t, "loss", " [N/mm] next to storage");
+    for (std::size_t i = 0; i < storage.size(); ++i) {
+      d.stiffness.push_back(std::hypot(storage[i], loss[i]));
+      d.phase.push_back(std::atan2(loss[i], storage[i]));
+    }
+  }
+  d.rows = t.rows;
+  auto column_of = [&](const char* name) { return t.column(name) + 1; };
+  std::map<std::pair<double, double>, int> seen;
+  for (std::size_t i = 0; i < d.size(); ++i) {
+    auto fail = [&](const char* column, const std::string& message) {
+      throw DataError(fmt::format("{}:{}: error: {} (column {} '{}')", t.path, t.rows[i], message, column_of(column), column));
+    };
+    if (!(d.amplitude[i] > 0.0)) fail("amplitude", fmt::format("amplitude must be positive, got {:g} mm", d.amplitude[i]));
+    if (!(d.frequency[i] > 0.0)) fail("frequency", fmt::format("frequency must be positive, got {:g} Hz", d.frequency[i]));
+    if (!(d.stiffness[i] > 0.0)) fail(t.column("stiffness") >= 0 ? "stiffness" : "storage", fmt::format("stiffness must be positive, got {:g} N/mm", d.stiffness[i]));
+    const auto [it, fresh] = seen.emplace(std::make_pair(d.amplitude[i], d.frequency[i]), t.rows[i]);
+    if (!fresh)
+      fail("amplitude", fmt::format("duplicate point ({:g} mm, {:g} Hz), first at row {}; remove one", d.amplitude[i], d.frequency[i], it->second));
+  }
+  return d;
+}
+
+HarmonicData read_harmonic_data(const std::string& path) { return harmonic_data_from_table(read_table(path)); }
+
+}  // namespace rheo::runtime

@@ -1,0 +1,37 @@
+#include "runtime/objective.hpp"
+
+#include <cmath>
+#include <stdexcept>
+
+namespace rheo::runtime {
+
+RelativeResiduals relative_residuals(const HarmonicData& data, const std::vector<HarmonicPoint>& model) {
+  if (model.size() != data.size()) throw std::invalid_argument("model and data have different numbers of points");
+  RelativeResiduals r;
+  for (std::size_t i = 0; i < data.size(); ++i) {
+    r.stiffness.push_back(model[i].measures.stiffness / data.stiffness[i] - 1.0);
+    r.damping.push_back(std::sin(model[i].measures.phase) / std::sin(data.phase[i]) - 1.0);
+  }
+  return r;
+}
+
+double phi(const RelativeResiduals& r, double stiffness_weight, double damping_weight) {
+  double sum = 0.0;
+  for (std::size_t i = 0; i < r.stiffness.size(); ++i)
+    sum += stiffness_weight * r.stiffness[i] * r.stiffness[i] + damping_weight * r.damping[i] * r.damping[i];
+  return sum;
+}
+
+double thesis_err(const RelativeResiduals& r) {
+  return std::sqrt(phi(r, 1.0, 1.0)) / static_cast<double>(r.stiffness.size());
+}
+
+std::vector<HarmonicPoint> simulate_at(const Network& network, const HarmonicData& data, const HarmonicOptions& options) {
+  std::vector<HarmonicPoint> points;
+  points.reserve(data.size());
+  for (std::size_t i = 0; i < data.size(); ++i)
+    points.push_back(simulate_harmonic_point(network, data.amplitude[i], data.frequency[i], options));
+  return points;
+}
+
+}  // namespace rheo::runtime

@@ -1,0 +1,44 @@
+// Harmonic data import: unit conversion, storage/loss form, every malformed case located.
+#include "runtime/harmonic_data.hpp"
+
+#include "runtime/errors.hpp"
+
+#include <doctest/doctest.h>
+
+#include <cmath>
+#include <numbers>
+
+using namespace rheo::runtime;
+
+namespace {
+std::string error_of(const std::string& text) {
+  try {
+    harmonic_data_from_table(parse_table("h.csv", text));
+  } catch (const DataError& e) {
+    return e.what();
+  }
+  return "";
+}
+}  // namespace
+
+TEST_CASE("units convert: um, rad/s, kN/mm, rad") {
+  const auto d = harmonic_data_from_table(parse_table("h.csv", "amplitude [um],frequency [rad/s],stiffness [kN/mm],phase [rad]\n200,6.283185307179586,1.5,0.1\n"));
+  REQUIRE(d.size() == 1);
+  CHECK(d.amplitude[0] == doctest::Approx(0.2));
+  CHECK(d.frequency[0] == doctest::Approx(1.0));
+  CHECK(d.stiffness[0] == doctest::Approx(1500.0));
+  CHECK(d.phase[0] == doctest::Approx(0.1));
+}
+
+TEST_CASE("storage and loss columns give stiffness and phase") {
+  const auto d = harmonic_data_from_table(parse_table("h.csv", "amplitude [mm],frequency [Hz],storage [N/m],loss [N/m]\n1,2,3000,4000\n"));
+  CHECK(d.stiffness[0] == doctest::Approx(5.0));
+  CHECK(d.phase[0] == doctest::Approx(std::atan2(4.0, 3.0)));
+}
+
+TEST_CASE("malformed harmonic tables are located by file:row:column") {
+  CHECK(error_of("amplitude [mm],stiffness [N/mm],phase [deg]\n1,2,3\n").find("need a column 'frequency'") != std::string::npos);
+  CHECK(error_of("amplitude [mm],frequency [Hz],stiffness [N/mm],phase [deg]\n-1,2,3,4\n").find("h.csv:2: error: amplitude must be positive, got -1 mm (column 1 'amplitude')") == 0);
+  CHECK(error_of("amplitude [mm],frequency [Hz],stiffness [N/mm],phase [deg]\n1,2,3,4\n1,2,5,6\n").find("h.csv:3: error: duplicate point (1 mm, 2 Hz), first at row 2") == 0);
+  CHECK(error_of("amplitude [mm],frequency [Hz],stiffness [N/mm],phase [deg]\n1,0,3,4\n").find("frequency must be positive") != std::string::npos);
+}
