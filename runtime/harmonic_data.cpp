@@ -7,6 +7,7 @@
 
 #include <cmath>
 #include <map>
+#include <numbers>
 #include <utility>
 
 namespace rheo::runtime {
@@ -48,6 +49,10 @@ HarmonicData harmonic_data_from_table(const Table& t) {
     if (!(d.amplitude[i] > 0.0)) fail("amplitude", fmt::format("amplitude must be positive, got {:g} mm", d.amplitude[i]));
     if (!(d.frequency[i] > 0.0)) fail("frequency", fmt::format("frequency must be positive, got {:g} Hz", d.frequency[i]));
     if (!(d.stiffness[i] > 0.0)) fail(t.column("stiffness") >= 0 ? "stiffness" : "storage", fmt::format("stiffness must be positive, got {:g} N/mm", d.stiffness[i]));
+    if (!(d.phase[i] > 0.0 && d.phase[i] <= std::numbers::pi / 2))
+      fail(t.column("phase") >= 0 ? "phase" : "loss",
+           fmt::format("phase must lie in (0, 90] deg, got {:g} deg; the relative damping error of eq. 5.1 divides by sin(phase)",
+                       d.phase[i] * 180.0 / std::numbers::pi));
     const auto [it, fresh] = seen.emplace(std::make_pair(d.amplitude[i], d.frequency[i]), t.rows[i]);
     if (!fresh)
       fail("amplitude", fmt::format("duplicate point ({:g} mm, {:g} Hz), first at row {}; remove one", d.amplitude[i], d.frequency[i], it->second));

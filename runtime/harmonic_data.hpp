@@ -2,7 +2,8 @@
 // either stiffness + phase or storage + loss columns, units in the header
 // (`amplitude [mm],frequency [Hz],stiffness [N/mm],phase [deg]`). Converted to the internal
 // system: amplitude mm, frequency Hz, stiffness N/mm, phase rad. Malformed input (missing
-// column, negative or zero amplitude or frequency, non-positive stiffness, duplicate point) is a
+// column, negative or zero amplitude or frequency, non-positive stiffness, a phase outside
+// (0, 90] deg, duplicate point) is a
 // DataError naming file:row:column.
 #pragma once
 

@@ -17,7 +17,7 @@ template <class Solver, class Fn>
 ForceSlope add_over_children(const Solver& solver, const TreeNode& n, Fn&& fn) {
   ForceSlope sum{0.0, 0.0};
   for (int i = 0; i < n.child_count; ++i) {
-    const ForceSlope c = fn(solver.child_of(n, i));
+    const ForceSlope c = fn(solver.child(n, i));
     sum.force += c.force;
     sum.slope += c.slope;
   }
@@ -28,7 +28,7 @@ template <class Solver, class Fn>
 Interval combine_children(const Solver& solver, const TreeNode& n, bool intersect, Fn&& fn) {
   Interval r = intersect ? Interval{-kInf, kInf} : Interval{0.0, 0.0};
   for (int i = 0; i < n.child_count; ++i) {
-    const Interval c = fn(solver.child_of(n, i));
+    const Interval c = fn(solver.child(n, i));
     if (intersect) {
       r.lo = std::max(r.lo, c.lo);
       r.hi = std::min(r.hi, c.hi);

@@ -44,7 +44,7 @@ class TreeSolver {
   // Returns the subtree force.
   double advance(int node, double de, double* after) const;
 
-  int child_of(const TreeNode& n, int i) const { return child(n, i); }
+  int child(const TreeNode& n, int i) const { return topology_.children[static_cast<std::size_t>(n.first_child + i)]; }
 
  private:
   ForceSlope forward(int node, double de) const;
@@ -56,7 +56,6 @@ class TreeSolver {
   void assign(int node, double de, double force, double* after) const;
 
   const TreeNode& at(int node) const { return topology_.nodes[static_cast<std::size_t>(node)]; }
-  int child(const TreeNode& n, int i) const { return topology_.children[static_cast<std::size_t>(n.first_child + i)]; }
   double e_before(const TreeNode& n) const { return before_[n.state]; }
   double f_before(const TreeNode& n) const { return before_[n.state + 1]; }
   double p(const TreeNode& n, int slot) const { return network_.parameter(n.param[slot]); }

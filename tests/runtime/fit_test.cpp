@@ -11,13 +11,12 @@ using namespace rheo;
 TEST_CASE("fit recovers a Zener model from its own data, from 3x off, in log space") {
   const auto truth = test::network_from("model z { spring e (k = 100) maxwell m (k = 50, tau = 10 ms) }", "z");
   runtime::HarmonicData data;
-  for (double f : {1.0, 5.0, 10.0, 20.0, 40.0})
-    for (double u0 : {0.5}) {
-      const auto p = runtime::simulate_harmonic_point(truth, u0, f, {});
-      data.amplitude.push_back(u0), data.frequency.push_back(f);
-      data.stiffness.push_back(p.measures.stiffness), data.phase.push_back(p.measures.phase);
-      data.rows.push_back(0);
-    }
+  for (double f : {1.0, 5.0, 10.0, 20.0, 40.0}) {
+    const auto p = runtime::simulate_harmonic_point(truth, 0.5, f, {});
+    data.amplitude.push_back(0.5), data.frequency.push_back(f);
+    data.stiffness.push_back(p.measures.stiffness), data.phase.push_back(p.measures.phase);
+    data.rows.push_back(0);
+  }
   const auto start = test::network_from(
       "model z { spring e (k = 300 in [1, 10000]) maxwell m (k = 150 in [1, 10000], tau = 30 ms in [0.1, 1000]) }", "z");
   runtime::FitSettings settings;

@@ -41,4 +41,5 @@ TEST_CASE("malformed harmonic tables are located by file:row:column") {
   CHECK(error_of("amplitude [mm],frequency [Hz],stiffness [N/mm],phase [deg]\n-1,2,3,4\n").find("h.csv:2: error: amplitude must be positive, got -1 mm (column 1 'amplitude')") == 0);
   CHECK(error_of("amplitude [mm],frequency [Hz],stiffness [N/mm],phase [deg]\n1,2,3,4\n1,2,5,6\n").find("h.csv:3: error: duplicate point (1 mm, 2 Hz), first at row 2") == 0);
   CHECK(error_of("amplitude [mm],frequency [Hz],stiffness [N/mm],phase [deg]\n1,0,3,4\n").find("frequency must be positive") != std::string::npos);
+  CHECK(error_of("amplitude [mm],frequency [Hz],stiffness [N/mm],phase [deg]\n1,2,3,0\n").find("h.csv:2: error: phase must lie in (0, 90] deg, got 0 deg") == 0);
 }
