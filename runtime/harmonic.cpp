@@ -1,12 +1,16 @@
 #include "runtime/harmonic.hpp"
 
+#include "runtime/periodic_closed_form.hpp"
 #include "runtime/simulator.hpp"
+
+#include <fmt/format.h>
 
 #include <algorithm>
 #include <cmath>
 #include <complex>
 #include <limits>
 #include <numbers>
+#include <stdexcept>
 
 namespace rheo::runtime {
 namespace {
@@ -45,6 +49,14 @@ double cycle_change(const Topology& t, const std::vector<double>& start, const s
 
 HarmonicPoint simulate_harmonic_point(const Network& network, double amplitude, double frequency,
                                       const HarmonicOptions& options) {
+  if (options.steady_state != SteadyState::time_stepping) {
+    if (has_closed_form_periodic_state(network))
+      return closed_form_harmonic_point(network, amplitude, frequency, options.definition);
+    if (options.steady_state == SteadyState::closed_form)
+      throw std::invalid_argument(fmt::format(
+          "model '{}' has nested series/parallel blocks, which have no closed-form periodic state; use steady_state = time_stepping (or auto)",
+          network.model().name));
+  }
   const int n = options.steps_per_cycle;
   const double period = 1.0 / frequency;
   const double dt = period / n;

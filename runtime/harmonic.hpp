@@ -24,8 +24,15 @@
 
 namespace rheo::runtime {
 
+// How the periodic state is found: `automatic` uses the closed form of
+// periodic_closed_form.hpp where the network allows it (every element in the root parallel
+// block) and time stepping otherwise; `closed_form` insists on it (std::invalid_argument when
+// the network has a subtree); `time_stepping` always steps.
+enum class SteadyState { automatic, closed_form, time_stepping };
+
 struct HarmonicOptions {
   HarmonicDefinition definition = HarmonicDefinition::thesis;
+  SteadyState steady_state = SteadyState::automatic;
   int steps_per_cycle = 2048;  // N, a multiple of 4 so that the turning points are sampled
   int max_cycles = 400;
   double tolerance = 1e-9;
@@ -35,7 +42,7 @@ struct HarmonicPoint {
   double amplitude = 0.0;  // u0 [mm]
   double frequency = 0.0;  // f [Hz]
   CycleMeasures measures;
-  int cycles = 0;          // simulated cycles
+  int cycles = 0;          // simulated cycles (0: closed form)
   bool converged = false;
   double residual = 0.0;   // estimated relative distance from the periodic state
 };

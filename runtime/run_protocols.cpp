@@ -5,6 +5,7 @@
 #include "runtime/harmonic.hpp"
 #include "runtime/history_csv.hpp"
 #include "runtime/output.hpp"
+#include "runtime/periodic_closed_form.hpp"
 
 #include <fmt/format.h>
 
@@ -60,7 +61,10 @@ ProtocolRun run_protocol(const Network& network, const Protocol& p, const std::s
       options.max_cycles = static_cast<int>(number(p, "cycles_max", options.max_cycles));
       options.tolerance = number(p, "tolerance", options.tolerance);
       const auto points = simulate_harmonic_grid(network, numbers(p, "amplitude"), numbers(p, "frequency"), options);
-      header.protocol = fmt::format("harmonic steps_per_cycle={} tolerance={:g}", options.steps_per_cycle, options.tolerance);
+      header.protocol = options.steady_state != SteadyState::time_stepping && has_closed_form_periodic_state(network)
+                            ? std::string("harmonic steady_state=closed_form")
+                            : fmt::format("harmonic steady_state=time_stepping steps_per_cycle={} tolerance={:g}",
+                                          options.steps_per_cycle, options.tolerance);
       for (const auto& point : points)
         if (!point.converged) {
           ++run.not_converged;

@@ -1,4 +1,5 @@
-// Harmonic protocol against the closed forms of Appendices B and C (time-stepping path).
+// Harmonic protocol against the closed forms of Appendices B and C, through both ways of finding
+// the periodic state: time stepping and the closed form of periodic_closed_form.hpp.
 // Required accuracy: relative error <= 1e-5 in stiffness, <= 1e-3 deg in phase.
 #include "runtime/harmonic.hpp"
 
@@ -22,14 +23,18 @@ constexpr double kPhaseToleranceDeg = 1e-3;
 
 void check_point(const runtime::Network& net, double u0, double f, double stiffness, double phase_rad,
                  HarmonicDefinition definition = HarmonicDefinition::thesis) {
-  HarmonicOptions options;
-  options.definition = definition;
-  const auto p = runtime::simulate_harmonic_point(net, u0, f, options);
-  CAPTURE(u0);
-  CAPTURE(f);
-  CHECK(p.converged);
-  CHECK(relative_error(p.measures.stiffness, stiffness) <= kStiffnessTolerance);
-  CHECK(std::abs(degrees(p.measures.phase - phase_rad)) <= kPhaseToleranceDeg);
+  for (auto steady_state : {runtime::SteadyState::time_stepping, runtime::SteadyState::closed_form}) {
+    HarmonicOptions options;
+    options.definition = definition;
+    options.steady_state = steady_state;
+    const auto p = runtime::simulate_harmonic_point(net, u0, f, options);
+    CAPTURE(u0);
+    CAPTURE(f);
+    CAPTURE(static_cast<int>(steady_state));
+    CHECK(p.converged);
+    CHECK(relative_error(p.measures.stiffness, stiffness) <= kStiffnessTolerance);
+    CHECK(std::abs(degrees(p.measures.phase - phase_rad)) <= kPhaseToleranceDeg);
+  }
 }
 
 void check_linear(const runtime::Network& net, double u0, double f, std::complex<double> k_star) {
@@ -123,7 +128,9 @@ TEST_CASE("generalized frictional solid (C.17-C.20): elements yield one by one")
 
 TEST_CASE("steady state is detected from the first cycle when the periodic start is exact") {
   const auto net = test::network_from("model z { spring e (k = 100) maxwell m (k = 50, tau = 20 ms) friction f (k = 200, fy = 4) }", "z");
-  const auto p = runtime::simulate_harmonic_point(net, 0.3, 49.0, {});
+  HarmonicOptions options;
+  options.steady_state = runtime::SteadyState::time_stepping;
+  const auto p = runtime::simulate_harmonic_point(net, 0.3, 49.0, options);
   CHECK(p.converged);
   CHECK(p.cycles == 1);
 }

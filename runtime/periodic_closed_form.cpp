@@ -1,0 +1,166 @@
+#include "runtime/periodic_closed_form.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+#include <vector>
+
+namespace rheo::runtime {
+namespace {
+
+constexpr double half_pi = 0.5 * std::numbers::pi;
+constexpr int samples_per_half_cycle = 32;
+
+// The loading half of the steady cycle, theta in [-pi/2, pi/2], as the sum of
+//   a sin(theta) + b cos(theta) + Y(u0 sin theta) + constant + sum over slipping frictions,
+// where a gathers every branch linear in u (springs, Maxwell K', frictions that never slip).
+struct LoadingHalf {
+  double u0 = 0.0;
+  double a = 0.0;         // N
+  double b = 0.0;         // N
+  double d10 = 0.0, d20 = 0.0, d30 = 0.0;  // summed Yeoh constants
+  double constant = 0.0;  // sliders, N
+  std::vector<double> slip_k, slip_fy, slip_theta;  // frictions with u0 > uy; theta_q where they start to slip
+
+  double friction(std::size_t q, double theta) const {
+    return std::min(slip_fy[q], -slip_fy[q] + slip_k[q] * u0 * (1.0 + std::sin(theta)));
+  }
+  double force(double theta) const {
+    const double u = u0 * std::sin(theta);
+    const double u2 = u * u;
+    double f = a * std::sin(theta) + b * std::cos(theta) + u * (2.0 * d10 + u2 * (4.0 * d20 + 6.0 * d30 * u2)) + constant;
+    for (std::size_t q = 0; q < slip_k.size(); ++q) f += friction(q, theta);
+    return f;
+  }
+  // Stiffness (dF/du) of the branches linear in u on the piece holding `piece_mid`.
+  double linear_stiffness_on(double piece_mid) const {
+    double k = 0.0;
+    for (std::size_t q = 0; q < slip_k.size(); ++q)
+      if (piece_mid < slip_theta[q]) k += slip_k[q];
+    return k;
+  }
+  // dF/dtheta and d2F/dtheta2 inside a piece whose elastic frictions add `k_elastic` [N/mm].
+  void derivatives(double theta, double k_elastic, double& first, double& second) const {
+    const double s = std::sin(theta), c = std::cos(theta);
+    const double u = u0 * s, u2 = u * u;
+    const double dy = 2.0 * d10 + u2 * (12.0 * d20 + 30.0 * d30 * u2);
+    const double d2y = u * (24.0 * d20 + 120.0 * d30 * u2);
+    const double in_phase = a + u0 * (dy + k_elastic);
+    first = c * in_phase - b * s;
+    second = -s * in_phase + c * c * u0 * u0 * d2y - b * c;
+  }
+};
+
+// Root of dF/dtheta in [lo, hi] with dF(lo) > 0 >= dF(hi): Newton, bisecting whenever a step leaves the bracket.
+double stationary_point(const LoadingHalf& h, double lo, double hi, double k_elastic) {
+  double x = 0.5 * (lo + hi);
+  for (int iteration = 0; iteration < 100 && hi - lo > 1e-15; ++iteration) {
+    double first = 0.0, second = 0.0;
+    h.derivatives(x, k_elastic, first, second);
+    if (first > 0.0) lo = x; else hi = x;
+    const double newton = second < 0.0 ? x - first / second : lo - 1.0;
+    const double next = (newton > lo && newton < hi) ? newton : 0.5 * (lo + hi);
+    if (std::abs(next - x) <= 1e-16 * (1.0 + std::abs(x))) return next;
+    x = next;
+  }
+  return x;
+}
+
+double loading_half_maximum(const LoadingHalf& h) {
+  std::vector<double> ends{-half_pi, half_pi};
+  for (double t : h.slip_theta) ends.push_back(t);
+  std::sort(ends.begin(), ends.end());
+  double best = h.force(-half_pi);
+  for (std::size_t p = 0; p + 1 < ends.size(); ++p) {
+    const double lo = ends[p], hi = ends[p + 1];
+    if (!(hi > lo)) continue;
+    best = std::max(best, h.force(hi));
+    const double k_elastic = h.linear_stiffness_on(0.5 * (lo + hi));
+    const int samples = std::max(2, static_cast<int>(std::ceil(samples_per_half_cycle * (hi - lo) / std::numbers::pi)));
+    double previous_theta = lo, previous_slope = 0.0, unused = 0.0;
+    h.derivatives(lo, k_elastic, previous_slope, unused);
+    for (int j = 1; j <= samples; ++j) {
+      const double theta = j == samples ? hi : lo + (hi - lo) * j / samples;
+      double slope = 0.0;
+      h.derivatives(theta, k_elastic, slope, unused);
+      if (previous_slope > 0.0 && slope <= 0.0)
+        best = std::max(best, h.force(stationary_point(h, previous_theta, theta, k_elastic)));
+      previous_theta = theta;
+      previous_slope = slope;
+    }
+  }
+  return best;
+}
+
+}  // namespace
+
+bool has_closed_form_periodic_state(const Network& network) { return network.topology().subtrees.empty(); }
+
+HarmonicPoint closed_form_harmonic_point(const Network& network, double amplitude, double frequency,
+                                         HarmonicDefinition definition) {
+  const Coefficients& c = network.coefficients();
+  const double u0 = amplitude;
+  const double omega = 2.0 * std::numbers::pi * frequency;
+  const double pi = std::numbers::pi;
+
+  LoadingHalf h;
+  h.u0 = u0;
+  double storage = c.spring_k;         // K'_1 [N/mm]
+  double loss = c.dashpot_c * omega;   // K''_1 [N/mm]; U = pi u0^2 K''_1 for every branch
+  for (std::size_t i = 0; i < c.maxwell_k.size(); ++i) {
+    const double wt = omega * c.maxwell_c[i] / c.maxwell_k[i];
+    const double scale = c.maxwell_k[i] / (1.0 + wt * wt);
+    storage += scale * wt * wt;
+    loss += scale * wt;
+  }
+  h.a = u0 * storage;
+  h.b = u0 * loss;
+  for (std::size_t i = 0; i < c.yeoh_d10.size(); ++i) {
+    h.d10 += c.yeoh_d10[i];
+    h.d20 += c.yeoh_d20[i];
+    h.d30 += c.yeoh_d30[i];
+  }
+  storage += 2.0 * h.d10 + 3.0 * h.d20 * u0 * u0 + 3.75 * h.d30 * u0 * u0 * u0 * u0;
+  for (std::size_t i = 0; i < c.friction_k.size(); ++i) {
+    const double k = c.friction_k[i], fy = c.friction_fy[i], uy = fy / k;
+    if (u0 <= uy) {
+      h.a += k * u0;
+      storage += k;
+      continue;
+    }
+    const double s = 2.0 * uy / u0 - 1.0;
+    const double theta = std::asin(s);
+    h.slip_k.push_back(k);
+    h.slip_fy.push_back(fy);
+    h.slip_theta.push_back(theta);
+    storage += k / pi * (theta + half_pi + s * std::cos(theta));
+    loss += 4.0 * fy * (u0 - uy) / (pi * u0 * u0);
+  }
+  for (double fy : c.slider_fy) {
+    h.constant += fy;
+    loss += 4.0 * fy / (pi * u0);
+  }
+
+  HarmonicPoint point;
+  point.amplitude = amplitude;
+  point.frequency = frequency;
+  point.converged = true;
+  CycleMeasures& m = point.measures;
+  m.force_amplitude = loading_half_maximum(h);
+  m.energy = pi * u0 * u0 * loss;
+  if (definition == HarmonicDefinition::thesis) {
+    m.stiffness = m.force_amplitude / u0;
+    m.damping = m.force_amplitude > 0.0 ? m.energy / (pi * m.force_amplitude * u0) : 0.0;
+    m.damping_clamped = m.damping > 1.0;
+    m.phase = std::asin(std::clamp(m.damping, -1.0, 1.0));
+  } else {
+    m.stiffness = std::hypot(storage, loss);
+    m.phase = std::atan2(loss, storage);
+    m.damping = std::sin(m.phase);
+  }
+  m.storage = m.stiffness * std::cos(m.phase);
+  m.loss = m.stiffness * std::sin(m.phase);
+  return point;
+}
+
+}  // namespace rheo::runtime
