@@ -39,6 +39,8 @@ struct Argument {
   std::optional<Bounds> bounds;
   SourceLocation where;        // of the name
   SourceLocation value_where;  // of the value's first character
+  int value_begin = -1;        // byte range [value_begin, value_end) of the value in the source text
+  int value_end = -1;
 };
 
 // KIND [NAME] (ARGS)  or  parallel|series [NAME] { CHILDREN }
@@ -95,11 +97,29 @@ struct Simulate {
   SourceLocation model_where;
 };
 
+// A line of a fit block: `data "FILE" [, SETTING]*`, `output "FILE"` or `SETTING (, SETTING)*`.
+struct FitLine {
+  enum class Kind { data, output, settings };
+  Kind kind = Kind::settings;
+  std::string file;  // data, output
+  std::vector<SettingNode> settings;
+  SourceLocation where;       // of the first word
+  SourceLocation file_where;  // of the file name
+};
+
+struct Fit {
+  std::string model;  // empty when not named
+  std::vector<FitLine> lines;
+  SourceLocation where;  // of the keyword
+  SourceLocation model_where;
+};
+
 struct File {
   std::string name;
   std::vector<Import> imports;
   std::vector<Model> models;
   std::vector<Simulate> simulations;
+  std::vector<Fit> fits;
 };
 
 }  // namespace rheo::lang::ast

@@ -1,6 +1,7 @@
 #include "lang/checker.hpp"
 
 #include "lang/element_schema.hpp"
+#include "lang/fit_schema.hpp"
 #include "lang/model_builder.hpp"
 #include "lang/names.hpp"
 #include "lang/protocol_schema.hpp"
@@ -35,6 +36,11 @@ class Checker {
   }
 
   bool known_model(const std::string& name) const { return declared_.count(name) != 0; }
+  // The checked model NAME, or nullptr when it is unknown or has errors.
+  const CheckedModel* checked_model(const std::string& name) const {
+    auto it = done_.find(name);
+    return it != done_.end() && it->second.ok ? &it->second.model : nullptr;
+  }
   std::vector<std::string> model_names() const {
     std::vector<std::string> out;
     for (const auto* m : order_) out.push_back(m->name);
@@ -79,20 +85,26 @@ class Checker {
   std::vector<std::string> in_progress_;
 };
 
-// `simulate [MODEL] { ... }`: the model defaults to the file's only (non-imported) model.
-SimulateDirective check_simulate(const ast::Simulate& s, const ast::File& file, const Checker& checker, std::vector<Diagnostic>& errors) {
-  SimulateDirective out{s.model, {}, s.where};
-  if (!s.model.empty()) {
-    if (!checker.known_model(s.model))
-      errors.push_back({s.model_where, fmt::format("simulate names unknown model '{}';{} known: {}", s.model,
-                                                   did_you_mean(s.model, checker.model_names()), join(checker.model_names()))});
+// The model a `simulate`/`fit` block (DIRECTIVE) names, or the file's only (non-imported)
+// model when it names none; "" after reporting when there is none.
+std::string resolve_model(const std::string& directive, const std::string& named, const SourceLocation& named_where,
+                          const SourceLocation& where, const ast::File& file, const Checker& checker, std::vector<Diagnostic>& errors) {
+  if (!named.empty()) {
+    if (checker.known_model(named)) return named;
+    errors.push_back({named_where, fmt::format("{} names unknown model '{}';{} known: {}", directive, named,
+                                               did_you_mean(named, checker.model_names()), join(checker.model_names()))});
   } else if (file.models.size() == 1) {
-    out.model = file.models.front().name;
+    return file.models.front().name;
   } else if (file.models.empty()) {
-    errors.push_back({s.where, "this file defines no model; name the one to simulate: simulate NAME { ... }"});
+    errors.push_back({where, fmt::format("this file defines no model; name the one to {0}: {0} NAME {{ ... }}", directive)});
   } else {
-    errors.push_back({s.where, "this file defines several models; name one: simulate NAME { ... }"});
+    errors.push_back({where, fmt::format("this file defines several models; name one: {} NAME {{ ... }}", directive)});
   }
+  return "";
+}
+
+SimulateDirective check_simulate(const ast::Simulate& s, const ast::File& file, const Checker& checker, std::vector<Diagnostic>& errors) {
+  SimulateDirective out{resolve_model("simulate", s.model, s.model_where, s.where, file, checker, errors), {}, s.where};
   enum class Last { nothing, protocol, unknown_protocol, output } last = Last::nothing;
   for (const auto& line : s.lines) {
     if (line.output) {
@@ -128,6 +140,10 @@ Program check(const ast::File& file, const std::vector<const ast::File*>& import
   Program program;
   program.models = checker.check_models();
   for (const auto& s : file.simulations) program.simulations.push_back(check_simulate(s, file, checker, errors));
+  for (const auto& f : file.fits) {
+    std::string model = resolve_model("fit", f.model, f.model_where, f.where, file, checker, errors);
+    program.fits.push_back(check_fit(f, model, model.empty() ? nullptr : checker.checked_model(model), errors));
+  }
   return program;
 }
 

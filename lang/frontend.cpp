@@ -1,6 +1,7 @@
 #include "lang/frontend.hpp"
 
 #include "lang/checker.hpp"
+#include "lang/fit_schema.hpp"
 #include "lang/names.hpp"
 #include "lang/parser.hpp"
 #include "lang/protocol_schema.hpp"
@@ -10,6 +11,7 @@
 
 #include <algorithm>
 #include <fstream>
+#include <functional>
 #include <list>
 #include <set>
 #include <sstream>
@@ -65,15 +67,26 @@ Program compile_source(const std::string& file_name, std::string_view text) {
   return program;
 }
 
-Setting parse_setting(ProtocolKind kind, std::string_view text) {
+namespace {
+using SettingCheck = std::function<std::optional<Setting>(const ast::SettingNode&, std::vector<Diagnostic>&)>;
+
+Setting parse_command_line_setting(std::string_view text, const SettingCheck& check) {
   const std::string file_name = "<command line>";
   SourceSet sources;
   sources.add(file_name, std::string(text));
   const ast::SettingNode node = parse_setting_text(file_name, text);
   std::vector<Diagnostic> errors;
-  auto setting = check_setting(kind, node, errors);
+  auto setting = check(node, errors);
   if (!setting || !errors.empty()) throw CompileError(std::move(errors), sources);
   return *setting;
 }
+}  // namespace
+
+Setting parse_setting(ProtocolKind kind, std::string_view text) {
+  return parse_command_line_setting(
+      text, [kind](const ast::SettingNode& node, std::vector<Diagnostic>& errors) { return check_setting(kind, node, errors); });
+}
+
+Setting parse_fit_setting(std::string_view text) { return parse_command_line_setting(text, check_fit_setting); }
 
 }  // namespace rheo::lang

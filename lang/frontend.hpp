@@ -19,5 +19,7 @@ Program compile_source(const std::string& file_name, std::string_view text);
 // "frequency = 1 Hz .. 51 Hz step 2 Hz", with the same value grammar and the schema of KIND;
 // throws CompileError (file name "<command line>").
 Setting parse_setting(ProtocolKind kind, std::string_view text);
+// The same for a fit setting (`method = approximate`), with the fit schema; free/fixed excluded.
+Setting parse_fit_setting(std::string_view text);
 
 }  // namespace rheo::lang

@@ -1,7 +1,7 @@
 // The rheo grammar (PEGTL). One rule per concept; actions (parser.cpp) build the AST;
 // every must<> point has its message in grammar_errors.hpp.
 //
-//   file      := sep (import | model | simulate)* eof
+//   file      := sep (import | model | simulate | fit)* eof
 //   import    := 'import' NAME
 //   model     := 'model' NAME '{' (param | element)* '}'
 //   param     := 'param' argument
@@ -9,6 +9,8 @@
 //   argument  := PATH '=' expression ['in' '[' expression ',' expression ']']
 //   simulate  := 'simulate' [NAME] '{' (output | protocol)* '}'
 //   protocol  := KIND setting (',' setting)*          output := 'output' STRING
+//   fit       := 'fit' [NAME] '{' (data | output | setting (',' setting)*)* '}'
+//   data      := 'data' STRING (',' setting)*           ('data' is reserved only there)
 //   setting   := KEY '=' (STRING | list | expression ['..' expression 'step' expression])
 //   list      := '[' expression (',' expression)* ']' [UNIT]
 //   expression:= term (('+'|'-') term)*   term := factor (('*'|'/') factor)*
@@ -41,7 +43,8 @@ struct kw_series : TAO_PEGTL_KEYWORD("series") {};
 struct kw_in : TAO_PEGTL_KEYWORD("in") {};
 struct kw_step : TAO_PEGTL_KEYWORD("step") {};
 struct kw_output : TAO_PEGTL_KEYWORD("output") {};
-struct keyword : sor<kw_import, kw_model, kw_simulate, kw_param, kw_parallel, kw_series, kw_in, kw_step, kw_output> {};
+struct kw_fit : TAO_PEGTL_KEYWORD("fit") {};
+struct keyword : sor<kw_import, kw_model, kw_simulate, kw_param, kw_parallel, kw_series, kw_in, kw_step, kw_output, kw_fit> {};
 
 struct name : seq<not_at<keyword>, identifier> {};
 struct path : list<identifier, one<'.'>> {};
@@ -182,7 +185,21 @@ struct simulate_open : one<'{'> {};
 struct simulate_close : one<'}'> {};
 struct simulate_decl : if_must<kw_simulate, sep, opt<simulate_model, sep>, simulate_open, star<sep, directive_line>, sep, simulate_close> {};
 
-struct top_item : sor<import_decl, model_decl, simulate_decl> {};
+struct fit_data_keyword : TAO_PEGTL_KEYWORD("data") {};
+struct fit_data_file : string_literal {};
+struct fit_data_line : if_must<fit_data_keyword, sep, fit_data_file, star<setting_next>> {};
+struct fit_output_keyword : kw_output {};
+struct fit_output_file : string_literal {};
+struct fit_output_line : if_must<fit_output_keyword, sep, fit_output_file> {};
+struct fit_settings_begin : success {};
+struct fit_settings_line : seq<at<setting_key>, fit_settings_begin, must<setting>, star<setting_next>> {};
+struct fit_line : sor<fit_data_line, fit_output_line, fit_settings_line> {};
+struct fit_model : name {};
+struct fit_open : one<'{'> {};
+struct fit_close : one<'}'> {};
+struct fit_decl : if_must<kw_fit, sep, opt<fit_model, sep>, fit_open, star<sep, fit_line>, sep, fit_close> {};
+
+struct top_item : sor<import_decl, model_decl, simulate_decl, fit_decl> {};
 struct file_end : eof {};
 struct file : seq<sep, star<top_item, sep>, must<file_end>> {};
 

@@ -48,7 +48,11 @@ template <> inline constexpr const char* errors::message<setting_value> = "expec
 template <> inline constexpr const char* errors::message<output_file> = "expected a file name in double quotes after 'output', found {found}";
 template <> inline constexpr const char* errors::message<simulate_open> = "expected '{' to open the simulate block, found {found}";
 template <> inline constexpr const char* errors::message<simulate_close> = "expected a protocol line, 'output' or '}' to close the simulate block, found {found}";
-template <> inline constexpr const char* errors::message<file_end> = "expected 'import', 'model' or 'simulate' at the top level, found {found}";
+template <> inline constexpr const char* errors::message<fit_open> = "expected '{' to open the fit block, found {found}";
+template <> inline constexpr const char* errors::message<fit_close> = "expected a setting `KEY = VALUE`, `data \"FILE\"`, `output \"FILE\"` or '}' to close the fit block, found {found}";
+template <> inline constexpr const char* errors::message<fit_data_file> = "expected the data file name in double quotes after 'data', e.g. data \"specimen_harmonic.csv\", found {found}";
+template <> inline constexpr const char* errors::message<fit_output_file> = "expected a file name in double quotes after 'output' for the fitted model, e.g. output \"fitted.rheo\", found {found}";
+template <> inline constexpr const char* errors::message<file_end> = "expected 'import', 'model', 'simulate' or 'fit' at the top level, found {found}";
 template <> inline constexpr const char* errors::message<setting_end> = "unexpected text after the setting value: {found}";
 // clang-format on
 

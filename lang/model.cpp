@@ -40,6 +40,19 @@ const Setting* Protocol::find(const std::string& key) const {
   return nullptr;
 }
 
+const Setting* FitDirective::find(const std::string& key) const {
+  for (const auto& s : settings)
+    if (s.key == key) return &s;
+  return nullptr;
+}
+
+std::vector<int> default_free_parameters(const CheckedModel& model) {
+  std::vector<int> out;
+  for (std::size_t i = 0; i < model.parameters.size(); ++i)
+    if (model.parameters[i].free) out.push_back(static_cast<int>(i));
+  return out;
+}
+
 const CheckedModel* Program::find_model(const std::string& name) const {
   for (const auto& m : models)
     if (m.name == name) return &m;

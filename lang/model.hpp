@@ -47,6 +47,12 @@ struct Parameter {
   double upper = 0.0;
   std::string unit;          // the unit the user wrote ("N/mm"), for reporting; may be empty
   SourceLocation where;
+  // Byte range [value_begin, value_end) of the value expression in the text of where.file: the
+  // argument's own value, or the override's in an instantiation. -1 when no text is written for
+  // this parameter: generated ones (maxwell c from tau) and an instantiated model's defaults,
+  // which every instance shares (stdlib or not).
+  int value_begin = -1;
+  int value_end = -1;
 };
 
 enum class ElementKind : std::uint8_t {
@@ -107,11 +113,34 @@ struct SimulateDirective {
   SourceLocation where;
 };
 
+// A `data "FILE" [, weight = W]` line of a fit block.
+struct FitData {
+  std::string file;     // as written: relative to the .rheo file, resolved by the runtime
+  double weight = 1.0;  // >= 0
+  SourceLocation where;  // of the file name
+};
+
+// `fit [MODEL] { ... }`. Defaults of absent settings are the runtime's (docs/language.md).
+struct FitDirective {
+  std::string model;               // resolved like SimulateDirective::model
+  std::vector<FitData> data;       // may be empty: the command line can supply the data
+  std::vector<Setting> settings;   // validated against the fit schema (fit_schema.hpp); free/fixed excluded
+  std::vector<int> free;           // indices into the model's parameters, sorted: the free set after free/fixed
+  std::string output;              // `output "..."`; empty when absent
+  SourceLocation where;            // of the `fit` keyword
+
+  const Setting* find(const std::string& key) const;
+};
+
 struct Program {
   std::vector<CheckedModel> models;  // in source order; imported stdlib models are included
   std::vector<SimulateDirective> simulations;
+  std::vector<FitDirective> fits;
 
   const CheckedModel* find_model(const std::string& name) const;
 };
+
+// The free set of a fit without `free`/`fixed`: every parameter declared with bounds, sorted.
+std::vector<int> default_free_parameters(const CheckedModel& model);
 
 }  // namespace rheo::lang

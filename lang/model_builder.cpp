@@ -3,6 +3,7 @@
 #include "lang/element_schema.hpp"
 #include "lang/expressions.hpp"
 #include "lang/names.hpp"
+#include "lang/parameter_checks.hpp"
 
 #include <fmt/format.h>
 
@@ -59,6 +60,14 @@ class Builder {
  private:
   void error(const SourceLocation& where, std::string message) { errors_.push_back({where, std::move(message)}); }
 
+  // Where P's value is written: argument A of this model's source.
+  static void locate(Parameter& p, const ast::Argument& a) {
+    p.where = a.value_where;
+    p.unit = literal_unit(*a.value);
+    p.value_begin = a.value_begin;
+    p.value_end = a.value_end;
+  }
+
   int add(Entry e) {
     int index = static_cast<int>(entries_.size());
     index_[e.parameter.path] = index;
@@ -79,8 +88,7 @@ class Builder {
     }
     Entry e;
     e.parameter.path = a.name;
-    e.parameter.where = a.value_where;
-    e.parameter.unit = literal_unit(*a.value);
+    locate(e.parameter, a);
     e.source = a.value.get();
     e.bounds = a.bounds ? &*a.bounds : nullptr;
     add(std::move(e));
@@ -135,8 +143,6 @@ class Builder {
     }
     return out;
   }
-
-  static std::string describe_element(std::string_view kind, const std::string& path) { return fmt::format("{} '{}'", kind, path); }
 
   std::optional<Element> build_leaf(const ast::Element& e, const ElementSpec& spec, const std::string& name, const std::string& path) {
     std::vector<std::string> accepted;
@@ -203,8 +209,7 @@ class Builder {
     Entry e;
     e.parameter.path = path + "." + a.name;
     e.parameter.dimension = spec.dimension;
-    e.parameter.where = a.value_where;
-    e.parameter.unit = literal_unit(*a.value);
+    locate(e.parameter, a);
     e.meta = {spec.positive, false, std::string(spec.quantity), std::string(kind)};
     e.dimension_known = true;
     e.source = a.value.get();
@@ -220,6 +225,7 @@ class Builder {
       Entry copy;
       copy.parameter = instance.model.parameters[i];
       copy.parameter.path = path + "." + copy.parameter.path;
+      copy.parameter.value_begin = copy.parameter.value_end = -1;  // the instantiated model's text, shared
       for (auto& op : copy.parameter.expression.code)
         if (op.op == Expression::Op::parameter) op.parameter += base;
       copy.meta = instance.meta[i];
@@ -246,8 +252,7 @@ class Builder {
         target.source = a.value.get();
         target.bounds = a.bounds ? &*a.bounds : nullptr;
         target.parameter.free = false;
-        target.parameter.where = a.value_where;
-        target.parameter.unit = literal_unit(*a.value);
+        locate(target.parameter, a);
       }
     }
     Element root = instance.model.root;
@@ -264,12 +269,6 @@ class Builder {
   }
 
   // --- resolution: dimensions, expressions, values ---
-  std::string describe_parameter(const Entry& e) const {
-    if (e.meta.owner_kind.empty()) return fmt::format("parameter '{}'", e.parameter.path);
-    auto dot = e.parameter.path.rfind('.');
-    return fmt::format("{} of {}", e.parameter.path.substr(dot + 1), describe_element(e.meta.owner_kind, e.parameter.path.substr(0, dot)));
-  }
-
   std::optional<ResolvedReference> reference(const ast::Expr& r) {
     auto it = index_.find(r.path);
     if (it == index_.end()) {
@@ -300,7 +299,7 @@ class Builder {
     if (done.state == Entry::State::failed) return false;  // part of a reported cycle
     if (ok) {
       values_[static_cast<std::size_t>(i)] = done.parameter.value = done.parameter.expression.evaluate(values_);
-      ok = check_value(done) && (!done.bounds || check_bounds(done));
+      ok = check_value(done.parameter, done.meta, errors_) && (!done.bounds || check_bounds(done.parameter, done.meta, *done.bounds, errors_));
     }
     done.state = ok ? Entry::State::done : Entry::State::failed;
     return ok;
@@ -333,72 +332,9 @@ class Builder {
     if (!e.dimension_known) {
       e.parameter.dimension = typed.free ? dim::none : typed.dimension;
     } else if (!typed.free && typed.dimension != e.parameter.dimension) {
-      error(e.parameter.where, fmt::format("{} expects {}, got {}", describe_parameter(e), with_article(e.parameter.dimension), with_article(typed.dimension)));
+      error(e.parameter.where, fmt::format("{} expects {}, got {}", describe_parameter(e.parameter, e.meta), with_article(e.parameter.dimension), with_article(typed.dimension)));
       return false;
     }
-    return true;
-  }
-
-  std::string show(const Entry& e, double value) const { return show_value(value, e.parameter.dimension, e.parameter.unit); }
-
-  bool check_value(const Entry& e) {
-    const double v = e.parameter.value;
-    if (!std::isfinite(v)) {
-      error(e.parameter.where, fmt::format("{} evaluates to {}; check for a division by zero", describe_parameter(e), v));
-      return false;
-    }
-    if (e.meta.positive && !(v > 0)) {
-      error(e.parameter.where, fmt::format("{} {} must be positive, got {}", e.meta.quantity, describe_parameter(e), show(e, v)));
-      return false;
-    }
-    return true;
-  }
-
-  // `in [LO, HI]`: plain-number bounds are in the unit of the value; the parameter becomes free.
-  bool check_bounds(Entry& e) {
-    const ast::Bounds& b = *e.bounds;
-    if (!e.parameter.expression.is_constant()) {
-      error(b.where, fmt::format("{} is computed from other parameters, so it cannot have bounds; put the bounds on those parameters",
-                                 describe_parameter(e)));
-      return false;
-    }
-    auto bound = [&](const ast::Expr& x) -> std::optional<double> {
-      auto constant_only = [&](const ast::Expr& r) -> std::optional<ResolvedReference> {
-        error(r.where, fmt::format("bounds must be numbers, not references to parameters ('{}')", r.path));
-        return std::nullopt;
-      };
-      auto typed = compile_expression(x, constant_only, errors_);
-      if (!typed.ok) return std::nullopt;
-      double value = typed.expression.evaluate({});
-      if (typed.free) {
-        auto unit = parse_unit(e.parameter.unit);
-        return unit ? value * unit->scale : value;
-      }
-      if (typed.dimension != e.parameter.dimension) {
-        error(x.where, fmt::format("bound of {} expects {}, got {}", describe_parameter(e), with_article(e.parameter.dimension), with_article(typed.dimension)));
-        return std::nullopt;
-      }
-      return value;
-    };
-    auto lower = bound(*b.lower);
-    auto upper = bound(*b.upper);
-    if (!lower || !upper) return false;
-    if (*lower >= *upper) {
-      error(b.lower->where, fmt::format("lower bound {} of {} must be below its upper bound {}", show(e, *lower), describe_parameter(e), show(e, *upper)));
-      return false;
-    }
-    if (e.meta.positive && !(*lower > 0)) {
-      error(b.lower->where, fmt::format("{} {} must be positive, so its lower bound must be too, got {}", e.meta.quantity, describe_parameter(e), show(e, *lower)));
-      return false;
-    }
-    if (e.parameter.value < *lower || e.parameter.value > *upper) {
-      error(e.parameter.where, fmt::format("{} = {} lies outside its bounds [{}, {}]", describe_parameter(e), show(e, e.parameter.value),
-                                           show(e, *lower), show(e, *upper)));
-      return false;
-    }
-    e.parameter.free = true;
-    e.parameter.lower = *lower;
-    e.parameter.upper = *upper;
     return true;
   }
 

@@ -2,46 +2,165 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <stdexcept>
 
 namespace rheo::runtime {
+namespace {
 
-FitResult fit_harmonic(const Network& start, const HarmonicData& data, const FitSettings& settings) {
-  const auto& parameters = start.model().parameters;
-  std::vector<int> free;
-  std::vector<bool> logarithmic;
-  std::vector<double> z, lower, upper;
-  for (std::size_t i = 0; i < parameters.size(); ++i) {
-    const auto& p = parameters[i];
-    if (!p.free) continue;
-    const bool log_space = p.lower > 0.0;
-    free.push_back(static_cast<int>(i));
-    logarithmic.push_back(log_space);
-    auto map = [&](double v) { return log_space ? std::log(v) : v; };
-    z.push_back(map(start.parameter(static_cast<int>(i))));
-    lower.push_back(map(p.lower));
-    upper.push_back(map(p.upper));
+// Maps search coordinates z to the full parameter vector of the model.
+class Coordinates {
+ public:
+  Coordinates(const Network& start, const std::vector<int>& free) : start_(start), free_(free) {
+    const auto& parameters = start.model().parameters;
+    for (int i : free) {
+      const auto& p = parameters.at(static_cast<std::size_t>(i));
+      if (!p.free)
+        throw std::invalid_argument(fmt::format("parameter '{}' has no bounds; give it bounds to fit it, e.g. `{} in [lo, hi]`", p.path, p.path));
+      const bool log_space = p.lower > 0.0;
+      logarithmic.push_back(log_space);
+      auto map = [&](double v) { return log_space ? std::log(v) : v; };
+      z0.push_back(map(start.parameter(i)));
+      lower.push_back(map(p.lower));
+      upper.push_back(map(p.upper));
+    }
   }
+  std::vector<double> values(const std::vector<double>& z) const {
+    std::vector<double> v = start_.parameters();
+    for (std::size_t j = 0; j < free_.size(); ++j)
+      v[static_cast<std::size_t>(free_[j])] = logarithmic[j] ? std::exp(z[j]) : z[j];
+    return v;
+  }
+  Network network(const std::vector<double>& z) const { return start_.with_parameters(values(z)); }
+
+  std::vector<double> z0, lower, upper;
+  std::vector<bool> logarithmic;
+
+ private:
+  const Network& start_;
+  const std::vector<int>& free_;
+};
+
+// Residual vector of all files for one method (and, for `corrected`, its factors).
+std::vector<double> residuals(const Network& network, const std::vector<FitDataSet>& data, const ScoreSettings& score,
+                              FitMethod method, const std::vector<ThesisCorrection>& corrections) {
+  std::vector<double> r;
+  std::size_t harmonic_index = 0;
+  for (const FitDataSet& set : data) {
+    const ThesisCorrection* correction =
+        set.is_harmonic() && method == FitMethod::corrected ? &corrections.at(harmonic_index) : nullptr;
+    if (set.is_harmonic()) ++harmonic_index;
+    append_residuals(set, predict(network, set, method, score.harmonic, correction), score, r);
+  }
+  return r;
+}
+
+double sum_of_squares(const std::vector<double>& r) {
+  double s = 0.0;
+  for (double v : r) s += v * v;
+  return s;
+}
+
+std::vector<ThesisCorrection> corrections_at(const Network& network, const std::vector<FitDataSet>& data, const HarmonicOptions& harmonic) {
+  std::vector<ThesisCorrection> result;
+  for (const FitDataSet& set : data)
+    if (set.is_harmonic())
+      result.push_back(thesis_correction(predict(network, set, FitMethod::approximate, harmonic, nullptr).points,
+                                         predict(network, set, FitMethod::exact, harmonic, nullptr).points));
+  return result;
+}
+
+}  // namespace
+
+std::vector<int> bounded_parameters(const Network& network) {
+  std::vector<int> free;
+  const auto& parameters = network.model().parameters;
+  for (std::size_t i = 0; i < parameters.size(); ++i)
+    if (parameters[i].free) free.push_back(static_cast<int>(i));
+  return free;
+}
+
+FitResult fit(const Network& start, const std::vector<int>& free, const std::vector<FitDataSet>& data,
+              const FitSettings& settings) {
+  const auto clock_start = std::chrono::steady_clock::now();
   if (free.empty())
     throw std::invalid_argument(fmt::format("model '{}' has no free parameter; give bounds to the ones to fit, e.g. `k = 300 N/mm in [10, 5000]`",
                                             start.model().name));
-  auto values_of = [&](const std::vector<double>& x) {
-    std::vector<double> values = start.parameters();
-    for (std::size_t j = 0; j < free.size(); ++j)
-      values[static_cast<std::size_t>(free[j])] = logarithmic[j] ? std::exp(x[j]) : x[j];
-    return values;
+  if (data.empty()) throw std::invalid_argument("a fit needs data: add `data \"FILE.csv\"` to the fit block or --data FILE.csv");
+  const Coordinates coordinates(start, free);
+  const ScoreSettings& score = settings.score;
+
+  FitResult result{.network = start, .free = free, .start_values = start.parameters()};
+  std::vector<ThesisCorrection> corrections;
+  auto residuals_for = [&](FitMethod method) {
+    return [&, method](const std::vector<double>& z) { return residuals(coordinates.network(z), data, score, method, corrections); };
   };
-  auto residuals_at = [&](const Network& network) {
-    return relative_residuals(data, simulate_at(network, data, settings.harmonic));
+  auto run = [&](FitMethod method, const std::vector<double>& from, int budget) {
+    const auto r = residuals_for(method);
+    const Objective objective = [&](const std::vector<double>& z) { return sum_of_squares(r(z)); };
+    SearchSettings search = settings.search;
+    search.max_evaluations = std::max(1, budget);
+    const SearchResult found = runtime::search(objective, from, coordinates.lower, coordinates.upper, coordinates.logarithmic,
+                                               search, settings.progress, settings.interrupt);
+    result.evaluations += found.evaluations;
+    result.non_finite += found.non_finite;
+    result.status = found.status;
+    result.interrupted = result.interrupted || found.interrupted;
+    result.objective = found.value;
+    return found.z;
   };
-  const Objective objective = [&](const std::vector<double>& x) {
-    return phi(residuals_at(start.with_parameters(values_of(x))), settings.stiffness_weight, settings.damping_weight);
-  };
-  OptimizationResult optimum = minimize(objective, z, lower, upper, settings.optimizer);
-  Network fitted = start.with_parameters(values_of(optimum.x));
-  const RelativeResiduals r = residuals_at(fitted);
-  return {fitted, free, phi(r, settings.stiffness_weight, settings.damping_weight), thesis_err(r), optimum};
+
+  std::vector<double> z;
+  FitMethod final_method = score.method;
+  if (score.method == FitMethod::corrected) {
+    // Table 5.1: analytical part, numerical part (5.2, 5.3), calibrated analytical part (5.4).
+    const int half = settings.search.max_evaluations / 2;
+    z = run(FitMethod::approximate, coordinates.z0, half);
+    if (!result.interrupted) {
+      corrections = corrections_at(coordinates.network(z), data, score.harmonic);
+      z = run(FitMethod::corrected, z, settings.search.max_evaluations - result.evaluations);
+    } else {
+      final_method = FitMethod::approximate;
+    }
+  } else {
+    z = run(score.method, coordinates.z0, settings.search.max_evaluations);
+  }
+
+  result.network = coordinates.network(z);
+  if (!result.interrupted)
+    result.statistics = parameter_statistics(residuals_for(final_method), z, coordinates.logarithmic);
+  std::size_t harmonic_points = 0;
+  for (const FitDataSet& set : data) {
+    DataSetFit d;
+    d.path = set.path;
+    d.weight = set.weight;
+    d.harmonic = set.is_harmonic();
+    d.prediction = predict(result.network, set, FitMethod::exact, score.harmonic, nullptr);
+    if (d.harmonic) {
+      d.residuals = relative_residuals(set.harmonic(), d.prediction.points);
+      d.measured_stiffness = set.harmonic().stiffness;
+      d.measured_phase = set.harmonic().phase;
+      d.phi = phi(d.residuals, 1.0, 1.0);
+      d.err = thesis_err(d.residuals);
+      result.phi += d.phi;
+      harmonic_points += set.harmonic().size();
+    } else {
+      const HistoryData& h = set.history();
+      double sum = 0.0;
+      for (std::size_t j = 0; j < h.force.size(); ++j) {
+        const double r = (d.prediction.force[j] - h.force[j]) / h.force_scale;
+        sum += r * r;
+        d.worst = std::max(d.worst, std::abs(r));
+      }
+      d.err = std::sqrt(sum / static_cast<double>(h.force.size()));
+    }
+    result.datasets.push_back(std::move(d));
+  }
+  result.err = harmonic_points > 0 ? std::sqrt(result.phi) / static_cast<double>(harmonic_points) : 0.0;
+  result.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - clock_start).count();
+  return result;
 }
 
 }  // namespace rheo::runtime

@@ -1,35 +1,76 @@
-// Parameter identification against harmonic data with the exact steady-state response.
+// Parameter identification: `rheo fit` without the command line.
 //
-// The free parameters (declared with bounds) are searched by NLopt; a parameter whose bounds
-// are positive is searched in log space, z = ln p, so that relative changes weigh alike.
-// Derived parameters (c = k tau, fy = k uy) follow their free inputs. The objective is phi of
-// eq. 5.38 (weights k on stiffness, 1 - k on damping; eq. 5.1 with both 1).
+// The free parameters (indices into the model's parameters) are searched in coordinates
+// z = ln p when their bounds are positive (relative changes weigh alike), z = p otherwise;
+// derived parameters (c = k tau, fy = k uy) follow their inputs. The objective is the sum of
+// squares of fit_scoring.hpp's residuals, minimised by fit_search.hpp's strategy.
+//
+// Methods (fit_scoring.hpp): exact and approximate minimise with that model response;
+// corrected follows Table 5.1: fit the approximation, compute the correction factors
+// (5.2, 5.3) by the exact response at that optimum, and fit the calibrated approximation (5.4)
+// from there.
+//
+// Reported whatever the method: phi (5.1) and err (6.1) over all harmonic points by the exact
+// response at the fitted parameters, per file too; for histories the RMS force residual
+// relative to max|F|. Standard errors and correlations come from the Jacobian of the
+// method's residuals at the optimum (fit_statistics.hpp).
 #pragma once
 
-#include "runtime/harmonic_data.hpp"
+#include "runtime/fit_data.hpp"
+#include "runtime/fit_scoring.hpp"
+#include "runtime/fit_search.hpp"
+#include "runtime/fit_statistics.hpp"
 #include "runtime/network.hpp"
 #include "runtime/objective.hpp"
-#include "runtime/optimizer.hpp"
+
+#include <atomic>
+#include <functional>
+#include <string>
+#include <vector>
 
 namespace rheo::runtime {
 
 struct FitSettings {
-  OptimizerSettings optimizer;
-  HarmonicOptions harmonic;
-  double stiffness_weight = 1.0;
-  double damping_weight = 1.0;
+  ScoreSettings score;
+  SearchSettings search;
+  std::function<void(const SearchProgress&)> progress;  // called after every evaluation
+  const std::atomic<bool>* interrupt = nullptr;          // set (e.g. by SIGINT) to stop with the best so far
+};
+
+struct DataSetFit {
+  std::string path;
+  double weight = 1.0;
+  bool harmonic = true;
+  Prediction prediction;  // exact response at the fitted parameters
+  double phi = 0.0;       // harmonic: eq. 5.1
+  double err = 0.0;       // harmonic: eq. 6.1; history: RMS of (F - F_exp) / max|F_exp|
+  double worst = 0.0;     // history: max |F - F_exp| / max|F_exp|
+  std::vector<double> measured_stiffness, measured_phase;  // harmonic: the data [N/mm], [rad]
+  RelativeResiduals residuals;                             // harmonic: K/K_exp - 1, d/d_exp - 1
 };
 
 struct FitResult {
-  Network network;              // the model with the fitted values
-  std::vector<int> free;        // indices of the fitted parameters
-  double phi = 0.0;             // at the optimum, with the settings' weights
-  double err = 0.0;             // eq. 6.1
-  OptimizationResult optimization;
+  Network network;                  // the model with the fitted values
+  std::vector<int> free;
+  std::vector<double> start_values; // all parameters, before the fit
+  double objective = 0.0;           // the minimised sum of squares, with the method's response
+  double phi = 0.0;                 // eq. 5.1 over all harmonic points (exact response)
+  double err = 0.0;                 // eq. 6.1 over all harmonic points; 0 when there are none
+  std::vector<DataSetFit> datasets{};
+  ParameterStatistics statistics{}; // per free parameter, in parameter units
+  int evaluations = 0;
+  int non_finite = 0;
+  double wall_seconds = 0.0;
+  std::string status{};
+  bool interrupted = false;
 };
 
-// Throws std::invalid_argument when the model has no free parameter (declare one with bounds,
-// `k = 300 N/mm in [10, 5000]`).
-FitResult fit_harmonic(const Network& start, const HarmonicData& data, const FitSettings& settings);
+// Indices of the parameters declared with bounds.
+std::vector<int> bounded_parameters(const Network& network);
+
+// Throws std::invalid_argument when `free` is empty or names a parameter without bounds, and
+// when the corrected or approximate method meets a structure the approximation cannot take.
+FitResult fit(const Network& start, const std::vector<int>& free, const std::vector<FitDataSet>& data,
+              const FitSettings& settings);
 
 }  // namespace rheo::runtime

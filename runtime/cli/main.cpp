@@ -1,5 +1,5 @@
 // rheo: a language and interpreter for 1-D rheological networks of rubber bushings.
-// Exit codes: 0 ok, 1 internal error, 2 usage, 3 model file, 4 data or I/O, 5 numerical.
+// Exit codes: 0 ok, 1 internal error, 2 usage, 3 model file, 4 data or I/O, 5 numerical, 130 interrupted fit.
 #include "lang/diagnostics.hpp"
 #include "runtime/cli/commands.hpp"
 #include "runtime/errors.hpp"
@@ -12,7 +12,8 @@ int main(int argc, char** argv) {
   using namespace rheo;
   CLI::App app{"rheo: model rubber bushings as 1-D rheological networks.\n"
                "Exit codes: 0 ok, 1 internal error, 2 usage, 3 model file error, 4 data or I/O error,\n"
-               "5 numerical (e.g. a harmonic point did not reach steady state; results are still written)."};
+               "5 numerical (e.g. a harmonic point did not reach steady state; results are still written),\n"
+               "130 a fit stopped by Ctrl-C (its best result so far is still written)."};
   app.require_subcommand(1);
   app.set_version_flag("--version", "rheo 0.1.0");
   std::vector<std::pair<CLI::App*, cli::Command>> commands;
@@ -20,6 +21,8 @@ int main(int argc, char** argv) {
   commands.emplace_back(check, cli::add_check_command(*check));
   auto* simulate = app.add_subcommand("simulate", "Run the protocols of a .rheo file's simulate blocks");
   commands.emplace_back(simulate, cli::add_simulate_command(*simulate));
+  auto* fit = app.add_subcommand("fit", "Identify a model's bounded parameters from measured data (NLopt)");
+  commands.emplace_back(fit, cli::add_fit_command(*fit));
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

@@ -62,3 +62,20 @@ TEST_CASE("build_model: values are checked after overrides") {
   CHECK_THROWS_WITH_AS(compile_source("o.rheo", "model o { inner x (k0 = -1) }\nmodel inner { param k0 = 5 N/mm  spring s (k = k0) }"),
                        doctest::Contains("stiffness k of spring 'x.s' must be positive, got -1 N/mm"), CompileError);
 }
+
+TEST_CASE("build_model: a parameter's value range is its own text, an override's, or none") {
+  const std::string text = "import zener\nmodel o { inner x (k0 = 7 N/mm)  zener z (tau = 5 ms) }\nmodel inner { param k0 = 5 N/mm  maxwell m (k = k0, tau = 1 ms) }";
+  Program p = compile_source("r.rheo", text);
+  auto range = [&](const CheckedModel& m, const std::string& path) {
+    const Parameter& q = *find(m, path);
+    return q.value_begin < 0 ? std::string("none") : text.substr(static_cast<std::size_t>(q.value_begin), static_cast<std::size_t>(q.value_end - q.value_begin));
+  };
+  const CheckedModel& o = *p.find_model("o");
+  CHECK(range(o, "x.k0") == "7 N/mm");    // the override, in the user's model
+  CHECK(find(o, "x.k0")->where.line == 2);
+  CHECK(range(o, "x.m.tau") == "none");   // the instantiated model's default: shared by every instance
+  CHECK(range(o, "x.m.c") == "none");     // generated
+  CHECK(range(o, "z.tau") == "5 ms");
+  CHECK(range(o, "z.k1") == "none");      // a stdlib default
+  CHECK(range(*p.find_model("inner"), "m.tau") == "1 ms");
+}

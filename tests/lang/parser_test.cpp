@@ -79,3 +79,54 @@ TEST_CASE("parse_setting_text: one setting and nothing after it") {
   CHECK(s.value.items.size() == 2);
   CHECK_THROWS_AS(parse_setting_text("<command line>", "amplitude = 1 mm, x = 2"), CompileError);
 }
+
+TEST_CASE("parse: fit blocks are data lines, output lines and settings lines; `data` is reserved only there") {
+  ast::File f = parse("p.rheo", R"(model data { spring data (k = 1) }
+fit data {
+  data "a.csv"  data "b.csv", weight = 0.5
+  objective = phi, stiffness_weight = 0.5
+  free = [m1.k, m1.tau]
+  output "fitted.rheo"
+}
+fit {})");
+  REQUIRE(f.fits.size() == 2);
+  const auto& fit = f.fits[0];
+  CHECK(fit.model == "data");
+  CHECK(fit.model_where.column == 5);
+  REQUIRE(fit.lines.size() == 5);
+  CHECK(fit.lines[0].kind == ast::FitLine::Kind::data);
+  CHECK(fit.lines[0].file == "a.csv");
+  CHECK(fit.lines[0].settings.empty());
+  CHECK(fit.lines[1].file == "b.csv");
+  CHECK(fit.lines[1].file_where.column == 22);
+  REQUIRE(fit.lines[1].settings.size() == 1);
+  CHECK(fit.lines[1].settings[0].key == "weight");
+  CHECK(fit.lines[2].kind == ast::FitLine::Kind::settings);
+  CHECK(fit.lines[2].where.line == 4);
+  REQUIRE(fit.lines[2].settings.size() == 2);
+  CHECK(fit.lines[2].settings[1].key == "stiffness_weight");
+  CHECK(fit.lines[3].settings.at(0).value.items.at(1)->path == "m1.tau");
+  CHECK(fit.lines[4].kind == ast::FitLine::Kind::output);
+  CHECK(fit.lines[4].file == "fitted.rheo");
+  CHECK(f.fits[1].model.empty());
+  CHECK(f.fits[1].lines.empty());
+}
+
+TEST_CASE("parse: fit block errors") {
+  CHECK(parse_error("fit { data = 1 }").find("1:12: error: expected the data file name in double quotes after 'data'") != std::string::npos);
+  CHECK(parse_error("fit { output fitted.rheo }").find("expected a file name in double quotes after 'output' for the fitted model") != std::string::npos);
+  CHECK(parse_error("fit m ]").find("expected '{' to open the fit block, found ']'") != std::string::npos);
+  CHECK(parse_error("fit { method = exact, }").find("expected a setting `KEY = VALUE`, found '}'") != std::string::npos);
+  CHECK(parse_error("fit { 2 }").find("or '}' to close the fit block, found '2'") != std::string::npos);
+  CHECK(parse_error("model fit { }").find("expected a model name after 'model', found 'fit'") != std::string::npos);
+}
+
+TEST_CASE("parse: an argument records the byte range of its value expression") {
+  const std::string text = "model m { param k0 = 300 N/mm in [1, 1000]  maxwell m1 (k = -(2 * k0) , tau = 4.335ms) }";
+  ast::File f = parse("p.rheo", text);
+  const auto& k0 = f.models.at(0).parameters.at(0);
+  CHECK(text.substr(static_cast<std::size_t>(k0.value_begin), static_cast<std::size_t>(k0.value_end - k0.value_begin)) == "300 N/mm");
+  const auto& args = f.models.at(0).elements.at(0).arguments;
+  CHECK(text.substr(static_cast<std::size_t>(args[0].value_begin), static_cast<std::size_t>(args[0].value_end - args[0].value_begin)) == "-(2 * k0)");
+  CHECK(text.substr(static_cast<std::size_t>(args[1].value_begin), static_cast<std::size_t>(args[1].value_end - args[1].value_begin)) == "4.335ms");
+}

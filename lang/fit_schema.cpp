@@ -1,0 +1,206 @@
+#include "lang/fit_schema.hpp"
+
+#include "lang/names.hpp"
+#include "lang/setting_values.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <map>
+#include <set>
+
+namespace rheo::lang {
+namespace {
+
+const std::vector<SettingSpec>& fit_schema() {
+  static const std::vector<SettingSpec> specs{
+      {.key = "objective", .shape = Shape::identifier, .dimension = dim::none, .choices = {"phi", "least_squares"}},
+      {.key = "stiffness_weight", .shape = Shape::number, .dimension = dim::none, .lowest = 0.0, .highest = 1.0},
+      {.key = "method", .shape = Shape::identifier, .dimension = dim::none, .choices = {"exact", "approximate", "corrected"}},
+      {.key = "optimizer",
+       .shape = Shape::identifier,
+       .dimension = dim::none,
+       .choices = {"default", "bobyqa", "sbplx", "neldermead", "direct_l", "crs2", "isres", "mlsl"}},
+      {.key = "max_evaluations", .shape = Shape::integer, .dimension = dim::none, .minimum = 1},
+      {.key = "starts", .shape = Shape::integer, .dimension = dim::none, .minimum = 1},
+      {.key = "seed", .shape = Shape::integer, .dimension = dim::none, .minimum = 0},
+      {.key = "tolerance", .shape = Shape::number, .dimension = dim::none, .positive = true},
+      {.key = "definition", .shape = Shape::identifier, .dimension = dim::none, .choices = {"thesis", "first_harmonic"}},
+      {.key = "steps_per_cycle", .shape = Shape::integer, .dimension = dim::none, .minimum = 16, .multiple_of = 4},
+      {.key = "free", .shape = Shape::paths, .dimension = dim::none},
+      {.key = "fixed", .shape = Shape::paths, .dimension = dim::none},
+  };
+  return specs;
+}
+
+const std::vector<SettingSpec>& data_schema() {
+  static const std::vector<SettingSpec> specs{{.key = "weight", .shape = Shape::number, .dimension = dim::none, .lowest = 0.0}};
+  return specs;
+}
+
+bool is_path_list(const std::string& key) { return key == "free" || key == "fixed"; }
+
+std::string duplicate(const ast::SettingNode& node, const SourceLocation& first) {
+  return fmt::format("duplicate setting '{}' (first given at line {}); give it once", node.key, first.line);
+}
+
+FitData check_data(const ast::FitLine& line, std::vector<Diagnostic>& errors) {
+  FitData out{line.file, 1.0, line.file_where};
+  std::map<std::string, SourceLocation> seen;
+  for (const auto& node : line.settings) {
+    if (auto [it, fresh] = seen.emplace(node.key, node.where); !fresh) {
+      errors.push_back({node.where, duplicate(node, it->second)});
+    } else if (auto s = check_keyed_setting(data_schema(), "a data line", node, errors)) {
+      out.weight = s->values.at(0);
+    }
+  }
+  return out;
+}
+
+// `k = 61.476 N/mm in [6.1476, 614.76]`: P's value in its unit with bounds a decade either side.
+std::string bounded_example(const Parameter& p) {
+  auto unit = parse_unit(p.unit);
+  const double scale = unit && unit->dimension == p.dimension ? unit->scale : 1.0;
+  const double v = p.value / scale;
+  const double lo = v > 0 ? v / 10 : v < 0 ? v * 10 : -1.0;
+  const double hi = v > 0 ? v * 10 : v < 0 ? -v * 10 : 1.0;
+  return fmt::format("`{} = {} in [{:g}, {:g}]`", p.path.substr(p.path.rfind('.') + 1), show_value(p.value, p.dimension, p.unit), lo, hi);
+}
+
+// The free set of the fit of M: the bounded parameters (FREE_GIVEN: those listed in FREE),
+// less those listed in FIXED. Errors at the offending names; the empty set at WHERE.
+class FreeSet {
+ public:
+  FreeSet(const CheckedModel& m, std::vector<Diagnostic>& errors) : m_(m), errors_(errors) {}
+
+  std::vector<int> resolve(bool free_given, const std::vector<PathItem>& free, const std::vector<PathItem>& fixed, bool ok,
+                           const SourceLocation& where) {
+    const std::size_t reported = errors_.size();
+    std::set<int> chosen;
+    if (!free_given)
+      for (int i : default_free_parameters(m_)) chosen.insert(i);
+    for (const auto& item : free) {
+      int i = index(item);
+      if (i >= 0 && fittable(i, item) && !chosen.insert(i).second)
+        errors_.push_back({item.where, fmt::format("'{}' is listed twice in free; list it once", item.path)});
+    }
+    for (const auto& item : fixed)
+      if (int i = index(item); i >= 0) chosen.erase(i);
+    if (chosen.empty() && ok && errors_.size() == reported) {
+      if (default_free_parameters(m_).empty()) {
+        const Parameter* example = nullptr;
+        for (const auto& p : m_.parameters)
+          if (!example && p.expression.is_constant()) example = &p;
+        errors_.push_back({where, fmt::format("the fit of model '{}' has nothing to fit: none of its parameters has bounds; "
+                                              "give bounds to the parameters to fit{}",
+                                              m_.name, example ? ", e.g. " + bounded_example(*example) : std::string())});
+      } else {
+        errors_.push_back({where, fmt::format("the fit of model '{}' has nothing to fit: `fixed` removes every free parameter; "
+                                              "fix fewer or give more parameters bounds", m_.name)});
+      }
+    }
+    return {chosen.begin(), chosen.end()};
+  }
+
+ private:
+  int index(const PathItem& item) {
+    std::vector<std::string> paths, bounded;
+    for (std::size_t i = 0; i < m_.parameters.size(); ++i) {
+      if (m_.parameters[i].path == item.path) return static_cast<int>(i);
+      paths.push_back(m_.parameters[i].path);
+      if (m_.parameters[i].free) bounded.push_back(m_.parameters[i].path);
+    }
+    errors_.push_back({item.where, fmt::format("model '{}' has no parameter '{}';{} {}", m_.name, item.path, did_you_mean(item.path, paths),
+                                               !bounded.empty() ? "its parameters with bounds: " + join(bounded)
+                                               : paths.empty()  ? std::string("it has no parameters")
+                                                                : "parameters are named by path, e.g. " + paths.back())});
+    return -1;
+  }
+
+  // A free parameter is a constant with bounds; reports why parameter I is not.
+  bool fittable(int i, const PathItem& item) {
+    const Parameter& p = m_.parameters[static_cast<std::size_t>(i)];
+    if (!p.expression.is_constant()) {
+      std::vector<std::string> inputs;
+      for (const auto& op : p.expression.code)
+        if (op.op == Expression::Op::parameter) {
+          const std::string& path = m_.parameters[static_cast<std::size_t>(op.parameter)].path;
+          if (std::find(inputs.begin(), inputs.end(), path) == inputs.end()) inputs.push_back(path);
+        }
+      errors_.push_back({item.where, inputs.size() == 1
+                                         ? fmt::format("'{}' is computed from '{}', so it cannot be fitted itself; fit '{}' instead: "
+                                                       "give it bounds and list it in free", p.path, inputs[0], inputs[0])
+                                         : fmt::format("'{}' is computed from {}, so it cannot be fitted itself; fit those instead: "
+                                                       "give them bounds and list them in free", p.path, join(inputs))});
+      return false;
+    }
+    if (!p.free) {
+      const bool shared = p.value_begin < 0;
+      errors_.push_back({item.where, fmt::format("parameter '{}' has no bounds; {} to fit it: {}", p.path,
+                                                 shared ? "override it with bounds where its model is instantiated" : "give it bounds",
+                                                 bounded_example(p))});
+      return false;
+    }
+    return true;
+  }
+
+  const CheckedModel& m_;
+  std::vector<Diagnostic>& errors_;
+};
+
+}  // namespace
+
+std::optional<Setting> check_fit_setting(const ast::SettingNode& node, std::vector<Diagnostic>& errors) {
+  if (is_path_list(node.key)) {
+    errors.push_back({node.where, fmt::format("'{}' names parameters of the fitted model; give it in the fit block", node.key)});
+    return std::nullopt;
+  }
+  return check_keyed_setting(fit_schema(), "fit", node, errors);
+}
+
+std::vector<std::string> fit_setting_keys() {
+  std::vector<std::string> out;
+  for (const auto& s : fit_schema()) out.emplace_back(s.key);
+  return out;
+}
+
+FitDirective check_fit(const ast::Fit& fit, const std::string& model, const CheckedModel* checked, std::vector<Diagnostic>& errors) {
+  FitDirective out{model, {}, {}, {}, {}, fit.where};
+  std::map<std::string, SourceLocation> seen;  // keys of the settings lines
+  std::vector<PathItem> free, fixed;
+  bool free_given = false;
+  bool lists_ok = true;
+  const ast::FitLine* output = nullptr;
+  for (const auto& line : fit.lines) {
+    if (line.kind == ast::FitLine::Kind::data) {
+      out.data.push_back(check_data(line, errors));
+    } else if (line.kind == ast::FitLine::Kind::output) {
+      if (output) {
+        errors.push_back({line.where, fmt::format("a fit block has one 'output' (first given at line {}); remove this one", output->where.line)});
+      } else {
+        out.output = line.file;
+        output = &line;
+      }
+    } else {
+      for (const auto& node : line.settings) {
+        if (auto [it, fresh] = seen.emplace(node.key, node.where); !fresh) {
+          errors.push_back({node.where, duplicate(node, it->second)});
+          continue;
+        }
+        if (node.key == "weight") {
+          errors.push_back({node.where, "weight belongs to a data line: put it after the file name, `data \"FILE\", weight = 0.5`"});
+          continue;
+        }
+        std::vector<PathItem>* paths = node.key == "free" ? &free : node.key == "fixed" ? &fixed : nullptr;
+        auto setting = check_keyed_setting(fit_schema(), "fit", node, errors, paths);
+        free_given = free_given || node.key == "free";
+        if (!setting) lists_ok = lists_ok && !paths;
+        else if (!paths) out.settings.push_back(std::move(*setting));
+      }
+    }
+  }
+  if (checked) out.free = FreeSet(*checked, errors).resolve(free_given, free, fixed, lists_ok, fit.where);
+  return out;
+}
+
+}  // namespace rheo::lang

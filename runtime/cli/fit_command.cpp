@@ -1,0 +1,89 @@
+// `rheo fit FILE [--data CSV]... [-o FITTED.rheo] [--json] ...`: runs the file's fit blocks
+// (or a default fit of its model when it has none) and reports; see docs/cli.md.
+#include "lang/fitted_source.hpp"
+#include "lang/frontend.hpp"
+#include "runtime/cli/commands.hpp"
+#include "runtime/cli/fit_job.hpp"
+#include "runtime/errors.hpp"
+#include "runtime/fit_report.hpp"
+#include "runtime/output.hpp"
+
+#include <fmt/format.h>
+#include <fmt/ranges.h>
+
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <memory>
+#include <sstream>
+
+namespace rheo::cli {
+namespace {
+
+std::string read_source(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::stringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
+
+std::string fitted_file_text(const FitJob& job, const runtime::FitResult& result, const std::string& source_file) {
+  std::vector<std::string> header{
+      fmt::format("Fitted by `rheo fit` (method {}, objective {}) to:", job.description.method, job.description.objective)};
+  for (const auto& set : result.datasets) header.push_back(fmt::format("  {} (weight {:g}): err = {:.6g}", set.path, set.weight, set.err));
+  if (result.phi > 0.0) header.push_back(fmt::format("phi (5.1) = {:.6g}, err (6.1) = {:.6g}", result.phi, result.err));
+  if (result.interrupted) header.push_back("Interrupted: the best values found before the interruption.");
+  header.push_back(fmt::format("Start values: {}", source_file));
+  return lang::write_fitted_source(read_source(source_file), source_file, result.network.model(), result.network.parameters(),
+                                   result.free, header);
+}
+
+}  // namespace
+
+Command add_fit_command(CLI::App& app) {
+  auto o = std::make_shared<FitOptions>();
+  app.add_option("file", o->file, "The .rheo file: a model with bounds on the parameters to fit, and optionally fit blocks")->required();
+  app.add_option("--data", o->data, "Measured data (harmonic table or time history); replaces the fit block's data lines. Repeatable");
+  app.add_option("-o,--output", o->output, "Write the fitted model (.rheo, comments kept) here; needs exactly one fit to run");
+  app.add_flag("--json", o->json, "Print the JSON summary instead of the text report");
+  app.add_option("--model", o->model, "Fit only this model's fit blocks (or this model, when the file has none)");
+  app.add_option("--method", o->method, "exact | approximate | corrected (thesis eqs. 5.5-5.21, Table 5.1)");
+  app.add_option("--optimizer", o->optimizer, "default | bobyqa | sbplx | neldermead | direct_l | crs2 | isres | mlsl");
+  app.add_option("--max-evaluations", o->max_evaluations, "Evaluation budget over all stages");
+  app.add_option("--starts", o->starts, "Local searches of the default strategy");
+  app.add_option("--seed", o->seed, "Seed of the sampling and stochastic optimizers; the same seed gives the same result");
+  app.add_option("--yeoh-start", o->yeoh_start,
+                 "Static or quasi-static loop (CSV) whose mean curve gives the yeoh spring's start values by least squares (eqs. 5.28-5.32)");
+  app.add_option("--orders", o->orders,
+                 "Model-order study (thesis Fig. 6.2), e.g. maxwell=1..4,friction=1..6: fits each structure, tables err (6.1)");
+  app.footer("Data lines and `output` in a fit block are relative to the .rheo file; --data and -o to the working directory.\n"
+             "Ctrl-C stops the search and writes the best result so far (exit code 130).");
+  return [o] {
+    const lang::Program program = lang::load_program(o->file);
+    std::vector<FitJob> jobs = fit_jobs(program, *o);
+    if (!o->orders.empty()) return run_order_study(program, jobs, *o);
+    if (!o->output.empty() && jobs.size() != 1)
+      throw runtime::UsageError(fmt::format("-o names one output but {} fits would run; select one with --model", jobs.size()));
+    std::vector<std::string> json_reports;
+    bool interrupted = false;
+    for (std::size_t k = 0; k < jobs.size(); ++k) {
+      FitJob& job = jobs[k];
+      const runtime::FitResult result = run_fit_job(job);
+      interrupted = interrupted || result.interrupted;
+      if (!job.output.empty()) {
+        runtime::write_output(job.output, fitted_file_text(job, result, o->file));
+        std::cerr << fmt::format("rheo: fitted model {} written to {}\n", result.network.model().name, job.output);
+      }
+      if (o->json) {
+        json_reports.push_back(runtime::fit_report_json(job.description, result));
+      } else {
+        std::cout << runtime::fit_report_text(job.description, result) << (k + 1 < jobs.size() ? "\n" : "");
+      }
+      if (result.interrupted) break;
+    }
+    if (o->json) std::cout << (json_reports.size() == 1 ? json_reports.front() : fmt::format("[\n{}]\n", fmt::join(json_reports, ",\n")));
+    return interrupted ? exit_code_interrupted : runtime::exit_code::ok;
+  };
+}
+
+}  // namespace rheo::cli

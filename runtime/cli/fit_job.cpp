@@ -1,0 +1,168 @@
+#include "runtime/cli/fit_job.hpp"
+
+#include "runtime/errors.hpp"
+
+#include <fmt/format.h>
+#include <fmt/ranges.h>
+#include <unistd.h>
+
+#include <atomic>
+#include <chrono>
+#include <csignal>
+#include <filesystem>
+#include <iostream>
+
+namespace rheo::cli {
+namespace {
+
+std::atomic<bool> interrupt_requested{false};
+
+extern "C" void on_interrupt(int) { interrupt_requested.store(true); }
+
+// Installs the Ctrl-C handler for the lifetime of a fit; a second Ctrl-C kills as usual.
+class InterruptScope {
+ public:
+  InterruptScope() {
+    interrupt_requested.store(false);
+    struct sigaction action {};
+    action.sa_handler = on_interrupt;
+    action.sa_flags = SA_RESETHAND;
+    sigemptyset(&action.sa_mask);
+    sigaction(SIGINT, &action, &previous_);
+  }
+  ~InterruptScope() { sigaction(SIGINT, &previous_, nullptr); }
+  InterruptScope(const InterruptScope&) = delete;
+  InterruptScope& operator=(const InterruptScope&) = delete;
+
+ private:
+  struct sigaction previous_ {};
+};
+
+std::string relative_to(const std::string& base_file, const std::string& path) {
+  if (path.empty() || std::filesystem::path(path).is_absolute()) return path;
+  return (std::filesystem::path(base_file).parent_path() / path).string();
+}
+
+std::optional<runtime::Algorithm> algorithm_named(const std::string& name) {
+  static const std::pair<const char*, runtime::Algorithm> table[] = {
+      {"bobyqa", runtime::Algorithm::bobyqa},     {"sbplx", runtime::Algorithm::sbplx}, {"neldermead", runtime::Algorithm::neldermead},
+      {"direct_l", runtime::Algorithm::direct_l}, {"crs2", runtime::Algorithm::crs2},   {"isres", runtime::Algorithm::isres},
+      {"mlsl", runtime::Algorithm::mlsl}};
+  for (const auto& [n, a] : table)
+    if (name == n) return a;
+  if (name == "default") return std::nullopt;
+  throw runtime::UsageError(fmt::format("unknown optimizer '{}'; use default, bobyqa, sbplx, neldermead, direct_l, crs2, isres or mlsl", name));
+}
+
+runtime::FitMethod method_named(const std::string& name) {
+  if (name == "exact") return runtime::FitMethod::exact;
+  if (name == "approximate") return runtime::FitMethod::approximate;
+  if (name == "corrected") return runtime::FitMethod::corrected;
+  throw runtime::UsageError(fmt::format("unknown method '{}'; use exact, approximate or corrected", name));
+}
+
+std::string text_of(const lang::FitDirective* block, const char* key, const std::string& fallback) {
+  const lang::Setting* s = block ? block->find(key) : nullptr;
+  return s ? s->text : fallback;
+}
+
+double number_of(const lang::FitDirective* block, const char* key, double fallback) {
+  const lang::Setting* s = block ? block->find(key) : nullptr;
+  return s && !s->values.empty() ? s->values.front() : fallback;
+}
+
+// Block settings first, then the command line over them.
+void configure(FitJob& job, const lang::FitDirective* block, const FitOptions& o) {
+  runtime::FitSettings& s = job.settings;
+  job.description.objective = text_of(block, "objective", "phi");
+  s.score.objective = job.description.objective == "least_squares" ? runtime::FitObjective::least_squares : runtime::FitObjective::phi;
+  if (block && block->find("stiffness_weight")) {
+    const double k = number_of(block, "stiffness_weight", 0.5);
+    s.score.stiffness_weight = k;
+    s.score.damping_weight = 1.0 - k;
+  }
+  job.description.method = o.method.empty() ? text_of(block, "method", "exact") : o.method;
+  s.score.method = method_named(job.description.method);
+  job.description.optimizer = o.optimizer.empty() ? text_of(block, "optimizer", "default") : o.optimizer;
+  s.search.algorithm = algorithm_named(job.description.optimizer);
+  s.search.max_evaluations = o.max_evaluations > 0 ? o.max_evaluations : static_cast<int>(number_of(block, "max_evaluations", s.search.max_evaluations));
+  s.search.starts = o.starts > 0 ? o.starts : static_cast<int>(number_of(block, "starts", s.search.starts));
+  s.search.seed = o.seed >= 0 ? static_cast<unsigned long>(o.seed) : static_cast<unsigned long>(number_of(block, "seed", 1.0));
+  s.search.tolerance = number_of(block, "tolerance", s.search.tolerance);
+  job.description.seed = s.search.seed;
+  s.score.harmonic.definition = text_of(block, "definition", "thesis") == "first_harmonic" ? runtime::HarmonicDefinition::first_harmonic
+                                                                                           : runtime::HarmonicDefinition::thesis;
+  s.score.harmonic.steps_per_cycle = static_cast<int>(number_of(block, "steps_per_cycle", s.score.harmonic.steps_per_cycle));
+  if (o.max_evaluations < 0 || o.starts < 0) throw runtime::UsageError("--max-evaluations and --starts must be positive");
+}
+
+const lang::CheckedModel& only_user_model(const lang::Program& program, const FitOptions& o) {
+  if (!o.model.empty()) {
+    const lang::CheckedModel* m = program.find_model(o.model);
+    if (!m) throw runtime::UsageError(fmt::format("{} has no model '{}'", o.file, o.model));
+    return *m;
+  }
+  std::vector<const lang::CheckedModel*> user;
+  for (const auto& m : program.models)
+    if (!m.where.file.starts_with("<stdlib>")) user.push_back(&m);
+  if (user.size() == 1) return *user.front();
+  std::vector<std::string> names;
+  for (const auto* m : user) names.push_back(m->name);
+  throw runtime::UsageError(user.empty() ? fmt::format("{} defines no model to fit", o.file)
+                                         : fmt::format("{} defines {} models ({}); choose one with --model or write a fit block",
+                                                       o.file, user.size(), fmt::join(names, ", ")));
+}
+
+}  // namespace
+
+std::vector<FitJob> fit_jobs(const lang::Program& program, const FitOptions& o) {
+  std::vector<FitJob> jobs;
+  auto add = [&](const lang::CheckedModel& model, const lang::FitDirective* block) {
+    FitJob job;
+    job.model = &model;
+    job.free = block ? block->free : lang::default_free_parameters(model);
+    if (job.free.empty())
+      throw runtime::UsageError(fmt::format("model '{}' has no parameter with bounds; give bounds to the ones to fit, e.g. `k = 300 N/mm in [10, 5000]`",
+                                            model.name));
+    job.description.source = o.file;
+    configure(job, block, o);
+    if (!o.data.empty()) {
+      for (const auto& path : o.data) job.data.push_back(runtime::read_fit_data(path, 1.0));
+    } else if (block) {
+      for (const auto& d : block->data) job.data.push_back(runtime::read_fit_data(relative_to(o.file, d.file), d.weight));
+    }
+    if (job.data.empty())
+      throw runtime::UsageError(fmt::format("no data to fit model '{}' to; give --data FILE.csv or add `data \"FILE.csv\"` to its fit block", model.name));
+    job.output = !o.output.empty() ? o.output : block ? relative_to(o.file, block->output) : std::string();
+    jobs.push_back(std::move(job));
+  };
+  for (const auto& block : program.fits)
+    if (o.model.empty() || block.model == o.model) add(*program.find_model(block.model), &block);
+  if (jobs.empty()) {
+    if (!program.fits.empty()) throw runtime::UsageError(fmt::format("{} has no fit block for model '{}'", o.file, o.model));
+    add(only_user_model(program, o), nullptr);
+  }
+  return jobs;
+}
+
+runtime::FitResult run_fit_job(const FitJob& job) {
+  runtime::FitSettings settings = job.settings;
+  const bool show_progress = ::isatty(STDERR_FILENO) != 0;
+  auto last = std::chrono::steady_clock::now();
+  if (show_progress)
+    settings.progress = [&](const runtime::SearchProgress& p) {
+      const auto now = std::chrono::steady_clock::now();
+      if (now - last < std::chrono::milliseconds(200)) return;
+      last = now;
+      std::cerr << fmt::format("\r  fit {}: {} evaluations, best objective {:.6g} ({})   ", job.model->name, p.evaluations, p.best, p.stage)
+                << std::flush;
+    };
+  InterruptScope interrupt_scope;
+  settings.interrupt = &interrupt_requested;
+  const runtime::Network start = runtime::Network::compile(*job.model);
+  runtime::FitResult result = runtime::fit(start, job.free, job.data, settings);
+  if (show_progress) std::cerr << "\r" << std::string(100, ' ') << "\r" << std::flush;
+  return result;
+}
+
+}  // namespace rheo::cli

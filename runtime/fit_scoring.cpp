@@ -1,0 +1,55 @@
+#include "runtime/fit_scoring.hpp"
+
+#include <cmath>
+#include <complex>
+#include <stdexcept>
+
+namespace rheo::runtime {
+
+Prediction predict(const Network& network, const FitDataSet& set, FitMethod method, const HarmonicOptions& harmonic,
+                   const ThesisCorrection* correction) {
+  Prediction p;
+  if (!set.is_harmonic()) {
+    p.force = run_history(network, set.history().drive, false).force;
+    return p;
+  }
+  const HarmonicData& data = set.harmonic();
+  if (method == FitMethod::exact) {
+    p.points.reserve(data.size());
+    for (std::size_t i = 0; i < data.size(); ++i)
+      p.points.push_back(simulate_harmonic_point(network, data.amplitude[i], data.frequency[i], harmonic));
+    return p;
+  }
+  p.points = approximate_harmonic(network, data.amplitude, data.frequency);
+  if (method == FitMethod::corrected) {
+    if (!correction) throw std::invalid_argument("the corrected method needs correction factors");
+    apply_correction(*correction, p.points);
+  }
+  return p;
+}
+
+void append_residuals(const FitDataSet& set, const Prediction& prediction, const ScoreSettings& settings,
+                      std::vector<double>& out) {
+  if (!set.is_harmonic()) {
+    const HistoryData& h = set.history();
+    const double scale = std::sqrt(set.weight / static_cast<double>(h.force.size())) / h.force_scale;
+    for (std::size_t j = 0; j < h.force.size(); ++j) out.push_back(scale * (prediction.force[j] - h.force[j]));
+    return;
+  }
+  const HarmonicData& d = set.harmonic();
+  const double scale = std::sqrt(set.weight / (2.0 * static_cast<double>(d.size())));
+  for (std::size_t i = 0; i < d.size(); ++i) {
+    const CycleMeasures& m = prediction.points[i].measures;
+    if (settings.objective == FitObjective::phi) {
+      out.push_back(scale * std::sqrt(settings.stiffness_weight) * (m.stiffness / d.stiffness[i] - 1.0));
+      out.push_back(scale * std::sqrt(settings.damping_weight) * (std::sin(m.phase) / std::sin(d.phase[i]) - 1.0));
+    } else {
+      const std::complex<double> model = std::polar(m.stiffness, m.phase), measured = std::polar(d.stiffness[i], d.phase[i]);
+      const std::complex<double> r = (model - measured) / d.stiffness[i];
+      out.push_back(scale * r.real());
+      out.push_back(scale * r.imag());
+    }
+  }
+}
+
+}  // namespace rheo::runtime

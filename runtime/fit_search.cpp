@@ -1,0 +1,144 @@
+#include "runtime/fit_search.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <numeric>
+#include <random>
+
+namespace rheo::runtime {
+namespace {
+
+struct Interrupted {};
+
+// Counts evaluations, keeps the best point, reports progress, and stops on interrupt.
+class Tracker {
+ public:
+  Tracker(const Objective& objective, const std::function<void(const SearchProgress&)>& progress, const std::atomic<bool>* interrupt)
+      : objective_(objective), progress_(progress), interrupt_(interrupt) {}
+
+  double operator()(const std::vector<double>& z) {
+    if (interrupt_ && interrupt_->load(std::memory_order_relaxed)) throw Interrupted{};
+    const double value = objective_(z);
+    ++evaluations_;
+    if (std::isfinite(value) && value < best_value_) {
+      best_value_ = value;
+      best_z_ = z;
+    }
+    if (progress_) progress_({evaluations_, best_value_, stage_});
+    return value;
+  }
+  void stage(const char* name) { stage_ = name; }
+  int evaluations() const { return evaluations_; }
+  double best_value() const { return best_value_; }
+  const std::vector<double>& best_z() const { return best_z_; }
+
+ private:
+  const Objective& objective_;
+  const std::function<void(const SearchProgress&)>& progress_;
+  const std::atomic<bool>* interrupt_;
+  int evaluations_ = 0;
+  double best_value_ = std::numeric_limits<double>::infinity();
+  std::vector<double> best_z_;
+  const char* stage_ = "";
+};
+
+bool is_global(Algorithm a) {
+  return a == Algorithm::direct_l || a == Algorithm::crs2 || a == Algorithm::isres || a == Algorithm::mlsl;
+}
+
+// Radical inverse of `index` in base `base`: the Halton coordinate.
+double radical_inverse(unsigned long index, unsigned base) {
+  double result = 0.0, fraction = 1.0 / base;
+  for (; index > 0; index /= base, fraction /= base) result += fraction * static_cast<double>(index % base);
+  return result;
+}
+
+std::vector<unsigned> first_primes(std::size_t count) {
+  std::vector<unsigned> primes;
+  for (unsigned candidate = 2; primes.size() < count; ++candidate)
+    if (std::none_of(primes.begin(), primes.end(), [&](unsigned p) { return candidate % p == 0; })) primes.push_back(candidate);
+  return primes;
+}
+
+}  // namespace
+
+SearchResult search(const Objective& objective, const std::vector<double>& start, const std::vector<double>& lower,
+                    const std::vector<double>& upper, const std::vector<bool>& logarithmic, const SearchSettings& settings,
+                    const std::function<void(const SearchProgress&)>& progress, const std::atomic<bool>* interrupt) {
+  const std::size_t n = start.size();
+  Tracker tracker(objective, progress, interrupt);
+  const Objective tracked = [&](const std::vector<double>& z) { return tracker(z); };
+  SearchResult result;
+  int non_finite = 0;
+  auto remaining = [&] { return settings.max_evaluations - tracker.evaluations(); };
+  auto local = [&](const std::vector<double>& from, int budget, Algorithm algorithm) {
+    OptimizerSettings o;
+    o.algorithm = algorithm;
+    o.max_evaluations = std::max(1, budget);
+    o.relative_x_tolerance = settings.tolerance;
+    o.relative_f_tolerance = 1e-9;
+    o.seed = settings.seed;
+    const OptimizationResult r = minimize(tracked, from, lower, upper, o);
+    non_finite += r.non_finite;
+    result.status = r.status;
+  };
+  const Algorithm local_algorithm =
+      settings.algorithm && !is_global(*settings.algorithm) ? *settings.algorithm : Algorithm::bobyqa;
+  try {
+    tracker.stage("start");
+    tracked(start);
+    if (settings.algorithm && is_global(*settings.algorithm)) {
+      tracker.stage("global");
+      OptimizerSettings o;
+      o.algorithm = *settings.algorithm;
+      o.max_evaluations = std::max(1, remaining() / 2);
+      o.seed = settings.seed;
+      non_finite += minimize(tracked, start, lower, upper, o).non_finite;
+    } else {
+      // Sample a box around the start, then run local searches from the start and the best samples.
+      tracker.stage("sample");
+      std::mt19937_64 random(settings.seed);
+      std::uniform_real_distribution<double> unit(0.0, 1.0);
+      const std::vector<unsigned> primes = first_primes(n);
+      std::vector<double> shift(n), box_lo(n), box_hi(n);
+      for (std::size_t j = 0; j < n; ++j) {
+        shift[j] = unit(random);
+        const double half = logarithmic[j] ? std::log(10.0) : 0.25 * (upper[j] - lower[j]);
+        box_lo[j] = std::max(lower[j], start[j] - half);
+        box_hi[j] = std::min(upper[j], start[j] + half);
+      }
+      const int samples = std::max(0, std::min(std::max(10 * static_cast<int>(n), 40), remaining() / 4));
+      std::vector<std::pair<double, std::vector<double>>> sampled;
+      std::vector<double> z(n);
+      for (int s = 1; s <= samples; ++s) {
+        for (std::size_t j = 0; j < n; ++j) {
+          const double t = std::fmod(radical_inverse(static_cast<unsigned long>(s), primes[j]) + shift[j], 1.0);
+          z[j] = box_lo[j] + t * (box_hi[j] - box_lo[j]);
+        }
+        sampled.emplace_back(tracked(z), z);
+      }
+      std::sort(sampled.begin(), sampled.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
+      std::vector<std::vector<double>> starts{start};
+      for (const auto& [value, point] : sampled) {
+        if (static_cast<int>(starts.size()) >= settings.starts) break;
+        if (std::isfinite(value)) starts.push_back(point);
+      }
+      tracker.stage("local");
+      for (std::size_t k = 0; k < starts.size() && remaining() > 0; ++k)
+        local(starts[k], remaining() / static_cast<int>(starts.size() - k + 1), local_algorithm);
+    }
+    tracker.stage("polish");
+    if (remaining() > 0) local(tracker.best_z(), remaining(), local_algorithm);
+  } catch (const Interrupted&) {
+    result.interrupted = true;
+    result.status = "interrupted";
+  }
+  result.z = tracker.best_z().empty() ? start : tracker.best_z();
+  result.value = tracker.best_value();
+  result.evaluations = tracker.evaluations();
+  result.non_finite = non_finite;
+  return result;
+}
+
+}  // namespace rheo::runtime

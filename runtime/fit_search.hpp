@@ -1,0 +1,58 @@
+// The search strategy of `rheo fit` over the free parameters' search coordinates z (ln p for
+// parameters with positive bounds, p otherwise), within box bounds.
+//
+// Default (no algorithm named): a global look, then local polish.
+//   1. sample: max(10 n, 40) points of a Halton sequence (randomly shifted by the seed) over
+//      the box z0 -+ ln 10 (a decade either side of the start; a quarter of the bounds for
+//      linear coordinates), clipped to the bounds;
+//   2. local: BOBYQA from the start and from the best `starts - 1` samples, sharing the
+//      evaluation budget;
+//   3. polish: BOBYQA again from the best point found, with a fresh trust region.
+// A local algorithm named (bobyqa, sbplx, neldermead) takes BOBYQA's place; a global one
+// (direct_l, crs2, isres, mlsl) searches the whole box with half the budget, then BOBYQA polishes.
+// The same seed gives the same result, evaluation for evaluation.
+//
+// The best point seen is kept: when `interrupt` becomes true (Ctrl-C) the search stops at the
+// next evaluation and returns it, with interrupted = true.
+#pragma once
+
+#include "runtime/optimizer.hpp"
+
+#include <atomic>
+#include <functional>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace rheo::runtime {
+
+struct SearchSettings {
+  std::optional<Algorithm> algorithm;  // nullopt: the default strategy above
+  int max_evaluations = 20000;         // over all stages
+  int starts = 4;
+  unsigned long seed = 1;
+  double tolerance = 1e-10;            // relative, on z (local stages)
+};
+
+struct SearchProgress {
+  int evaluations = 0;
+  double best = 0.0;  // best objective so far
+  const char* stage = "";
+};
+
+struct SearchResult {
+  std::vector<double> z;
+  double value = 0.0;
+  int evaluations = 0;
+  int non_finite = 0;
+  std::string status;  // the last local stage's NLopt result, or "interrupted"
+  bool interrupted = false;
+};
+
+// `logarithmic[j]`: coordinate j is ln p (sampled a decade either side of the start).
+SearchResult search(const Objective& objective, const std::vector<double>& start, const std::vector<double>& lower,
+                    const std::vector<double>& upper, const std::vector<bool>& logarithmic, const SearchSettings& settings,
+                    const std::function<void(const SearchProgress&)>& progress = {},
+                    const std::atomic<bool>* interrupt = nullptr);
+
+}  // namespace rheo::runtime

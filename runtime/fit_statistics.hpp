@@ -1,0 +1,44 @@
+// Standard errors and correlations of fitted parameters at a least-squares optimum
+// (Gauss-Newton linearisation; the usual asymptotic statistics of non-linear regression).
+//
+// At the optimum z (n search coordinates) with weighted residuals r(z) (m entries, objective
+// sum r_i^2):
+//   J_ij = (r_i(z + h_j e_j) - r_i(z - h_j e_j)) / (2 h_j),  h_j = 1e-6 max(1, |z_j|)
+//     (central differences, error O(h^2) + O(eps |r| / h); h_j is taken as the representable
+//     difference of the two evaluation points, so it is exact in floating point)
+//   J = U S V^T (SVD, V n x n); singular values s_k <= 1e-8 s_max count as zero (the finite-
+//     difference noise of J is ~1e-10 relative, so below 1e-8 a direction is not resolved);
+//     rank = the number of the others
+//   s^2 = |r|^2 / (m - rank)                         (= |r|^2 / (m - n) at full rank)
+//   Cov_z = s^2 (J^T J)^+ = s^2 V S^+2 V^T           (Moore-Penrose pseudo-inverse)
+// A coordinate z_j is identifiable when it has no component along the null space of J:
+// |P_null e_j| = sqrt(sum over zero s_k of V_jk^2) <= 1e-6. For identifiable coordinates the
+// pseudo-inverse entries are the exact (co)variances of estimable quantities even when other
+// coordinates are not identifiable; a non-identifiable coordinate's variance is unbounded.
+// Parameter space (delta method): p_j = exp(z_j) for logarithmic coordinates, else p_j = z_j,
+//   SE(p_j) = |dp_j/dz_j| sqrt(Cov_z,jj),  dp/dz = p_j (log) or 1,
+//   correlation(p_i, p_j) = Cov_z,ij / sqrt(Cov_z,ii Cov_z,jj)  (invariant under the monotone
+//   increasing maps above).
+#pragma once
+
+#include <functional>
+#include <vector>
+
+namespace rheo::runtime {
+
+struct ParameterStatistics {
+  std::vector<double> standard_error;            // parameter units; +inf when not identifiable
+  std::vector<std::vector<double>> correlation;  // n x n, diagonal 1; NaN off the diagonal in
+                                                 // rows and columns of non-identifiable parameters
+                                                 // (and where a variance is 0: a perfect fit)
+  std::vector<bool> identifiable;
+  int rank = 0;                                  // numerical rank of J
+};
+
+// `residuals` is called 2 n + 1 times; `logarithmic` has n entries. Throws std::invalid_argument
+// when sizes disagree, when r changes size between calls, or when m <= rank (no degree of
+// freedom left for s^2); std::runtime_error when a residual is not finite.
+ParameterStatistics parameter_statistics(const std::function<std::vector<double>(const std::vector<double>&)>& residuals,
+                                         const std::vector<double>& z, const std::vector<bool>& logarithmic);
+
+}  // namespace rheo::runtime

@@ -1,0 +1,90 @@
+#include "lang/fit_schema.hpp"
+
+#include "lang/frontend.hpp"
+#include "lang/parser.hpp"
+
+#include <doctest/doctest.h>
+
+using namespace rheo::lang;
+
+namespace {
+const char* kModel = R"(model m {
+  param k0 = 300 N/mm in [10, 5000]
+  spring   main (k = k0)
+  maxwell  m1   (k = 61.476 N/mm in [1, 1000], tau = 4.335 ms in [0.1, 100])
+  friction f1   (k = 1016.6 N/mm, uy = 101.58 um in [1, 1000])
+}
+)";
+
+std::vector<std::string> free_paths(const Program& p, const FitDirective& f) {
+  std::vector<std::string> out;
+  for (int i : f.free) out.push_back(p.find_model(f.model)->parameters[static_cast<std::size_t>(i)].path);
+  return out;
+}
+}  // namespace
+
+TEST_CASE("check_fit: settings in internal units, data lines with weights, output; free/fixed are not settings") {
+  Program p = compile_source("f.rheo", std::string(kModel) + R"(fit m {
+  data "data/a.csv"
+  data "b.csv", weight = 0.5
+  objective = least_squares, stiffness_weight = 0.25
+  method = approximate, optimizer = sbplx, max_evaluations = 100, starts = 3, seed = 0, tolerance = 1e-6
+  definition = thesis, steps_per_cycle = 512
+  free = [m1.tau, k0]
+  output "fitted.rheo"
+})");
+  REQUIRE(p.fits.size() == 1);
+  const FitDirective& f = p.fits[0];
+  CHECK(f.model == "m");
+  REQUIRE(f.data.size() == 2);
+  CHECK(f.data[0].file == "data/a.csv");
+  CHECK(f.data[0].weight == 1.0);
+  CHECK(f.data[1].weight == 0.5);
+  CHECK(f.data[1].where.line == 9);
+  CHECK(f.data[1].where.column == 8);
+  CHECK(f.output == "fitted.rheo");
+  CHECK(f.where.line == 7);
+  CHECK(f.find("objective")->text == "least_squares");
+  CHECK(f.find("stiffness_weight")->values == std::vector<double>{0.25});
+  CHECK(f.find("optimizer")->text == "sbplx");
+  CHECK(f.find("seed")->values == std::vector<double>{0.0});
+  CHECK(f.find("steps_per_cycle")->values == std::vector<double>{512.0});
+  CHECK(f.find("free") == nullptr);
+  CHECK(f.settings.size() == 10);
+  CHECK(free_paths(p, f) == std::vector<std::string>{"k0", "m1.tau"});  // sorted by parameter index
+}
+
+TEST_CASE("check_fit: the free set is every bounded parameter, restricted by free, less fixed") {
+  Program p = compile_source("f.rheo", std::string(kModel) + "fit {}\nfit m { fixed = [m1.k, f1.k] }\nfit { free = [m1.k, f1.uy], fixed = [f1.uy] }");
+  REQUIRE(p.fits.size() == 3);
+  CHECK(free_paths(p, p.fits[0]) == std::vector<std::string>{"k0", "m1.k", "m1.tau", "f1.uy"});
+  CHECK(free_paths(p, p.fits[1]) == std::vector<std::string>{"k0", "m1.tau", "f1.uy"});
+  CHECK(free_paths(p, p.fits[2]) == std::vector<std::string>{"m1.k"});
+  CHECK(p.fits[0].free == default_free_parameters(*p.find_model("m")));
+  CHECK(p.fits[0].output.empty());
+  CHECK(p.fits[0].data.empty());
+}
+
+TEST_CASE("check_fit: without a usable model only the shape of free/fixed is checked") {
+  ast::File file = parse("f.rheo", "fit { free = [a.b], fixed = [1], method = exact }");
+  std::vector<Diagnostic> errors;
+  FitDirective f = check_fit(file.fits.at(0), "", nullptr, errors);
+  REQUIRE(errors.size() == 1);
+  CHECK(errors[0].message == "fixed lists parameters by path, not values; e.g. `fixed = [m1.k, m1.tau]`");
+  CHECK(f.free.empty());
+  CHECK(f.settings.size() == 1);
+}
+
+TEST_CASE("check_fit_setting and parse_fit_setting: the fit schema for one setting") {
+  std::vector<Diagnostic> errors;
+  auto s = check_fit_setting(parse_setting_text("c", "method = corrected"), errors);
+  REQUIRE(s);
+  CHECK(s->text == "corrected");
+  CHECK_FALSE(check_fit_setting(parse_setting_text("c", "free = [m1.k]"), errors));
+  REQUIRE(errors.size() == 1);
+  CHECK(errors[0].message.find("give it in the fit block") != std::string::npos);
+  CHECK(parse_fit_setting("max_evaluations = 500").values == std::vector<double>{500.0});
+  CHECK_THROWS_WITH_AS(parse_fit_setting("stiffness_weight = 2"), doctest::Contains("stiffness_weight must be between 0 and 1, got 2"), CompileError);
+  CHECK(fit_setting_keys().front() == "objective");
+  CHECK(fit_setting_keys().size() == 12);
+}
