@@ -21,6 +21,7 @@ const std::vector<ProtocolSpec>& schema() {
        {{"frequency", Shape::list, dim::frequency, true, true},
         {"amplitude", Shape::list, dim::length, true, true},
         {"definition", Shape::identifier, dim::none, false, false, 0, 0, {"thesis", "first_harmonic"}},
+        {"steady_state", Shape::identifier, dim::none, false, false, 0, 0, {"auto", "closed_form", "time_stepping"}},
         {"steps_per_cycle", Shape::integer, dim::none, false, false, 16, 4},
         {"cycles_max", Shape::integer, dim::none, false, false, 1},
         {"tolerance", Shape::number, dim::none, false, true},

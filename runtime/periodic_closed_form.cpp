@@ -14,6 +14,8 @@ constexpr int samples_per_half_cycle = 32;
 // The loading half of the steady cycle, theta in [-pi/2, pi/2], as the sum of
 //   a sin(theta) + b cos(theta) + Y(u0 sin theta) + constant + sum over slipping frictions,
 // where a gathers every branch linear in u (springs, Maxwell K', frictions that never slip).
+// The per-friction arrays are scratch space reused from point to point (no allocation once
+// they have grown).
 struct LoadingHalf {
   double u0 = 0.0;
   double a = 0.0;         // N
@@ -21,33 +23,46 @@ struct LoadingHalf {
   double d10 = 0.0, d20 = 0.0, d30 = 0.0;  // summed Yeoh constants
   double constant = 0.0;  // sliders, N
   std::vector<double> slip_k, slip_fy, slip_theta;  // frictions with u0 > uy; theta_q where they start to slip
+  std::vector<double> ends;                         // piece ends
 
-  double friction(std::size_t q, double theta) const {
-    return std::min(slip_fy[q], -slip_fy[q] + slip_k[q] * u0 * (1.0 + std::sin(theta)));
+  void clear() {
+    a = b = d10 = d20 = d30 = constant = 0.0;
+    slip_k.clear(), slip_fy.clear(), slip_theta.clear(), ends.clear();
   }
   double force(double theta) const {
-    const double u = u0 * std::sin(theta);
+    const double s = std::sin(theta);
+    const double u = u0 * s;
     const double u2 = u * u;
-    double f = a * std::sin(theta) + b * std::cos(theta) + u * (2.0 * d10 + u2 * (4.0 * d20 + 6.0 * d30 * u2)) + constant;
-    for (std::size_t q = 0; q < slip_k.size(); ++q) f += friction(q, theta);
+    double f = a * s + b * std::cos(theta) + u * (2.0 * d10 + u2 * (4.0 * d20 + 6.0 * d30 * u2)) + constant;
+    for (std::size_t q = 0; q < slip_k.size(); ++q) f += std::min(slip_fy[q], -slip_fy[q] + slip_k[q] * u0 * (1.0 + s));
     return f;
   }
-  // Stiffness (dF/du) of the branches linear in u on the piece holding `piece_mid`.
-  double linear_stiffness_on(double piece_mid) const {
+  // Stiffness (dF/du) of the slipping frictions still elastic on the piece holding `piece_mid`.
+  double elastic_stiffness_on(double piece_mid) const {
     double k = 0.0;
     for (std::size_t q = 0; q < slip_k.size(); ++q)
       if (piece_mid < slip_theta[q]) k += slip_k[q];
     return k;
   }
-  // dF/dtheta and d2F/dtheta2 inside a piece whose elastic frictions add `k_elastic` [N/mm].
-  void derivatives(double theta, double k_elastic, double& first, double& second) const {
-    const double s = std::sin(theta), c = std::cos(theta);
+  // dF/dtheta and d2F/dtheta2 at (sin, cos) of theta inside a piece whose elastic frictions add `k_elastic` [N/mm].
+  void derivatives(double s, double c, double k_elastic, double& first, double& second) const {
     const double u = u0 * s, u2 = u * u;
     const double dy = 2.0 * d10 + u2 * (12.0 * d20 + 30.0 * d30 * u2);
     const double d2y = u * (24.0 * d20 + 120.0 * d30 * u2);
     const double in_phase = a + u0 * (dy + k_elastic);
     first = c * in_phase - b * s;
     second = -s * in_phase + c * c * u0 * u0 * d2y - b * c;
+  }
+  // A lower bound of dF/du over |u| <= u0 without the frictions' share (>= 0).
+  double least_in_phase() const {
+    const double s_max = u0 * u0;
+    auto dy = [&](double s) { return 2.0 * d10 + s * (12.0 * d20 + 30.0 * d30 * s); };
+    double least = std::min(dy(0.0), dy(s_max));
+    if (d30 != 0.0) {
+      const double s_star = -d20 / (5.0 * d30);
+      if (s_star > 0.0 && s_star < s_max) least = std::min(least, dy(s_star));
+    }
+    return a + u0 * least;
   }
 };
 
@@ -56,7 +71,7 @@ double stationary_point(const LoadingHalf& h, double lo, double hi, double k_ela
   double x = 0.5 * (lo + hi);
   for (int iteration = 0; iteration < 100 && hi - lo > 1e-15; ++iteration) {
     double first = 0.0, second = 0.0;
-    h.derivatives(x, k_elastic, first, second);
+    h.derivatives(std::sin(x), std::cos(x), k_elastic, first, second);
     if (first > 0.0) lo = x; else hi = x;
     const double newton = second < 0.0 ? x - first / second : lo - 1.0;
     const double next = (newton > lo && newton < hi) ? newton : 0.5 * (lo + hi);
@@ -66,26 +81,36 @@ double stationary_point(const LoadingHalf& h, double lo, double hi, double k_ela
   return x;
 }
 
-double loading_half_maximum(const LoadingHalf& h) {
-  std::vector<double> ends{-half_pi, half_pi};
-  for (double t : h.slip_theta) ends.push_back(t);
-  std::sort(ends.begin(), ends.end());
-  double best = h.force(-half_pi);
-  for (std::size_t p = 0; p + 1 < ends.size(); ++p) {
-    const double lo = ends[p], hi = ends[p + 1];
+// max F over the loading half. When dF/dtheta >= 0 on [-pi/2, 0] is guaranteed (every branch's
+// in-phase stiffness non-negative, b >= 0), only [0, pi/2] is searched.
+double loading_half_maximum(LoadingHalf& h) {
+  const double from = h.b >= 0.0 && h.least_in_phase() >= 0.0 ? 0.0 : -half_pi;
+  h.ends.assign({from, half_pi});
+  for (double t : h.slip_theta)
+    if (t > from) h.ends.push_back(t);
+  std::sort(h.ends.begin(), h.ends.end());
+  double best = h.force(from);
+  for (std::size_t p = 0; p + 1 < h.ends.size(); ++p) {
+    const double lo = h.ends[p], hi = h.ends[p + 1];
     if (!(hi > lo)) continue;
     best = std::max(best, h.force(hi));
-    const double k_elastic = h.linear_stiffness_on(0.5 * (lo + hi));
+    const double k_elastic = h.elastic_stiffness_on(0.5 * (lo + hi));
     const int samples = std::max(2, static_cast<int>(std::ceil(samples_per_half_cycle * (hi - lo) / std::numbers::pi)));
-    double previous_theta = lo, previous_slope = 0.0, unused = 0.0;
-    h.derivatives(lo, k_elastic, previous_slope, unused);
+    // sin and cos along the piece by rotation: theta_j = lo + j step.
+    const double step = (hi - lo) / samples, cos_step = std::cos(step), sin_step = std::sin(step);
+    double s = std::sin(lo), c = std::cos(lo);
+    double previous_slope = 0.0, unused = 0.0;
+    h.derivatives(s, c, k_elastic, previous_slope, unused);
     for (int j = 1; j <= samples; ++j) {
-      const double theta = j == samples ? hi : lo + (hi - lo) * j / samples;
+      const double next_s = s * cos_step + c * sin_step;
+      c = c * cos_step - s * sin_step;
+      s = next_s;
       double slope = 0.0;
-      h.derivatives(theta, k_elastic, slope, unused);
-      if (previous_slope > 0.0 && slope <= 0.0)
-        best = std::max(best, h.force(stationary_point(h, previous_theta, theta, k_elastic)));
-      previous_theta = theta;
+      h.derivatives(s, c, k_elastic, slope, unused);
+      if (previous_slope > 0.0 && slope <= 0.0) {
+        const double left = lo + (j - 1) * step, right = j == samples ? hi : lo + j * step;
+        best = std::max(best, h.force(stationary_point(h, left, right, k_elastic)));
+      }
       previous_slope = slope;
     }
   }
@@ -103,7 +128,8 @@ HarmonicPoint closed_form_harmonic_point(const Network& network, double amplitud
   const double omega = 2.0 * std::numbers::pi * frequency;
   const double pi = std::numbers::pi;
 
-  LoadingHalf h;
+  thread_local LoadingHalf h;
+  h.clear();
   h.u0 = u0;
   double storage = c.spring_k;         // K'_1 [N/mm]
   double loss = c.dashpot_c * omega;   // K''_1 [N/mm]; U = pi u0^2 K''_1 for every branch

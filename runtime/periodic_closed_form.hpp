@@ -26,7 +26,9 @@
 // theta_q = asin(2 uy_q/u0 - 1), so each piece is searched for the sign changes of dF/dtheta
 // on a sampling of at least 32 points per half cycle, each root polished by safeguarded
 // Newton to machine precision; piece ends are candidates too. (Two maxima closer than the
-// sampling could be missed; no element law here produces them.)
+// sampling could be missed; no element law here produces them.) Where every branch's in-phase
+// stiffness is non-negative over |u| <= u0 (always, unless a yeoh spring softens below zero
+// slope) dF/dtheta >= 0 on [-pi/2, 0], and only [0, pi/2] is searched.
 //
 // The result is the continuous-time steady state the time-stepping path converges to as
 // the step shrinks (error O(1/N^2) there), hence the "exact" evaluation used by fitting.

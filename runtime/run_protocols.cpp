@@ -57,9 +57,17 @@ ProtocolRun run_protocol(const Network& network, const Protocol& p, const std::s
       HarmonicOptions options;
       options.definition = word(p, "definition", "thesis") == "first_harmonic" ? HarmonicDefinition::first_harmonic
                                                                               : HarmonicDefinition::thesis;
+      const std::string steady_state = word(p, "steady_state", "auto");
+      options.steady_state = steady_state == "closed_form"     ? SteadyState::closed_form
+                             : steady_state == "time_stepping" ? SteadyState::time_stepping
+                                                               : SteadyState::automatic;
       options.steps_per_cycle = static_cast<int>(number(p, "steps_per_cycle", options.steps_per_cycle));
       options.max_cycles = static_cast<int>(number(p, "cycles_max", options.max_cycles));
       options.tolerance = number(p, "tolerance", options.tolerance);
+      if (options.steady_state == SteadyState::closed_form && !has_closed_form_periodic_state(network))
+        throw UsageError(fmt::format("{}:{}:{}: steady_state = closed_form needs every element of model '{}' in its parallel body; "
+                                     "it has nested blocks: use steady_state = auto or time_stepping",
+                                     p.where.file, p.where.line, p.where.column, network.model().name));
       const auto points = simulate_harmonic_grid(network, numbers(p, "amplitude"), numbers(p, "frequency"), options);
       header.protocol = options.steady_state != SteadyState::time_stepping && has_closed_form_periodic_state(network)
                             ? std::string("harmonic steady_state=closed_form")

@@ -1,11 +1,13 @@
 #include "runtime/cli/fit_job.hpp"
 
 #include "runtime/errors.hpp"
+#include "runtime/yeoh_mean_curve.hpp"
 
 #include <fmt/format.h>
 #include <fmt/ranges.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <atomic>
 #include <chrono>
 #include <csignal>
@@ -113,6 +115,38 @@ const lang::CheckedModel& only_user_model(const lang::Program& program, const Fi
                                                        o.file, user.size(), fmt::join(names, ", ")));
 }
 
+// --yeoh-start: the yeoh spring's start values from the mean curve of the largest loop of a
+// static or quasi-static history, by least squares (eqs. 5.28-5.32), clamped into its bounds.
+void set_yeoh_start(FitJob& job, const std::string& path) {
+  const lang::CheckedModel& model = *job.model;
+  const lang::Element* yeoh = nullptr;
+  for (const auto& e : model.root.children)
+    if (e.kind == lang::ElementKind::yeoh) {
+      if (yeoh)
+        throw runtime::UsageError(fmt::format("--yeoh-start: model '{}' has several yeoh springs ('{}', '{}'); the mean curve can start only one",
+                                              model.name, yeoh->path, e.path));
+      yeoh = &e;
+    }
+  if (!yeoh)
+    throw runtime::UsageError(fmt::format("--yeoh-start: model '{}' has no yeoh spring in its root block to start", model.name));
+  const runtime::YeohConstants d = runtime::fit_yeoh_least_squares(
+      runtime::mean_curve(runtime::largest_loop(runtime::loop_samples_from_table(runtime::read_table(path)))));
+  if (job.start_values.empty())
+    for (const auto& p : model.parameters) job.start_values.push_back(p.value);
+  const double constants[] = {d.d10, d.d20, d.d30};
+  for (int slot = 0; slot < 3; ++slot) {
+    const int index = yeoh->parameters.at(static_cast<std::size_t>(slot));
+    const lang::Parameter& p = model.parameters.at(static_cast<std::size_t>(index));
+    double value = constants[slot];
+    if (p.free) value = std::clamp(value, p.lower, p.upper);
+    job.start_values[static_cast<std::size_t>(index)] = value;
+    job.notes += fmt::format("rheo: --yeoh-start {}: {} = {:.6g} {} (least squares on the mean curve, eq. 5.32){}\n", path, p.path,
+                             runtime::in_written_unit(p, value), runtime::written_unit(p),
+                             value != constants[slot] ? fmt::format(", clamped into its bounds from {:.6g}", runtime::in_written_unit(p, constants[slot]))
+                                                      : std::string());
+  }
+}
+
 }  // namespace
 
 std::vector<FitJob> fit_jobs(const lang::Program& program, const FitOptions& o) {
@@ -134,6 +168,7 @@ std::vector<FitJob> fit_jobs(const lang::Program& program, const FitOptions& o) 
     if (job.data.empty())
       throw runtime::UsageError(fmt::format("no data to fit model '{}' to; give --data FILE.csv or add `data \"FILE.csv\"` to its fit block", model.name));
     job.output = !o.output.empty() ? o.output : block ? relative_to(o.file, block->output) : std::string();
+    if (!o.yeoh_start.empty()) set_yeoh_start(job, o.yeoh_start);
     jobs.push_back(std::move(job));
   };
   for (const auto& block : program.fits)
@@ -159,8 +194,16 @@ runtime::FitResult run_fit_job(const FitJob& job) {
     };
   InterruptScope interrupt_scope;
   settings.interrupt = &interrupt_requested;
-  const runtime::Network start = runtime::Network::compile(*job.model);
-  runtime::FitResult result = runtime::fit(start, job.free, job.data, settings);
+  std::cerr << job.notes;
+  runtime::Network start = runtime::Network::compile(*job.model);
+  if (!job.start_values.empty()) start = start.with_parameters(job.start_values);
+  runtime::FitResult result = [&] {
+    try {
+      return runtime::fit(start, job.free, job.data, settings);
+    } catch (const std::invalid_argument& e) {
+      throw runtime::UsageError(fmt::format("cannot fit model '{}': {}", job.model->name, e.what()));
+    }
+  }();
   if (show_progress) std::cerr << "\r" << std::string(100, ' ') << "\r" << std::flush;
   return result;
 }

@@ -37,6 +37,8 @@ struct FitJob {
   runtime::FitSettings settings;
   runtime::FitDescription description;
   std::string output;  // fitted .rheo destination; empty: none
+  std::vector<double> start_values;  // all parameters, internal units; empty: the model's
+  std::string notes;                 // said before the fit (e.g. where --yeoh-start put the yeoh spring)
 };
 
 std::vector<FitJob> fit_jobs(const lang::Program& program, const FitOptions& options);
