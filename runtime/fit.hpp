@@ -8,7 +8,10 @@
 // Methods (fit_scoring.hpp): exact and approximate minimise with that model response;
 // corrected follows Table 5.1: fit the approximation, compute the correction factors
 // (5.2, 5.3) by the exact response at that optimum, and fit the calibrated approximation (5.4)
-// from there.
+// from there. The exact method with the default strategy, on harmonic data and a network the
+// approximation covers, first runs the corrected fit as a cheap surrogate (with a budget of its
+// own: an approximate evaluation costs about 1/30 of an exact one) and adds its optimum to the
+// starts of the exact search, so that exact ends no worse than corrected.
 //
 // Reported whatever the method: phi (5.1) and err (6.1) over all harmonic points by the exact
 // response at the fitted parameters, per file too; for histories the RMS force residual
@@ -33,6 +36,10 @@ namespace rheo::runtime {
 struct FitSettings {
   ScoreSettings score;
   SearchSettings search;
+  // With a time history among the data and one yeoh spring in the root block whose constants
+  // are free: start them at the least-squares fit to the mean curve of the history's largest
+  // loop (eqs. 5.28-5.32), as the thesis identifies them, before searching.
+  bool yeoh_start_from_history = true;
   std::function<void(const SearchProgress&)> progress;  // called after every evaluation
   const std::atomic<bool>* interrupt = nullptr;          // set (e.g. by SIGINT) to stop with the best so far
 };
@@ -63,6 +70,7 @@ struct FitResult {
   double wall_seconds = 0.0;
   std::string status{};
   bool interrupted = false;
+  std::vector<std::string> notes{};  // what the fit did beyond the search (e.g. the yeoh start)
 };
 
 // Indices of the parameters declared with bounds.

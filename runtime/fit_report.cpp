@@ -45,7 +45,9 @@ std::string fit_report_text(const FitDescription& d, const FitResult& r) {
   std::string out = fmt::format("rheo fit: model {} from {}\n", r.network.model().name, d.source);
   for (const DataSetFit& set : r.datasets)
     out += fmt::format("  data {} ({}, {} {}, weight {:g})\n", set.path, data_kind(set), data_points(set), set.harmonic ? "points" : "samples", set.weight);
-  out += fmt::format("  method {}, objective {}, optimizer {}, seed {}\n\n", d.method, d.objective, d.optimizer, d.seed);
+  out += fmt::format("  method {}, objective {}, optimizer {}, seed {}\n", d.method, d.objective, d.optimizer, d.seed);
+  for (const std::string& note : r.notes) out += fmt::format("  {}\n", note);
+  out += "\n";
   std::size_t width = 9;
   for (int i : r.free) width = std::max(width, parameter_of(r, i).path.size());
   out += fmt::format("  {:<{}}  {:>12}  {:>12}  {:<22}  {:<8}  {}\n", "parameter", width, "start", "fitted", "std. error", "unit", "bounds");
@@ -105,6 +107,7 @@ std::string fit_report_json(const FitDescription& d, const FitResult& r) {
   j["wall_seconds"] = r.wall_seconds;
   j["phi"] = r.phi;
   j["err"] = r.err;
+  j["notes"] = r.notes;
   json parameters = json::array();
   const auto& all = r.network.model().parameters;
   for (std::size_t i = 0; i < all.size(); ++i) {

@@ -40,14 +40,15 @@ void append_residuals(const FitDataSet& set, const Prediction& prediction, const
   const double scale = std::sqrt(set.weight / (2.0 * static_cast<double>(d.size())));
   for (std::size_t i = 0; i < d.size(); ++i) {
     const CycleMeasures& m = prediction.points[i].measures;
+    const double point_scale = d.weight.empty() ? scale : scale * std::sqrt(d.weight[i]);
     if (settings.objective == FitObjective::phi) {
-      out.push_back(scale * std::sqrt(settings.stiffness_weight) * (m.stiffness / d.stiffness[i] - 1.0));
-      out.push_back(scale * std::sqrt(settings.damping_weight) * (std::sin(m.phase) / std::sin(d.phase[i]) - 1.0));
+      out.push_back(point_scale * std::sqrt(settings.stiffness_weight) * (m.stiffness / d.stiffness[i] - 1.0));
+      out.push_back(point_scale * std::sqrt(settings.damping_weight) * (std::sin(m.phase) / std::sin(d.phase[i]) - 1.0));
     } else {
       const std::complex<double> model = std::polar(m.stiffness, m.phase), measured = std::polar(d.stiffness[i], d.phase[i]);
       const std::complex<double> r = (model - measured) / d.stiffness[i];
-      out.push_back(scale * r.real());
-      out.push_back(scale * r.imag());
+      out.push_back(point_scale * r.real());
+      out.push_back(point_scale * r.imag());
     }
   }
 }

@@ -9,6 +9,7 @@
 //   harmonic, objective least_squares (relative, on the complex stiffness K* = K e^{i phase}):
 //     (K' - K'_exp) / |K*_exp|,    (K'' - K''_exp) / |K*_exp|
 //   history (either objective), per sample: (F - F_exp) / max|F_exp|
+// A harmonic table's optional `weight` column multiplies its point's squared terms.
 // For one harmonic file and objective phi the minimiser is that of eq. 5.38.
 //
 // Model response of harmonic files by the method chosen (histories are always simulated):

@@ -120,8 +120,10 @@ SearchResult search(const Objective& objective, const std::vector<double>& start
       }
       std::sort(sampled.begin(), sampled.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
       std::vector<std::vector<double>> starts{start};
+      starts.insert(starts.end(), settings.extra_starts.begin(), settings.extra_starts.end());
+      const std::size_t wanted = static_cast<std::size_t>(std::max(settings.starts, 1));
       for (const auto& [value, point] : sampled) {
-        if (static_cast<int>(starts.size()) >= settings.starts) break;
+        if (starts.size() >= wanted) break;
         if (std::isfinite(value)) starts.push_back(point);
       }
       tracker.stage("local");

@@ -5,8 +5,9 @@
 //   1. sample: max(10 n, 40) points of a Halton sequence (randomly shifted by the seed) over
 //      the box z0 -+ ln 10 (a decade either side of the start; a quarter of the bounds for
 //      linear coordinates), clipped to the bounds;
-//   2. local: BOBYQA from the start and from the best `starts - 1` samples, sharing the
-//      evaluation budget;
+//   2. local: BOBYQA from the start, from any extra starts given (e.g. a surrogate's optimum)
+//      and from the best samples, `starts` searches in all (at least the start and the extra
+//      ones), sharing the evaluation budget;
 //   3. polish: BOBYQA again from the best point found, with a fresh trust region.
 // A local algorithm named (bobyqa, sbplx, neldermead) takes BOBYQA's place; a global one
 // (direct_l, crs2, isres, mlsl) searches the whole box with half the budget, then BOBYQA polishes.
@@ -29,9 +30,10 @@ namespace rheo::runtime {
 struct SearchSettings {
   std::optional<Algorithm> algorithm;  // nullopt: the default strategy above
   int max_evaluations = 20000;         // over all stages
-  int starts = 4;
+  int starts = 3;
   unsigned long seed = 1;
   double tolerance = 1e-10;            // relative, on z (local stages)
+  std::vector<std::vector<double>> extra_starts;  // default strategy: local searches from these too
 };
 
 struct SearchProgress {

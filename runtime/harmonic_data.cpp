@@ -40,12 +40,14 @@ HarmonicData harmonic_data_from_table(const Table& t) {
     }
   }
   d.rows = t.rows;
-  auto column_of = [&](const char* name) { return t.column(name) + 1; };
+  const int weight_column = t.column("weight");
+  d.weight = weight_column >= 0 ? t.columns[static_cast<std::size_t>(weight_column)] : std::vector<double>(d.size(), 1.0);
   std::map<std::pair<double, double>, int> seen;
   for (std::size_t i = 0; i < d.size(); ++i) {
     auto fail = [&](const char* column, const std::string& message) {
-      throw DataError(fmt::format("{}:{}: error: {} (column {} '{}')", t.path, t.rows[i], message, column_of(column), column));
+      throw DataError(fmt::format("{}:{}:{}: error: {} (column '{}')", t.path, t.rows[i], t.cell_column(i, t.column(column)), message, column));
     };
+    if (!(d.weight[i] >= 0.0)) fail("weight", fmt::format("a point's weight must be >= 0, got {:g}", d.weight[i]));
     if (!(d.amplitude[i] > 0.0)) fail("amplitude", fmt::format("amplitude must be positive, got {:g} mm", d.amplitude[i]));
     if (!(d.frequency[i] > 0.0)) fail("frequency", fmt::format("frequency must be positive, got {:g} Hz", d.frequency[i]));
     if (!(d.stiffness[i] > 0.0)) fail(t.column("stiffness") >= 0 ? "stiffness" : "storage", fmt::format("stiffness must be positive, got {:g} N/mm", d.stiffness[i]));

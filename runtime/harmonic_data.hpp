@@ -3,8 +3,8 @@
 // (`amplitude [mm],frequency [Hz],stiffness [N/mm],phase [deg]`). Converted to the internal
 // system: amplitude mm, frequency Hz, stiffness N/mm, phase rad. Malformed input (missing
 // column, negative or zero amplitude or frequency, non-positive stiffness, a phase outside
-// (0, 90] deg, duplicate point) is a
-// DataError naming file:row:column.
+// (0, 90] deg, duplicate point, negative weight) is a DataError naming file:row:column.
+// An optional `weight [-]` column weighs each point's residuals in a fit.
 #pragma once
 
 #include "runtime/history_csv.hpp"
@@ -20,6 +20,7 @@ struct HarmonicData {
   std::vector<double> frequency;  // Hz
   std::vector<double> stiffness;  // N/mm, K = |K*|
   std::vector<double> phase;      // rad
+  std::vector<double> weight;     // per-point weight (optional column `weight [-]`, default 1)
   std::vector<int> rows;          // 1-based file line of each point
   std::size_t size() const { return amplitude.size(); }
 };

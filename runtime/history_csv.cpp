@@ -44,6 +44,10 @@ std::vector<Cell> split(const std::string& line) {
 
 }  // namespace
 
+int Table::cell_column(std::size_t row_index, int field) const {
+  return cell_columns.at(row_index * names.size() + static_cast<std::size_t>(field));
+}
+
 int Table::column(const std::string& name) const {
   for (std::size_t i = 0; i < names.size(); ++i)
     if (names[i] == name) return static_cast<int>(i);
@@ -102,6 +106,7 @@ Table parse_table(const std::string& path, const std::string& raw) {
       if (!std::isfinite(value))
         fail(path, row, cells[c].column, fmt::format("'{}' is not a finite number (column '{}'); remove or repair the row", s, table.names[c]));
       table.columns[c].push_back(value * scales[c]);
+      table.cell_columns.push_back(cells[c].column);
     }
     table.rows.push_back(row);
   }

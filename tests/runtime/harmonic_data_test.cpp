@@ -38,8 +38,17 @@ TEST_CASE("storage and loss columns give stiffness and phase") {
 
 TEST_CASE("malformed harmonic tables are located by file:row:column") {
   CHECK(error_of("amplitude [mm],stiffness [N/mm],phase [deg]\n1,2,3\n").find("need a column 'frequency'") != std::string::npos);
-  CHECK(error_of("amplitude [mm],frequency [Hz],stiffness [N/mm],phase [deg]\n-1,2,3,4\n").find("h.csv:2: error: amplitude must be positive, got -1 mm (column 1 'amplitude')") == 0);
-  CHECK(error_of("amplitude [mm],frequency [Hz],stiffness [N/mm],phase [deg]\n1,2,3,4\n1,2,5,6\n").find("h.csv:3: error: duplicate point (1 mm, 2 Hz), first at row 2") == 0);
+  CHECK(error_of("amplitude [mm],frequency [Hz],stiffness [N/mm],phase [deg]\n-1,2,3,4\n").find("h.csv:2:1: error: amplitude must be positive, got -1 mm (column 'amplitude')") == 0);
+  CHECK(error_of("amplitude [mm],frequency [Hz],stiffness [N/mm],phase [deg]\n1,2,3,4\n1,2,5,6\n").find("h.csv:3:1: error: duplicate point (1 mm, 2 Hz), first at row 2") == 0);
   CHECK(error_of("amplitude [mm],frequency [Hz],stiffness [N/mm],phase [deg]\n1,0,3,4\n").find("frequency must be positive") != std::string::npos);
-  CHECK(error_of("amplitude [mm],frequency [Hz],stiffness [N/mm],phase [deg]\n1,2,3,0\n").find("h.csv:2: error: phase must lie in (0, 90] deg, got 0 deg") == 0);
+  CHECK(error_of("amplitude [mm],frequency [Hz],stiffness [N/mm],phase [deg]\n1,2,3,0\n").find("h.csv:2:7: error: phase must lie in (0, 90] deg, got 0 deg") == 0);
+}
+
+TEST_CASE("an optional weight column weighs points; a negative weight is located") {
+  const auto d = harmonic_data_from_table(parse_table("h.csv", "amplitude [mm],frequency [Hz],stiffness [N/mm],phase [deg],weight [-]\n1,2,3,4,0.5\n1,3,3,4,2\n"));
+  REQUIRE(d.weight.size() == 2);
+  CHECK(d.weight[0] == 0.5);
+  CHECK(d.weight[1] == 2.0);
+  CHECK(harmonic_data_from_table(parse_table("h.csv", "amplitude [mm],frequency [Hz],stiffness [N/mm],phase [deg]\n1,2,3,4\n")).weight == std::vector<double>{1.0});
+  CHECK(error_of("amplitude [mm],frequency [Hz],stiffness [N/mm],phase [deg],weight [-]\n1,2,3,4,-1\n").find("h.csv:2:9: error: a point's weight must be >= 0") == 0);
 }
