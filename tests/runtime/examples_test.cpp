@@ -6,11 +6,13 @@
 
 #include <doctest/doctest.h>
 #include <fmt/format.h>
+#include <nlohmann/json.hpp>
 #include <unistd.h>
 
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
+#include <fstream>
 
 using namespace rheo;
 namespace fs = std::filesystem;
@@ -97,4 +99,23 @@ TEST_CASE("the README example runs as written and writes the thesis-format grid"
   CHECK(t.names[3] == "phase");
   const int converged = t.column("converged");
   for (double c : t.columns[static_cast<std::size_t>(converged)]) CHECK(c == 1.0);
+}
+
+TEST_CASE("fitting specimen D to its harmonic and static tests at once brings both down to the data's noise") {
+  const fs::path dir = scratch();
+  const fs::path report = dir / "all.json", fitted = dir / "all_fitted.rheo";
+  REQUIRE(rheo_run(fmt::format("fit {} --json -o {} > {}", example("specimen_d_fit_all.rheo"), fitted.string(), report.string())) == 0);
+  std::ifstream in(report);
+  const auto j = nlohmann::json::parse(in);
+  REQUIRE(j["data"].size() == 2);
+  for (const auto& set : j["data"]) {
+    CAPTURE(set["file"].get<std::string>());
+    if (set["kind"] == "history") {
+      // RMS force residual relative to max |F|: the noise is 0.3 % of the maximum.
+      CHECK(set["err"].get<double>() < 0.0035);
+    } else {
+      CHECK(set["err"].get<double>() < 1.5044e-3);  // err (6.1) of the Appendix D parameters on this file
+    }
+  }
+  CHECK(fs::exists(fitted));
 }
