@@ -2,6 +2,20 @@
 
 namespace rheo::lang {
 
+const char* kind_word(ElementKind kind) {
+  switch (kind) {
+    case ElementKind::spring: return "spring";
+    case ElementKind::yeoh: return "yeoh";
+    case ElementKind::dashpot: return "dashpot";
+    case ElementKind::maxwell: return "maxwell";
+    case ElementKind::friction: return "friction";
+    case ElementKind::slider: return "slider";
+    case ElementKind::parallel: return "parallel";
+    case ElementKind::series: return "series";
+  }
+  return "element";
+}
+
 double Expression::evaluate(const std::vector<double>& parameter_values) const {
   std::vector<double> stack;
   stack.reserve(code.size());

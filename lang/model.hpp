@@ -66,6 +66,9 @@ enum class ElementKind : std::uint8_t {
   series,    // children share the force; elongations add
 };
 
+// The keyword of a kind as written in source: "spring", ..., "parallel", "series".
+const char* kind_word(ElementKind kind);
+
 // Parameter slots of each leaf kind, in this order, as indices into CheckedModel::parameters.
 // The checker normalises alternatives: maxwell given tau stores c = k * tau (an Expression),
 // friction given uy stores fy = k * uy.

@@ -16,18 +16,9 @@ double loop_energy(const CycleSamples& s) {
   return energy;
 }
 
-CycleMeasures measure_cycle(const CycleSamples& s, double amplitude, HarmonicDefinition definition) {
+CycleMeasures measures_from(double force_amplitude, double storage1, double loss1, double amplitude, HarmonicDefinition definition) {
   CycleMeasures m;
-  const auto [lo, hi] = std::minmax_element(s.force.begin(), s.force.end());
-  m.force_amplitude = 0.5 * (*hi - *lo);
-  double in_phase = 0.0, quadrature = 0.0;
-  const std::size_t n = s.force.size();
-  for (std::size_t k = 0; k < n; ++k) {
-    in_phase += s.force[k] * std::sin(s.phase[k]);
-    quadrature += s.force[k] * std::cos(s.phase[k]);
-  }
-  const double scale = 2.0 / (static_cast<double>(n) * amplitude);
-  const double storage1 = in_phase * scale, loss1 = quadrature * scale;
+  m.force_amplitude = force_amplitude;
   // With du = u0 w cos(w t) dt the loop integral is exactly pi u0^2 K''_1 for any periodic F.
   m.energy = std::numbers::pi * amplitude * amplitude * loss1;
   if (definition == HarmonicDefinition::thesis) {
@@ -43,6 +34,18 @@ CycleMeasures measure_cycle(const CycleSamples& s, double amplitude, HarmonicDef
   m.storage = m.stiffness * std::cos(m.phase);
   m.loss = m.stiffness * std::sin(m.phase);
   return m;
+}
+
+CycleMeasures measure_cycle(const CycleSamples& s, double amplitude, HarmonicDefinition definition) {
+  const auto [lo, hi] = std::minmax_element(s.force.begin(), s.force.end());
+  double in_phase = 0.0, quadrature = 0.0;
+  const std::size_t n = s.force.size();
+  for (std::size_t k = 0; k < n; ++k) {
+    in_phase += s.force[k] * std::sin(s.phase[k]);
+    quadrature += s.force[k] * std::cos(s.phase[k]);
+  }
+  const double scale = 2.0 / (static_cast<double>(n) * amplitude);
+  return measures_from(0.5 * (*hi - *lo), in_phase * scale, quadrature * scale, amplitude, definition);
 }
 
 }  // namespace rheo::runtime

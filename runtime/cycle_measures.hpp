@@ -40,4 +40,8 @@ double loop_energy(const CycleSamples& samples);
 
 CycleMeasures measure_cycle(const CycleSamples& samples, double amplitude, HarmonicDefinition definition);
 
+// The measures of a cycle given F^ [N] and the first harmonic K'_1, K''_1 [N/mm] at amplitude
+// u0 [mm] (U = pi u0^2 K''_1), by either definition.
+CycleMeasures measures_from(double force_amplitude, double storage1, double loss1, double amplitude, HarmonicDefinition definition);
+
 }  // namespace rheo::runtime

@@ -171,21 +171,7 @@ HarmonicPoint closed_form_harmonic_point(const Network& network, double amplitud
   point.amplitude = amplitude;
   point.frequency = frequency;
   point.converged = true;
-  CycleMeasures& m = point.measures;
-  m.force_amplitude = loading_half_maximum(h);
-  m.energy = pi * u0 * u0 * loss;
-  if (definition == HarmonicDefinition::thesis) {
-    m.stiffness = m.force_amplitude / u0;
-    m.damping = m.force_amplitude > 0.0 ? m.energy / (pi * m.force_amplitude * u0) : 0.0;
-    m.damping_clamped = m.damping > 1.0;
-    m.phase = std::asin(std::clamp(m.damping, -1.0, 1.0));
-  } else {
-    m.stiffness = std::hypot(storage, loss);
-    m.phase = std::atan2(loss, storage);
-    m.damping = std::sin(m.phase);
-  }
-  m.storage = m.stiffness * std::cos(m.phase);
-  m.loss = m.stiffness * std::sin(m.phase);
+  point.measures = measures_from(loading_half_maximum(h), storage, loss, u0, definition);
   return point;
 }
 

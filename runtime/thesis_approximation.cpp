@@ -17,25 +17,11 @@ struct ThesisElements {
   std::vector<double> friction_k, friction_fy;  // K_p [N/mm], F_y = K_p u_s [N]
 };
 
-const char* kind_name(lang::ElementKind kind) {
-  switch (kind) {
-    case lang::ElementKind::spring: return "spring";
-    case lang::ElementKind::yeoh: return "yeoh";
-    case lang::ElementKind::dashpot: return "dashpot";
-    case lang::ElementKind::maxwell: return "maxwell";
-    case lang::ElementKind::friction: return "friction";
-    case lang::ElementKind::slider: return "slider";
-    case lang::ElementKind::parallel: return "parallel";
-    case lang::ElementKind::series: return "series";
-  }
-  return "element";
-}
-
 [[noreturn]] void reject(const Network& network, const ElementProbe& probe, const char* why) {
   throw std::invalid_argument(fmt::format(
       "model '{}': {} '{}' {}; the thesis approximation (eqs. 5.12-5.21) covers springs, yeoh springs, Maxwell and "
       "friction elements in parallel only (Figs. 5.1, 5.3); use method = exact",
-      network.model().name, kind_name(probe.kind), probe.path, why));
+      network.model().name, lang::kind_word(probe.kind), probe.path, why));
 }
 
 bool is_subtree_root(const Topology& t, int node) {

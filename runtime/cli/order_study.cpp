@@ -82,18 +82,6 @@ std::string arguments_of(const lang::CheckedModel& model, const lang::Element& e
   return fmt::format("{}", fmt::join(args, ", "));
 }
 
-const char* kind_word(lang::ElementKind k) {
-  switch (k) {
-    case lang::ElementKind::spring: return "spring";
-    case lang::ElementKind::yeoh: return "yeoh";
-    case lang::ElementKind::dashpot: return "dashpot";
-    case lang::ElementKind::maxwell: return "maxwell";
-    case lang::ElementKind::friction: return "friction";
-    case lang::ElementKind::slider: return "slider";
-    default: return "";
-  }
-}
-
 struct Spreads {
   std::vector<double> tau, uy;  // s, mm
 };
@@ -112,7 +100,7 @@ std::string copies(const lang::CheckedModel& model, const lang::Element& templ, 
     const std::string name = fmt::format("{}{}", is_maxwell ? "order_m" : "order_f", i + 1);
     const std::string second = by_ratio ? argument(*tau, is_maxwell ? "tau" : "uy", spread[static_cast<std::size_t>(i)])
                                         : argument(*direct, is_maxwell ? "c" : "fy", k->value * spread[static_cast<std::size_t>(i)]);
-    out += fmt::format("  {} {} ({}, {})\n", kind_word(templ.kind), name, argument(*k, "k", k->value), second);
+    out += fmt::format("  {} {} ({}, {})\n", lang::kind_word(templ.kind), name, argument(*k, "k", k->value), second);
   }
   return out;
 }
@@ -153,7 +141,7 @@ int run_order_study(const lang::Program& program, const std::vector<FitJob>& job
     } else if (e.kind == lang::ElementKind::friction && spec.friction) {
       if (!friction_template) friction_template = &e;
     } else {
-      kept += fmt::format("  {} {} ({})\n", kind_word(e.kind), e.name, arguments_of(model, e));
+      kept += fmt::format("  {} {} ({})\n", lang::kind_word(e.kind), e.name, arguments_of(model, e));
     }
   }
   if (spec.maxwell && !maxwell_template)

@@ -20,7 +20,7 @@ TEST_CASE("check_bounds: plain bounds take the value's unit; the parameter becom
   Parameter p;
   p.path = "k0";
   p.dimension = dim::length;
-  p.unit = "um";
+  p.unit = std::string{"um"};
   p.value = 5e-3;
   p.expression.code = {{Expression::Op::constant, 5e-3}};
   std::vector<Diagnostic> errors;
