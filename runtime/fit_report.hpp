@@ -4,12 +4,16 @@
 //
 // JSON summary (one object per fit):
 //   model, source, method, objective, optimizer, seed, status, interrupted, evaluations,
-//   non_finite_evaluations, wall_seconds, phi, err,
+//   non_finite_evaluations, wall_seconds, phi, err, notes: [text...] (FitResult::notes),
 //   parameters: [{path, unit, start, value, lower, upper, free, standard_error, identifiable}],
 //   correlation: {parameters: [path...], matrix: [[...]]}  (free parameters),
 //   data: [{file, kind, weight, points, err, phi?, residuals: [{amplitude_mm, frequency_hz,
 //           stiffness_measured, stiffness_model, phase_measured_deg, phase_model_deg,
 //           stiffness_residual, damping_residual}] | {rms, max}}]
+// Every parameter of the model is listed; lower/upper only for those with bounds,
+// identifiable only for free ones, standard_error only where it is finite (not for a
+// non-identifiable parameter, nor after an interrupted fit, which has no statistics). A
+// correlation entry that is not defined (NaN) is written as null.
 #pragma once
 
 #include "runtime/fit.hpp"

@@ -10,17 +10,23 @@ namespace rheo::runtime {
 namespace {
 
 struct Interrupted {};
+struct Exhausted {};
 
-// Counts evaluations, keeps the best point, reports progress, and stops on interrupt.
+// Counts evaluations, keeps the best point, reports progress, and stops on interrupt or when
+// the budget is spent (some NLopt algorithms, e.g. DIRECT-L, overrun their own maxeval).
 class Tracker {
  public:
-  Tracker(const Objective& objective, const std::function<void(const SearchProgress&)>& progress, const std::atomic<bool>* interrupt)
-      : objective_(objective), progress_(progress), interrupt_(interrupt) {}
+  Tracker(const Objective& objective, const std::function<void(const SearchProgress&)>& progress, const std::atomic<bool>* interrupt,
+          int limit)
+      : objective_(objective), progress_(progress), interrupt_(interrupt), limit_(std::max(1, limit)) {}
 
+  // The first call (the start) is always evaluated, so that the best point has a value.
   double operator()(const std::vector<double>& z) {
-    if (interrupt_ && interrupt_->load(std::memory_order_relaxed)) throw Interrupted{};
+    if (evaluations_ > 0 && interrupt_ && interrupt_->load(std::memory_order_relaxed)) throw Interrupted{};
+    if (evaluations_ >= limit_) throw Exhausted{};
     const double value = objective_(z);
     ++evaluations_;
+    if (!std::isfinite(value)) ++non_finite_;
     if (std::isfinite(value) && value < best_value_) {
       best_value_ = value;
       best_z_ = z;
@@ -30,6 +36,7 @@ class Tracker {
   }
   void stage(const char* name) { stage_ = name; }
   int evaluations() const { return evaluations_; }
+  int non_finite() const { return non_finite_; }
   double best_value() const { return best_value_; }
   const std::vector<double>& best_z() const { return best_z_; }
 
@@ -37,7 +44,9 @@ class Tracker {
   const Objective& objective_;
   const std::function<void(const SearchProgress&)>& progress_;
   const std::atomic<bool>* interrupt_;
+  int limit_;
   int evaluations_ = 0;
+  int non_finite_ = 0;
   double best_value_ = std::numeric_limits<double>::infinity();
   std::vector<double> best_z_;
   const char* stage_ = "";
@@ -67,10 +76,9 @@ SearchResult search(const Objective& objective, const std::vector<double>& start
                     const std::vector<double>& upper, const std::vector<bool>& logarithmic, const SearchSettings& settings,
                     const std::function<void(const SearchProgress&)>& progress, const std::atomic<bool>* interrupt) {
   const std::size_t n = start.size();
-  Tracker tracker(objective, progress, interrupt);
+  Tracker tracker(objective, progress, interrupt, settings.max_evaluations);
   const Objective tracked = [&](const std::vector<double>& z) { return tracker(z); };
   SearchResult result;
-  int non_finite = 0;
   auto remaining = [&] { return settings.max_evaluations - tracker.evaluations(); };
   auto local = [&](const std::vector<double>& from, int budget, Algorithm algorithm) {
     OptimizerSettings o;
@@ -79,22 +87,23 @@ SearchResult search(const Objective& objective, const std::vector<double>& start
     o.relative_x_tolerance = settings.tolerance;
     o.relative_f_tolerance = 1e-9;
     o.seed = settings.seed;
-    const OptimizationResult r = minimize(tracked, from, lower, upper, o);
-    non_finite += r.non_finite;
-    result.status = r.status;
+    result.status = minimize(tracked, from, lower, upper, o).status;
   };
   const Algorithm local_algorithm =
       settings.algorithm && !is_global(*settings.algorithm) ? *settings.algorithm : Algorithm::bobyqa;
+  result.status = "MAXEVAL_REACHED";  // when the budget leaves no local stage to run
   try {
     tracker.stage("start");
     tracked(start);
     if (settings.algorithm && is_global(*settings.algorithm)) {
-      tracker.stage("global");
-      OptimizerSettings o;
-      o.algorithm = *settings.algorithm;
-      o.max_evaluations = std::max(1, remaining() / 2);
-      o.seed = settings.seed;
-      non_finite += minimize(tracked, start, lower, upper, o).non_finite;
+      if (remaining() > 0) {
+        tracker.stage("global");
+        OptimizerSettings o;
+        o.algorithm = *settings.algorithm;
+        o.max_evaluations = std::max(1, remaining() / 2);
+        o.seed = settings.seed;
+        minimize(tracked, start, lower, upper, o);
+      }
     } else {
       // Sample a box around the start, then run local searches from the start and the best samples.
       tracker.stage("sample");
@@ -118,7 +127,9 @@ SearchResult search(const Objective& objective, const std::vector<double>& start
         }
         sampled.emplace_back(tracked(z), z);
       }
-      std::sort(sampled.begin(), sampled.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
+      // Non-finite samples sort last (NaN would break the ordering std::sort relies on).
+      auto key = [](double v) { return std::isfinite(v) ? v : std::numeric_limits<double>::infinity(); };
+      std::stable_sort(sampled.begin(), sampled.end(), [&](const auto& a, const auto& b) { return key(a.first) < key(b.first); });
       std::vector<std::vector<double>> starts{start};
       starts.insert(starts.end(), settings.extra_starts.begin(), settings.extra_starts.end());
       const std::size_t wanted = static_cast<std::size_t>(std::max(settings.starts, 1));
@@ -132,6 +143,8 @@ SearchResult search(const Objective& objective, const std::vector<double>& start
     }
     tracker.stage("polish");
     if (remaining() > 0) local(tracker.best_z(), remaining(), local_algorithm);
+  } catch (const Exhausted&) {
+    result.status = "MAXEVAL_REACHED";
   } catch (const Interrupted&) {
     result.interrupted = true;
     result.status = "interrupted";
@@ -139,7 +152,7 @@ SearchResult search(const Objective& objective, const std::vector<double>& start
   result.z = tracker.best_z().empty() ? start : tracker.best_z();
   result.value = tracker.best_value();
   result.evaluations = tracker.evaluations();
-  result.non_finite = non_finite;
+  result.non_finite = tracker.non_finite();
   return result;
 }
 

@@ -13,8 +13,12 @@
 // (direct_l, crs2, isres, mlsl) searches the whole box with half the budget, then BOBYQA polishes.
 // The same seed gives the same result, evaluation for evaluation.
 //
+// Budget: the start is always evaluated first; after it, no evaluation is made beyond
+// max_evaluations in all (stages share what is left; an NLopt stage that would take the total
+// beyond it, as DIRECT-L can overrun its own maxeval, is stopped), so
+// 1 <= evaluations <= max(1, max_evaluations).
 // The best point seen is kept: when `interrupt` becomes true (Ctrl-C) the search stops at the
-// next evaluation and returns it, with interrupted = true.
+// next evaluation (never before the start's) and returns it, with interrupted = true.
 #pragma once
 
 #include "runtime/optimizer.hpp"
@@ -39,15 +43,16 @@ struct SearchSettings {
 struct SearchProgress {
   int evaluations = 0;
   double best = 0.0;  // best objective so far
-  const char* stage = "";
+  const char* stage = "";  // "start", "sample", "local", "global" or "polish"
 };
 
 struct SearchResult {
-  std::vector<double> z;
-  double value = 0.0;
+  std::vector<double> z;  // the best point evaluated (the start when none was finite)
+  double value = 0.0;     // the objective at z; +inf when no evaluation was finite
   int evaluations = 0;
-  int non_finite = 0;
-  std::string status;  // the last local stage's NLopt result, or "interrupted"
+  int non_finite = 0;     // evaluations that returned NaN or inf (any stage)
+  std::string status;  // the last local stage's NLopt result, "MAXEVAL_REACHED" when the budget
+                       // ran out before or during a stage, or "interrupted"
   bool interrupted = false;
 };
 

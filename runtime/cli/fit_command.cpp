@@ -14,6 +14,7 @@
 #include <filesystem>
 #include <fstream>
 #include <iostream>
+#include <limits>
 #include <memory>
 #include <sstream>
 
@@ -47,17 +48,25 @@ Command add_fit_command(CLI::App& app) {
   app.add_option("-o,--output", o->output, "Write the fitted model (.rheo, comments kept) here; needs exactly one fit to run");
   app.add_flag("--json", o->json, "Print the JSON summary instead of the text report");
   app.add_option("--model", o->model, "Fit only this model's fit blocks (or this model, when the file has none)");
-  app.add_option("--method", o->method, "exact | approximate | corrected (thesis eqs. 5.5-5.21, Table 5.1)");
-  app.add_option("--optimizer", o->optimizer, "default | bobyqa | sbplx | neldermead | direct_l | crs2 | isres | mlsl");
-  app.add_option("--max-evaluations", o->max_evaluations, "Evaluation budget over all stages");
-  app.add_option("--starts", o->starts, "Local searches of the default strategy");
-  app.add_option("--seed", o->seed, "Seed of the sampling and stochastic optimizers; the same seed gives the same result");
+  // Defaults: the fit block's setting, else these (runtime::SearchSettings).
+  const runtime::SearchSettings defaults;
+  app.add_option("--method", o->method, "exact | approximate | corrected (thesis eqs. 5.5-5.21, Table 5.1); default exact");
+  app.add_option("--optimizer", o->optimizer, "default | bobyqa | sbplx | neldermead | direct_l | crs2 | isres | mlsl; default: default");
+  app.add_option("--max-evaluations", o->max_evaluations, fmt::format("Evaluation budget over all stages; default {}", defaults.max_evaluations))
+      ->check(CLI::Range(1, std::numeric_limits<int>::max()));
+  app.add_option("--starts", o->starts, fmt::format("Local searches of the default strategy; default {}", defaults.starts))
+      ->check(CLI::Range(1, std::numeric_limits<int>::max()));
+  app.add_option("--seed", o->seed,
+                 fmt::format("Seed of the sampling and stochastic optimizers; the same seed gives the same result; default {}", defaults.seed))
+      ->check(CLI::Range(0LL, std::numeric_limits<long long>::max()));
   app.add_option("--yeoh-start", o->yeoh_start,
                  "Static or quasi-static loop (CSV) whose mean curve gives the yeoh spring's start values by least squares (eqs. 5.28-5.32)");
   app.add_option("--orders", o->orders,
                  "Model-order study (thesis Fig. 6.2), e.g. maxwell=1..4,friction=1..6: fits each structure, tables err (6.1)");
-  app.footer("Data lines and `output` in a fit block are relative to the .rheo file; --data and -o to the working directory.\n"
-             "Ctrl-C stops the search and writes the best result so far (exit code 130).");
+  app.footer("Settings given here override the fit block's. Data lines and `output` in a fit block are relative to the\n"
+             ".rheo file; --data and -o to the working directory. The report goes to standard output, messages to standard\n"
+             "error (with a progress line when it is a terminal). Ctrl-C stops the search and writes the best result so far\n"
+             "(exit code 130).");
   return [o] {
     const lang::Program program = lang::load_program(o->file);
     std::vector<FitJob> jobs = fit_jobs(program, *o);

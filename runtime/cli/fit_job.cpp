@@ -117,6 +117,8 @@ const lang::CheckedModel& only_user_model(const lang::Program& program, const Fi
 
 // --yeoh-start: the yeoh spring's start values from the mean curve of the largest loop of a
 // static or quasi-static history, by least squares (eqs. 5.28-5.32), clamped into its bounds.
+// Only free constants are started (a fixed one keeps its value, as the fitted file does), and
+// the file given replaces the automatic start from a history among the data.
 void set_yeoh_start(FitJob& job, const std::string& path) {
   const lang::CheckedModel& model = *job.model;
   const lang::Element* yeoh = nullptr;
@@ -133,10 +135,15 @@ void set_yeoh_start(FitJob& job, const std::string& path) {
       runtime::mean_curve(runtime::largest_loop(runtime::loop_samples_from_table(runtime::read_table(path)))));
   if (job.start_values.empty())
     for (const auto& p : model.parameters) job.start_values.push_back(p.value);
+  job.settings.yeoh_start_from_history = false;
   const double constants[] = {d.d10, d.d20, d.d30};
   for (int slot = 0; slot < 3; ++slot) {
     const int index = yeoh->parameters.at(static_cast<std::size_t>(slot));
     const lang::Parameter& p = model.parameters.at(static_cast<std::size_t>(index));
+    if (std::find(job.free.begin(), job.free.end(), index) == job.free.end()) {
+      job.notes += fmt::format("rheo: --yeoh-start {}: {} is not free and keeps its value\n", path, p.path);
+      continue;
+    }
     double value = constants[slot];
     if (p.free) value = std::clamp(value, p.lower, p.upper);
     job.start_values[static_cast<std::size_t>(index)] = value;
@@ -201,7 +208,10 @@ runtime::FitResult run_fit_job(const FitJob& job) {
     try {
       return runtime::fit(start, job.free, job.data, settings);
     } catch (const std::invalid_argument& e) {
-      throw runtime::UsageError(fmt::format("cannot fit model '{}': {}", job.model->name, e.what()));
+      const std::string prefix = fmt::format("model '{}': ", job.model->name);
+      std::string why = e.what();
+      if (why.starts_with(prefix)) why.erase(0, prefix.size());  // said once, below
+      throw runtime::UsageError(fmt::format("cannot fit model '{}': {}", job.model->name, why));
     }
   }();
   if (show_progress) std::cerr << "\r" << std::string(100, ' ') << "\r" << std::flush;
