@@ -5,8 +5,10 @@
 #include <fmt/format.h>
 #include <nlopt.h>
 
+#include <algorithm>
 #include <cmath>
 #include <exception>
+#include <limits>
 #include <memory>
 
 namespace rheo::runtime {
@@ -50,6 +52,13 @@ struct Context {
   nlopt_opt opt;
   int evaluations = 0;
   int non_finite = 0;
+  double worst_finite = -std::numeric_limits<double>::infinity();
+
+  // What NLopt sees for a non-finite value: worse than anything finite seen so far by a margin,
+  // but not so huge that it wrecks the quadratic model of BOBYQA near the point.
+  double penalty() const {
+    return std::isfinite(worst_finite) ? worst_finite + 10.0 * std::max(std::abs(worst_finite), 1.0) : 1e300;
+  }
 };
 
 double trampoline(unsigned n, const double* x, double* gradient, void* data) noexcept {
@@ -59,9 +68,12 @@ double trampoline(unsigned n, const double* x, double* gradient, void* data) noe
     c->x.assign(x, x + n);
     ++c->evaluations;
     const double value = (*c->objective)(c->x);
-    if (std::isfinite(value)) return value;
+    if (std::isfinite(value)) {
+      c->worst_finite = std::max(c->worst_finite, value);
+      return value;
+    }
     ++c->non_finite;
-    return 1e300;
+    return c->penalty();
   } catch (...) {
     c->error = std::current_exception();
     nlopt_force_stop(c->opt);

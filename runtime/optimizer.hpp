@@ -3,8 +3,9 @@
 // The nlopt_opt handle lives in an RAII owner; every return code is checked and reported with
 // the name of the call; the objective is called through a noexcept trampoline that stores any
 // exception, forces NLopt to stop, and rethrows it after nlopt_optimize returns. A non-finite
-// objective value is replaced by +huge so that derivative-free methods back away from it, and
-// counted in the result.
+// objective value is replaced by a penalty, the worst finite value seen so far plus ten times
+// its magnitude (+1e300 before any finite one), so that derivative-free methods back away from
+// it without their local models being ruined; it is counted in the result.
 #pragma once
 
 #include <functional>

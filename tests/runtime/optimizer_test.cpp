@@ -43,3 +43,16 @@ TEST_CASE("non-finite objective values are backed away from and counted") {
   CHECK(r.x[0] == doctest::Approx(0.7).epsilon(1e-5));
   CHECK(std::isfinite(r.value));
 }
+
+TEST_CASE("a NaN region beside the start does not derail BOBYQA's model (finite penalty)") {
+  // Minimum 0.5 at (2, 2); NaN on the half-plane x0 < -1, which BOBYQA's first steps from the
+  // start (-0.8, 0) reach.
+  const Objective f = [](const std::vector<double>& x) {
+    if (x[0] < -1.0) return std::nan("");
+    return 0.5 + (x[0] - 2) * (x[0] - 2) + 4 * (x[1] - 2) * (x[1] - 2);
+  };
+  const auto r = minimize(f, {-0.8, 0.0}, {-5.0, -5.0}, {5.0, 5.0}, {});
+  CHECK(r.non_finite > 0);
+  CHECK(r.value == doctest::Approx(0.5).epsilon(1e-9));
+  CHECK(r.x[0] == doctest::Approx(2.0).epsilon(1e-5));
+}
