@@ -48,6 +48,7 @@ Command add_fit_command(CLI::App& app) {
   app.add_option("-o,--output", o->output, "Write the fitted model (.rheo, comments kept) here; needs exactly one fit to run");
   app.add_flag("--json", o->json, "Print the JSON summary instead of the text report");
   app.add_option("--model", o->model, "Fit only this model's fit blocks (or this model, when the file has none)");
+  app.add_option("--block", o->block, "Run only the N-th fit block of the file (1-based)")->check(CLI::PositiveNumber);
   // Defaults: the fit block's setting, else these (runtime::SearchSettings).
   const runtime::SearchSettings defaults;
   app.add_option("--method", o->method, "exact | approximate | corrected (thesis eqs. 5.5-5.21, Table 5.1); default exact");
@@ -72,7 +73,7 @@ Command add_fit_command(CLI::App& app) {
     std::vector<FitJob> jobs = fit_jobs(program, *o);
     if (!o->orders.empty()) return run_order_study(program, jobs, *o);
     if (!o->output.empty() && jobs.size() != 1)
-      throw runtime::UsageError(fmt::format("-o names one output but {} fits would run; select one with --model", jobs.size()));
+      throw runtime::UsageError(fmt::format("-o names one output but {} fits would run; select one with --model or --block N", jobs.size()));
     std::vector<std::string> json_reports;
     bool interrupted = false;
     for (std::size_t k = 0; k < jobs.size(); ++k) {

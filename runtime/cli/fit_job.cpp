@@ -178,10 +178,17 @@ std::vector<FitJob> fit_jobs(const lang::Program& program, const FitOptions& o) 
     if (!o.yeoh_start.empty()) set_yeoh_start(job, o.yeoh_start);
     jobs.push_back(std::move(job));
   };
-  for (const auto& block : program.fits)
-    if (o.model.empty() || block.model == o.model) add(*program.find_model(block.model), &block);
+  if (o.block > static_cast<int>(program.fits.size()))
+    throw runtime::UsageError(fmt::format("--block {}: {} has {} fit block(s)", o.block, o.file, program.fits.size()));
+  for (std::size_t k = 0; k < program.fits.size(); ++k) {
+    const lang::FitDirective& block = program.fits[k];
+    if ((o.model.empty() || block.model == o.model) && (o.block == 0 || o.block == static_cast<int>(k) + 1))
+      add(*program.find_model(block.model), &block);
+  }
   if (jobs.empty()) {
-    if (!program.fits.empty()) throw runtime::UsageError(fmt::format("{} has no fit block for model '{}'", o.file, o.model));
+    if (!program.fits.empty())
+      throw runtime::UsageError(fmt::format("{} has no fit block for model '{}'{}", o.file, o.model,
+                                            o.block > 0 ? fmt::format(" at --block {}", o.block) : std::string()));
     add(only_user_model(program, o), nullptr);
   }
   return jobs;

@@ -21,6 +21,7 @@ struct FitOptions {
   std::string output;
   bool json = false;
   std::string model;
+  int block = 0;            // 1-based index of the only fit block to run; 0: all
   std::string method;
   std::string optimizer;
   int max_evaluations = 0;  // 0: the block's or the default

@@ -359,4 +359,17 @@ TEST_CASE("command-line mistakes exit 2 and name the option") {
   CHECK(several.code == 2);
   CHECK(contains(several.err, "3 fits would run"));
   CHECK_FALSE(fs::exists(scratch() / "x.rheo"));
+  const Run beyond = run(fmt::format("fit {} --block 4", example("specimen_d_methods.rheo")));
+  CHECK(beyond.code == 2);
+  CHECK(contains(beyond.err, "--block 4: "));
+  CHECK(contains(beyond.err, "has 3 fit block(s)"));
+}
+
+TEST_CASE("--block N runs only the N-th fit block, so -o can name its output") {
+  const fs::path out = scratch() / "block2.rheo";
+  const Run r = run(fmt::format("fit {} --block 2 --json -o {}", example("specimen_d_methods.rheo"), out.string()));
+  REQUIRE(r.code == 0);
+  const json result = json::parse(r.out);
+  CHECK(result["method"] == "approximate");
+  CHECK(fs::exists(out));
 }
