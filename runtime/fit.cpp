@@ -1,5 +1,6 @@
 #include "runtime/fit.hpp"
 
+#include "runtime/fit_report.hpp"
 #include "runtime/yeoh_mean_curve.hpp"
 
 #include <fmt/format.h>
@@ -117,10 +118,8 @@ std::vector<double> yeoh_start(const Network& start, const std::vector<int>& fre
     if (std::find(free.begin(), free.end(), index) == free.end()) continue;
     const lang::Parameter& p = parameters[static_cast<std::size_t>(index)];
     values[static_cast<std::size_t>(index)] = std::clamp(constants[slot], p.lower, p.upper);
-    const auto unit = lang::parse_unit(p.unit);
-    const double scale = unit && !p.unit.empty() ? unit->scale : 1.0;
-    notes.push_back(fmt::format("start {} = {:.6g} {} from the mean curve of {} (eq. 5.32)", p.path, values[static_cast<std::size_t>(index)] / scale,
-                                p.unit.empty() ? lang::internal_unit(p.dimension) : p.unit, widest->path));
+    notes.push_back(fmt::format("start {} = {:.6g} {} from the mean curve of {} (eq. 5.32)", p.path,
+                                in_written_unit(p, values[static_cast<std::size_t>(index)]), written_unit(p), widest->path));
   }
   return values;
 }

@@ -71,7 +71,7 @@ Command add_fit_command(CLI::App& app) {
   return [o] {
     const lang::Program program = lang::load_program(o->file);
     std::vector<FitJob> jobs = fit_jobs(program, *o);
-    if (!o->orders.empty()) return run_order_study(program, jobs, *o);
+    if (!o->orders.empty()) return run_order_study(jobs, *o);
     if (!o->output.empty() && jobs.size() != 1)
       throw runtime::UsageError(fmt::format("-o names one output but {} fits would run; select one with --model or --block N", jobs.size()));
     std::vector<std::string> json_reports;

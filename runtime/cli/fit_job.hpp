@@ -49,6 +49,6 @@ std::vector<FitJob> fit_jobs(const lang::Program& program, const FitOptions& opt
 runtime::FitResult run_fit_job(const FitJob& job);
 
 // --orders: fits the job's model with every combination of element counts and prints a table.
-int run_order_study(const lang::Program& program, const std::vector<FitJob>& jobs, const FitOptions& options);
+int run_order_study(const std::vector<FitJob>& jobs, const FitOptions& options);
 
 }  // namespace rheo::cli

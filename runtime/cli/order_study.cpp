@@ -123,8 +123,7 @@ Spreads spreads_of(const std::vector<runtime::FitDataSet>& data) {
 
 }  // namespace
 
-int run_order_study(const lang::Program& program, const std::vector<FitJob>& jobs, const FitOptions& options) {
-  (void)program;
+int run_order_study(const std::vector<FitJob>& jobs, const FitOptions& options) {
   if (jobs.size() != 1) throw runtime::UsageError("--orders studies one fit; select it with --model");
   const FitJob& job = jobs.front();
   const lang::CheckedModel& model = *job.model;
