@@ -38,6 +38,12 @@ inline const std::vector<ElementSpec>& element_specs() {
       {"friction", ElementKind::friction, {{"k", dim::stiffness, true, "stiffness"}, {"fy", dim::force, true, "yield force"}},
        {{"uy", dim::length, true, "yield displacement"}}},
       {"slider", ElementKind::slider, {{"fy", dim::force, true, "yield force"}}, {}},
+      {"inerter", ElementKind::inerter, {{"b", dim::mass, true, "inertance"}}, {}},
+      {"quadratic_dashpot", ElementKind::quadratic_dashpot, {{"cq", dim::quadratic_damping, true, "quadratic damping"}}, {}},
+      {"gap", ElementKind::gap, {{"width", dim::length, true, "width"}}, {}},
+      {"bouc_wen", ElementKind::bouc_wen,
+       {{"k", dim::stiffness, true, "stiffness"}, {"n", dim::none, true, "loop-shape exponent"}, {"fy", dim::force, true, "yield force"}},
+       {{"uy", dim::length, true, "yield displacement"}}},
   };
   return specs;
 }

@@ -10,6 +10,10 @@ const char* kind_word(ElementKind kind) {
     case ElementKind::maxwell: return "maxwell";
     case ElementKind::friction: return "friction";
     case ElementKind::slider: return "slider";
+    case ElementKind::inerter: return "inerter";
+    case ElementKind::quadratic_dashpot: return "quadratic_dashpot";
+    case ElementKind::gap: return "gap";
+    case ElementKind::bouc_wen: return "bouc_wen";
     case ElementKind::parallel: return "parallel";
     case ElementKind::series: return "series";
   }

@@ -62,6 +62,11 @@ enum class ElementKind : std::uint8_t {
   maxwell,   // k [N/mm], c [N*s/mm]:   spring k in series with dashpot c (tau = c/k)   (eq. 2.3)
   friction,  // k [N/mm], fy [N]:       spring k in series with a slider slipping at |F| = fy (eq. 2.9)
   slider,    // fy [N]:                 rigid-plastic Coulomb slider, |F| <= fy
+  inerter,   // b [N*s^2/mm]:           two-terminal mass, F = b d2e/dt2 (a fluid column)
+  quadratic_dashpot,  // cq [N*s^2/mm^2]: turbulent channel flow, F = cq |de/dt| de/dt
+  gap,       // width [mm]:             free play: F = 0 for |e| < width/2, rigid at e = +-width/2
+  bouc_wen,  // k [N/mm], n [-], fy [N]: smooth friction, F = fy z,
+             //   dz/dt = (k/fy) de/dt (1 - |z|^n (1 + sgn(z de/dt)) / 2); n -> inf: friction(k, fy)
   parallel,  // children share the elongation; forces add
   series,    // children share the force; elongations add
 };
@@ -71,9 +76,10 @@ const char* kind_word(ElementKind kind);
 
 // Parameter slots of each leaf kind, in this order, as indices into CheckedModel::parameters.
 // The checker normalises alternatives: maxwell given tau stores c = k * tau (an Expression),
-// friction given uy stores fy = k * uy.
+// friction and bouc_wen given uy store fy = k * uy.
 //   spring: {k}   yeoh: {D10, D20, D30}   dashpot: {c}   maxwell: {k, c}
-//   friction: {k, fy}   slider: {fy}   parallel/series: {}
+//   friction: {k, fy}   slider: {fy}   inerter: {b}   quadratic_dashpot: {cq}   gap: {width}
+//   bouc_wen: {k, n, fy}   parallel/series: {}
 struct Element {
   ElementKind kind = ElementKind::parallel;
   std::string name;            // explicit or generated ("maxwell2"); unique in its naming scope

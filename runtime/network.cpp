@@ -27,6 +27,10 @@ NodeKind node_kind(ElementKind kind) {
     case ElementKind::maxwell: return NodeKind::maxwell;
     case ElementKind::friction: return NodeKind::friction;
     case ElementKind::slider: return NodeKind::slider;
+    case ElementKind::inerter: return NodeKind::inerter;
+    case ElementKind::quadratic_dashpot: return NodeKind::quadratic_dashpot;
+    case ElementKind::gap: return NodeKind::gap;
+    case ElementKind::bouc_wen: return NodeKind::bouc_wen;
     case ElementKind::parallel: return NodeKind::parallel;
     case ElementKind::series: return NodeKind::series;
   }

@@ -22,7 +22,9 @@
 
 namespace rheo::runtime {
 
-enum class NodeKind : std::uint8_t { spring, yeoh, dashpot, maxwell, friction, slider, parallel, series };
+enum class NodeKind : std::uint8_t {
+  spring, yeoh, dashpot, maxwell, friction, slider, inerter, quadratic_dashpot, gap, bouc_wen, parallel, series
+};
 
 // A node of a subtree below the root. Leaves carry parameter indices; blocks carry children.
 // Every subtree node owns two state slots: elongation e [mm] and force F [N] at the last step.
