@@ -16,6 +16,7 @@ struct ProtocolSpec {
 const std::vector<ProtocolSpec>& schema() {
   static const SettingSpec elements{"elements", Shape::identifier, dim::none, false, false, 0, 0, {"all", "none"}};
   static const SettingSpec format{"format", Shape::identifier, dim::none, false, false, 0, 0, {"csv", "json"}};
+  static const SettingSpec solver{"solver", Shape::identifier, dim::none, false, false, 0, 0, {"auto", "fixed", "sundials"}};
   static const std::vector<ProtocolSpec> protocols{
       {ProtocolKind::harmonic, "harmonic",
        {{"frequency", Shape::list, dim::frequency, true, true},
@@ -25,29 +26,29 @@ const std::vector<ProtocolSpec>& schema() {
         {"steps_per_cycle", Shape::integer, dim::none, false, false, 16, 4},
         {"cycles_max", Shape::integer, dim::none, false, false, 1},
         {"tolerance", Shape::number, dim::none, false, true},
-        elements, format}},
+        elements, format, solver}},
       {ProtocolKind::static_triangle, "static",
        {{"velocity", Shape::single, dim::velocity, true, true},
         {"amplitude", Shape::list, dim::length, true, true},
         {"cycles", Shape::integer, dim::none, false, false, 1},
         {"dt", Shape::single, dim::time, false, true},
-        elements, format}},
+        elements, format, solver}},
       {ProtocolKind::quasistatic, "quasistatic",
        {{"frequency", Shape::single, dim::frequency, true, true},
         {"amplitude", Shape::list, dim::length, true, true},
         {"cycles", Shape::integer, dim::none, false, false, 1},
         {"steps_per_cycle", Shape::integer, dim::none, false, false, 16, 4},
-        elements, format}},
+        elements, format, solver}},
       {ProtocolKind::history, "history",
        {{"file", Shape::string, dim::none, true},
         {"substeps", Shape::integer, dim::none, false, false, 1},
-        elements, format}},
+        elements, format, solver}},
       {ProtocolKind::step, "step",
        {{"amplitude", Shape::single, dim::length, true},
         {"duration", Shape::single, dim::time, true, true},
         {"dt", Shape::single, dim::time, false, true},
         {"rise", Shape::single, dim::time},
-        elements, format}},
+        elements, format, solver}},
   };
   return protocols;
 }

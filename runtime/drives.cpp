@@ -1,5 +1,6 @@
 #include "runtime/drives.hpp"
 
+#include "runtime/dae_protocols.hpp"
 #include "runtime/simulator.hpp"
 
 #include <cmath>
@@ -77,7 +78,8 @@ Drive refine(const Drive& drive, int substeps) {
   return d;
 }
 
-History run_history(const Network& network, const Drive& drive, bool elements) {
+History run_history(const Network& network, const Drive& drive, bool elements, SolverChoice solver) {
+  if (uses_sundials(network, solver)) return dae_history(network, drive, elements);
   const Simulator simulator(network);
   History h;
   const std::size_t n = drive.time.size();

@@ -4,6 +4,7 @@
 #pragma once
 
 #include "runtime/network.hpp"
+#include "runtime/solver_choice.hpp"
 
 #include <string>
 #include <vector>
@@ -34,6 +35,7 @@ struct History {
 
 // Simulates the drive from rest; sample 0 is the rest state. With `elements`, records every
 // element's force and elongation.
-History run_history(const Network& network, const Drive& drive, bool elements);
+History run_history(const Network& network, const Drive& drive, bool elements,
+                    SolverChoice solver = SolverChoice::automatic);
 
 }  // namespace rheo::runtime

@@ -1,5 +1,6 @@
 #include "runtime/harmonic.hpp"
 
+#include "runtime/dae_protocols.hpp"
 #include "runtime/periodic_closed_form.hpp"
 #include "runtime/simulator.hpp"
 
@@ -32,16 +33,27 @@ void set_periodic_start(const Network& network, const StepPlan& plan, double amp
     state.values[static_cast<std::size_t>(t.slider_state()) + i] = -c.slider_fy[i];
 }
 
+// Scales of the state variables of a cycle: forces by F^ [N], elongations by u0 [mm],
+// velocities by w u0 [mm/s], times by the period [s].
+struct CycleScales {
+  double force, length, velocity, time;
+  double of(StateScale kind) const {
+    switch (kind) {
+      case StateScale::force: return force;
+      case StateScale::length: return length;
+      case StateScale::velocity: return velocity;
+      case StateScale::time: return time;
+    }
+    return force;
+  }
+};
+
 // Largest change of any state variable over a cycle, relative to its scale.
 double cycle_change(const Topology& t, const std::vector<double>& start, const std::vector<double>& end,
-                    double force_scale, double length_scale) {
+                    const CycleScales& scales) {
   double change = 0.0;
-  const std::size_t tree_start = static_cast<std::size_t>(t.slider_state()) + t.sliders.size();
-  for (std::size_t i = 0; i < start.size(); ++i) {
-    const bool is_elongation = i >= tree_start && (i - tree_start) % 2 == 0;
-    const double scale = is_elongation ? length_scale : force_scale;
-    change = std::max(change, std::abs(end[i] - start[i]) / scale);
-  }
+  for (std::size_t i = 0; i < start.size(); ++i)
+    change = std::max(change, std::abs(end[i] - start[i]) / scales.of(t.state_scales[i]));
   return change;
 }
 
@@ -49,12 +61,13 @@ double cycle_change(const Topology& t, const std::vector<double>& start, const s
 
 HarmonicPoint simulate_harmonic_point(const Network& network, double amplitude, double frequency,
                                       const HarmonicOptions& options) {
+  if (uses_sundials(network, options.solver)) return dae_harmonic_point(network, amplitude, frequency, options);
   if (options.steady_state != SteadyState::time_stepping) {
     if (has_closed_form_periodic_state(network))
       return closed_form_harmonic_point(network, amplitude, frequency, options.definition);
     if (options.steady_state == SteadyState::closed_form)
       throw std::invalid_argument(fmt::format(
-          "model '{}' has nested series/parallel blocks, which have no closed-form periodic state; use steady_state = time_stepping (or auto)",
+          "model '{}' has nested series/parallel blocks or inerter, quadratic_dashpot, gap or bouc_wen elements, which have no closed-form periodic state; use steady_state = time_stepping (or auto)",
           network.model().name));
   }
   const int n = options.steps_per_cycle;
@@ -64,7 +77,7 @@ HarmonicPoint simulate_harmonic_point(const Network& network, double amplitude, 
   const Simulator simulator(network);
   const StepPlan plan = StepPlan::make(network, dt);
   const bool midpoints = network.topology().has_rate_jump;
-  const StepPlan half_plan = midpoints ? StepPlan::make(network, 0.5 * dt) : StepPlan{};
+  const StepPlan half_plan = midpoints ? StepPlan::make(network, 0.5 * dt, dt) : StepPlan{};
 
   State state = simulator.rest_state();
   set_periodic_start(network, plan, amplitude, n, state);
@@ -101,7 +114,8 @@ HarmonicPoint simulate_harmonic_point(const Network& network, double amplitude, 
     point.measures = measure_cycle(samples, amplitude, options.definition);
     point.cycles = cycle;
     const double force_scale = std::max(point.measures.force_amplitude, std::numeric_limits<double>::min());
-    const double change = cycle_change(network.topology(), cycle_start.values, state.values, force_scale, amplitude);
+    const CycleScales scales{force_scale, amplitude, omega * amplitude, period};
+    const double change = cycle_change(network.topology(), cycle_start.values, state.values, scales);
     const double rate = change / previous_change;
     const double remaining = rate < 1.0 ? change * rate / (1.0 - rate) : change;
     previous_change = change;

@@ -19,6 +19,7 @@
 
 #include "runtime/cycle_measures.hpp"
 #include "runtime/network.hpp"
+#include "runtime/solver_choice.hpp"
 
 #include <vector>
 
@@ -36,6 +37,7 @@ struct HarmonicOptions {
   int steps_per_cycle = 2048;  // N, a multiple of 4 so that the turning points are sampled
   int max_cycles = 400;
   double tolerance = 1e-9;
+  SolverChoice solver = SolverChoice::automatic;
 };
 
 struct HarmonicPoint {

@@ -90,15 +90,22 @@ struct TreeBuilder {
   Topology& topology;
   int next_state;
 
-  // Appends the subtree rooted at proto; returns its node index.
-  int add(const Proto& proto) {
+  // Appends the subtree rooted at proto; returns its node index. `prescribed`: a root-block
+  // inerter, whose elongation is the drive.
+  int add(const Proto& proto, bool prescribed = false) {
     const int index = static_cast<int>(topology.nodes.size());
     topology.nodes.push_back({});
     TreeNode node;
     node.kind = proto.kind;
     for (int i = 0; i < 3; ++i) node.param[i] = proto.param[i];
+    node.drive_prescribed = prescribed && proto.kind == NodeKind::inerter;
     node.state = next_state;
-    next_state += 2;
+    node.slots = proto.kind != NodeKind::inerter ? 2 : node.drive_prescribed ? 6 : 3;
+    next_state += node.slots;
+    using S = StateScale;
+    topology.state_scales.insert(topology.state_scales.end(), {S::length, S::force});
+    if (node.slots == 3) topology.state_scales.push_back(S::velocity);
+    if (node.slots == 6) topology.state_scales.insert(topology.state_scales.end(), {S::velocity, S::velocity, S::time, S::time});
     if (proto.probe >= 0) {
       auto& probe = topology.probes[static_cast<std::size_t>(proto.probe)];
       probe.index = index;
@@ -133,10 +140,13 @@ struct TreeBuilder {
 };
 
 // A force jump with the drive rate needs a dashpot reachable from the terminal without a
-// compliant (spring-like) member in series.
+// compliant (spring-like) member in series. Sliders, gaps and inerters in series pass a rate
+// jump on (rigid while stuck, in contact, or to a velocity jump). An inerter's own force is
+// an estimate at the step end (leaf_kernels.hpp), so it does not ask for midpoint sampling.
 bool rate_jump(const Proto& p) {
   switch (p.kind) {
-    case NodeKind::dashpot: return true;
+    case NodeKind::dashpot:
+    case NodeKind::quadratic_dashpot: return true;
     case NodeKind::parallel:
       for (const auto& c : p.children)
         if (rate_jump(c)) return true;
@@ -144,7 +154,7 @@ bool rate_jump(const Proto& p) {
     case NodeKind::series: {
       bool any = false;
       for (const auto& c : p.children) {
-        if (c.kind == NodeKind::slider) continue;
+        if (c.kind == NodeKind::slider || c.kind == NodeKind::gap || c.kind == NodeKind::inerter) continue;
         if (!rate_jump(c)) return false;
         any = true;
       }
@@ -158,7 +168,8 @@ bool linear(const Proto& p) {
   switch (p.kind) {
     case NodeKind::spring:
     case NodeKind::dashpot:
-    case NodeKind::maxwell: return true;
+    case NodeKind::maxwell:
+    case NodeKind::inerter: return true;
     case NodeKind::parallel:
     case NodeKind::series:
       for (const auto& c : p.children)
@@ -167,6 +178,77 @@ bool linear(const Proto& p) {
     default: return false;
   }
 }
+
+// See network.hpp: members that take up a velocity jump of their ends with a bounded force.
+bool compliant(const Proto& p) {
+  switch (p.kind) {
+    case NodeKind::slider:
+    case NodeKind::gap:
+    case NodeKind::inerter: return false;
+    case NodeKind::parallel:
+      for (const auto& c : p.children)
+        if (!compliant(c)) return false;
+      return true;
+    case NodeKind::series:
+      for (const auto& c : p.children)
+        if (compliant(c)) return true;
+      return false;
+    default: return true;
+  }
+}
+
+// Enforces the placement rules of network.hpp. `driven`: nothing compliant lies in series
+// between p and the drive; `root_level`: p is a leaf of the root parallel block.
+struct PlacementCheck {
+  const lang::CheckedModel& model;
+  const std::vector<ElementProbe>& probes;
+
+  const std::string& path(const Proto& p) const { return probes[static_cast<std::size_t>(p.probe)].path; }
+  double value(const Proto& p) const { return model.parameters[static_cast<std::size_t>(p.param[0])].value; }
+
+  [[noreturn]] void gap_error(const Proto& p, const char* where) const {
+    throw std::invalid_argument(fmt::format(
+        "model '{}': gap '{}' {}; a gap must be in series with a compliant element (a spring, yeoh, dashpot, maxwell, "
+        "friction, bouc_wen or quadratic_dashpot): write series {{ gap {} (width = {:g} mm); spring (k = ...) }}",
+        model.name, path(p), where, path(p), value(p)));
+  }
+  [[noreturn]] void inerter_error(const Proto& p) const {
+    throw std::invalid_argument(fmt::format(
+        "model '{}': inerter '{}' is connected to the drive through sliders, gaps or inerters only (or parallel blocks "
+        "holding one), so a change of the "
+        "drive velocity while they hold would be an impact (an unbounded force); put a compliant element (a spring, "
+        "dashpot, maxwell, ...) in series with it, e.g. series {{ spring (k = ...); inerter {} (b = {:g} N*s^2/mm) }}, "
+        "or place it directly in the model's parallel block",
+        model.name, path(p), path(p), value(p)));
+  }
+
+  void visit(const Proto& p, bool driven, bool root_level) const {
+    switch (p.kind) {
+      case NodeKind::gap: gap_error(p, root_level ? "is in the model's parallel block" : "is inside a parallel block");
+      case NodeKind::inerter:
+        if (driven && !root_level) inerter_error(p);
+        return;
+      case NodeKind::parallel:
+        for (const auto& c : p.children) visit(c, driven, false);
+        return;
+      case NodeKind::series: {
+        int compliant_members = 0;
+        for (const auto& c : p.children) compliant_members += compliant(c) ? 1 : 0;
+        for (const auto& c : p.children) {
+          if (c.kind == NodeKind::gap) {
+            if (compliant_members == 0)
+              gap_error(c, "is in a series chain with no compliant member (only sliders, gaps, inerters, or parallel blocks holding one)");
+            continue;
+          }
+          const int others = compliant_members - (compliant(c) ? 1 : 0);
+          visit(c, driven && others == 0, false);
+        }
+        return;
+      }
+      default: return;
+    }
+  }
+};
 
 Coefficients make_coefficients(const Topology& t, const std::vector<double>& p) {
   auto at = [&](int i) { return p[static_cast<std::size_t>(i)]; };
@@ -204,6 +286,8 @@ Network Network::compile(const lang::CheckedModel& model) {
   std::vector<Proto> branches;
   if (root.kind == NodeKind::parallel) branches = std::move(root.children);
   else branches.push_back(std::move(root));
+  const PlacementCheck placement{model, topology->probes};
+  for (const auto& b : branches) placement.visit(b, true, !b.is_block());
 
   std::vector<const Proto*> trees;
   for (const auto& b : branches) {
@@ -242,7 +326,8 @@ Network Network::compile(const lang::CheckedModel& model) {
     }
   }
   TreeBuilder builder{*topology, topology->slider_state() + static_cast<int>(topology->sliders.size())};
-  for (const Proto* tree : trees) topology->subtrees.push_back(builder.add(*tree));
+  topology->state_scales.assign(static_cast<std::size_t>(builder.next_state), StateScale::force);
+  for (const Proto* tree : trees) topology->subtrees.push_back(builder.add(*tree, true));
   topology->state_size = builder.next_state;
 
   Network network;

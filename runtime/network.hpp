@@ -9,13 +9,26 @@
 //  - a series chain holding exactly one spring and one dashpot fuses them into a Maxwell
 //    member, so that it gets the exact exponential update (eq. 2.7) rather than an implicit one;
 //  - leaves directly in the root parallel block are grouped by kind into flat arrays
-//    (the hot loop of the thesis models); everything else is a subtree solved by TreeSolver.
+//    (the hot loop of the thesis models); everything else, and every inerter,
+//    quadratic_dashpot, gap and bouc_wen leaf even in the root block (a one-node subtree),
+//    is a subtree solved by TreeSolver.
 // Internal nodes are the junctions inside series chains: a chain of m members has m-1.
+//
+// Placement rules (std::invalid_argument naming the element, with advice, otherwise):
+//  - a gap is a direct member of a series chain with at least one compliant member;
+//  - an inerter below the root block has a compliant member in series with it (in some
+//    enclosing chain), so that it is never rigidly driven: a velocity jump of the drive would
+//    be an impact (an unbounded force), and the implicit inerter relation is unstable as a
+//    differentiator. In the root block it is driven directly (drive_prescribed below).
+// Compliant: spring, yeoh, dashpot, maxwell, friction, bouc_wen or quadratic_dashpot; a
+// parallel block of compliant members; a series chain with a compliant member. Not compliant:
+// slider, gap, inerter (rigid while stuck, in contact, or to a velocity jump).
 #pragma once
 
 #include "lang/model.hpp"
 
 #include <array>
+#include <cstdint>
 #include <memory>
 #include <string>
 #include <vector>
@@ -27,15 +40,24 @@ enum class NodeKind : std::uint8_t {
 };
 
 // A node of a subtree below the root. Leaves carry parameter indices; blocks carry children.
-// Every subtree node owns two state slots: elongation e [mm] and force F [N] at the last step.
+// Every subtree node owns `slots` consecutive state slots at `state`: elongation e [mm] and
+// force F [N] at the last step, then
+//   inerter (Newmark):           v [mm/s], the velocity at the last step;
+//   inerter (drive_prescribed):  r0, r1 [mm/s], the mean rates of the last two steps, and
+//                                h0, h1 [s], their lengths (0: at rest before the drive began).
 struct TreeNode {
   NodeKind kind = NodeKind::parallel;
   int first_child = 0;  // into Topology::children
   int child_count = 0;
   int param[3] = {-1, -1, -1};
-  int state = -1;             // offset of (e, F) in State::values
+  int state = -1;             // offset of (e, F, ...) in State::values
+  int slots = 2;
   bool rigid_when_stuck = false;  // force is set-valued at zero elongation rate (sliders)
+  bool drive_prescribed = false;  // an inerter in the root block: its elongation is the drive
 };
+
+// What a state slot holds, for scaling its change (harmonic steady-state detection).
+enum class StateScale : std::uint8_t { force, length, velocity, time };
 
 // Where the force and elongation of an element the user wrote are read from.
 struct ElementProbe {
@@ -65,13 +87,16 @@ struct Topology {
   std::vector<ElementProbe> probes;  // one per element the user wrote, in source order
 
   int internal_nodes = 0;  // junctions inside series chains
-  int state_size = 0;      // maxwell F, friction F, slider F, then 2 per tree node
+  int state_size = 0;      // maxwell F, friction F, slider F, then TreeNode::slots per tree node
+  std::vector<StateScale> state_scales;  // one per slot
   int maxwell_state() const { return 0; }
   int friction_state() const { return static_cast<int>(maxwells.size()); }
   int slider_state() const { return friction_state() + static_cast<int>(frictions.size()); }
 
-  bool has_rate_jump = false;  // force can jump with the drive rate (a dashpot with no spring in series)
-  bool is_linear = false;      // only springs, dashpots and Maxwell elements
+  // The force can jump with the drive rate: a dashpot or quadratic_dashpot with nothing in
+  // series but members rigid to a rate jump (sliders, gaps, inerters).
+  bool has_rate_jump = false;
+  bool is_linear = false;      // only springs, dashpots, Maxwell elements and inerters
 };
 
 // Numbers derived from parameter values, laid out per root group (flat arrays for the kernels).

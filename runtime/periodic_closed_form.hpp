@@ -38,7 +38,8 @@
 
 namespace rheo::runtime {
 
-// True when every element is a leaf of the root parallel block (no subtree).
+// True when every element is a leaf of the root parallel block (no subtree). Inerter,
+// quadratic_dashpot, gap and bouc_wen leaves are always subtrees, so never.
 bool has_closed_form_periodic_state(const Network& network);
 
 // Requires has_closed_form_periodic_state(network), amplitude > 0 [mm], frequency > 0 [Hz].

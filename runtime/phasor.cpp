@@ -13,6 +13,7 @@ std::optional<Complex> compose(const lang::Element& e, const std::vector<double>
   switch (e.kind) {
     case lang::ElementKind::spring: return Complex{at(0), 0.0};
     case lang::ElementKind::dashpot: return i * omega * at(0);
+    case lang::ElementKind::inerter: return Complex{-at(0) * omega * omega, 0.0};
     case lang::ElementKind::maxwell: {
       const double k = at(0), tau = at(1) / k;
       return k * i * omega * tau / (1.0 + i * omega * tau);

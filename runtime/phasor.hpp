@@ -1,7 +1,8 @@
-// Complex dynamic stiffness K*(w) of a linear network (springs, dashpots, Maxwell elements in
-// any series/parallel nesting), composed directly from the checked element tree:
+// Complex dynamic stiffness K*(w) of a linear network (springs, dashpots, Maxwell elements and
+// inerters in any series/parallel nesting), composed directly from the checked element tree:
 //   spring k                      K* = k
 //   dashpot c                     K* = i w c
+//   inerter b                     K* = -b w^2
 //   Maxwell k, tau = c/k          K* = k i w tau / (1 + i w tau)         (eq. 5.11, B.58)
 //   parallel                      K* = sum K*_i                          (eq. 2.1, C.9)
 //   series                        K* = 1 / sum (1 / K*_i)
@@ -17,7 +18,8 @@
 
 namespace rheo::runtime {
 
-// nullopt when the network holds a non-linear element (yeoh, friction, slider).
+// nullopt when the network holds a non-linear element (yeoh, friction, slider,
+// quadratic_dashpot, gap, bouc_wen).
 std::optional<std::complex<double>> complex_stiffness(const lang::CheckedModel& model,
                                                       const std::vector<double>& parameter_values, double frequency);
 

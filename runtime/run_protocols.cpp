@@ -2,6 +2,7 @@
 
 #include "runtime/drives.hpp"
 #include "runtime/errors.hpp"
+#include "runtime/dae_protocols.hpp"
 #include "runtime/harmonic.hpp"
 #include "runtime/history_csv.hpp"
 #include "runtime/output.hpp"
@@ -47,11 +48,19 @@ const char* protocol_name(lang::ProtocolKind kind) {
   return "?";
 }
 
+namespace {
+// Histories name the backend in their header when it is not the fixed-step one.
+std::string solver_note(const Network& network, SolverChoice solver) {
+  return uses_sundials(network, solver) ? fmt::format(" solver=sundials (IDA, rtol {:g})", kDaeRelativeTolerance) : std::string();
+}
+}  // namespace
+
 ProtocolRun run_protocol(const Network& network, const Protocol& p, const std::string& source_file) {
   ProtocolRun run;
   run.destination = p.output;
   ResultHeader header{network.model().name, source_file, protocol_name(p.kind)};
   const bool elements = word(p, "elements", "none") == "all";
+  const SolverChoice solver = parse_solver_choice(word(p, "solver", "auto")).value_or(SolverChoice::automatic);
   switch (p.kind) {
     case lang::ProtocolKind::harmonic: {
       HarmonicOptions options;
@@ -64,12 +73,16 @@ ProtocolRun run_protocol(const Network& network, const Protocol& p, const std::s
       options.steps_per_cycle = static_cast<int>(number(p, "steps_per_cycle", options.steps_per_cycle));
       options.max_cycles = static_cast<int>(number(p, "cycles_max", options.max_cycles));
       options.tolerance = number(p, "tolerance", options.tolerance);
+      options.solver = solver;
       if (options.steady_state == SteadyState::closed_form && !has_closed_form_periodic_state(network))
         throw UsageError(fmt::format("{}:{}:{}: steady_state = closed_form needs every element of model '{}' in its parallel body; "
                                      "it has nested blocks: use steady_state = auto or time_stepping",
                                      p.where.file, p.where.line, p.where.column, network.model().name));
       const auto points = simulate_harmonic_grid(network, numbers(p, "amplitude"), numbers(p, "frequency"), options);
-      header.protocol = options.steady_state != SteadyState::time_stepping && has_closed_form_periodic_state(network)
+      header.protocol = uses_sundials(network, solver)
+                            ? fmt::format("harmonic solver=sundials (IDA, rtol {:g}) samples_per_cycle={} tolerance={:g}",
+                                          kDaeRelativeTolerance, options.steps_per_cycle, std::max(options.tolerance, 100.0 * kDaeRelativeTolerance))
+                        : options.steady_state != SteadyState::time_stepping && has_closed_form_periodic_state(network)
                             ? std::string("harmonic steady_state=closed_form")
                             : fmt::format("harmonic steady_state=time_stepping steps_per_cycle={} tolerance={:g}",
                                           options.steps_per_cycle, options.tolerance);
@@ -112,7 +125,8 @@ ProtocolRun run_protocol(const Network& network, const Protocol& p, const std::s
         drive = std::move(fine);
       }
       header.protocol = fmt::format("static velocity={:g} mm/s cycles={}", velocity, cycles);
-      const History h = run_history(network, drive, elements);
+      header.protocol += solver_note(network, solver);
+      const History h = run_history(network, drive, elements, solver);
       run.points = static_cast<int>(h.time.size());
       run.content = render_history(p, header, h);
       return run;
@@ -122,7 +136,8 @@ ProtocolRun run_protocol(const Network& network, const Protocol& p, const std::s
       const int steps = static_cast<int>(number(p, "steps_per_cycle", 400));
       const double frequency = number(p, "frequency", 0.0);
       header.protocol = fmt::format("quasistatic frequency={:g} Hz cycles={}", frequency, cycles);
-      const History h = run_history(network, quasistatic_sine(numbers(p, "amplitude"), frequency, cycles, steps), elements);
+      header.protocol += solver_note(network, solver);
+      const History h = run_history(network, quasistatic_sine(numbers(p, "amplitude"), frequency, cycles, steps), elements, solver);
       run.points = static_cast<int>(h.time.size());
       run.content = render_history(p, header, h);
       return run;
@@ -132,7 +147,8 @@ ProtocolRun run_protocol(const Network& network, const Protocol& p, const std::s
       if (file.is_relative()) file = std::filesystem::path(source_file).parent_path() / file;
       const Drive drive = refine(drive_from_table(read_table(file.string())), static_cast<int>(number(p, "substeps", 1)));
       header.protocol = fmt::format("history file={}", file.string());
-      const History h = run_history(network, drive, elements);
+      header.protocol += solver_note(network, solver);
+      const History h = run_history(network, drive, elements, solver);
       run.points = static_cast<int>(h.time.size());
       run.content = render_history(p, header, h);
       return run;
@@ -142,7 +158,8 @@ ProtocolRun run_protocol(const Network& network, const Protocol& p, const std::s
       const double dt = number(p, "dt", duration / 1000.0);
       const double amplitude = number(p, "amplitude", 0.0);
       header.protocol = fmt::format("step amplitude={:g} mm duration={:g} s", amplitude, duration);
-      const History h = run_history(network, step_relaxation(amplitude, number(p, "rise", dt), duration, dt), elements);
+      header.protocol += solver_note(network, solver);
+      const History h = run_history(network, step_relaxation(amplitude, number(p, "rise", dt), duration, dt), elements, solver);
       run.points = static_cast<int>(h.time.size());
       run.content = render_history(p, header, h);
       return run;

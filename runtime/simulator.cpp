@@ -4,7 +4,7 @@
 
 namespace rheo::runtime {
 
-StepPlan StepPlan::make(const Network& network, double dt) {
+StepPlan StepPlan::make(const Network& network, double dt, double piece) {
   StepPlan plan;
   plan.dt = dt;
   const Coefficients& c = network.coefficients();
@@ -14,7 +14,7 @@ StepPlan StepPlan::make(const Network& network, double dt) {
     plan.maxwell_b.push_back(m.b);
   }
   plan.dashpot_c_over_dt = c.dashpot_c / dt;
-  plan.tree.prepare(network, dt);
+  plan.tree.prepare(network, dt, piece > dt ? piece : dt);
   return plan;
 }
 

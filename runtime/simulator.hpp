@@ -31,7 +31,9 @@ struct StepPlan {
   std::vector<double> maxwell_a, maxwell_b;  // root Maxwell elements: F <- a F + b du
   double dashpot_c_over_dt = 0.0;            // N/mm
   TreeStepPlan tree;
-  static StepPlan make(const Network& network, double dt);
+  // `piece`: the length of the linear piece of the drive that the step begins, when longer
+  // than dt (see TreeStepPlan); 0: dt.
+  static StepPlan make(const Network& network, double dt, double piece = 0.0);
 };
 
 class Simulator {

@@ -45,7 +45,8 @@ ThesisElements thesis_elements(const Network& network) {
       case S::tree_maxwell_dashpot:
         if (is_subtree_root(t, probe.index)) break;  // a spring + dashpot pair in the root block
         reject(network, probe, "sits inside a nested series/parallel block");
-      case S::tree_node: reject(network, probe, "sits inside a nested series/parallel block");
+      case S::tree_node:  // a subtree root is an inerter, quadratic_dashpot, gap or bouc_wen leaf
+        reject(network, probe, is_subtree_root(t, probe.index) ? "is not covered" : "sits inside a nested series/parallel block");
     }
   }
   e.elastic = c.spring_k;

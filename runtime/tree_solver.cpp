@@ -41,15 +41,32 @@ Interval combine_children(const Solver& solver, const TreeNode& n, bool intersec
 }
 }  // namespace
 
-void TreeStepPlan::prepare(const Network& network, double dt) {
+void TreeStepPlan::prepare(const Network& network, double step, double piece_length) {
   const auto& nodes = network.topology().nodes;
+  dt = step;
+  piece = piece_length;
   maxwell.assign(nodes.size(), MaxwellStep{0.0, 0.0});
-  c_over_dt.assign(nodes.size(), 0.0);
+  coefficient.assign(nodes.size(), 0.0);
   for (std::size_t i = 0; i < nodes.size(); ++i) {
     const TreeNode& n = nodes[i];
-    if (n.kind == NodeKind::maxwell) maxwell[i] = MaxwellStep::make(network.parameter(n.param[0]), network.parameter(n.param[1]), dt);
-    if (n.kind == NodeKind::dashpot) c_over_dt[i] = network.parameter(n.param[0]) / dt;
+    auto p = [&](int slot) { return network.parameter(n.param[slot]); };
+    switch (n.kind) {
+      case NodeKind::maxwell: maxwell[i] = MaxwellStep::make(p(0), p(1), dt); break;
+      case NodeKind::dashpot: coefficient[i] = p(0) / dt; break;
+      case NodeKind::quadratic_dashpot: coefficient[i] = p(0) / (dt * dt); break;
+      case NodeKind::inerter: coefficient[i] = 4.0 * p(0) / (dt * dt); break;
+      default: break;
+    }
   }
+}
+
+ForceSlope TreeSolver::inerter(int node, double de) const {
+  const TreeNode& n = at(node);
+  if (n.drive_prescribed) {
+    const auto rule = PrescribedInerter::make(plan_.dt, plan_.piece, slot_before(n, 4), slot_before(n, 5));
+    return rule(p(n, 0), plan_.dt, slot_before(n, 2), slot_before(n, 3), de);
+  }
+  return InerterStep{coefficient(node), plan_.dt}(f_before(n), slot_before(n, 2), de);
 }
 
 ForceSlope TreeSolver::forward(int node, double de) const {
@@ -61,7 +78,11 @@ ForceSlope TreeSolver::forward(int node, double de) const {
       const double e = e_before(n) + de;
       return {law.force(e), law.slope(e)};
     }
-    case NodeKind::dashpot: return dashpot_step(plan_.c_over_dt[static_cast<std::size_t>(node)], de);
+    case NodeKind::dashpot: return dashpot_step(coefficient(node), de);
+    case NodeKind::quadratic_dashpot: return quadratic_dashpot_step(coefficient(node), de);
+    case NodeKind::inerter: return inerter(node, de);
+    case NodeKind::bouc_wen: return BoucWenLaw{p(n, 0), p(n, 1), p(n, 2)}.step(f_before(n), de);
+    case NodeKind::gap: return {0.0, 0.0};  // only ever inverted (a direct member of a chain)
     case NodeKind::maxwell: return plan_.maxwell[static_cast<std::size_t>(node)](f_before(n), de);
     case NodeKind::friction: return friction_step(p(n, 0), p(n, 1), f_before(n), de);
     case NodeKind::slider: {
@@ -81,6 +102,7 @@ Interval TreeSolver::bounds(int node) const {
   switch (n.kind) {
     case NodeKind::friction: return {-p(n, 1), p(n, 1)};
     case NodeKind::slider: return {-p(n, 0), p(n, 0)};
+    case NodeKind::bouc_wen: return {-p(n, 2), p(n, 2)};  // approached, never reached
     case NodeKind::parallel:
     case NodeKind::series:
       return combine_children(*this, n, n.kind == NodeKind::series, [&](int c) { return bounds(c); });
@@ -113,8 +135,20 @@ ForceSlope TreeSolver::inverse(int node, double force) const {
       return {e - e_before(n), 1.0 / law.slope(e)};
     }
     case NodeKind::dashpot: {
-      const double b = plan_.c_over_dt[static_cast<std::size_t>(node)];
+      const double b = coefficient(node);
       return {force / b, 1.0 / b};
+    }
+    case NodeKind::quadratic_dashpot: return quadratic_dashpot_inverse(coefficient(node), force);
+    case NodeKind::inerter: {
+      if (!n.drive_prescribed)
+        return InerterStep{coefficient(node), plan_.dt}.inverse(f_before(n), slot_before(n, 2), force);
+      const ForceSlope at_rest = inerter(node, 0.0);  // linear in de
+      return {(force - at_rest.force) / at_rest.slope, 1.0 / at_rest.slope};
+    }
+    case NodeKind::bouc_wen: return BoucWenLaw{p(n, 0), p(n, 1), p(n, 2)}.inverse(f_before(n), force);
+    case NodeKind::gap: {  // at an end stop; at F = 0 it holds (chains resolve the play first)
+      const double h = 0.5 * p(n, 0);
+      return {(force > 0.0 ? h : force < 0.0 ? -h : std::clamp(e_before(n), -h, h)) - e_before(n), 0.0};
     }
     case NodeKind::maxwell: {
       const MaxwellStep& m = plan_.maxwell[static_cast<std::size_t>(node)];
@@ -145,10 +179,16 @@ ForceSlope TreeSolver::series_force(int node, double de) const {
     return ForceSlope{e.force - de, e.slope};
   };
   const double tol = kRelTol * (std::abs(de) + std::abs(e_before(n)) + 1e-9);
+  Interval domain = cap;
+  if (has_gap(n)) {  // inside the play the chain is free; beyond it the force has de's side
+    const Interval free = play(n);
+    if (de >= free.lo && de <= free.hi) return {0.0, 0.0};
+    (de > free.hi ? domain.lo : domain.hi) = 0.0;
+  }
   if (std::isfinite(cap.hi) && residual(cap.hi).force <= 0.0) return {cap.hi, 0.0};
   if (std::isfinite(cap.lo) && residual(cap.lo).force >= 0.0) return {cap.lo, 0.0};
-  const double start = std::clamp(f_before(n), cap.lo, cap.hi);
-  const double force = solve_monotone(residual, start, 1.0, cap.lo, cap.hi, tol);
+  const double start = std::clamp(f_before(n), domain.lo, domain.hi);
+  const double force = solve_monotone(residual, start, 1.0, domain.lo, domain.hi, tol);
   const double compliance = inverse(node, force).slope;
   return {force, compliance > 0.0 ? 1.0 / compliance : kInf};
 }
@@ -176,10 +216,72 @@ ForceSlope TreeSolver::parallel_elongation(int node, double force) const {
   return {de, stiffness > 0.0 ? 1.0 / stiffness : kInf};
 }
 
+bool TreeSolver::has_gap(const TreeNode& n) const {
+  for (int i = 0; i < n.child_count; ++i)
+    if (at(child(n, i)).kind == NodeKind::gap) return true;
+  return false;
+}
+
+Interval TreeSolver::play(const TreeNode& n) const {
+  Interval r{0.0, 0.0};
+  for (int i = 0; i < n.child_count; ++i) {
+    const TreeNode& c = at(child(n, i));
+    if (c.kind == NodeKind::gap) {
+      const double h = 0.5 * p(c, 0);
+      r.lo += -h - e_before(c);
+      r.hi += h - e_before(c);
+    } else {
+      const double d = inverse(child(n, i), 0.0).force;
+      r.lo += d;
+      r.hi += d;
+    }
+  }
+  return r;
+}
+
+// F = 0 inside the play: the other members take their zero-force elongations, the gaps share
+// the rest in order within their play, and the last gap takes the rounding remainder.
+void TreeSolver::assign_play(const TreeNode& n, double de, double* after) const {
+  double rest = de;
+  int last_gap = -1;
+  for (int i = 0; i < n.child_count; ++i)
+    if (at(child(n, i)).kind != NodeKind::gap) rest -= inverse(child(n, i), 0.0).force;
+    else last_gap = child(n, i);
+  for (int i = 0; i < n.child_count; ++i) {
+    const int c = child(n, i);
+    const TreeNode& m = at(c);
+    if (m.kind != NodeKind::gap) {
+      assign(c, inverse(c, 0.0).force, 0.0, after);
+      continue;
+    }
+    const double h = 0.5 * p(m, 0);
+    const double share = c == last_gap ? rest : std::clamp(rest, -h - e_before(m), h - e_before(m));
+    after[m.state] = e_before(m) + share;
+    after[m.state + 1] = 0.0;
+    rest -= share;
+  }
+}
+
 void TreeSolver::assign(int node, double de, double force, double* after) const {
   const TreeNode& n = at(node);
   after[n.state] = e_before(n) + de;
   after[n.state + 1] = force;
+  if (n.kind == NodeKind::inerter) {
+    if (n.drive_prescribed) {
+      after[n.state + 2] = de / plan_.dt;
+      after[n.state + 3] = slot_before(n, 2);
+      after[n.state + 4] = plan_.dt;
+      after[n.state + 5] = slot_before(n, 4);
+    } else {
+      after[n.state + 2] = InerterStep{coefficient(node), plan_.dt}.velocity_after(slot_before(n, 2), de);
+    }
+    return;
+  }
+  if (n.kind == NodeKind::gap) {  // exactly at the stop when loaded
+    const double h = 0.5 * p(n, 0);
+    after[n.state] = force > 0.0 ? h : force < 0.0 ? -h : std::clamp(after[n.state], -h, h);
+    return;
+  }
   if (n.kind == NodeKind::parallel) {
     if (de != 0.0 || !n.rigid_when_stuck) {
       for (int i = 0; i < n.child_count; ++i) assign(child(n, i), de, forward(child(n, i), de).force, after);
@@ -206,6 +308,10 @@ void TreeSolver::assign(int node, double de, double force, double* after) const 
     return;
   }
   if (n.kind == NodeKind::series) {
+    if (force == 0.0 && has_gap(n)) {
+      assign_play(n, de, after);
+      return;
+    }
     // Members take their elongation at the common force; at the cap, the first member whose
     // bound is reached slips and takes what the others leave.
     const Interval cap = bounds(node);
@@ -221,8 +327,9 @@ void TreeSolver::assign(int node, double de, double force, double* after) const 
       }
       taken += inverse(c, force).force;
     }
-    if (slipping < 0) {  // interior: give the rounding remainder to the last member
-      slipping = child(n, n.child_count - 1);
+    if (slipping < 0) {  // interior: give the rounding remainder to the last member not a gap
+      for (int i = n.child_count - 1; i >= 0 && slipping < 0; --i)
+        if (at(child(n, i)).kind != NodeKind::gap) slipping = child(n, i);
       taken -= inverse(slipping, force).force;
     }
     for (int i = 0; i < n.child_count; ++i) {

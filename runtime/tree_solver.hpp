@@ -10,10 +10,16 @@
 // up de below the cap, the capped member slips and absorbs the rest: the return mapping of
 // section 2.4 generalised to chains with internal nodes. Rigid-plastic sliders make a relation
 // set-valued at de = 0; that case is resolved exactly from the force interval at zero rate.
+// Gaps (direct members of chains only, network.hpp) are the dual: their inverse is set-valued
+// at F = 0 (any elongation in [-w/2, w/2]) and rigid otherwise (e = +-w/2). A chain with gaps
+// first tests whether de is reachable at F = 0, the gaps spanning their play: then F = 0 exactly
+// and the gaps take what the other members leave; otherwise it is solved on the side of F = 0
+// that de lies on, each gap at its end stop with zero compliance.
 //
 // No allocation: recursion over the flat node array, state read from `before`.
 #pragma once
 
+#include "runtime/bouc_wen.hpp"
 #include "runtime/leaf_kernels.hpp"
 #include "runtime/network.hpp"
 
@@ -27,9 +33,14 @@ struct Interval {
 
 // Per-step constants of subtree leaves (depend on dt).
 struct TreeStepPlan {
+  double dt = 0.0;                   // s
+  // Length [s] of the linear piece of the drive that the step begins (>= dt): dt except for the
+  // harmonic protocol's midpoint probes (half a step along a piece of 2 dt).
+  double piece = 0.0;
   std::vector<MaxwellStep> maxwell;  // per node (unused entries for other kinds)
-  std::vector<double> c_over_dt;     // dashpots, per node
-  void prepare(const Network& network, double dt);
+  // Per node: dashpot c/dt [N/mm], quadratic_dashpot cq/dt^2 [N/mm^2], inerter 4 b/dt^2 [N/mm].
+  std::vector<double> coefficient;
+  void prepare(const Network& network, double dt, double piece);
 };
 
 class TreeSolver {
@@ -40,7 +51,7 @@ class TreeSolver {
   // Force at the end of the step for an elongation increment de of subtree `node`.
   double force(int node, double de) const { return forward(node, de).force; }
 
-  // Solves the subtree for increment de and writes every node's new (e, F) into `after`.
+  // Solves the subtree for increment de and writes every node's new state into `after`.
   // Returns the subtree force.
   double advance(int node, double de, double* after) const;
 
@@ -53,11 +64,17 @@ class TreeSolver {
   Interval zero_rate_interval(int node) const;  // forces admissible at de = 0 (rigid nodes)
   ForceSlope series_force(int node, double de) const;
   ForceSlope parallel_elongation(int node, double force) const;
+  Interval play(const TreeNode& n) const;  // increments of a chain reachable at F = 0
+  bool has_gap(const TreeNode& n) const;
   void assign(int node, double de, double force, double* after) const;
+  void assign_play(const TreeNode& n, double de, double* after) const;
+  ForceSlope inerter(int node, double de) const;
 
   const TreeNode& at(int node) const { return topology_.nodes[static_cast<std::size_t>(node)]; }
   double e_before(const TreeNode& n) const { return before_[n.state]; }
   double f_before(const TreeNode& n) const { return before_[n.state + 1]; }
+  double slot_before(const TreeNode& n, int slot) const { return before_[n.state + slot]; }
+  double coefficient(int node) const { return plan_.coefficient[static_cast<std::size_t>(node)]; }
   double p(const TreeNode& n, int slot) const { return network_.parameter(n.param[slot]); }
 
   const Topology& topology_;

@@ -23,6 +23,7 @@ struct Options {
   std::vector<std::string> settings;
   bool json = false;
   bool elements = false;
+  std::string solver;
 };
 
 void apply_overrides(lang::Protocol& protocol, const Options& o) {
@@ -37,6 +38,10 @@ void apply_overrides(lang::Protocol& protocol, const Options& o) {
     for (auto& existing : protocol.settings)
       if (existing.key == setting.key) existing = setting, replaced = true;
     if (!replaced) protocol.settings.push_back(setting);
+  }
+  if (!o.solver.empty()) {
+    std::erase_if(protocol.settings, [](const lang::Setting& s) { return s.key == "solver"; });
+    protocol.settings.push_back({"solver", {}, {}, o.solver, {}});
   }
   if (o.json) protocol.settings.push_back({"format", {}, {}, "json", {}});
   if (o.elements) protocol.settings.push_back({"elements", {}, {}, "all", {}});
@@ -55,6 +60,10 @@ Command add_simulate_command(CLI::App& app) {
                  "--set 'frequency = 1 Hz .. 20 Hz step 1 Hz' --set 'steps_per_cycle = 4096'");
   app.add_flag("--json", o->json, "Write JSON instead of CSV");
   app.add_flag("--elements", o->elements, "Time histories: add every element's force and elongation");
+  app.add_option("--solver", o->solver,
+                 "auto | fixed | sundials: the integrator of every protocol (overrides `solver =` in the file); "
+                 "auto takes SUNDIALS IDA for networks with an inerter, the fixed-step kernels otherwise")
+      ->check(CLI::IsMember({"auto", "fixed", "sundials"}));
   app.footer("Results go where each protocol's `output \"FILE\"` line says (relative to the .rheo file), "
              "else to standard output.");
   return [o] {

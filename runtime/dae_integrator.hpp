@@ -1,0 +1,110 @@
+// Variable-step integration of a DaeGraph with SUNDIALS IDA (variable-order BDF), with events
+// where an element switches.
+//
+// Unknowns y = [x (internal node positions, mm, algebraic) | lambda (slider and gap forces, N,
+// algebraic) | s (rate coordinates, mm, differential; dae_modes.hpp) | w (velocities of inerter
+// coordinates, mm/s, differential) | z (Bouc-Wen states, -, differential)]. Residuals:
+//   node balance      sum of edge forces pulling the node = 0
+//   slider / gap      stuck or closed: e - e_held = 0;  slipping: lambda -+ fy = 0;  open: lambda = 0
+//   coordinate j      s_j - e_j(x, u) = 0                (slots beyond q: s' = 0)
+//   inerter coord j   w_j - s_j' = 0                     (unused slots: w' = 0)
+//   Bouc-Wen          z' - (k/fy) e' (1 - |z|^n (1 + sgn(z e'))/2) = 0, e' from the node rates
+// Events (IDA root functions, two per switch edge): a stuck slider's force reaches +-fy; a
+// slipping slider's rate crosses zero; an open gap's elongation reaches +-w/2; a closed gap's
+// force changes sign. At an event the mode changes, the coordinates are re-chosen, IDA is
+// re-initialised and IDACalcIC makes the algebraic unknowns and the rates consistent.
+//
+// The drive is a sine (its rate and acceleration exact) or piecewise linear: each sample is a
+// stop time at which the rate jumps, and the integration restarts there.
+#pragma once
+
+#include "runtime/dae_graph.hpp"
+#include "runtime/dae_modes.hpp"
+#include "runtime/drives.hpp"
+
+#include <exception>
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace rheo::runtime {
+
+struct DriveSignal {
+  enum class Kind { sine, samples } kind = Kind::sine;
+  double amplitude = 0.0;        // sine: u = amplitude sin(omega t) [mm]
+  double omega = 0.0;            // rad/s
+  const Drive* samples = nullptr;  // samples: linear between them; not owned
+};
+
+struct DaeOptions {
+  double relative_tolerance = 1e-8;
+  double length_scale = 1.0;    // mm: absolute tolerance of positions is rtol * this
+  double force_scale = 1.0;     // N
+  double velocity_scale = 1.0;  // mm/s
+  long max_steps = 500000;      // per advance()
+};
+
+struct DaeStatistics {
+  long steps = 0;
+  long residual_evaluations = 0;
+  long events = 0;
+};
+
+class DaeIntegrator {
+ public:
+  DaeIntegrator(const DaeGraph& graph, const DaeOptions& options);
+  ~DaeIntegrator();
+  DaeIntegrator(const DaeIntegrator&) = delete;
+  DaeIntegrator& operator=(const DaeIntegrator&) = delete;
+
+  // Starts from rest (every position, force and rate zero) at t = 0 under `drive`.
+  void start(const DriveSignal& drive);
+  // Integrates to time t [s] (> the current time); returns the terminal force [N] at t.
+  double advance(double t);
+
+  double time() const { return time_; }
+  // The unknowns y at the current time (layout above) and their rates.
+  const std::vector<double>& state() const { return y_; }
+  // Force [N] and elongation [mm] of each element the user wrote, at the current time.
+  void element_outputs(std::vector<double>& force, std::vector<double>& elongation) const;
+  DaeStatistics statistics() const;
+
+  // Residual and root functions, called by the C trampolines.
+  void residual(double t, const double* y, const double* yp, double* r);
+  void roots(double t, const double* y, const double* yp, double* g);
+  // Keeps an exception thrown inside a callback until the C call returns.
+  void store_error(std::exception_ptr error) { error_ = std::move(error); }
+
+ private:
+  struct Solver;  // the SUNDIALS handles
+  void drive_at(double t, double& u, double& du, double& ddu) const;
+  void edge_forces(double t, const double* y, const double* yp, double* force) const;
+  double terminal_force(const double* force) const;
+  void restart(double t, bool modes_changed);
+  void switch_modes(double t, const std::vector<int>& found);
+  double solve_to(double t_stop);
+  void collect_statistics();
+  void stick_reversed_sliders();
+
+  const DaeGraph& graph_;
+  DaeOptions options_;
+  DriveSignal drive_;
+  std::size_t segment_ = 0;  // samples: the interval [time[segment_], time[segment_ + 1]]
+  int nx_, nl_, ns_, nw_, nz_, n_;
+  std::vector<int> rate_of_edge_, switch_of_edge_, bouc_wen_of_edge_;  // -1 where not
+  SwitchModes modes_;
+  std::vector<double> held_;  // elongation held by each rigid switch edge
+  ModeKinematics kinematics_;
+  std::vector<double> y_, yp_;
+  mutable std::vector<double> rate_, acceleration_, force_;  // scratch per residual call
+  double time_ = 0.0;
+  long events_ = 0;
+  DaeStatistics totals_;  // steps and residual evaluations before the last re-initialisation
+  std::exception_ptr error_;
+  std::string last_message_;
+  std::unique_ptr<Solver> solver_;
+
+  friend void capture_ida_message(int, const char*, const char*, char*, void*);
+};
+
+}  // namespace rheo::runtime

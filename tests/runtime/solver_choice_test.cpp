@@ -1,0 +1,23 @@
+// Which backend `solver = auto | fixed | sundials` picks.
+#include "runtime/solver_choice.hpp"
+#include "support.hpp"
+
+#include <doctest/doctest.h>
+
+using namespace rheo;
+
+TEST_CASE("auto takes SUNDIALS for a network with an inerter, fixed steps otherwise") {
+  const auto plain = test::network_from("model m { spring k (k = 1 N/mm)\n maxwell x (k = 1 N/mm, tau = 1 s) }", "m");
+  const auto inertial = test::network_from(
+      "model m { spring k (k = 1 N/mm)\n series s { spring k1 (k = 1 N/mm)\n inerter b (b = 1 kg) } }", "m");
+  CHECK_FALSE(runtime::uses_sundials(plain, runtime::SolverChoice::automatic));
+  CHECK(runtime::uses_sundials(inertial, runtime::SolverChoice::automatic));
+  CHECK(runtime::uses_sundials(plain, runtime::SolverChoice::sundials));
+  CHECK_FALSE(runtime::uses_sundials(inertial, runtime::SolverChoice::fixed));
+}
+
+TEST_CASE("solver words round-trip and unknown words are refused") {
+  for (auto c : {runtime::SolverChoice::automatic, runtime::SolverChoice::fixed, runtime::SolverChoice::sundials})
+    CHECK(runtime::parse_solver_choice(runtime::solver_word(c)) == c);
+  CHECK_FALSE(runtime::parse_solver_choice("cvode").has_value());
+}
