@@ -27,6 +27,7 @@ const std::vector<SettingSpec>& fit_schema() {
       {.key = "tolerance", .shape = Shape::number, .dimension = dim::none, .positive = true},
       {.key = "definition", .shape = Shape::identifier, .dimension = dim::none, .choices = {"thesis", "first_harmonic"}},
       {.key = "steps_per_cycle", .shape = Shape::integer, .dimension = dim::none, .minimum = 16, .multiple_of = 4},
+      {.key = "solver", .shape = Shape::identifier, .dimension = dim::none, .choices = {"auto", "fixed", "sundials"}},
       {.key = "free", .shape = Shape::paths, .dimension = dim::none},
       {.key = "fixed", .shape = Shape::paths, .dimension = dim::none},
   };

@@ -10,7 +10,7 @@ Prediction predict(const Network& network, const FitDataSet& set, FitMethod meth
                    const ThesisCorrection* correction) {
   Prediction p;
   if (!set.is_harmonic()) {
-    p.force = run_history(network, set.history().drive, false).force;
+    p.force = run_history(network, set.history().drive, false, harmonic.solver).force;
     return p;
   }
   const HarmonicData& data = set.harmonic();

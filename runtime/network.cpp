@@ -214,11 +214,10 @@ struct PlacementCheck {
   }
   [[noreturn]] void inerter_error(const Proto& p) const {
     throw std::invalid_argument(fmt::format(
-        "model '{}': inerter '{}' is connected to the drive through sliders, gaps or inerters only (or parallel blocks "
-        "holding one), so a change of the "
-        "drive velocity while they hold would be an impact (an unbounded force); put a compliant element (a spring, "
-        "dashpot, maxwell, ...) in series with it, e.g. series {{ spring (k = ...); inerter {} (b = {:g} N*s^2/mm) }}, "
-        "or place it directly in the model's parallel block",
+        "model '{}': inerter '{}' is connected to the drive through sliders, gaps or inerters only (or parallel "
+        "blocks holding one), so a change of the drive velocity while they hold would be an impact (an unbounded "
+        "force); put a compliant element (a spring, dashpot, maxwell, ...) in series with it, e.g. "
+        "series {{ spring (k = ...); inerter {} (b = {:g} N*s^2/mm) }}, or place it directly in the model's parallel block",
         model.name, path(p), path(p), value(p)));
   }
 

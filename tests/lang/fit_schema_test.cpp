@@ -86,5 +86,5 @@ TEST_CASE("check_fit_setting and parse_fit_setting: the fit schema for one setti
   CHECK(parse_fit_setting("max_evaluations = 500").values == std::vector<double>{500.0});
   CHECK_THROWS_WITH_AS(parse_fit_setting("stiffness_weight = 2"), doctest::Contains("stiffness_weight must be between 0 and 1, got 2"), CompileError);
   CHECK(fit_setting_keys().front() == "objective");
-  CHECK(fit_setting_keys().size() == 12);
+  CHECK(fit_setting_keys().size() == 13);
 }

@@ -201,13 +201,14 @@ TEST_CASE("spring in series with inerter || dashpot || spring: the phasor K*, fi
 
 TEST_CASE("spring in series with inerter || Maxwell || spring: second order (Newmark, exact Maxwell update)") {
   // As above with the dashpot replaced by a Maxwell element (exact update): every kernel is
-  // second order. First-harmonic measures (no sampled maximum): observed |K*| errors 5.1e-7,
-  // 4.7e-7, 5.1e-6 and phase errors 5.2e-5, 4.4e-5, 1.5e-5 deg at N = 2048, falling 4x (3.9-4.1)
-  // per halving. Tolerances 3x the worst; the ratio is checked to lie in [3, 5].
+  // second order. First-harmonic measures (no sampled maximum): observed |K*| errors 5.1e-7 and
+  // 5.1e-6 and phase errors 5.2e-5 and 1.5e-5 deg at 20 and 150 Hz, N = 2048, falling 4x (4.0,
+  // 4.1) per halving (4.7e-7 -> 1.2e-7 at 100 Hz, left out for time). Tolerances 3x the worst;
+  // the ratio is checked to lie in [3, 5].
   const double k = 200, b = 5e-4, km = 300, tau = 2e-3, k2 = 100;
   const auto net = test::network_from(
       "model h { series { spring k (k = 200) parallel { inerter m (b = 0.5 kg) maxwell v (k = 300, tau = 2 ms) spring k2 (k = 100) } } }", "h");
-  for (double f : {20.0, 100.0, 150.0}) {
+  for (double f : {20.0, 150.0}) {
     const double w = 2 * std::numbers::pi * f;
     const std::complex<double> iwt{0.0, w * tau};
     const std::complex<double> z = k2 - b * w * w + km * iwt / (1.0 + iwt);
@@ -226,6 +227,30 @@ TEST_CASE("spring in series with inerter || Maxwell || spring: second order (New
     CHECK(order > 3.0);
     CHECK(order < 5.0);
   }
+}
+
+TEST_CASE("the Newmark inerter under midpoint sampling (a dashpot in the root block): still second order") {
+  // The network above plus a root dashpot, whose rate jump makes the protocol sample forces by
+  // half steps from each state: Newmark's half step is consistent with the chord. Observed at
+  // 20 Hz: |K*| error 1.7e-6 -> 4.3e-7, phase 3.2e-5 -> 8.0e-6 deg (N = 2048 -> 4096);
+  // tolerances 3x.
+  const double c = 0.3, k = 200, b = 5e-4, km = 300, tau = 2e-3, k2 = 100, f = 20.0;
+  const auto net = test::network_from(R"(
+    model h { dashpot d (c = 0.3)
+              series { spring k (k = 200) parallel { inerter m (b = 0.5 kg) maxwell v (k = 300, tau = 2 ms) spring k2 (k = 100) } } })", "h");
+  REQUIRE(net.topology().has_rate_jump);
+  const double w = 2 * std::numbers::pi * f;
+  const std::complex<double> iwt{0.0, w * tau};
+  const std::complex<double> z = k2 - b * w * w + km * iwt / (1.0 + iwt);
+  const std::complex<double> k_star = std::complex<double>{0.0, c * w} + k * z / (k + z);
+  const auto coarse = fixed_step_point(net, 0.4, f, 2048, HarmonicDefinition::first_harmonic);
+  const auto fine = fixed_step_point(net, 0.4, f, 4096, HarmonicDefinition::first_harmonic);
+  const Errors e1 = errors_of(coarse, k_star), e2 = errors_of(fine, k_star);
+  MESSAGE("|K*| error " << e1.stiffness << " -> " << e2.stiffness << ", phase error " << e1.phase << " -> " << e2.phase << " deg");
+  CHECK(e1.stiffness < 5.2e-6);
+  CHECK(e1.phase < 1e-4);
+  CHECK(e1.stiffness / e2.stiffness > 3.0);
+  CHECK(e1.stiffness / e2.stiffness < 5.0);
 }
 
 TEST_CASE("inerter in the root block with a spring: K* = k - b w^2; with a dashpot + i c w (midpoint sampling)") {

@@ -1,6 +1,7 @@
 // Compilation: canonical forms, root groups, state layout, re-parameterisation.
 #include "runtime/network.hpp"
 
+#include "runtime/periodic_closed_form.hpp"
 #include "support.hpp"
 
 #include <doctest/doctest.h>
@@ -52,4 +53,73 @@ TEST_CASE("with_parameters re-evaluates derived parameters") {
   CHECK(changed.coefficients().friction_k[0] == 300.0);
   CHECK(changed.coefficients().friction_fy[0] == doctest::Approx(30.0));
   CHECK(net.coefficients().friction_fy[0] == doctest::Approx(10.0));  // the original is untouched
+}
+
+TEST_CASE("inerter, quadratic_dashpot, gap and bouc_wen leaves are subtrees, also in the root block") {
+  const auto net = test::network_from(R"(
+    model n { spring k (k = 10) inerter m (b = 1 kg) quadratic_dashpot q (cq = 1 N*s^2/mm^2)
+              bouc_wen w (k = 10, n = 2, fy = 1) series { gap g (width = 0.1 mm) spring s (k = 5) } })", "n");
+  const auto& t = net.topology();
+  CHECK(t.springs.size() == 1);
+  REQUIRE(t.subtrees.size() == 4);
+  const auto& inerter = t.nodes[static_cast<std::size_t>(t.subtrees[0])];
+  CHECK(inerter.kind == runtime::NodeKind::inerter);
+  CHECK(inerter.drive_prescribed);
+  CHECK(inerter.slots == 6);  // e, F, two rates, two step lengths
+  // 6 + 2 (quadratic_dashpot) + 2 (bouc_wen) + 3 x 2 (chain, gap, spring)
+  CHECK(t.state_size == 16);
+  REQUIRE(t.state_scales.size() == 16u);
+  using S = runtime::StateScale;
+  CHECK(t.state_scales[0] == S::length);
+  CHECK(t.state_scales[1] == S::force);
+  CHECK(t.state_scales[2] == S::velocity);
+  CHECK(t.state_scales[4] == S::time);
+  CHECK(t.state_scales[15] == S::force);
+  CHECK_FALSE(runtime::has_closed_form_periodic_state(net));
+  CHECK(t.has_rate_jump);  // the quadratic dashpot
+  CHECK_FALSE(t.is_linear);
+  // An inerter behind a spring integrates the force (Newmark): velocity as third slot.
+  const auto chain = test::network_from("model c { series { spring s (k = 1) inerter m (b = 1 kg) } }", "c");
+  const auto& nodes = chain.topology().nodes;
+  CHECK(nodes[2].kind == runtime::NodeKind::inerter);
+  CHECK_FALSE(nodes[2].drive_prescribed);
+  CHECK(nodes[2].slots == 3);
+  CHECK(chain.topology().is_linear);
+}
+
+TEST_CASE("rate jumps pass through members rigid to a rate jump: sliders, gaps, inerters") {
+  auto jumps = [](const char* source) { return test::network_from(source, "j").topology().has_rate_jump; };
+  CHECK(jumps("model j { quadratic_dashpot q (cq = 1 N*s^2/mm^2) }"));
+  CHECK(jumps("model j { series { inerter m (b = 1 kg) dashpot d (c = 1) } }"));
+  CHECK(jumps("model j { series { gap g (width = 1 mm) dashpot d (c = 1) } }"));
+  CHECK_FALSE(jumps("model j { spring k (k = 1) inerter m (b = 1 kg) }"));
+  CHECK_FALSE(jumps("model j { series { spring k (k = 1) quadratic_dashpot q (cq = 1 N*s^2/mm^2) } }"));
+  CHECK_FALSE(jumps("model j { bouc_wen w (k = 1, n = 1, fy = 1) }"));
+}
+
+TEST_CASE("placement: gaps only in series with a compliant member, inerters never rigidly driven") {
+  auto error_of = [](const char* source) -> std::string {
+    try {
+      test::network_from(source, "p");
+    } catch (const std::invalid_argument& e) {
+      return e.what();
+    }
+    return "";
+  };
+  const std::string root = error_of("model p { spring s (k = 1) gap play (width = 0.2 mm) }");
+  CHECK(root.find("gap 'play' is in the model's parallel block") != std::string::npos);
+  CHECK(root.find("series { gap play (width = 0.2 mm); spring (k = ...) }") != std::string::npos);
+  CHECK(error_of("model p { series { spring s (k = 1) parallel { gap g (width = 1 mm) spring t (k = 1) } } }")
+            .find("gap 'g' is inside a parallel block") != std::string::npos);
+  CHECK(error_of("model p { series { gap g (width = 1 mm) slider f (fy = 1) } }").find("no compliant member") != std::string::npos);
+  CHECK(error_of("model p { series { gap g (width = 1 mm) parallel { inerter m (b = 1 kg) spring s (k = 1) } } }")
+            .find("no compliant member") != std::string::npos);
+  const std::string inerter = error_of("model p { series { slider f (fy = 1) inerter m (b = 1 kg) } }");
+  CHECK(inerter.find("inerter 'm' is connected to the drive through sliders, gaps or inerters only") != std::string::npos);
+  CHECK(error_of("model p { series { inerter a (b = 1 kg) inerter b (b = 2 kg) } }").find("inerter 'a'") != std::string::npos);
+  // Accepted: compliant members in series, also further out than the inerter's own block.
+  CHECK(error_of("model p { series { gap g (width = 1 mm) maxwell m (k = 1, tau = 1 ms) } }").empty());
+  CHECK(error_of("model p { series { gap g (width = 1 mm) slider f (fy = 1) spring s (k = 1) } }").empty());
+  CHECK(error_of("model p { series { spring s (k = 1) parallel { series { slider f (fy = 1) inerter m (b = 1 kg) } dashpot d (c = 1) } } }").empty());
+  CHECK(error_of("model p { inerter m (b = 1 kg) }").empty());
 }

@@ -59,3 +59,22 @@ TEST_CASE("time stepping agrees with the phasor path on nested linear networks")
     CHECK(e2 < 0.6 * e1 + 1e-9);
   }
 }
+
+TEST_CASE("phasor composition: an inerter is K* = -b w^2, in parallel and in series") {
+  auto k_star = [](const char* source, double f) {
+    const auto model = test::model_from(source, "i");
+    std::vector<double> values;
+    for (const auto& p : model.parameters) values.push_back(p.value);
+    return runtime::complex_stiffness(model, values, f);
+  };
+  const double w = 2 * std::numbers::pi * 30.0, k = 300, b = 2e-3;
+  const auto parallel = k_star("model i { spring k (k = 300) inerter m (b = 2 kg) }", 30.0);
+  REQUIRE(parallel);
+  CHECK(std::abs(*parallel - std::complex<double>{k - b * w * w, 0.0}) < 1e-12 * k);
+  const auto series = k_star("model i { series { spring k (k = 300) inerter m (b = 2 kg) } }", 30.0);
+  REQUIRE(series);
+  CHECK(std::abs(*series - k * (-b * w * w) / (k - b * w * w)) < 1e-12 * k);
+  CHECK_FALSE(k_star("model i { quadratic_dashpot q (cq = 1 N*s^2/mm^2) }", 30.0));
+  CHECK_FALSE(k_star("model i { series { gap g (width = 1 mm) spring s (k = 1) } }", 30.0));
+  CHECK_FALSE(k_star("model i { bouc_wen w (k = 1, n = 1, fy = 1) }", 30.0));
+}

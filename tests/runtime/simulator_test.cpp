@@ -94,3 +94,40 @@ TEST_CASE("step() is pure: the same state and drive give the same result") {
   CHECK(f1 == f2);
   CHECK(b.values == c.values);
 }
+
+TEST_CASE("element outputs of inerter, quadratic_dashpot, bouc_wen and gap") {
+  // Root-block elements have the drive as elongation; a chain's members carry its force and
+  // their elongations add up to the drive; the branch forces add up to the total.
+  const auto net = test::network_from(R"(
+    model e { inerter m (b = 1 kg) quadratic_dashpot q (cq = 0.01 N*s^2/mm^2) bouc_wen w (k = 100, n = 2, fy = 3)
+              series { gap g (width = 0.1 mm) spring s (k = 40) } })", "e");
+  const auto h = runtime::run_history(net, runtime::quasistatic_sine({0.3}, 2.0, 1, 200), true, runtime::SolverChoice::fixed);
+  REQUIRE(h.element_paths == std::vector<std::string>{"m", "q", "w", "g", "s"});
+  for (std::size_t i = 1; i < h.time.size(); ++i) {
+    const double u = h.displacement[i], du = u - h.displacement[i - 1], dt = h.time[i] - h.time[i - 1];
+    for (std::size_t j = 0; j < 3; ++j) CHECK(std::abs(h.element_elongation[j][i] - u) < 1e-12);
+    CHECK(std::abs(h.element_force[1][i] - 0.01 * std::abs(du / dt) * du / dt) < 1e-12);
+    CHECK(std::abs(h.element_force[2][i]) < 3.0);
+    CHECK(h.element_force[3][i] == h.element_force[4][i]);
+    CHECK(std::abs(h.element_force[4][i] - 40.0 * h.element_elongation[4][i]) < 1e-11);  // the solve tolerance
+    CHECK(std::abs(h.element_elongation[3][i] + h.element_elongation[4][i] - u) < 1e-12);
+    CHECK(std::abs(h.element_elongation[3][i]) <= 0.05);
+    CHECK(std::abs(h.element_force[0][i] + h.element_force[1][i] + h.element_force[2][i] + h.element_force[3][i] - h.force[i]) < 1e-12);
+  }
+}
+
+TEST_CASE("an inerter driven directly: a rate change gives a force pulse of impulse b dr over two steps") {
+  // Ramp from rest at rate r: the force is b (2 r, -r, 0, ...)/dt (the three-rate rule with
+  // rates 0, 0 before the drive began), so its impulse sum F dt is b r, and it is zero while
+  // the rate is constant. Reversal to -r: b (-4 r, 2 r, 0)/dt, impulse -2 b r.
+  const double b = 2e-3, r = 5.0, dt = 1e-3;
+  const auto net = test::network_from("model i { inerter m (b = 2 kg) }", "i");
+  runtime::Drive d;
+  for (int i = 0; i <= 20; ++i) {
+    d.time.push_back(i * dt);
+    d.displacement.push_back(i <= 10 ? r * i * dt : r * (20 - i) * dt);
+  }
+  const auto h = runtime::run_history(net, d, false, runtime::SolverChoice::fixed);
+  const double expected[] = {0, 2, -1, 0, 0, 0, 0, 0, 0, 0, 0, -4, 2, 0, 0, 0, 0, 0, 0, 0, 0};
+  for (std::size_t i = 0; i < h.time.size(); ++i) CHECK(std::abs(h.force[i] - expected[i] * b * r / dt) < 1e-9);
+}

@@ -1,5 +1,8 @@
 // Every standard-library model simulates as its header equation says: the linear ones against
-// the phasor composition of their closed forms, the frictional ones against C.15.
+// the phasor composition of their closed forms, the frictional ones against C.15-C.20, the
+// parallel rate-dependent and rate-independent ones against their exact steady-state force
+// waveform composed by hand, the slider-capped ones against their uncapped closed forms below
+// the slip force and against the cap's force bound above it.
 #include "lang/stdlib.hpp"
 #include "runtime/harmonic.hpp"
 #include "runtime/phasor.hpp"
@@ -9,6 +12,7 @@
 
 #include <algorithm>
 #include <complex>
+#include <functional>
 
 using namespace rheo;
 
@@ -20,10 +24,99 @@ void check(const runtime::HarmonicPoint& p, std::complex<double> k_star) {
   CHECK(p.converged);
   CHECK(test::relative_error(p.measures.stiffness, std::abs(k_star)) < 1e-5);
   CHECK(std::abs(test::degrees(p.measures.phase - std::arg(k_star))) < 1e-3);
+  MESSAGE("u0 " << p.amplitude << " mm, f " << p.frequency << " Hz: stiffness error "
+                << test::relative_error(p.measures.stiffness, std::abs(k_star)) << ", phase error "
+                << std::abs(test::degrees(p.measures.phase - std::arg(k_star))) << " deg");
 }
 std::complex<double> maxwell(double k, double tau, double f) {
   const std::complex<double> iwt{0.0, 2 * std::numbers::pi * f * tau};
   return k * iwt / (1.0 + iwt);
+}
+
+// Thesis measures (eqs. 1.2, 5.26, 5.27) of the exact steady state of a parallel network of an
+// elastic branch Y(u), Maxwell arms (k, tau) and friction elements (k, uy), under
+// u = u0 sin(theta), composed by hand from the element laws:
+//   loading half theta in [-pi/2, pi/2]: F = Y(u) + sum u0 (K' sin theta + K'' cos theta)
+//     + sum_friction (u0 <= uy ? k u : min(k uy, -k uy + k (u + u0)));
+//   the unloading half mirrors it, so F^ = max |F| over the loading half (found by sampling and
+//   a golden-section polish); U = pi u0^2 sum K'' + sum_{u0 > uy} 4 k uy (u0 - uy) (C.13, C.20).
+struct Arm {
+  double k, tau;
+};
+struct Slip {
+  double k, uy;
+};
+struct Measures {
+  double stiffness, phase;  // N/mm, rad
+};
+Measures parallel_closed_form(const std::function<double(double)>& elastic, const std::vector<Arm>& arms,
+                              const std::vector<Slip>& frictions, double u0, double f) {
+  double k1 = 0.0, k2 = 0.0;  // K', K'' of the Maxwell arms
+  for (const auto& a : arms) {
+    const std::complex<double> k = maxwell(a.k, a.tau, f);
+    k1 += k.real();
+    k2 += k.imag();
+  }
+  const auto force = [&](double theta) {
+    const double u = u0 * std::sin(theta);
+    double F = elastic(u) + u0 * (k1 * std::sin(theta) + k2 * std::cos(theta));
+    for (const auto& s : frictions)
+      F += u0 <= s.uy ? s.k * u : std::min(s.k * s.uy, -s.k * s.uy + s.k * (u + u0));
+    return std::abs(F);
+  };
+  const int n = 20000;
+  const double h = std::numbers::pi / n;
+  int best = 0;
+  for (int i = 1; i <= n; ++i)
+    if (force(-std::numbers::pi / 2 + i * h) > force(-std::numbers::pi / 2 + best * h)) best = i;
+  double a = -std::numbers::pi / 2 + (best - 1) * h, b = a + 2 * h;
+  const double g = (std::sqrt(5.0) - 1) / 2;
+  for (int i = 0; i < 80; ++i) {
+    const double x1 = b - g * (b - a), x2 = a + g * (b - a);
+    (force(x1) < force(x2) ? a : b) = (force(x1) < force(x2) ? x1 : x2);
+  }
+  const double amplitude = std::max(force(-std::numbers::pi / 2 + best * h), force((a + b) / 2));
+  double energy = std::numbers::pi * u0 * u0 * k2;
+  for (const auto& s : frictions)
+    if (u0 > s.uy) energy += 4 * s.k * s.uy * (u0 - s.uy);
+  return {amplitude / u0, std::asin(energy / (std::numbers::pi * amplitude * u0))};
+}
+void check(const runtime::HarmonicPoint& p, const Measures& m, double stiffness_tolerance, double phase_tolerance_deg) {
+  CHECK(p.converged);
+  CHECK(test::relative_error(p.measures.stiffness, m.stiffness) < stiffness_tolerance);
+  CHECK(std::abs(test::degrees(p.measures.phase - m.phase)) < phase_tolerance_deg);
+  MESSAGE("u0 " << p.amplitude << " mm, f " << p.frequency << " Hz: stiffness error "
+                << test::relative_error(p.measures.stiffness, m.stiffness) << ", phase error "
+                << std::abs(test::degrees(p.measures.phase - m.phase)) << " deg");
+}
+double yeoh(double d10, double d20, double d30, double u) { return 2 * (d10 + 2 * d20 * u * u + 3 * d30 * u * u * u * u) * u; }
+
+// The hydromount's uncapped complex stiffness (stdlib/hydromount_uncapped.rheo), default
+// parameters: k_rubber 800 N/mm, k1 600 N/mm, b 0.04 N*s^2/mm, c 3 N*s/mm, k2 150 N/mm.
+constexpr double k_rubber = 800, k1 = 600, inertance = 0.040, channel = 3, k2 = 150, cap = 60;
+std::complex<double> hydromount_uncapped(double f) {
+  const double w = 2 * std::numbers::pi * f;
+  const std::complex<double> node{k2 - inertance * w * w, w * channel};
+  return k_rubber + 1.0 / (1.0 / k1 + 1.0 / node);
+}
+runtime::HarmonicOptions inerter_options() {
+  runtime::HarmonicOptions o;  // solver = automatic: SUNDIALS IDA for a network with an inerter
+  o.steps_per_cycle = 1024;
+  return o;
+}
+runtime::HarmonicPoint hydro_point(const std::string& model, double u0, double f) {
+  const auto network = test::network_from("import " + model + "\nmodel m { " + model + " h () }", "m");
+  return runtime::simulate_harmonic_point(network, u0, f, inerter_options());
+}
+void check_within(const runtime::HarmonicPoint& p, std::complex<double> k_star, double stiffness_tolerance,
+                  double phase_tolerance_deg) {
+  CHECK(p.converged);
+  const double e_k = test::relative_error(p.measures.stiffness, std::abs(k_star));
+  const double e_p = std::abs(test::degrees(p.measures.phase - std::arg(k_star)));
+  CHECK(e_k < stiffness_tolerance);
+  CHECK(e_p < phase_tolerance_deg);
+  MESSAGE("u0 " << p.amplitude << " mm, f " << p.frequency << " Hz: stiffness error " << e_k << ", phase error " << e_p
+                << " deg");
 }
 }  // namespace
 
@@ -54,10 +147,109 @@ TEST_CASE("stdlib series_friction_maxwell: below the slip force it is a Zener mo
   check(p, 100.0 + maxwell(200, 0.01, 7.0));
 }
 
+TEST_CASE("stdlib maxwell2: K* = k_inf + sum of two Maxwell arms (C.9)") {
+  for (double f : {0.5, 9.0, 45.0}) {
+    CAPTURE(f);
+    check(point("import maxwell2\nmodel m { maxwell2 g () }", "m", 0.5, f), 100.0 + maxwell(60, 2e-3, f) + maxwell(30, 2e-2, f));
+  }
+  // Overrides reach the arms: the second arm moved to 1 ms.
+  check(point("import maxwell2\nmodel m { maxwell2 g (tau2 = 1 ms) }", "m", 0.5, 30.0),
+        100.0 + maxwell(60, 2e-3, 30.0) + maxwell(30, 1e-3, 30.0));
+}
+
+TEST_CASE("stdlib frictional_solid3: the generalized frictional solid (C.17-C.20) between and beyond its break points") {
+  // Yield displacements 20, 50 and 150 um: all elastic at 10 um, then one, two and three slipping.
+  const std::vector<Slip> f{{300, 0.020}, {200, 0.050}, {100, 0.150}};
+  for (double u0 : {0.01, 0.03, 0.1, 0.5}) {
+    CAPTURE(u0);
+    double stiffness = 100, energy = 0;
+    for (const auto& s : f) {
+      stiffness += u0 > s.uy ? s.k * s.uy / u0 : s.k;              // C.17, C.18
+      if (u0 > s.uy) energy += 4 * s.k * s.uy * (u0 - s.uy);      // C.20
+    }
+    const Measures want{stiffness, std::asin(energy / (std::numbers::pi * stiffness * u0 * u0))};  // C.12
+    check(point("import frictional_solid3\nmodel m { frictional_solid3 s () }", "m", u0, 3.0), want, 1e-9, 1e-7);
+    // ... and the hand-composed waveform agrees (the F^ search of the helpers below).
+    const Measures wave = parallel_closed_form([](double u) { return 100 * u; }, {}, f, u0, 3.0);
+    CHECK(test::relative_error(wave.stiffness, stiffness) < 1e-9);
+  }
+}
+
+TEST_CASE("stdlib viscoplastic (Fig. 2.5) and nonlinear_viscoplastic (Fig. 2.6) against their exact steady state") {
+  const std::vector<Arm> arm{{50, 5e-3}};
+  const std::vector<Slip> slip{{500, 0.05}};
+  for (double u0 : {0.03, 0.3, 2.5})
+    for (double f : {2.0, 30.0}) {
+      CAPTURE(u0);
+      CAPTURE(f);
+      check(point("import viscoplastic\nmodel m { viscoplastic v () }", "m", u0, f),
+            parallel_closed_form([](double u) { return 100 * u; }, arm, slip, u0, f), 1e-9, 1e-7);
+      const Measures nonlinear = parallel_closed_form([](double u) { return yeoh(50, -0.25, 0.01, u); }, arm, slip, u0, f);
+      check(point("import nonlinear_viscoplastic\nmodel m { nonlinear_viscoplastic v () }", "m", u0, f), nonlinear, 1e-9, 1e-7);
+      // The Yeoh spring matters at 2.5 mm: the linear-spring value would miss by percent.
+      if (u0 > 2) CHECK(test::relative_error(parallel_closed_form([](double u) { return 100 * u; }, arm, slip, u0, f).stiffness,
+                                             nonlinear.stiffness) > 0.01);
+    }
+}
+
+TEST_CASE("stdlib nonlinear_series_friction_maxwell (Fig. 9.1): a Yeoh spring beside a Maxwell arm while the slider sticks") {
+  // fy raised to 2000 N: the branch force (at most k 2 u0 = 800 N) never reaches it, and the
+  // response is the exact Yeoh + Maxwell waveform, non-linear at 2 mm.
+  for (double f : {3.0, 20.0}) {
+    CAPTURE(f);
+    const auto p = point("import nonlinear_series_friction_maxwell\nmodel m { nonlinear_series_friction_maxwell s (fy = 2000 N) }",
+                         "m", 2.0, f);
+    check(p, parallel_closed_form([](double u) { return yeoh(50, -0.25, 0.01, u); }, {{200, 0.01}}, {}, 2.0, f), 1e-5, 1e-3);
+  }
+  // Default fy = 20 N at 2 mm: the slider slips, the branch carries at most fy, so
+  // F^ <= Y(u0) + fy, below the sticking response.
+  const double u0 = 2.0, f = 20.0;
+  const auto p = point("import nonlinear_series_friction_maxwell\nmodel m { nonlinear_series_friction_maxwell s () }", "m", u0, f);
+  CHECK(p.converged);
+  CHECK(p.measures.force_amplitude <= yeoh(50, -0.25, 0.01, u0) + 20.0 * (1 + 1e-9));
+  CHECK(p.measures.force_amplitude > yeoh(50, -0.25, 0.01, u0));  // the branch does carry force
+  const Measures stuck = parallel_closed_form([](double u) { return yeoh(50, -0.25, 0.01, u); }, {{200, 0.01}}, {}, u0, f);
+  CHECK(p.measures.stiffness < stuck.stiffness);
+}
+
+TEST_CASE("stdlib hydromount_uncapped: K* = k_rubber + 1/(1/k1 + 1/(k2 - b w^2 + i w c)), through its resonance") {
+  const double resonance = std::sqrt((k1 + k2) / inertance) / (2 * std::numbers::pi);  // 21.79 Hz
+  for (double f : {1.0, 8.0, 15.0, resonance, 25.0, 40.0}) {
+    CAPTURE(f);
+    check_within(hydro_point("hydromount_uncapped", 0.5, f), hydromount_uncapped(f), 2e-5, 2e-3);
+  }
+  // The inerter is what makes the peak: its phase at the resonance is far above the low-frequency one.
+  CHECK(std::arg(hydromount_uncapped(resonance)) > 5 * std::arg(hydromount_uncapped(1.0)));
+}
+
+TEST_CASE("stdlib hydromount: the uncapped closed form while the cap sticks, at most k_rubber u0 + fy once it slips") {
+  const double resonance = std::sqrt((k1 + k2) / inertance) / (2 * std::numbers::pi);
+  // 0.02 mm: the fluid force stays below 23 N (|K_fluid| <= 1107 N/mm), far from fy = 60 N,
+  // even in the start-up transient.
+  for (double f : {5.0, resonance, 30.0}) {
+    CAPTURE(f);
+    check_within(hydro_point("hydromount", 0.02, f), hydromount_uncapped(f), 2e-5, 2e-3);
+  }
+  // 1 mm: the uncapped fluid force would reach 1000 N; capped, the fluid carries at most fy.
+  for (double f : {resonance, 25.0}) {
+    CAPTURE(f);
+    const double u0 = 1.0;
+    const auto p = hydro_point("hydromount", u0, f);
+    CHECK(p.converged);
+    CHECK(p.measures.force_amplitude <= k_rubber * u0 + cap * (1 + 1e-6));
+    CHECK(p.measures.force_amplitude >= k_rubber * u0 - cap * (1 + 1e-6));
+    CHECK(p.measures.phase < std::arg(hydromount_uncapped(f)));
+    MESSAGE("capped at 1 mm, " << f << " Hz: F^ = " << p.measures.force_amplitude << " N (bound " << k_rubber * u0 + cap
+                               << "), phase " << test::degrees(p.measures.phase) << " deg vs uncapped "
+                               << test::degrees(std::arg(hydromount_uncapped(f))));
+  }
+}
+
 TEST_CASE("every stdlib model is covered above") {
   // A new stdlib model must get a test here before this list is extended.
   auto names = lang::stdlib_names();
   std::sort(names.begin(), names.end());
-  CHECK(names == std::vector<std::string>{"frictional_zener", "kelvin_voigt", "maxwell3", "series_friction_maxwell",
-                                          "viscoplastic", "zener"});
+  CHECK(names == std::vector<std::string>{"frictional_solid3", "frictional_zener", "hydromount", "hydromount_uncapped",
+                                          "kelvin_voigt", "maxwell2", "maxwell3", "nonlinear_series_friction_maxwell",
+                                          "nonlinear_viscoplastic", "series_friction_maxwell", "viscoplastic", "zener"});
 }
