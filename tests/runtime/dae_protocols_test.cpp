@@ -14,17 +14,8 @@
 
 using namespace rheo;
 
-namespace {
-std::string read_file(const std::string& path) {
-  std::ifstream in(path);
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
-}  // namespace
-
 TEST_CASE("examples/hydrobushing.rheo reproduces hydrobushing_reference.csv within 0.2 % and 0.05 deg") {
-  const auto network = test::network_from(read_file(RHEO_EXAMPLES_DIR "/hydrobushing.rheo"), "hydrobushing");
+  const auto network = test::network_from(test::read_file(RHEO_EXAMPLES_DIR "/hydrobushing.rheo"), "hydrobushing");
   CHECK(runtime::uses_sundials(network, runtime::SolverChoice::automatic));
   const auto data = runtime::read_harmonic_data(RHEO_DATA_DIR "/hydrobushing_reference.csv");
   runtime::HarmonicOptions options;

@@ -74,12 +74,6 @@ void check_recovered(const runtime::FitResult& result, const runtime::Network& t
   }
 }
 
-std::string read_file(const std::string& path) {
-  std::ifstream in(path);
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
 
 }  // namespace
 
@@ -129,8 +123,8 @@ TEST_CASE("specimens C and D: the default strategy from a generic start matches 
   for (const char* specimen : {"c", "d"}) {
     CAPTURE(specimen);
     const std::string dir = RHEO_EXAMPLES_DIR;
-    const auto appendix = test::network_from(read_file(fmt::format("{}/specimen_{}.rheo", dir, specimen)), fmt::format("specimen_{}", specimen));
-    const auto start = test::network_from(read_file(fmt::format("{}/specimen_{}_fit.rheo", dir, specimen)), fmt::format("specimen_{}", specimen));
+    const auto appendix = test::network_from(test::read_file(fmt::format("{}/specimen_{}.rheo", dir, specimen)), fmt::format("specimen_{}", specimen));
+    const auto start = test::network_from(test::read_file(fmt::format("{}/specimen_{}_fit.rheo", dir, specimen)), fmt::format("specimen_{}", specimen));
     const auto data = runtime::read_fit_data(fmt::format("{}/data/specimen_{}_harmonic.csv", dir, static_cast<char>(std::toupper(specimen[0]))), 1.0);
     const auto appendix_points = runtime::predict(appendix, data, runtime::FitMethod::exact, {}, nullptr).points;
     const double appendix_err = runtime::thesis_err(runtime::relative_residuals(data.harmonic(), appendix_points));

@@ -5,6 +5,8 @@
 #include "runtime/network.hpp"
 
 #include <cmath>
+#include <fstream>
+#include <sstream>
 #include <numbers>
 #include <string>
 
@@ -19,6 +21,14 @@ inline lang::CheckedModel model_from(const std::string& source, const std::strin
 
 inline runtime::Network network_from(const std::string& source, const std::string& name) {
   return runtime::Network::compile(model_from(source, name));
+}
+
+// The whole content of a text file ("" when it cannot be read).
+inline std::string read_file(const std::string& path) {
+  std::ifstream in(path);
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
 }
 
 inline double relative_error(double value, double reference) { return std::abs(value / reference - 1.0); }
