@@ -1,5 +1,7 @@
 #include "runtime/dae_graph.hpp"
 
+#include "runtime/errors.hpp"
+
 #include <fmt/format.h>
 
 #include <stdexcept>
@@ -102,7 +104,7 @@ DaeGraph DaeGraph::build(const Network& network) {
       default: break;
     }
     if (edge.kind == EdgeKind::inerter && edge.a < 0 && edge.b < 0)
-      throw std::invalid_argument(fmt::format(
+      throw ModelError(fmt::format(
           "inerter '{}' of model '{}' sits directly between the terminal and ground, so its force b d2u/dt2 needs the "
           "drive's acceleration, which a sampled drive does not have; put it in series with a spring, or use solver = fixed",
           edge.path, graph.model));
@@ -113,7 +115,7 @@ DaeGraph DaeGraph::build(const Network& network) {
   for (const Edge& edge : graph.edges)
     for (int node : {edge.a, edge.b})
       if (node >= 0 && !held[static_cast<std::size_t>(node)])
-        throw std::invalid_argument(fmt::format(
+        throw ModelError(fmt::format(
             "element '{}' of model '{}' meets another slider or gap at a node that nothing else holds, so the node's "
             "position is undetermined while they slip; merge the sliders or put a spring between them",
             edge.path, graph.model));

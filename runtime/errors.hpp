@@ -9,6 +9,9 @@ namespace rheo::runtime {
 struct UsageError : std::runtime_error {       // exit 2: the command line is wrong
   using std::runtime_error::runtime_error;
 };
+struct ModelError : std::invalid_argument {   // exit 3: the model is valid language but cannot be simulated
+  using std::invalid_argument::invalid_argument;  // (e.g. an inerter no compliant member holds)
+};
 struct DataError : std::runtime_error {        // exit 4: a data file or output path is unusable
   using std::runtime_error::runtime_error;
 };

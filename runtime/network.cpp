@@ -1,5 +1,7 @@
 #include "runtime/network.hpp"
 
+#include "runtime/errors.hpp"
+
 #include <fmt/format.h>
 
 #include <stdexcept>
@@ -207,13 +209,13 @@ struct PlacementCheck {
   double value(const Proto& p) const { return model.parameters[static_cast<std::size_t>(p.param[0])].value; }
 
   [[noreturn]] void gap_error(const Proto& p, const char* where) const {
-    throw std::invalid_argument(fmt::format(
+    throw ModelError(fmt::format(
         "model '{}': gap '{}' {}; a gap must be in series with a compliant element (a spring, yeoh, dashpot, maxwell, "
         "friction, bouc_wen or quadratic_dashpot): write series {{ gap {} (width = {:g} mm); spring (k = ...) }}",
         model.name, path(p), where, path(p), value(p)));
   }
   [[noreturn]] void inerter_error(const Proto& p) const {
-    throw std::invalid_argument(fmt::format(
+    throw ModelError(fmt::format(
         "model '{}': inerter '{}' is connected to the drive through sliders, gaps or inerters only (or parallel "
         "blocks holding one), so a change of the drive velocity while they hold would be an impact (an unbounded "
         "force); put a compliant element (a spring, dashpot, maxwell, ...) in series with it, e.g. "
@@ -340,7 +342,7 @@ Network Network::compile(const lang::CheckedModel& model) {
 
 Network Network::with_parameters(const std::vector<double>& values) const {
   if (values.size() != parameters_.size())
-    throw std::invalid_argument(fmt::format("model '{}' has {} parameters, {} values given", model_->name,
+    throw ModelError(fmt::format("model '{}' has {} parameters, {} values given", model_->name,
                                             parameters_.size(), values.size()));
   Network copy = *this;
   // Parameters are stored in dependency order by the checker only for literals; evaluate

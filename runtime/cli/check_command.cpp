@@ -21,10 +21,14 @@ Command add_check_command(CLI::App& app) {
     const lang::Program program = lang::load_program(options->file);
     std::size_t parameters = 0;
     for (const auto& model : program.models) parameters += model.parameters.size();
+    std::string graphs;  // every model compiles (or the check fails) before "ok" is printed
+    for (const auto& model : program.models) {
+      const runtime::Network network = runtime::Network::compile(model);
+      if (options->graph) graphs += network.describe();
+    }
     std::cout << fmt::format("{}: ok: {} model(s), {} parameter(s), {} simulate block(s)\n", options->file,
-                             program.models.size(), parameters, program.simulations.size());
-    if (options->graph)
-      for (const auto& model : program.models) std::cout << runtime::Network::compile(model).describe();
+                             program.models.size(), parameters, program.simulations.size())
+              << graphs;
     return 0;
   };
 }

@@ -35,6 +35,9 @@ int main(int argc, char** argv) {
   } catch (const lang::CompileError& e) {
     std::cerr << e.what();
     return runtime::exit_code::model;
+  } catch (const runtime::ModelError& e) {
+    std::cerr << "rheo: model error: " << e.what() << "\n";
+    return runtime::exit_code::model;
   } catch (const runtime::UsageError& e) {
     std::cerr << "rheo: error: " << e.what() << "\n";
     return runtime::exit_code::usage;

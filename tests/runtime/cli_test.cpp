@@ -47,6 +47,19 @@ TEST_CASE("check: a valid file exits 0, an invalid one 3 with file:line:col and 
   CHECK(r.output.find('^') != std::string::npos);
 }
 
+TEST_CASE("a network that cannot be simulated exits 3 from check and simulate, naming the element, and check prints no ok") {
+  const auto bad = write("gap.rheo", "model m {\n  spring s (k = 5 N/mm)\n  gap play (width = 0.2 mm)\n}\n"
+                                     "simulate { harmonic frequency = 1 Hz, amplitude = 0.1 mm }\n");
+  const Result check = run("check " + bad.string());
+  CHECK(check.code == 3);
+  CHECK(check.output.find("model error") != std::string::npos);
+  CHECK(check.output.find("'play'") != std::string::npos);
+  CHECK(check.output.find(": ok:") == std::string::npos);
+  const Result simulate = run("simulate " + bad.string());
+  CHECK(simulate.code == 3);
+  CHECK(simulate.output.find("'play'") != std::string::npos);
+}
+
 TEST_CASE("usage errors exit 2 and say what to do") {
   CHECK(run("").code == 2);
   CHECK(run("simulate").code == 2);
