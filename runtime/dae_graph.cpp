@@ -18,6 +18,8 @@ struct GraphBuilder {
   double value(const lang::Element& e, int slot) const { return network.parameter(e.parameters[static_cast<std::size_t>(slot)]); }
   int new_node() { return graph.internal_nodes++; }
 
+  lang::SourceLocation where;  // of the leaf being placed
+
   int add_edge(EdgeKind kind, int a, int b, std::initializer_list<double> p, const std::string& path) {
     Edge edge;
     edge.kind = kind;
@@ -26,6 +28,7 @@ struct GraphBuilder {
     int i = 0;
     for (double v : p) edge.p[i++] = v;
     edge.path = path;
+    edge.where = where;
     graph.edges.push_back(edge);
     return static_cast<int>(graph.edges.size()) - 1;
   }
@@ -47,6 +50,7 @@ struct GraphBuilder {
       default: break;
     }
     EdgeProbe probe{e.path, {}};
+    where = e.where;
     switch (e.kind) {
       case ElementKind::spring: probe.edges = {add_edge(EdgeKind::spring, a, b, {value(e, 0)}, e.path)}; break;
       case ElementKind::yeoh:
@@ -105,9 +109,9 @@ DaeGraph DaeGraph::build(const Network& network) {
     }
     if (edge.kind == EdgeKind::inerter && edge.a < 0 && edge.b < 0)
       throw ModelError(fmt::format(
-          "inerter '{}' of model '{}' sits directly between the terminal and ground, so its force b d2u/dt2 needs the "
+          "{}inerter '{}' of model '{}' sits directly between the terminal and ground, so its force b d2u/dt2 needs the "
           "drive's acceleration, which a sampled drive does not have; put it in series with a spring, or use solver = fixed",
-          edge.path, graph.model));
+          error_at(edge.where), edge.path, graph.model));
     if (!is_switch(edge.kind))
       for (int node : {edge.a, edge.b})
         if (node >= 0) held[static_cast<std::size_t>(node)] = 1;
@@ -116,9 +120,9 @@ DaeGraph DaeGraph::build(const Network& network) {
     for (int node : {edge.a, edge.b})
       if (node >= 0 && !held[static_cast<std::size_t>(node)])
         throw ModelError(fmt::format(
-            "element '{}' of model '{}' meets another slider or gap at a node that nothing else holds, so the node's "
+            "{}element '{}' of model '{}' meets another slider or gap at a node that nothing else holds, so the node's "
             "position is undetermined while they slip; merge the sliders or put a spring between them",
-            edge.path, graph.model));
+            error_at(edge.where), edge.path, graph.model));
   return graph;
 }
 

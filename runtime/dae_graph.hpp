@@ -38,6 +38,7 @@ struct Edge {
   double p[3] = {0.0, 0.0, 0.0};   // spring {k}, yeoh {D10, D20, D30}, dashpot {c}, quadratic {cq},
                                    // inerter {b}, bouc_wen {k, n, fy}, slider {fy}, gap {w/2}
   std::string path;                // the user's element this edge belongs to
+  lang::SourceLocation where;      // where that element is written
 };
 
 // Edges that make up one element the user wrote (Topology::probes order): the element's force is

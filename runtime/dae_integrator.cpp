@@ -83,6 +83,9 @@ DaeIntegrator::DaeIntegrator(const DaeGraph& graph, const DaeOptions& options) :
   force_.assign(ne, 0.0);
   y_.assign(static_cast<std::size_t>(n_), 0.0);
   yp_ = y_;
+  y_saved_ = y_;
+  yp_saved_ = y_;
+  root_values_.assign(static_cast<std::size_t>(2 * nl_), 0.0);
   if (n_ == 0) return;  // purely algebraic: forces follow the drive directly
 
   using namespace sundials;
@@ -128,31 +131,36 @@ DaeIntegrator::DaeIntegrator(const DaeGraph& graph, const DaeOptions& options) :
 
 DaeIntegrator::~DaeIntegrator() = default;
 
-void DaeIntegrator::drive_at(double t, double& u, double& du, double& ddu) const {
+DaeIntegrator::DriveState DaeIntegrator::drive_at(double t) const {
   if (drive_.kind == DriveSignal::Kind::sine) {
     const double s = std::sin(drive_.omega * t), c = std::cos(drive_.omega * t);
-    u = drive_.amplitude * s;
-    du = drive_.amplitude * drive_.omega * c;
-    ddu = -drive_.amplitude * drive_.omega * drive_.omega * s;
-    return;
+    const double a = drive_.amplitude, w = drive_.omega;
+    return {a * s, a * w * c, -a * w * w * s};
   }
   const Drive& d = *drive_.samples;
   const std::size_t k = std::min(segment_, d.time.size() - 2);
-  du = (d.displacement[k + 1] - d.displacement[k]) / (d.time[k + 1] - d.time[k]);
-  u = d.displacement[k] + du * (t - d.time[k]);
-  ddu = 0.0;
+  const double du = (d.displacement[k + 1] - d.displacement[k]) / (d.time[k + 1] - d.time[k]);
+  return {d.displacement[k] + du * (t - d.time[k]), du, 0.0};
 }
 
-void DaeIntegrator::edge_forces(double t, const double* y, const double* yp, double* force) const {
-  double u, du, ddu;
-  drive_at(t, u, du, ddu);
+double DaeIntegrator::elongation(const double* y, const DriveState& drive, const Edge& edge) {
+  auto position = [&](int node) { return node >= 0 ? y[node] : node == kTerminal ? drive.u : 0.0; };
+  return position(edge.a) - position(edge.b);
+}
+
+double DaeIntegrator::elongation_rate(const double* yp, const DriveState& drive, const Edge& edge) {
+  auto velocity = [&](int node) { return node >= 0 ? yp[node] : node == kTerminal ? drive.du : 0.0; };
+  return velocity(edge.a) - velocity(edge.b);
+}
+
+void DaeIntegrator::edge_forces(const DriveState& drive, const double* y, const double* yp, double* force) const {
   const double* s_rate = yp + nx_ + nl_;
   const double* w_rate = yp + nx_ + nl_ + ns_;
   const int q = kinematics_.coordinates;
   for (int i = 0; i < ns_; ++i) {
     const double* alpha = kinematics_.alpha.data() + static_cast<std::size_t>(i) * static_cast<std::size_t>(q);
-    double rate = kinematics_.beta[static_cast<std::size_t>(i)] * du;
-    double acceleration = kinematics_.beta[static_cast<std::size_t>(i)] * ddu;
+    double rate = kinematics_.beta[static_cast<std::size_t>(i)] * drive.du;
+    double acceleration = kinematics_.beta[static_cast<std::size_t>(i)] * drive.ddu;
     for (int j = 0; j < q; ++j) {
       rate += alpha[j] * s_rate[j];
       const int slot = kinematics_.velocity_slot[static_cast<std::size_t>(j)];
@@ -161,10 +169,9 @@ void DaeIntegrator::edge_forces(double t, const double* y, const double* yp, dou
     rate_[static_cast<std::size_t>(i)] = rate;
     acceleration_[static_cast<std::size_t>(i)] = acceleration;
   }
-  auto position = [&](int node) { return node >= 0 ? y[node] : node == kTerminal ? u : 0.0; };
   for (std::size_t i = 0; i < graph_.edges.size(); ++i) {
     const Edge& edge = graph_.edges[i];
-    const double e = position(edge.a) - position(edge.b);
+    const double e = elongation(y, drive, edge);
     const int rate_index = rate_of_edge_[i];
     switch (edge.kind) {
       case EdgeKind::spring: force[i] = edge.p[0] * e; break;
@@ -193,11 +200,8 @@ double DaeIntegrator::terminal_force(const double* force) const {
 }
 
 void DaeIntegrator::residual(double t, const double* y, const double* yp, double* r) {
-  edge_forces(t, y, yp, force_.data());
-  double u, du, ddu;
-  drive_at(t, u, du, ddu);
-  auto position = [&](int node) { return node >= 0 ? y[node] : node == kTerminal ? u : 0.0; };
-  auto velocity = [&](int node) { return node >= 0 ? yp[node] : node == kTerminal ? du : 0.0; };
+  const DriveState drive = drive_at(t);
+  edge_forces(drive, y, yp, force_.data());
   std::fill(r, r + nx_, 0.0);
   for (std::size_t i = 0; i < graph_.edges.size(); ++i) {
     const Edge& edge = graph_.edges[i];
@@ -208,7 +212,7 @@ void DaeIntegrator::residual(double t, const double* y, const double* yp, double
     const Edge& edge = graph_.edges[static_cast<std::size_t>(graph_.switch_edges[static_cast<std::size_t>(l)])];
     const std::int8_t mode = modes_[static_cast<std::size_t>(l)];
     const double lambda = y[nx_ + l];
-    if (is_rigid(edge, mode)) r[nx_ + l] = position(edge.a) - position(edge.b) - held_[static_cast<std::size_t>(l)];
+    if (is_rigid(edge, mode)) r[nx_ + l] = elongation(y, drive, edge) - held_[static_cast<std::size_t>(l)];
     else if (edge.kind == EdgeKind::slider) r[nx_ + l] = lambda - mode * edge.p[0];
     else r[nx_ + l] = lambda;
   }
@@ -216,7 +220,7 @@ void DaeIntegrator::residual(double t, const double* y, const double* yp, double
   for (int k = 0; k < ns_; ++k) {
     if (k < kinematics_.coordinates) {
       const Edge& edge = graph_.edges[static_cast<std::size_t>(graph_.rate_edges[static_cast<std::size_t>(kinematics_.coordinate_rate[static_cast<std::size_t>(k)])])];
-      r[s0 + k] = y[s0 + k] - (position(edge.a) - position(edge.b));
+      r[s0 + k] = y[s0 + k] - elongation(y, drive, edge);
     } else {
       r[s0 + k] = yp[s0 + k];
     }
@@ -230,17 +234,14 @@ void DaeIntegrator::residual(double t, const double* y, const double* yp, double
     const Edge& edge = graph_.edges[static_cast<std::size_t>(graph_.bouc_wen_edges[static_cast<std::size_t>(b)])];
     const double k = edge.p[0], n = edge.p[1], fy = edge.p[2];
     const double z = y[z0 + b];
-    const double rate = velocity(edge.a) - velocity(edge.b);
+    const double rate = elongation_rate(yp, drive, edge);
     const double loading = z * rate > 0.0 ? 1.0 : 0.0;
     r[z0 + b] = yp[z0 + b] - (k / fy) * rate * (1.0 - std::pow(std::abs(z), n) * loading);
   }
 }
 
 void DaeIntegrator::roots(double t, const double* y, const double* yp, double* g) {
-  double u, du, ddu;
-  drive_at(t, u, du, ddu);
-  auto position = [&](int node) { return node >= 0 ? y[node] : node == kTerminal ? u : 0.0; };
-  auto velocity = [&](int node) { return node >= 0 ? yp[node] : node == kTerminal ? du : 0.0; };
+  const DriveState drive = drive_at(t);
   for (int l = 0; l < nl_; ++l) {
     const Edge& edge = graph_.edges[static_cast<std::size_t>(graph_.switch_edges[static_cast<std::size_t>(l)])];
     const std::int8_t mode = modes_[static_cast<std::size_t>(l)];
@@ -248,9 +249,9 @@ void DaeIntegrator::roots(double t, const double* y, const double* yp, double* g
     double* out = g + 2 * l;
     if (edge.kind == EdgeKind::slider) {
       if (mode == 0) out[0] = lambda - edge.p[0] * (1.0 + kSlack), out[1] = lambda + edge.p[0] * (1.0 + kSlack);
-      else out[0] = velocity(edge.a) - velocity(edge.b), out[1] = 1.0;
+      else out[0] = elongation_rate(yp, drive, edge), out[1] = 1.0;
     } else {
-      const double e = position(edge.a) - position(edge.b);
+      const double e = elongation(y, drive, edge);
       if (mode == 0) out[0] = e - edge.p[0] * (1.0 + kGapSlack), out[1] = e + edge.p[0] * (1.0 + kGapSlack);
       else out[0] = lambda, out[1] = 1.0;
     }
@@ -283,18 +284,16 @@ void DaeIntegrator::restart(double t, bool modes_changed) {
   const int s0 = nx_ + nl_, w0 = s0 + ns_;
   for (int attempt = 0;; ++attempt) {
     if (modes_changed) {
-      edge_forces(t, y_.data(), yp_.data(), force_.data());  // rates of every rate edge, old coordinates
+      const DriveState drive = drive_at(t);
+      edge_forces(drive, y_.data(), yp_.data(), force_.data());  // rates of every rate edge, old coordinates
       const std::vector<double> old_rate = rate_;
       kinematics_ = ModeKinematics::make(graph_, modes_);
-      double u, du, ddu;
-      drive_at(t, u, du, ddu);
-      auto position = [&](int node) { return node >= 0 ? y_[static_cast<std::size_t>(node)] : node == kTerminal ? u : 0.0; };
       for (int k = 0; k < ns_; ++k) y_[static_cast<std::size_t>(s0 + k)] = yp_[static_cast<std::size_t>(s0 + k)] = 0.0;
       for (int v = 0; v < nw_; ++v) y_[static_cast<std::size_t>(w0 + v)] = yp_[static_cast<std::size_t>(w0 + v)] = 0.0;
       for (int j = 0; j < kinematics_.coordinates; ++j) {
         const int rate_index = kinematics_.coordinate_rate[static_cast<std::size_t>(j)];
         const Edge& edge = graph_.edges[static_cast<std::size_t>(graph_.rate_edges[static_cast<std::size_t>(rate_index)])];
-        y_[static_cast<std::size_t>(s0 + j)] = position(edge.a) - position(edge.b);
+        y_[static_cast<std::size_t>(s0 + j)] = elongation(y_.data(), drive, edge);
         yp_[static_cast<std::size_t>(s0 + j)] = old_rate[static_cast<std::size_t>(rate_index)];
         const int slot = kinematics_.velocity_slot[static_cast<std::size_t>(j)];
         if (slot >= 0) y_[static_cast<std::size_t>(w0 + slot)] = old_rate[static_cast<std::size_t>(rate_index)];
@@ -353,9 +352,7 @@ void DaeIntegrator::restart(double t, bool modes_changed) {
 }
 
 void DaeIntegrator::switch_modes(double t, const std::vector<int>& found) {
-  double u, du, ddu;
-  drive_at(t, u, du, ddu);
-  auto position = [&](int node) { return node >= 0 ? y_[static_cast<std::size_t>(node)] : node == kTerminal ? u : 0.0; };
+  const DriveState drive = drive_at(t);
   for (int l = 0; l < nl_; ++l) {
     if (!found[static_cast<std::size_t>(2 * l)] && !found[static_cast<std::size_t>(2 * l + 1)]) continue;
     const Edge& edge = graph_.edges[static_cast<std::size_t>(graph_.switch_edges[static_cast<std::size_t>(l)])];
@@ -366,7 +363,7 @@ void DaeIntegrator::switch_modes(double t, const std::vector<int>& found) {
         mode = y_[static_cast<std::size_t>(nx_ + l)] > 0.0 ? 1 : -1;
       } else {
         mode = 0;
-        held = position(edge.a) - position(edge.b);
+        held = elongation(y_.data(), drive, edge);
       }
     } else if (mode == 0) {
       mode = found[static_cast<std::size_t>(2 * l)] ? 1 : -1;
@@ -412,12 +409,13 @@ void DaeIntegrator::stick_reversed_sliders() {
                 modes_[static_cast<std::size_t>(l)] != 0;
   if (!slipping) return;
   const double t0 = time_;
-  const std::vector<double> y0 = y_, yp0 = yp_;
+  y_saved_ = y_;  // same sizes: copies without allocation
+  yp_saved_ = yp_;
   const long events_before = events_;
   const double interval = drive_.samples->time[segment_ + 1] - drive_.samples->time[segment_];
   solve_to(t0 + 1e-6 * interval);
   if (events_ != events_before) return;  // an event inside the probe step was handled there
-  std::vector<double> g(static_cast<std::size_t>(2 * nl_));
+  std::vector<double>& g = root_values_;
   roots(time_, y_.data(), yp_.data(), g.data());
   bool reversed = false;
   for (int l = 0; l < nl_; ++l) {
@@ -429,16 +427,14 @@ void DaeIntegrator::stick_reversed_sliders() {
     reversed = true;
   }
   if (!reversed) return;
-  y_ = y0;
-  yp_ = yp0;
+  y_ = y_saved_;
+  yp_ = yp_saved_;
   time_ = t0;
-  double u, du, ddu;
-  drive_at(t0, u, du, ddu);
-  auto position = [&](int node) { return node >= 0 ? y_[static_cast<std::size_t>(node)] : node == kTerminal ? u : 0.0; };
+  const DriveState drive = drive_at(t0);
   for (int l = 0; l < nl_; ++l) {
     const Edge& edge = graph_.edges[static_cast<std::size_t>(graph_.switch_edges[static_cast<std::size_t>(l)])];
     if (edge.kind == EdgeKind::slider && modes_[static_cast<std::size_t>(l)] == 0)
-      held_[static_cast<std::size_t>(l)] = position(edge.a) - position(edge.b);
+      held_[static_cast<std::size_t>(l)] = elongation(y_.data(), drive, edge);
   }
   ++events_;
   restart(t0, true);
@@ -462,23 +458,21 @@ double DaeIntegrator::advance(double t) {
       stick_reversed_sliders();
     }
   }
-  edge_forces(time_, y_.data(), yp_.data(), force_.data());
+  edge_forces(drive_at(time_), y_.data(), yp_.data(), force_.data());
   return terminal_force(force_.data());
 }
 
-void DaeIntegrator::element_outputs(std::vector<double>& force, std::vector<double>& elongation) const {
-  edge_forces(time_, y_.data(), yp_.data(), force_.data());
-  double u, du, ddu;
-  drive_at(time_, u, du, ddu);
-  auto position = [&](int node) { return node >= 0 ? y_[static_cast<std::size_t>(node)] : node == kTerminal ? u : 0.0; };
+void DaeIntegrator::element_outputs(std::vector<double>& force, std::vector<double>& element_elongation) const {
+  const DriveState drive = drive_at(time_);
+  edge_forces(drive, y_.data(), yp_.data(), force_.data());
   force.resize(graph_.probes.size());
-  elongation.resize(graph_.probes.size());
+  element_elongation.resize(graph_.probes.size());
   for (std::size_t i = 0; i < graph_.probes.size(); ++i) {
     const auto& edges = graph_.probes[i].edges;
     force[i] = force_[static_cast<std::size_t>(edges.front())];
     double e = 0.0;
-    for (int edge : edges) e += position(graph_.edges[static_cast<std::size_t>(edge)].a) - position(graph_.edges[static_cast<std::size_t>(edge)].b);
-    elongation[i] = e;
+    for (int edge : edges) e += elongation(y_.data(), drive, graph_.edges[static_cast<std::size_t>(edge)]);
+    element_elongation[i] = e;
   }
 }
 
@@ -489,6 +483,17 @@ void DaeIntegrator::collect_statistics() {
   IDAGetNumResEvals(solver_->ida.get(), &residuals);
   totals_.steps += steps;
   totals_.residual_evaluations += residuals;
+}
+
+double DaeIntegrator::change_since(const std::vector<double>& start, double length, double force, double velocity) const {
+  double change = 0.0;
+  for (int i = 0; i < n_; ++i) {
+    if (i >= nx_ + nl_ && i < nx_ + nl_ + ns_) continue;  // rate coordinates
+    const double scale = i < nx_ ? length : i < nx_ + nl_ ? force : i < nx_ + nl_ + ns_ + nw_ ? velocity : 1.0;
+    const auto k = static_cast<std::size_t>(i);
+    change = std::max(change, std::abs(y_[k] - start[k]) / scale);
+  }
+  return change;
 }
 
 DaeStatistics DaeIntegrator::statistics() const {

@@ -68,6 +68,10 @@ class DaeIntegrator {
   // Force [N] and elongation [mm] of each element the user wrote, at the current time.
   void element_outputs(std::vector<double>& force, std::vector<double>& elongation) const;
   DaeStatistics statistics() const;
+  // Largest change of the state since `start` (a copy of state()), each unknown relative to its
+  // scale: positions to `length` [mm], forces to `force` [N], velocities to `velocity` [mm/s],
+  // Bouc-Wen states to 1. Rate coordinates are left out: events re-choose them.
+  double change_since(const std::vector<double>& start, double length, double force, double velocity) const;
 
   // Residual and root functions, called by the C trampolines.
   void residual(double t, const double* y, const double* yp, double* r);
@@ -77,8 +81,13 @@ class DaeIntegrator {
 
  private:
   struct Solver;  // the SUNDIALS handles
-  void drive_at(double t, double& u, double& du, double& ddu) const;
-  void edge_forces(double t, const double* y, const double* yp, double* force) const;
+  struct DriveState {
+    double u, du, ddu;  // mm, mm/s, mm/s^2
+  };
+  DriveState drive_at(double t) const;
+  static double elongation(const double* y, const DriveState& drive, const Edge& edge);
+  static double elongation_rate(const double* yp, const DriveState& drive, const Edge& edge);
+  void edge_forces(const DriveState& drive, const double* y, const double* yp, double* force) const;
   double terminal_force(const double* force) const;
   void restart(double t, bool modes_changed);
   void switch_modes(double t, const std::vector<int>& found);
@@ -97,6 +106,7 @@ class DaeIntegrator {
   ModeKinematics kinematics_;
   std::vector<double> y_, yp_;
   mutable std::vector<double> rate_, acceleration_, force_;  // scratch per residual call
+  std::vector<double> y_saved_, yp_saved_, root_values_;      // scratch of stick_reversed_sliders
   double time_ = 0.0;
   long events_ = 0;
   DaeStatistics totals_;  // steps and residual evaluations before the last re-initialisation

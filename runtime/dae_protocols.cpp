@@ -37,15 +37,14 @@ HarmonicPoint dae_harmonic_point(const Network& network, double amplitude, doubl
   const double period = 1.0 / frequency;
   const double tolerance = std::max(options.tolerance, 100.0 * kDaeRelativeTolerance);
   std::vector<double> phase(static_cast<std::size_t>(n)), displacement(phase.size()), force(phase.size());
-  const int nx = graph.internal_nodes, nl = static_cast<int>(graph.switch_edges.size());
-  const int ns = static_cast<int>(graph.rate_edges.size());
 
+  std::vector<double> start;
   HarmonicPoint point;
   point.amplitude = amplitude;
   point.frequency = frequency;
   double previous_change = std::numeric_limits<double>::infinity();
   for (int cycle = 1; cycle <= options.max_cycles; ++cycle) {
-    const std::vector<double> start = integrator.state();
+    start = integrator.state();  // reuses the capacity
     const double t0 = (cycle - 1) * period;
     for (int k = 0; k < n; ++k) {
       const double t = t0 + (k + 1) * period / n;
@@ -56,20 +55,8 @@ HarmonicPoint dae_harmonic_point(const Network& network, double amplitude, doubl
     }
     point.measures = measure_cycle(CycleSamples{phase, displacement, force}, amplitude, options.definition);
     point.cycles = cycle;
-    // Coordinates are re-chosen at events, so compare positions, forces, velocities and Bouc-Wen states.
-    const std::vector<double>& end = integrator.state();
     const double force_scale = std::max(point.measures.force_amplitude, std::numeric_limits<double>::min());
-    const std::size_t velocities_begin = static_cast<std::size_t>(nx + nl + ns);
-    const std::size_t velocities_end = end.size() - graph.bouc_wen_edges.size();
-    double change = 0.0;
-    for (std::size_t i = 0; i < end.size(); ++i) {
-      if (i >= static_cast<std::size_t>(nx + nl) && i < velocities_begin) continue;  // coordinates
-      const double scale = i < static_cast<std::size_t>(nx)        ? amplitude
-                           : i < static_cast<std::size_t>(nx + nl) ? force_scale
-                           : i < velocities_end                    ? omega * amplitude
-                                                                   : 1.0;
-      change = std::max(change, std::abs(end[i] - start[i]) / scale);
-    }
+    const double change = integrator.change_since(start, amplitude, force_scale, omega * amplitude);
     const double rate = change / previous_change;
     const double remaining = rate < 1.0 ? change * rate / (1.0 - rate) : change;
     previous_change = change;

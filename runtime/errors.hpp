@@ -2,7 +2,10 @@
 // Messages name where (file:row:column, element path, option) and what to do.
 #pragma once
 
+#include "lang/model.hpp"
+
 #include <stdexcept>
+#include <string>
 
 namespace rheo::runtime {
 
@@ -18,6 +21,11 @@ struct DataError : std::runtime_error {        // exit 4: a data file or output 
 struct NumericalError : std::runtime_error {   // exit 5: the numerics could not deliver
   using std::runtime_error::runtime_error;
 };
+
+// "file:line:col: error: ", the start of a message about something written at `where`.
+inline std::string error_at(const lang::SourceLocation& where) {
+  return where.file + ":" + std::to_string(where.line) + ":" + std::to_string(where.column) + ": error: ";
+}
 
 namespace exit_code {
 inline constexpr int ok = 0;

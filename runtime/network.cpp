@@ -17,6 +17,7 @@ struct Proto {
   int param[3] = {-1, -1, -1};
   int probe = -1;           // user element this leaf stands for
   int fused_dashpot_probe = -1;  // a fused spring+dashpot pair: the dashpot's probe
+  lang::SourceLocation where;    // of the element, for messages
   std::vector<Proto> children;
   bool is_block() const { return kind == NodeKind::parallel || kind == NodeKind::series; }
 };
@@ -48,6 +49,7 @@ Proto convert(const lang::Element& element, std::vector<ElementProbe>& probes) {
   }
   for (std::size_t i = 0; i < element.parameters.size() && i < 3; ++i) proto.param[i] = element.parameters[i];
   proto.probe = static_cast<int>(probes.size());
+  proto.where = element.where;
   probes.push_back({element.path, element.kind, ElementProbe::Source::tree_node, 0});
   return proto;
 }
@@ -210,17 +212,17 @@ struct PlacementCheck {
 
   [[noreturn]] void gap_error(const Proto& p, const char* where) const {
     throw ModelError(fmt::format(
-        "model '{}': gap '{}' {}; a gap must be in series with a compliant element (a spring, yeoh, dashpot, maxwell, "
+        "{}model '{}': gap '{}' {}; a gap must be in series with a compliant element (a spring, yeoh, dashpot, maxwell, "
         "friction, bouc_wen or quadratic_dashpot): write series {{ gap {} (width = {:g} mm); spring (k = ...) }}",
-        model.name, path(p), where, path(p), value(p)));
+        error_at(p.where), model.name, path(p), where, path(p), value(p)));
   }
   [[noreturn]] void inerter_error(const Proto& p) const {
     throw ModelError(fmt::format(
-        "model '{}': inerter '{}' is connected to the drive through sliders, gaps or inerters only (or parallel "
+        "{}model '{}': inerter '{}' is connected to the drive through sliders, gaps or inerters only (or parallel "
         "blocks holding one), so a change of the drive velocity while they hold would be an impact (an unbounded "
         "force); put a compliant element (a spring, dashpot, maxwell, ...) in series with it, e.g. "
         "series {{ spring (k = ...); inerter {} (b = {:g} N*s^2/mm) }}, or place it directly in the model's parallel block",
-        model.name, path(p), path(p), value(p)));
+        error_at(p.where), model.name, path(p), path(p), value(p)));
   }
 
   void visit(const Proto& p, bool driven, bool root_level) const {
@@ -342,7 +344,7 @@ Network Network::compile(const lang::CheckedModel& model) {
 
 Network Network::with_parameters(const std::vector<double>& values) const {
   if (values.size() != parameters_.size())
-    throw ModelError(fmt::format("model '{}' has {} parameters, {} values given", model_->name,
+    throw std::invalid_argument(fmt::format("model '{}' has {} parameters, {} values given", model_->name,
                                             parameters_.size(), values.size()));
   Network copy = *this;
   // Parameters are stored in dependency order by the checker only for literals; evaluate

@@ -74,6 +74,10 @@ ProtocolRun run_protocol(const Network& network, const Protocol& p, const std::s
       options.max_cycles = static_cast<int>(number(p, "cycles_max", options.max_cycles));
       options.tolerance = number(p, "tolerance", options.tolerance);
       options.solver = solver;
+      if (options.steady_state == SteadyState::closed_form && uses_sundials(network, solver))
+        throw UsageError(fmt::format("{}:{}:{}: steady_state = closed_form and the SUNDIALS solver exclude each other; "
+                                     "drop one (solver = fixed with closed_form, or steady_state = auto)",
+                                     p.where.file, p.where.line, p.where.column));
       if (options.steady_state == SteadyState::closed_form && !has_closed_form_periodic_state(network))
         throw UsageError(fmt::format("{}:{}:{}: steady_state = closed_form needs every element of model '{}' in its parallel body; "
                                      "it has nested blocks: use steady_state = auto or time_stepping",

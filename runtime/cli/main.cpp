@@ -36,7 +36,7 @@ int main(int argc, char** argv) {
     std::cerr << e.what();
     return runtime::exit_code::model;
   } catch (const runtime::ModelError& e) {
-    std::cerr << "rheo: model error: " << e.what() << "\n";
+    std::cerr << e.what() << "\n";  // "file:line:col: error: ..." naming the element
     return runtime::exit_code::model;
   } catch (const runtime::UsageError& e) {
     std::cerr << "rheo: error: " << e.what() << "\n";

@@ -52,7 +52,7 @@ TEST_CASE("a network that cannot be simulated exits 3 from check and simulate, n
                                      "simulate { harmonic frequency = 1 Hz, amplitude = 0.1 mm }\n");
   const Result check = run("check " + bad.string());
   CHECK(check.code == 3);
-  CHECK(check.output.find("model error") != std::string::npos);
+  CHECK(check.output.find("gap.rheo:3:3: error: model 'm': gap 'play'") != std::string::npos);
   CHECK(check.output.find("'play'") != std::string::npos);
   CHECK(check.output.find(": ok:") == std::string::npos);
   const Result simulate = run("simulate " + bad.string());

@@ -169,6 +169,18 @@ Errors errors_of(const runtime::HarmonicPoint& p, std::complex<double> k_star) {
   return {relative_error(p.measures.stiffness, std::abs(k_star)), std::abs(degrees(p.measures.phase - std::arg(k_star)))};
 }
 
+// Errors against K* at 2048 and 4096 steps per cycle (both points must converge), logged.
+std::pair<Errors, Errors> errors_at_2048_and_4096(const runtime::Network& net, double f, std::complex<double> k_star,
+                                                  HarmonicDefinition definition = HarmonicDefinition::thesis) {
+  const auto coarse = fixed_step_point(net, 0.4, f, 2048, definition), fine = fixed_step_point(net, 0.4, f, 4096, definition);
+  CHECK(coarse.converged);
+  CHECK(fine.converged);
+  const Errors e1 = errors_of(coarse, k_star), e2 = errors_of(fine, k_star);
+  MESSAGE("f = " << f << " Hz: |K*| error " << e1.stiffness << " -> " << e2.stiffness << ", phase error " << e1.phase
+                 << " -> " << e2.phase << " deg (N = 2048 -> 4096)");
+  return {e1, e2};
+}
+
 constexpr double kTheta2048 = 2.0 * std::numbers::pi / 2048.0;
 
 }  // namespace
@@ -186,13 +198,8 @@ TEST_CASE("spring in series with inerter || dashpot || spring: the phasor K*, fi
     const double w = 2 * std::numbers::pi * f;
     const std::complex<double> z{k2 - b * w * w, c * w};
     const std::complex<double> k_star = k * z / (k + z);
-    const auto coarse = fixed_step_point(net, 0.4, f, 2048), fine = fixed_step_point(net, 0.4, f, 4096);
     CAPTURE(f);
-    CHECK(coarse.converged);
-    CHECK(fine.converged);
-    const Errors e1 = errors_of(coarse, k_star), e2 = errors_of(fine, k_star);
-    MESSAGE("f = " << f << " Hz: |K*| error " << e1.stiffness << " -> " << e2.stiffness << ", phase error " << e1.phase
-                   << " -> " << e2.phase << " deg (N = 2048 -> 4096)");
+    const auto [e1, e2] = errors_at_2048_and_4096(net, f, k_star);
     CHECK(e1.stiffness < 3e-3);
     CHECK(e1.phase < 0.09);
     CHECK(e2.stiffness / e1.stiffness == doctest::Approx(0.5).epsilon(0.1));  // first order
@@ -213,14 +220,8 @@ TEST_CASE("spring in series with inerter || Maxwell || spring: second order (New
     const std::complex<double> iwt{0.0, w * tau};
     const std::complex<double> z = k2 - b * w * w + km * iwt / (1.0 + iwt);
     const std::complex<double> k_star = k * z / (k + z);
-    const auto coarse = fixed_step_point(net, 0.4, f, 2048, HarmonicDefinition::first_harmonic);
-    const auto fine = fixed_step_point(net, 0.4, f, 4096, HarmonicDefinition::first_harmonic);
     CAPTURE(f);
-    CHECK(coarse.converged);
-    CHECK(fine.converged);
-    const Errors e1 = errors_of(coarse, k_star), e2 = errors_of(fine, k_star);
-    MESSAGE("f = " << f << " Hz: |K*| error " << e1.stiffness << " -> " << e2.stiffness << ", phase error " << e1.phase
-                   << " -> " << e2.phase << " deg (N = 2048 -> 4096)");
+    const auto [e1, e2] = errors_at_2048_and_4096(net, f, k_star, HarmonicDefinition::first_harmonic);
     CHECK(e1.stiffness < 1.5e-5);
     CHECK(e1.phase < 1.6e-4);
     const double order = e1.stiffness / e2.stiffness;
@@ -243,10 +244,7 @@ TEST_CASE("the Newmark inerter under midpoint sampling (a dashpot in the root bl
   const std::complex<double> iwt{0.0, w * tau};
   const std::complex<double> z = k2 - b * w * w + km * iwt / (1.0 + iwt);
   const std::complex<double> k_star = std::complex<double>{0.0, c * w} + k * z / (k + z);
-  const auto coarse = fixed_step_point(net, 0.4, f, 2048, HarmonicDefinition::first_harmonic);
-  const auto fine = fixed_step_point(net, 0.4, f, 4096, HarmonicDefinition::first_harmonic);
-  const Errors e1 = errors_of(coarse, k_star), e2 = errors_of(fine, k_star);
-  MESSAGE("|K*| error " << e1.stiffness << " -> " << e2.stiffness << ", phase error " << e1.phase << " -> " << e2.phase << " deg");
+  const auto [e1, e2] = errors_at_2048_and_4096(net, f, k_star, HarmonicDefinition::first_harmonic);
   CHECK(e1.stiffness < 5.2e-6);
   CHECK(e1.phase < 1e-4);
   CHECK(e1.stiffness / e2.stiffness > 3.0);

@@ -2,6 +2,7 @@
 // the same programme (two paths to the same displacement), JSON output, relaxation steps.
 #include "runtime/run_protocols.hpp"
 
+#include "runtime/errors.hpp"
 #include "runtime/history_csv.hpp"
 #include "support.hpp"
 
@@ -55,4 +56,13 @@ TEST_CASE("step protocol with element outputs: the Maxwell arm relaxes, the spri
   const auto& arm = t.columns[static_cast<std::size_t>(t.column("m.force"))];
   CHECK(spring.back() == doctest::Approx(20.0));
   CHECK(arm.back() == doctest::Approx(arm[1] * std::exp(-(1.0 - 1e-3) / 0.1)).epsilon(1e-9));
+}
+
+TEST_CASE("solver = sundials names itself in the header; with steady_state = closed_form it is a usage error") {
+  const std::string model = "model m { spring k (k = 100 N/mm)\n maxwell x (k = 50 N/mm, tau = 10 ms) }\n";
+  const auto run = run_first(model + "simulate { harmonic frequency = 5 Hz, amplitude = 0.5 mm, solver = sundials }", "s.rheo");
+  CHECK(run.content.find("solver=sundials (IDA") != std::string::npos);
+  CHECK_THROWS_WITH_AS(
+      run_first(model + "simulate { harmonic frequency = 5 Hz, amplitude = 0.5 mm, solver = sundials, steady_state = closed_form }", "s.rheo"),
+      doctest::Contains("s.rheo:3:12: steady_state = closed_form and the SUNDIALS solver exclude each other"), runtime::UsageError);
 }
