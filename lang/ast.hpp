@@ -25,6 +25,7 @@ struct Expr {
   std::string path;     // Kind::reference: "m1.k"
   ExprPtr lhs, rhs;     // operands (negate uses lhs)
   SourceLocation where;
+  int depth = 1;        // levels as written, parentheses included (limits.hpp)
 };
 
 struct Bounds {

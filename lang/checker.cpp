@@ -1,5 +1,6 @@
 #include "lang/checker.hpp"
 
+#include "lang/dependency_order.hpp"
 #include "lang/element_schema.hpp"
 #include "lang/fit_schema.hpp"
 #include "lang/model_builder.hpp"
@@ -18,18 +19,21 @@ class Checker {
   Checker(std::vector<Diagnostic>& errors) : errors_(errors) {}
 
   void declare(const ast::Model& m) {
-    auto [it, fresh] = declared_.emplace(m.name, &m);
+    auto [it, fresh] = declared_.emplace(m.name, static_cast<int>(order_.size()));
     if (!fresh) {
-      const auto& first = it->second->where;
+      const auto& first = order_[static_cast<std::size_t>(it->second)]->where;
       errors_.push_back({m.where, fmt::format("duplicate model '{}' (first defined at {}:{}); rename one", m.name, first.file, first.line)});
       return;
     }
     order_.push_back(&m);
   }
 
-  // Checks every declared model (instantiated ones on demand, before their users).
+  // Checks every declared model, each after the models it instantiates.
   std::vector<CheckedModel> check_models() {
-    for (const auto* m : order_) check(*m);
+    visit_in_dependency_order(
+        order_.size(), [this](int i) { return instances(*order_[static_cast<std::size_t>(i)]); },
+        [this](int i) { check(*order_[static_cast<std::size_t>(i)]); },
+        [this](const std::vector<int>& cycle, const Instance& edge) { report_recursion(cycle, edge); });
     std::vector<CheckedModel> out;
     for (const auto* m : order_) out.push_back(done_.at(m->name).model);
     return out;
@@ -48,41 +52,57 @@ class Checker {
   }
 
  private:
-  const ModelInfo& check(const ast::Model& m) {
-    if (auto it = done_.find(m.name); it != done_.end()) return it->second;
-    in_progress_.push_back(m.name);
+  struct Instance {
+    int to;  // into order_
+    const ast::Element* element;
+  };
+
+  // The declared models that model M instantiates, in the order they are written.
+  std::vector<Instance> instances(const ast::Model& m) const {
+    std::vector<Instance> out;
+    collect_instances(m.elements, out);
+    return out;
+  }
+  void collect_instances(const std::vector<ast::Element>& elements, std::vector<Instance>& out) const {
+    for (const auto& e : elements) {
+      if (e.block) collect_instances(e.children, out);
+      else if (auto it = declared_.find(e.kind); it != declared_.end() && !find_element_spec(e.kind)) out.push_back({it->second, &e});
+    }
+  }
+
+  void check(const ast::Model& m) {
     ModelLookup lookup = [this](const ast::Element& e) { return instantiate(e); };
-    ModelInfo info = build_model(m, lookup, errors_);
-    in_progress_.pop_back();
-    return done_.emplace(m.name, std::move(info)).first->second;
+    done_.emplace(m.name, build_model(m, lookup, errors_));
+  }
+
+  void report_recursion(const std::vector<int>& cycle, const Instance& edge) {
+    std::vector<std::string> chain;
+    for (int i : cycle) chain.push_back(order_[static_cast<std::size_t>(i)]->name);
+    chain.push_back(edge.element->kind);
+    errors_.push_back({edge.element->where, fmt::format("recursive instantiation: {}; a model cannot contain itself", join_chain(chain))});
   }
 
   const ModelInfo* instantiate(const ast::Element& e) {
-    auto it = declared_.find(e.kind);
-    if (it == declared_.end()) {
-      std::vector<std::string> known;
-      for (const auto& s : element_specs()) known.emplace_back(s.kind);
-      for (const auto& [name, model] : declared_) known.push_back(name);
+    if (!declared_.count(e.kind)) {
+      if (known_kinds_.empty()) {
+        for (const auto& s : element_specs()) known_kinds_.emplace_back(s.kind);
+        for (const auto& [name, index] : declared_) known_kinds_.push_back(name);
+      }
       errors_.push_back({e.where, fmt::format("unknown element kind or model '{}';{} known: {} (and parallel, series blocks); "
                                               "stdlib models need `import NAME`",
-                                              e.kind, did_you_mean(e.kind, known), join(known))});
+                                              e.kind, did_you_mean(e.kind, known_kinds_), join(known_kinds_))});
       return nullptr;
     }
-    if (auto cycle = std::find(in_progress_.begin(), in_progress_.end(), e.kind); cycle != in_progress_.end()) {
-      std::string chain;
-      for (auto c = cycle; c != in_progress_.end(); ++c) chain += *c + " -> ";
-      errors_.push_back({e.where, fmt::format("recursive instantiation: {}{}; a model cannot contain itself", chain, e.kind)});
-      return nullptr;
-    }
-    const ModelInfo& info = check(*it->second);
-    return info.ok ? &info : nullptr;
+    // Checked before its users (check_models), unless it is on a reported recursion.
+    auto it = done_.find(e.kind);
+    return it != done_.end() && it->second.ok ? &it->second : nullptr;
   }
 
   std::vector<Diagnostic>& errors_;
-  std::map<std::string, const ast::Model*> declared_;
+  std::map<std::string, int> declared_;  // name -> index into order_
   std::vector<const ast::Model*> order_;
   std::map<std::string, ModelInfo> done_;
-  std::vector<std::string> in_progress_;
+  std::vector<std::string> known_kinds_;  // element kinds and models, for suggestions; filled on first use
 };
 
 // The model a `simulate`/`fit` block (DIRECTIVE) names, or the file's only (non-imported)

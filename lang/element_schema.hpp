@@ -3,6 +3,8 @@
 
 #include "lang/model.hpp"
 
+#include <limits>
+#include <optional>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -14,6 +16,8 @@ struct ParameterSpec {
   Dimension dimension;
   bool positive;              // value must be > 0
   std::string_view quantity;  // "stiffness", for messages
+  std::optional<double> default_value = std::nullopt;  // internal units; absent: required
+  double below = std::numeric_limits<double>::infinity();  // value must be < below
 };
 
 struct ElementSpec {
@@ -44,6 +48,13 @@ inline const std::vector<ElementSpec>& element_specs() {
       {"bouc_wen", ElementKind::bouc_wen,
        {{"k", dim::stiffness, true, "stiffness"}, {"n", dim::none, true, "loop-shape exponent"}, {"fy", dim::force, true, "yield force"}},
        {{"uy", dim::length, true, "yield displacement"}}},
+      {"springpot", ElementKind::springpot,
+       {{"k", dim::stiffness, true, "stiffness"},
+        {"alpha", dim::none, true, "fractional order", std::nullopt, 1.0},
+        {"tau", dim::time, true, "time constant"},
+        {"f_low", dim::frequency, true, "lower band limit", 0.01},
+        {"f_high", dim::frequency, true, "upper band limit", 1000.0}},
+       {}},
   };
   return specs;
 }

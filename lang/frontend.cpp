@@ -10,6 +10,9 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <cerrno>
+#include <cstring>
+#include <filesystem>
 #include <fstream>
 #include <functional>
 #include <list>
@@ -20,11 +23,16 @@
 namespace rheo::lang {
 
 Program load_program(const std::string& path) {
+  auto unreadable = [&](const std::string& reason) {
+    return UnreadableSource(fmt::format("{}: error: cannot read it ({}); check the path", path, reason));
+  };
+  std::error_code error;
+  if (std::filesystem::is_directory(path, error)) throw unreadable("it is a directory");
   std::ifstream in(path, std::ios::binary);
-  if (!in) throw std::runtime_error(fmt::format("cannot read '{}'", path));
+  if (!in) throw unreadable(std::strerror(errno));
   std::ostringstream text;
   text << in.rdbuf();
-  if (in.bad()) throw std::runtime_error(fmt::format("cannot read '{}'", path));
+  if (in.bad()) throw unreadable(std::strerror(errno));
   return compile_source(path, text.str());
 }
 

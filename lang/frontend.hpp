@@ -4,14 +4,21 @@
 #include "lang/diagnostics.hpp"
 #include "lang/model.hpp"
 
+#include <stdexcept>
 #include <string>
 #include <string_view>
 
 namespace rheo::lang {
 
+// A source file that cannot be read (missing, a directory, no permission): what() is
+// "FILE: error: cannot read it (REASON); check the path".
+struct UnreadableSource : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+
 // Reads, parses and checks FILE (imports resolved from the embedded stdlib). Throws
 // CompileError with EVERY semantic error found (parse errors: the first). Throws
-// std::runtime_error naming the file if it cannot be read.
+// UnreadableSource if FILE cannot be read.
 Program load_program(const std::string& path);
 Program compile_source(const std::string& file_name, std::string_view text);
 

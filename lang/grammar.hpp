@@ -17,6 +17,7 @@
 //   factor    := '-' factor | '(' expression ')' | NUMBER [UNIT] | PATH
 // Statements are not newline-terminated: every statement starts with a keyword or a name that
 // cannot continue the previous expression (expressions continue only with an operator).
+// Blocks and expressions nest at most as deep as limits.hpp allows (the *_room guards).
 #pragma once
 
 #include "lang/units.hpp"
@@ -29,6 +30,26 @@ namespace rheo::lang::grammar {
 
 namespace pegtl = tao::pegtl;
 using namespace pegtl;
+
+// --- limits --------------------------------------------------------------------------------
+// A guard of limits.hpp: consumes nothing and succeeds while the parser state has room for one
+// more level of Nesting (`state.room(Nesting{})`). It stands under must<> before the rule that
+// nests, so that going deeper is reported at that rule's first character instead of recursing.
+template <typename Nesting>
+struct room {
+  using rule_t = room;
+  using subs_t = type_list<>;
+  template <apply_mode, rewind_mode, template <typename...> class, template <typename...> class, typename ParseInput, typename State>
+  static bool match(ParseInput&, const State& state) {
+    return state.room(Nesting{});
+  }
+};
+struct block_nesting {};     // a block in the open blocks
+struct group_nesting {};     // parentheses or a unary minus around the operand to come
+struct operator_nesting {};  // a binary operator over the operand just parsed
+struct block_room : room<block_nesting> {};
+struct group_room : room<group_nesting> {};
+struct operator_room : room<operator_nesting> {};
 
 // --- lexical -------------------------------------------------------------------------------
 struct comment : seq<one<'#'>, until<eolf>> {};
@@ -90,25 +111,28 @@ struct expression;
 struct quantity_unit : seq<sep, unit> {};
 struct quantity : seq<number, opt<quantity_unit>> {};
 struct reference : path {};
+struct paren_open : one<'('> {};
 struct paren_close : one<')'> {};
 struct paren_expression;
-struct parenthesized : if_must<one<'('>, sep, paren_expression, sep, paren_close> {};
+struct parenthesized : if_must<at<paren_open>, group_room, paren_open, sep, paren_expression, sep, paren_close> {};
 struct factor;
 struct negative_sign : one<'-'> {};
 struct operand;
-struct negation : if_must<negative_sign, sep, operand> {};
+struct negation : if_must<at<negative_sign>, group_room, negative_sign, sep, operand> {};
 struct factor : sor<negation, parenthesized, quantity, reference> {};
 struct operand : factor {};
 struct times_sign : one<'*'> {};
 struct divide_sign : one<'/'> {};
 struct plus_sign : one<'+'> {};
 struct minus_sign : one<'-'> {};
-struct times : if_must<seq<sep, times_sign>, sep, operand> {};
-struct divided : if_must<seq<sep, divide_sign>, sep, operand> {};
+template <typename Sign, typename Operand>
+struct binary_operation : if_must<seq<sep, at<Sign>>, operator_room, Sign, sep, Operand> {};
+struct times : binary_operation<times_sign, operand> {};
+struct divided : binary_operation<divide_sign, operand> {};
 struct term : seq<factor, star<sor<times, divided>>> {};
 struct term_operand : term {};
-struct added : if_must<seq<sep, plus_sign>, sep, term_operand> {};
-struct subtracted : if_must<seq<sep, minus_sign>, sep, term_operand> {};
+struct added : binary_operation<plus_sign, term_operand> {};
+struct subtracted : binary_operation<minus_sign, term_operand> {};
 struct expression : seq<term, star<sor<added, subtracted>>> {};
 struct paren_expression : expression {};
 
@@ -142,7 +166,7 @@ struct block_kind : sor<kw_parallel, kw_series> {};
 struct block_open : one<'{'> {};
 struct block_close : one<'}'> {};
 struct block_header : seq<block_kind, opt<sep, element_name>> {};
-struct block : if_must<block_header, sep, block_open, star<sep, element>, sep, block_close> {};
+struct block : if_must<at<block_kind>, block_room, block_header, sep, block_open, star<sep, element>, sep, block_close> {};
 struct element : sor<block, leaf> {};
 
 // --- models --------------------------------------------------------------------------------

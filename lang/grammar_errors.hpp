@@ -15,6 +15,9 @@ struct errors {
 };
 
 // clang-format off
+template <> inline constexpr const char* errors::message<block_room> = "blocks nested deeper than 200 levels; flatten the network (a series block directly inside a series block, or a parallel inside a parallel, can be merged into it)";
+template <> inline constexpr const char* errors::message<group_room> = "expression nested deeper than 200 levels (each pair of parentheses, unary minus and operator is one); simplify it or compute parts of it in `param` declarations";
+template <> inline constexpr const char* errors::message<operator_room> = errors::message<group_room>;
 template <> inline constexpr const char* errors::message<string_body> = "unterminated string literal; close it with '\"' on the same line";
 template <> inline constexpr const char* errors::message<paren_expression> = "expected an expression after '(', found {found}";
 template <> inline constexpr const char* errors::message<paren_close> = "expected ')' to close the parenthesized expression, found {found}";

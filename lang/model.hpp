@@ -67,6 +67,9 @@ enum class ElementKind : std::uint8_t {
   gap,       // width [mm]:             free play: F = 0 for |e| < width/2, rigid at e = +-width/2
   bouc_wen,  // k [N/mm], n [-], fy [N]: smooth friction, F = fy z,
              //   dz/dt = (k/fy) de/dt (1 - |z|^n (1 + sgn(z de/dt)) / 2); n -> inf: friction(k, fy)
+  springpot, // k [N/mm], alpha [-], tau [s], f_low, f_high [Hz]: fractional derivative element,
+             //   K* = k (i w tau)^alpha, approximated over [f_low, f_high] by a Maxwell chain
+             //   (runtime/springpot.hpp)
   parallel,  // children share the elongation; forces add
   series,    // children share the force; elongations add
 };
@@ -76,10 +79,11 @@ const char* kind_word(ElementKind kind);
 
 // Parameter slots of each leaf kind, in this order, as indices into CheckedModel::parameters.
 // The checker normalises alternatives: maxwell given tau stores c = k * tau (an Expression),
-// friction and bouc_wen given uy store fy = k * uy.
+// friction and bouc_wen given uy store fy = k * uy. Optional parameters left out (springpot
+// f_low, f_high) are generated with their defaults.
 //   spring: {k}   yeoh: {D10, D20, D30}   dashpot: {c}   maxwell: {k, c}
 //   friction: {k, fy}   slider: {fy}   inerter: {b}   quadratic_dashpot: {cq}   gap: {width}
-//   bouc_wen: {k, n, fy}   parallel/series: {}
+//   bouc_wen: {k, n, fy}   springpot: {k, alpha, tau, f_low, f_high}   parallel/series: {}
 struct Element {
   ElementKind kind = ElementKind::parallel;
   std::string name;            // explicit or generated ("maxwell2"); unique in its naming scope

@@ -1,7 +1,9 @@
 #include "lang/model_builder.hpp"
 
+#include "lang/dependency_order.hpp"
 #include "lang/element_schema.hpp"
 #include "lang/expressions.hpp"
+#include "lang/limits.hpp"
 #include "lang/names.hpp"
 #include "lang/parameter_checks.hpp"
 
@@ -23,7 +25,7 @@ struct Entry {
   bool dimension_known = false;  // element parameters; model `param`s infer theirs
   const ast::Expr* source = nullptr;
   const ast::Bounds* bounds = nullptr;
-  enum class State { pending, visiting, done, failed } state = State::pending;
+  enum class State { pending, done, failed } state = State::pending;
 };
 
 // Names within one naming scope (model root, named block, instance).
@@ -46,9 +48,9 @@ class Builder {
     info_.model.root.kind = ElementKind::parallel;
     info_.model.root.where = model_.where;
     if (model_.elements.empty()) error(model_.where, fmt::format("model '{}' has no elements; add at least one element to its body", model_.name));
-    info_.model.root.children = build_scope(model_.elements, root);
+    info_.model.root.children = build_scope(model_.elements, root, 0);
     values_.assign(entries_.size(), 0.0);
-    for (std::size_t i = 0; i < entries_.size(); ++i) resolve(static_cast<int>(i));
+    resolve_all();
     for (auto& e : entries_) {
       info_.model.parameters.push_back(std::move(e.parameter));
       info_.meta.push_back(std::move(e.meta));
@@ -115,12 +117,13 @@ class Builder {
     }
   }
 
-  std::vector<Element> build_scope(const std::vector<ast::Element>& elements, Scope& scope) {
+  // DEPTH: the blocks around ELEMENTS, 0 in the model's body.
+  std::vector<Element> build_scope(const std::vector<ast::Element>& elements, Scope& scope, int depth) {
     collect_names(elements, scope);
-    return build_children(elements, scope);
+    return build_children(elements, scope, depth);
   }
 
-  std::vector<Element> build_children(const std::vector<ast::Element>& elements, Scope& scope) {
+  std::vector<Element> build_children(const std::vector<ast::Element>& elements, Scope& scope, int depth) {
     std::vector<Element> out;
     for (const auto& e : elements) {
       std::string name = e.name.empty() ? generate_name(e.kind, scope) : e.name;
@@ -129,16 +132,18 @@ class Builder {
         if (e.children.empty()) error(e.where, fmt::format("empty {} block; add elements to it or remove it", e.kind));
         Element block{e.kind == "series" ? ElementKind::series : ElementKind::parallel, name, path, {}, {}, e.where};
         if (e.name.empty()) {
-          block.children = build_children(e.children, scope);  // unnamed blocks are transparent
+          block.children = build_children(e.children, scope, depth + 1);  // unnamed blocks are transparent
         } else {
           Scope inner{path + ".", {}, {}};
-          block.children = build_scope(e.children, inner);
+          block.children = build_scope(e.children, inner, depth + 1);
         }
         out.push_back(std::move(block));
       } else if (const ElementSpec* spec = find_element_spec(e.kind)) {
         if (auto leaf = build_leaf(e, *spec, name, path)) out.push_back(std::move(*leaf));
-      } else if (const ModelInfo* instance = lookup_(e)) {
+      } else if (const ModelInfo* instance = lookup_(e); instance && fits_limits(e, *instance, depth)) {
         out.push_back(build_instance(e, *instance, name, path));
+      } else {
+        info_.ok = false;  // reported by the lookup, by fits_limits or where the instantiated model failed
       }
     }
     return out;
@@ -177,7 +182,7 @@ class Builder {
         } else if (has_alt) {
           derived_slot = i;
         }
-      } else if (!has_slot) {
+      } else if (!has_slot && !spec.slots[i].default_value) {
         error(e.where, fmt::format("{} is missing its {} {} ({}); add `{} = ...`", what, spec.slots[i].quantity, spec.slots[i].name,
                                    internal_unit(spec.slots[i].dimension), spec.slots[i].name));
         ok = false;
@@ -198,8 +203,10 @@ class Builder {
         derived.meta = {false, true, std::string(spec.slots[i].quantity), std::string(spec.kind)};
         derived.dimension_known = true;
         out.parameters.push_back(add(std::move(derived)));
+      } else if (auto it = given.find(std::string(spec.slots[i].name)); it != given.end()) {
+        out.parameters.push_back(add_element_parameter(*it->second, spec.slots[i], spec.kind, path));
       } else {
-        out.parameters.push_back(add_element_parameter(*given[std::string(spec.slots[i].name)], spec.slots[i], spec.kind, path));
+        out.parameters.push_back(add_default_parameter(e, spec.slots[i], spec.kind, path));
       }
     }
     return out;
@@ -210,11 +217,61 @@ class Builder {
     e.parameter.path = path + "." + a.name;
     e.parameter.dimension = spec.dimension;
     locate(e.parameter, a);
-    e.meta = {spec.positive, false, std::string(spec.quantity), std::string(kind)};
+    e.meta = {spec.positive, false, std::string(spec.quantity), std::string(kind), spec.below};
     e.dimension_known = true;
     e.source = a.value.get();
     e.bounds = a.bounds ? &*a.bounds : nullptr;
     return add(std::move(e));
+  }
+
+  // An optional parameter left out: a constant with the spec's default, located at the element.
+  int add_default_parameter(const ast::Element& element, const ParameterSpec& spec, std::string_view kind, const std::string& path) {
+    Entry e;
+    e.parameter.path = path + "." + std::string(spec.name);
+    e.parameter.dimension = spec.dimension;
+    e.parameter.expression.code = {{Expression::Op::constant, *spec.default_value, -1}};
+    e.parameter.where = element.where;
+    e.meta = {spec.positive, false, std::string(spec.quantity), std::string(kind), spec.below};
+    e.dimension_known = true;
+    return add(std::move(e));
+  }
+
+  struct Extent {
+    int levels = 0;          // blocks on the longest path down, the element itself included
+    std::size_t size = 0;    // elements
+  };
+  static Extent extent(const Element& e) {
+    Extent out{e.kind == ElementKind::parallel || e.kind == ElementKind::series ? 1 : 0, 1};
+    int below = 0;
+    for (const auto& c : e.children) {
+      const Extent x = extent(c);
+      below = std::max(below, x.levels);
+      out.size += x.size;
+    }
+    out.levels += below;
+    return out;
+  }
+
+  // Whether INSTANCE, expanded at DEPTH (the blocks around it), keeps this model within
+  // limits.hpp; reports at the instance when not.
+  bool fits_limits(const ast::Element& e, const ModelInfo& instance, int depth) {
+    const Extent x = extent(instance.model.root);  // the root is the instance's block
+    if (depth + x.levels > max_block_depth) {
+      error(e.where, fmt::format("instantiating model '{}' here nests blocks {} levels deep, more than {} (an instance is a block, "
+                                 "and the blocks and instances inside it count too); flatten the models or instantiate this one "
+                                 "less deeply",
+                                 e.kind, depth + x.levels, max_block_depth));
+      return false;
+    }
+    const std::size_t size = x.size + instance.model.parameters.size();
+    if (expanded_ + size > max_model_size) {
+      error(e.where, fmt::format("instantiating model '{}' here expands model '{}' to more than {} elements and parameters "
+                                 "(this instance copies {}); instantiate large models fewer times",
+                                 e.kind, model_.name, max_model_size, size));
+      return false;
+    }
+    expanded_ += size;
+    return true;
   }
 
   // The instantiated model's root becomes a parallel block named by the instance; its
@@ -269,57 +326,81 @@ class Builder {
   }
 
   // --- resolution: dimensions, expressions, values ---
+  struct Dependency {
+    int to;  // entry
+  };
+
+  // The entries entry I is computed from, in the order its expression names them (unknown
+  // names are left to the compilation to report).
+  std::vector<Dependency> dependencies(int i) const {
+    std::vector<Dependency> out;
+    const Entry& e = entries_[static_cast<std::size_t>(i)];
+    if (e.source) {
+      collect_references(*e.source, out);
+    } else {
+      for (const auto& op : e.parameter.expression.code)
+        if (op.op == Expression::Op::parameter) out.push_back({op.parameter});
+    }
+    return out;
+  }
+
+  void collect_references(const ast::Expr& x, std::vector<Dependency>& out) const {
+    if (x.kind == ast::Expr::Kind::reference) {
+      if (auto it = index_.find(x.path); it != index_.end()) out.push_back({it->second});
+      return;
+    }
+    if (x.lhs) collect_references(*x.lhs, out);
+    if (x.rhs) collect_references(*x.rhs, out);
+  }
+
+  // Resolves every entry after the entries it references, however long the chains.
+  void resolve_all() {
+    visit_in_dependency_order(
+        entries_.size(), [this](int i) { return dependencies(i); }, [this](int i) { resolve(i); },
+        [this](const std::vector<int>& cycle, const Dependency&) { report_cycle(cycle); });
+  }
+
   std::optional<ResolvedReference> reference(const ast::Expr& r) {
     auto it = index_.find(r.path);
     if (it == index_.end()) {
-      std::vector<std::string> known;
-      for (const auto& [path, index] : index_) known.push_back(path);
+      if (known_paths_.empty())
+        for (const auto& [path, index] : index_) known_paths_.push_back(path);
       error(r.where, fmt::format("unknown parameter '{}' in this expression;{} references name parameters of model '{}' by path, e.g. k0 or m1.k",
-                                 r.path, did_you_mean(r.path, known), model_.name));
+                                 r.path, did_you_mean(r.path, known_paths_), model_.name));
       return std::nullopt;
     }
-    if (!resolve(it->second)) return std::nullopt;
+    // Resolved before this one (resolve_all); a failed one was reported where it failed.
+    if (entries_[static_cast<std::size_t>(it->second)].state != Entry::State::done) return std::nullopt;
     return ResolvedReference{it->second, entries_[static_cast<std::size_t>(it->second)].parameter.dimension};
   }
 
-  // Resolves entry I (and, first, everything it references). False when it failed.
-  bool resolve(int i) {
-    Entry& e = entries_[static_cast<std::size_t>(i)];
-    if (e.state == Entry::State::done) return true;
-    if (e.state == Entry::State::failed) return false;
-    if (e.state == Entry::State::visiting) {
-      report_cycle(i);
-      return false;
-    }
-    e.state = Entry::State::visiting;
-    stack_.push_back(i);
-    bool ok = e.source ? compile_source(i) : resolve_copied(i);
-    stack_.pop_back();
+  // Compiles, evaluates and checks entry I; everything it references is resolved or failed.
+  void resolve(int i) {
+    bool ok = entries_[static_cast<std::size_t>(i)].source ? compile_source(i) : resolve_copied(i);
     Entry& done = entries_[static_cast<std::size_t>(i)];
-    if (done.state == Entry::State::failed) return false;  // part of a reported cycle
+    if (done.state == Entry::State::failed) return;  // part of a reported cycle
     if (ok) {
       values_[static_cast<std::size_t>(i)] = done.parameter.value = done.parameter.expression.evaluate(values_);
       ok = check_value(done.parameter, done.meta, errors_) && (!done.bounds || check_bounds(done.parameter, done.meta, *done.bounds, errors_));
     }
     done.state = ok ? Entry::State::done : Entry::State::failed;
-    return ok;
   }
 
-  void report_cycle(int i) {
-    auto start = std::find(stack_.begin(), stack_.end(), i);
-    std::string chain;
-    for (auto it = start; it != stack_.end(); ++it) {
-      chain += entries_[static_cast<std::size_t>(*it)].parameter.path + " -> ";
-      entries_[static_cast<std::size_t>(*it)].state = Entry::State::failed;
+  void report_cycle(const std::vector<int>& cycle) {
+    std::vector<std::string> chain;
+    for (int i : cycle) {
+      chain.push_back(entries_[static_cast<std::size_t>(i)].parameter.path);
+      entries_[static_cast<std::size_t>(i)].state = Entry::State::failed;
     }
-    const Entry& e = entries_[static_cast<std::size_t>(i)];
-    error(e.parameter.where, fmt::format("reference cycle: {}{}; a parameter cannot depend on itself", chain, e.parameter.path));
+    const Entry& e = entries_[static_cast<std::size_t>(cycle.front())];
+    chain.push_back(e.parameter.path);
+    error(e.parameter.where, fmt::format("reference cycle: {}; a parameter cannot depend on itself", join_chain(chain)));
   }
 
   bool resolve_copied(int i) {
     bool ok = true;
     for (const auto& op : entries_[static_cast<std::size_t>(i)].parameter.expression.code)
-      if (op.op == Expression::Op::parameter) ok = resolve(op.parameter) && ok;
+      if (op.op == Expression::Op::parameter) ok = entries_[static_cast<std::size_t>(op.parameter)].state == Entry::State::done && ok;
     return ok;
   }
 
@@ -346,7 +427,8 @@ class Builder {
   std::vector<Entry> entries_;
   std::map<std::string, int> index_;  // path -> entry
   std::vector<double> values_;
-  std::vector<int> stack_;  // entries being resolved, for cycle reports
+  std::vector<std::string> known_paths_;  // every path, for suggestions; filled on first use
+  std::size_t expanded_ = 0;              // elements and parameters copied from instances
 };
 
 }  // namespace

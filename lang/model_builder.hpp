@@ -6,6 +6,7 @@
 #include "lang/diagnostics.hpp"
 
 #include <functional>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -17,6 +18,7 @@ struct ParameterMeta {
   bool derived = false;    // generated (maxwell c from tau, friction fy from uy): not overridable
   std::string quantity;    // "stiffness"; empty for model-level `param`s
   std::string owner_kind;  // "maxwell"; empty for model-level `param`s
+  double below = std::numeric_limits<double>::infinity();  // value must be < below (springpot alpha < 1)
 };
 
 struct ModelInfo {

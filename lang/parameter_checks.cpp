@@ -31,6 +31,10 @@ bool check_value(const Parameter& p, const ParameterMeta& meta, std::vector<Diag
     errors.push_back({p.where, fmt::format("{} {} must be positive, got {}", meta.quantity, describe_parameter(p, meta), show(p, v))});
     return false;
   }
+  if (!(v < meta.below)) {
+    errors.push_back({p.where, fmt::format("{} {} must be below {:g}, got {}", meta.quantity, describe_parameter(p, meta), meta.below, show(p, v))});
+    return false;
+  }
   return true;
 }
 
@@ -67,6 +71,10 @@ bool check_bounds(Parameter& p, const ParameterMeta& meta, const ast::Bounds& b,
   }
   if (meta.positive && !(*lower > 0)) {
     errors.push_back({b.lower->where, fmt::format("{} {} must be positive, so its lower bound must be too, got {}", meta.quantity, what, show(p, *lower))});
+    return false;
+  }
+  if (!(*upper < meta.below)) {
+    errors.push_back({b.upper->where, fmt::format("{} {} must be below {:g}, so its upper bound must be too, got {}", meta.quantity, what, meta.below, show(p, *upper))});
     return false;
   }
   if (p.value < *lower || p.value > *upper) {

@@ -6,9 +6,11 @@
 #include "lang/grammar.hpp"
 #include "lang/grammar_errors.hpp"
 #include "lang/parser_actions.hpp"
+#include "lang/text_encoding.hpp"
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cctype>
 #include <string_view>
 
@@ -170,16 +172,19 @@ template <> struct action<g::fit_output_file> : fit_line_file {};
 // --- error reporting ---
 namespace {
 
-// What stands at OFFSET of TEXT, for "found ..." in messages.
+// What stands at OFFSET of TEXT, for "found ..." in messages: a word, one character, or what
+// is no text (the file is valid UTF-8 by then, see run()).
 std::string describe_found(std::string_view text, std::size_t offset) {
   while (offset < text.size() && (text[offset] == ' ' || text[offset] == '\t')) ++offset;
   if (offset >= text.size()) return "end of file";
   auto word = [](char c) { return std::isalnum(static_cast<unsigned char>(c)) || c == '_' || c == '.'; };
   if (text[offset] == '\n' || text[offset] == '\r') return "end of line";
+  const auto byte = static_cast<unsigned char>(text[offset]);
+  if (byte < 0x20 || byte == 0x7F) return fmt::format("control character 0x{:02X}", byte);
   std::size_t end = offset;
   while (end < text.size() && word(text[end])) ++end;
-  if (end == offset) ++end;
-  return fmt::format("'{}'", text.substr(offset, end - offset));
+  if (end == offset) end += std::max<std::size_t>(utf8_length(text, offset), 1);
+  return fmt::format("'{}'", printable(text.substr(offset, end - offset)));
 }
 
 std::string describe_element(const State& s) {
@@ -196,8 +201,15 @@ void replace_all(std::string& text, std::string_view key, const std::string& val
 
 template <typename Rule>
 void run(const std::string& file_name, std::string_view text, State& state) {
-  SourceSet sources;
-  sources.add(file_name, std::string(text));
+  auto fail = [&](int line, int column, const std::string& message) {
+    SourceSet sources;
+    sources.add(file_name, std::string(text));
+    throw CompileError({{{file_name, line, column}, message}}, sources);
+  };
+  if (const auto problem = find_encoding_problem(text)) {
+    const TextPosition p = position_of(text, problem->offset);
+    fail(p.line, p.column, problem->description);
+  }
   pegtl::memory_input input(text.data(), text.size(), file_name);
   try {
     pegtl::parse<Rule, action, g::control>(input, state);
@@ -207,8 +219,7 @@ void run(const std::string& file_name, std::string_view text, State& state) {
     replace_all(message, "{found}", describe_found(text, p.byte));
     replace_all(message, "{element}", describe_element(state));
     replace_all(message, "{model}", state.file.models.empty() ? std::string() : state.file.models.back().name);
-    Diagnostic d{{file_name, static_cast<int>(p.line), static_cast<int>(p.column)}, message};
-    throw CompileError({d}, sources);
+    fail(static_cast<int>(p.line), static_cast<int>(p.column), message);
   }
 }
 

@@ -1,5 +1,6 @@
 // Text -> syntax tree (ast.hpp). Parse errors are fatal at the first one: they throw
-// CompileError holding exactly one Diagnostic.
+// CompileError holding exactly one Diagnostic. Text that is not UTF-8 (text_encoding.hpp) and
+// nesting past limits.hpp are parse errors too, so the tree returned is within those limits.
 #pragma once
 
 #include "lang/ast.hpp"

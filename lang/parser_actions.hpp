@@ -4,7 +4,9 @@
 
 #include "lang/ast.hpp"
 #include "lang/grammar.hpp"
+#include "lang/limits.hpp"
 
+#include <algorithm>
 #include <cstdlib>
 #include <string>
 #include <vector>
@@ -26,6 +28,17 @@ struct State {
   std::string unit;    // the last unit matched, consumed by the quantity or list it ends
   std::string string;  // the last string literal's contents
   std::vector<ast::SettingNode>* settings = nullptr;  // of the directive line being parsed
+  // Expression levels open around the operand being parsed: parentheses, unary minus and
+  // operators whose right operand it is (limits.hpp).
+  int open_levels = 0;
+
+  // Room for the grammar's nesting guards (grammar.hpp, limits.hpp). At a block's start every
+  // open element is a block.
+  bool room(g::block_nesting) const { return static_cast<int>(elements.size()) < max_block_depth; }
+  // The group and at least one operand inside it.
+  bool room(g::group_nesting) const { return open_levels + 2 <= max_expression_depth; }
+  // The operator's node over the operand before it.
+  bool room(g::operator_nesting) const { return open_levels + exprs.back()->depth + 1 <= max_expression_depth; }
 
   ast::Simulate& simulate() { return file.simulations.back(); }
   ast::Fit& fit() { return file.fits.back(); }
@@ -91,6 +104,23 @@ struct action<g::reference> {
     s.exprs.push_back(std::move(e));
   }
 };
+// Parentheses, unary minus and operators open a level until their operand is complete.
+struct open_level {
+  template <typename ActionInput>
+  static void apply(const ActionInput&, State& s) {
+    ++s.open_levels;
+  }
+};
+template <> struct action<g::paren_open> : open_level {};
+template <> struct action<g::negative_sign> : open_level {};
+template <>
+struct action<g::paren_close> {
+  template <typename ActionInput>
+  static void apply(const ActionInput&, State& s) {
+    --s.open_levels;
+    ++s.exprs.back()->depth;
+  }
+};
 template <>
 struct action<g::negation> {
   template <typename ActionInput>
@@ -98,8 +128,10 @@ struct action<g::negation> {
     auto e = std::make_unique<ast::Expr>();
     e->kind = ast::Expr::Kind::negate;
     e->lhs = s.pop();
+    e->depth = e->lhs->depth + 1;
     e->where = where(in);
     s.exprs.push_back(std::move(e));
+    --s.open_levels;
   }
 };
 
@@ -108,6 +140,7 @@ struct operator_sign {
   template <typename ActionInput>
   static void apply(const ActionInput& in, State& s) {
     s.operators.push_back(where(in));
+    ++s.open_levels;
   }
 };
 template <> struct action<g::times_sign> : operator_sign<g::times_sign> {};
@@ -123,9 +156,11 @@ struct binary {
     e->kind = Kind;
     e->rhs = s.pop();
     e->lhs = s.pop();
+    e->depth = std::max(e->lhs->depth, e->rhs->depth) + 1;
     e->where = s.operators.back();
     s.operators.pop_back();
     s.exprs.push_back(std::move(e));
+    --s.open_levels;
   }
 };
 template <> struct action<g::times> : binary<ast::Expr::Kind::multiply> {};

@@ -3,6 +3,8 @@
 #include <array>
 #include <cctype>
 #include <charconv>
+#include <cmath>
+#include <cstdlib>
 
 namespace rheo::lang {
 namespace {
@@ -75,6 +77,7 @@ std::optional<Unit> parse_unit(std::string_view text) {
       while (i < text.size() && std::isdigit(static_cast<unsigned char>(text[i]))) ++i;
       auto [ptr, ec] = std::from_chars(text.data() + pstart, text.data() + i, power);
       if (ec != std::errc{} || ptr != text.data() + i) return std::nullopt;
+      if (power < -max_unit_power || power > max_unit_power) return std::nullopt;
     }
     double scale = 1.0;
     for (int p = 0; p < (power < 0 ? -power : power); ++p) scale *= atom->scale;
@@ -87,9 +90,12 @@ std::optional<Unit> parse_unit(std::string_view text) {
       result.dimension = result.dimension * d;
       result.scale *= scale;
     }
+    const Dimension& r = result.dimension;
+    if (std::abs(r.force) > max_unit_power || std::abs(r.length) > max_unit_power || std::abs(r.time) > max_unit_power)
+      return std::nullopt;
     first = false;
   }
-  if (first) return std::nullopt;
+  if (first || !std::isfinite(result.scale) || result.scale == 0.0) return std::nullopt;
   return result;
 }
 

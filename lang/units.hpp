@@ -52,7 +52,10 @@ struct Unit {
 std::optional<Unit> unit_atom(std::string_view name);
 // A compound unit such as "N/mm", "N*s/mm", "N/mm^3", "kN/mm", "N s/mm" is not accepted
 // (use '*'). Grammar: atom ('^' int)? (('*'|'/') atom ('^' int)?)* . Unknown: nullopt.
-// "rad/s" is angular frequency: 1 rad/s = 1/(2 pi) Hz.
+// "rad/s" is angular frequency: 1 rad/s = 1/(2 pi) Hz. Also nullopt, whatever the input, when
+// an exponent or a dimension of the result exceeds max_unit_power in magnitude, or the scale
+// is not a finite non-zero number ("um^-99*us^-99").
+inline constexpr int max_unit_power = 99;
 std::optional<Unit> parse_unit(std::string_view text);
 
 }  // namespace rheo::lang

@@ -4,6 +4,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <stdexcept>
 
 namespace rheo::runtime {
@@ -78,9 +79,24 @@ struct GraphBuilder {
                        add_edge(EdgeKind::slider, mid, b, {value(e, 1)}, e.path)};
         break;
       }
+      case ElementKind::springpot: place_springpot(e, a, b, probe); break;
       default: break;
     }
+    if (probe.force_edges.empty()) probe.force_edges = {probe.edges.front()};
     graph.probes.push_back(std::move(probe));
+  }
+
+  // The modes are the compiled network's (derived parameters), so both backends share one chain.
+  void place_springpot(const lang::Element& e, int a, int b, EdgeProbe& probe) {
+    const auto& chains = network.topology().springpots;
+    const auto chain = std::find_if(chains.begin(), chains.end(), [&](const SpringpotChain& c) { return c.path == e.path; });
+    for (int j = 0; j < chain->modes; ++j) {
+      const int mid = new_node();
+      const int spring = add_edge(EdgeKind::spring, a, mid, {network.parameter(chain->first_derived + j)}, e.path);
+      const int dashpot = add_edge(EdgeKind::dashpot, mid, b, {network.parameter(chain->first_derived + chain->modes + j)}, e.path);
+      if (j == 0) probe.edges = {spring, dashpot};
+      probe.force_edges.push_back(spring);
+    }
   }
 };
 

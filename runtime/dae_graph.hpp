@@ -12,6 +12,7 @@
 //   slider     |F| <= fy, sticks below fy     gap        F = 0 for |e| < w/2, rigid at e = +-w/2
 //   maxwell(k, c)  -> spring k + dashpot c through a new node (eq. 2.3)
 //   friction(k, fy) -> spring k + slider fy through a new node (eq. 2.9)
+//   springpot       -> its Maxwell chain (runtime/springpot.hpp), each mode as a maxwell
 // v_eps regularises the quadratic dashpot at rest (its tangent c_q |v| vanishes there, which
 // would make the Newton matrix singular); the force error is below (v_eps/v)^2/2 relative.
 //
@@ -41,11 +42,14 @@ struct Edge {
   lang::SourceLocation where;      // where that element is written
 };
 
-// Edges that make up one element the user wrote (Topology::probes order): the element's force is
-// its first edge's force, its elongation the sum of its edges' elongations.
+// Edges that make up one element the user wrote (Topology::probes order): the element's
+// elongation is the sum of the elongations of `edges` (a path from its first terminal to its
+// second), its force the sum of the forces of `force_edges` (the first edge of a series
+// expansion; the springs of every mode of a springpot's Maxwell chain).
 struct EdgeProbe {
   std::string path;
   std::vector<int> edges;
+  std::vector<int> force_edges;
 };
 
 struct DaeGraph {

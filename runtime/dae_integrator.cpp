@@ -468,10 +468,11 @@ void DaeIntegrator::element_outputs(std::vector<double>& force, std::vector<doub
   force.resize(graph_.probes.size());
   element_elongation.resize(graph_.probes.size());
   for (std::size_t i = 0; i < graph_.probes.size(); ++i) {
-    const auto& edges = graph_.probes[i].edges;
-    force[i] = force_[static_cast<std::size_t>(edges.front())];
+    const EdgeProbe& probe = graph_.probes[i];
+    force[i] = 0.0;
+    for (int edge : probe.force_edges) force[i] += force_[static_cast<std::size_t>(edge)];
     double e = 0.0;
-    for (int edge : edges) e += elongation(y_.data(), drive, graph_.edges[static_cast<std::size_t>(edge)]);
+    for (int edge : probe.edges) e += elongation(y_.data(), drive, graph_.edges[static_cast<std::size_t>(edge)]);
     element_elongation[i] = e;
   }
 }

@@ -3,7 +3,6 @@
 #include "runtime/errors.hpp"
 
 #include <fmt/format.h>
-#include <fmt/ranges.h>
 
 #include <algorithm>
 #include <cmath>
@@ -13,8 +12,8 @@ namespace rheo::runtime {
 HistoryData history_data_from_table(const Table& table) {
   const int f = table.column("force");
   if (f < 0)
-    throw DataError(fmt::format("{}: error: a measured history needs a column 'force [N]' (any force unit) next to time and displacement; the header has: {}",
-                                table.path, fmt::join(table.names, ", ")));
+    throw DataError(fmt::format("{}a measured history needs a column 'force [N]' (any force unit) next to time and displacement; {}",
+                                header_error(table), header_columns(table)));
   HistoryData h;
   h.path = table.path;
   h.drive = drive_from_table(table);
@@ -23,7 +22,8 @@ HistoryData history_data_from_table(const Table& table) {
   h.force_scale = 0.0;
   for (double v : h.force) h.force_scale = std::max(h.force_scale, std::abs(v));
   if (!(h.force_scale > 0.0))
-    throw DataError(fmt::format("{}:{}: error: every measured force is zero; a fit needs a force signal", table.path, table.rows.front()));
+    throw DataError(fmt::format("{}:{}:{}: error: every measured force is zero; a fit needs a force signal: check the force column and its unit",
+                                table.path, table.rows.front(), table.cell_column(0, f)));
   return h;
 }
 
@@ -36,9 +36,9 @@ FitDataSet read_fit_data(const std::string& path, double weight) {
     set.data = history_data_from_table(table);
   } else {
     throw DataError(fmt::format(
-        "{}: error: cannot tell what this data is; a harmonic table needs 'amplitude', 'frequency' and 'stiffness'+'phase' or "
-        "'storage'+'loss' columns, a history needs 'time', 'displacement' and 'force'; the header has: {}",
-        path, fmt::join(table.names, ", ")));
+        "{}cannot tell what this data is; a harmonic table needs 'amplitude', 'frequency' and 'stiffness'+'phase' or "
+        "'storage'+'loss' columns, a history needs 'time', 'displacement' and 'force'; {}",
+        header_error(table), header_columns(table)));
   }
   return set;
 }

@@ -1,5 +1,7 @@
 #include "runtime/fit_scoring.hpp"
 
+#include "runtime/objective.hpp"
+
 #include <cmath>
 #include <complex>
 #include <stdexcept>
@@ -15,9 +17,7 @@ Prediction predict(const Network& network, const FitDataSet& set, FitMethod meth
   }
   const HarmonicData& data = set.harmonic();
   if (method == FitMethod::exact) {
-    p.points.reserve(data.size());
-    for (std::size_t i = 0; i < data.size(); ++i)
-      p.points.push_back(simulate_harmonic_point(network, data.amplitude[i], data.frequency[i], harmonic));
+    p.points = simulate_at(network, data, harmonic);
     return p;
   }
   p.points = approximate_harmonic(network, data.amplitude, data.frequency);

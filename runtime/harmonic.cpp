@@ -1,6 +1,7 @@
 #include "runtime/harmonic.hpp"
 
 #include "runtime/dae_protocols.hpp"
+#include "runtime/parallel_for.hpp"
 #include "runtime/periodic_closed_form.hpp"
 #include "runtime/simulator.hpp"
 
@@ -59,17 +60,20 @@ double cycle_change(const Topology& t, const std::vector<double>& start, const s
 
 }  // namespace
 
+bool uses_closed_form(const Network& network, const HarmonicOptions& options) {
+  return options.steady_state != SteadyState::time_stepping && options.solver != SolverChoice::sundials &&
+         has_closed_form_periodic_state(network);
+}
+
 HarmonicPoint simulate_harmonic_point(const Network& network, double amplitude, double frequency,
                                       const HarmonicOptions& options) {
+  if (uses_closed_form(network, options)) return closed_form_harmonic_point(network, amplitude, frequency, options.definition);
   if (uses_sundials(network, options.solver)) return dae_harmonic_point(network, amplitude, frequency, options);
-  if (options.steady_state != SteadyState::time_stepping) {
-    if (has_closed_form_periodic_state(network))
-      return closed_form_harmonic_point(network, amplitude, frequency, options.definition);
-    if (options.steady_state == SteadyState::closed_form)
-      throw std::invalid_argument(fmt::format(
-          "model '{}' has nested series/parallel blocks or inerter, quadratic_dashpot, gap or bouc_wen elements, which have no closed-form periodic state; use steady_state = time_stepping (or auto)",
-          network.model().name));
-  }
+  if (options.steady_state == SteadyState::closed_form)
+    throw std::invalid_argument(fmt::format(
+        "model '{}' has non-linear elements inside nested series/parallel blocks, or quadratic_dashpot, gap or bouc_wen elements, "
+        "which have no closed-form periodic state; use steady_state = time_stepping (or auto)",
+        network.model().name));
   const int n = options.steps_per_cycle;
   const double period = 1.0 / frequency;
   const double dt = period / n;
@@ -131,10 +135,10 @@ HarmonicPoint simulate_harmonic_point(const Network& network, double amplitude, 
 std::vector<HarmonicPoint> simulate_harmonic_grid(const Network& network, const std::vector<double>& amplitudes,
                                                   const std::vector<double>& frequencies,
                                                   const HarmonicOptions& options) {
-  std::vector<HarmonicPoint> points;
-  points.reserve(amplitudes.size() * frequencies.size());
-  for (double amplitude : amplitudes)
-    for (double frequency : frequencies) points.push_back(simulate_harmonic_point(network, amplitude, frequency, options));
+  std::vector<HarmonicPoint> points(amplitudes.size() * frequencies.size());
+  parallel_for(points.size(), options.threads, [&](std::size_t i) {
+    points[i] = simulate_harmonic_point(network, amplitudes[i / frequencies.size()], frequencies[i % frequencies.size()], options);
+  });
   return points;
 }
 

@@ -26,9 +26,10 @@
 namespace rheo::runtime {
 
 // How the periodic state is found: `automatic` uses the closed form of
-// periodic_closed_form.hpp where the network allows it (every element in the root parallel
-// block) and time stepping otherwise; `closed_form` insists on it (std::invalid_argument when
-// the network has a subtree); `time_stepping` always steps.
+// periodic_closed_form.hpp where the network allows it (non-linear elements only in the root
+// parallel block) unless the solver is explicitly `sundials`, and time stepping otherwise;
+// `closed_form` insists on it (std::invalid_argument when the network has none);
+// `time_stepping` always steps.
 enum class SteadyState { automatic, closed_form, time_stepping };
 
 struct HarmonicOptions {
@@ -38,6 +39,7 @@ struct HarmonicOptions {
   int max_cycles = 400;
   double tolerance = 1e-9;
   SolverChoice solver = SolverChoice::automatic;
+  int threads = 1;  // grid and fit points evaluated at once (runtime/parallel_for.hpp; <= 0: all)
 };
 
 struct HarmonicPoint {
@@ -48,6 +50,9 @@ struct HarmonicPoint {
   bool converged = false;
   double residual = 0.0;   // estimated relative distance from the periodic state
 };
+
+// Whether simulate_harmonic_point takes the closed form for this network and these options.
+bool uses_closed_form(const Network& network, const HarmonicOptions& options);
 
 HarmonicPoint simulate_harmonic_point(const Network& network, double amplitude, double frequency,
                                       const HarmonicOptions& options);

@@ -3,7 +3,6 @@
 #include "runtime/errors.hpp"
 
 #include <fmt/format.h>
-#include <fmt/ranges.h>
 
 #include <cmath>
 #include <map>
@@ -16,8 +15,7 @@ namespace {
 const std::vector<double>& need(const Table& t, const char* name, const char* alternative_hint) {
   const int c = t.column(name);
   if (c < 0)
-    throw DataError(fmt::format("{}: error: harmonic data need a column '{}'{}; the header has: {}", t.path, name,
-                                alternative_hint, fmt::join(t.names, ", ")));
+    throw DataError(fmt::format("{}harmonic data need a column '{}'{}; add it ({})", header_error(t), name, alternative_hint, header_columns(t)));
   return t.columns[static_cast<std::size_t>(c)];
 }
 

@@ -1,5 +1,6 @@
 #include "runtime/history_csv.hpp"
 
+#include "lang/text_encoding.hpp"
 #include "lang/units.hpp"
 #include "runtime/errors.hpp"
 
@@ -7,6 +8,7 @@
 
 #include <charconv>
 #include <cmath>
+#include <filesystem>
 #include <fstream>
 #include <sstream>
 
@@ -44,6 +46,14 @@ std::vector<Cell> split(const std::string& line) {
 
 }  // namespace
 
+std::string header_error(const Table& table) { return fmt::format("{}:{}:1: error: ", table.path, table.header_row); }
+
+std::string header_columns(const Table& table) {
+  std::string names;
+  for (const auto& name : table.names) names += (names.empty() ? "" : ", ") + lang::printable(name);
+  return "the header has: " + names;
+}
+
 int Table::cell_column(std::size_t row_index, int field) const {
   return cell_columns.at(row_index * names.size() + static_cast<std::size_t>(field));
 }
@@ -55,8 +65,11 @@ int Table::column(const std::string& name) const {
 }
 
 Table read_table(const std::string& path) {
+  std::error_code error;
   std::ifstream in(path, std::ios::binary);
-  if (!in) throw DataError(fmt::format("{}: error: cannot open the file; check the path", path));
+  if (!in || std::filesystem::is_directory(path, error))
+    throw DataError(fmt::format("{}: error: cannot open the file{}; check the path", path,
+                                std::filesystem::is_directory(path, error) ? " (it is a directory)" : ""));
   std::ostringstream text;
   text << in.rdbuf();
   return parse_table(path, text.str());
@@ -67,7 +80,10 @@ Table parse_table(const std::string& path, const std::string& raw) {
   table.path = path;
   std::string text = raw;
   if (text.rfind("\xEF\xBB\xBF", 0) == 0) text.erase(0, 3);
-  if (text.find('\0') != std::string::npos) throw DataError(fmt::format("{}: error: the file holds NUL bytes; it is not a CSV text file", path));
+  if (const auto problem = lang::find_encoding_problem(text)) {
+    const lang::TextPosition p = lang::position_of(text, problem->offset);
+    fail(path, p.line, p.column, problem->description);
+  }
   std::istringstream lines(text);
   std::string line;
   int row = 0;
@@ -82,17 +98,21 @@ Table parse_table(const std::string& path, const std::string& raw) {
       for (const auto& cell : cells) {
         const auto open = cell.text.find('['), close = cell.text.rfind(']');
         if (open == std::string::npos || close == std::string::npos || close < open)
-          fail(path, row, cell.column, fmt::format("header column '{}' has no unit; write it as 'name [unit]', e.g. 'time [s]'", cell.text));
+          fail(path, row, cell.column, fmt::format("header column '{}' has no unit; write it as 'name [unit]', e.g. 'time [s]'", lang::printable(cell.text)));
         const std::string name = trim(std::string_view(cell.text).substr(0, open));
         const std::string unit = trim(std::string_view(cell.text).substr(open + 1, close - open - 1));
         auto parsed = unit.empty() || unit == "-" ? std::optional<lang::Unit>{lang::Unit{}} : lang::parse_unit(unit);
-        if (!parsed) fail(path, row, cell.column + static_cast<int>(open) + 1, fmt::format("unknown unit '{}' in column '{}'; use units such as s, ms, mm, um, m, N, kN, N/mm, Hz, deg", unit, name));
-        if (table.column(name) >= 0) fail(path, row, cell.column, fmt::format("column '{}' appears twice in the header", name));
+        if (!parsed)
+          fail(path, row, cell.column + static_cast<int>(open) + 1,
+               fmt::format("unknown unit '{}' in column '{}'; use units such as s, ms, mm, um, m, N, kN, N/mm, Hz, deg",
+                           lang::printable(unit), lang::printable(name)));
+        if (table.column(name) >= 0) fail(path, row, cell.column, fmt::format("column '{}' appears twice in the header; rename or remove one", lang::printable(name)));
         table.names.push_back(name);
         table.units.push_back(unit);
         scales.push_back(parsed->scale);
       }
       table.columns.resize(table.names.size());
+      table.header_row = row;
       continue;
     }
     if (cells.size() != table.names.size())
@@ -101,33 +121,39 @@ Table parse_table(const std::string& path, const std::string& raw) {
       const std::string& s = cells[c].text;
       double value = 0.0;
       const auto [ptr, ec] = std::from_chars(s.data(), s.data() + s.size(), value);
-      if (s.empty() || ec != std::errc{} || ptr != s.data() + s.size())
-        fail(path, row, cells[c].column, fmt::format("'{}' is not a number (column '{}')", s, table.names[c]));
-      if (!std::isfinite(value))
-        fail(path, row, cells[c].column, fmt::format("'{}' is not a finite number (column '{}'); remove or repair the row", s, table.names[c]));
+      if (s.empty() || (ec != std::errc{} && ec != std::errc::result_out_of_range) || ptr != s.data() + s.size())
+        fail(path, row, cells[c].column, fmt::format("'{}' is not a number (column '{}'); write a number such as 0.25 or 1e-3", lang::printable(s), table.names[c]));
+      if (ec == std::errc::result_out_of_range || !std::isfinite(value))
+        fail(path, row, cells[c].column, fmt::format("'{}' is not a finite number (column '{}'); remove or repair the row", lang::printable(s), table.names[c]));
       table.columns[c].push_back(value * scales[c]);
       table.cell_columns.push_back(cells[c].column);
     }
     table.rows.push_back(row);
   }
-  if (table.names.empty()) throw DataError(fmt::format("{}: error: no header found; the file is empty or only comments", path));
-  if (table.rows.empty()) throw DataError(fmt::format("{}: error: the table has a header but no data rows", path));
+  if (table.names.empty())
+    fail(path, 1, 1, "no header found: the file is empty or holds only comments; start it with a header line such as 'time [s],displacement [mm]'");
+  if (table.rows.empty()) fail(path, table.header_row, 1, "the table has a header but no data rows; add rows of numbers below it");
   return table;
 }
 
 Drive drive_from_table(const Table& table) {
   const int t = table.column("time"), u = table.column("displacement");
   if (t < 0 || u < 0)
-    throw DataError(fmt::format("{}: error: a displacement history needs columns 'time [s]' and 'displacement [mm]' (any time and length units)", table.path));
+    throw DataError(fmt::format("{}a displacement history needs columns 'time [s]' and 'displacement [mm]' (any time and length units); {}",
+                                header_error(table), header_columns(table)));
   const auto& time = table.columns[static_cast<std::size_t>(t)];
   const auto& disp = table.columns[static_cast<std::size_t>(u)];
-  if (time.size() < 2) throw DataError(fmt::format("{}:{}: error: a history needs at least two rows", table.path, table.rows[0]));
+  if (time.size() < 2)
+    fail(table.path, table.rows[0], 1, "a history needs at least two rows (a start from rest and where it goes); add rows");
   if (std::abs(disp[0]) > 1e-9)
-    throw DataError(fmt::format("{}:{}:1: error: the history must start from rest (displacement 0 in its first row, found {} mm); add a first row with displacement 0", table.path, table.rows[0], disp[0]));
+    fail(table.path, table.rows[0], table.cell_column(0, u),
+         fmt::format("the history must start from rest (displacement 0 in its first row, found {} mm); add a first row with displacement 0", disp[0]));
   Drive d;
   for (std::size_t i = 0; i < time.size(); ++i) {
     if (i > 0 && !(time[i] > time[i - 1]))
-      throw DataError(fmt::format("{}:{}:1: error: time must increase strictly (row {} has {} s after {} s)", table.path, table.rows[i], table.rows[i], time[i], time[i - 1]));
+      fail(table.path, table.rows[i], table.cell_column(i, t),
+           fmt::format("time must increase strictly (row {} has {:g} s after {:g} s at row {}); sort the rows by time and remove repeated ones",
+                       table.rows[i], time[i], time[i - 1], table.rows[i - 1]));
     d.time.push_back(time[i] - time[0]);
     d.displacement.push_back(disp[i]);
   }

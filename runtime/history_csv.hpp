@@ -1,8 +1,9 @@
 // Reading measured/derived tables: CSV with '#' comment lines, a header whose column names
 // carry their unit in brackets ("time [s]", "displacement [um]", "force [kN]"), then numbers.
 // Values are converted to the internal system (N, mm, s). A UTF-8 byte-order mark and CRLF line
-// ends are accepted. Anything malformed is a DataError naming file:row:column and what to do;
-// nothing is guessed.
+// ends are accepted. Anything malformed (bytes that are not UTF-8 text, a NUL byte, no header,
+// no data rows, a cell that is not a finite number, ...) is a DataError naming file:row:column
+// and what to do; nothing is guessed. Cells are quoted in messages as printable text.
 #pragma once
 
 #include "runtime/drives.hpp"
@@ -14,6 +15,7 @@ namespace rheo::runtime {
 
 struct Table {
   std::string path;
+  int header_row = 0;                           // 1-based file line of the header
   std::vector<std::string> names;               // "time", "displacement", ...
   std::vector<std::string> units;               // as written: "s", "mm"
   std::vector<std::vector<double>> columns;     // internal units, column-major
@@ -24,6 +26,11 @@ struct Table {
   // Byte column (1-based) of field `field` in data row `row_index` (0-based), for file:row:col.
   int cell_column(std::size_t row_index, int field) const;
 };
+
+// "file:row:1: error: " at the header, for a message about the table's columns or kind.
+std::string header_error(const Table& table);
+// "the header has: time, force", printable.
+std::string header_columns(const Table& table);
 
 Table read_table(const std::string& path);
 Table parse_table(const std::string& path, const std::string& text);

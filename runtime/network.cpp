@@ -1,9 +1,12 @@
 #include "runtime/network.hpp"
 
 #include "runtime/errors.hpp"
+#include "runtime/springpot.hpp"
 
 #include <fmt/format.h>
 
+#include <algorithm>
+#include <span>
 #include <stdexcept>
 
 namespace rheo::runtime {
@@ -18,6 +21,7 @@ struct Proto {
   int probe = -1;           // user element this leaf stands for
   int fused_dashpot_probe = -1;  // a fused spring+dashpot pair: the dashpot's probe
   lang::SourceLocation where;    // of the element, for messages
+  bool opaque = false;           // a block standing for one user element (a springpot chain)
   std::vector<Proto> children;
   bool is_block() const { return kind == NodeKind::parallel || kind == NodeKind::series; }
 };
@@ -34,25 +38,57 @@ NodeKind node_kind(ElementKind kind) {
     case ElementKind::quadratic_dashpot: return NodeKind::quadratic_dashpot;
     case ElementKind::gap: return NodeKind::gap;
     case ElementKind::bouc_wen: return NodeKind::bouc_wen;
+    case ElementKind::springpot:
     case ElementKind::parallel: return NodeKind::parallel;
     case ElementKind::series: return NodeKind::series;
   }
   return NodeKind::parallel;
 }
 
-Proto convert(const lang::Element& element, std::vector<ElementProbe>& probes) {
-  Proto proto;
-  proto.kind = node_kind(element.kind);
-  if (proto.is_block()) {
-    for (const auto& child : element.children) proto.children.push_back(convert(child, probes));
+struct Converter {
+  Topology& topology;
+  const lang::CheckedModel& model;
+
+  Proto convert(const lang::Element& element) {
+    Proto proto;
+    proto.kind = node_kind(element.kind);
+    if (element.kind != ElementKind::springpot && proto.is_block()) {
+      for (const auto& child : element.children) proto.children.push_back(convert(child));
+      return proto;
+    }
+    for (std::size_t i = 0; i < element.parameters.size() && i < 3; ++i) proto.param[i] = element.parameters[i];
+    proto.probe = static_cast<int>(topology.probes.size());
+    proto.where = element.where;
+    topology.probes.push_back({element.path, element.kind, ElementProbe::Source::tree_node, 0});
+    if (element.kind == ElementKind::springpot) add_springpot_chain(element, proto);
     return proto;
   }
-  for (std::size_t i = 0; i < element.parameters.size() && i < 3; ++i) proto.param[i] = element.parameters[i];
-  proto.probe = static_cast<int>(probes.size());
-  proto.where = element.where;
-  probes.push_back({element.path, element.kind, ElementProbe::Source::tree_node, 0});
-  return proto;
-}
+
+  // The chain's modes as Maxwell children with derived parameter indices (network.hpp).
+  void add_springpot_chain(const lang::Element& element, Proto& proto) {
+    SpringpotChain chain;
+    for (int i = 0; i < 5; ++i) chain.param[i] = element.parameters[static_cast<std::size_t>(i)];
+    auto value = [&](int slot) { return model.parameters[static_cast<std::size_t>(chain.param[slot])].value; };
+    if (!(value(3) < value(4)))
+      throw ModelError(fmt::format("{}model '{}': springpot '{}' has f_low = {:g} Hz not below f_high = {:g} Hz; give a band "
+                                   "f_low < f_high covering the frequencies you simulate",
+                                   error_at(element.where), model.name, element.path, value(3), value(4)));
+    chain.path = element.path;
+    chain.modes = springpot_mode_count(value(3), value(4));
+    chain.first_derived = static_cast<int>(model.parameters.size()) + topology.derived_parameters;
+    topology.derived_parameters += 2 * chain.modes;
+    proto.opaque = true;
+    for (int j = 0; j < chain.modes; ++j) {
+      Proto mode;
+      mode.kind = NodeKind::maxwell;
+      mode.param[0] = chain.first_derived + j;
+      mode.param[1] = chain.first_derived + chain.modes + j;
+      mode.where = element.where;
+      proto.children.push_back(mode);
+    }
+    topology.springpots.push_back(chain);
+  }
+};
 
 void fuse_spring_dashpot(Proto& series) {
   int spring = -1, dashpot = -1, springs = 0, dashpots = 0;
@@ -74,11 +110,11 @@ void fuse_spring_dashpot(Proto& series) {
 }
 
 Proto canonicalise(Proto proto) {
-  if (!proto.is_block()) return proto;
+  if (!proto.is_block() || proto.opaque) return proto;
   std::vector<Proto> flat;
   for (auto& child : proto.children) {
     Proto c = canonicalise(std::move(child));
-    if (c.kind == proto.kind) {
+    if (c.kind == proto.kind && !c.opaque) {
       for (auto& grandchild : c.children) flat.push_back(std::move(grandchild));
     } else {
       flat.push_back(std::move(c));
@@ -127,6 +163,9 @@ struct TreeBuilder {
     node.child_count = static_cast<int>(kids.size());
     topology.children.insert(topology.children.end(), kids.begin(), kids.end());
     if (proto.kind == NodeKind::series) topology.internal_nodes += node.child_count - 1;
+    node.linear = proto.kind == NodeKind::spring || proto.kind == NodeKind::dashpot || proto.kind == NodeKind::maxwell ||
+                  proto.kind == NodeKind::inerter || proto.is_block();
+    for (int k : kids) node.linear &= topology.nodes[static_cast<std::size_t>(k)].linear;
     switch (proto.kind) {
       case NodeKind::slider: node.rigid_when_stuck = true; break;
       case NodeKind::parallel:
@@ -164,21 +203,6 @@ bool rate_jump(const Proto& p) {
       }
       return any;
     }
-    default: return false;
-  }
-}
-
-bool linear(const Proto& p) {
-  switch (p.kind) {
-    case NodeKind::spring:
-    case NodeKind::dashpot:
-    case NodeKind::maxwell:
-    case NodeKind::inerter: return true;
-    case NodeKind::parallel:
-    case NodeKind::series:
-      for (const auto& c : p.children)
-        if (!linear(c)) return false;
-      return true;
     default: return false;
   }
 }
@@ -253,8 +277,8 @@ struct PlacementCheck {
   }
 };
 
-Coefficients make_coefficients(const Topology& t, const std::vector<double>& p) {
-  auto at = [&](int i) { return p[static_cast<std::size_t>(i)]; };
+template <class ParameterAt>
+Coefficients make_coefficients(const Topology& t, ParameterAt at) {
   Coefficients c;
   for (int k : t.springs) c.spring_k += at(k);
   for (int d : t.dashpots) c.dashpot_c += at(d);
@@ -282,9 +306,8 @@ Coefficients make_coefficients(const Topology& t, const std::vector<double>& p) 
 
 Network Network::compile(const lang::CheckedModel& model) {
   auto topology = std::make_shared<Topology>();
-  Proto root = canonicalise(convert(model.root, topology->probes));
+  Proto root = canonicalise(Converter{*topology, model}.convert(model.root));
   topology->has_rate_jump = rate_jump(root);
-  topology->is_linear = linear(root);
 
   std::vector<Proto> branches;
   if (root.kind == NodeKind::parallel) branches = std::move(root.children);
@@ -325,6 +348,12 @@ Network Network::compile(const lang::CheckedModel& model) {
         group(ElementProbe::Source::root_slider, static_cast<int>(topology->sliders.size()));
         topology->sliders.push_back(b.param[0]);
         break;
+      case NodeKind::parallel:
+        if (!b.opaque) { trees.push_back(&b); break; }
+        group(ElementProbe::Source::root_springpot, static_cast<int>(topology->maxwells.size()));
+        topology->probes[static_cast<std::size_t>(b.probe)].count = static_cast<int>(b.children.size());
+        for (const auto& mode : b.children) topology->maxwells.push_back({mode.param[0], mode.param[1]});
+        break;
       default: trees.push_back(&b); break;
     }
   }
@@ -332,14 +361,32 @@ Network Network::compile(const lang::CheckedModel& model) {
   topology->state_scales.assign(static_cast<std::size_t>(builder.next_state), StateScale::force);
   for (const Proto* tree : trees) topology->subtrees.push_back(builder.add(*tree, true));
   topology->state_size = builder.next_state;
+  topology->is_linear = topology->yeohs.empty() && topology->frictions.empty() && topology->sliders.empty() &&
+                        std::all_of(topology->subtrees.begin(), topology->subtrees.end(),
+                                    [&](int n) { return topology->nodes[static_cast<std::size_t>(n)].linear; });
 
   Network network;
   network.model_ = std::make_shared<const lang::CheckedModel>(model);
   network.topology_ = std::move(topology);
   network.parameters_.reserve(model.parameters.size());
   for (const auto& parameter : model.parameters) network.parameters_.push_back(parameter.value);
-  network.coefficients_ = make_coefficients(*network.topology_, network.parameters_);
+  network.derive();
   return network;
+}
+
+void Network::derive() {
+  const Topology& t = *topology_;
+  derived_.assign(static_cast<std::size_t>(t.derived_parameters), 0.0);
+  const auto own = static_cast<int>(parameters_.size());
+  for (const auto& chain : t.springpots) {
+    auto at = [&](int slot) { return parameters_[static_cast<std::size_t>(chain.param[slot])]; };
+    if (!(at(3) < at(4)))
+      throw std::invalid_argument(fmt::format("springpot '{}': f_low = {:g} Hz is not below f_high = {:g} Hz", chain.path, at(3), at(4)));
+    const auto modes = static_cast<std::size_t>(chain.modes);
+    const std::span<double> stiffness(derived_.data() + (chain.first_derived - own), modes);
+    springpot_modes({at(0), at(1), at(2), at(3), at(4)}, stiffness, {stiffness.data() + modes, modes});
+  }
+  coefficients_ = make_coefficients(t, [this](int i) { return parameter(i); });
 }
 
 Network Network::with_parameters(const std::vector<double>& values) const {
@@ -363,7 +410,7 @@ Network Network::with_parameters(const std::vector<double>& values) const {
     }
     if (!changed) break;
   }
-  copy.coefficients_ = make_coefficients(*topology_, copy.parameters_);
+  copy.derive();
   return copy;
 }
 
@@ -380,6 +427,9 @@ std::string Network::describe() const {
   out += fmt::format("  root branches: {} spring, {} yeoh, {} dashpot, {} maxwell, {} friction, {} slider, {} subtree\n",
                      t.springs.size(), t.yeohs.size(), t.dashpots.size(), t.maxwells.size(), t.frictions.size(),
                      t.sliders.size(), t.subtrees.size());
+  for (const auto& chain : t.springpots)
+    out += fmt::format("  springpot {}: {} Maxwell modes over {:g} .. {:g} Hz\n", chain.path, chain.modes,
+                       parameter(chain.param[3]), parameter(chain.param[4]));
   out += fmt::format("  state variables: {}\n", t.state_size);
   out += fmt::format("  linear: {}, force jumps with rate: {}\n", t.is_linear ? "yes" : "no",
                      t.has_rate_jump ? "yes" : "no");

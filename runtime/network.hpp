@@ -8,6 +8,10 @@
 //    series-in-series are spliced;
 //  - a series chain holding exactly one spring and one dashpot fuses them into a Maxwell
 //    member, so that it gets the exact exponential update (eq. 2.7) rather than an implicit one;
+//  - a springpot becomes a parallel block of Maxwell elements (runtime/springpot.hpp) whose
+//    stiffnesses and dampings are derived parameters, recomputed whenever parameters change;
+//    the block is never spliced into an enclosing block except the root, whose Maxwell group
+//    takes its modes (so a springpot beside the thesis elements keeps the closed form);
 //  - leaves directly in the root parallel block are grouped by kind into flat arrays
 //    (the hot loop of the thesis models); everything else, and every inerter,
 //    quadratic_dashpot, gap and bouc_wen leaf even in the root block (a one-node subtree),
@@ -54,6 +58,7 @@ struct TreeNode {
   int slots = 2;
   bool rigid_when_stuck = false;  // force is set-valued at zero elongation rate (sliders)
   bool drive_prescribed = false;  // an inerter in the root block: its elongation is the drive
+  bool linear = false;            // only springs, dashpots, Maxwell elements and inerters below
 };
 
 // What a state slot holds, for scaling its change (harmonic steady-state detection).
@@ -65,11 +70,23 @@ struct ElementProbe {
   lang::ElementKind kind;
   enum class Source : std::uint8_t {
     root_spring, root_yeoh, root_dashpot, root_maxwell, root_friction, root_slider,
+    root_springpot,       // `count` consecutive root Maxwell elements from `index`
     tree_node,            // a subtree node: its (e, F) slots
     tree_maxwell_spring,  // the spring of a fused spring+dashpot pair: e = F/k
     tree_maxwell_dashpot, // the dashpot of a fused pair: e = e_pair - F/k
   } source;
   int index = 0;  // into the root group or Topology::nodes
+  int count = 1;
+};
+
+// A springpot's Maxwell chain. Its mode stiffnesses k_j [N/mm] are the network parameters
+// first_derived + j and its dampings c_j [N*s/mm] first_derived + modes + j, j < modes
+// (derived parameters are indexed after the model's own).
+struct SpringpotChain {
+  std::string path;
+  int param[5];  // k, alpha, tau, f_low, f_high: model parameter indices
+  int first_derived = 0;
+  int modes = 0;
 };
 
 struct Topology {
@@ -85,6 +102,8 @@ struct Topology {
   std::vector<TreeNode> nodes;
   std::vector<int> children;
   std::vector<ElementProbe> probes;  // one per element the user wrote, in source order
+  std::vector<SpringpotChain> springpots;
+  int derived_parameters = 0;        // springpot modes, indexed after the model's parameters
 
   int internal_nodes = 0;  // junctions inside series chains
   int state_size = 0;      // maxwell F, friction F, slider F, then TreeNode::slots per tree node
@@ -124,8 +143,13 @@ class Network {
   const lang::CheckedModel& model() const { return *model_; }
   const Topology& topology() const { return *topology_; }
   const Coefficients& coefficients() const { return coefficients_; }
+  // The model's parameters (internal units), in CheckedModel::parameters order.
   const std::vector<double>& parameters() const { return parameters_; }
-  double parameter(int index) const { return parameters_[static_cast<std::size_t>(index)]; }
+  // A model parameter, or (index >= parameters().size()) a derived one (springpot modes).
+  double parameter(int index) const {
+    const auto i = static_cast<std::size_t>(index);
+    return i < parameters_.size() ? parameters_[i] : derived_[i - parameters_.size()];
+  }
 
   // A readable description of the compiled graph, for `rheo check --graph`.
   std::string describe() const;
@@ -134,7 +158,11 @@ class Network {
   std::shared_ptr<const lang::CheckedModel> model_;
   std::shared_ptr<const Topology> topology_;
   std::vector<double> parameters_;
+  std::vector<double> derived_;
   Coefficients coefficients_;
+
+  // Recomputes derived_ and coefficients_ from parameters_.
+  void derive();
 };
 
 }  // namespace rheo::runtime

@@ -1,5 +1,7 @@
 #include "runtime/objective.hpp"
 
+#include "runtime/parallel_for.hpp"
+
 #include <cmath>
 #include <stdexcept>
 
@@ -27,10 +29,9 @@ double thesis_err(const RelativeResiduals& r) {
 }
 
 std::vector<HarmonicPoint> simulate_at(const Network& network, const HarmonicData& data, const HarmonicOptions& options) {
-  std::vector<HarmonicPoint> points;
-  points.reserve(data.size());
-  for (std::size_t i = 0; i < data.size(); ++i)
-    points.push_back(simulate_harmonic_point(network, data.amplitude[i], data.frequency[i], options));
+  std::vector<HarmonicPoint> points(data.size());
+  parallel_for(data.size(), options.threads,
+               [&](std::size_t i) { points[i] = simulate_harmonic_point(network, data.amplitude[i], data.frequency[i], options); });
   return points;
 }
 

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <complex>
 #include <numbers>
 #include <vector>
 
@@ -117,9 +118,43 @@ double loading_half_maximum(LoadingHalf& h) {
   return best;
 }
 
+using Complex = std::complex<double>;
+
+// K* of a linear subtree at angular frequency omega [rad/s] (see the header).
+Complex subtree_stiffness(const Network& network, int index, double omega) {
+  const Topology& t = network.topology();
+  const TreeNode& node = t.nodes[static_cast<std::size_t>(index)];
+  auto p = [&](int slot) { return network.parameter(node.param[slot]); };
+  const Complex i{0.0, 1.0};
+  switch (node.kind) {
+    case NodeKind::spring: return p(0);
+    case NodeKind::dashpot: return i * omega * p(0);
+    case NodeKind::inerter: return -p(0) * omega * omega;
+    case NodeKind::maxwell: {
+      const double tau = p(1) / p(0);
+      return p(0) * i * omega * tau / (1.0 + i * omega * tau);
+    }
+    case NodeKind::parallel:
+    case NodeKind::series: {
+      Complex sum{0.0, 0.0};
+      for (int c = 0; c < node.child_count; ++c) {
+        const Complex k = subtree_stiffness(network, t.children[static_cast<std::size_t>(node.first_child + c)], omega);
+        if (node.kind == NodeKind::parallel) sum += k;
+        else if (k == Complex{0.0, 0.0}) return k;
+        else sum += 1.0 / k;
+      }
+      return node.kind == NodeKind::parallel || sum == Complex{0.0, 0.0} ? sum : 1.0 / sum;
+    }
+    default: return 0.0;  // excluded by has_closed_form_periodic_state
+  }
+}
+
 }  // namespace
 
-bool has_closed_form_periodic_state(const Network& network) { return network.topology().subtrees.empty(); }
+bool has_closed_form_periodic_state(const Network& network) {
+  const Topology& t = network.topology();
+  return std::all_of(t.subtrees.begin(), t.subtrees.end(), [&](int root) { return t.nodes[static_cast<std::size_t>(root)].linear; });
+}
 
 HarmonicPoint closed_form_harmonic_point(const Network& network, double amplitude, double frequency,
                                          HarmonicDefinition definition) {
@@ -138,6 +173,11 @@ HarmonicPoint closed_form_harmonic_point(const Network& network, double amplitud
     const double scale = c.maxwell_k[i] / (1.0 + wt * wt);
     storage += scale * wt * wt;
     loss += scale * wt;
+  }
+  for (int root : network.topology().subtrees) {
+    const Complex k = subtree_stiffness(network, root, omega);
+    storage += k.real();
+    loss += k.imag();
   }
   h.a = u0 * storage;
   h.b = u0 * loss;

@@ -1,6 +1,7 @@
 // Periodic steady state of a harmonic test u = u0 sin(theta), theta = w t, in closed form, for
-// networks whose elements all sit in the root parallel block (the thesis models, Figs. 2.5,
-// 5.1, 5.3): no transient is simulated and no time step is involved.
+// networks whose non-linear elements all sit in the root parallel block (the thesis models,
+// Figs. 2.5, 5.1, 5.3, with any linear sub-networks beside them): no transient is simulated
+// and no time step is involved.
 //
 // Branch forces over one steady cycle, loading half theta in [-pi/2, pi/2] (u rising):
 //   spring k             F = k u
@@ -11,6 +12,10 @@
 //   friction k, fy       u0 <= uy = fy/k: F = k u (elastic; the state reached from rest);
 //                        u0 > uy: F = min(fy, -fy + k (u + u0)) (Masing loop, C.2.1)
 //   slider fy            F = fy (rigid-plastic, B.25)
+//   linear subtree       F = u0 (K' sin(theta) + K'' cos(theta)), K* = K' + i K'' composed from
+//                        spring k, dashpot i w c, Maxwell k i w tau / (1 + i w tau), inerter
+//                        -b w^2 (springpot chains are Maxwell elements), parallel: sum K*,
+//                        series: 1 / sum (1 / K*)                                 (eq. 2.1, C.9)
 // and the unloading half is the mirror image, F(theta + pi) = -F(theta), so that
 // max F = -min F and F^ = max over the loading half.
 //
@@ -38,8 +43,8 @@
 
 namespace rheo::runtime {
 
-// True when every element is a leaf of the root parallel block (no subtree). Inerter,
-// quadratic_dashpot, gap and bouc_wen leaves are always subtrees, so never.
+// True when every subtree (nested block, or inerter leaf) is linear: springs, dashpots,
+// Maxwell elements (springpot chains included) and inerters only.
 bool has_closed_form_periodic_state(const Network& network);
 
 // Requires has_closed_form_periodic_state(network), amplitude > 0 [mm], frequency > 0 [Hz].

@@ -18,6 +18,7 @@ std::optional<Complex> compose(const lang::Element& e, const std::vector<double>
       const double k = at(0), tau = at(1) / k;
       return k * i * omega * tau / (1.0 + i * omega * tau);
     }
+    case lang::ElementKind::springpot: return at(0) * std::pow(i * omega * at(2), at(1));
     case lang::ElementKind::parallel: {
       Complex sum{0.0, 0.0};
       for (const auto& child : e.children) {

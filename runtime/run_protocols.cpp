@@ -55,7 +55,7 @@ std::string solver_note(const Network& network, SolverChoice solver) {
 }
 }  // namespace
 
-ProtocolRun run_protocol(const Network& network, const Protocol& p, const std::string& source_file) {
+ProtocolRun run_protocol(const Network& network, const Protocol& p, const std::string& source_file, int threads) {
   ProtocolRun run;
   run.destination = p.output;
   ResultHeader header{network.model().name, source_file, protocol_name(p.kind)};
@@ -74,20 +74,20 @@ ProtocolRun run_protocol(const Network& network, const Protocol& p, const std::s
       options.max_cycles = static_cast<int>(number(p, "cycles_max", options.max_cycles));
       options.tolerance = number(p, "tolerance", options.tolerance);
       options.solver = solver;
-      if (options.steady_state == SteadyState::closed_form && uses_sundials(network, solver))
+      options.threads = threads;
+      if (options.steady_state == SteadyState::closed_form && solver == SolverChoice::sundials)
         throw UsageError(fmt::format("{}:{}:{}: steady_state = closed_form and the SUNDIALS solver exclude each other; "
                                      "drop one (solver = fixed with closed_form, or steady_state = auto)",
                                      p.where.file, p.where.line, p.where.column));
       if (options.steady_state == SteadyState::closed_form && !has_closed_form_periodic_state(network))
-        throw UsageError(fmt::format("{}:{}:{}: steady_state = closed_form needs every element of model '{}' in its parallel body; "
-                                     "it has nested blocks: use steady_state = auto or time_stepping",
+        throw UsageError(fmt::format("{}:{}:{}: steady_state = closed_form needs every non-linear element of model '{}' in its "
+                                     "parallel body, and no quadratic_dashpot, gap or bouc_wen: use steady_state = auto or time_stepping",
                                      p.where.file, p.where.line, p.where.column, network.model().name));
       const auto points = simulate_harmonic_grid(network, numbers(p, "amplitude"), numbers(p, "frequency"), options);
-      header.protocol = uses_sundials(network, solver)
+      header.protocol = uses_closed_form(network, options) ? std::string("harmonic steady_state=closed_form")
+                        : uses_sundials(network, solver)
                             ? fmt::format("harmonic solver=sundials (IDA, rtol {:g}) samples_per_cycle={} tolerance={:g}",
                                           kDaeRelativeTolerance, options.steps_per_cycle, std::max(options.tolerance, 100.0 * kDaeRelativeTolerance))
-                        : options.steady_state != SteadyState::time_stepping && has_closed_form_periodic_state(network)
-                            ? std::string("harmonic steady_state=closed_form")
                             : fmt::format("harmonic steady_state=time_stepping steps_per_cycle={} tolerance={:g}",
                                           options.steps_per_cycle, options.tolerance);
       for (const auto& point : points)

@@ -24,7 +24,9 @@ struct ProtocolRun {
 };
 
 // `source_file` is the .rheo path (history files are relative to its directory).
-ProtocolRun run_protocol(const Network& network, const lang::Protocol& protocol, const std::string& source_file);
+// `threads`: harmonic grid points simulated at once (HarmonicOptions::threads).
+ProtocolRun run_protocol(const Network& network, const lang::Protocol& protocol, const std::string& source_file,
+                         int threads = 1);
 
 const char* protocol_name(lang::ProtocolKind kind);
 

@@ -92,6 +92,9 @@ void Simulator::element_outputs(const StepPlan& plan, const State& before, const
       case Source::root_maxwell: f = y[t.maxwell_state() + probe.index]; break;
       case Source::root_friction: f = y[t.friction_state() + probe.index]; break;
       case Source::root_slider: f = y[t.slider_state() + probe.index]; break;
+      case Source::root_springpot:
+        for (int j = 0; j < probe.count; ++j) f += y[t.maxwell_state() + probe.index + j];
+        break;
       case Source::tree_node:
       case Source::tree_maxwell_spring:
       case Source::tree_maxwell_dashpot: {

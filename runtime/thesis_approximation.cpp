@@ -38,6 +38,7 @@ ThesisElements thesis_elements(const Network& network) {
       case S::root_spring:
       case S::root_yeoh:
       case S::root_maxwell:
+      case S::root_springpot:  // its Maxwell chain
       case S::root_friction: break;
       case S::root_dashpot: reject(network, probe, "is a dashpot (no elastic part)");
       case S::root_slider: reject(network, probe, "is a rigid-plastic slider");

@@ -110,9 +110,9 @@ void check_sizes(const LoopSamples& s, const char* what) {
 LoopSamples loop_samples_from_table(const Table& table) {
   const int u = table.column("displacement"), f = table.column("force");
   if (u < 0 || f < 0)
-    throw DataError(fmt::format("{}: a loop needs the columns 'displacement' and 'force' (with units, e.g. "
-                                "'displacement [mm]'); the table has no '{}' column",
-                                table.path, u < 0 ? "displacement" : "force"));
+    throw DataError(fmt::format("{}a loop needs the columns 'displacement' and 'force' (with units, e.g. "
+                                "'displacement [mm]'); the table has no '{}' column ({})",
+                                header_error(table), u < 0 ? "displacement" : "force", header_columns(table)));
   return {table.columns[static_cast<std::size_t>(u)], table.columns[static_cast<std::size_t>(f)]};
 }
 

@@ -13,5 +13,6 @@ using Command = std::function<int()>;
 Command add_check_command(CLI::App& app);
 Command add_simulate_command(CLI::App& app);
 Command add_fit_command(CLI::App& app);
+Command add_report_command(CLI::App& app);
 
 }  // namespace rheo::cli

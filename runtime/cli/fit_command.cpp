@@ -4,6 +4,7 @@
 #include "lang/frontend.hpp"
 #include "runtime/cli/commands.hpp"
 #include "runtime/cli/fit_job.hpp"
+#include "runtime/cli/report_files.hpp"
 #include "runtime/errors.hpp"
 #include "runtime/fit_report.hpp"
 #include "runtime/output.hpp"
@@ -43,6 +44,7 @@ std::string fitted_file_text(const FitJob& job, const runtime::FitResult& result
 
 Command add_fit_command(CLI::App& app) {
   auto o = std::make_shared<FitOptions>();
+  auto report = std::make_shared<ReportTargets>();
   app.add_option("file", o->file, "The .rheo file: a model with bounds on the parameters to fit, and optionally fit blocks")->required();
   app.add_option("--data", o->data, "Measured data (harmonic table or time history); replaces the fit block's data lines. Repeatable");
   app.add_option("-o,--output", o->output, "Write the fitted model (.rheo, comments kept) here; needs exactly one fit to run");
@@ -60,26 +62,35 @@ Command add_fit_command(CLI::App& app) {
   app.add_option("--seed", o->seed,
                  fmt::format("Seed of the sampling and stochastic optimizers; the same seed gives the same result; default {}", defaults.seed))
       ->check(CLI::Range(0LL, std::numeric_limits<long long>::max()));
+  app.add_option("--threads", o->threads,
+                 "Harmonic points evaluated at once (0: every hardware thread); results do not depend on it; default 1")
+      ->check(CLI::Range(0, 1024));
   app.add_option("--yeoh-start", o->yeoh_start,
                  "Static or quasi-static loop (CSV) whose mean curve gives the yeoh spring's start values by least squares (eqs. 5.28-5.32)");
   app.add_option("--orders", o->orders,
                  "Model-order study (thesis Fig. 6.2), e.g. maxwell=1..4,friction=1..6: fits each structure, tables err (6.1)");
+  add_report_options(app, *report, true);
   app.footer("Settings given here override the fit block's. Data lines and `output` in a fit block are relative to the\n"
              ".rheo file; --data and -o to the working directory. The report goes to standard output, messages to standard\n"
              "error (with a progress line when it is a terminal). Ctrl-C stops the search and writes the best result so far\n"
              "(exit code 130).");
-  return [o] {
+  return [o, report] {
     const lang::Program program = lang::load_program(o->file);
     std::vector<FitJob> jobs = fit_jobs(program, *o);
+    if (report->any() && !o->orders.empty())
+      throw runtime::UsageError("--report and --plot show one fit, --orders many: run the study, then fit the structure chosen with --report");
     if (!o->orders.empty()) return run_order_study(jobs, *o);
     if (!o->output.empty() && jobs.size() != 1)
       throw runtime::UsageError(fmt::format("-o names one output but {} fits would run; select one with --model or --block N", jobs.size()));
+    if (report->any() && jobs.size() != 1)
+      throw runtime::UsageError(fmt::format("--report and --plot show one fit but {} would run; select one with --model or --block N", jobs.size()));
     std::vector<std::string> json_reports;
     bool interrupted = false;
     for (std::size_t k = 0; k < jobs.size(); ++k) {
       FitJob& job = jobs[k];
       const runtime::FitResult result = run_fit_job(job);
       interrupted = interrupted || result.interrupted;
+      if (report->any()) write_report_files(runtime::report::report_from_fit(result, job.data, job.description), *report);
       if (!job.output.empty()) {
         runtime::write_output(job.output, fitted_file_text(job, result, o->file));
         std::cerr << fmt::format("rheo: fitted model {} written to {}\n", result.network.model().name, job.output);

@@ -1,5 +1,6 @@
 #include "runtime/cli/fit_job.hpp"
 
+#include "runtime/cli/program_lookup.hpp"
 #include "runtime/errors.hpp"
 #include "runtime/yeoh_mean_curve.hpp"
 
@@ -39,11 +40,6 @@ class InterruptScope {
  private:
   struct sigaction previous_ {};
 };
-
-std::string relative_to(const std::string& base_file, const std::string& path) {
-  if (path.empty() || std::filesystem::path(path).is_absolute()) return path;
-  return (std::filesystem::path(base_file).parent_path() / path).string();
-}
 
 std::optional<runtime::Algorithm> algorithm_named(const std::string& name) {
   static const std::pair<const char*, runtime::Algorithm> table[] = {
@@ -98,24 +94,8 @@ void configure(FitJob& job, const lang::FitDirective* block, const FitOptions& o
   // Periodicity to 1e-6 is far inside any measurement's noise, and a third of the cycles of 1e-9.
   s.score.harmonic.tolerance = 1e-6;
   s.score.harmonic.solver = runtime::parse_solver_choice(text_of(block, "solver", "auto")).value_or(runtime::SolverChoice::automatic);
+  s.score.harmonic.threads = o.threads;
   if (o.max_evaluations < 0 || o.starts < 0) throw runtime::UsageError("--max-evaluations and --starts must be positive");
-}
-
-const lang::CheckedModel& only_user_model(const lang::Program& program, const FitOptions& o) {
-  if (!o.model.empty()) {
-    const lang::CheckedModel* m = program.find_model(o.model);
-    if (!m) throw runtime::UsageError(fmt::format("{} has no model '{}'", o.file, o.model));
-    return *m;
-  }
-  std::vector<const lang::CheckedModel*> user;
-  for (const auto& m : program.models)
-    if (!m.where.file.starts_with("<stdlib>")) user.push_back(&m);
-  if (user.size() == 1) return *user.front();
-  std::vector<std::string> names;
-  for (const auto* m : user) names.push_back(m->name);
-  throw runtime::UsageError(user.empty() ? fmt::format("{} defines no model to fit", o.file)
-                                         : fmt::format("{} defines {} models ({}); choose one with --model or write a fit block",
-                                                       o.file, user.size(), fmt::join(names, ", ")));
 }
 
 // --yeoh-start: the yeoh spring's start values from the mean curve of the largest loop of a
@@ -192,7 +172,7 @@ std::vector<FitJob> fit_jobs(const lang::Program& program, const FitOptions& o) 
     if (!program.fits.empty())
       throw runtime::UsageError(fmt::format("{} has no fit block for model '{}'{}", o.file, o.model,
                                             o.block > 0 ? fmt::format(" at --block {}", o.block) : std::string()));
-    add(only_user_model(program, o), nullptr);
+    add(chosen_model(program, o.file, o.model, "to fit", "choose one with --model or write a fit block"), nullptr);
   }
   return jobs;
 }

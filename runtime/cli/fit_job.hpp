@@ -29,6 +29,7 @@ struct FitOptions {
   long long seed = -1;      // -1: the block's or the default
   std::string yeoh_start;
   std::string orders;
+  int threads = 1;          // data points evaluated at once; 0: every hardware thread
 };
 
 struct FitJob {

@@ -1,6 +1,7 @@
 // rheo: a language and interpreter for 1-D rheological networks of rubber bushings.
 // Exit codes: 0 ok, 1 internal error, 2 usage, 3 model file, 4 data or I/O, 5 numerical, 130 interrupted fit.
 #include "lang/diagnostics.hpp"
+#include "lang/frontend.hpp"
 #include "runtime/cli/commands.hpp"
 #include "runtime/errors.hpp"
 
@@ -23,6 +24,8 @@ int main(int argc, char** argv) {
   commands.emplace_back(simulate, cli::add_simulate_command(*simulate));
   auto* fit = app.add_subcommand("fit", "Identify a model's bounded parameters from measured data (NLopt)");
   commands.emplace_back(fit, cli::add_fit_command(*fit));
+  auto* report = app.add_subcommand("report", "Write an HTML report: a model against measured data or its simulated results");
+  commands.emplace_back(report, cli::add_report_command(*report));
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -35,6 +38,9 @@ int main(int argc, char** argv) {
   } catch (const lang::CompileError& e) {
     std::cerr << e.what();
     return runtime::exit_code::model;
+  } catch (const lang::UnreadableSource& e) {
+    std::cerr << e.what() << "\n";
+    return runtime::exit_code::data;
   } catch (const runtime::ModelError& e) {
     std::cerr << e.what() << "\n";  // "file:line:col: error: ..." naming the element
     return runtime::exit_code::model;

@@ -1,6 +1,7 @@
 #include "lang/diagnostics.hpp"
 #include "lang/frontend.hpp"
 #include "runtime/cli/commands.hpp"
+#include "runtime/cli/report_files.hpp"
 #include "runtime/errors.hpp"
 #include "runtime/network.hpp"
 #include "runtime/output.hpp"
@@ -11,6 +12,7 @@
 #include <filesystem>
 #include <iostream>
 #include <memory>
+#include <optional>
 
 namespace rheo::cli {
 namespace {
@@ -24,6 +26,8 @@ struct Options {
   bool json = false;
   bool elements = false;
   std::string solver;
+  int threads = 1;
+  ReportTargets report;
 };
 
 void apply_overrides(lang::Protocol& protocol, const Options& o) {
@@ -64,6 +68,10 @@ Command add_simulate_command(CLI::App& app) {
                  "auto | fixed | sundials: the integrator of every protocol (overrides `solver =` in the file); "
                  "auto takes SUNDIALS IDA for networks with an inerter, the fixed-step kernels otherwise")
       ->check(CLI::IsMember({"auto", "fixed", "sundials"}));
+  app.add_option("--threads", o->threads,
+                 "Harmonic grid points simulated at once (0: every hardware thread); results do not depend on it; default 1")
+      ->check(CLI::Range(0, 1024));
+  add_report_options(app, o->report, true);
   app.footer("Results go where each protocol's `output \"FILE\"` line says (relative to the .rheo file), "
              "else to standard output.");
   return [o] {
@@ -85,11 +93,23 @@ Command add_simulate_command(CLI::App& app) {
                                             o->file, o->model.empty() && o->protocol.empty() ? "" : " matching --model/--protocol"));
     if (!o->output.empty() && jobs.size() != 1)
       throw runtime::UsageError(fmt::format("-o names one output but {} protocols would run; select one with --protocol or --model", jobs.size()));
+    if (o->report.any())
+      for (const auto& job : jobs)
+        if (job.model != jobs.front().model)
+          throw runtime::UsageError(fmt::format("--report and --plot show one model, but models {} and {} would run; select one with --model",
+                                                jobs.front().model->name, job.model->name));
+    std::optional<runtime::report::ReportContent> report;
     int not_converged = 0;
     for (auto& job : jobs) {
       apply_overrides(job.protocol, *o);
       const runtime::Network network = runtime::Network::compile(*job.model);
-      runtime::ProtocolRun run = runtime::run_protocol(network, job.protocol, o->file);
+      runtime::ProtocolRun run = runtime::run_protocol(network, job.protocol, o->file, o->threads);
+      if (o->report.any()) {
+        if (!report) report = runtime::report::report_for_model(network, o->file, "rheo simulate");
+        runtime::report::add_simulation_result(*report, fmt::format("{} protocol ({}:{})", runtime::protocol_name(job.protocol.kind),
+                                                                    job.protocol.where.file, job.protocol.where.line),
+                                               run.content);
+      }
       std::string destination = o->output;
       if (destination.empty() && !run.destination.empty())
         destination = (std::filesystem::path(o->file).parent_path() / run.destination).string();
@@ -101,6 +121,7 @@ Command add_simulate_command(CLI::App& app) {
                                  job.protocol.kind == lang::ProtocolKind::harmonic ? "points" : "samples", destination);
       not_converged += run.not_converged;
     }
+    if (report) write_report_files(*report, o->report);
     if (not_converged > 0) {
       std::cerr << fmt::format("rheo: {} harmonic point(s) did not reach steady state (column 'converged' = 0)\n", not_converged);
       return runtime::exit_code::numerical;

@@ -27,3 +27,37 @@ TEST_CASE("check: several errors across models and directives accumulate") {
   CHECK(errors[2].message.find("this file defines several models") != std::string::npos);
   CHECK(errors[3].message.find("unknown protocol 'bogus'") != std::string::npos);
 }
+
+namespace {
+std::vector<Diagnostic> errors_of(const std::string& text) {
+  std::vector<Diagnostic> errors;
+  check(parse("m.rheo", text), {}, errors);
+  return errors;
+}
+}  // namespace
+
+TEST_CASE("check: long instantiation chains are checked without recursion, within the nesting limit") {
+  std::string chain = "model m0 { spring s (k = 1 N/mm) }\n";
+  for (int i = 1; i < 10000; ++i) chain += "model m" + std::to_string(i) + " { m" + std::to_string(i - 1) + " x () }\n";
+  // m200 nests 200 instance blocks; instantiating it deepens that to 201, past max_block_depth.
+  const auto errors = errors_of(chain);
+  REQUIRE(errors.size() == 1);
+  CHECK(errors[0].where.line == 202);
+  CHECK(errors[0].message.find("instantiating model 'm200' here nests blocks 201 levels deep, more than 200") == 0);
+
+  std::string cycle;
+  for (int i = 0; i < 10000; ++i) cycle += "model m" + std::to_string(i) + " { m" + std::to_string((i + 1) % 10000) + " x () }\n";
+  const auto recursion = errors_of(cycle);
+  REQUIRE(recursion.size() == 1);
+  CHECK(recursion[0].where.line == 10000);
+  CHECK(recursion[0].message.find("recursive instantiation: m0 -> m1 -> m2") == 0);
+  CHECK(recursion[0].message.find("m14 -> ... (9971 more) -> m9986") != std::string::npos);
+}
+
+TEST_CASE("check: a model that instantiates a failed model is not usable either") {
+  std::vector<Diagnostic> errors;
+  Program p = check(parse("m.rheo", "model bad { spring s (k = 1 mm) }\nmodel user { bad b () spring t (k = 1 in [0.5, 2]) }\nfit user { }\n"), {},
+                    errors);
+  REQUIRE(errors.size() == 1);  // only the bad spring: the fit block of `user` is not checked against a partial model
+  CHECK(errors[0].message.find("expects a stiffness") != std::string::npos);
+}

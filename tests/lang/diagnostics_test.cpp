@@ -21,3 +21,33 @@ TEST_CASE("CompileError carries every diagnostic and the formatted text") {
   CHECK(e.diagnostics().size() == 2);
   CHECK(std::string(e.what()) == "a.rheo:1:2: error: one\n  abc\n   ^\na.rheo:1:3: error: two\n  abc\n    ^\n");
 }
+
+TEST_CASE("format: the caret stands under the column's character after multi-byte characters") {
+  SourceSet sources;
+  sources.add("u.rheo", "# µ—x\n");
+  // Byte column 7 is 'x': '#', ' ', µ (2 bytes) and — (3 bytes) stand before it, four characters.
+  CHECK(format({{"u.rheo", 1, 7}, "here"}, sources) == "u.rheo:1:7: error: here\n  # µ—x\n      ^\n");
+}
+
+TEST_CASE("format: bytes that are not text are shown as U+FFFD, never raw") {
+  SourceSet sources;
+  sources.add("b.rheo", std::string("ab\xff\x1b[2J\0c\n", 10));
+  const std::string text = format({{"b.rheo", 1, 3}, "bad byte"}, sources);
+  CHECK(text == "b.rheo:1:3: error: bad byte\n  ab\xEF\xBF\xBD\xEF\xBF\xBD[2J\xEF\xBF\xBD" "c\n    ^\n");
+}
+
+TEST_CASE("format: a long line is shown around the column; diagnostics on a 10 MB line stay cheap") {
+  std::string line(10'000'000, 'a');
+  line[5'000'000] = 'X';
+  SourceSet sources;
+  sources.add("long.rheo", line + "\nsecond\n");
+  const std::string text = format({{"long.rheo", 1, 5'000'001}, "here"}, sources);
+  CHECK(text.size() < 500);
+  const std::size_t quoted = text.find('\n') + 3;              // the quoted line, after its indent
+  const std::size_t caret_line = text.find('\n', quoted) + 3;  // the caret line, after its indent
+  CHECK(text.compare(quoted, 3, "...") == 0);
+  CHECK(text.compare(caret_line - 6, 6, "...\n  ") == 0);
+  CHECK(text[quoted + (text.find('^', caret_line) - caret_line)] == 'X');  // the caret stands under 'X'
+  for (int i = 0; i < 100000; ++i) format({{"long.rheo", 2, 1}, "x"}, sources);  // the line index makes this instant
+  CHECK(format({{"long.rheo", 2, 1}, "x"}, sources) == "long.rheo:2:1: error: x\n  second\n  ^\n");
+}

@@ -1,8 +1,11 @@
 #include "lang/frontend.hpp"
 
 #include <doctest/doctest.h>
+#include <fmt/format.h>
 
+#include <chrono>
 #include <cmath>
+#include <string_view>
 
 using namespace rheo::lang;
 
@@ -93,8 +96,10 @@ TEST_CASE("compile_source: imported stdlib models are part of the Program, not c
   CHECK(p.find_model("nope") == nullptr);
 }
 
-TEST_CASE("load_program: an unreadable file is a runtime_error naming it") {
-  CHECK_THROWS_WITH_AS(load_program("/nonexistent/file.rheo"), doctest::Contains("/nonexistent/file.rheo"), std::runtime_error);
+TEST_CASE("load_program: an unreadable file or a directory is an UnreadableSource naming it") {
+  CHECK_THROWS_WITH_AS(load_program("/nonexistent/file.rheo"),
+                       "/nonexistent/file.rheo: error: cannot read it (No such file or directory); check the path", UnreadableSource);
+  CHECK_THROWS_WITH_AS(load_program(RHEO_CORPUS_DIR), doctest::Contains("cannot read it (it is a directory)"), UnreadableSource);
 }
 
 TEST_CASE("parse_setting: command-line settings use the value grammar and the protocol schema") {
@@ -108,4 +113,39 @@ TEST_CASE("parse_setting: command-line settings use the value grammar and the pr
   CHECK_THROWS_WITH_AS(parse_setting(ProtocolKind::harmonic, "frequency = 2 mm"),
                        doctest::Contains("<command line>:1:13: error: frequency expects a frequency (1/s), got a length (mm)"), CompileError);
   CHECK_THROWS_WITH_AS(parse_setting(ProtocolKind::harmonic, "frequency = 2 Hz )"), doctest::Contains("unexpected text"), CompileError);
+}
+
+namespace {
+// Seconds compile_source takes on TEXT; the errors it reports go to ERRORS.
+double seconds_to_compile(const std::string& text, std::vector<Diagnostic>& errors, std::size_t& formatted) {
+  const auto start = std::chrono::steady_clock::now();
+  try {
+    compile_source("big.rheo", text);
+  } catch (const CompileError& e) {
+    errors = e.diagnostics();
+    formatted = std::string_view(e.what()).size();
+  }
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+}  // namespace
+
+TEST_CASE("compile_source: 10 MB files check in time and memory proportional to their size") {
+  constexpr std::size_t ten_mb = 10'000'000;
+  std::vector<Diagnostic> errors;
+  std::size_t formatted = 0;
+  // A 10 MB comment on one line.
+  CHECK(seconds_to_compile("model m { spring s (k = 1 N/mm) }\n# " + std::string(ten_mb, 'x') + "\n", errors, formatted) < 20.0);
+  CHECK(errors.empty());
+  // 10 MB of parameters, each referring to the one declared after it.
+  std::string chain = "model m {\n";
+  int n = 0;
+  for (; chain.size() < ten_mb; ++n) chain += fmt::format("  param p{} = p{} + 1 N/mm\n", n, n + 1);
+  CHECK(seconds_to_compile(chain + fmt::format("  param p{} = 1 N/mm\n  spring s (k = p0)\n}}\n", n), errors, formatted) < 20.0);
+  CHECK(errors.empty());
+  // 10 MB on one line, one error per element: each quotes the line around its column only.
+  std::string line = "model m {";
+  for (int i = 0; line.size() < ten_mb; ++i) line += fmt::format(" spring s{} (k = q{})", i, i);
+  CHECK(seconds_to_compile(line + " }\n", errors, formatted) < 20.0);
+  CHECK(errors.size() > 300000);
+  CHECK(formatted < 600 * errors.size());
 }

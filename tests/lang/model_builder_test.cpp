@@ -79,3 +79,51 @@ TEST_CASE("build_model: a parameter's value range is its own text, an override's
   CHECK(range(o, "z.k1") == "none");      // a stdlib default
   CHECK(range(*p.find_model("inner"), "m.tau") == "1 ms");
 }
+
+TEST_CASE("build_model: springpot band limits default to 0.01 Hz .. 1 kHz and can be given or overridden") {
+  Program p = compile_source("s.rheo", R"(
+model s { springpot sp (k = 50 N/mm, alpha = 0.3 in [0.1, 0.9], tau = 10 ms) }
+model t { s inner (sp.f_high = 2 kHz) springpot own (k = 1, alpha = 0.5, tau = 1 s, f_low = 1 Hz) })");
+  const CheckedModel& s = p.models.at(0);
+  REQUIRE(s.root.children.at(0).parameters.size() == 5);
+  CHECK(find(s, "sp.f_low")->value == 0.01);
+  CHECK(find(s, "sp.f_high")->value == 1000.0);
+  CHECK(find(s, "sp.f_low")->where.line == 2);  // generated at the element
+  CHECK(find(s, "sp.alpha")->free);
+  const CheckedModel& t = p.models.at(1);
+  CHECK(find(t, "inner.sp.f_high")->value == 2000.0);
+  CHECK(find(t, "own.f_low")->value == 1.0);
+  CHECK(find(t, "own.f_high")->value == 1000.0);
+}
+
+TEST_CASE("build_model: a springpot's alpha lies strictly between 0 and 1, its bounds too") {
+  CHECK_THROWS_WITH_AS(compile_source("a.rheo", "model a { springpot sp (k = 1, alpha = 1, tau = 1 s) }"),
+                       doctest::Contains("a.rheo:1:40: error: fractional order alpha of springpot 'sp' must be below 1, got 1"),
+                       CompileError);
+  CHECK_THROWS_WITH_AS(compile_source("a.rheo", "model a { springpot sp (k = 1, alpha = 0.5 in [0.1, 1.2], tau = 1 s) }"),
+                       doctest::Contains("a.rheo:1:53: error: fractional order alpha of springpot 'sp' must be below 1, so its upper bound must be too, got 1.2"),
+                       CompileError);
+  CHECK_THROWS_WITH_AS(compile_source("a.rheo", "model a { springpot sp (k = 1, alpha = 0, tau = 1 s) }"),
+                       doctest::Contains("must be positive"), CompileError);
+  CHECK_THROWS_WITH_AS(compile_source("a.rheo", "model a { springpot sp (k = 1, tau = 1 s) }"),
+                       doctest::Contains("springpot 'sp' is missing its fractional order alpha"), CompileError);
+}
+
+TEST_CASE("build_model: a chain of 100,000 parameter references resolves; a cycle through all of it is one error") {
+  // Each parameter refers to the one declared after it: resolving p0 needs the whole chain first.
+  const int n = 100000;
+  std::string source = "model m {\n";
+  for (int i = 0; i < n; ++i) source += "  param p" + std::to_string(i) + " = p" + std::to_string(i + 1) + "\n";
+  const Program program = compile_source("chain.rheo", source + "  param p" + std::to_string(n) + " = 2 N/mm\n  spring s (k = p0)\n}\n");
+  CHECK(find(program.models.at(0), "s.k")->value == 2.0);
+  try {
+    compile_source("cycle.rheo", source + "  param p" + std::to_string(n) + " = p0\n  spring s (k = 1 N/mm)\n}\n");
+    FAIL("no error");
+  } catch (const CompileError& e) {
+    REQUIRE(e.diagnostics().size() == 1);
+    CHECK(e.diagnostics()[0].where.line == 2);
+    CHECK(e.diagnostics()[0].message.find("reference cycle: p0 -> p1 -> p2") == 0);
+    CHECK(e.diagnostics()[0].message.find("p14 -> ... (99972 more) -> p99987 -> ") != std::string::npos);
+    CHECK(e.diagnostics()[0].message.find("-> p100000 -> p0; a parameter cannot depend on itself") != std::string::npos);
+  }
+}

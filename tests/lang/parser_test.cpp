@@ -1,6 +1,9 @@
 #include "lang/parser.hpp"
 
+#include "lang/limits.hpp"
+
 #include <doctest/doctest.h>
+#include <fmt/format.h>
 
 using namespace rheo::lang;
 
@@ -129,4 +132,65 @@ TEST_CASE("parse: an argument records the byte range of its value expression") {
   const auto& args = f.models.at(0).elements.at(0).arguments;
   CHECK(text.substr(static_cast<std::size_t>(args[0].value_begin), static_cast<std::size_t>(args[0].value_end - args[0].value_begin)) == "-(2 * k0)");
   CHECK(text.substr(static_cast<std::size_t>(args[1].value_begin), static_cast<std::size_t>(args[1].value_end - args[1].value_begin)) == "4.335ms");
+}
+
+namespace {
+std::string repeat(std::string_view text, int times) {
+  std::string out;
+  for (int i = 0; i < times; ++i) out += text;
+  return out;
+}
+const ast::Expr& value_of_first_argument(const ast::File& f) { return *f.models.at(0).elements.at(0).arguments.at(0).value; }
+}  // namespace
+
+TEST_CASE("parse: blocks and expressions nest up to the limits of limits.hpp") {
+  const int blocks = max_block_depth, levels = max_expression_depth;
+  const ast::File deep = parse("p.rheo", "model m {\n" + repeat("series {\n", blocks) + "spring s (k = 1)\n" + repeat("}\n", blocks + 1));
+  const ast::Element* e = &deep.models.at(0).elements.at(0);
+  for (int i = 1; i < blocks; ++i) e = &e->children.at(0);
+  CHECK(e->children.at(0).kind == "spring");
+  // Levels as written: parentheses, unary minus and operators each add one.
+  CHECK(value_of_first_argument(parse("p.rheo", "model m { spring s (k = 2 * (a + 1)) }")).depth == 4);
+  CHECK(value_of_first_argument(parse("p.rheo", "model m { spring s (k = 1 + 2 + 3) }")).depth == 3);
+  const std::string at_limit[] = {repeat("(", levels - 1) + "1" + repeat(")", levels - 1), repeat("-", levels - 1) + "1",
+                                  "1" + repeat(" + 1", levels - 1), repeat("(", levels / 2) + "1" + repeat(" * 2)", levels / 2 - 1) + ")"};
+  for (const auto& expression : at_limit) {
+    CAPTURE(expression);
+    CHECK(value_of_first_argument(parse("p.rheo", "model m { spring s (k = " + expression + ") }")).depth <= levels);
+  }
+}
+
+TEST_CASE("parse: hostile nesting 10,000 deep is a parse error at the first level too deep, not a crash") {
+  const int d = 10000;
+  std::string alternating = "model m {\n  ";
+  for (int i = 0; i < d; ++i) alternating += fmt::format("parallel {{ spring a{} (k = 1 N/mm) series {{ ", i);
+  alternating += "spring s (k = 1 N/mm)" + repeat(" } }", d) + "\n}\n";
+  const std::string error = parse_error(alternating);
+  CHECK(error.find(fmt::format("error: blocks nested deeper than {} levels", max_block_depth)) != std::string::npos);
+  // The 201st block keyword: 100 `parallel { spring aN (...) series { ` groups stand before it.
+  CHECK(error.find(fmt::format("p.rheo:2:{}:", alternating.find("parallel { spring a100 ") - alternating.find('\n'))) == 0);
+  for (const std::string& expression : {repeat("(", d) + "1" + repeat(")", d), repeat("-", d) + "1", "1" + repeat(" + 1", d),
+                                        repeat("(1 + ", d) + "1" + repeat(")", d)}) {
+    const std::string message = parse_error("model m { spring s (k = " + expression + ") }");
+    CHECK(message.find(fmt::format("expression nested deeper than {} levels", max_expression_depth)) != std::string::npos);
+  }
+  CHECK(parse_error("model m { spring s (k = 1) }\nsimulate { harmonic frequency = " + repeat("(", d) + "1 Hz" + repeat(")", d) +
+                    ", amplitude = 1 mm }")
+            .find("expression nested deeper than") != std::string::npos);
+  // The same limits hold for a setting given on the command line.
+  CHECK_THROWS_WITH_AS(parse_setting_text("<command line>", "frequency = " + repeat("-", d) + "1 Hz"),
+                       doctest::Contains("<command line>:1:212: error: expression nested deeper than"), CompileError);
+}
+
+TEST_CASE("parse: a file that is not UTF-8 text is an error at its first such byte; UTF-8 text parses") {
+  CHECK(parse_error("model m {\n  spring s (k = 1 N/mm) \xff\n}\n").find("p.rheo:2:25: error: found byte 0xFF, which is not UTF-8") == 0);
+  CHECK(parse_error(std::string("model m {\0}", 11)).find("p.rheo:1:10: error: found a NUL byte") == 0);
+  // Non-ASCII UTF-8 in comments and strings is text; columns count bytes.
+  const ast::File f = parse("p.rheo", "# Prüfstand µ — 試験\nmodel m { spring s (k = 1 N/mm) }\nsimulate {\n  history file = \"straße.csv\" # ü\n}\n");
+  CHECK(f.simulations.at(0).lines.at(0).settings.at(0).value.text == "straße.csv");
+  // Outside them a non-ASCII character is reported whole.
+  CHECK(parse_error("model m {\n  spring s (k = 1 µm)\n}\n").find("found 'µ'") != std::string::npos);
+  const std::string control = parse_error("model m { spring s (k = 1) \x1b[2J }");
+  CHECK(control.find("found control character 0x1B") != std::string::npos);
+  CHECK(control.find('\x1b') == std::string::npos);
 }

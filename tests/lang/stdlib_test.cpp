@@ -7,7 +7,8 @@
 using namespace rheo::lang;
 
 TEST_CASE("stdlib: the documented modules are embedded") {
-  const std::vector<std::string> expected{"frictional_solid3",
+  const std::vector<std::string> expected{"fractional_zener",
+                                          "frictional_solid3",
                                           "frictional_zener",
                                           "hydromount",
                                           "hydromount_uncapped",

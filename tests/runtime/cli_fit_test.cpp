@@ -195,7 +195,7 @@ TEST_CASE("bad data exits 4 naming file:row:col, and leaves an existing output u
   write_text(no_phase, "amplitude [mm],frequency [Hz],stiffness [N/mm]\n0.2,1,1419\n");
   const Run r = run(fmt::format("fit {} --data {} -o {}", example("specimen_d_fit.rheo"), no_phase.string(), out.string()));
   CHECK(r.code == 4);
-  CHECK(r.err.rfind(no_phase.string() + ": error: ", 0) == 0);
+  CHECK(r.err.rfind(no_phase.string() + ":1:1: error: ", 0) == 0);
   CHECK(contains(r.err, "'phase'"));
   CHECK(read_text(out) == "# an earlier result\n");
 }

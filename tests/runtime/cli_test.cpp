@@ -87,3 +87,26 @@ TEST_CASE("data errors exit 4 and leave no output") {
   CHECK(r.output.find("h.csv:3:5: error:") != std::string::npos);
   CHECK_FALSE(fs::exists(model.parent_path() / "h_out.csv"));
 }
+
+TEST_CASE("simulate --threads gives the same file as one thread; a negative count is a usage error") {
+  const std::string base = fmt::format("simulate {}/hydromount.rheo -o - --set 'steps_per_cycle = 256' --protocol harmonic", RHEO_EXAMPLES_DIR);
+  const Result one = run(base);
+  const Result two = run(base + " --threads 2");
+  CHECK(one.code == 0);
+  CHECK(two.code == 0);
+  CHECK(one.output.find("amplitude [mm]") != std::string::npos);
+  CHECK(two.output == one.output);
+  CHECK(run(base + " --threads -1").code == 2);
+}
+
+TEST_CASE("a model file that cannot be read exits 4 naming it, for every command") {
+  for (const char* command : {"check", "simulate", "fit"}) {
+    CAPTURE(command);
+    const Result missing = run(fmt::format("{} /nonexistent/model.rheo", command));
+    CHECK(missing.code == 4);
+    CHECK(missing.output.find("/nonexistent/model.rheo: error: cannot read it (No such file or directory)") == 0);
+    const Result directory = run(fmt::format("{} {}", command, RHEO_EXAMPLES_DIR));
+    CHECK(directory.code == 4);
+    CHECK(directory.output.find("cannot read it (it is a directory)") != std::string::npos);
+  }
+}

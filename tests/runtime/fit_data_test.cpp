@@ -82,7 +82,7 @@ TEST_CASE("a table that is neither kind: the message names the file, lists the c
   const auto path = write("neither.csv", "strain [-],stress [N]\n0,0\n0.1,5\n");
   const std::string message = data_error(path);
   CAPTURE(message);
-  CHECK(message.rfind(path + ": error:", 0) == 0);
+  CHECK(message.rfind(path + ":1:1: error:", 0) == 0);  // at the header
   for (const char* column : {"'amplitude'", "'frequency'", "'stiffness'", "'phase'", "'storage'", "'loss'", "'time'", "'displacement'", "'force'"})
     CHECK(contains(message, column));
   CHECK(contains(message, "the header has: strain, stress"));
@@ -92,7 +92,7 @@ TEST_CASE("a history without a force column names the file and the column to add
   const auto path = write("noforce.csv", "time [s],displacement [mm]\n0,0\n1,0.5\n");
   const std::string message = data_error(path);
   CAPTURE(message);
-  CHECK(message.rfind(path + ": error:", 0) == 0);
+  CHECK(message.rfind(path + ":1:1: error:", 0) == 0);
   CHECK(contains(message, "'force [N]'"));
   CHECK(contains(message, "the header has: time, displacement"));
 }
@@ -101,20 +101,20 @@ TEST_CASE("a history whose force is zero throughout names the file and its first
   const auto path = write("zero.csv", "# no signal\n\ntime [s],displacement [mm],force [N]\n0,0,0\n1,0.5,0\n2,0,-0\n");
   const std::string message = data_error(path);
   CAPTURE(message);
-  CHECK(message.rfind(path + ":4: error:", 0) == 0);
+  CHECK(message.rfind(path + ":4:5: error:", 0) == 0);  // the first force cell
   CHECK(contains(message, "zero"));
 }
 
-TEST_CASE("a harmonic table lacking a needed column, or a history not from rest, says so at the file") {
+TEST_CASE("a harmonic table lacking a needed column, or a history not from rest, says so at the header or the cell") {
   const auto no_phase = write("nophase.csv", "amplitude [mm],frequency [Hz],stiffness [N/mm]\n0.5,10,300\n");
   const std::string phase_message = data_error(no_phase);
   CAPTURE(phase_message);
-  CHECK(phase_message.rfind(no_phase + ": error:", 0) == 0);
+  CHECK(phase_message.rfind(no_phase + ":1:1: error:", 0) == 0);
   CHECK(contains(phase_message, "'phase'"));
   const auto moving = write("moving.csv", "time [s],displacement [mm],force [N]\n0,0.2,1\n1,0.5,2\n");
   const std::string rest_message = data_error(moving);
   CAPTURE(rest_message);
-  CHECK(rest_message.rfind(moving + ":2:1: error:", 0) == 0);
+  CHECK(rest_message.rfind(moving + ":2:3: error:", 0) == 0);  // the displacement cell
   CHECK(contains(rest_message, "from rest"));
 }
 

@@ -1,10 +1,14 @@
 // Compilation: canonical forms, root groups, state layout, re-parameterisation.
 #include "runtime/network.hpp"
 
+#include "runtime/errors.hpp"
 #include "runtime/periodic_closed_form.hpp"
+#include "runtime/springpot.hpp"
 #include "support.hpp"
 
 #include <doctest/doctest.h>
+
+#include <vector>
 
 using namespace rheo;
 
@@ -122,4 +126,50 @@ TEST_CASE("placement: gaps only in series with a compliant member, inerters neve
   CHECK(error_of("model p { series { gap g (width = 1 mm) slider f (fy = 1) spring s (k = 1) } }").empty());
   CHECK(error_of("model p { series { spring s (k = 1) parallel { series { slider f (fy = 1) inerter m (b = 1 kg) } dashpot d (c = 1) } } }").empty());
   CHECK(error_of("model p { inerter m (b = 1 kg) }").empty());
+}
+
+TEST_CASE("a springpot is a Maxwell chain: spliced into the root group, kept whole when nested, rederived on new parameters") {
+  const auto root = test::network_from(R"(
+    model r { spring e (k = 10) parallel { springpot sp (k = 50, alpha = 0.3, tau = 10 ms) maxwell m (k = 5, tau = 1 ms) } })", "r");
+  const auto& t = root.topology();
+  const int modes = runtime::springpot_mode_count(0.01, 1000.0);
+  REQUIRE(t.springpots.size() == 1);
+  CHECK(t.springpots[0].modes == modes);
+  CHECK(t.derived_parameters == 2 * modes);
+  CHECK(t.maxwells.size() == static_cast<std::size_t>(modes) + 1);
+  CHECK(t.subtrees.empty());
+  CHECK(runtime::has_closed_form_periodic_state(root));
+  const auto& probe = t.probes[1];
+  CHECK(probe.path == "sp");
+  CHECK(probe.source == runtime::ElementProbe::Source::root_springpot);
+  CHECK(probe.count == modes);
+  // The derived modes are the chain of runtime/springpot.hpp for the element's parameters.
+  std::vector<double> k(static_cast<std::size_t>(modes)), c(k.size());
+  runtime::springpot_modes({50.0, 0.3, 0.01, 0.01, 1000.0}, k, c);
+  CHECK(root.coefficients().maxwell_k[static_cast<std::size_t>(probe.index)] == k[0]);
+  CHECK(root.coefficients().maxwell_c[static_cast<std::size_t>(probe.index + modes - 1)] == c.back());
+
+  // New alpha: the same number of modes with new values.
+  std::vector<double> values = root.parameters();
+  values[2] = 0.6;  // e.k, sp.k, sp.alpha, ...
+  REQUIRE(root.model().parameters[2].path == "sp.alpha");
+  const auto refit = root.with_parameters(values);
+  runtime::springpot_modes({50.0, 0.6, 0.01, 0.01, 1000.0}, k, c);
+  CHECK(refit.coefficients().maxwell_k[static_cast<std::size_t>(probe.index)] == k[0]);
+  CHECK(refit.parameters().size() == root.parameters().size());
+
+  const auto nested = test::network_from(
+      "model n { series { spring e (k = 100) springpot sp (k = 50, alpha = 0.5, tau = 1 ms, f_low = 1 Hz, f_high = 100 Hz) } }", "n");
+  const auto& tn = nested.topology();
+  REQUIRE(tn.subtrees.size() == 1);
+  CHECK(tn.maxwells.empty());
+  const auto& sp = tn.probes[1];
+  CHECK(sp.source == runtime::ElementProbe::Source::tree_node);
+  CHECK(tn.nodes[static_cast<std::size_t>(sp.index)].child_count == runtime::springpot_mode_count(1.0, 100.0));
+}
+
+TEST_CASE("a springpot band with f_low not below f_high is a model error at the element") {
+  CHECK_THROWS_WITH_AS(test::network_from("model b {\n  springpot sp (k = 5, alpha = 0.5, tau = 1 ms, f_low = 10 Hz, f_high = 1 Hz)\n}", "b"),
+                       doctest::Contains("test.rheo:2:3: error: model 'b': springpot 'sp' has f_low = 10 Hz not below f_high = 1 Hz"),
+                       runtime::ModelError);
 }

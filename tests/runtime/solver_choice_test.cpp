@@ -21,3 +21,20 @@ TEST_CASE("solver words round-trip and unknown words are refused") {
     CHECK(runtime::parse_solver_choice(runtime::solver_word(c)) == c);
   CHECK_FALSE(runtime::parse_solver_choice("cvode").has_value());
 }
+
+TEST_CASE("auto takes SUNDIALS when series and parallel blocks alternate more than 3 deep") {
+  // Blocks below the model's body: series { spring; parallel { spring; series { ... } } }.
+  auto alternating = [](int depth) {
+    std::string open, close;
+    for (int i = 0; i < depth; ++i) {
+      open += (i % 2 == 0 ? "series { spring s" : "parallel { spring p") + std::to_string(i) + " (k = 1 N/mm) ";
+      close += " }";
+    }
+    return test::network_from("model m { " + open + "dashpot d (c = 1 N*s/mm)" + close + " }", "m");
+  };
+  CHECK_FALSE(runtime::uses_sundials(alternating(2), runtime::SolverChoice::automatic));
+  CHECK_FALSE(runtime::uses_sundials(alternating(3), runtime::SolverChoice::automatic));
+  CHECK(runtime::uses_sundials(alternating(4), runtime::SolverChoice::automatic));
+  CHECK(runtime::uses_sundials(alternating(40), runtime::SolverChoice::automatic));
+  CHECK_FALSE(runtime::uses_sundials(alternating(40), runtime::SolverChoice::fixed));
+}

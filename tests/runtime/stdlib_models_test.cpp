@@ -245,11 +245,20 @@ TEST_CASE("stdlib hydromount: the uncapped closed form while the cap sticks, at 
   }
 }
 
+TEST_CASE("stdlib fractional_zener: K* = k_inf + 1/(1/k1 + 1/(k_sp (i w tau)^alpha)) across the springpot's band") {
+  for (double f : {0.02, 1.0, 30.0, 800.0}) {
+    const std::complex<double> springpot = 50.0 * std::pow(std::complex<double>{0.0, 2 * std::numbers::pi * f * 0.01}, 0.3);
+    const auto p = point("import fractional_zener\nmodel m { fractional_zener z () }", "m", 0.5, f);
+    CHECK(p.cycles == 0);  // closed form: the springpot's Maxwell chain is linear
+    check_within(p, 100.0 + 1.0 / (1.0 / 200.0 + 1.0 / springpot), 5e-4, 0.02);
+  }
+}
+
 TEST_CASE("every stdlib model is covered above") {
   // A new stdlib model must get a test here before this list is extended.
   auto names = lang::stdlib_names();
   std::sort(names.begin(), names.end());
-  CHECK(names == std::vector<std::string>{"frictional_solid3", "frictional_zener", "hydromount", "hydromount_uncapped",
+  CHECK(names == std::vector<std::string>{"fractional_zener", "frictional_solid3", "frictional_zener", "hydromount", "hydromount_uncapped",
                                           "kelvin_voigt", "maxwell2", "maxwell3", "nonlinear_series_friction_maxwell",
                                           "nonlinear_viscoplastic", "series_friction_maxwell", "viscoplastic", "zener"});
 }

@@ -1,0 +1,40 @@
+// Speed-up of --threads on the two evaluations a fit repeats (Arg = threads):
+//  - the hydrobushing harmonic grid (147 points) of the coupled model of
+//    examples/hydrobushing_fit.rheo at its start values, as its fit block evaluates it
+//    (solver = fixed, 128 steps per cycle, periodicity tolerance 1e-6): time stepped;
+//  - the specimen-D fit of examples/specimen_d_fit.rheo (closed-form points, microseconds each).
+#include "bench_support.hpp"
+#include "runtime/fit.hpp"
+#include "runtime/objective.hpp"
+
+#include <benchmark/benchmark.h>
+
+namespace {
+
+using namespace rheo;
+
+void BM_Hydrobushing_CoupledGrid_Threads(benchmark::State& state) {
+  const runtime::Network network = runtime::Network::compile(bench::example_model("hydrobushing_fit.rheo", "coupled"));
+  const auto data = bench::example_data("hydrobushing_harmonic.csv");
+  runtime::HarmonicOptions options;
+  options.solver = runtime::SolverChoice::fixed;
+  options.steps_per_cycle = 128;
+  options.tolerance = 1e-6;
+  options.threads = static_cast<int>(state.range(0));
+  for (auto _ : state) benchmark::DoNotOptimize(runtime::simulate_at(network, data.harmonic(), options));
+}
+
+void BM_SpecimenD_Fit_Threads(benchmark::State& state) {
+  const runtime::Network start = runtime::Network::compile(bench::example_model("specimen_d_fit.rheo", "specimen_d"));
+  const std::vector<runtime::FitDataSet> data{bench::example_data("specimen_D_harmonic.csv")};
+  runtime::FitSettings settings;
+  settings.score.harmonic.threads = static_cast<int>(state.range(0));
+  runtime::FitResult result{.network = start};
+  for (auto _ : state) result = runtime::fit(start, runtime::bounded_parameters(start), data, settings);
+  state.counters["err"] = result.err;
+}
+
+}  // namespace
+
+BENCHMARK(BM_Hydrobushing_CoupledGrid_Threads)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->Iterations(3);
+BENCHMARK(BM_SpecimenD_Fit_Threads)->Arg(1)->Arg(2)->Unit(benchmark::kSecond)->Iterations(3);

@@ -1,0 +1,128 @@
+#include "runtime/report/html_report.hpp"
+
+#include "runtime/report/network_diagram.hpp"
+#include "runtime/report/report_figures.hpp"
+#include "runtime/report/svg_text.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+
+namespace rheo::runtime::report {
+namespace {
+
+constexpr const char* kStyle = R"(
+body { font-family: Helvetica, Arial, sans-serif; color: #111; max-width: 1320px; margin: 1.5em auto; padding: 0 1em; line-height: 1.4; }
+h1 { font-size: 1.6em; margin-bottom: 0.2em; }
+h2 { font-size: 1.25em; border-bottom: 1px solid #ccc; padding-bottom: 0.2em; margin-top: 1.8em; }
+.meta { color: #444; margin: 0.2em 0; }
+code { font-family: Menlo, Consolas, monospace; font-size: 0.95em; }
+table { border-collapse: collapse; margin: 0.6em 0; }
+th, td { padding: 0.25em 0.7em; border-bottom: 1px solid #ddd; text-align: left; vertical-align: top; }
+th { background: #f3f3f3; }
+td.num { text-align: right; font-variant-numeric: tabular-nums; }
+.figures { display: grid; grid-template-columns: repeat(auto-fill, minmax(460px, 1fr)); gap: 1em 1.5em; }
+figure { margin: 0; break-inside: avoid; }
+figure svg { display: block; width: 100%; height: auto; }
+figure.network svg { width: auto; max-width: 100%; }
+figcaption { color: #444; font-size: 0.9em; margin-top: 0.2em; }
+@media print {
+  body { max-width: none; margin: 0; font-size: 10pt; }
+  .figures { grid-template-columns: 1fr 1fr; }
+  h2 { break-after: avoid; }
+  table, figure { break-inside: avoid; }
+}
+)";
+
+std::string number(double v) { return fmt::format("{:.6g}", v); }
+
+std::string figure(const std::string& kind, const std::string& svg, const std::string& caption) {
+  return fmt::format("<figure class=\"plot{}\" data-figure=\"{}\">\n{}<figcaption>{}</figcaption></figure>\n",
+                     kind == "network" ? " network" : "", kind, svg, escape(caption));
+}
+
+std::string summary(const ReportContent& c) {
+  std::string out = "<h2 id=\"summary\">Summary</h2>\n";
+  if (!c.harmonic.empty() || !c.histories.empty()) {
+    out += "<table class=\"summary\"><tr><th>data</th><th>kind</th><th>points</th><th>agreement</th></tr>\n";
+    for (const HarmonicComparison& h : c.harmonic)
+      out += fmt::format("<tr><td><code>{}</code></td><td>harmonic</td><td class=\"num\">{}</td><td>{}</td></tr>\n", escape(h.label),
+                         h.amplitude.size(),
+                         h.measured() ? fmt::format("&phi; (5.1) = {:.6g}, err (6.1) = {:.4e}", h.phi, h.err) : "model only (no measurements)");
+    for (const HistoryComparison& h : c.histories)
+      out += fmt::format("<tr><td><code>{}</code></td><td>history</td><td class=\"num\">{}</td><td>{}</td></tr>\n", escape(h.label),
+                         h.displacement.size(),
+                         h.measured() ? fmt::format("force residual RMS {:.3g} %, worst {:.3g} % of max |F|", 100.0 * h.rms, 100.0 * h.worst)
+                                      : "model only (no measurements)");
+    out += "</table>\n";
+  }
+  if (!c.notes.empty()) {
+    out += "<ul class=\"notes\">\n";
+    for (const std::string& note : c.notes) out += fmt::format("<li>{}</li>\n", escape(note));
+    out += "</ul>\n";
+  }
+  return out;
+}
+
+std::string parameter_table(const ReportContent& c) {
+  const bool fitted = std::any_of(c.parameters.begin(), c.parameters.end(), [](const ParameterRow& r) { return r.free; });
+  const bool bounded = std::any_of(c.parameters.begin(), c.parameters.end(), [](const ParameterRow& r) { return !r.bounds.empty(); });
+  std::string out = "<h2 id=\"parameters\">Parameters</h2>\n<table class=\"parameters\"><tr><th>parameter</th>";
+  out += fitted ? "<th>start</th><th>fitted</th><th>std. error</th>" : "<th>value</th>";
+  out += fmt::format("<th>unit</th>{}</tr>\n", bounded ? "<th>bounds</th>" : "");
+  for (const ParameterRow& r : c.parameters) {
+    out += fmt::format("<tr{}><td><code>{}</code></td>", r.free ? " class=\"free\"" : "", escape(r.path));
+    if (fitted)
+      out += fmt::format("<td class=\"num\">{}</td><td class=\"num\">{}</td><td>{}</td>", r.start ? number(*r.start) : "",
+                         number(r.value), r.free ? escape(r.standard_error) : "fixed");
+    else
+      out += fmt::format("<td class=\"num\">{}</td>", number(r.value));
+    out += fmt::format("<td>{}</td>{}</tr>\n", escape(r.unit), bounded ? fmt::format("<td>{}</td>", escape(r.bounds)) : "");
+  }
+  return out + "</table>\n";
+}
+
+std::string harmonic_section(const HarmonicComparison& h, std::size_t index) {
+  const std::string prefix = fmt::format("h{}", index + 1);
+  std::string out = fmt::format("<h2 id=\"{}\">Harmonic: <code>{}</code></h2>\n<div class=\"figures\">\n", prefix, escape(h.label));
+  static const char* const kinds[] = {"stiffness-frequency", "phase-frequency", "stiffness-amplitude", "phase-amplitude"};
+  const std::vector<Plot> plots = harmonic_plots(h, prefix);
+  for (std::size_t k = 0; k < plots.size(); ++k)
+    out += figure(kinds[k], render_svg(plots[k], false),
+                  h.measured() ? "Markers: measured; lines: model at the measured points." : "Model at the simulated grid points.");
+  const std::vector<ResidualMap> maps = residual_maps(h);
+  for (std::size_t k = 0; k < maps.size(); ++k)
+    out += figure(k == 0 ? "residual-stiffness" : "residual-phase", render_residual_map(maps[k], false),
+                  k == 0 ? "Red: model stiffer than measured; blue: softer." : "Red: model phase above measured; blue: below.");
+  return out + "</div>\n";
+}
+
+std::string history_section(const HistoryComparison& h, std::size_t index) {
+  const std::string id = fmt::format("t{}", index + 1);
+  return fmt::format("<h2 id=\"{}\">History: <code>{}</code></h2>\n<div class=\"figures\">\n{}</div>\n", id, escape(h.label),
+                     figure("hysteresis", render_svg(hysteresis_plot(h, id + "-hysteresis"), false),
+                            h.measured() ? "Markers: measured; line: model driven by the measured displacement." : "Model response."));
+}
+
+}  // namespace
+
+std::string html_report(const ReportContent& c) {
+  std::string out = fmt::format("<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n"
+                                "<meta name=\"viewport\" content=\"width=device-width, initial-scale=1\">\n<title>{}</title>\n<style>{}</style>\n</head>\n"
+                                "<body>\n<h1>{}</h1>\n",
+                                escape(c.title), kStyle, escape(c.title));
+  out += fmt::format("<p class=\"meta\">Model <code>{}</code> from <code>{}</code></p>\n<p class=\"meta\">{}</p>\n", escape(c.model),
+                     escape(c.source), escape(c.origin));
+  out += summary(c);
+  out += "<h2 id=\"network\">Network</h2>\n" +
+         figure("network", network_diagram_svg(c.network, "Network of model " + c.model, false),
+                "Series chains run left to right, parallel branches are stacked; ground on the left, the drive u(t) on the right.");
+  out += parameter_table(c);
+  for (std::size_t k = 0; k < c.harmonic.size(); ++k) out += harmonic_section(c.harmonic[k], k);
+  for (std::size_t k = 0; k < c.histories.size(); ++k) out += history_section(c.histories[k], k);
+  for (const ReportSection& s : c.sections)
+    out += fmt::format("<section id=\"{}\">\n<h2>{}</h2>\n{}</section>\n", escape(s.id), escape(s.title), s.html);
+  return out + "</body>\n</html>\n";
+}
+
+}  // namespace rheo::runtime::report

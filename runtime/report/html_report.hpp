@@ -1,0 +1,21 @@
+// A report as one self-contained HTML page: inline CSS (with print styles) and inline SVG, no
+// script, no external reference of any kind (no URL, font, image or style sheet is fetched), so
+// that it opens from disk offline. Sections: title (model, source file, what produced it);
+// summary (per data set phi (5.1) and err (6.1), or the force residual of a history; notes);
+// the network diagram; the parameter table (units; for fits start values, standard errors
+// and bounds); per harmonic grid its plots and residual maps, per history its hysteresis loop
+// (report_figures.hpp); then ReportContent::sections (e.g. a diagnosis) in order.
+// Every figure is <figure class="plot" data-figure="KIND"> with KIND one of
+// stiffness-frequency, phase-frequency, stiffness-amplitude, phase-amplitude,
+// residual-stiffness, residual-phase, hysteresis, network.
+#pragma once
+
+#include "runtime/report/report_content.hpp"
+
+#include <string>
+
+namespace rheo::runtime::report {
+
+std::string html_report(const ReportContent& content);
+
+}  // namespace rheo::runtime::report

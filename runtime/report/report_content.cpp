@@ -1,0 +1,135 @@
+#include "runtime/report/report_content.hpp"
+
+#include "runtime/errors.hpp"
+#include "runtime/history_csv.hpp"
+#include "runtime/objective.hpp"
+
+#include <fmt/format.h>
+#include <nlohmann/json.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+
+namespace rheo::runtime::report {
+namespace {
+
+ParameterRow row_of(const lang::Parameter& p, double value) {
+  ParameterRow row{p.path, written_unit(p), in_written_unit(p, value), std::nullopt, "", "", false};
+  if (p.free) row.bounds = fmt::format("[{:g}, {:g}]", in_written_unit(p, p.lower), in_written_unit(p, p.upper));
+  return row;
+}
+
+std::string standard_error_of(const FitResult& r, std::size_t j, const lang::Parameter& p, double value) {
+  const ParameterStatistics& s = r.statistics;
+  if (j < s.identifiable.size() && !s.identifiable[j]) return "not identifiable";
+  if (j >= s.standard_error.size() || !std::isfinite(s.standard_error[j])) return "-";
+  const double se = s.standard_error[j];
+  return fmt::format("{:.3g} ({:.2g} %)", in_written_unit(p, se), value != 0.0 ? 100.0 * se / std::abs(value) : 0.0);
+}
+
+std::vector<double> column_of(const Table& table, const char* name) {
+  const int c = table.column(name);
+  return c < 0 ? std::vector<double>{} : table.columns[static_cast<std::size_t>(c)];
+}
+
+void add_table(ReportContent& content, const std::string& label, const Table& table) {
+  if (table.column("stiffness") >= 0 && table.column("phase") >= 0) {
+    HarmonicComparison h{label, column_of(table, "amplitude"), column_of(table, "frequency"), column_of(table, "stiffness"),
+                         column_of(table, "phase"), {}, {}, 0.0, 0.0};
+    content.harmonic.push_back(std::move(h));
+  } else if (table.column("displacement") >= 0 && table.column("force") >= 0) {
+    content.histories.push_back({label, column_of(table, "displacement"), column_of(table, "force"), {}, 0.0, 0.0});
+  } else {
+    throw DataError(fmt::format("{}: a report draws harmonic grids (stiffness, phase) and histories (displacement, force); {}",
+                                label, header_columns(table)));
+  }
+}
+
+void add_json(ReportContent& content, const std::string& label, const nlohmann::json& j) {
+  if (j.contains("points")) {
+    HarmonicComparison h{label, {}, {}, {}, {}, {}, {}, 0.0, 0.0};
+    for (const auto& p : j["points"]) {
+      h.amplitude.push_back(p.at("amplitude").get<double>());
+      h.frequency.push_back(p.at("frequency").get<double>());
+      h.model_stiffness.push_back(p.at("stiffness").get<double>());
+      h.model_phase.push_back(p.at("phase").get<double>() * std::numbers::pi / 180.0);
+    }
+    content.harmonic.push_back(std::move(h));
+  } else {
+    content.histories.push_back({label, j.at("displacement").get<std::vector<double>>(), j.at("force").get<std::vector<double>>(), {}, 0.0, 0.0});
+  }
+}
+
+}  // namespace
+
+ReportContent report_for_model(const Network& network, const std::string& source, const std::string& origin) {
+  ReportContent content;
+  const lang::CheckedModel& model = network.model();
+  content.title = fmt::format("{}: model {}", origin, model.name);
+  content.model = model.name;
+  content.source = source;
+  content.origin = origin;
+  content.network = model.root;
+  for (std::size_t i = 0; i < model.parameters.size(); ++i)
+    content.parameters.push_back(row_of(model.parameters[i], network.parameter(static_cast<int>(i))));
+  return content;
+}
+
+ReportContent report_from_fit(const FitResult& r, const std::vector<FitDataSet>& data, const FitDescription& d) {
+  ReportContent content = report_for_model(r.network, d.source, "rheo fit");
+  content.origin = fmt::format("rheo fit, method {}, objective {}, optimizer {}, seed {}", d.method, d.objective, d.optimizer, d.seed);
+  const auto& parameters = r.network.model().parameters;
+  for (std::size_t j = 0; j < r.free.size(); ++j) {
+    const auto i = static_cast<std::size_t>(r.free[j]);
+    ParameterRow& row = content.parameters.at(i);
+    row.free = true;
+    row.start = in_written_unit(parameters[i], r.start_values.at(i));
+    row.standard_error = standard_error_of(r, j, parameters[i], r.network.parameter(r.free[j]));
+  }
+  for (std::size_t k = 0; k < data.size() && k < r.datasets.size(); ++k) {
+    if (data[k].is_harmonic())
+      content.harmonic.push_back(compare_harmonic(data[k].harmonic(), r.datasets[k].prediction.points));
+    else
+      content.histories.push_back(compare_history(data[k].history(), r.datasets[k].prediction.force));
+  }
+  if (content.harmonic.size() > 1) content.notes.push_back(fmt::format("all harmonic data: phi (5.1) = {:.6g}, err (6.1) = {:.4e}", r.phi, r.err));
+  content.notes.push_back(fmt::format("{} evaluations in {:.2f} s; {}", r.evaluations, r.wall_seconds,
+                                      r.interrupted ? "interrupted: the best values found so far" : "optimizer status " + r.status));
+  for (const std::string& note : r.notes) content.notes.push_back(note);
+  return content;
+}
+
+HarmonicComparison compare_harmonic(const HarmonicData& data, const std::vector<HarmonicPoint>& model) {
+  HarmonicComparison h{data.path, data.amplitude, data.frequency, {}, {}, data.stiffness, data.phase, 0.0, 0.0};
+  for (const HarmonicPoint& p : model) {
+    h.model_stiffness.push_back(p.measures.stiffness);
+    h.model_phase.push_back(p.measures.phase);
+  }
+  const RelativeResiduals r = relative_residuals(data, model);
+  h.phi = phi(r, 1.0, 1.0);
+  h.err = thesis_err(r);
+  return h;
+}
+
+HistoryComparison compare_history(const HistoryData& data, const std::vector<double>& model_force) {
+  HistoryComparison h{data.path, data.drive.displacement, model_force, data.force, 0.0, 0.0};
+  double sum = 0.0;
+  for (std::size_t j = 0; j < data.force.size() && j < model_force.size(); ++j) {
+    const double r = (model_force[j] - data.force[j]) / data.force_scale;
+    sum += r * r;
+    h.worst = std::max(h.worst, std::abs(r));
+  }
+  h.rms = data.force.empty() ? 0.0 : std::sqrt(sum / static_cast<double>(data.force.size()));
+  return h;
+}
+
+void add_simulation_result(ReportContent& content, const std::string& label, const std::string& rendered) {
+  const auto first = rendered.find_first_not_of(" \t\r\n");
+  if (first != std::string::npos && rendered[first] == '{')
+    add_json(content, label, nlohmann::json::parse(rendered));
+  else
+    add_table(content, label, parse_table(label, rendered));
+}
+
+}  // namespace rheo::runtime::report

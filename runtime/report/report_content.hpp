@@ -1,0 +1,76 @@
+// What a report shows, gathered from a fit, from measured data and a model, or from simulate
+// results, before anything is drawn (html_report.hpp draws it). Units: amplitude mm,
+// frequency Hz, stiffness N/mm, phase rad, displacement mm, force N; parameter values in the
+// unit the model file wrote them in.
+#pragma once
+
+#include "lang/model.hpp"
+#include "runtime/fit.hpp"
+#include "runtime/fit_report.hpp"
+#include "runtime/harmonic.hpp"
+
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace rheo::runtime::report {
+
+// Model response on a harmonic grid, with the measurements when there are some.
+struct HarmonicComparison {
+  std::string label;  // the data file, or the protocol that produced the grid
+  std::vector<double> amplitude, frequency, model_stiffness, model_phase;
+  std::vector<double> measured_stiffness, measured_phase;  // empty: no measurements
+  double phi = 0.0, err = 0.0;                             // eqs. 5.1, 6.1 when measured
+  bool measured() const { return !measured_stiffness.empty(); }
+};
+
+// A time history: force over displacement, model and (when given) measured.
+struct HistoryComparison {
+  std::string label;
+  std::vector<double> displacement, model_force;
+  std::vector<double> measured_force;  // empty: no measurements
+  double rms = 0.0, worst = 0.0;       // (F - F_exp) / max|F_exp|: RMS and largest, when measured
+  bool measured() const { return !measured_force.empty(); }
+};
+
+struct ParameterRow {
+  std::string path, unit;
+  double value = 0.0;
+  std::optional<double> start;  // fits: the start value
+  std::string standard_error;   // fits: "1.13 (0.29 %)", "not identifiable", "-"; else empty
+  std::string bounds;           // "[10, 5000]" for parameters declared with bounds
+  bool free = false;            // fitted
+};
+
+// A section another command adds after the figures (e.g. a diagnosis: the gap before and after,
+// what was added). `html` is trusted markup: its builder escapes what it embeds.
+struct ReportSection {
+  std::string id, title, html;
+};
+
+struct ReportContent {
+  std::string title;   // "rheo fit: specimen_d"
+  std::string model, source;
+  std::string origin;  // what produced the results: "rheo fit, method exact, objective phi"
+  lang::Element network;
+  std::vector<ParameterRow> parameters;
+  std::vector<HarmonicComparison> harmonic;
+  std::vector<HistoryComparison> histories;
+  std::vector<std::string> notes;
+  std::vector<ReportSection> sections;
+};
+
+// The model's name, source, network and parameter values; no results yet.
+ReportContent report_for_model(const Network& network, const std::string& source, const std::string& origin);
+
+// After a fit: the fitted model against every data file of `data` (the fit's data, in order),
+// parameters with start values, standard errors and bounds.
+ReportContent report_from_fit(const FitResult& result, const std::vector<FitDataSet>& data, const FitDescription& description);
+
+HarmonicComparison compare_harmonic(const HarmonicData& data, const std::vector<HarmonicPoint>& model);
+HistoryComparison compare_history(const HistoryData& data, const std::vector<double>& model_force);
+
+// Adds a `rheo simulate` result (harmonic or time-history CSV or JSON as output.hpp writes it).
+void add_simulation_result(ReportContent& content, const std::string& label, const std::string& rendered);
+
+}  // namespace rheo::runtime::report

@@ -1,0 +1,33 @@
+// The figures of a report, from its content:
+//   per harmonic grid: dynamic stiffness and phase over frequency, a curve per amplitude, and
+//   over amplitude, a curve per frequency (at most 8 curves: with more amplitudes or
+//   frequencies, 8 spread evenly over them); measured as markers, model as lines; log axes
+//   where the values span a factor of 20 or more (svg_plot.hpp). With measurements, residual
+//   maps of stiffness (K/K_exp - 1, %) and phase (phase - phase_exp, deg).
+//   per history: the hysteresis loop, force over displacement (at most 400 measured markers
+//   and 4000 model points, evenly subsampled).
+#pragma once
+
+#include "runtime/report/report_content.hpp"
+#include "runtime/report/residual_map.hpp"
+#include "runtime/report/svg_plot.hpp"
+
+#include <string>
+#include <vector>
+
+namespace rheo::runtime::report {
+
+inline constexpr std::size_t kMaxCurves = 8;
+
+// Ids are `prefix` + "-stiffness-frequency", "-phase-frequency", "-stiffness-amplitude",
+// "-phase-amplitude", in this order.
+std::vector<Plot> harmonic_plots(const HarmonicComparison& grid, const std::string& prefix);
+// Stiffness then phase; none without measurements.
+std::vector<ResidualMap> residual_maps(const HarmonicComparison& grid);
+Plot hysteresis_plot(const HistoryComparison& history, const std::string& id);
+
+// The figure `--plot` writes, as a standalone SVG: the first harmonic grid's stiffness over
+// frequency, else the first history's hysteresis loop. Throws UsageError when there is neither.
+std::string primary_figure_svg(const ReportContent& content);
+
+}  // namespace rheo::runtime::report

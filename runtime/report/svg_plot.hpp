@@ -1,0 +1,46 @@
+// A line/scatter plot as hand-written SVG: linear or logarithmic axes with ticks
+// (axis_ticks.hpp), axis labels with units, grid, legend. Measured data are drawn as markers,
+// model results as lines; series of one group (e.g. one amplitude) share colour and marker
+// shape, so measured and model of a group read as a pair. Every series is one
+// <g class="series" data-name="..." data-style="markers|line">, so that tests and scripts can
+// count them. Non-finite points are skipped (a line breaks there); on a log axis so are
+// values <= 0. The plot is 640 x 400 user units and scales to its container's width.
+#pragma once
+
+#include <string>
+#include <vector>
+
+namespace rheo::runtime::report {
+
+enum class Scale { linear, log };
+
+struct Axis {
+  std::string label;  // with the unit: "frequency [Hz]"
+  Scale scale = Scale::linear;
+};
+
+enum class SeriesStyle { markers, line };
+
+struct Series {
+  std::string name;   // "measured 0.2 mm"
+  std::string group;  // legend entry: "0.2 mm"
+  int color = 0;      // palette index; also selects the marker shape
+  SeriesStyle style = SeriesStyle::line;
+  std::vector<double> x, y;
+};
+
+struct Plot {
+  std::string id;     // unique in the page: [A-Za-z0-9_-]
+  std::string title;
+  Axis x, y;
+  std::vector<Series> series;
+};
+
+// `standalone`: a complete SVG document (XML prolog, xmlns) for a file of its own; otherwise an
+// <svg> element to inline in HTML.
+std::string render_svg(const Plot& plot, bool standalone);
+
+// Log when every value is positive and they span a factor of 20 or more, else linear.
+Scale scale_for(const std::vector<double>& values);
+
+}  // namespace rheo::runtime::report

@@ -1,0 +1,152 @@
+// The bad-input corpus through the real binary: tests/corpus/invalid/*.rheo exit 3 with their
+// expected errors; tests/corpus/csv/NAME.csv either work or fail as NAME.expect says, next to it:
+//   command: fit | simulate   how the table is read: `rheo fit MODEL --data NAME.csv` (a harmonic
+//                             table or a measured history) or a history protocol's `file`
+//   exit: CODE                rheo's exit code
+//   error: ROW:COL: error: M  the start of the first line of standard error after `NAME.csv:`
+// Hostile inputs too large or binary to keep as files are generated here.
+#include "cli_support.hpp"
+
+#include "lang/limits.hpp"
+
+#include <doctest/doctest.h>
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <chrono>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <regex>
+#include <string>
+#include <vector>
+
+namespace fs = std::filesystem;
+using rheo::test::run_rheo;
+using namespace std::string_literals;
+
+namespace {
+
+std::vector<fs::path> corpus_files(const std::string& sub, const std::string& extension) {
+  std::vector<fs::path> out;
+  for (const auto& e : fs::directory_iterator(fs::path(RHEO_CORPUS_DIR) / sub))
+    if (e.path().extension() == extension) out.push_back(e.path());
+  std::sort(out.begin(), out.end());
+  return out;
+}
+
+std::map<std::string, std::string> read_expectation(const fs::path& file) {
+  std::map<std::string, std::string> out;
+  std::ifstream in(file);
+  std::string line;
+  while (std::getline(in, line))
+    if (const auto colon = line.find(": "); colon != std::string::npos) out[line.substr(0, colon)] = line.substr(colon + 2);
+  return out;
+}
+
+fs::path scratch() { return rheo::test::scratch_directory("cli-corpus"); }
+
+fs::path write(const std::string& name, const std::string& text) {
+  const fs::path path = scratch() / name;
+  std::ofstream(path, std::ios::binary) << text;
+  return path;
+}
+
+// Reads CSV as COMMAND does (see the top of this file).
+rheo::test::BinaryRun read_csv(const std::string& command, const fs::path& csv) {
+  if (command == "fit") {
+    const auto model = write("fit.rheo", "model m { spring s (k = 100 N/mm in [1, 1000]) }\n");
+    return run_rheo(fmt::format("fit {} --data '{}' -o {} --max-evaluations 5 --starts 1", model.string(), csv.string(),
+                                (scratch() / "fitted.rheo").string()));
+  }
+  REQUIRE(command == "simulate");
+  const auto model = write("history.rheo", "model m { spring s (k = 100 N/mm) }\nsimulate { history file = \"none.csv\" }\n");
+  return run_rheo(fmt::format("simulate {} -o {} --set 'file = \"{}\"'", model.string(), (scratch() / "out.csv").string(), csv.string()));
+}
+
+}  // namespace
+
+TEST_CASE("csv corpus: each table works or fails at file:row:col with its message and exit code") {
+  const auto files = corpus_files("csv", ".csv");
+  REQUIRE(files.size() >= 30);
+  for (const auto& csv : files) {
+    CAPTURE(csv.string());
+    fs::path expect_file = csv;
+    expect_file.replace_extension(".expect");
+    REQUIRE_MESSAGE(fs::exists(expect_file), "no expectation beside the case");
+    auto expect = read_expectation(expect_file);
+    const auto r = read_csv(expect["command"], csv);
+    CAPTURE(r.err);
+    CHECK(r.code == std::stoi(expect["exit"]));
+    if (expect.count("error")) CHECK(r.err.rfind(csv.string() + ":" + expect["error"], 0) == 0);
+  }
+}
+
+TEST_CASE("csv: bytes that are not UTF-8 text and NUL bytes fail at their row:col, with nothing raw in the message") {
+  struct Case {
+    std::string name, text, command, error;
+  };
+  const Case cases[] = {
+      {"latin1_header.csv", "amplitude [mm],frequency [Hz],stiffness [N/mm],phase [\xb0]\n0.5,10,120,8\n", "fit",
+       ":1:55: error: found byte 0xB0, which is not UTF-8; the file must be UTF-8 text"},
+      {"latin1_cell.csv", "time [s],displacement [mm]\n0,0\n0.1,0\xb7" "5\n", "simulate", ":3:6: error: found byte 0xB7, which is not UTF-8"},
+      {"nul_cell.csv", "time [s],displacement [mm]\n0,0\n0.1,\0\n"s, "simulate", ":3:5: error: found a NUL byte"},
+      {"utf16.csv", "\xff\xfet\0i\0m\0e\0"s, "fit", ":1:1: error: found byte 0xFF, which is not UTF-8"},
+      {"control_cell.csv", "time [s],displacement [mm]\n0,0\n0.1,\x1b[2J\n", "simulate", ":3:5: error: '\xEF\xBF\xBD[2J' is not a number"},
+  };
+  for (const auto& c : cases) {
+    CAPTURE(c.name);
+    const fs::path csv = write(c.name, c.text);
+    const auto r = read_csv(c.command, csv);
+    CAPTURE(r.err);
+    CHECK(r.code == 4);
+    CHECK(r.err.rfind(csv.string() + c.error, 0) == 0);
+    CHECK(std::none_of(r.err.begin(), r.err.end(), [](char ch) { return ch == '\0' || ch == '\x1b'; }));
+  }
+}
+
+TEST_CASE("rheo corpus: every invalid file exits 3 and prints each expected error at file:line:col") {
+  static const std::regex pattern(R"(#\s*expect error (\d+):(\d+): (.*\S))");
+  for (const auto& file : corpus_files("invalid", ".rheo")) {
+    CAPTURE(file.string());
+    const auto r = run_rheo("check " + file.string());
+    CAPTURE(r.err);
+    CHECK(r.code == 3);
+    std::ifstream in(file);
+    std::string line;
+    std::smatch m;
+    while (std::getline(in, line))
+      if (std::regex_search(line, m, pattern))
+        CHECK(r.err.find(fmt::format("{}:{}:{}: error: {}", file.string(), m[1].str(), m[2].str(), m[3].str())) != std::string::npos);
+  }
+}
+
+TEST_CASE("deep nesting: 10,000 levels exit 3 with the limit's message; a model at the limit checks and simulates at once") {
+  const int d = 10000;
+  std::string text = "model m {\n  ";
+  for (int i = 0; i < d; ++i) text += "parallel { spring a (k = 1 N/mm) series { ";
+  text += "spring s (k = 1 N/mm)";
+  for (int i = 0; i < d; ++i) text += " } }";
+  const auto deep = write("deep.rheo", text + "\n}\n");
+  const auto r = run_rheo("check " + deep.string());
+  CHECK(r.code == 3);
+  CHECK(r.err.find(fmt::format("deep.rheo:2:{}: error: blocks nested deeper than {} levels", 3 + 42 * 100, rheo::lang::max_block_depth)) !=
+        std::string::npos);
+  CHECK(r.err.size() < 2000);  // the source line is quoted around the column only
+
+  // max_block_depth levels alternating parallel and series, each series holding one parallel
+  // block: the network compiler splices them into one parallel block of springs.
+  const int levels = rheo::lang::max_block_depth / 2;
+  std::string limit = "model m {\n  ";
+  for (int i = 0; i < levels; ++i) limit += fmt::format("parallel {{ spring a{} (k = 1 N/mm) series {{ ", i);
+  limit += "spring s (k = 1 N/mm)";
+  for (int i = 0; i < levels; ++i) limit += " } }";
+  limit += "\n}\nsimulate { harmonic frequency = [1, 10] Hz, amplitude = 1 mm, steady_state = time_stepping, steps_per_cycle = 64 }\n";
+  const auto at_limit = write("limit.rheo", limit);
+  const auto start = std::chrono::steady_clock::now();
+  CHECK(run_rheo("check " + at_limit.string()).code == 0);
+  const auto simulated = run_rheo("simulate " + at_limit.string() + " -o -");
+  CHECK(simulated.code == 0);
+  CHECK(simulated.out.find("\n1,10,101,") != std::string::npos);  // 101 unit springs in parallel
+  CHECK(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() < 10.0);
+}

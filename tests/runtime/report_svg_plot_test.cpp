@@ -1,0 +1,75 @@
+#include "runtime/report/residual_map.hpp"
+#include "runtime/report/svg_plot.hpp"
+#include "report_support.hpp"
+
+#include <doctest/doctest.h>
+
+#include <cmath>
+#include <limits>
+
+using namespace rheo::runtime::report;
+using rheo::test::count;
+using rheo::test::xml_problem;
+
+namespace {
+Plot two_groups() {
+  Plot plot{"p1", "Dynamic stiffness over frequency", {"frequency [Hz]", Scale::log}, {"dynamic stiffness [N/mm]", Scale::linear}, {}};
+  plot.series.push_back({"0.2 mm measured", "0.2 mm", 0, SeriesStyle::markers, {1, 10, 100}, {1400, 1450, 1500}});
+  plot.series.push_back({"0.2 mm model", "0.2 mm", 0, SeriesStyle::line, {1, 10, 100}, {1410, 1440, 1510}});
+  plot.series.push_back({"1 mm model", "1 mm", 1, SeriesStyle::line, {1, 10, 100}, {1000, 1050, 1100}});
+  return plot;
+}
+}  // namespace
+
+TEST_CASE("report svg plot: one group element per series, well-formed, labelled axes and legend") {
+  const std::string svg = render_svg(two_groups(), true);
+  CHECK(xml_problem(svg) == "");
+  CHECK(count(svg, "class=\"series\"") == 3);
+  CHECK(count(svg, "data-style=\"markers\"") == 1);
+  CHECK(count(svg, "data-style=\"line\"") == 2);
+  CHECK(svg.find("frequency [Hz] (log)") != std::string::npos);
+  CHECK(svg.find("dynamic stiffness [N/mm]") != std::string::npos);
+  CHECK(svg.find(">100<") != std::string::npos);  // a decade tick of the log axis
+  CHECK(svg.find("markers: measured") != std::string::npos);
+  CHECK(svg.find("xmlns=\"http://www.w3.org/2000/svg\"") != std::string::npos);
+  const std::string inline_svg = render_svg(two_groups(), false);
+  CHECK(inline_svg.find("http") == std::string::npos);
+  CHECK(inline_svg.find("<?xml") == std::string::npos);
+}
+
+TEST_CASE("report svg plot: names are escaped and non-finite points break a line") {
+  Plot plot{"p2", "a <b> & \"c\"", {"x [-]", Scale::linear}, {"y [-]", Scale::linear}, {}};
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  plot.series.push_back({"<script>alert('x')</script>", "g & h", 0, SeriesStyle::line, {0, 1, 2, 3}, {0, 1, nan, 3}});
+  const std::string svg = render_svg(plot, true);
+  CHECK(xml_problem(svg) == "");
+  CHECK(svg.find("<script") == std::string::npos);
+  CHECK(svg.find("&lt;script&gt;alert(&#39;x&#39;)") != std::string::npos);
+  CHECK(svg.find("g &amp; h") != std::string::npos);
+  // Two pieces: the line restarts (M) after the NaN.
+  const auto d = svg.find("d=\"M", svg.find("class=\"series\""));
+  const auto end = svg.find('"', d + 3);
+  CHECK(count(svg.substr(d, end - d), "M") == 2);
+}
+
+TEST_CASE("report svg plot: log scale only for positive values spanning a factor of 20") {
+  CHECK(scale_for({1, 3, 51}) == Scale::log);
+  CHECK(scale_for({1, 3, 19}) == Scale::linear);
+  CHECK(scale_for({0, 3, 100}) == Scale::linear);
+  CHECK(scale_for({0.1, 0.5, 2.0}) == Scale::log);
+}
+
+TEST_CASE("report residual map: a cell per point on a symmetric diverging scale") {
+  ResidualMap map{"Stiffness residual", "%", {0.2, 0.2, 1.0, 1.0}, {1, 5, 1, 5}, {0.0, 1.3, -0.4, 0.7}};
+  const std::string svg = render_residual_map(map, true);
+  CHECK(xml_problem(svg) == "");
+  CHECK(count(svg, "class=\"cell\"") == 4);
+  CHECK(color_scale_limit(map.value) == doctest::Approx(2.0));
+  CHECK(color_scale_limit({0.0, 0.0}) == doctest::Approx(1.0));
+  CHECK(color_scale_limit({-0.05}) == doctest::Approx(0.05));
+  CHECK(diverging_color(0.0, 1.0) == "#f7f7f7");
+  CHECK(diverging_color(1.0, 1.0) == "#b2182b");
+  CHECK(diverging_color(-5.0, 1.0) == "#2166ac");  // clamped
+  CHECK(svg.find("+2") != std::string::npos);      // the scale's ends are labelled
+  CHECK(svg.find("amplitude [mm]") != std::string::npos);
+}
