@@ -66,7 +66,8 @@ Command add_simulate_command(CLI::App& app) {
   app.add_flag("--elements", o->elements, "Time histories: add every element's force and elongation");
   app.add_option("--solver", o->solver,
                  "auto | fixed | sundials: the integrator of every protocol (overrides `solver =` in the file); "
-                 "auto takes SUNDIALS IDA for networks with an inerter, the fixed-step kernels otherwise")
+                 "auto takes SUNDIALS IDA for networks with an inerter or blocks alternating more than 3 deep, "
+                 "the fixed-step kernels otherwise")
       ->check(CLI::IsMember({"auto", "fixed", "sundials"}));
   app.add_option("--threads", o->threads,
                  "Harmonic grid points simulated at once (0: every hardware thread); results do not depend on it; default 1")
