@@ -8,7 +8,9 @@
 #include <doctest/doctest.h>
 
 #include <atomic>
+#include <chrono>
 #include <stdexcept>
+#include <thread>
 #include <vector>
 
 using namespace rheo;
@@ -28,11 +30,21 @@ TEST_CASE("parallel_for calls the body once per item on any number of threads") 
 
 TEST_CASE("parallel_for rethrows an item's exception on the caller after every thread stopped") {
   for (int threads : {1, 2, 4}) {
+    // Items are handed out in order, so item 7 starts before any later one. Later items wait
+    // for it to throw and then take 1 ms each: the other threads cannot race through the rest
+    // in the moment between the throw and parallel_for noticing it.
     std::atomic<int> started{0};
+    std::atomic<bool> thrown{false};
     CHECK_THROWS_WITH_AS(runtime::parallel_for(1000, threads,
                                                [&](std::size_t i) {
                                                  started.fetch_add(1);
-                                                 if (i == 7) throw std::domain_error("item 7 failed");
+                                                 if (i == 7) {
+                                                   thrown.store(true);
+                                                   throw std::domain_error("item 7 failed");
+                                                 }
+                                                 if (i < 7) return;
+                                                 while (!thrown.load()) std::this_thread::yield();
+                                                 std::this_thread::sleep_for(std::chrono::milliseconds(1));
                                                }),
                          "item 7 failed", std::domain_error);
     CHECK(started.load() >= 8);
