@@ -198,7 +198,7 @@ FitResult fit(const Network& start, const std::vector<int>& free, const std::vec
   }
 
   result.network = coordinates.network(z);
-  if (!result.interrupted)
+  if (!result.interrupted && settings.statistics)
     result.statistics = parameter_statistics(residuals_for(final_method), z, coordinates.logarithmic);
   std::size_t harmonic_points = 0;
   for (const FitDataSet& set : data) {

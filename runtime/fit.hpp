@@ -40,6 +40,9 @@ struct FitSettings {
   // are free: start them at the least-squares fit to the mean curve of the history's largest
   // loop (eqs. 5.28-5.32), as the thesis identifies them, before searching.
   bool yeoh_start_from_history = true;
+  // Standard errors and correlations at the optimum (a Jacobian: about 2 evaluations per free
+  // parameter); off, FitResult::statistics stays empty.
+  bool statistics = true;
   std::function<void(const SearchProgress&)> progress;  // called after every evaluation
   const std::atomic<bool>* interrupt = nullptr;          // set (e.g. by SIGINT) to stop with the best so far
 };

@@ -117,7 +117,8 @@ SearchResult search(const Objective& objective, const std::vector<double>& start
         box_lo[j] = std::max(lower[j], start[j] - half);
         box_hi[j] = std::min(upper[j], start[j] + half);
       }
-      const int samples = std::max(0, std::min(std::max(10 * static_cast<int>(n), 40), remaining() / 4));
+      const int wanted_samples = settings.samples >= 0 ? settings.samples : std::max(10 * static_cast<int>(n), 40);
+      const int samples = std::max(0, std::min(wanted_samples, remaining() / 4));
       std::vector<std::pair<double, std::vector<double>>> sampled;
       std::vector<double> z(n);
       for (int s = 1; s <= samples; ++s) {

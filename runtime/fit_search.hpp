@@ -2,7 +2,7 @@
 // parameters with positive bounds, p otherwise), within box bounds.
 //
 // Default (no algorithm named): a global look, then local polish.
-//   1. sample: max(10 n, 40) points of a Halton sequence (randomly shifted by the seed) over
+//   1. sample: max(10 n, 40) points (or `samples`) of a Halton sequence (randomly shifted by the seed) over
 //      the box z0 -+ ln 10 (a decade either side of the start; a quarter of the bounds for
 //      linear coordinates), clipped to the bounds;
 //   2. local: BOBYQA from the start, from any extra starts given (e.g. a surrogate's optimum)
@@ -35,6 +35,7 @@ struct SearchSettings {
   std::optional<Algorithm> algorithm;  // nullopt: the default strategy above
   int max_evaluations = 20000;         // over all stages
   int starts = 3;
+  int samples = -1;                    // default strategy's sample count; -1: max(10 n, 40)
   unsigned long seed = 1;
   double tolerance = 1e-10;            // relative, on z (local stages)
   std::vector<std::vector<double>> extra_starts;  // default strategy: local searches from these too

@@ -14,5 +14,7 @@ Command add_check_command(CLI::App& app);
 Command add_simulate_command(CLI::App& app);
 Command add_fit_command(CLI::App& app);
 Command add_report_command(CLI::App& app);
+Command add_diagnose_command(CLI::App& app);
+Command add_refine_command(CLI::App& app);
 
 }  // namespace rheo::cli

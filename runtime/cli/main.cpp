@@ -26,6 +26,10 @@ int main(int argc, char** argv) {
   commands.emplace_back(fit, cli::add_fit_command(*fit));
   auto* report = app.add_subcommand("report", "Write an HTML report: a model against measured data or its simulated results");
   commands.emplace_back(report, cli::add_report_command(*report));
+  auto* diagnose = app.add_subcommand("diagnose", "Name the effect a model misses in measured data, add the element for it and refit");
+  commands.emplace_back(diagnose, cli::add_diagnose_command(*diagnose));
+  auto* refine = app.add_subcommand("refine", "Repeat diagnose, add and refit until nothing is missing; write the final model");
+  commands.emplace_back(refine, cli::add_refine_command(*refine));
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

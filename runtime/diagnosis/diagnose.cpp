@@ -1,0 +1,278 @@
+#include "runtime/diagnosis/diagnose.hpp"
+
+#include "lang/fitted_source.hpp"
+#include "lang/frontend.hpp"
+#include "lang/source_edit.hpp"
+#include "runtime/diagnosis/evidence_text.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <memory>
+#include <stdexcept>
+
+namespace rheo::runtime::diagnosis {
+namespace {
+
+struct Compiled {
+  std::shared_ptr<const lang::Program> program;  // owns the model a Network refers to
+  const lang::CheckedModel* model = nullptr;
+};
+
+Compiled compile(const ModelSource& source, const std::string& text) {
+  auto program = std::make_shared<const lang::Program>(lang::compile_source(source.file, text));
+  const lang::CheckedModel* model = program->find_model(source.model);
+  if (!model) throw std::invalid_argument(fmt::format("{} has no model '{}'", source.file, source.model));
+  return {program, model};
+}
+
+int index_of(const lang::CheckedModel& model, const std::string& path) {
+  for (std::size_t i = 0; i < model.parameters.size(); ++i)
+    if (model.parameters[i].path == path) return static_cast<int>(i);
+  return -1;
+}
+
+int residual_terms(const std::vector<FitDataSet>& data) {
+  int n = 0;
+  for (const auto& set : data) n += set.is_harmonic() ? 2 * static_cast<int>(set.harmonic().size()) : static_cast<int>(set.history().force.size());
+  return n;
+}
+
+double criterion(const FitResult& r, int n) {
+  return n * std::log(std::max(r.objective, 1e-300)) + static_cast<double>(r.free.size()) * std::log(static_cast<double>(n));
+}
+
+std::string element_word(Effect effect) {
+  switch (effect) {
+    case Effect::amplitude_dependence: return "slip";
+    case Effect::rate_dependence: return "relaxation";
+    case Effect::nonlinear_elasticity: return "nonlinear";
+    case Effect::coupled_amplitude_frequency: return "coupled";
+    case Effect::inertia: return "resonance";
+    case Effect::none: break;
+  }
+  return "added";
+}
+
+std::string unique_name(const lang::CheckedModel& model, const std::string& word) {
+  auto taken = [&](const std::string& name) {
+    return std::any_of(model.root.children.begin(), model.root.children.end(), [&](const lang::Element& e) { return e.name == name; }) ||
+           std::any_of(model.parameters.begin(), model.parameters.end(), [&](const lang::Parameter& p) { return p.path == name; });
+  };
+  std::string name = word;
+  for (int k = 2; taken(name); ++k) name = fmt::format("{}{}", word, k);
+  return name;
+}
+
+// The fitted model's source with TRIAL written in as NAME, under COMMENT.
+std::string with_trial(const std::string& fitted_text, const lang::CheckedModel& fitted, const Trial& trial, const std::string& name,
+                       const BoundScales& bounds, const std::string& comment) {
+  const std::vector<std::string> lines = trial_statement(trial, name, bounds);
+  if (trial.replaces.empty()) {
+    std::vector<std::string> block{"# " + comment};
+    block.insert(block.end(), lines.begin(), lines.end());
+    return lang::append_to_model(fitted_text, fitted, block);
+  }
+  for (const auto& e : fitted.root.children)
+    if (e.name == trial.replaces) {
+      const lang::TextSpan span = lang::element_statement(fitted_text, e);
+      return lang::replace_span(fitted_text, span, "# " + comment + "\n" + lang::line_indent(fitted_text, span.begin) + lines.front());
+    }
+  throw std::invalid_argument(fmt::format("model '{}' has no root element '{}' to replace", fitted.name, trial.replaces));
+}
+
+// Work of one evaluation in time steps: a time-stepped harmonic point costs about 3000 (128
+// steps over some 25 cycles to the periodic state), a closed-form one about 10, a history
+// sample 1. A deterministic measure, so that budgets, and results, do not depend on the machine.
+double evaluation_work(const Network& network, const std::vector<FitDataSet>& data, const HarmonicOptions& options) {
+  const bool closed_form = uses_closed_form(network, options);
+  double work = 0.0;
+  for (const auto& set : data)
+    work += set.is_harmonic() ? static_cast<double>(set.harmonic().size()) * (closed_form ? 10.0 : 3000.0)
+                              : static_cast<double>(set.history().force.size());
+  return work;
+}
+
+// Stage 1: the new parameters alone; stage 2: every free parameter. Where an evaluation is
+// cheap (`cheap_work`), stage 1 is the default strategy (a sampled look a decade around the
+// screened element, local searches from the best) and both stages get `cheap_evaluations` per
+// parameter; else both are local (BOBYQA from the screened element) with budgets of 2 n + 1
+// (BOBYQA's first model) plus `*_evaluations` per parameter.
+FitResult staged_refit(const Network& start, const std::vector<int>& kept, const std::vector<int>& added, const std::vector<FitDataSet>& data,
+                       const DiagnoseSettings& settings) {
+  const bool cheap = evaluation_work(start, data, settings.fit.score.harmonic) <= settings.cheap_work;
+  FitSettings first = settings.fit;
+  first.yeoh_start_from_history = false;
+  first.statistics = false;
+  first.search.algorithm = Algorithm::bobyqa;
+  first.search.starts = 1;
+  first.search.samples = 0;
+  first.search.extra_starts.clear();
+  const int n_added = static_cast<int>(added.size());
+  first.search.max_evaluations = 2 * n_added + 1 + (cheap ? settings.cheap_evaluations : settings.new_parameter_evaluations) * n_added;
+  if (cheap) first.search.algorithm.reset(), first.search.starts = 3, first.search.samples = -1;
+  FitResult stage1 = fit(start, added, data, first);
+  if (stage1.interrupted || kept.empty()) return stage1;
+  std::vector<int> all = kept;
+  all.insert(all.end(), added.begin(), added.end());
+  std::sort(all.begin(), all.end());
+  FitSettings second = first;
+  second.search.algorithm = Algorithm::bobyqa;
+  second.search.starts = 1;
+  second.search.samples = 0;
+  const int n = static_cast<int>(all.size());
+  second.search.max_evaluations = 2 * n + 1 + (cheap ? settings.cheap_evaluations : settings.all_parameter_evaluations) * n;
+  FitResult stage2 = fit(stage1.network, all, data, second);
+  stage2.start_values = stage1.start_values;
+  stage2.evaluations += stage1.evaluations;
+  stage2.non_finite += stage1.non_finite;
+  stage2.wall_seconds += stage1.wall_seconds;
+  return stage2;
+}
+
+// Whether candidate A is preferred to B: the one with fewer parameters when its gap is within
+// `parsimony` of the other's (the coupled shapes hold friction and Maxwell elements as limits,
+// so they always fit at least as well), else the lower BIC.
+bool preferred(const CandidateOutcome& a, const CandidateOutcome& b, double parsimony) {
+  if (a.parameters < b.parameters && a.gap_after <= (1.0 + parsimony) * b.gap_after) return true;
+  if (b.parameters < a.parameters && b.gap_after <= (1.0 + parsimony) * a.gap_after) return false;
+  return a.criterion < b.criterion;
+}
+
+struct Chosen {
+  std::size_t candidate = 0;
+  Trial trial;
+  Compiled compiled;  // owns the model result.network refers to
+  FitResult result;
+};
+
+}  // namespace
+
+double fit_gap(const FitResult& result) {
+  if (result.err > 0.0) return result.err;
+  double sum = 0.0;
+  int histories = 0;
+  for (const auto& set : result.datasets)
+    if (!set.harmonic) sum += set.err * set.err, ++histories;
+  return histories ? std::sqrt(sum / histories) : result.err;
+}
+
+Diagnosis diagnose(const ModelSource& source, const std::vector<FitDataSet>& data, const DiagnoseSettings& settings) {
+  const Compiled base = compile(source, source.text);
+  std::vector<int> free;
+  if (settings.free.empty()) {
+    free = lang::default_free_parameters(*base.model);
+  } else {
+    for (const auto& path : settings.free) free.push_back(index_of(*base.model, path));
+    if (std::count(free.begin(), free.end(), -1)) throw std::invalid_argument(fmt::format("model '{}': a free parameter is not in it", source.model));
+  }
+  DiagnoseSettings s = settings;
+  s.fit.score.method = FitMethod::exact;
+
+  Diagnosis d;
+  const bool harmonic = std::any_of(data.begin(), data.end(), [](const FitDataSet& set) { return set.is_harmonic(); });
+  d.gap_name = harmonic ? "err (6.1)" : "RMS force residual";
+  auto stage = [&](const std::string& what) {
+    if (s.stage) s.stage(what);
+  };
+  stage(fmt::format("fitting model {}", source.model));
+  d.before_program = base.program;
+  s.fit.statistics = false;  // not reported; a Jacobian costs 2 evaluations per parameter
+  d.before = fit(Network::compile(*base.model), free, data, s.fit);
+  d.gap_before = d.gap_after = fit_gap(d.before);
+  d.residual_terms = residual_terms(data);
+  d.criterion_before = criterion(d.before, d.residual_terms);
+  d.patterns = residual_patterns(d.before, data);
+  const std::string fitted_text =
+      lang::write_fitted_source(source.text, source.file, *base.model, d.before.network.parameters(), d.before.free, {});
+  d.interrupted = d.before.interrupted;
+
+  std::vector<std::string> kept_paths;
+  for (int i : d.before.free) kept_paths.push_back(base.model->parameters[static_cast<std::size_t>(i)].path);
+  const Compiled fitted = compile(source, fitted_text);
+  const DataScales scales = data_scales(data);
+  std::optional<Chosen> chosen;
+  if (!d.interrupted) stage("screening the effects");
+  for (const ScreenedEffect& screened : d.interrupted ? std::vector<ScreenedEffect>{} : screen(d.before, data, s.fit.score)) {
+    CandidateOutcome outcome;
+    outcome.screened = screened;
+    const Trial& trial = screened.trial;
+    outcome.element = trial.replaces.empty() ? unique_name(*fitted.model, element_word(screened.effect)) : trial.replaces;
+    const bool try_it = static_cast<int>(std::count_if(d.candidates.begin(), d.candidates.end(), [](const auto& c) { return c.refitted; })) <
+                            s.confirm &&
+                        screened.gain >= s.min_screen_gain && !d.interrupted;
+    if (try_it) {
+      const auto started = std::chrono::steady_clock::now();
+      stage(fmt::format("refitting with {} for {}", trial_summary(trial), effect_name(screened.effect)));
+      const std::string comment = fmt::format("candidate for {}", effect_name(screened.effect));
+      const Compiled candidate = compile(source, with_trial(fitted_text, *fitted.model, trial, outcome.element, scales.bounds, comment));
+      std::vector<int> kept, added;
+      for (const auto& path : kept_paths)
+        if (const int i = index_of(*candidate.model, path); i >= 0) kept.push_back(i);
+      for (std::size_t i = 0; i < candidate.model->parameters.size(); ++i) {
+        const lang::Parameter& p = candidate.model->parameters[i];
+        if (p.free && p.path.starts_with(outcome.element + ".") && std::find(kept.begin(), kept.end(), static_cast<int>(i)) == kept.end())
+          added.push_back(static_cast<int>(i));
+      }
+      FitResult result = staged_refit(Network::compile(*candidate.model), kept, added, data, s);
+      outcome.refitted = true;
+      outcome.gap_after = fit_gap(result);
+      outcome.criterion = criterion(result, d.residual_terms);
+      outcome.parameters = static_cast<int>(result.free.size());
+      outcome.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+      d.interrupted = d.interrupted || result.interrupted;
+      const bool earns = outcome.criterion < d.criterion_before && outcome.gap_after <= (1.0 - s.min_improvement) * d.gap_before;
+      if (earns && (!chosen || preferred(outcome, d.candidates[chosen->candidate], s.parsimony)))
+        chosen = Chosen{d.candidates.size(), trial, candidate, std::move(result)};
+    }
+    d.candidates.push_back(outcome);
+  }
+
+  if (!chosen) {
+    d.effect = Effect::none;
+    d.reason = none_reason(d, s);
+    std::vector<std::string> header{fmt::format("Checked by `rheo diagnose`: effect none, nothing added. {} = {:.4g}.", d.gap_name, d.gap_before)};
+    d.refined_text = lang::write_fitted_source(source.text, source.file, *base.model, d.before.network.parameters(), d.before.free, header);
+    return d;
+  }
+  const CandidateOutcome& winner = d.candidates[chosen->candidate];
+  if (!d.interrupted) {
+    stage("polishing the refined model");
+    FitSettings polish = s.fit;
+    polish.yeoh_start_from_history = false;
+    polish.search.algorithm = Algorithm::bobyqa;
+    polish.search.starts = 1;
+    polish.search.samples = 0;
+    polish.search.extra_starts.clear();
+    const int n = static_cast<int>(chosen->result.free.size());
+    polish.search.max_evaluations = 2 * n + 1 + s.polish_evaluations * n;
+    FitResult polished = fit(chosen->result.network, chosen->result.free, data, polish);
+    d.interrupted = polished.interrupted;
+    if (polished.objective <= chosen->result.objective) {
+      polished.start_values = chosen->result.start_values;
+      polished.evaluations += chosen->result.evaluations;
+      polished.wall_seconds += chosen->result.wall_seconds;
+      chosen->result = std::move(polished);
+    }
+  }
+  d.effect = winner.screened.effect;
+  d.gap_after = fit_gap(chosen->result);
+  d.added_element = winner.element;
+  d.reason = effect_reason(d, winner);
+  // The final text: the same structure as the refitted candidate, under the comment that says why.
+  const std::string comment = fmt::format("added by rheo diagnose: {}; {} {:.4g} -> {:.4g}", effect_name(d.effect), d.gap_name, d.gap_before, d.gap_after);
+  const std::string structure = with_trial(fitted_text, *fitted.model, chosen->trial, winner.element, scales.bounds, comment);
+  const Compiled refined = compile(source, structure);
+  std::vector<std::string> header{fmt::format("Refined by `rheo diagnose`: effect {}; added '{}'; {} {:.4g} -> {:.4g}.", effect_name(d.effect),
+                                              winner.element, d.gap_name, d.gap_before, d.gap_after)};
+  d.refined_text = lang::write_fitted_source(structure, source.file, *refined.model, chosen->result.network.parameters(), chosen->result.free, header);
+  d.added_summary = added_summary(chosen->result, winner.element);
+  d.added_statement = statement_lines(d.refined_text, source, winner.element);
+  d.after = std::move(chosen->result);
+  d.after_program = chosen->compiled.program;
+  return d;
+}
+
+}  // namespace rheo::runtime::diagnosis

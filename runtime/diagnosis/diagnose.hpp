@@ -1,0 +1,94 @@
+// `rheo diagnose` without the command line: fit a model, find where it and the measurement
+// disagree, name the missing effect, add the element that supplies it and refit.
+//
+//   1. Fit the model (its free parameters, method exact) to the data: the gap before.
+//   2. Describe the residual (patterns.hpp) and screen every effect (screen.hpp): the share of
+//      the objective the best element of its family would remove alone.
+//   3. Confirm the leading effects (at most `confirm`, screening gain >= `min_screen_gain`):
+//      write the element into the fitted model's source with bounds, compile it and refit in
+//      two stages: the new parameters alone from the screened element, then every free
+//      parameter together from there (thorough where an evaluation is cheap, local otherwise;
+//      diagnose.cpp staged_refit).
+//   4. Choose by the Bayesian information criterion over the N residual terms of the fit,
+//        BIC = N ln(J) + p ln(N),   J the minimised objective, p the free parameters,
+//      so that a larger model must earn its parameters: a candidate earns when its BIC is below
+//      the model's and it lowers the gap by at least `min_improvement`. Of those that earn, the
+//      one with fewer parameters wins if its gap is within `parsimony` of the other's, else the
+//      lower BIC. None earns: the effect is `none` and nothing is added.
+//   5. Polish the chosen model: BOBYQA over every free parameter again with a larger budget
+//      (`polish_evaluations`); gap_after is the polished model's.
+// The gap is err (eq. 6.1) over the harmonic points when there are any, else the RMS over the
+// history files of their RMS force residual relative to max|F_exp|.
+#pragma once
+
+#include "runtime/diagnosis/patterns.hpp"
+#include "runtime/diagnosis/screen.hpp"
+#include "runtime/fit.hpp"
+
+#include <functional>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace rheo::runtime::diagnosis {
+
+struct ModelSource {
+  std::string file;   // as given: names the source in messages and comments
+  std::string text;   // the file's contents
+  std::string model;  // the model to diagnose
+};
+
+struct DiagnoseSettings {
+  FitSettings fit;                 // every fit (the method is always exact)
+  std::vector<std::string> free;   // paths of the model's free parameters; empty: every one with bounds
+  int confirm = 3;                 // leading effects refitted
+  double min_screen_gain = 0.01;   // effects screened below this are not refitted
+  double min_improvement = 0.1;    // relative drop of the gap a chosen candidate must bring
+  double parsimony = 0.1;          // a candidate with fewer parameters wins if its gap is within this of another's
+  int new_parameter_evaluations = 15;  // stage-1 budget per new parameter (plus 2 n + 1)
+  int all_parameter_evaluations = 4;   // stage-2 budget per free parameter (plus 2 n + 1)
+  double cheap_work = 2e4;             // time steps per evaluation below which a refit is thorough
+  int cheap_evaluations = 100;         // per parameter, both stages of a thorough refit
+  int polish_evaluations = 20;         // the chosen model's final refit, per free parameter (plus 2 n + 1)
+  std::function<void(const std::string&)> stage;  // told what runs next ("refitting ..."); may be empty
+};
+
+struct CandidateOutcome {
+  ScreenedEffect screened;
+  bool refitted = false;
+  std::string element;        // name of the added (or replacing) element
+  double gap_after = 0.0;     // after the two-stage refit (before any polish)
+  double criterion = 0.0;     // BIC of the refitted model
+  int parameters = 0;         // its free parameters
+  double wall_seconds = 0.0;
+  std::string failure;        // why it could not be refitted; empty when it was
+};
+
+struct Diagnosis {
+  Effect effect = Effect::none;
+  std::string reason;               // why, with numbers
+  ResidualPatterns patterns;        // of the model as fitted
+  FitResult before;
+  std::optional<FitResult> after;   // the refined model refitted; empty for none
+  std::string gap_name;             // "err (6.1)" or "RMS force residual"
+  double gap_before = 0.0, gap_after = 0.0;  // gap_after = gap_before for none
+  int residual_terms = 0;           // N of the criterion
+  double criterion_before = 0.0;
+  std::vector<CandidateOutcome> candidates;  // every screened effect, screening order
+  std::string added_element;        // name in the refined model; empty for none
+  std::string added_summary;        // what it is, with its fitted values
+  std::vector<std::string> added_statement;  // its lines in the refined file
+  std::string refined_text;         // the whole file with fitted values (and the element, with a comment)
+  bool interrupted = false;         // a fit was stopped (Ctrl-C): the result so far
+  // Own the models that before.network and after->network refer to.
+  std::shared_ptr<const lang::Program> before_program, after_program;
+};
+
+// Throws what fit() throws, and lang::CompileError when SOURCE does not compile.
+Diagnosis diagnose(const ModelSource& source, const std::vector<FitDataSet>& data, const DiagnoseSettings& settings);
+
+// The gap of a fit as defined above.
+double fit_gap(const FitResult& result);
+
+}  // namespace rheo::runtime::diagnosis

@@ -1,0 +1,116 @@
+#include "runtime/diagnosis/diagnosis_report.hpp"
+
+#include "runtime/diagnosis/evidence_text.hpp"
+#include "runtime/fit_report.hpp"
+
+#include <fmt/format.h>
+#include <nlohmann/json.hpp>
+
+#include <numbers>
+
+namespace rheo::runtime::diagnosis {
+namespace {
+
+double degrees(double radians) { return radians * 180.0 / std::numbers::pi; }
+
+std::string data_lines(const FitResult& r) {
+  std::string out;
+  for (const DataSetFit& set : r.datasets)
+    out += fmt::format("  data {} ({}, {} {})\n", set.path, set.harmonic ? "harmonic" : "history",
+                       set.harmonic ? set.prediction.points.size() : set.prediction.force.size(), set.harmonic ? "points" : "samples");
+  return out;
+}
+
+bool chosen(const Diagnosis& d, const CandidateOutcome& c) { return d.effect == c.screened.effect && c.element == d.added_element; }
+
+}  // namespace
+
+std::string diagnosis_report_text(const std::string& source_file, const Diagnosis& d) {
+  std::string out = fmt::format("rheo diagnose: model {} from {}\n", d.before.network.model().name, source_file);
+  out += data_lines(d.before);
+  out += fmt::format("  fitted {} parameters: {} = {:.4g}, BIC = {:.1f} over {} residual terms\n\n", d.before.free.size(), d.gap_name,
+                     d.gap_before, d.criterion_before, d.residual_terms);
+  out += "where the model misses\n";
+  for (const auto& line : pattern_lines(d.patterns)) out += "  " + line + "\n";
+  out += "\ncandidates (screened: share of the objective the element removes alone; refitted: with every free parameter)\n";
+  out += fmt::format("  {:<28}  {:>8}  {:>12}  {:>10}  {}\n", "effect", "screened", d.gap_name, "BIC", "element");
+  for (const auto& c : d.candidates) {
+    const std::string refit = c.refitted ? fmt::format("{:>12.4g}  {:>10.1f}", c.gap_after, c.criterion) : fmt::format("{:>12}  {:>10}", "-", "-");
+    out += fmt::format("  {:<28}  {:>6.1f} %  {}  {}{}\n", effect_name(c.screened.effect), 100.0 * c.screened.gain, refit,
+                       trial_summary(c.screened.trial), chosen(d, c) ? "  <- chosen" : "");
+  }
+  out += fmt::format("\neffect: {}\n  why: {}\n", effect_name(d.effect), d.reason);
+  if (d.effect != Effect::none) {
+    out += fmt::format("  {}: {:.4g} -> {:.4g} after a final polish ({:.2f} times lower)\n", d.gap_name, d.gap_before, d.gap_after,
+                       d.gap_before / d.gap_after);
+    out += fmt::format("  added to model {}:\n", d.before.network.model().name);
+    for (const auto& line : d.added_statement) out += "    " + line + "\n";
+  } else {
+    out += "  nothing added\n";
+  }
+  if (d.interrupted) out += "  interrupted: the results so far\n";
+  return out;
+}
+
+std::string diagnosis_report_json(const std::string& source_file, const Diagnosis& d, const std::string& output) {
+  using nlohmann::json;
+  json evidence{{"reason", d.reason}, {"patterns", pattern_lines(d.patterns)}};
+  if (d.patterns.has_harmonic) {
+    const HarmonicPatterns& h = d.patterns.harmonic;
+    evidence["harmonic"] = {{"points", h.points},
+                            {"stiffness_rms", h.stiffness_rms},
+                            {"phase_rms_deg", degrees(h.phase_rms)},
+                            {"amplitude_share", h.amplitude_share},
+                            {"frequency_share", h.frequency_share},
+                            {"interaction_share", h.interaction_share},
+                            {"worst_stiffness",
+                             {{"amplitude_mm", h.worst_stiffness.amplitude},
+                              {"frequency_hz", h.worst_stiffness.frequency},
+                              {"residual", h.worst_stiffness.residual}}},
+                            {"worst_phase",
+                             {{"amplitude_mm", h.worst_phase.amplitude},
+                              {"frequency_hz", h.worst_phase.frequency},
+                              {"residual_deg", degrees(h.worst_phase.residual)}}},
+                            {"phase_peak", {{"frequency_hz", h.phase_peak_frequency}, {"excess_deg", degrees(h.phase_peak)}}}};
+  }
+  json histories = json::array();
+  for (const auto& h : d.patterns.histories)
+    histories.push_back({{"file", h.path}, {"rms", h.rms}, {"max", h.worst}, {"worst_displacement_mm", h.worst_displacement}});
+  evidence["histories"] = histories;
+  json candidates = json::array();
+  for (const auto& c : d.candidates) {
+    json e{{"effect", effect_name(c.screened.effect)}, {"screened_gain", c.screened.gain}, {"element", c.element},
+           {"trial", trial_summary(c.screened.trial)}, {"refitted", c.refitted}, {"chosen", chosen(d, c)}};
+    if (c.refitted) e["gap_after"] = c.gap_after, e["criterion"] = c.criterion, e["parameters"] = c.parameters, e["wall_seconds"] = c.wall_seconds;
+    candidates.push_back(e);
+  }
+  evidence["candidates"] = candidates;
+
+  json j{{"effect", effect_name(d.effect)}, {"evidence", evidence}, {"gap_measure", d.gap_name}, {"err_before", d.gap_before},
+         {"err_after", d.gap_after}};
+  json criterion{{"name", "BIC"}, {"residual_terms", d.residual_terms}, {"before", d.criterion_before}};
+  json added = json::array();
+  if (d.after) {
+    criterion["after"] = d.criterion_before;
+    for (const auto& c : d.candidates)
+      if (chosen(d, c)) criterion["after"] = c.criterion;
+    json parameters = json::array();
+    const lang::CheckedModel& model = d.after->network.model();
+    for (std::size_t i = 0; i < model.parameters.size(); ++i) {
+      const lang::Parameter& p = model.parameters[i];
+      if (p.path.starts_with(d.added_element + ".") && p.value_begin >= 0)
+        parameters.push_back({{"path", p.path}, {"value", in_written_unit(p, d.after->network.parameter(static_cast<int>(i)))}, {"unit", written_unit(p)}});
+    }
+    added.push_back({{"element", d.added_element}, {"effect", effect_name(d.effect)}, {"statement", d.added_statement}, {"parameters", parameters}});
+  }
+  j["criterion"] = criterion;
+  j["added"] = added;
+  j["model"] = d.refined_text;
+  j["model_name"] = d.before.network.model().name;
+  j["source"] = source_file;
+  j["output"] = output.empty() ? json(nullptr) : json(output);
+  j["interrupted"] = d.interrupted;
+  return j.dump(2) + "\n";
+}
+
+}  // namespace rheo::runtime::diagnosis

@@ -1,0 +1,28 @@
+// What `rheo diagnose` tells people and programs: a plain-text report and a JSON summary.
+//
+// JSON (one object):
+//   effect: "amplitude-dependence" | "rate-dependence" | "nonlinear-elasticity" |
+//           "coupled-amplitude-frequency" | "inertia" | "none"
+//   evidence: {reason, patterns: [text...], harmonic?: {points, stiffness_rms, phase_rms_deg,
+//              amplitude_share, frequency_share, interaction_share, worst_stiffness: {amplitude_mm,
+//              frequency_hz, residual}, worst_phase: {amplitude_mm, frequency_hz, residual_deg},
+//              phase_peak: {frequency_hz, excess_deg}}, histories: [{file, rms, max, worst_displacement_mm}],
+//              candidates: [{effect, screened_gain, element, trial, refitted, gap_after?,
+//              criterion?, parameters?, wall_seconds?}]}
+//   gap_measure: "err (6.1)" | "RMS force residual";  err_before, err_after (that measure)
+//   criterion: {name: "BIC", residual_terms, before, after?}
+//   added: [] | [{element, effect, statement: [lines], parameters: [{path, value, unit}]}]
+//   model: the refined .rheo text (fitted values; the added element with its comment)
+//   model_name, source, output (the path written, or null), interrupted
+#pragma once
+
+#include "runtime/diagnosis/diagnose.hpp"
+
+#include <string>
+
+namespace rheo::runtime::diagnosis {
+
+std::string diagnosis_report_text(const std::string& source_file, const Diagnosis& diagnosis);
+std::string diagnosis_report_json(const std::string& source_file, const Diagnosis& diagnosis, const std::string& output);
+
+}  // namespace rheo::runtime::diagnosis

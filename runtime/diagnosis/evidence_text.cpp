@@ -1,0 +1,130 @@
+#include "runtime/diagnosis/evidence_text.hpp"
+
+#include "lang/frontend.hpp"
+#include "lang/source_edit.hpp"
+#include "runtime/fit_report.hpp"
+
+#include <fmt/format.h>
+
+#include <cmath>
+#include <numbers>
+
+namespace rheo::runtime::diagnosis {
+namespace {
+
+double degrees(double radians) { return radians * 180.0 / std::numbers::pi; }
+double percent(double share) { return 100.0 * share; }
+
+}  // namespace
+
+std::string pattern_sentence(Effect effect, const ResidualPatterns& p) {
+  const HarmonicPatterns& h = p.harmonic;
+  if (!p.has_harmonic) {
+    switch (effect) {
+      case Effect::amplitude_dependence: return "the loops' width and corners differ from the model's";
+      case Effect::rate_dependence: return "the force residual follows the loading rate";
+      case Effect::nonlinear_elasticity: return "the force residual grows with displacement, as stiffening or softening does";
+      case Effect::coupled_amplitude_frequency: return "the loop shape changes with amplitude in a way the model's branches cannot follow";
+      case Effect::inertia: return "the force residual follows the acceleration";
+      case Effect::none: return "the force residual shows no pattern an added element explains";
+    }
+  }
+  switch (effect) {
+    case Effect::amplitude_dependence:
+      return fmt::format("the residual changes with amplitude alike at every frequency ({:.0f} % of it)", percent(h.amplitude_share));
+    case Effect::rate_dependence:
+      return fmt::format("the residual changes with frequency alike at every amplitude ({:.0f} % of it)", percent(h.frequency_share));
+    case Effect::nonlinear_elasticity:
+      return fmt::format("the stiffness residual changes with amplitude ({:.0f} % of the residual varies with amplitude alone)",
+                         percent(h.amplitude_share));
+    case Effect::coupled_amplitude_frequency:
+      return fmt::format("the amplitude dependence is not the same at every frequency: the interaction holds {:.0f} % of the residual",
+                         percent(h.interaction_share));
+    case Effect::inertia:
+      return fmt::format("the measured phase exceeds the model's most near {:.3g} Hz (by {:.2f} deg on average over amplitudes)",
+                         h.phase_peak_frequency, degrees(h.phase_peak));
+    case Effect::none: break;
+  }
+  return "the residual shows no pattern an added element explains";
+}
+
+std::string effect_reason(const Diagnosis& d, const CandidateOutcome& w) {
+  return fmt::format("{}; {} alone would remove {:.0f} % of the objective; refitted with every parameter, {} fell from {:.4g} to {:.4g} "
+                     "({:.2f} times lower) and BIC from {:.1f} to {:.1f} with {} more parameters",
+                     pattern_sentence(w.screened.effect, d.patterns), trial_summary(w.screened.trial), percent(w.screened.gain), d.gap_name,
+                     d.gap_before, w.gap_after, d.gap_before / w.gap_after, d.criterion_before, w.criterion,
+                     w.parameters - static_cast<int>(d.before.free.size()));
+}
+
+std::string none_reason(const Diagnosis& d, const DiagnoseSettings& s) {
+  const CandidateOutcome* best = nullptr;
+  for (const auto& c : d.candidates)
+    if (c.refitted && (!best || c.criterion < best->criterion)) best = &c;
+  if (!best) {
+    const double top = d.candidates.empty() ? 0.0 : d.candidates.front().screened.gain;
+    return fmt::format("no added element would remove more than {:.1f} % of the objective (threshold {:.0f} %): the residual is at the "
+                       "level the model's own parameters leave, {} = {:.4g}",
+                       percent(top), percent(s.min_screen_gain), d.gap_name, d.gap_before);
+  }
+  return fmt::format("the best candidate, {} for {}, lowered {} only from {:.4g} to {:.4g} and BIC from {:.1f} to {:.1f}; an element must "
+                     "lower BIC and the gap by {:.0f} % to earn its parameters, so the residual is taken as noise",
+                     trial_summary(best->screened.trial), effect_name(best->screened.effect), d.gap_name, d.gap_before, best->gap_after,
+                     d.criterion_before, best->criterion, percent(s.min_improvement));
+}
+
+std::string added_summary(const FitResult& refit, const std::string& element) {
+  std::string out;
+  const lang::CheckedModel& model = refit.network.model();
+  for (std::size_t i = 0; i < model.parameters.size(); ++i) {
+    const lang::Parameter& p = model.parameters[i];
+    if (!p.path.starts_with(element + ".") || p.value_begin < 0) continue;
+    out += fmt::format("{}{} = {:.4g} {}", out.empty() ? "" : ", ", p.path, in_written_unit(p, refit.network.parameter(static_cast<int>(i))),
+                       written_unit(p));
+  }
+  return out;
+}
+
+std::vector<std::string> statement_lines(const std::string& text, const ModelSource& source, const std::string& element) {
+  const lang::Program program = lang::compile_source(source.file, text);
+  for (const auto& e : program.find_model(source.model)->root.children)
+    if (e.name == element) {
+      const lang::TextSpan span = lang::element_statement(text, e);
+      std::vector<std::string> lines;
+      std::string_view rest = std::string_view(text).substr(span.begin, span.end - span.begin);
+      while (!rest.empty()) {
+        const std::size_t newline = rest.find('\n');
+        std::string line(rest.substr(0, newline));
+        const std::size_t indent = lang::line_indent(text, span.begin).size();
+        if (!lines.empty() && line.size() >= indent && line.find_first_not_of(' ') >= indent) line.erase(0, indent);
+        lines.push_back(line);
+        rest = newline == std::string_view::npos ? std::string_view() : rest.substr(newline + 1);
+      }
+      return lines;
+    }
+  return {};
+}
+
+std::vector<std::string> pattern_lines(const ResidualPatterns& p) {
+  std::vector<std::string> lines;
+  if (p.has_harmonic) {
+    const HarmonicPatterns& h = p.harmonic;
+    lines.push_back(fmt::format("harmonic: {} points; RMS stiffness residual {:.2f} %, RMS phase residual {:.3f} deg", h.points,
+                                100.0 * h.stiffness_rms, degrees(h.phase_rms)));
+    lines.push_back(fmt::format("largest stiffness residual {:+.2f} % at {:.4g} mm, {:.4g} Hz; largest phase residual {:+.3f} deg at {:.4g} mm, "
+                                "{:.4g} Hz (model - measured)",
+                                100.0 * h.worst_stiffness.residual, h.worst_stiffness.amplitude, h.worst_stiffness.frequency,
+                                degrees(h.worst_phase.residual), h.worst_phase.amplitude, h.worst_phase.frequency));
+    lines.push_back(fmt::format("share of the residual that varies with amplitude alone {:.0f} %, with frequency alone {:.0f} %, with both "
+                                "together (interaction) {:.0f} %",
+                                percent(h.amplitude_share), percent(h.frequency_share), percent(h.interaction_share)));
+    if (h.phase_peak > 0.0)
+      lines.push_back(fmt::format("the measured phase exceeds the model's most near {:.4g} Hz: {:.3f} deg on average over amplitudes",
+                                  h.phase_peak_frequency, degrees(h.phase_peak)));
+  }
+  for (const auto& history : p.histories)
+    lines.push_back(fmt::format("{}: RMS force residual {:.3f} % of max|F|, largest {:.3f} % at u = {:.4g} mm", history.path, 100.0 * history.rms,
+                                100.0 * history.worst, history.worst_displacement));
+  return lines;
+}
+
+}  // namespace rheo::runtime::diagnosis

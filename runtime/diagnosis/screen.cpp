@@ -1,0 +1,312 @@
+#include "runtime/diagnosis/screen.hpp"
+
+#include "lang/frontend.hpp"
+#include "runtime/fit_scoring.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+#include <complex>
+#include <numbers>
+#include <numeric>
+
+namespace rheo::runtime::diagnosis {
+namespace {
+
+using Complex = std::complex<double>;
+
+std::vector<double> log_spaced(double lo, double hi, int count) {
+  std::vector<double> v;
+  for (int i = 0; i < count; ++i) v.push_back(count == 1 ? std::sqrt(lo * hi) : lo * std::pow(hi / lo, static_cast<double>(i) / (count - 1)));
+  return v;
+}
+
+// |u| at every turning point of a history's displacement.
+std::vector<double> turning_amplitudes(const std::vector<double>& u) {
+  std::vector<double> out;
+  for (std::size_t k = 1; k + 1 < u.size(); ++k)
+    if ((u[k] - u[k - 1]) * (u[k + 1] - u[k]) < 0.0 && std::abs(u[k]) > 0.0) out.push_back(std::abs(u[k]));
+  if (!u.empty()) out.push_back(std::abs(u.back()) > 0.0 ? std::abs(u.back()) : std::abs(*std::max_element(u.begin(), u.end())));
+  return out;
+}
+
+// The added response of one trial (or one yeoh basis function) on every data set.
+struct Signature {
+  std::vector<std::vector<Complex>> harmonic;  // per set (empty for histories): K*_c per point
+  std::vector<std::vector<double>> history;    // per set (empty for harmonic sets): s(t) per sample
+};
+
+Signature simulate_alone(const Trial& trial, const std::vector<FitDataSet>& data, const ScoreSettings& score, const BoundScales& bounds) {
+  std::string text = "model probe {\n";
+  for (const auto& line : trial_statement(trial, "added", bounds)) text += line + "\n";
+  const lang::Program program = lang::compile_source("<diagnose probe>", text + "}\n");
+  const Network network = Network::compile(program.models.front());
+  Signature s;
+  for (const auto& set : data) {
+    const Prediction p = predict(network, set, FitMethod::exact, score.harmonic, nullptr);
+    std::vector<Complex> k;
+    for (const auto& point : p.points) k.push_back(std::polar(point.measures.stiffness, point.measures.phase));
+    s.harmonic.push_back(std::move(k));
+    s.history.push_back(p.force);
+  }
+  return s;
+}
+
+// Objective of the fitted model plus sum_b coefficient[b] * basis[b], as fit_scoring.hpp scores it.
+class AddedObjective {
+ public:
+  AddedObjective(const FitResult& fit, const std::vector<FitDataSet>& data, const ScoreSettings& score) : fit_(fit), data_(data), score_(score) {}
+
+  double operator()(const std::vector<const Signature*>& basis, const std::vector<double>& coefficient) const {
+    double sum = 0.0;
+    std::vector<double> residuals;
+    for (std::size_t f = 0; f < data_.size(); ++f) {
+      const FitDataSet& set = data_[f];
+      Prediction p = fit_.datasets[f].prediction;
+      if (set.is_harmonic()) {
+        for (std::size_t j = 0; j < p.points.size(); ++j) {
+          CycleMeasures& m = p.points[j].measures;
+          Complex k = std::polar(m.stiffness, m.phase);
+          for (std::size_t b = 0; b < basis.size(); ++b) k += coefficient[b] * basis[b]->harmonic[f][j];
+          m.stiffness = std::abs(k);
+          m.phase = std::arg(k);
+        }
+      } else {
+        add_history(set.history(), basis, coefficient, f, p.force);
+      }
+      residuals.clear();
+      append_residuals(set, p, score_, residuals);
+      for (double r : residuals) sum += r * r;
+    }
+    return sum;
+  }
+
+ private:
+  // F_m + sum a s, then beta u with beta the least-squares refit of the linear stiffness.
+  static void add_history(const HistoryData& h, const std::vector<const Signature*>& basis, const std::vector<double>& coefficient,
+                          std::size_t f, std::vector<double>& force) {
+    const std::vector<double>& u = h.drive.displacement;
+    double uu = 0.0, ur = 0.0;
+    for (std::size_t j = 0; j < force.size(); ++j) {
+      for (std::size_t b = 0; b < basis.size(); ++b) force[j] += coefficient[b] * basis[b]->history[f][j];
+      uu += u[j] * u[j];
+      ur += u[j] * (h.force[j] - force[j]);
+    }
+    const double beta = uu > 0.0 ? ur / uu : 0.0;
+    for (std::size_t j = 0; j < force.size(); ++j) force[j] += beta * u[j];
+  }
+
+  const FitResult& fit_;
+  const std::vector<FitDataSet>& data_;
+  const ScoreSettings& score_;
+};
+
+// argmin over [lo, hi] of a unimodal-enough g: a scan of `count` points (log-spaced when lo > 0),
+// then a golden section between the best point's neighbours.
+template <class G>
+double minimise_1d(const G& g, double lo, double hi, int count, bool logarithmic) {
+  std::vector<double> x(static_cast<std::size_t>(count));
+  for (int i = 0; i < count; ++i) {
+    const double t = static_cast<double>(i) / (count - 1);
+    x[static_cast<std::size_t>(i)] = logarithmic ? lo * std::pow(hi / lo, t) : lo + (hi - lo) * t;
+  }
+  std::size_t best = 0;
+  double best_value = g(x[0]);
+  for (std::size_t i = 1; i < x.size(); ++i)
+    if (const double v = g(x[i]); v < best_value) best = i, best_value = v;
+  double a = x[best == 0 ? 0 : best - 1], b = x[std::min(best + 1, x.size() - 1)];
+  const double phi = (std::sqrt(5.0) - 1.0) / 2.0;
+  double c = b - phi * (b - a), d = a + phi * (b - a), gc = g(c), gd = g(d);
+  for (int it = 0; it < 40; ++it) {
+    if (gc < gd) b = d, d = c, gd = gc, c = b - phi * (b - a), gc = g(c);
+    else a = c, c = d, gc = gd, d = a + phi * (b - a), gd = g(d);
+  }
+  const double golden = gc < gd ? c : d;
+  return std::min(gc, gd) < best_value ? golden : x[best];
+}
+
+struct RootSpring {
+  std::string name;  // empty: none
+  double k = 0.0;    // [N/mm]
+  bool has_yeoh = false;
+};
+
+RootSpring stiffest_root_spring(const Network& network) {
+  RootSpring out;
+  for (const auto& e : network.model().root.children) {
+    if (e.kind == lang::ElementKind::yeoh) out.has_yeoh = true;
+    if (e.kind == lang::ElementKind::spring && network.parameter(e.parameters[0]) > out.k) {
+      out.k = network.parameter(e.parameters[0]);
+      out.name = e.name;
+    }
+  }
+  return out;
+}
+
+// The location parameters of a shape: what the pattern search moves.
+std::vector<double Trial::*> location_fields(Shape shape) {
+  switch (shape) {
+    case Shape::maxwell: return {&Trial::time};
+    case Shape::friction: return {&Trial::slip};
+    case Shape::capped_maxwell: return {&Trial::time, &Trial::slip};
+    case Shape::capped_column: return {&Trial::frequency, &Trial::slip, &Trial::damping_ratio};
+    case Shape::tuned_column: return {&Trial::frequency, &Trial::damping_ratio};
+    case Shape::yeoh: return {};
+  }
+  return {};
+}
+
+// D20 and D30 of a yeoh trial by coordinate descent on the objective; returns that objective.
+double size_yeoh(Trial& trial, const AddedObjective& objective, const std::vector<FitDataSet>& data, const DataScales& scales,
+                 const RootSpring& root_spring) {
+  // Basis responses of D20 = 1 and D30 = 1 (unit-free polynomials, not elements).
+  Signature cubic, quintic;
+  for (const auto& set : data) {
+    std::vector<Complex> k3, k5;
+    std::vector<double> s3, s5;
+    if (set.is_harmonic())
+      for (double a : set.harmonic().amplitude) k3.emplace_back(4.0 * a * a), k5.emplace_back(6.0 * std::pow(a, 4));
+    else
+      for (double u : set.history().drive.displacement) s3.push_back(4.0 * u * u * u), s5.push_back(6.0 * std::pow(u, 5));
+    cubic.harmonic.push_back(k3), quintic.harmonic.push_back(k5), cubic.history.push_back(s3), quintic.history.push_back(s5);
+  }
+  const double u = scales.bounds.max_displacement, d10 = scales.bounds.stiffness / 2.0;  // the range of eq. 3.3's terms
+  double d20 = 0.0, d30 = 0.0;
+  for (int sweep = 0; sweep < 4; ++sweep) {
+    d20 = minimise_1d([&](double x) { return objective({&cubic, &quintic}, {x, d30}); }, -d10 / (u * u), 5.0 * d10 / (u * u), 41, false);
+    d30 = minimise_1d([&](double x) { return objective({&cubic, &quintic}, {d20, x}); }, 0.0, 5.0 * d10 / std::pow(u, 4), 41, false);
+  }
+  trial.d20 = d20, trial.d30 = d30;
+  trial.stiffness = root_spring.name.empty() ? 0.02 * scales.bounds.stiffness : root_spring.k;
+  return objective({&cubic, &quintic}, {d20, d30});
+}
+
+}  // namespace
+
+DataScales data_scales(const std::vector<FitDataSet>& data) {
+  std::vector<double> f, a, stiffness;
+  double max_u = 0.0;
+  for (const auto& set : data) {
+    if (set.is_harmonic()) {
+      const HarmonicData& h = set.harmonic();
+      f.insert(f.end(), h.frequency.begin(), h.frequency.end());
+      a.insert(a.end(), h.amplitude.begin(), h.amplitude.end());
+      stiffness.insert(stiffness.end(), h.stiffness.begin(), h.stiffness.end());
+      max_u = std::max(max_u, *std::max_element(h.amplitude.begin(), h.amplitude.end()));
+      continue;
+    }
+    const HistoryData& h = set.history();
+    const auto& u = h.drive.displacement;
+    const auto& t = h.drive.time;
+    double umax = 0.0, vmax = 0.0;
+    for (std::size_t k = 1; k < u.size(); ++k) {
+      umax = std::max(umax, std::abs(u[k]));
+      vmax = std::max(vmax, std::abs(u[k] - u[k - 1]) / (t[k] - t[k - 1]));
+    }
+    const double rate = umax > 0.0 ? vmax / (2.0 * std::numbers::pi * umax) : 1.0;  // a sine's frequency of that speed
+    f.push_back(rate / 10.0);
+    f.push_back(rate * 10.0);
+    for (double turning : turning_amplitudes(u)) a.push_back(turning);
+    stiffness.push_back(umax > 0.0 ? h.force_scale / umax : 1.0);
+    max_u = std::max(max_u, umax);
+  }
+  DataScales s;
+  auto positive = [](std::vector<double>& v) { std::erase_if(v, [](double x) { return !(x > 0.0) || !std::isfinite(x); }); };
+  positive(f), positive(a), positive(stiffness);
+  if (!f.empty()) s.frequency_low = *std::min_element(f.begin(), f.end()), s.frequency_high = *std::max_element(f.begin(), f.end());
+  if (!a.empty()) s.amplitude_low = *std::min_element(a.begin(), a.end()), s.amplitude_high = *std::max_element(a.begin(), a.end());
+  if (!stiffness.empty()) {
+    std::nth_element(stiffness.begin(), stiffness.begin() + static_cast<std::ptrdiff_t>(stiffness.size() / 2), stiffness.end());
+    s.bounds.stiffness = stiffness[stiffness.size() / 2];
+  }
+  s.bounds.max_displacement = max_u > 0.0 ? max_u : 1.0;
+  return s;
+}
+
+std::vector<Trial> trial_family(Effect effect, const DataScales& s, const std::string& root_spring) {
+  std::vector<Trial> family;
+  const double two_pi = 2.0 * std::numbers::pi;
+  auto add = [&](Shape shape, double time, double slip, double frequency, double zeta) {
+    Trial t;
+    t.effect = effect, t.shape = shape, t.time = time, t.slip = slip, t.frequency = frequency, t.damping_ratio = zeta;
+    family.push_back(t);
+  };
+  switch (effect) {
+    case Effect::rate_dependence:
+      for (double f : log_spaced(s.frequency_low / 3.0, s.frequency_high * 3.0, 10)) add(Shape::maxwell, 1.0 / (two_pi * f), 0.0, 0.0, 0.0);
+      break;
+    case Effect::amplitude_dependence:
+      for (double uy : log_spaced(s.amplitude_low / 30.0, s.amplitude_high, 8)) add(Shape::friction, 0.0, uy, 0.0, 0.0);
+      break;
+    case Effect::coupled_amplitude_frequency:
+      for (double f : log_spaced(s.frequency_low, s.frequency_high, 5))
+        for (double slip : log_spaced(s.amplitude_low / 10.0, s.amplitude_high, 4)) {
+          add(Shape::capped_maxwell, 1.0 / (two_pi * f), slip, 0.0, 0.0);
+          add(Shape::capped_column, 0.0, slip, f, 0.3);
+        }
+      break;
+    case Effect::inertia:
+      for (double f : log_spaced(s.frequency_low, s.frequency_high, 10))
+        for (double zeta : {0.15, 0.5}) add(Shape::tuned_column, 0.0, 0.0, f, zeta);
+      break;
+    case Effect::nonlinear_elasticity: {
+      add(Shape::yeoh, 0.0, 0.0, 0.0, 0.0);
+      family.back().replaces = root_spring;
+      break;
+    }
+    case Effect::none: break;
+  }
+  return family;
+}
+
+std::vector<ScreenedEffect> screen(const FitResult& fit, const std::vector<FitDataSet>& data, const ScoreSettings& score) {
+  const DataScales scales = data_scales(data);
+  const AddedObjective objective(fit, data, score);
+  const double base = objective({}, {});
+  const RootSpring root_spring = stiffest_root_spring(fit.network);
+  const double k_max = 3.0 * scales.bounds.stiffness, k_min = 1e-4 * scales.bounds.stiffness;
+  // Sizes TRIAL (its stiffness, or D20 and D30) for the least objective and returns that objective.
+  auto size_trial = [&](Trial& trial) {
+    if (trial.shape == Shape::yeoh) return size_yeoh(trial, objective, data, scales, root_spring);
+    const Signature s = simulate_alone(trial, data, score, scales.bounds);
+    trial.stiffness = minimise_1d([&](double a) { return objective({&s}, {a}); }, k_min, k_max, 30, true);
+    return objective({&s}, {trial.stiffness});
+  };
+  std::vector<ScreenedEffect> out;
+  for (Effect effect : kEffects) {
+    if (effect == Effect::nonlinear_elasticity && root_spring.has_yeoh) continue;
+    ScreenedEffect best;
+    best.effect = effect;
+    best.gain = -1.0;
+    // Scan the family; then refine the best member of each shape by a pattern search over its
+    // location (times, slips, resonances and damping ratios), halving the step in log each round.
+    std::vector<std::pair<Trial, double>> best_of_shape;
+    for (Trial trial : trial_family(effect, scales, root_spring.name)) {
+      ++best.trials;
+      const double value = size_trial(trial);
+      auto it = std::find_if(best_of_shape.begin(), best_of_shape.end(), [&](const auto& b) { return b.first.shape == trial.shape; });
+      if (it == best_of_shape.end()) best_of_shape.emplace_back(trial, value);
+      else if (value < it->second) *it = {trial, value};
+    }
+    for (auto& [trial, value] : best_of_shape) {
+      double step = 2.0;
+      for (int round = 0; round < 3; ++round, step = std::sqrt(step))
+        for (double Trial::*field : location_fields(trial.shape))
+          for (double factor : {step, 1.0 / step}) {
+            Trial moved = trial;
+            moved.*field *= factor;
+            if (field == &Trial::damping_ratio && moved.damping_ratio > 2.0) continue;
+            ++best.trials;
+            if (const double v = size_trial(moved); v < value) trial = moved, value = v;
+          }
+      const double gain = base > 0.0 ? std::max(0.0, 1.0 - value / base) : 0.0;
+      if (gain > best.gain) best.gain = gain, best.trial = trial;
+    }
+    out.push_back(best);
+  }
+  std::stable_sort(out.begin(), out.end(), [](const ScreenedEffect& a, const ScreenedEffect& b) { return a.gain > b.gain; });
+  return out;
+}
+
+}  // namespace rheo::runtime::diagnosis

@@ -1,0 +1,50 @@
+// Screening: which element, added to the fitted model, would explain most of the residual.
+//
+// For each effect, a family of trial elements (trial.hpp) spread over the measurement (times
+// 1/(2 pi f) over the measured frequencies, slips over the measured amplitudes, resonances over
+// the frequencies) is simulated alone at unit stiffness on every data point: its complex
+// stiffness K*_c = K e^{i phase} per harmonic point, its force s(t) along each measured
+// history. Added in parallel with size a (its force scales with a), the model would give
+//   harmonic   K*_m + a K*_c   (first-harmonic superposition; exact for linear elements)
+//   history    F_m + a s(t) + beta u(t)   (beta: the refit of the linear stiffness, eliminated
+//                                          by least squares)
+// and the fit objective (fit_scoring.hpp) J(a) is minimised over a >= 0 (a log scan, then a
+// golden section). A yeoh spring in place of the root spring adds 4 D20 a^2 + 6 D30 a^4 to the
+// stiffness at amplitude a (4 D20 u^3 + 6 D30 u^5 to the force), minimised over D20 and D30.
+// gain = 1 - J(best)/J(0): the share of the objective the element would remove without any
+// other parameter moving; a cheap, optimistic-or-pessimistic proxy for the refit that
+// diagnose.hpp then does for the leading effects.
+#pragma once
+
+#include "runtime/diagnosis/trial.hpp"
+#include "runtime/fit.hpp"
+
+#include <vector>
+
+namespace rheo::runtime::diagnosis {
+
+// Where the measurement lies: the ranges the trial families are spread over.
+struct DataScales {
+  double frequency_low = 1.0, frequency_high = 1.0;  // [Hz]: measured, or a history's rates
+  double amplitude_low = 1.0, amplitude_high = 1.0;  // [mm]: measured amplitudes, or a history's turning points
+  BoundScales bounds;                                // typical stiffness and largest displacement
+};
+
+DataScales data_scales(const std::vector<FitDataSet>& data);
+
+struct ScreenedEffect {
+  Effect effect = Effect::none;
+  Trial trial;        // the family member with the largest gain, sized by its best a (stiffness)
+  double gain = 0.0;  // share of the objective it removes, in [0, 1]
+  int trials = 0;     // family members simulated
+};
+
+// FIT: the model fitted to DATA. Effects the model cannot take (a yeoh spring where the root
+// already has one) are left out; the others are sorted by gain, largest first.
+std::vector<ScreenedEffect> screen(const FitResult& fit, const std::vector<FitDataSet>& data, const ScoreSettings& score);
+
+// The trials of EFFECT over SCALES at unit stiffness (the yeoh one is sized by screen()).
+// ROOT_SPRING names the root spring a yeoh replaces ("" when it is added).
+std::vector<Trial> trial_family(Effect effect, const DataScales& scales, const std::string& root_spring);
+
+}  // namespace rheo::runtime::diagnosis

@@ -1,0 +1,116 @@
+#include "runtime/diagnosis/trial.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+
+namespace rheo::runtime::diagnosis {
+namespace {
+
+constexpr double kDecades = 1e3;  // bounds of times, slips, inertances: this factor either side
+
+// `VALUE UNIT in [LO, HI]` with the value in the unit (internal value / per_unit).
+std::string bounded(double value, double lo, double hi, double per_unit, const char* unit) {
+  return fmt::format("{:.6g} {} in [{:.3g}, {:.3g}]", value / per_unit, unit, lo / per_unit, hi / per_unit);
+}
+
+std::string around(double value, double per_unit, const char* unit) {
+  return bounded(value, value / kDecades, value * kDecades, per_unit, unit);
+}
+
+std::string stiffness_argument(double k, const BoundScales& s) {
+  return bounded(k, std::min(s.stiffness * 1e-4, k / 10.0), std::max(s.stiffness * 10.0, k * 10.0), 1.0, "N/mm");
+}
+
+double inertance(const Trial& t) { return t.stiffness / std::pow(2.0 * std::numbers::pi * t.frequency, 2); }  // N*s^2/mm
+double column_damping(const Trial& t) { return 2.0 * t.damping_ratio * std::sqrt(t.stiffness * inertance(t)); }  // N*s/mm
+
+// Lines of the fluid column: spring `chamber` onto `inerter` and `dashpot` in parallel.
+void column_lines(const Trial& t, const BoundScales& s, std::vector<std::string>& lines) {
+  lines.push_back(fmt::format("  spring  chamber (k = {})", stiffness_argument(t.stiffness, s)));
+  lines.push_back("  parallel column {");
+  lines.push_back(fmt::format("    inerter mass    (b = {})", around(inertance(t), 1e-3, "kg")));
+  lines.push_back(fmt::format("    dashpot channel (c = {})", around(column_damping(t), 1.0, "N*s/mm")));
+  lines.push_back("  }");
+}
+
+}  // namespace
+
+std::vector<std::string> trial_statement(const Trial& t, const std::string& name, const BoundScales& s) {
+  std::vector<std::string> lines;
+  const std::string k = stiffness_argument(t.stiffness, s);
+  switch (t.shape) {
+    case Shape::maxwell:
+      lines.push_back(fmt::format("maxwell {} (k = {}, tau = {})", name, k, around(t.time, 1e-3, "ms")));
+      break;
+    case Shape::friction:
+      lines.push_back(fmt::format("friction {} (k = {}, uy = {})", name, k, around(t.slip, 1e-3, "um")));
+      break;
+    case Shape::capped_maxwell:
+      lines.push_back(fmt::format("series {} {{", name));
+      lines.push_back(fmt::format("  slider  cap (fy = {})", around(t.stiffness * t.slip, 1.0, "N")));
+      lines.push_back(fmt::format("  maxwell arm (k = {}, tau = {})", k, around(t.time, 1e-3, "ms")));
+      lines.push_back("}");
+      break;
+    case Shape::capped_column:
+      lines.push_back(fmt::format("series {} {{", name));
+      lines.push_back(fmt::format("  slider  cap     (fy = {})", around(t.stiffness * t.slip, 1.0, "N")));
+      column_lines(t, s, lines);
+      lines.push_back("}");
+      break;
+    case Shape::tuned_column:
+      lines.push_back(fmt::format("series {} {{", name));
+      column_lines(t, s, lines);
+      lines.push_back("}");
+      break;
+    case Shape::yeoh: {
+      // D20, D30 ranges relative to the measured stiffness: an added yeoh starts with a small D10.
+      const double d10 = t.stiffness / 2.0, range = std::max(d10, s.stiffness / 2.0), u = s.max_displacement;
+      const double d20 = std::clamp(t.d20, -0.99 * range / (u * u), 4.99 * range / (u * u));
+      const double d30 = std::clamp(t.d30, 0.0, 4.99 * range / std::pow(u, 4));
+      lines.push_back(fmt::format("yeoh {} (D10 = {}, D20 = {}, D30 = {})", name, bounded(d10, d10 / 100.0, d10 * 100.0, 1.0, "N/mm"),
+                                  bounded(d20, -range / (u * u), 5.0 * range / (u * u), 1.0, "N/mm^3"),
+                                  bounded(d30, 0.0, 5.0 * range / std::pow(u, 4), 1.0, "N/mm^5")));
+      break;
+    }
+  }
+  return lines;
+}
+
+std::string trial_summary(const Trial& t) {
+  switch (t.shape) {
+    case Shape::maxwell: return fmt::format("a Maxwell element (k = {:.4g} N/mm, tau = {:.4g} ms)", t.stiffness, t.time * 1e3);
+    case Shape::friction: return fmt::format("a friction element (k = {:.4g} N/mm, uy = {:.4g} um)", t.stiffness, t.slip * 1e3);
+    case Shape::capped_maxwell:
+      return fmt::format("a slider (fy = {:.4g} N) in series with a Maxwell element (k = {:.4g} N/mm, tau = {:.4g} ms)", t.stiffness * t.slip,
+                         t.stiffness, t.time * 1e3);
+    case Shape::capped_column:
+      return fmt::format("a slider (fy = {:.4g} N) capping a fluid column (k = {:.4g} N/mm, resonance {:.3g} Hz, damping ratio {:.2g})",
+                         t.stiffness * t.slip, t.stiffness, t.frequency, t.damping_ratio);
+    case Shape::tuned_column:
+      return fmt::format("a resonant column (k = {:.4g} N/mm onto an inerter and a dashpot; resonance {:.3g} Hz, damping ratio {:.2g})",
+                         t.stiffness, t.frequency, t.damping_ratio);
+    case Shape::yeoh:
+      return t.replaces.empty()
+                 ? fmt::format("a yeoh spring (D10 = {:.4g} N/mm, D20 = {:.4g} N/mm^3, D30 = {:.4g} N/mm^5)", t.stiffness / 2, t.d20, t.d30)
+                 : fmt::format("a yeoh spring in place of the linear spring '{}' (D10 = {:.4g} N/mm, D20 = {:.4g} N/mm^3, D30 = {:.4g} N/mm^5)",
+                               t.replaces, t.stiffness / 2, t.d20, t.d30);
+  }
+  return {};
+}
+
+int added_parameter_count(const Trial& t) {
+  switch (t.shape) {
+    case Shape::maxwell:
+    case Shape::friction: return 2;
+    case Shape::capped_maxwell: return 3;
+    case Shape::capped_column: return 4;
+    case Shape::tuned_column: return 3;
+    case Shape::yeoh: return t.replaces.empty() ? 3 : 2;
+  }
+  return 0;
+}
+
+}  // namespace rheo::runtime::diagnosis

@@ -1,0 +1,63 @@
+// The elements `rheo diagnose` adds, one shape per way of supplying a missing effect, and their
+// .rheo statements. Every shape's force is proportional to its `stiffness` k at fixed `time`,
+// `slip`, `frequency` and `damping_ratio` (all its force parameters scale with k), so the
+// screening (screen.hpp) sizes a shape by one factor.                   [N, mm, s; b in kg]
+//   maxwell         maxwell (k, tau)                         rate-dependence (eq. 2.3)
+//   friction        friction (k, uy)                         amplitude-dependence (eq. 2.9)
+//   capped_maxwell  series { slider (fy = k slip); maxwell (k, tau) }
+//                                                            coupled-amplitude-frequency: the series
+//                                                            friction-viscous branch of Fig. 9.1
+//   capped_column   series { slider (fy = k slip); spring (k); parallel { inerter (b); dashpot (c) } }
+//                                                            coupled-amplitude-frequency with a
+//                                                            resonance (a hydrobushing's fluid column)
+//   tuned_column    series { spring (k); parallel { inerter (b); dashpot (c) } }
+//                                                            inertia: K*(w) = 1/(1/k + 1/(i w c - b w^2)),
+//                                                            resonance at b = k/(2 pi f_r)^2,
+//                                                            c = 2 zeta sqrt(k b)
+//   yeoh            yeoh (D10, D20, D30) (eq. 3.3)           nonlinear-elasticity: replaces the root
+//                                                            spring `replaces` (D10 = k/2) or, when
+//                                                            there is none, is added (D10 = k/2 small)
+#pragma once
+
+#include "runtime/diagnosis/effect.hpp"
+
+#include <string>
+#include <vector>
+
+namespace rheo::runtime::diagnosis {
+
+enum class Shape { maxwell, friction, capped_maxwell, capped_column, tuned_column, yeoh };
+
+struct Trial {
+  Effect effect = Effect::none;
+  Shape shape = Shape::maxwell;
+  double stiffness = 1.0;      // k [N/mm]
+  double time = 0.0;           // tau [s]
+  double slip = 0.0;           // uy, or fy/k of a slider [mm]
+  double frequency = 0.0;      // f_r [Hz]
+  double damping_ratio = 0.0;  // zeta [-]
+  double d20 = 0.0;            // yeoh [N/mm^3]
+  double d30 = 0.0;            // yeoh [N/mm^5]
+  std::string replaces;        // yeoh: the root spring it replaces; empty: added
+};
+
+// Scales of the measurement that bound the added parameters.
+struct BoundScales {
+  double stiffness = 1.0;         // typical measured stiffness [N/mm]
+  double max_displacement = 1.0;  // [mm]
+};
+
+// The statement of TRIAL named NAME, one line per element, with bounds on every parameter
+// (wide, around the values, so that the refit can move them): k within [K/1e4, 10 K] of the
+// measured stiffness, times, slips, inertances and damping within three decades either side,
+// D20 within [-D, 5 D]/u^2 and D30 within [0, 5 D/u^4] for the largest displacement u, D the larger of
+// D10 and half the measured stiffness.
+std::vector<std::string> trial_statement(const Trial& trial, const std::string& name, const BoundScales& scales);
+
+// One line for people: "a Maxwell element (k = 51.2 N/mm, tau = 3.2 ms)".
+std::string trial_summary(const Trial& trial);
+
+// Parameters the shape adds (a yeoh replacing a spring adds two).
+int added_parameter_count(const Trial& trial);
+
+}  // namespace rheo::runtime::diagnosis
