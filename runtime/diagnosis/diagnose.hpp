@@ -62,7 +62,6 @@ struct CandidateOutcome {
   double criterion = 0.0;     // BIC of the refitted model
   int parameters = 0;         // its free parameters
   double wall_seconds = 0.0;
-  std::string failure;        // why it could not be refitted; empty when it was
 };
 
 struct Diagnosis {
