@@ -4,6 +4,7 @@
 #include "lang/frontend.hpp"
 #include "runtime/cli/commands.hpp"
 #include "runtime/cli/fit_job.hpp"
+#include "runtime/cli/program_lookup.hpp"
 #include "runtime/diagnosis/diagnosis_report.hpp"
 #include "runtime/errors.hpp"
 #include "runtime/output.hpp"
@@ -11,11 +12,9 @@
 #include <fmt/format.h>
 
 #include <filesystem>
-#include <fstream>
 #include <iostream>
 #include <limits>
 #include <memory>
-#include <sstream>
 
 namespace rheo::cli {
 namespace {
@@ -51,13 +50,6 @@ struct Prepared {
   dx::DiagnoseSettings settings;
 };
 
-std::string read_text(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::stringstream text;
-  text << in.rdbuf();
-  return text.str();
-}
-
 std::unique_ptr<Prepared> prepare(const DiagnoseOptions& o) {
   auto p = std::make_unique<Prepared>();
   p->program = lang::load_program(o.fit.file);
@@ -65,10 +57,10 @@ std::unique_ptr<Prepared> prepare(const DiagnoseOptions& o) {
   if (jobs.size() != 1)
     throw runtime::UsageError(fmt::format("{} has {} fit blocks; choose the one to diagnose with --block N or --model NAME", o.fit.file, jobs.size()));
   p->job = std::move(jobs.front());
-  p->source = {o.fit.file, read_text(o.fit.file), p->job.model->name};
+  p->source = {o.fit.file, read_source_text(o.fit.file), p->job.model->name};
   p->settings.fit = p->job.settings;
-  const bool block_steps = p->job.settings.score.harmonic.steps_per_cycle != runtime::HarmonicOptions{}.steps_per_cycle;
-  p->settings.fit.score.harmonic.steps_per_cycle = o.steps_per_cycle > 0 ? o.steps_per_cycle : block_steps ? p->settings.fit.score.harmonic.steps_per_cycle : 128;
+  if (o.steps_per_cycle > 0) p->settings.fit.score.harmonic.steps_per_cycle = o.steps_per_cycle;
+  else if (!p->job.steps_per_cycle_given) p->settings.fit.score.harmonic.steps_per_cycle = 128;
   // The candidates nest sliders and inerters, which `auto` would give to IDA; fixed steps are
   // exact for the sampled drive and much faster per point (docs/numerics.md).
   if (p->settings.fit.score.harmonic.solver == runtime::SolverChoice::automatic) p->settings.fit.score.harmonic.solver = runtime::SolverChoice::fixed;

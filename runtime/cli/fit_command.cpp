@@ -4,6 +4,7 @@
 #include "lang/frontend.hpp"
 #include "runtime/cli/commands.hpp"
 #include "runtime/cli/fit_job.hpp"
+#include "runtime/cli/program_lookup.hpp"
 #include "runtime/cli/report_files.hpp"
 #include "runtime/errors.hpp"
 #include "runtime/fit_report.hpp"
@@ -22,13 +23,6 @@
 namespace rheo::cli {
 namespace {
 
-std::string read_source(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::stringstream text;
-  text << in.rdbuf();
-  return text.str();
-}
-
 std::string fitted_file_text(const FitJob& job, const runtime::FitResult& result, const std::string& source_file) {
   std::vector<std::string> header{
       fmt::format("Fitted by `rheo fit` (method {}, objective {}) to:", job.description.method, job.description.objective)};
@@ -36,7 +30,7 @@ std::string fitted_file_text(const FitJob& job, const runtime::FitResult& result
   if (result.phi > 0.0) header.push_back(fmt::format("phi (5.1) = {:.6g}, err (6.1) = {:.6g}", result.phi, result.err));
   if (result.interrupted) header.push_back("Interrupted: the best values found before the interruption.");
   header.push_back(fmt::format("Start values: {}", source_file));
-  return lang::write_fitted_source(read_source(source_file), source_file, result.network.model(), result.network.parameters(),
+  return lang::write_fitted_source(read_source_text(source_file), source_file, result.network.model(), result.network.parameters(),
                                    result.free, header);
 }
 

@@ -91,6 +91,7 @@ void configure(FitJob& job, const lang::FitDirective* block, const FitOptions& o
   s.score.harmonic.definition = text_of(block, "definition", "thesis") == "first_harmonic" ? runtime::HarmonicDefinition::first_harmonic
                                                                                            : runtime::HarmonicDefinition::thesis;
   s.score.harmonic.steps_per_cycle = static_cast<int>(number_of(block, "steps_per_cycle", s.score.harmonic.steps_per_cycle));
+  job.steps_per_cycle_given = block && block->find("steps_per_cycle");
   // Periodicity to 1e-6 is far inside any measurement's noise, and a third of the cycles of 1e-9.
   s.score.harmonic.tolerance = 1e-6;
   s.score.harmonic.solver = runtime::parse_solver_choice(text_of(block, "solver", "auto")).value_or(runtime::SolverChoice::automatic);

@@ -40,6 +40,7 @@ struct FitJob {
   runtime::FitDescription description;
   std::string output;  // fitted .rheo destination; empty: none
   std::vector<double> start_values;  // all parameters, internal units; empty: the model's
+  bool steps_per_cycle_given = false;  // the fit block sets steps_per_cycle
   std::string notes;                 // said before the fit (e.g. where --yeoh-start put the yeoh spring)
 };
 

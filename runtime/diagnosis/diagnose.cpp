@@ -194,16 +194,15 @@ Diagnosis diagnose(const ModelSource& source, const std::vector<FitDataSet>& dat
   const Compiled fitted = compile(source, fitted_text);
   const DataScales scales = data_scales(data);
   std::optional<Chosen> chosen;
+  int refitted = 0;
   if (!d.interrupted) stage("screening the effects");
   for (const ScreenedEffect& screened : d.interrupted ? std::vector<ScreenedEffect>{} : screen(d.before, data, s.fit.score)) {
     CandidateOutcome outcome;
     outcome.screened = screened;
     const Trial& trial = screened.trial;
     outcome.element = trial.replaces.empty() ? unique_name(*fitted.model, element_word(screened.effect)) : trial.replaces;
-    const bool try_it = static_cast<int>(std::count_if(d.candidates.begin(), d.candidates.end(), [](const auto& c) { return c.refitted; })) <
-                            s.confirm &&
-                        screened.gain >= s.min_screen_gain && !d.interrupted;
-    if (try_it) {
+    if (refitted < s.confirm && screened.gain >= s.min_screen_gain && !d.interrupted) {
+      ++refitted;
       const auto started = std::chrono::steady_clock::now();
       stage(fmt::format("refitting with {} for {}", trial_summary(trial), effect_name(screened.effect)));
       const std::string comment = fmt::format("candidate for {}", effect_name(screened.effect));

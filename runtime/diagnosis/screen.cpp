@@ -269,6 +269,7 @@ std::vector<ScreenedEffect> screen(const FitResult& fit, const std::vector<FitDa
   // Sizes TRIAL (its stiffness, or D20 and D30) for the least objective and returns that objective.
   auto size_trial = [&](Trial& trial) {
     if (trial.shape == Shape::yeoh) return size_yeoh(trial, objective, data, scales, root_spring);
+    trial.stiffness = 1.0;  // the signature is per unit stiffness; a refined trial arrives sized
     const Signature s = simulate_alone(trial, data, score, scales.bounds);
     trial.stiffness = minimise_1d([&](double a) { return objective({&s}, {a}); }, k_min, k_max, 30, true);
     return objective({&s}, {trial.stiffness});
