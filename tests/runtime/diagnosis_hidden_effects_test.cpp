@@ -88,14 +88,16 @@ void require_none(const dx::Diagnosis& d) {
   CHECK(d.gap_after == d.gap_before);
 }
 
-// The harmonic cases screen and refit time-stepped candidates (sliders and inerters nested in
-// series) on 36 points: minutes each, and not all pass yet (issue #5 notes). They run with
+// The other harmonic cases screen and refit time-stepped candidates (sliders and inerters
+// nested in series) on 36 points: a minute to minutes each, and not all pass yet (issue #5
+// notes). They run with
 // `runtime_tests -tc="diagnose?*" --no-skip`.
 constexpr bool kSlowHarmonicCases = true;
 
 }  // namespace
 
-TEST_CASE("diagnose, harmonic: a missing friction element is amplitude-dependence" * doctest::skip(kSlowHarmonicCases)) {
+// About 7 s: it runs in every build.
+TEST_CASE("diagnose, harmonic: a missing friction element is amplitude-dependence") {
   const std::string truth = "model truth { spring s (k = 600 N/mm)  maxwell m (k = 120 N/mm, tau = 4 ms)  friction f (k = 400 N/mm, uy = 30 um) }";
   const std::string start =
       "model start {\n  spring s (k = 500 N/mm in [10, 10000])\n  maxwell m (k = 100 N/mm in [1, 10000], tau = 10 ms in [0.01, 10000])\n}\n";
