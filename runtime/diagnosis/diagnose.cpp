@@ -4,6 +4,8 @@
 #include "lang/frontend.hpp"
 #include "lang/source_edit.hpp"
 #include "runtime/diagnosis/evidence_text.hpp"
+#include "runtime/fit_scoring.hpp"
+#include "runtime/solver_choice.hpp"
 
 #include <fmt/format.h>
 
@@ -11,6 +13,7 @@
 #include <chrono>
 #include <cmath>
 #include <memory>
+#include <numbers>
 #include <stdexcept>
 
 namespace rheo::runtime::diagnosis {
@@ -83,53 +86,78 @@ std::string with_trial(const std::string& fitted_text, const lang::CheckedModel&
   throw std::invalid_argument(fmt::format("model '{}' has no root element '{}' to replace", fitted.name, trial.replaces));
 }
 
-// Work of one evaluation in time steps: a time-stepped harmonic point costs about 3000 (128
-// steps over some 25 cycles to the periodic state), a closed-form one about 10, a history
-// sample 1. A deterministic measure, so that budgets, and results, do not depend on the machine.
+// Work of one evaluation of NETWORK in time steps, counted on one prediction: a time-stepped
+// harmonic point costs the cycles it took to its periodic state times the steps per cycle (ten
+// times that under IDA, whose steps solve a DAE with Newton iterations), a closed-form point 10,
+// a history sample 1. Counted, not timed, so that budgets, and results, do not depend on the
+// machine.
 double evaluation_work(const Network& network, const std::vector<FitDataSet>& data, const HarmonicOptions& options) {
-  const bool closed_form = uses_closed_form(network, options);
+  const double step_cost = uses_sundials(network, options.solver) ? 10.0 : 1.0;
   double work = 0.0;
-  for (const auto& set : data)
-    work += set.is_harmonic() ? static_cast<double>(set.harmonic().size()) * (closed_form ? 10.0 : 3000.0)
-                              : static_cast<double>(set.history().force.size());
+  for (const auto& set : data) {
+    if (!set.is_harmonic()) {
+      work += static_cast<double>(set.history().force.size());
+      continue;
+    }
+    for (const HarmonicPoint& point : predict(network, set, FitMethod::exact, options, nullptr).points)
+      work += point.cycles == 0 ? 10.0 : step_cost * point.cycles * options.steps_per_cycle;
+  }
   return work;
 }
 
-// Stage 1: the new parameters alone; stage 2: every free parameter. Where an evaluation is
-// cheap (`cheap_work`), stage 1 is the default strategy (a sampled look a decade around the
-// screened element, local searches from the best) and both stages get `cheap_evaluations` per
-// parameter; else both are local (BOBYQA from the screened element) with budgets of 2 n + 1
-// (BOBYQA's first model) plus `*_evaluations` per parameter.
+// Evaluations REFIT_WORK affords at the work per evaluation of NETWORK, within [floor, max_evaluations].
+int affordable_evaluations(const Network& network, const std::vector<FitDataSet>& data, const DiagnoseSettings& s, int floor) {
+  const double per_evaluation = std::max(1.0, evaluation_work(network, data, s.fit.score.harmonic));
+  return static_cast<int>(std::clamp(s.refit_work / per_evaluation, static_cast<double>(floor), static_cast<double>(s.max_evaluations)));
+}
+
+FitSettings local_search(const FitSettings& base, int evaluations) {
+  FitSettings f = base;
+  f.yeoh_start_from_history = false;
+  f.statistics = false;
+  f.search.algorithm = Algorithm::bobyqa;
+  f.search.starts = 1;
+  f.search.samples = 0;
+  f.search.extra_starts.clear();
+  f.search.max_evaluations = evaluations;
+  return f;
+}
+
+// Stage 1: the new parameters alone; stage 2: every free parameter (DiagnoseSettings budgets).
 FitResult staged_refit(const Network& start, const std::vector<int>& kept, const std::vector<int>& added, const std::vector<FitDataSet>& data,
                        const DiagnoseSettings& settings) {
-  const bool cheap = evaluation_work(start, data, settings.fit.score.harmonic) <= settings.cheap_work;
-  FitSettings first = settings.fit;
-  first.yeoh_start_from_history = false;
-  first.statistics = false;
-  first.search.algorithm = Algorithm::bobyqa;
-  first.search.starts = 1;
-  first.search.samples = 0;
-  first.search.extra_starts.clear();
-  const int n_added = static_cast<int>(added.size());
-  first.search.max_evaluations = 2 * n_added + 1 + (cheap ? settings.cheap_evaluations : settings.new_parameter_evaluations) * n_added;
-  if (cheap) first.search.algorithm.reset(), first.search.starts = 3, first.search.samples = -1;
+  const int n_added = static_cast<int>(added.size()), n_all = n_added + static_cast<int>(kept.size());
+  const int affordable = affordable_evaluations(start, data, settings, 0);
+  const bool thorough = affordable >= settings.thorough_evaluations * (n_added + n_all);
+  FitSettings first = local_search(settings.fit, thorough ? affordable / 2 : 2 * n_added + 1 + 15 * n_added);
+  if (thorough) first.search.algorithm.reset(), first.search.starts = 3, first.search.samples = -1;
   FitResult stage1 = fit(start, added, data, first);
   if (stage1.interrupted || kept.empty()) return stage1;
   std::vector<int> all = kept;
   all.insert(all.end(), added.begin(), added.end());
   std::sort(all.begin(), all.end());
-  FitSettings second = first;
-  second.search.algorithm = Algorithm::bobyqa;
-  second.search.starts = 1;
-  second.search.samples = 0;
-  const int n = static_cast<int>(all.size());
-  second.search.max_evaluations = 2 * n + 1 + (cheap ? settings.cheap_evaluations : settings.all_parameter_evaluations) * n;
-  FitResult stage2 = fit(stage1.network, all, data, second);
+  FitResult stage2 = fit(stage1.network, all, data, local_search(settings.fit, thorough ? affordable / 2 : 2 * n_all + 1 + 4 * n_all));
   stage2.start_values = stage1.start_values;
   stage2.evaluations += stage1.evaluations;
   stage2.non_finite += stage1.non_finite;
   stage2.wall_seconds += stage1.wall_seconds;
   return stage2;
+}
+
+// Empty when the resonance of a refitted fluid column (the element ELEMENT of MODEL) lies inside
+// the measured frequencies with a margin of 10 % either side, else why not. Shapes without a
+// resonance are always resolved.
+std::string resolved_resonance(const Trial& trial, const lang::CheckedModel& model, const Network& network, const std::string& element,
+                               const DataScales& scales) {
+  if (trial.shape != Shape::tuned_column && trial.shape != Shape::capped_column) return {};
+  const int k = index_of(model, element + ".chamber.k"), b = index_of(model, element + ".column.mass.b");
+  if (k < 0 || b < 0) throw std::logic_error(fmt::format("diagnose: the fluid column '{}' lacks chamber.k or column.mass.b", element));
+  const double resonance = std::sqrt(network.parameter(k) / network.parameter(b)) / (2.0 * std::numbers::pi);  // [Hz]
+  constexpr double kMargin = 1.1;
+  if (resonance >= kMargin * scales.frequency_low && resonance <= scales.frequency_high / kMargin) return {};
+  return fmt::format("its resonance, refitted to {:.3g} Hz, is not inside the measured {:.3g}-{:.3g} Hz with a measured frequency 10 % "
+                     "either side, so the data cannot tell it from a relaxation or a stiffness trend",
+                     resonance, scales.frequency_low, scales.frequency_high);
 }
 
 // Whether candidate A is preferred to B: the one with fewer parameters when its gap is within
@@ -222,7 +250,8 @@ Diagnosis diagnose(const ModelSource& source, const std::vector<FitDataSet>& dat
       outcome.parameters = static_cast<int>(result.free.size());
       outcome.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
       d.interrupted = d.interrupted || result.interrupted;
-      const bool earns = outcome.criterion < d.criterion_before && outcome.gap_after <= (1.0 - s.min_improvement) * d.gap_before;
+      outcome.unresolved = resolved_resonance(trial, *candidate.model, result.network, outcome.element, scales);
+      const bool earns = outcome.unresolved.empty() && outcome.criterion < d.criterion_before && outcome.gap_after <= (1.0 - s.min_improvement) * d.gap_before;
       if (earns && (!chosen || preferred(outcome, d.candidates[chosen->candidate], s.parsimony)))
         chosen = Chosen{d.candidates.size(), trial, candidate, std::move(result)};
     }
@@ -239,14 +268,8 @@ Diagnosis diagnose(const ModelSource& source, const std::vector<FitDataSet>& dat
   const CandidateOutcome& winner = d.candidates[chosen->candidate];
   if (!d.interrupted) {
     stage("polishing the refined model");
-    FitSettings polish = s.fit;
-    polish.yeoh_start_from_history = false;
-    polish.search.algorithm = Algorithm::bobyqa;
-    polish.search.starts = 1;
-    polish.search.samples = 0;
-    polish.search.extra_starts.clear();
     const int n = static_cast<int>(chosen->result.free.size());
-    polish.search.max_evaluations = 2 * n + 1 + s.polish_evaluations * n;
+    const FitSettings polish = local_search(s.fit, affordable_evaluations(chosen->result.network, data, s, 2 * n + 1 + 20 * n));
     FitResult polished = fit(chosen->result.network, chosen->result.free, data, polish);
     d.interrupted = polished.interrupted;
     if (polished.objective <= chosen->result.objective) {

@@ -7,16 +7,19 @@
 //   3. Confirm the leading effects (at most `confirm`, screening gain >= `min_screen_gain`):
 //      write the element into the fitted model's source with bounds, compile it and refit in
 //      two stages: the new parameters alone from the screened element, then every free
-//      parameter together from there (thorough where an evaluation is cheap, local otherwise;
-//      diagnose.cpp staged_refit).
+//      parameter together from there (thorough where the work budget affords it, local
+//      otherwise; diagnose.cpp staged_refit).
 //   4. Choose by the Bayesian information criterion over the N residual terms of the fit,
 //        BIC = N ln(J) + p ln(N),   J the minimised objective, p the free parameters,
 //      so that a larger model must earn its parameters: a candidate earns when its BIC is below
 //      the model's and it lowers the gap by at least `min_improvement`. Of those that earn, the
 //      one with fewer parameters wins if its gap is within `parsimony` of the other's, else the
-//      lower BIC. None earns: the effect is `none` and nothing is added.
-//   5. Polish the chosen model: BOBYQA over every free parameter again with a larger budget
-//      (`polish_evaluations`); gap_after is the polished model's.
+//      lower BIC. A resonance (the fluid-column shapes) earns only where the measurement
+//      resolves it: refitted to f_r = sqrt(k/b)/(2 pi), a measured frequency must lie at least
+//      10 % below and one 10 % above it; at the edge of the data a resonance is a relaxation's
+//      rising stiffness with one more parameter. None earns: the effect is `none` and nothing is added.
+//   5. Polish the chosen model: BOBYQA over every free parameter again with the refit's budget;
+//      gap_after is the polished model's.
 // The gap is err (eq. 6.1) over the harmonic points when there are any, else the RMS over the
 // history files of their RMS force residual relative to max|F_exp|.
 #pragma once
@@ -49,11 +52,16 @@ struct DiagnoseSettings {
   // fitted noise at one frequency for a 13 % drop on data the model explained.
   double min_improvement = 0.25;
   double parsimony = 0.1;          // a candidate with fewer parameters wins if its gap is within this of another's
-  int new_parameter_evaluations = 15;  // stage-1 budget per new parameter (plus 2 n + 1)
-  int all_parameter_evaluations = 4;   // stage-2 budget per free parameter (plus 2 n + 1)
-  double cheap_work = 2e4;             // time steps per evaluation below which a refit is thorough
-  int cheap_evaluations = 100;         // per parameter, both stages of a thorough refit
-  int polish_evaluations = 20;         // the chosen model's final refit, per free parameter (plus 2 n + 1)
+  // Budgets. A refit may spend `refit_work` time steps (diagnose.cpp evaluation_work: counted on
+  // the candidate's first prediction, not timed), at most `max_evaluations` per stage. Where
+  // that affords `thorough_evaluations` per parameter of both stages, stage 1 is the default
+  // strategy (a sampled look a decade around the screened element, local searches from the
+  // best) and stage 2 BOBYQA, each with half the budget; else both are BOBYQA with lean budgets
+  // of 2 n + 1 (BOBYQA's first model) plus 15 per new parameter (stage 1) or 4 per free one
+  // (stage 2). The polish gets the refit's budget, at least 2 n + 1 + 20 n.
+  double refit_work = 3e7;
+  int max_evaluations = 20000;
+  int thorough_evaluations = 100;
   std::function<void(const std::string&)> stage;  // told what runs next ("refitting ..."); may be empty
 };
 
@@ -65,6 +73,9 @@ struct CandidateOutcome {
   double criterion = 0.0;     // BIC of the refitted model
   int parameters = 0;         // its free parameters
   double wall_seconds = 0.0;
+  // Why the candidate cannot earn whatever it gains, or empty: a refitted resonance outside
+  // the measured frequencies (diagnose.cpp resolved_resonance).
+  std::string unresolved;
 };
 
 struct Diagnosis {

@@ -39,6 +39,8 @@ std::string diagnosis_report_text(const std::string& source_file, const Diagnosi
     out += fmt::format("  {:<28}  {:>6.1f} %  {}  {}{}\n", effect_name(c.screened.effect), 100.0 * c.screened.gain, refit,
                        trial_summary(c.screened.trial), chosen(d, c) ? "  <- chosen" : "");
   }
+  for (const auto& c : d.candidates)
+    if (!c.unresolved.empty()) out += fmt::format("  {} cannot earn: {}\n", effect_name(c.screened.effect), c.unresolved);
   out += fmt::format("\neffect: {}\n  why: {}\n", effect_name(d.effect), d.reason);
   if (d.effect != Effect::none) {
     out += fmt::format("  {}: {:.4g} -> {:.4g} after a final polish ({:.2f} times lower)\n", d.gap_name, d.gap_before, d.gap_after,
@@ -81,6 +83,7 @@ std::string diagnosis_report_json(const std::string& source_file, const Diagnosi
   for (const auto& c : d.candidates) {
     json e{{"effect", effect_name(c.screened.effect)}, {"screened_gain", c.screened.gain}, {"element", c.element},
            {"trial", trial_summary(c.screened.trial)}, {"refitted", c.refitted}, {"chosen", chosen(d, c)}};
+    if (!c.unresolved.empty()) e["unresolved"] = c.unresolved;
     if (c.refitted) e["gap_after"] = c.gap_after, e["criterion"] = c.criterion, e["parameters"] = c.parameters, e["wall_seconds"] = c.wall_seconds;
     candidates.push_back(e);
   }

@@ -8,7 +8,8 @@
 //              frequency_hz, residual}, worst_phase: {amplitude_mm, frequency_hz, residual_deg},
 //              phase_peak: {frequency_hz, excess_deg}}, histories: [{file, rms, max, worst_displacement_mm}],
 //              candidates: [{effect, screened_gain, element, trial, refitted, gap_after?,
-//              criterion?, parameters?, wall_seconds?}]}
+//              criterion?, parameters?, wall_seconds?, unresolved?}]}  (unresolved: why a
+//              refitted resonance cannot earn)
 //   gap_measure: "err (6.1)" | "RMS force residual";  err_before, err_after (that measure)
 //   criterion: {name: "BIC", residual_terms, before, after?}
 //   added: [] | [{element, effect, statement: [lines], parameters: [{path, value, unit}]}]

@@ -11,6 +11,7 @@
 #include "support.hpp"
 
 #include <doctest/doctest.h>
+#include <fmt/format.h>
 
 #include <random>
 
@@ -71,7 +72,18 @@ dx::Diagnosis diagnose(const std::string& start, const std::vector<runtime::FitD
   return dx::diagnose({"start.rheo", start, "start"}, data, s);
 }
 
+// Every candidate's screening and refit, for the failure message.
+std::string candidates(const dx::Diagnosis& d) {
+  std::string out;
+  for (const auto& c : d.candidates)
+    out += fmt::format("\n  {:28} gain {:.3f}  {}", dx::effect_name(c.screened.effect), c.screened.gain,
+                       c.refitted ? fmt::format("gap {:.4g} BIC {:.1f} p {} in {:.1f} s", c.gap_after, c.criterion, c.parameters, c.wall_seconds)
+                                  : std::string("not refitted"));
+  return out;
+}
+
 void require_effect(const dx::Diagnosis& d, dx::Effect effect) {
+  INFO("candidates (BIC before " << d.criterion_before << "):" << candidates(d));
   INFO("named " << dx::effect_name(d.effect) << ": " << d.reason);
   INFO("gap " << d.gap_before << " -> " << d.gap_after);
   CHECK(dx::effect_name(d.effect) == dx::effect_name(effect));
@@ -81,6 +93,7 @@ void require_effect(const dx::Diagnosis& d, dx::Effect effect) {
 }
 
 void require_none(const dx::Diagnosis& d) {
+  INFO("candidates (BIC before " << d.criterion_before << "):" << candidates(d));
   INFO("named " << dx::effect_name(d.effect) << ": " << d.reason);
   CHECK(d.effect == dx::Effect::none);
   CHECK(d.added_element.empty());
