@@ -11,7 +11,10 @@
 // Cycles are repeated until the state at the end of a cycle equals the state at its start
 // within `tolerance` (relative to F^ for forces and u0 for elongations), the error being
 // extrapolated from the per-cycle contraction when the state is still moving; a point that has
-// not converged after `max_cycles` is reported as such.
+// not converged after `max_cycles` is reported as such. When that contraction is geometric and
+// steady (a slow mode, e.g. a subtree's Maxwell element with tau >> period, starting from rest),
+// the state skips the rest of the geometric tail, s + (s - s_prev) rho / (1 - rho); convergence
+// is still judged on simulated cycles after the skip.
 // Forces are sampled at the step ends; for networks whose force jumps with the drive rate
 // (a dashpot with no spring in series) at the step midpoints instead, which keeps the
 // characterisation second order in the step.

@@ -224,12 +224,14 @@ Diagnosis diagnose(const ModelSource& source, const std::vector<FitDataSet>& dat
   std::optional<Chosen> chosen;
   int refitted = 0;
   if (!d.interrupted) stage("screening the effects");
-  for (const ScreenedEffect& screened : d.interrupted ? std::vector<ScreenedEffect>{} : screen(d.before, data, s.fit.score)) {
+  const std::vector<ScreenedEffect> screened_effects = d.interrupted ? std::vector<ScreenedEffect>{} : screen(d.before, data, s.fit.score);
+  const double leading_gain = screened_effects.empty() ? 0.0 : screened_effects.front().gain;
+  for (const ScreenedEffect& screened : screened_effects) {
     CandidateOutcome outcome;
     outcome.screened = screened;
     const Trial& trial = screened.trial;
     outcome.element = trial.replaces.empty() ? unique_name(*fitted.model, element_word(screened.effect)) : trial.replaces;
-    if (refitted < s.confirm && screened.gain >= s.min_screen_gain && !d.interrupted) {
+    if (refitted < s.confirm && screened.gain >= std::max(s.min_screen_gain, s.relative_screen_gain * leading_gain) && !d.interrupted) {
       ++refitted;
       const auto started = std::chrono::steady_clock::now();
       stage(fmt::format("refitting with {} for {}", trial_summary(trial), effect_name(screened.effect)));

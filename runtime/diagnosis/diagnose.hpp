@@ -4,7 +4,8 @@
 //   1. Fit the model (its free parameters, method exact) to the data: the gap before.
 //   2. Describe the residual (patterns.hpp) and screen every effect (screen.hpp): the share of
 //      the objective the best element of its family would remove alone.
-//   3. Confirm the leading effects (at most `confirm`, screening gain >= `min_screen_gain`):
+//   3. Confirm the leading effects (at most `confirm`, screening gain >= `min_screen_gain` and
+//      >= `relative_screen_gain` times the leading one's):
 //      write the element into the fitted model's source with bounds, compile it and refit in
 //      two stages: the new parameters alone from the screened element, then every free
 //      parameter together from there (thorough where the work budget affords it, local
@@ -46,7 +47,8 @@ struct DiagnoseSettings {
   FitSettings fit;                 // every fit (the method is always exact)
   std::vector<std::string> free;   // paths of the model's free parameters; empty: every one with bounds
   int confirm = 3;                 // leading effects refitted
-  double min_screen_gain = 0.01;   // effects screened below this are not refitted
+  double min_screen_gain = 0.01;   // effects screened below this are not refitted,
+  double relative_screen_gain = 0.25;  // nor those below this share of the leading effect's gain
   // Relative drop of the gap a chosen candidate must bring. BIC alone takes residuals as iid,
   // but relative damping residuals at small phases are not: a narrow resonance (3 parameters)
   // fitted noise at one frequency for a 13 % drop on data the model explained.
@@ -59,7 +61,7 @@ struct DiagnoseSettings {
   // best) and stage 2 BOBYQA, each with half the budget; else both are BOBYQA with lean budgets
   // of 2 n + 1 (BOBYQA's first model) plus 15 per new parameter (stage 1) or 4 per free one
   // (stage 2). The polish gets the refit's budget, at least 2 n + 1 + 20 n.
-  double refit_work = 3e7;
+  double refit_work = 3e6;
   int max_evaluations = 20000;
   int thorough_evaluations = 100;
   std::function<void(const std::string&)> stage;  // told what runs next ("refitting ..."); may be empty

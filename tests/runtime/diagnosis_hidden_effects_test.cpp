@@ -83,7 +83,8 @@ std::string candidates(const dx::Diagnosis& d) {
 }
 
 void require_effect(const dx::Diagnosis& d, dx::Effect effect) {
-  INFO("candidates (BIC before " << d.criterion_before << "):" << candidates(d));
+  MESSAGE("named " << dx::effect_name(d.effect) << ", gap " << d.gap_before << " -> " << d.gap_after << "; candidates (BIC before "
+                    << d.criterion_before << "):" << candidates(d));
   INFO("named " << dx::effect_name(d.effect) << ": " << d.reason);
   INFO("gap " << d.gap_before << " -> " << d.gap_after);
   CHECK(dx::effect_name(d.effect) == dx::effect_name(effect));
@@ -93,7 +94,8 @@ void require_effect(const dx::Diagnosis& d, dx::Effect effect) {
 }
 
 void require_none(const dx::Diagnosis& d) {
-  INFO("candidates (BIC before " << d.criterion_before << "):" << candidates(d));
+  MESSAGE("named " << dx::effect_name(d.effect) << ", gap " << d.gap_before << " -> " << d.gap_after << "; candidates (BIC before "
+                    << d.criterion_before << "):" << candidates(d));
   INFO("named " << dx::effect_name(d.effect) << ": " << d.reason);
   CHECK(d.effect == dx::Effect::none);
   CHECK(d.added_element.empty());
@@ -101,15 +103,15 @@ void require_none(const dx::Diagnosis& d) {
   CHECK(d.gap_after == d.gap_before);
 }
 
-// The other harmonic cases screen and refit time-stepped candidates (sliders and inerters
-// nested in series) on 36 points: a minute to minutes each, and not all pass yet (issue #5
-// notes). They run with
+// Three harmonic cases hinge on refits of time-stepped candidates (sliders and inerters nested
+// in series) on 36 points. With thorough budgets for those they passed in 1-2 min each, but
+// other cases then ran for minutes; with the lean budgets diagnose now gives time-stepped
+// candidates, the slider-capped case is expected to fail (issue #5 notes). They run with
 // `runtime_tests -tc="diagnose?*" --no-skip`.
-constexpr bool kSlowHarmonicCases = true;
+constexpr bool kMinutesLong = true;
 
 }  // namespace
 
-// About 7 s: it runs in every build.
 TEST_CASE("diagnose, harmonic: a missing friction element is amplitude-dependence") {
   const std::string truth = "model truth { spring s (k = 600 N/mm)  maxwell m (k = 120 N/mm, tau = 4 ms)  friction f (k = 400 N/mm, uy = 30 um) }";
   const std::string start =
@@ -117,7 +119,7 @@ TEST_CASE("diagnose, harmonic: a missing friction element is amplitude-dependenc
   require_effect(diagnose(start, {harmonic_measurement(truth, 1)}), dx::Effect::amplitude_dependence);
 }
 
-TEST_CASE("diagnose, harmonic: a second, large-slip friction element hidden beside one is amplitude-dependence" * doctest::skip(kSlowHarmonicCases)) {
+TEST_CASE("diagnose, harmonic: a second, large-slip friction element hidden beside one is amplitude-dependence") {
   const std::string truth = R"(model truth { spring s (k = 300 N/mm)  maxwell m (k = 80 N/mm, tau = 20 ms)
                                friction f1 (k = 150 N/mm, uy = 20 um)  friction f2 (k = 400 N/mm, uy = 400 um) })";
   const std::string start = R"(model start {
@@ -129,14 +131,14 @@ TEST_CASE("diagnose, harmonic: a second, large-slip friction element hidden besi
   require_effect(diagnose(start, {harmonic_measurement(truth, 2)}), dx::Effect::amplitude_dependence);
 }
 
-TEST_CASE("diagnose, harmonic: a missing Maxwell element is rate-dependence" * doctest::skip(kSlowHarmonicCases)) {
+TEST_CASE("diagnose, harmonic: a missing Maxwell element is rate-dependence") {
   const std::string truth = "model truth { spring s (k = 500 N/mm)  friction f (k = 300 N/mm, uy = 50 um)  maxwell m (k = 250 N/mm, tau = 3 ms) }";
   const std::string start =
       "model start {\n  spring s (k = 500 N/mm in [10, 10000])\n  friction f (k = 100 N/mm in [1, 10000], uy = 20 um in [0.1, 10000])\n}\n";
   require_effect(diagnose(start, {harmonic_measurement(truth, 3)}), dx::Effect::rate_dependence);
 }
 
-TEST_CASE("diagnose, harmonic: a second relaxation time hidden beside one is rate-dependence" * doctest::skip(kSlowHarmonicCases)) {
+TEST_CASE("diagnose, harmonic: a second relaxation time hidden beside one is rate-dependence") {
   const std::string truth = R"(model truth { spring s (k = 400 N/mm)  maxwell slow (k = 150 N/mm, tau = 40 ms)
                                maxwell fast (k = 300 N/mm, tau = 1.5 ms)  friction f (k = 100 N/mm, uy = 40 um) })";
   const std::string start = R"(model start {
@@ -148,19 +150,23 @@ TEST_CASE("diagnose, harmonic: a second relaxation time hidden beside one is rat
   require_effect(diagnose(start, {harmonic_measurement(truth, 4)}), dx::Effect::rate_dependence);
 }
 
-TEST_CASE("diagnose, harmonic: stiffening at large amplitude is nonlinear-elasticity" * doctest::skip(kSlowHarmonicCases)) {
-  const std::string truth = R"(model truth { yeoh r (D10 = 200 N/mm, D20 = 4 N/mm^3, D30 = 0.2 N/mm^5)
-                               maxwell m (k = 60 N/mm, tau = 5 ms)  friction f (k = 150 N/mm, uy = 40 um) })";
+// The measured phases stay above 5 deg (two Maxwell elements), so that the phase noise does not
+// set the floor of err (6.1): here about 0.003, against 0.06 for the linear model. (With phases
+// down to 0.3 deg, 0.15 deg of noise alone gives err ~ 0.03, and no model is 3 times better.)
+TEST_CASE("diagnose, harmonic: stiffening at large amplitude is nonlinear-elasticity") {
+  const std::string truth = R"(model truth { yeoh r (D10 = 200 N/mm, D20 = 5 N/mm^3, D30 = 0.3 N/mm^5)  maxwell m (k = 300 N/mm, tau = 3 ms)
+                               maxwell n (k = 300 N/mm, tau = 60 ms)  friction f (k = 150 N/mm, uy = 40 um) })";
   const std::string start = R"(model start {
   spring r (k = 400 N/mm in [10, 10000])
-  maxwell m (k = 60 N/mm in [1, 10000], tau = 5 ms in [0.01, 10000])
-  friction f (k = 150 N/mm in [1, 10000], uy = 40 um in [0.1, 10000])
+  maxwell m (k = 100 N/mm in [1, 10000], tau = 10 ms in [0.01, 10000])
+  maxwell n (k = 100 N/mm in [1, 10000], tau = 100 ms in [0.01, 10000])
+  friction f (k = 100 N/mm in [1, 10000], uy = 20 um in [0.1, 10000])
 }
 )";
   require_effect(diagnose(start, {harmonic_measurement(truth, 5, {0.1, 0.3, 1.0, 2.0, 3.0, 4.0})}), dx::Effect::nonlinear_elasticity);
 }
 
-TEST_CASE("diagnose, harmonic: a slider-capped Maxwell branch is coupled-amplitude-frequency" * doctest::skip(kSlowHarmonicCases)) {
+TEST_CASE("diagnose, harmonic: a slider-capped Maxwell branch is coupled-amplitude-frequency" * doctest::skip(kMinutesLong)) {
   const std::string truth = R"(model truth { spring s (k = 500 N/mm)  maxwell m (k = 100 N/mm, tau = 3 ms)
                                series b { slider cap (fy = 40 N)  maxwell arm (k = 400 N/mm, tau = 10 ms) } })";
   const std::string start = R"(model start {
@@ -172,7 +178,7 @@ TEST_CASE("diagnose, harmonic: a slider-capped Maxwell branch is coupled-amplitu
   require_effect(diagnose(start, {harmonic_measurement(truth, 6)}), dx::Effect::coupled_amplitude_frequency);
 }
 
-TEST_CASE("diagnose, harmonic: a resonant column is inertia" * doctest::skip(kSlowHarmonicCases)) {
+TEST_CASE("diagnose, harmonic: a resonant column is inertia" * doctest::skip(kMinutesLong)) {
   const std::string truth = R"(model truth { spring s (k = 500 N/mm)  friction f (k = 200 N/mm, uy = 50 um)
                                series c { spring k1 (k = 300 N/mm)  parallel y { inerter b (b = 20 kg)  dashpot d (c = 1 N*s/mm) } } })";
   const std::string start =
@@ -180,7 +186,7 @@ TEST_CASE("diagnose, harmonic: a resonant column is inertia" * doctest::skip(kSl
   require_effect(diagnose(start, {harmonic_measurement(truth, 7)}), dx::Effect::inertia);
 }
 
-TEST_CASE("diagnose, harmonic: data the model already explains gives none" * doctest::skip(kSlowHarmonicCases)) {
+TEST_CASE("diagnose, harmonic: data the model already explains gives none" * doctest::skip(kMinutesLong)) {
   const std::string truth = "model truth { spring s (k = 700 N/mm)  maxwell m (k = 90 N/mm, tau = 6 ms)  friction f (k = 250 N/mm, uy = 60 um) }";
   const std::string start = R"(model start {
   spring s (k = 500 N/mm in [10, 10000])
