@@ -66,6 +66,10 @@ std::string none_reason(const Diagnosis& d, const DiagnoseSettings& s) {
                        "level the model's own parameters leave, {} = {:.4g}",
                        percent(top), percent(s.min_screen_gain), d.gap_name, d.gap_before);
   }
+  if (!best->unresolved.empty())
+    return fmt::format("the best candidate, {} for {}, lowered {} from {:.4g} to {:.4g}, but {}; no other candidate earned its parameters",
+                       trial_summary(best->screened.trial), effect_name(best->screened.effect), d.gap_name, d.gap_before, best->gap_after,
+                       best->unresolved);
   return fmt::format("the best candidate, {} for {}, lowered {} only from {:.4g} to {:.4g} and BIC from {:.1f} to {:.1f}; an element must "
                      "lower BIC and the gap by {:.0f} % to earn its parameters, so the residual is taken as noise",
                      trial_summary(best->screened.trial), effect_name(best->screened.effect), d.gap_name, d.gap_before, best->gap_after,
