@@ -1,10 +1,12 @@
-// `rheo diagnose FILE --data CSV... [-o REFINED.rheo] [--json]` and
-// `rheo refine FILE --data CSV... [-o FINAL.rheo] [--rounds N]`: name the effect a model misses,
+// `rheo diagnose FILE --data CSV... [-o REFINED.rheo] [--json] [--report R.html] [--plot P.svg]`
+// and `rheo refine FILE --data CSV... [-o FINAL.rheo] [--rounds N] [--report ...] [--plot ...]`: name the effect a model misses,
 // add the element that supplies it and refit (runtime/diagnosis/diagnose.hpp); see docs/cli.md.
 #include "lang/frontend.hpp"
 #include "runtime/cli/commands.hpp"
 #include "runtime/cli/fit_job.hpp"
 #include "runtime/cli/program_lookup.hpp"
+#include "runtime/cli/report_files.hpp"
+#include "runtime/diagnosis/diagnosis_html.hpp"
 #include "runtime/diagnosis/diagnosis_report.hpp"
 #include "runtime/errors.hpp"
 #include "runtime/output.hpp"
@@ -23,6 +25,7 @@ namespace dx = runtime::diagnosis;
 
 struct DiagnoseOptions {
   FitOptions fit;
+  ReportTargets report;
   int candidates = 3;
   int steps_per_cycle = 0;  // 0: the fit block's, else 128
   int rounds = 3;           // refine
@@ -41,6 +44,7 @@ void add_common_options(CLI::App& app, DiagnoseOptions& o) {
       ->check(CLI::Range(0LL, std::numeric_limits<long long>::max()));
   app.add_option("--threads", o.fit.threads, "Harmonic points evaluated at once (0: every hardware thread); results do not depend on it; default 1")
       ->check(CLI::Range(0, 1024));
+  add_report_options(app, o.report, true);
 }
 
 struct Prepared {
@@ -51,6 +55,7 @@ struct Prepared {
 };
 
 std::unique_ptr<Prepared> prepare(const DiagnoseOptions& o) {
+  check_report_targets(o.report);
   auto p = std::make_unique<Prepared>();
   p->program = lang::load_program(o.fit.file);
   std::vector<FitJob> jobs = fit_jobs(p->program, o.fit);
@@ -66,16 +71,27 @@ std::unique_ptr<Prepared> prepare(const DiagnoseOptions& o) {
   if (p->settings.fit.score.harmonic.solver == runtime::SolverChoice::automatic) p->settings.fit.score.harmonic.solver = runtime::SolverChoice::fixed;
   for (int i : p->job.free) p->settings.free.push_back(p->job.model->parameters[static_cast<std::size_t>(i)].path);
   p->settings.confirm = o.candidates;
+  p->settings.standard_errors = o.report.any();  // the report's parameter table shows them
   p->settings.stage = [](const std::string& what) { std::cerr << "rheo: " << what << "\n"; };
   return p;
 }
 
-dx::Diagnosis run(const Prepared& p, const dx::ModelSource& source) {
+dx::Diagnosis run(const Prepared& p, const dx::ModelSource& source, const dx::DiagnoseSettings& settings) {
   try {
-    return dx::diagnose(source, p.job.data, p.settings);
+    return dx::diagnose(source, p.job.data, settings);
   } catch (const std::invalid_argument& e) {
     throw runtime::UsageError(fmt::format("cannot diagnose model '{}': {}", source.model, e.what()));
   }
+}
+
+void write_report(const DiagnoseOptions& o, const Prepared& p, const std::vector<dx::Diagnosis>& rounds, const char* command) {
+  if (o.report.any()) write_report_files(dx::diagnosis_report_content(rounds, p.job.data, p.job.description, command), o.report);
+}
+
+std::vector<std::string> free_paths(const runtime::FitResult& fit) {
+  std::vector<std::string> paths;
+  for (int i : fit.free) paths.push_back(fit.network.model().parameters[static_cast<std::size_t>(i)].path);
+  return paths;
 }
 
 std::string default_refined_path(const std::string& file) {
@@ -95,11 +111,12 @@ Command add_diagnose_command(CLI::App& app) {
              "leading ones and names the effect whose element earns its parameters (BIC), or `none`. See docs/cli.md.");
   return [o] {
     const auto p = prepare(*o);
-    const dx::Diagnosis d = run(*p, p->source);
+    const dx::Diagnosis d = run(*p, p->source, p->settings);
     if (!o->fit.output.empty()) {
       runtime::write_output(o->fit.output, d.refined_text);
       std::cerr << fmt::format("rheo: refined model {} written to {}\n", p->source.model, o->fit.output);
     }
+    write_report(*o, *p, {d}, "rheo diagnose");
     std::cout << (o->fit.json ? dx::diagnosis_report_json(o->fit.file, d, o->fit.output) : dx::diagnosis_report_text(o->fit.file, d));
     return d.interrupted ? exit_code_interrupted : runtime::exit_code::ok;
   };
@@ -116,21 +133,24 @@ Command add_refine_command(CLI::App& app) {
     const auto p = prepare(*o);
     const std::string output = o->fit.output.empty() ? default_refined_path(o->fit.file) : o->fit.output;
     dx::ModelSource source = p->source;
+    dx::DiagnoseSettings settings = p->settings;
     bool interrupted = false;
-    std::string table;
+    std::vector<dx::Diagnosis> rounds;
     for (int round = 1; round <= o->rounds; ++round) {
-      const dx::Diagnosis d = run(*p, source);
+      const dx::Diagnosis& d = rounds.emplace_back(run(*p, source, settings));
       if (round == 1) std::cout << fmt::format("rheo refine: model {} from {}; gap measure {}\n", source.model, o->fit.file, d.gap_name);
       std::cout << fmt::format("  round {}: {} = {:.4g} -> {:.4g}  effect {}{}\n", round, d.gap_name, d.gap_before, d.gap_after,
                                dx::effect_name(d.effect), d.added_element.empty() ? "" : fmt::format(", added '{}'", d.added_element))
                 << std::flush;
       source.text = d.refined_text;
+      if (d.after) settings.free = free_paths(*d.after);  // the added element's parameters join; a replaced one's leave
       interrupted = d.interrupted;
       if (d.effect == dx::Effect::none || interrupted) break;
       if (round == o->rounds) std::cout << fmt::format("  stopped after {} rounds (--rounds); the last model may still miss an effect\n", round);
     }
     runtime::write_output(output, source.text);
     std::cerr << fmt::format("rheo: final model {} written to {}\n", source.model, output);
+    write_report(*o, *p, rounds, "rheo refine");
     return interrupted ? exit_code_interrupted : runtime::exit_code::ok;
   };
 }

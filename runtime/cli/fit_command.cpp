@@ -69,6 +69,7 @@ Command add_fit_command(CLI::App& app) {
              "error (with a progress line when it is a terminal). Ctrl-C stops the search and writes the best result so far\n"
              "(exit code 130).");
   return [o, report] {
+    check_report_targets(*report);
     const lang::Program program = lang::load_program(o->file);
     std::vector<FitJob> jobs = fit_jobs(program, *o);
     if (report->any() && !o->orders.empty())

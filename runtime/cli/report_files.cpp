@@ -34,13 +34,20 @@ std::string find_on_path(const std::string& program) {
   return {};
 }
 
-// The PNG bytes of an SVG document, by rsvg-convert.
-std::string png_of(const std::string& svg, const std::string& target) {
+bool wants_png(const ReportTargets& targets) { return fs::path(targets.plot).extension() == ".png"; }
+
+std::string png_converter(const std::string& target) {
   const std::string converter = find_on_path("rsvg-convert");
   if (converter.empty())
     throw runtime::UsageError(fmt::format("--plot {}: writing PNG needs rsvg-convert (Debian package librsvg2-bin); install it, "
                                           "or write an .svg file instead",
                                           target));
+  return converter;
+}
+
+// The PNG bytes of an SVG document, by rsvg-convert.
+std::string png_of(const std::string& svg, const std::string& target) {
+  const std::string converter = png_converter(target);
   const fs::path dir = fs::temp_directory_path() / fmt::format("rheo-plot-{}", ::getpid());
   fs::create_directories(dir);
   const fs::path svg_file = dir / "plot.svg", png_file = dir / "plot.png";
@@ -73,11 +80,14 @@ void add_report_options(CLI::App& app, ReportTargets& targets, bool html_option)
                  "is no harmonic grid; .svg, or .png when rsvg-convert is installed");
 }
 
+void check_report_targets(const ReportTargets& targets) {
+  if (wants_png(targets)) png_converter(targets.plot);
+}
+
 void write_report_files(const runtime::report::ReportContent& content, const ReportTargets& targets) {
   if (!targets.plot.empty()) {
     const std::string svg = runtime::report::primary_figure_svg(content);
-    const bool png = fs::path(targets.plot).extension() == ".png";
-    runtime::write_output(targets.plot, png ? png_of(svg, targets.plot) : svg);
+    runtime::write_output(targets.plot, wants_png(targets) ? png_of(svg, targets.plot) : svg);
     if (targets.plot != "-") std::cerr << fmt::format("rheo: plot written to {}\n", targets.plot);
   }
   if (!targets.html.empty()) {

@@ -86,17 +86,19 @@ std::string with_trial(const std::string& fitted_text, const lang::CheckedModel&
   throw std::invalid_argument(fmt::format("model '{}' has no root element '{}' to replace", fitted.name, trial.replaces));
 }
 
-// Work of one evaluation of NETWORK in time steps, counted on one prediction: a time-stepped
-// harmonic point costs the cycles it took to its periodic state times the steps per cycle (ten
-// times that under IDA, whose steps solve a DAE with Newton iterations), a closed-form point 10,
-// a history sample 1. Counted, not timed, so that budgets, and results, do not depend on the
-// machine.
+// Work of one evaluation of NETWORK in fixed time steps of a nested network, counted on one
+// prediction: a time-stepped harmonic point costs the cycles it took to its periodic state
+// times the steps per cycle, a history sample one step, and a closed-form point 10. A step
+// under IDA (whose steps solve a DAE with Newton iterations) counts 10; a step of a network
+// whose elements all sit in the root parallel block counts 0.05 (its kernel is one update per
+// element, ~20 ns a step against 0.2-3 us for the nested tree solver; docs/performance.md).
+// Counted, not timed, so that budgets, and results, do not depend on the machine.
 double evaluation_work(const Network& network, const std::vector<FitDataSet>& data, const HarmonicOptions& options) {
-  const double step_cost = uses_sundials(network, options.solver) ? 10.0 : 1.0;
+  const double step_cost = uses_sundials(network, options.solver) ? 10.0 : network.topology().subtrees.empty() ? 0.05 : 1.0;
   double work = 0.0;
   for (const auto& set : data) {
     if (!set.is_harmonic()) {
-      work += static_cast<double>(set.history().force.size());
+      work += step_cost * static_cast<double>(set.history().force.size());
       continue;
     }
     for (const HarmonicPoint& point : predict(network, set, FitMethod::exact, options, nullptr).points)
@@ -198,6 +200,7 @@ Diagnosis diagnose(const ModelSource& source, const std::vector<FitDataSet>& dat
   }
   DiagnoseSettings s = settings;
   s.fit.score.method = FitMethod::exact;
+  s.fit.statistics = settings.standard_errors;
 
   Diagnosis d;
   const bool harmonic = std::any_of(data.begin(), data.end(), [](const FitDataSet& set) { return set.is_harmonic(); });
@@ -207,7 +210,6 @@ Diagnosis diagnose(const ModelSource& source, const std::vector<FitDataSet>& dat
   };
   stage(fmt::format("fitting model {}", source.model));
   d.before_program = base.program;
-  s.fit.statistics = false;  // not reported; a Jacobian costs 2 evaluations per parameter
   d.before = fit(Network::compile(*base.model), free, data, s.fit);
   d.gap_before = d.gap_after = fit_gap(d.before);
   d.residual_terms = residual_terms(data);
@@ -271,7 +273,8 @@ Diagnosis diagnose(const ModelSource& source, const std::vector<FitDataSet>& dat
   if (!d.interrupted) {
     stage("polishing the refined model");
     const int n = static_cast<int>(chosen->result.free.size());
-    const FitSettings polish = local_search(s.fit, affordable_evaluations(chosen->result.network, data, s, 2 * n + 1 + 20 * n));
+    FitSettings polish = local_search(s.fit, affordable_evaluations(chosen->result.network, data, s, 2 * n + 1 + 20 * n));
+    polish.statistics = settings.standard_errors;
     FitResult polished = fit(chosen->result.network, chosen->result.free, data, polish);
     d.interrupted = polished.interrupted;
     if (polished.objective <= chosen->result.objective) {

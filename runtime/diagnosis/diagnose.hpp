@@ -20,7 +20,7 @@
 //      10 % below and one 10 % above it; at the edge of the data a resonance is a relaxation's
 //      rising stiffness with one more parameter. None earns: the effect is `none` and nothing is added.
 //   5. Polish the chosen model: BOBYQA over every free parameter again with the refit's budget;
-//      gap_after is the polished model's.
+//      gap_after is the polished model's (with its standard errors when `standard_errors`).
 // The gap is err (eq. 6.1) over the harmonic points when there are any, else the RMS over the
 // history files of their RMS force residual relative to max|F_exp|.
 #pragma once
@@ -64,6 +64,9 @@ struct DiagnoseSettings {
   double refit_work = 3e6;
   int max_evaluations = 20000;
   int thorough_evaluations = 100;
+  // Standard errors of the model as fitted and of the refined one (reports show them); each
+  // costs 2 n + 1 evaluations, which for time-stepped models is seconds.
+  bool standard_errors = false;
   std::function<void(const std::string&)> stage;  // told what runs next ("refitting ..."); may be empty
 };
 

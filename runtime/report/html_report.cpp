@@ -26,6 +26,11 @@ figure { margin: 0; break-inside: avoid; }
 figure svg { display: block; width: 100%; height: auto; }
 figure.network svg { width: auto; max-width: 100%; }
 figcaption { color: #444; font-size: 0.9em; margin-top: 0.2em; }
+h3 { font-size: 1.08em; margin-top: 1.4em; }
+pre { background: #f6f6f6; padding: 0.5em 0.8em; overflow-x: auto; }
+tr.chosen td { font-weight: bold; }
+td.bar { width: 260px; }
+div.bar { height: 0.9em; background: #4a7ab5; min-width: 1px; print-color-adjust: exact; -webkit-print-color-adjust: exact; }
 @media print {
   body { max-width: none; margin: 0; font-size: 10pt; }
   .figures { grid-template-columns: 1fr 1fr; }
@@ -36,11 +41,6 @@ figcaption { color: #444; font-size: 0.9em; margin-top: 0.2em; }
 
 std::string number(double v) { return fmt::format("{:.6g}", v); }
 
-std::string figure(const std::string& kind, const std::string& svg, const std::string& caption) {
-  return fmt::format("<figure class=\"plot{}\" data-figure=\"{}\">\n{}<figcaption>{}</figcaption></figure>\n",
-                     kind == "network" ? " network" : "", kind, svg, escape(caption));
-}
-
 std::string summary(const ReportContent& c) {
   std::string out = "<h2 id=\"summary\">Summary</h2>\n";
   if (!c.harmonic.empty() || !c.histories.empty()) {
@@ -48,14 +48,18 @@ std::string summary(const ReportContent& c) {
     for (const HarmonicComparison& h : c.harmonic)
       out += fmt::format("<tr><td><code>{}</code></td><td>harmonic</td><td class=\"num\">{}</td><td>{}</td></tr>\n", escape(h.label),
                          h.amplitude.size(),
-                         h.measured() ? fmt::format("&phi; (5.1) = {:.6g}, err (6.1) = {:.4e}", h.phi, h.err) : "model only (no measurements)");
+                         h.measured() ? fmt::format("&phi; (5.1) = {:.6g}, err (6.1) = {:.4e}{}", h.phi, h.err,
+                                                    h.has_baseline() ? fmt::format(" (model before: {:.4e})", h.baseline_err) : "")
+                                      : "model only (no measurements)");
     for (const HistoryComparison& h : c.histories)
       out += fmt::format("<tr><td><code>{}</code></td><td>history</td><td class=\"num\">{}</td><td>{}</td></tr>\n", escape(h.label),
                          h.displacement.size(),
-                         h.measured() ? fmt::format("force residual RMS {:.3g} %, worst {:.3g} % of max |F|", 100.0 * h.rms, 100.0 * h.worst)
+                         h.measured() ? fmt::format("force residual RMS {:.3g} %, worst {:.3g} % of max |F|{}", 100.0 * h.rms, 100.0 * h.worst,
+                                                    h.has_baseline() ? fmt::format(" (model before: RMS {:.3g} %)", 100.0 * h.baseline_rms) : "")
                                       : "model only (no measurements)");
     out += "</table>\n";
   }
+  if (!c.baseline.empty()) out += fmt::format("<p class=\"meta\">Dashed curves: {}.</p>\n", escape(c.baseline));
   if (!c.notes.empty()) {
     out += "<ul class=\"notes\">\n";
     for (const std::string& note : c.notes) out += fmt::format("<li>{}</li>\n", escape(note));
@@ -88,20 +92,26 @@ std::string harmonic_section(const HarmonicComparison& h, std::size_t index) {
   static const char* const kinds[] = {"stiffness-frequency", "phase-frequency", "stiffness-amplitude", "phase-amplitude"};
   const std::vector<Plot> plots = harmonic_plots(h, prefix);
   for (std::size_t k = 0; k < plots.size(); ++k)
-    out += figure(kinds[k], render_svg(plots[k], false),
-                  h.measured() ? "Markers: measured; lines: model at the measured points." : "Model at the simulated grid points.");
+    out += figure_html(kinds[k], render_svg(plots[k], false),
+                  h.measured() ? (h.has_baseline() ? "Markers: measured; lines: refined model; dashed: model before, at the measured points."
+                                                   : "Markers: measured; lines: model at the measured points.")
+                               : "Model at the simulated grid points.");
+  static const char* const map_kinds[] = {"residual-stiffness", "residual-phase", "residual-stiffness-before", "residual-phase-before"};
   const std::vector<ResidualMap> maps = residual_maps(h);
   for (std::size_t k = 0; k < maps.size(); ++k)
-    out += figure(k == 0 ? "residual-stiffness" : "residual-phase", render_residual_map(maps[k], false),
-                  k == 0 ? "Red: model stiffer than measured; blue: softer." : "Red: model phase above measured; blue: below.");
+    out += figure_html(map_kinds[k], render_residual_map(maps[k], false),
+                  k % 2 == 0 ? "Red: model stiffer than measured; blue: softer." : "Red: model phase above measured; blue: below.");
   return out + "</div>\n";
 }
 
 std::string history_section(const HistoryComparison& h, std::size_t index) {
   const std::string id = fmt::format("t{}", index + 1);
   return fmt::format("<h2 id=\"{}\">History: <code>{}</code></h2>\n<div class=\"figures\">\n{}</div>\n", id, escape(h.label),
-                     figure("hysteresis", render_svg(hysteresis_plot(h, id + "-hysteresis"), false),
-                            h.measured() ? "Markers: measured; line: model driven by the measured displacement." : "Model response."));
+                     figure_html("hysteresis", render_svg(hysteresis_plot(h, id + "-hysteresis"), false),
+                            h.measured() ? (h.has_baseline() ? "Markers: measured; line: refined model; dashed: model before; "
+                                                               "both driven by the measured displacement."
+                                                             : "Markers: measured; line: model driven by the measured displacement.")
+                                         : "Model response."));
 }
 
 }  // namespace
@@ -115,7 +125,7 @@ std::string html_report(const ReportContent& c) {
                      escape(c.source), escape(c.origin));
   out += summary(c);
   out += "<h2 id=\"network\">Network</h2>\n" +
-         figure("network", network_diagram_svg(c.network, "Network of model " + c.model, false),
+         figure_html("network", network_diagram_svg(c.network, "Network of model " + c.model, false),
                 "Series chains run left to right, parallel branches are stacked; ground on the left, the drive u(t) on the right.");
   out += parameter_table(c);
   for (std::size_t k = 0; k < c.harmonic.size(); ++k) out += harmonic_section(c.harmonic[k], k);
@@ -123,6 +133,11 @@ std::string html_report(const ReportContent& c) {
   for (const ReportSection& s : c.sections)
     out += fmt::format("<section id=\"{}\">\n<h2>{}</h2>\n{}</section>\n", escape(s.id), escape(s.title), s.html);
   return out + "</body>\n</html>\n";
+}
+
+std::string figure_html(const std::string& kind, const std::string& svg, const std::string& caption) {
+  return fmt::format("<figure class=\"plot{}\" data-figure=\"{}\">\n{}<figcaption>{}</figcaption></figure>\n",
+                     kind.starts_with("network") ? " network" : "", escape(kind), svg, escape(caption));
 }
 
 }  // namespace rheo::runtime::report

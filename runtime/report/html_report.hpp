@@ -7,7 +7,8 @@
 // (report_figures.hpp); then ReportContent::sections (e.g. a diagnosis) in order.
 // Every figure is <figure class="plot" data-figure="KIND"> with KIND one of
 // stiffness-frequency, phase-frequency, stiffness-amplitude, phase-amplitude,
-// residual-stiffness, residual-phase, hysteresis, network.
+// residual-stiffness, residual-phase, residual-stiffness-before, residual-phase-before (with a
+// baseline), hysteresis, network. ReportContent::sections may add figures of their own kinds.
 #pragma once
 
 #include "runtime/report/report_content.hpp"
@@ -17,5 +18,9 @@
 namespace rheo::runtime::report {
 
 std::string html_report(const ReportContent& content);
+
+// One <figure class="plot" data-figure="KIND"> around an inline SVG, with its caption (escaped
+// here); for ReportSection::html.
+std::string figure_html(const std::string& kind, const std::string& svg, const std::string& caption);
 
 }  // namespace rheo::runtime::report

@@ -10,6 +10,7 @@
 #include <algorithm>
 #include <cmath>
 #include <numbers>
+#include <stdexcept>
 
 namespace rheo::runtime::report {
 namespace {
@@ -36,10 +37,10 @@ std::vector<double> column_of(const Table& table, const char* name) {
 void add_table(ReportContent& content, const std::string& label, const Table& table) {
   if (table.column("stiffness") >= 0 && table.column("phase") >= 0) {
     HarmonicComparison h{label, column_of(table, "amplitude"), column_of(table, "frequency"), column_of(table, "stiffness"),
-                         column_of(table, "phase"), {}, {}, 0.0, 0.0};
+                         column_of(table, "phase"), {}, {}, 0.0, 0.0, {}, {}, 0.0};
     content.harmonic.push_back(std::move(h));
   } else if (table.column("displacement") >= 0 && table.column("force") >= 0) {
-    content.histories.push_back({label, column_of(table, "displacement"), column_of(table, "force"), {}, 0.0, 0.0});
+    content.histories.push_back({label, column_of(table, "displacement"), column_of(table, "force"), {}, 0.0, 0.0, {}, 0.0});
   } else {
     throw DataError(fmt::format("{}: a report draws harmonic grids (stiffness, phase) and histories (displacement, force); {}",
                                 label, header_columns(table)));
@@ -48,7 +49,7 @@ void add_table(ReportContent& content, const std::string& label, const Table& ta
 
 void add_json(ReportContent& content, const std::string& label, const nlohmann::json& j) {
   if (j.contains("points")) {
-    HarmonicComparison h{label, {}, {}, {}, {}, {}, {}, 0.0, 0.0};
+    HarmonicComparison h{label, {}, {}, {}, {}, {}, {}, 0.0, 0.0, {}, {}, 0.0};
     for (const auto& p : j["points"]) {
       h.amplitude.push_back(p.at("amplitude").get<double>());
       h.frequency.push_back(p.at("frequency").get<double>());
@@ -57,7 +58,7 @@ void add_json(ReportContent& content, const std::string& label, const nlohmann::
     }
     content.harmonic.push_back(std::move(h));
   } else {
-    content.histories.push_back({label, j.at("displacement").get<std::vector<double>>(), j.at("force").get<std::vector<double>>(), {}, 0.0, 0.0});
+    content.histories.push_back({label, j.at("displacement").get<std::vector<double>>(), j.at("force").get<std::vector<double>>(), {}, 0.0, 0.0, {}, 0.0});
   }
 }
 
@@ -101,7 +102,7 @@ ReportContent report_from_fit(const FitResult& r, const std::vector<FitDataSet>&
 }
 
 HarmonicComparison compare_harmonic(const HarmonicData& data, const std::vector<HarmonicPoint>& model) {
-  HarmonicComparison h{data.path, data.amplitude, data.frequency, {}, {}, data.stiffness, data.phase, 0.0, 0.0};
+  HarmonicComparison h{data.path, data.amplitude, data.frequency, {}, {}, data.stiffness, data.phase, 0.0, 0.0, {}, {}, 0.0};
   for (const HarmonicPoint& p : model) {
     h.model_stiffness.push_back(p.measures.stiffness);
     h.model_phase.push_back(p.measures.phase);
@@ -113,7 +114,7 @@ HarmonicComparison compare_harmonic(const HarmonicData& data, const std::vector<
 }
 
 HistoryComparison compare_history(const HistoryData& data, const std::vector<double>& model_force) {
-  HistoryComparison h{data.path, data.drive.displacement, model_force, data.force, 0.0, 0.0};
+  HistoryComparison h{data.path, data.drive.displacement, model_force, data.force, 0.0, 0.0, {}, 0.0};
   double sum = 0.0;
   for (std::size_t j = 0; j < data.force.size() && j < model_force.size(); ++j) {
     const double r = (model_force[j] - data.force[j]) / data.force_scale;
@@ -122,6 +123,27 @@ HistoryComparison compare_history(const HistoryData& data, const std::vector<dou
   }
   h.rms = data.force.empty() ? 0.0 : std::sqrt(sum / static_cast<double>(data.force.size()));
   return h;
+}
+
+void add_baseline(ReportContent& content, const FitResult& earlier, const std::string& what) {
+  std::size_t harmonic = 0, history = 0;
+  for (const DataSetFit& set : earlier.datasets) {
+    if (set.harmonic) {
+      HarmonicComparison& h = content.harmonic.at(harmonic++);
+      if (set.prediction.points.size() != h.amplitude.size())
+        throw std::logic_error("add_baseline: the earlier fit's grid differs from the report's");
+      for (const HarmonicPoint& p : set.prediction.points) {
+        h.baseline_stiffness.push_back(p.measures.stiffness);
+        h.baseline_phase.push_back(p.measures.phase);
+      }
+      h.baseline_err = set.err;
+    } else {
+      HistoryComparison& h = content.histories.at(history++);
+      h.baseline_force = set.prediction.force;
+      h.baseline_rms = set.err;
+    }
+  }
+  content.baseline = what;
 }
 
 void add_simulation_result(ReportContent& content, const std::string& label, const std::string& rendered) {

@@ -21,7 +21,11 @@ struct HarmonicComparison {
   std::vector<double> amplitude, frequency, model_stiffness, model_phase;
   std::vector<double> measured_stiffness, measured_phase;  // empty: no measurements
   double phi = 0.0, err = 0.0;                             // eqs. 5.1, 6.1 when measured
+  // An earlier model at the same points (the model before a diagnosis added an element); empty: none.
+  std::vector<double> baseline_stiffness, baseline_phase;
+  double baseline_err = 0.0;
   bool measured() const { return !measured_stiffness.empty(); }
+  bool has_baseline() const { return !baseline_stiffness.empty(); }
 };
 
 // A time history: force over displacement, model and (when given) measured.
@@ -30,7 +34,10 @@ struct HistoryComparison {
   std::vector<double> displacement, model_force;
   std::vector<double> measured_force;  // empty: no measurements
   double rms = 0.0, worst = 0.0;       // (F - F_exp) / max|F_exp|: RMS and largest, when measured
+  std::vector<double> baseline_force;  // an earlier model's force; empty: none
+  double baseline_rms = 0.0;
   bool measured() const { return !measured_force.empty(); }
+  bool has_baseline() const { return !baseline_force.empty(); }
 };
 
 struct ParameterRow {
@@ -58,6 +65,7 @@ struct ReportContent {
   std::vector<HistoryComparison> histories;
   std::vector<std::string> notes;
   std::vector<ReportSection> sections;
+  std::string baseline;  // what the dashed curves are ("model before: ..."); empty: there are none
 };
 
 // The model's name, source, network and parameter values; no results yet.
@@ -69,6 +77,10 @@ ReportContent report_from_fit(const FitResult& result, const std::vector<FitData
 
 HarmonicComparison compare_harmonic(const HarmonicData& data, const std::vector<HarmonicPoint>& model);
 HistoryComparison compare_history(const HistoryData& data, const std::vector<double>& model_force);
+
+// Adds `earlier`'s predictions as the baseline of every data set of `content` (which must come
+// from report_from_fit on the same data, in order), described as `what`.
+void add_baseline(ReportContent& content, const FitResult& earlier, const std::string& what);
 
 // Adds a `rheo simulate` result (harmonic or time-history CSV or JSON as output.hpp writes it).
 void add_simulation_result(ReportContent& content, const std::string& label, const std::string& rendered);

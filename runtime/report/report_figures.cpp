@@ -42,16 +42,23 @@ Plot curves(const HarmonicComparison& g, const std::string& id, const std::strin
     const std::string group = fmt::format("{:g} {}", picked[c], along_frequency ? "mm" : "Hz");
     Series model{group + " model", group, static_cast<int>(c), SeriesStyle::line, {}, {}};
     Series measured{group + " measured", group, static_cast<int>(c), SeriesStyle::markers, {}, {}};
+    Series baseline{group + " model before", group, static_cast<int>(c), SeriesStyle::dashed, {}, {}};
     for (const std::size_t i : members) {
       model.x.push_back(along[i]);
       model.y.push_back(scale * (stiffness ? g.model_stiffness : g.model_phase).at(i));
+      if (g.has_baseline()) {
+        baseline.x.push_back(along[i]);
+        baseline.y.push_back(scale * (stiffness ? g.baseline_stiffness : g.baseline_phase).at(i));
+      }
       if (!g.measured()) continue;
       measured.x.push_back(along[i]);
       measured.y.push_back(scale * (stiffness ? g.measured_stiffness : g.measured_phase).at(i));
     }
     if (g.measured()) plot.series.push_back(std::move(measured));
+    if (g.has_baseline()) plot.series.push_back(std::move(baseline));
     plot.series.push_back(std::move(model));
   }
+  if (g.has_baseline()) plot.meaning[1] = "model refined", plot.meaning[2] = "model before";
   return plot;
 }
 
@@ -73,22 +80,37 @@ std::vector<Plot> harmonic_plots(const HarmonicComparison& g, const std::string&
 
 std::vector<ResidualMap> residual_maps(const HarmonicComparison& g) {
   if (!g.measured()) return {};
-  ResidualMap stiffness{"Stiffness residual K/K_exp - 1", "%", g.amplitude, g.frequency, {}};
-  ResidualMap phase{"Phase residual phase - phase_exp", "deg", g.amplitude, g.frequency, {}};
-  for (std::size_t i = 0; i < g.amplitude.size(); ++i) {
-    stiffness.value.push_back(100.0 * (g.model_stiffness.at(i) / g.measured_stiffness.at(i) - 1.0));
-    phase.value.push_back(kDegree * (g.model_phase.at(i) - g.measured_phase.at(i)));
+  const auto map_pair = [&](const std::vector<double>& k, const std::vector<double>& phase, const std::string& whose) {
+    std::vector<ResidualMap> maps{{"Stiffness residual K/K_exp - 1" + whose, "%", g.amplitude, g.frequency, {}, 0.0},
+                                  {"Phase residual phase - phase_exp" + whose, "deg", g.amplitude, g.frequency, {}, 0.0}};
+    for (std::size_t i = 0; i < g.amplitude.size(); ++i) {
+      maps[0].value.push_back(100.0 * (k.at(i) / g.measured_stiffness.at(i) - 1.0));
+      maps[1].value.push_back(kDegree * (phase.at(i) - g.measured_phase.at(i)));
+    }
+    return maps;
+  };
+  if (!g.has_baseline()) return map_pair(g.model_stiffness, g.model_phase, "");
+  std::vector<ResidualMap> maps = map_pair(g.model_stiffness, g.model_phase, ", refined");
+  for (ResidualMap& before : map_pair(g.baseline_stiffness, g.baseline_phase, ", before")) maps.push_back(std::move(before));
+  for (std::size_t k = 0; k < 2; ++k) {  // before and after on one colour scale
+    std::vector<double> both = maps[k].value;
+    both.insert(both.end(), maps[k + 2].value.begin(), maps[k + 2].value.end());
+    maps[k].limit = maps[k + 2].limit = color_scale_limit(both);
   }
-  return {stiffness, phase};
+  return maps;
 }
 
 Plot hysteresis_plot(const HistoryComparison& h, const std::string& id) {
   Plot plot{id, "Hysteresis: force over displacement", {"displacement [mm]", Scale::linear}, {"force [N]", Scale::linear}, {}};
   constexpr std::size_t kMarkers = 400, kLinePoints = 4000;
+  // One group alone keeps the legend to a single "history" entry; with more, each is named.
+  const bool alone = !h.measured() && !h.has_baseline();
+  const std::string model = h.has_baseline() ? "model refined" : "model";
   if (h.measured())
-    plot.series.push_back({"measured", "history", 0, SeriesStyle::markers, every(h.displacement, kMarkers), every(h.measured_force, kMarkers)});
-  plot.series.push_back({"model", "history", 1, SeriesStyle::line, every(h.displacement, kLinePoints), every(h.model_force, kLinePoints)});
-  if (h.measured()) plot.series.back().group = "model", plot.series.front().group = "measured";
+    plot.series.push_back({"measured", "measured", 0, SeriesStyle::markers, every(h.displacement, kMarkers), every(h.measured_force, kMarkers)});
+  if (h.has_baseline())
+    plot.series.push_back({"model before", "model before", 2, SeriesStyle::dashed, every(h.displacement, kLinePoints), every(h.baseline_force, kLinePoints)});
+  plot.series.push_back({model, alone ? "history" : model, 1, SeriesStyle::line, every(h.displacement, kLinePoints), every(h.model_force, kLinePoints)});
   return plot;
 }
 

@@ -6,6 +6,9 @@
 //   maps of stiffness (K/K_exp - 1, %) and phase (phase - phase_exp, deg).
 //   per history: the hysteresis loop, force over displacement (at most 400 measured markers
 //   and 4000 model points, evenly subsampled).
+// With a baseline (an earlier model, e.g. before a diagnosis added an element) each model curve
+// has a dashed twin for it, and the residual maps come twice: the model's, then the baseline's,
+// each pair on one colour scale.
 #pragma once
 
 #include "runtime/report/report_content.hpp"
@@ -22,7 +25,7 @@ inline constexpr std::size_t kMaxCurves = 8;
 // Ids are `prefix` + "-stiffness-frequency", "-phase-frequency", "-stiffness-amplitude",
 // "-phase-amplitude", in this order.
 std::vector<Plot> harmonic_plots(const HarmonicComparison& grid, const std::string& prefix);
-// Stiffness then phase; none without measurements.
+// Stiffness then phase (then stiffness and phase of the baseline); none without measurements.
 std::vector<ResidualMap> residual_maps(const HarmonicComparison& grid);
 Plot hysteresis_plot(const HistoryComparison& history, const std::string& id);
 

@@ -77,7 +77,7 @@ std::string diverging_color(double v, double limit) {
 
 std::string render_residual_map(const ResidualMap& map, bool standalone) {
   const std::vector<double> frequencies = distinct(map.frequency), amplitudes = distinct(map.amplitude);
-  const double limit = color_scale_limit(map.value);
+  const double limit = map.limit > 0.0 ? map.limit : color_scale_limit(map.value);
   const double cw = kGridWidth / static_cast<double>(std::max<std::size_t>(frequencies.size(), 1));
   const double ch = kGridHeight / static_cast<double>(std::max<std::size_t>(amplitudes.size(), 1));
   std::string out = svg_open(kWidth, kHeight, standalone, map.title);

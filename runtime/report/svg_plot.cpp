@@ -64,9 +64,21 @@ std::string marker(int color, double x, double y) {
   }
 }
 
+const char* style_name(SeriesStyle style) {
+  switch (style) {
+    case SeriesStyle::markers: return "markers";
+    case SeriesStyle::line: return "line";
+    default: return "dashed";
+  }
+}
+
+std::string line_svg(double x, double y, const char* color, SeriesStyle style) {
+  return fmt::format("<line x1=\"{}\" y1=\"{}\" x2=\"{}\" y2=\"{}\" stroke=\"{}\" stroke-width=\"1.8\"{}/>", x, y, x + 22, y, color,
+                     style == SeriesStyle::dashed ? " stroke-dasharray=\"5 3\"" : "");
+}
+
 std::string series_svg(const Series& s, const Range& xr, const Range& yr) {
-  std::string out = fmt::format("<g class=\"series\" data-name=\"{}\" data-style=\"{}\">", escape(s.name),
-                                s.style == SeriesStyle::markers ? "markers" : "line");
+  std::string out = fmt::format("<g class=\"series\" data-name=\"{}\" data-style=\"{}\">", escape(s.name), style_name(s.style));
   const char* color = palette_color(s.color);
   std::string path;
   bool pen_down = false;
@@ -87,7 +99,8 @@ std::string series_svg(const Series& s, const Range& xr, const Range& yr) {
   if (s.style == SeriesStyle::markers)
     out += fmt::format("<path d=\"{}\" fill=\"{}\" fill-opacity=\"0.8\" stroke=\"{}\" stroke-width=\"0.8\"/>", path, color, color);
   else
-    out += fmt::format("<path d=\"{}\" fill=\"none\" stroke=\"{}\" stroke-width=\"1.8\" stroke-linejoin=\"round\"/>", path, color);
+    out += fmt::format("<path d=\"{}\" fill=\"none\" stroke=\"{}\" stroke-width=\"{}\" stroke-linejoin=\"round\"{}/>", path, color,
+                       s.style == SeriesStyle::dashed ? "1.5" : "1.8", s.style == SeriesStyle::dashed ? " stroke-dasharray=\"6 4\"" : "");
   return out + "</g>\n";
 }
 
@@ -116,30 +129,36 @@ std::string axes_svg(const Plot& plot, const Range& xr, const Range& yr) {
 std::string legend_svg(const Plot& plot) {
   struct Entry {
     const Series* first;
-    bool markers = false, lines = false;
+    bool has[3] = {false, false, false};  // by SeriesStyle
   };
   std::vector<Entry> groups;
-  bool paired = false;  // some group has both: explain the styles
+  bool has_style[3] = {false, false, false};
+  bool paired = false;  // some group has two styles: explain them
   for (const Series& s : plot.series) {
     auto it = std::find_if(groups.begin(), groups.end(), [&](const Entry& g) { return g.first->group == s.group; });
     if (it == groups.end()) it = groups.insert(groups.end(), Entry{&s});
-    (s.style == SeriesStyle::markers ? it->markers : it->lines) = true;
-    paired = paired || (it->markers && it->lines);
+    const auto style = static_cast<std::size_t>(s.style);
+    it->has[style] = has_style[style] = true;
+    paired = paired || (it->has[0] + it->has[1] + it->has[2] > 1);
   }
   std::string out = "<g class=\"legend\">";
   const double x = kLeft + kPlotWidth + 14;
   double y = kTop + 8;
   for (const Entry& g : groups) {
     const char* color = palette_color(g.first->color);
-    if (g.lines) out += fmt::format("<line x1=\"{}\" y1=\"{}\" x2=\"{}\" y2=\"{}\" stroke=\"{}\" stroke-width=\"1.8\"/>", x, y, x + 22, y, color);
-    if (g.markers) out += fmt::format("<path d=\"{}\" fill=\"{}\" stroke=\"{}\"/>", marker(g.first->color, x + 11, y), color, color);
+    if (g.has[1] || g.has[2]) out += line_svg(x, y, color, g.has[1] ? SeriesStyle::line : SeriesStyle::dashed);
+    if (g.has[0]) out += fmt::format("<path d=\"{}\" fill=\"{}\" stroke=\"{}\"/>", marker(g.first->color, x + 11, y), color, color);
     out += fmt::format("<text x=\"{}\" y=\"{}\">{}</text>", x + 28, coordinate(y + 4.5), escape(g.first->group));
     y += 19;
   }
   if (paired) {
     y += 8;
-    out += fmt::format("<text x=\"{}\" y=\"{}\" fill=\"#444\">markers: measured</text>", x, coordinate(y + 4.5));
-    out += fmt::format("<text x=\"{}\" y=\"{}\" fill=\"#444\">lines: model</text>", x, coordinate(y + 22));
+    for (const SeriesStyle style : {SeriesStyle::markers, SeriesStyle::line, SeriesStyle::dashed}) {
+      const auto k = static_cast<std::size_t>(style);
+      if (!has_style[k]) continue;
+      out += fmt::format("<text x=\"{}\" y=\"{}\" fill=\"#444\">{}: {}</text>", x, coordinate(y + 4.5), style_name(style), escape(plot.meaning[k]));
+      y += 17.5;
+    }
   }
   return out + "</g>\n";
 }
@@ -166,7 +185,7 @@ std::string render_svg(const Plot& plot, bool standalone) {
   out += axes_svg(plot, xr, yr);
   out += fmt::format("<g clip-path=\"url(#clip-{})\">\n", escape(plot.id));
   for (const Series& s : plot.series)
-    if (s.style == SeriesStyle::line) out += series_svg(s, xr, yr);
+    if (s.style != SeriesStyle::markers) out += series_svg(s, xr, yr);
   for (const Series& s : plot.series)  // markers over lines
     if (s.style == SeriesStyle::markers) out += series_svg(s, xr, yr);
   out += "</g>\n" + legend_svg(plot) + "</svg>\n";

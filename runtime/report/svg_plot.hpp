@@ -1,9 +1,11 @@
 // A line/scatter plot as hand-written SVG: linear or logarithmic axes with ticks
 // (axis_ticks.hpp), axis labels with units, grid, legend. Measured data are drawn as markers,
-// model results as lines; series of one group (e.g. one amplitude) share colour and marker
-// shape, so measured and model of a group read as a pair. Every series is one
-// <g class="series" data-name="..." data-style="markers|line">, so that tests and scripts can
-// count them. Non-finite points are skipped (a line breaks there); on a log axis so are
+// model results as lines, an earlier model (before a diagnosis) as dashed lines; series of one
+// group (e.g. one amplitude) share colour and marker shape, so measured and model of a group
+// read as a pair. When a group has more than one style the legend says what each style means
+// (Plot::meaning). Every series is one
+// <g class="series" data-name="..." data-style="markers|line|dashed">, so that tests and scripts
+// can count them. Non-finite points are skipped (a line breaks there); on a log axis so are
 // values <= 0. The plot is 640 x 400 user units and scales to its container's width.
 #pragma once
 
@@ -19,7 +21,7 @@ struct Axis {
   Scale scale = Scale::linear;
 };
 
-enum class SeriesStyle { markers, line };
+enum class SeriesStyle { markers, line, dashed };
 
 struct Series {
   std::string name;   // "measured 0.2 mm"
@@ -34,6 +36,8 @@ struct Plot {
   std::string title;
   Axis x, y;
   std::vector<Series> series;
+  // What each style stands for, in the legend's key (markers, line, dashed).
+  std::string meaning[3] = {"measured", "model", "model before"};
 };
 
 // `standalone`: a complete SVG document (XML prolog, xmlns) for a file of its own; otherwise an

@@ -6,9 +6,8 @@
 // values and in which branch carries the effect, so that no threshold is tuned to one case.
 #include "runtime/diagnosis/diagnose.hpp"
 
+#include "diagnosis_support.hpp"
 #include "runtime/drives.hpp"
-#include "runtime/harmonic.hpp"
-#include "support.hpp"
 
 #include <doctest/doctest.h>
 #include <fmt/format.h>
@@ -17,60 +16,11 @@
 
 using namespace rheo;
 namespace dx = runtime::diagnosis;
+using test::diagnose;
+using test::harmonic_measurement;
+using test::history_measurement;
 
 namespace {
-
-const std::vector<double> kAmplitudes{0.05, 0.1, 0.2, 0.5, 1.0, 2.0};  // mm
-const std::vector<double> kFrequencies{1, 2, 5, 10, 20, 40};            // Hz
-
-runtime::HarmonicOptions simulation_options() {
-  runtime::HarmonicOptions o;
-  o.steps_per_cycle = 256;
-  o.solver = runtime::SolverChoice::fixed;
-  o.threads = 2;
-  return o;
-}
-
-runtime::FitDataSet harmonic_measurement(const std::string& truth, unsigned seed, const std::vector<double>& amplitudes = kAmplitudes) {
-  const runtime::Network network = test::network_from(truth, "truth");
-  const auto points = runtime::simulate_harmonic_grid(network, amplitudes, kFrequencies, simulation_options());
-  std::mt19937 random(seed);
-  std::normal_distribution<double> normal(0.0, 1.0);
-  runtime::HarmonicData d;
-  d.path = "hidden.csv";
-  for (const auto& p : points) {
-    d.amplitude.push_back(p.amplitude);
-    d.frequency.push_back(p.frequency);
-    d.stiffness.push_back(p.measures.stiffness * (1.0 + 0.01 * normal(random)));
-    d.phase.push_back(p.measures.phase + 0.15 * std::numbers::pi / 180.0 * normal(random));
-    d.rows.push_back(static_cast<int>(d.rows.size()) + 2);
-  }
-  return {d.path, 1.0, d};
-}
-
-runtime::FitDataSet history_measurement(const std::string& truth, const runtime::Drive& drive, unsigned seed) {
-  const runtime::Network network = test::network_from(truth, "truth");
-  const runtime::History h = runtime::run_history(network, drive, false, runtime::SolverChoice::fixed);
-  double scale = 0.0;
-  for (double f : h.force) scale = std::max(scale, std::abs(f));
-  std::mt19937 random(seed);
-  std::normal_distribution<double> normal(0.0, 1.0);
-  runtime::HistoryData d;
-  d.path = "hidden_history.csv";
-  d.drive = drive;
-  for (double f : h.force) d.force.push_back(f + 0.003 * scale * normal(random)), d.rows.push_back(static_cast<int>(d.rows.size()) + 2);
-  d.force_scale = 0.0;
-  for (double f : d.force) d.force_scale = std::max(d.force_scale, std::abs(f));
-  return {d.path, 1.0, d};
-}
-
-dx::Diagnosis diagnose(const std::string& start, const std::vector<runtime::FitDataSet>& data) {
-  dx::DiagnoseSettings s;
-  s.fit.score.harmonic = simulation_options();
-  s.fit.score.harmonic.steps_per_cycle = 128;
-  s.fit.score.harmonic.tolerance = 1e-6;
-  return dx::diagnose({"start.rheo", start, "start"}, data, s);
-}
 
 // Every candidate's screening and refit, for the failure message.
 std::string candidates(const dx::Diagnosis& d) {

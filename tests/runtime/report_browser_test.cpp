@@ -2,7 +2,8 @@
 // installed by .ci/install-deps) loads it from disk with the network unreachable, and the DOM
 // it dumps must hold every figure with the expected number of series and reference nothing
 // outside the page; the browser's log must show no console message (uncaught errors included). A screenshot is kept as the test artifact
-// (BUILD_DIR/test-artifacts/specimen_d_report.png; the path is printed). Without chromium the
+// (BUILD_DIR/test-artifacts/specimen_d_report.png and diagnose_report.png, a `rheo diagnose`
+// report; the paths are printed). Without chromium the
 // test says it is skipped and passes.
 #include "lang/frontend.hpp"
 #include "runtime/harmonic_data.hpp"
@@ -154,4 +155,39 @@ TEST_CASE("report in a browser: headless chromium renders every figure with its 
   REQUIRE(fs::exists(screenshot));
   CHECK(fs::file_size(screenshot) > 50000);
   MESSAGE(fmt::format("screenshot of the rendered report: {}", screenshot.string()));
+}
+
+TEST_CASE("report in a browser: a diagnosis report draws the model before dashed beside the refined one, without errors") {
+  const fs::path dir = artifacts();
+  const fs::path model = dir / "diagnose_linear.rheo", html = dir / "diagnose_report.html";
+  std::ofstream(model) << "model linear {\n  spring k0 (k = 300 N/mm in [10, 10000])\n"
+                          "  friction f1 (k = 200 N/mm in [1, 10000], uy = 100 um in [0.1, 10000])\n}\n";
+  const auto made = rheo::test::run_rheo(fmt::format("diagnose {} --data {}/specimen_D_static.csv --report {}", model.string(), RHEO_DATA_DIR,
+                                                     html.string()));
+  CAPTURE(made.err);
+  REQUIRE(made.code == 0);
+  if (!fs::exists(kChromium)) {
+    MESSAGE("SKIPPED: chromium not installed (install it with .ci/install-deps)");
+    return;
+  }
+  const fs::path dom_file = dir / "diagnose_report.dom.html", log_file = dir / "diagnose_report.chromium.log";
+  REQUIRE(chromium("--dump-dom", html, dom_file, log_file) == 0);
+  const std::string dom = rheo::test::read_file(dom_file.string());
+  const std::vector<std::string> problems = page_problems(rheo::test::read_file(log_file.string()));
+  CHECK_MESSAGE(problems.empty(), fmt::format("chromium reported: {}", problems.empty() ? "" : problems.front()));
+  for (const char* reference : {"<script", "src=", "href=", "http", "@import"}) CHECK(dom.find(reference) == std::string::npos);
+  // Figures in page order: the refined network, the loop (measured, model before, refined), the network before.
+  const auto series = figures(dom, "class=\"series\"");
+  REQUIRE(series.size() == 3);
+  CHECK(series[0] == std::pair<std::string, std::size_t>{"network", 0});
+  CHECK(series[1] == std::pair<std::string, std::size_t>{"hysteresis", 3});
+  CHECK(series[2] == std::pair<std::string, std::size_t>{"network-before", 0});
+  CHECK(count(dom, "data-style=\"dashed\"") == 1);
+  CHECK(dom.find("<h2>Diagnosis</h2>") != std::string::npos);
+  const fs::path screenshot = dir / "diagnose_report.png";
+  fs::remove(screenshot);
+  CHECK(chromium(fmt::format("--screenshot='{}' --window-size=1280,3600 --hide-scrollbars", screenshot.string()), html,
+                 dir / "diagnose_screenshot.out", dir / "diagnose_screenshot.log") == 0);
+  CHECK(fs::exists(screenshot));
+  MESSAGE(fmt::format("screenshot of the rendered diagnosis report: {}", screenshot.string()));
 }

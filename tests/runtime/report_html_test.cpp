@@ -27,7 +27,7 @@ runtime::report::ReportContent sample_content() {
       grid.measured_stiffness.push_back(1.01 * grid.model_stiffness.back()), grid.measured_phase.push_back(grid.model_phase.back() + 0.01);
     }
   content.harmonic.push_back(grid);
-  content.histories.push_back({"data/loop.csv", {0, 1, 0, -1, 0}, {0, 100, 10, -100, -10}, {0, 98, 12, -99, -11}, 0.01, 0.02});
+  content.histories.push_back({"data/loop.csv", {0, 1, 0, -1, 0}, {0, 100, 10, -100, -10}, {0, 98, 12, -99, -11}, 0.01, 0.02, {}, 0.0});
   content.sections.push_back({"gap", "Gap before and after", "<p>before 1e-2, after 1e-3</p>"});
   return content;
 }
@@ -62,6 +62,37 @@ TEST_CASE("report html: names are escaped; parameters with units and bounds; err
   CHECK(html.find("N*s/mm") != std::string::npos);
   CHECK(html.find("err (6.1) = ") != std::string::npos);
   CHECK(html.find("force residual RMS 1 %, worst 2 %") != std::string::npos);
+}
+
+TEST_CASE("report html: a baseline (the model before a diagnosis) adds dashed curves and its residual maps on the same colour scale") {
+  runtime::report::ReportContent content = sample_content();
+  runtime::report::HarmonicComparison& grid = content.harmonic.front();
+  for (std::size_t i = 0; i < grid.amplitude.size(); ++i) {
+    grid.baseline_stiffness.push_back(0.9 * grid.measured_stiffness[i]);  // 10 % soft: the before map spans -10 %
+    grid.baseline_phase.push_back(grid.measured_phase[i] - 0.05);
+  }
+  grid.baseline_err = 0.07;
+  content.histories.front().baseline_force = {0, 80, 0, -80, 0};
+  content.histories.front().baseline_rms = 0.12;
+  content.baseline = "model kv as given, fitted";
+  const std::string html = runtime::report::html_report(content);
+  CHECK(count(html, "<figure") == 10);  // and the two maps of the baseline
+  for (const char* kind : {"residual-stiffness-before", "residual-phase-before"}) CHECK(count(html, fmt::format("data-figure=\"{}\"", kind)) == 1);
+  // Per curve a dashed twin: 3 amplitudes x 2 plots + 4 frequencies x 2 plots, and one loop.
+  CHECK(count(html, "data-style=\"dashed\"") == 2 * (3 + 4) + 1);
+  CHECK(count(html, "class=\"cell\"") == 4 * 12);
+  CHECK(html.find("Dashed curves: model kv as given, fitted.") != std::string::npos);
+  CHECK(html.find("(model before: 7.0000e-02)") != std::string::npos);
+  CHECK(html.find("(model before: RMS 12 %)") != std::string::npos);
+  // Both stiffness maps end their colour scale at 10 % (the baseline's largest residual), so
+  // the refined model's 1 % cells are pale where the baseline's are saturated.
+  const auto maps = runtime::report::residual_maps(grid);
+  REQUIRE(maps.size() == 4);
+  CHECK(maps[0].limit == doctest::Approx(10.0));
+  CHECK(maps[2].limit == doctest::Approx(10.0));
+  CHECK(maps[1].limit == maps[3].limit);
+  CHECK(maps[2].title.find("before") != std::string::npos);
+  CHECK(test::xml_problem(html.substr(html.find("<body>"), html.find("</body>") + 7 - html.find("<body>"))) == "");
 }
 
 TEST_CASE("report figures: at most 8 curves, spread over the values; the primary figure is standalone") {

@@ -1,0 +1,74 @@
+// Measurements with a known truth for the diagnose tests: data simulated from a model given as
+// text, with the noise of examples/data (stiffness x (1 + 0.01 N(0,1)), phase + 0.15 deg
+// N(0,1); histories: force + 0.003 max|F| N(0,1)), and diagnose() with the tests' settings.
+#pragma once
+
+#include "runtime/diagnosis/diagnose.hpp"
+#include "runtime/harmonic.hpp"
+#include "runtime/drives.hpp"
+#include "support.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+#include <random>
+#include <string>
+#include <vector>
+
+namespace rheo::test {
+
+inline const std::vector<double> kAmplitudes{0.05, 0.1, 0.2, 0.5, 1.0, 2.0};  // mm
+inline const std::vector<double> kFrequencies{1, 2, 5, 10, 20, 40};            // Hz
+
+inline rheo::runtime::HarmonicOptions simulation_options() {
+  rheo::runtime::HarmonicOptions o;
+  o.steps_per_cycle = 256;
+  o.solver = rheo::runtime::SolverChoice::fixed;
+  o.threads = 2;
+  return o;
+}
+
+inline rheo::runtime::FitDataSet harmonic_measurement(const std::string& truth, unsigned seed, const std::vector<double>& amplitudes = kAmplitudes) {
+  const rheo::runtime::Network network = network_from(truth, "truth");
+  const auto points = rheo::runtime::simulate_harmonic_grid(network, amplitudes, kFrequencies, simulation_options());
+  std::mt19937 random(seed);
+  std::normal_distribution<double> normal(0.0, 1.0);
+  rheo::runtime::HarmonicData d;
+  d.path = "hidden.csv";
+  for (const auto& p : points) {
+    d.amplitude.push_back(p.amplitude);
+    d.frequency.push_back(p.frequency);
+    d.stiffness.push_back(p.measures.stiffness * (1.0 + 0.01 * normal(random)));
+    d.phase.push_back(p.measures.phase + 0.15 * std::numbers::pi / 180.0 * normal(random));
+    d.rows.push_back(static_cast<int>(d.rows.size()) + 2);
+  }
+  return {d.path, 1.0, d};
+}
+
+inline rheo::runtime::FitDataSet history_measurement(const std::string& truth, const rheo::runtime::Drive& drive, unsigned seed) {
+  const rheo::runtime::Network network = network_from(truth, "truth");
+  const rheo::runtime::History h = rheo::runtime::run_history(network, drive, false, rheo::runtime::SolverChoice::fixed);
+  double scale = 0.0;
+  for (double f : h.force) scale = std::max(scale, std::abs(f));
+  std::mt19937 random(seed);
+  std::normal_distribution<double> normal(0.0, 1.0);
+  rheo::runtime::HistoryData d;
+  d.path = "hidden_history.csv";
+  d.drive = drive;
+  for (double f : h.force) d.force.push_back(f + 0.003 * scale * normal(random)), d.rows.push_back(static_cast<int>(d.rows.size()) + 2);
+  d.force_scale = 0.0;
+  for (double f : d.force) d.force_scale = std::max(d.force_scale, std::abs(f));
+  return {d.path, 1.0, d};
+}
+
+inline rheo::runtime::diagnosis::Diagnosis diagnose(const std::string& start, const std::vector<rheo::runtime::FitDataSet>& data,
+                                                    bool standard_errors = false) {
+  rheo::runtime::diagnosis::DiagnoseSettings s;
+  s.standard_errors = standard_errors;
+  s.fit.score.harmonic = simulation_options();
+  s.fit.score.harmonic.steps_per_cycle = 128;
+  s.fit.score.harmonic.tolerance = 1e-6;
+  return rheo::runtime::diagnosis::diagnose({"start.rheo", start, "start"}, data, s);
+}
+
+}  // namespace rheo::test
