@@ -37,7 +37,7 @@ struct Plot {
   Axis x, y;
   std::vector<Series> series;
   // What each style stands for, in the legend's key (markers, line, dashed).
-  std::string meaning[3] = {"measured", "model", "model before"};
+  std::string meaning[3] = {"measured", "model", "before"};  // at most ~14 characters: the legend column is narrow
 };
 
 // `standalone`: a complete SVG document (XML prolog, xmlns) for a file of its own; otherwise an

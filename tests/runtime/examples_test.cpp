@@ -152,3 +152,25 @@ TEST_CASE("hydrobushing: a coupled topology fits with err (6.1) over 3 times low
   CHECK(err_uncoupled > 3.0 * err_coupled);
   CHECK(err_uncoupled > 0.015);  // the uncoupled structure cannot follow the coupling: well above the 1 % noise
 }
+
+// The end of docs/tutorial.md section 8: without being told the topology, rheo diagnose finds
+// the coupling the uncoupled model misses, adds a slider-capped fluid column and refits.
+TEST_CASE("hydrobushing: rheo diagnose names the uncoupled model's missing coupling and the gap falls over 3 times") {
+  const fs::path dir = scratch();
+  const fs::path summary = dir / "diagnose.json", refined = dir / "hydro_refined.rheo";
+  REQUIRE(rheo_run(fmt::format("diagnose {} --block 1 --threads 2 --json -o {} > {}", example("hydrobushing_fit.rheo"), refined.string(),
+                               summary.string())) == 0);
+  std::ifstream in(summary);
+  const auto j = nlohmann::json::parse(in);
+  const double before = j["err_before"].get<double>(), after = j["err_after"].get<double>();
+  MESSAGE(fmt::format("hydrobushing diagnose: {}, err (6.1) {:.4e} -> {:.4e} ({:.2f} times lower)", j["effect"].get<std::string>(), before,
+                      after, before / after));
+  CHECK(j["effect"] == "coupled-amplitude-frequency");
+  CHECK(before == doctest::Approx(2.3752e-2).epsilon(0.01));  // the uncoupled fit of block 1
+  CHECK(after <= before / 3.0);
+  REQUIRE(j["added"].size() == 1);
+  const std::string statement = j["added"][0]["statement"].dump();
+  CHECK(statement.find("slider") != std::string::npos);
+  CHECK(statement.find("inerter") != std::string::npos);
+  CHECK(rheo_run(fmt::format("check {} > /dev/null", refined.string())) == 0);
+}

@@ -40,15 +40,15 @@ TEST_CASE("report svg plot: one group element per series, well-formed, labelled 
 TEST_CASE("report svg plot: a dashed series (the model before) is drawn dashed and the legend says what each style means") {
   Plot plot = two_groups();
   plot.series.push_back({"0.2 mm model before", "0.2 mm", 0, SeriesStyle::dashed, {1, 10, 100}, {1300, 1350, 1400}});
-  plot.meaning[1] = "model refined";
+  plot.meaning[1] = "refined";
   const std::string svg = render_svg(plot, true);
   CHECK(xml_problem(svg) == "");
   CHECK(count(svg, "data-style=\"dashed\"") == 1);
   const auto dashed = svg.find("data-style=\"dashed\"");
   CHECK(svg.substr(dashed, svg.find("</g>", dashed) - dashed).find("stroke-dasharray") != std::string::npos);
   CHECK(svg.find("markers: measured") != std::string::npos);
-  CHECK(svg.find("line: model refined") != std::string::npos);
-  CHECK(svg.find("dashed: model before") != std::string::npos);
+  CHECK(svg.find("line: refined") != std::string::npos);
+  CHECK(svg.find("dashed: before") != std::string::npos);
   // Without a dashed series the key names only the styles present.
   CHECK(render_svg(two_groups(), true).find("dashed:") == std::string::npos);
 }
