@@ -43,6 +43,10 @@ void require_effect(const dx::Diagnosis& d, dx::Effect effect) {
   CHECK(d.refined_text.find("added by rheo diagnose: " + std::string(dx::effect_name(effect))) != std::string::npos);
 }
 
+// History cases also require the refined model to reach the noise: the force noise (0.003
+// max|F|) sets the RMS force residual a right model leaves, so 0.0036 allows 20 % for the fit.
+void require_noise_floor(const dx::Diagnosis& d) { CHECK(d.gap_after <= 1.2 * 0.003); }
+
 void require_none(const dx::Diagnosis& d) {
   MESSAGE("named " << dx::effect_name(d.effect) << ", gap " << d.gap_before << " -> " << d.gap_after << "; candidates (BIC before "
                     << d.criterion_before << "):" << candidates(d));
@@ -152,7 +156,9 @@ TEST_CASE("diagnose, static loops: a Yeoh law behind the loops is nonlinear-elas
   const std::string start =
       "model start {\n  spring r (k = 300 N/mm in [10, 10000])\n  friction f (k = 100 N/mm in [1, 10000], uy = 20 um in [0.1, 10000])\n}\n";
   const runtime::Drive drive = runtime::static_triangle({5.0, 2.5, 1.0}, 0.05, 1, 400);
-  require_effect(diagnose(start, {history_measurement(truth, drive, 9)}), dx::Effect::nonlinear_elasticity);
+  const dx::Diagnosis d = diagnose(start, {history_measurement(truth, drive, 9)});
+  require_effect(d, dx::Effect::nonlinear_elasticity);
+  require_noise_floor(d);
 }
 
 TEST_CASE("diagnose, quasi-static sine: a missing friction element is amplitude-dependence") {
@@ -160,7 +166,9 @@ TEST_CASE("diagnose, quasi-static sine: a missing friction element is amplitude-
   const std::string start =
       "model start {\n  spring s (k = 300 N/mm in [10, 10000])\n  maxwell m (k = 50 N/mm in [1, 10000], tau = 100 ms in [0.01, 100000])\n}\n";
   const runtime::Drive drive = runtime::quasistatic_sine({2.0, 1.0, 0.5}, 0.1, 2, 400);
-  require_effect(diagnose(start, {history_measurement(truth, drive, 10)}), dx::Effect::amplitude_dependence);
+  const dx::Diagnosis d = diagnose(start, {history_measurement(truth, drive, 10)});
+  require_effect(d, dx::Effect::amplitude_dependence);
+  require_noise_floor(d);
 }
 
 TEST_CASE("diagnose, sine history: a missing Maxwell element is rate-dependence") {
@@ -168,7 +176,9 @@ TEST_CASE("diagnose, sine history: a missing Maxwell element is rate-dependence"
   const std::string start =
       "model start {\n  spring s (k = 300 N/mm in [10, 10000])\n  friction f (k = 100 N/mm in [1, 10000], uy = 20 um in [0.1, 10000])\n}\n";
   const runtime::Drive drive = runtime::quasistatic_sine({1.0, 0.5}, 1.0, 3, 400);
-  require_effect(diagnose(start, {history_measurement(truth, drive, 11)}), dx::Effect::rate_dependence);
+  const dx::Diagnosis d = diagnose(start, {history_measurement(truth, drive, 11)});
+  require_effect(d, dx::Effect::rate_dependence);
+  require_noise_floor(d);
 }
 
 TEST_CASE("diagnose, static loops the model already explains give none") {
