@@ -21,7 +21,13 @@ void BM_Hydrobushing_CoupledGrid_Threads(benchmark::State& state) {
   options.steps_per_cycle = 128;
   options.tolerance = 1e-6;
   options.threads = static_cast<int>(state.range(0));
-  for (auto _ : state) benchmark::DoNotOptimize(runtime::simulate_at(network, data.harmonic(), options));
+  std::vector<runtime::HarmonicPoint> points;
+  for (auto _ : state) benchmark::DoNotOptimize(points = runtime::simulate_at(network, data.harmonic(), options));
+  double cycles = 0.0;
+  for (const auto& p : points) cycles += p.cycles;
+  state.counters["cycles_per_point"] = cycles / static_cast<double>(points.size());
+  state.counters["time_per_step"] = benchmark::Counter(cycles * options.steps_per_cycle,
+                                                     benchmark::Counter::kIsIterationInvariantRate | benchmark::Counter::kInvert);
 }
 
 void BM_SpecimenD_Fit_Threads(benchmark::State& state) {

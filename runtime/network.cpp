@@ -166,6 +166,11 @@ struct TreeBuilder {
     node.linear = proto.kind == NodeKind::spring || proto.kind == NodeKind::dashpot || proto.kind == NodeKind::maxwell ||
                   proto.kind == NodeKind::inerter || proto.is_block();
     for (int k : kids) node.linear &= topology.nodes[static_cast<std::size_t>(k)].linear;
+    node.capped_linear = proto.kind == NodeKind::series && !node.linear;
+    for (int k : kids) {
+      const TreeNode& kid = topology.nodes[static_cast<std::size_t>(k)];
+      node.capped_linear &= kid.linear || kid.kind == NodeKind::friction || kid.kind == NodeKind::slider;
+    }
     switch (proto.kind) {
       case NodeKind::slider: node.rigid_when_stuck = true; break;
       case NodeKind::parallel:

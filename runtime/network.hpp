@@ -59,6 +59,9 @@ struct TreeNode {
   bool rigid_when_stuck = false;  // force is set-valued at zero elongation rate (sliders)
   bool drive_prescribed = false;  // an inerter in the root block: its elongation is the drive
   bool linear = false;            // only springs, dashpots, Maxwell elements and inerters below
+  // A series chain of linear members, friction elements and sliders (not all sliders): its
+  // step relation is F = clamp(F0 + S de, cap), solved without iteration (tree_solver.hpp).
+  bool capped_linear = false;
 };
 
 // What a state slot holds, for scaling its change (harmonic steady-state detection).

@@ -47,6 +47,29 @@ void TreeStepPlan::prepare(const Network& network, double step, double piece_len
   piece = piece_length;
   maxwell.assign(nodes.size(), MaxwellStep{0.0, 0.0});
   coefficient.assign(nodes.size(), 0.0);
+  bounds.assign(nodes.size(), Interval{-kInf, kInf});
+  const auto& children = network.topology().children;
+  for (std::size_t i = nodes.size(); i-- > 0;) {  // children follow their parent in `nodes`
+    const TreeNode& n = nodes[i];
+    auto p = [&](int slot) { return network.parameter(n.param[slot]); };
+    switch (n.kind) {
+      case NodeKind::friction: bounds[i] = {-p(1), p(1)}; break;
+      case NodeKind::slider: bounds[i] = {-p(0), p(0)}; break;
+      case NodeKind::bouc_wen: bounds[i] = {-p(2), p(2)}; break;  // approached, never reached
+      case NodeKind::parallel:
+      case NodeKind::series: {
+        const bool intersect = n.kind == NodeKind::series;
+        Interval r = intersect ? Interval{-kInf, kInf} : Interval{0.0, 0.0};
+        for (int k = 0; k < n.child_count; ++k) {
+          const Interval c = bounds[static_cast<std::size_t>(children[static_cast<std::size_t>(n.first_child + k)])];
+          r = intersect ? Interval{std::max(r.lo, c.lo), std::min(r.hi, c.hi)} : Interval{r.lo + c.lo, r.hi + c.hi};
+        }
+        bounds[i] = r;
+        break;
+      }
+      default: break;
+    }
+  }
   for (std::size_t i = 0; i < nodes.size(); ++i) {
     const TreeNode& n = nodes[i];
     auto p = [&](int slot) { return network.parameter(n.param[slot]); };
@@ -69,8 +92,42 @@ ForceSlope TreeSolver::inerter(int node, double de) const {
   return InerterStep{coefficient(node), plan_.dt}(f_before(n), slot_before(n, 2), de);
 }
 
+ForceSlope TreeSolver::affine(int node) const {
+  const TreeNode& n = at(node);
+  if (n.kind == NodeKind::parallel) return add_over_children(*this, n, [&](int c) { return affine(c); });
+  if (n.kind != NodeKind::series) return forward(node, 0.0);
+  double compliance = 0.0, offset = 0.0;  // sum 1/S_i [mm/N], sum F0_i/S_i [mm]
+  for (int i = 0; i < n.child_count; ++i) {
+    const ForceSlope c = affine(child(n, i));
+    compliance += 1.0 / c.slope;
+    offset += c.force / c.slope;
+  }
+  return {offset / compliance, 1.0 / compliance};
+}
+
+ForceSlope TreeSolver::capped_linear(int node, double de, Interval cap) const {
+  const TreeNode& n = at(node);
+  double compliance = 0.0, offset = 0.0;
+  for (int i = 0; i < n.child_count; ++i) {
+    const int c = child(n, i);
+    const TreeNode& m = at(c);
+    if (m.kind == NodeKind::slider) continue;
+    const ForceSlope a = m.kind == NodeKind::friction ? ForceSlope{f_before(m), p(m, 0)} : affine(c);
+    compliance += 1.0 / a.slope;
+    offset += a.force / a.slope;
+  }
+  const double trial = (de + offset) / compliance;
+  if (trial >= cap.hi) return {cap.hi, 0.0};
+  if (trial <= cap.lo) return {cap.lo, 0.0};
+  return {trial, 1.0 / compliance};
+}
+
 ForceSlope TreeSolver::forward(int node, double de) const {
   const TreeNode& n = at(node);
+  if (n.linear && n.child_count > 0) {
+    const ForceSlope a = affine(node);
+    return {a.force + a.slope * de, a.slope};
+  }
   switch (n.kind) {
     case NodeKind::spring: return {p(n, 0) * (e_before(n) + de), p(n, 0)};
     case NodeKind::yeoh: {
@@ -97,19 +154,6 @@ ForceSlope TreeSolver::forward(int node, double de) const {
   return {0.0, 0.0};
 }
 
-Interval TreeSolver::bounds(int node) const {
-  const TreeNode& n = at(node);
-  switch (n.kind) {
-    case NodeKind::friction: return {-p(n, 1), p(n, 1)};
-    case NodeKind::slider: return {-p(n, 0), p(n, 0)};
-    case NodeKind::bouc_wen: return {-p(n, 2), p(n, 2)};  // approached, never reached
-    case NodeKind::parallel:
-    case NodeKind::series:
-      return combine_children(*this, n, n.kind == NodeKind::series, [&](int c) { return bounds(c); });
-    default: return {-kInf, kInf};
-  }
-}
-
 Interval TreeSolver::zero_rate_interval(int node) const {
   const TreeNode& n = at(node);
   if (!n.rigid_when_stuck) {
@@ -125,6 +169,10 @@ Interval TreeSolver::zero_rate_interval(int node) const {
 
 ForceSlope TreeSolver::inverse(int node, double force) const {
   const TreeNode& n = at(node);
+  if (n.linear && n.child_count > 0) {
+    const ForceSlope a = affine(node);
+    return {(force - a.force) / a.slope, 1.0 / a.slope};
+  }
   switch (n.kind) {
     case NodeKind::spring: return {force / p(n, 0) - e_before(n), 1.0 / p(n, 0)};
     case NodeKind::yeoh: {
@@ -174,6 +222,7 @@ ForceSlope TreeSolver::series_force(int node, double de) const {
     const Interval z = zero_rate_interval(node);
     return {std::clamp(f_before(n), z.lo, z.hi), 0.0};
   }
+  if (n.capped_linear) return capped_linear(node, de, cap);
   auto residual = [&](double force) {
     const ForceSlope e = inverse(node, force);
     return ForceSlope{e.force - de, e.slope};
@@ -317,25 +366,22 @@ void TreeSolver::assign(int node, double de, double force, double* after) const 
     const Interval cap = bounds(node);
     const bool capped = force >= cap.hi || force <= cap.lo || n.rigid_when_stuck;
     int slipping = -1;
+    for (int i = 0; i < n.child_count && capped && slipping < 0; ++i) {
+      const Interval b = bounds(child(n, i));
+      if (force >= b.hi || force <= b.lo || (n.rigid_when_stuck && de == 0.0)) slipping = child(n, i);
+    }
+    // Interior: the last member not a gap takes the rounding remainder.
+    for (int i = n.child_count - 1; i >= 0 && slipping < 0; --i)
+      if (at(child(n, i)).kind != NodeKind::gap) slipping = child(n, i);
     double taken = 0.0;
     for (int i = 0; i < n.child_count; ++i) {
       const int c = child(n, i);
-      const Interval b = bounds(c);
-      if (capped && slipping < 0 && (force >= b.hi || force <= b.lo || (n.rigid_when_stuck && de == 0.0))) {
-        slipping = c;
-        continue;
-      }
-      taken += inverse(c, force).force;
+      if (c == slipping) continue;
+      const double e = inverse(c, force).force;
+      taken += e;
+      assign(c, e, force, after);
     }
-    if (slipping < 0) {  // interior: give the rounding remainder to the last member not a gap
-      for (int i = n.child_count - 1; i >= 0 && slipping < 0; --i)
-        if (at(child(n, i)).kind != NodeKind::gap) slipping = child(n, i);
-      taken -= inverse(slipping, force).force;
-    }
-    for (int i = 0; i < n.child_count; ++i) {
-      const int c = child(n, i);
-      assign(c, c == slipping ? de - taken : inverse(c, force).force, force, after);
-    }
+    if (slipping >= 0) assign(slipping, de - taken, force, after);
   }
 }
 

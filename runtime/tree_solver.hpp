@@ -16,6 +16,13 @@
 // and the gaps take what the other members leave; otherwise it is solved on the side of F = 0
 // that de lies on, each gap at its end stop with zero compliance.
 //
+// Linear subtrees (springs, dashpots, Maxwell elements, inerters) have affine step relations,
+// F(de) = F0 + S de, and so do their compositions:
+//   parallel: F0 = sum F0_i, S = sum S_i;   series: S = 1 / sum(1/S_i), F0 = S sum(F0_i/S_i);
+// they are evaluated bottom-up without iteration. A capped-linear chain (linear members,
+// friction elements within their caps acting as springs of force F_n, sliders rigid) is
+// F(de) = clamp(F0 + S de, cap): the return mapping of eq. 2.9 with the chain as the spring.
+//
 // No allocation: recursion over the flat node array, state read from `before`.
 #pragma once
 
@@ -40,6 +47,9 @@ struct TreeStepPlan {
   std::vector<MaxwellStep> maxwell;  // per node (unused entries for other kinds)
   // Per node: dashpot c/dt [N/mm], quadratic_dashpot cq/dt^2 [N/mm^2], inerter 4 b/dt^2 [N/mm].
   std::vector<double> coefficient;
+  // Per node: the forces [N] it can carry (caps of friction elements, sliders and bouc_wen,
+  // intersected along series chains, added across parallel blocks); unbounded otherwise.
+  std::vector<Interval> bounds;
   void prepare(const Network& network, double dt, double piece);
 };
 
@@ -59,8 +69,10 @@ class TreeSolver {
 
  private:
   ForceSlope forward(int node, double de) const;
+  ForceSlope affine(int node) const;  // {F0 [N], S [N/mm]} of a linear node
+  ForceSlope capped_linear(int node, double de, Interval cap) const;
   ForceSlope inverse(int node, double force) const;  // {elongation increment, d de / dF}
-  Interval bounds(int node) const;
+  Interval bounds(int node) const { return plan_.bounds[static_cast<std::size_t>(node)]; }
   Interval zero_rate_interval(int node) const;  // forces admissible at de = 0 (rigid nodes)
   ForceSlope series_force(int node, double de) const;
   ForceSlope parallel_elongation(int node, double force) const;

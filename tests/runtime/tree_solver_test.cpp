@@ -286,3 +286,53 @@ TEST_CASE("spring in series with an inerter: Newmark is second order and conserv
   CHECK((e_max - e_min) / e_max < 1e-8);
   CHECK(e_max > 0.01);
 }
+
+TEST_CASE("capped-linear chains and linear blocks: the closed-form step equals the iterative solve") {
+  // The same chain twice: with springs, it takes the closed-form step (tree_solver.hpp: F =
+  // clamp(F0 + S de, cap)); with each spring written as a yeoh of D10 = k/2, D20 = D30 = 0,
+  // no node is linear and every step is solved by the nested Newton iterations.
+  const std::string chain = R"(model m {
+    spring rubber (k = 300 N/mm)
+    series fluid {
+      slider cap (fy = 40 N)
+      friction f (k = 900 N/mm, fy = 60 N)
+      SPRING_A
+      parallel y {
+        inerter column (b = 20 kg)
+        maxwell arm (k = 2000 N/mm, tau = 2 ms)
+        SPRING_B
+        series bulge { SPRING_C  spring k3 (k = 400 N/mm) }
+      }
+    }
+  })";
+  auto model = [&](bool linear) {
+    std::string text = chain;
+    const char* names[] = {"SPRING_A", "SPRING_B", "SPRING_C"};
+    const double k[] = {500.0, 150.0, 250.0};
+    for (int i = 0; i < 3; ++i) {
+      const std::string element = linear ? "spring s" + std::to_string(i) + " (k = " + std::to_string(k[i]) + " N/mm)"
+                                         : "yeoh s" + std::to_string(i) + " (D10 = " + std::to_string(k[i] / 2) +
+                                               " N/mm, D20 = 0 N/mm^3, D30 = 0 N/mm^5)";
+      text.replace(text.find(names[i]), std::string(names[i]).size(), element);
+    }
+    return test::network_from(text, "m");
+  };
+  const auto fast = model(true), iterative = model(false);
+  const auto& nodes = fast.topology().nodes;
+  CHECK(std::any_of(nodes.begin(), nodes.end(), [](const runtime::TreeNode& n) { return n.capped_linear; }));
+  CHECK(std::none_of(iterative.topology().nodes.begin(), iterative.topology().nodes.end(),
+                     [](const runtime::TreeNode& n) { return n.capped_linear || (n.linear && n.child_count > 0); }));
+  // Small amplitudes stick, large ones slip the cap (and the friction element's 60 N is never reached).
+  const runtime::Drive drive = runtime::quasistatic_sine({0.02, 0.3, 1.5}, 15.0, 2, 64);
+  const auto a = runtime::run_history(fast, drive, false, runtime::SolverChoice::fixed);
+  const auto b = runtime::run_history(iterative, drive, false, runtime::SolverChoice::fixed);
+  REQUIRE(a.force.size() == b.force.size());
+  double worst = 0.0, peak = 0.0;
+  for (std::size_t i = 0; i < a.force.size(); ++i) {
+    worst = std::max(worst, std::abs(a.force[i] - b.force[i]));
+    peak = std::max(peak, std::abs(a.force[i]));
+  }
+  MESSAGE("worst force difference " << worst << " N of " << peak << " N");
+  CHECK(peak > 300.0 * 1.5 + 40.0 * 0.9);  // the cap slipped at the largest amplitude
+  CHECK(worst < 1e-9 * peak);
+}
