@@ -3,36 +3,19 @@
 #include "runtime/dae_protocols.hpp"
 #include "runtime/parallel_for.hpp"
 #include "runtime/periodic_closed_form.hpp"
+#include "runtime/periodic_start.hpp"
 #include "runtime/simulator.hpp"
 
 #include <fmt/format.h>
 
 #include <algorithm>
 #include <cmath>
-#include <complex>
 #include <limits>
 #include <numbers>
 #include <stdexcept>
 
 namespace rheo::runtime {
 namespace {
-
-void set_periodic_start(const Network& network, const StepPlan& plan, double amplitude, int steps, State& state) {
-  const Topology& t = network.topology();
-  const Coefficients& c = network.coefficients();
-  const double theta = 2.0 * std::numbers::pi / steps;
-  const std::complex<double> z = std::polar(1.0, theta);
-  for (std::size_t i = 0; i < c.maxwell_k.size(); ++i) {
-    const double a = plan.maxwell_a[i], b = plan.maxwell_b[i];
-    state.values[static_cast<std::size_t>(t.maxwell_state()) + i] = b * amplitude * std::imag((z - 1.0) / (z - a));
-  }
-  for (std::size_t i = 0; i < c.friction_k.size(); ++i) {
-    const double k = c.friction_k[i], fy = c.friction_fy[i];
-    state.values[static_cast<std::size_t>(t.friction_state()) + i] = amplitude > fy / k ? std::min(fy, k * amplitude - fy) : 0.0;
-  }
-  for (std::size_t i = 0; i < c.slider_fy.size(); ++i)
-    state.values[static_cast<std::size_t>(t.slider_state()) + i] = -c.slider_fy[i];
-}
 
 // Scales of the state variables of a cycle: forces by F^ [N], elongations by u0 [mm],
 // velocities by w u0 [mm/s], times by the period [s].
@@ -103,6 +86,8 @@ HarmonicPoint simulate_harmonic_point(const Network& network, double amplitude, 
   set_periodic_start(network, plan, amplitude, n, state);
   State next = state, probe = state, cycle_start = state;
   std::vector<double> phase(static_cast<std::size_t>(n)), displacement(phase.size()), force(phase.size());
+  std::vector<double> drive(phase.size());  // u at the end of step k [mm], the same every cycle
+  for (int k = 0; k < n; ++k) drive[static_cast<std::size_t>(k)] = amplitude * std::sin(omega * (k + 1) * dt);
   const bool needs_two_cycles = !network.topology().subtrees.empty();
 
   HarmonicPoint point;
@@ -114,8 +99,8 @@ HarmonicPoint simulate_harmonic_point(const Network& network, double amplitude, 
   for (int cycle = 1; cycle <= options.max_cycles; ++cycle) {
     cycle_start.values = state.values;
     for (int k = 0; k < n; ++k) {
-      const double u_next = amplitude * std::sin(omega * (k + 1) * dt);
       const auto i = static_cast<std::size_t>(k);
+      const double u_next = drive[i];
       if (midpoints) {
         const double u_mid = 0.5 * (state.u + u_next);
         phase[i] = omega * (k + 0.5) * dt;
