@@ -83,6 +83,12 @@ void TreeStepPlan::prepare(const Network& network, double step, double piece_len
   }
 }
 
+bool steps_without_iteration(const Topology& topology) {
+  return std::all_of(topology.nodes.begin(), topology.nodes.end(), [](const TreeNode& n) {
+    return n.kind != NodeKind::series || n.linear || n.capped_linear || n.rigid_when_stuck;
+  });
+}
+
 ForceSlope TreeSolver::inerter(int node, double de) const {
   const TreeNode& n = at(node);
   if (n.drive_prescribed) {

@@ -53,6 +53,10 @@ struct TreeStepPlan {
   void prepare(const Network& network, double dt, double piece);
 };
 
+// Whether every subtree steps without iteration: each series chain linear, capped-linear or
+// rigid while stuck (its parallel blocks then are only evaluated forward, never inverted).
+bool steps_without_iteration(const Topology& topology);
+
 class TreeSolver {
  public:
   TreeSolver(const Network& network, const TreeStepPlan& plan, const double* before)

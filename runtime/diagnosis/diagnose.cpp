@@ -6,6 +6,7 @@
 #include "runtime/diagnosis/evidence_text.hpp"
 #include "runtime/fit_scoring.hpp"
 #include "runtime/solver_choice.hpp"
+#include "runtime/tree_solver.hpp"
 
 #include <fmt/format.h>
 
@@ -89,12 +90,18 @@ std::string with_trial(const std::string& fitted_text, const lang::CheckedModel&
 // Work of one evaluation of NETWORK in fixed time steps of a nested network, counted on one
 // prediction: a time-stepped harmonic point costs the cycles it took to its periodic state
 // times the steps per cycle, a history sample one step, and a closed-form point 10. A step
-// under IDA (whose steps solve a DAE with Newton iterations) counts 10; a step of a network
+// under IDA (whose steps solve a DAE with Newton iterations) counts 10. A step of a network
 // whose elements all sit in the root parallel block counts 0.05 (its kernel is one update per
-// element, ~20 ns a step against 0.2-3 us for the nested tree solver; docs/performance.md).
-// Counted, not timed, so that budgets, and results, do not depend on the machine.
+// element, ~20 ns a step), of one whose subtrees step without iteration (linear and
+// capped-linear chains, tree_solver.hpp) 0.3 (~0.13 us), of others 1 (the nested Newton
+// iterations, 0.3-3 us; docs/performance.md). Counted, not timed, so that budgets, and
+// results, do not depend on the machine.
 double evaluation_work(const Network& network, const std::vector<FitDataSet>& data, const HarmonicOptions& options) {
-  const double step_cost = uses_sundials(network, options.solver) ? 10.0 : network.topology().subtrees.empty() ? 0.05 : 1.0;
+  const Topology& t = network.topology();
+  const double step_cost = uses_sundials(network, options.solver) ? 10.0
+                           : t.subtrees.empty()                   ? 0.05
+                           : steps_without_iteration(t)           ? 0.3
+                                                                  : 1.0;
   double work = 0.0;
   for (const auto& set : data) {
     if (!set.is_harmonic()) {
@@ -160,6 +167,25 @@ std::string resolved_resonance(const Trial& trial, const lang::CheckedModel& mod
   return fmt::format("its resonance, refitted to {:.3g} Hz, is not inside the measured {:.3g}-{:.3g} Hz with a measured frequency 10 % "
                      "either side, so the data cannot tell it from a relaxation or a stiffness trend",
                      resonance, scales.frequency_low, scales.frequency_high);
+}
+
+// The limit without inertia (b -> 0) of a refitted slider-capped fluid column ELEMENT: chamber
+// spring and channel dashpot in series are a Maxwell element of k = chamber.k and
+// tau = channel.c / chamber.k, capped by the same slider: the capped_maxwell shape, one
+// parameter fewer and no resonance to place.
+Trial resonance_free_limit(const Trial& column, const lang::CheckedModel& model, const Network& refitted, const std::string& element) {
+  auto value = [&](const std::string& path) {
+    const int i = index_of(model, element + "." + path);
+    if (i < 0) throw std::logic_error(fmt::format("diagnose: the fluid column '{}' lacks {}", element, path));
+    return refitted.parameter(i);
+  };
+  Trial limit = column;
+  limit.shape = Shape::capped_maxwell;
+  limit.stiffness = value("chamber.k");
+  limit.time = value("column.channel.c") / limit.stiffness;
+  limit.slip = value("cap.fy") / limit.stiffness;
+  limit.frequency = limit.damping_ratio = 0.0;
+  return limit;
 }
 
 // Whether candidate A is preferred to B: the one with fewer parameters when its gap is within
@@ -228,38 +254,58 @@ Diagnosis diagnose(const ModelSource& source, const std::vector<FitDataSet>& dat
   if (!d.interrupted) stage("screening the effects");
   const std::vector<ScreenedEffect> screened_effects = d.interrupted ? std::vector<ScreenedEffect>{} : screen(d.before, data, s.fit.score);
   const double leading_gain = screened_effects.empty() ? 0.0 : screened_effects.front().gain;
+  // Refits the fitted model with TRIAL added as OUTCOME.element, records the outcome and keeps
+  // it as the choice if it earns its parameters and beats the choice so far.
+  auto refit_candidate = [&](const Trial& trial, CandidateOutcome& outcome) {
+    const auto started = std::chrono::steady_clock::now();
+    stage(fmt::format("refitting with {} for {}", trial_summary(trial), effect_name(outcome.screened.effect)));
+    const std::string comment = fmt::format("candidate for {}", effect_name(outcome.screened.effect));
+    Compiled candidate = compile(source, with_trial(fitted_text, *fitted.model, trial, outcome.element, scales.bounds, comment));
+    std::vector<int> kept, added;
+    for (const auto& path : kept_paths)
+      if (const int i = index_of(*candidate.model, path); i >= 0) kept.push_back(i);
+    for (std::size_t i = 0; i < candidate.model->parameters.size(); ++i) {
+      const lang::Parameter& p = candidate.model->parameters[i];
+      if (p.free && p.path.starts_with(outcome.element + ".") && std::find(kept.begin(), kept.end(), static_cast<int>(i)) == kept.end())
+        added.push_back(static_cast<int>(i));
+    }
+    FitResult result = staged_refit(Network::compile(*candidate.model), kept, added, data, s);
+    outcome.refitted = true;
+    outcome.gap_after = fit_gap(result);
+    outcome.criterion = criterion(result, d.residual_terms);
+    outcome.parameters = static_cast<int>(result.free.size());
+    outcome.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+    d.interrupted = d.interrupted || result.interrupted;
+    outcome.unresolved = resolved_resonance(trial, *candidate.model, result.network, outcome.element, scales);
+    std::optional<Trial> limit;
+    if (!outcome.unresolved.empty() && trial.shape == Shape::capped_column)
+      limit = resonance_free_limit(trial, *candidate.model, result.network, outcome.element);
+    const bool earns = outcome.unresolved.empty() && outcome.criterion < d.criterion_before && outcome.gap_after <= (1.0 - s.min_improvement) * d.gap_before;
+    if (earns && (!chosen || preferred(outcome, d.candidates[chosen->candidate], s.parsimony)))
+      chosen = Chosen{d.candidates.size(), trial, std::move(candidate), std::move(result)};
+    d.candidates.push_back(outcome);
+    return limit;
+  };
   for (const ScreenedEffect& screened : screened_effects) {
     CandidateOutcome outcome;
     outcome.screened = screened;
     const Trial& trial = screened.trial;
     outcome.element = trial.replaces.empty() ? unique_name(*fitted.model, element_word(screened.effect)) : trial.replaces;
-    if (refitted < s.confirm && screened.gain >= std::max(s.min_screen_gain, s.relative_screen_gain * leading_gain) && !d.interrupted) {
-      ++refitted;
-      const auto started = std::chrono::steady_clock::now();
-      stage(fmt::format("refitting with {} for {}", trial_summary(trial), effect_name(screened.effect)));
-      const std::string comment = fmt::format("candidate for {}", effect_name(screened.effect));
-      const Compiled candidate = compile(source, with_trial(fitted_text, *fitted.model, trial, outcome.element, scales.bounds, comment));
-      std::vector<int> kept, added;
-      for (const auto& path : kept_paths)
-        if (const int i = index_of(*candidate.model, path); i >= 0) kept.push_back(i);
-      for (std::size_t i = 0; i < candidate.model->parameters.size(); ++i) {
-        const lang::Parameter& p = candidate.model->parameters[i];
-        if (p.free && p.path.starts_with(outcome.element + ".") && std::find(kept.begin(), kept.end(), static_cast<int>(i)) == kept.end())
-          added.push_back(static_cast<int>(i));
-      }
-      FitResult result = staged_refit(Network::compile(*candidate.model), kept, added, data, s);
-      outcome.refitted = true;
-      outcome.gap_after = fit_gap(result);
-      outcome.criterion = criterion(result, d.residual_terms);
-      outcome.parameters = static_cast<int>(result.free.size());
-      outcome.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
-      d.interrupted = d.interrupted || result.interrupted;
-      outcome.unresolved = resolved_resonance(trial, *candidate.model, result.network, outcome.element, scales);
-      const bool earns = outcome.unresolved.empty() && outcome.criterion < d.criterion_before && outcome.gap_after <= (1.0 - s.min_improvement) * d.gap_before;
-      if (earns && (!chosen || preferred(outcome, d.candidates[chosen->candidate], s.parsimony)))
-        chosen = Chosen{d.candidates.size(), trial, candidate, std::move(result)};
+    if (refitted >= s.confirm || screened.gain < std::max(s.min_screen_gain, s.relative_screen_gain * leading_gain) || d.interrupted) {
+      d.candidates.push_back(outcome);
+      continue;
     }
-    d.candidates.push_back(outcome);
+    ++refitted;
+    const std::optional<Trial> limit = refit_candidate(trial, outcome);
+    if (!limit || d.interrupted) continue;
+    CandidateOutcome limit_outcome;
+    limit_outcome.screened = screened;
+    limit_outcome.screened.trial = *limit;
+    limit_outcome.element = outcome.element;
+    limit_outcome.limit_of = fmt::format("the limit without inertia of the fluid column before it (its chamber and channel as a Maxwell "
+                                         "element, tau = c/k = {:.4g} ms), whose resonance the data cannot place",
+                                         limit->time * 1e3);
+    refit_candidate(*limit, limit_outcome);
   }
 
   if (!chosen) {
@@ -269,6 +315,7 @@ Diagnosis diagnose(const ModelSource& source, const std::vector<FitDataSet>& dat
     d.refined_text = lang::write_fitted_source(source.text, source.file, *base.model, d.before.network.parameters(), d.before.free, header);
     return d;
   }
+  d.candidates[chosen->candidate].chosen = true;
   const CandidateOutcome& winner = d.candidates[chosen->candidate];
   if (!d.interrupted) {
     stage("polishing the refined model");

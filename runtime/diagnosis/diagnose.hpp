@@ -61,7 +61,7 @@ struct DiagnoseSettings {
   // best) and stage 2 BOBYQA, each with half the budget; else both are BOBYQA with lean budgets
   // of 2 n + 1 (BOBYQA's first model) plus 15 per new parameter (stage 1) or 4 per free one
   // (stage 2). The polish gets the refit's budget, at least 2 n + 1 + 20 n.
-  double refit_work = 3e6;
+  double refit_work = 1e7;
   int max_evaluations = 20000;
   int thorough_evaluations = 100;
   // Standard errors of the model as fitted and of the refined one (reports show them); each
@@ -81,6 +81,11 @@ struct CandidateOutcome {
   // Why the candidate cannot earn whatever it gains, or empty: a refitted resonance outside
   // the measured frequencies (diagnose.cpp resolved_resonance).
   std::string unresolved;
+  // Empty, or why this trial was refitted although not screened: the limit without inertia of
+  // the candidate before it (a slider-capped fluid column whose resonance the data cannot
+  // place becomes the slider-capped Maxwell element of its refitted chamber and channel).
+  std::string limit_of;
+  bool chosen = false;  // the element added
 };
 
 struct Diagnosis {

@@ -18,8 +18,6 @@ using report::escape;
 
 const FitResult& final_fit(const Diagnosis& d) { return d.after ? *d.after : d.before; }
 
-bool chosen(const Diagnosis& d, const CandidateOutcome& c) { return d.effect == c.screened.effect && c.element == d.added_element; }
-
 // The gap as fitted and after every round, each with a bar as long as its share of the start.
 std::string gap_table(const std::vector<Diagnosis>& rounds) {
   const double start = rounds.front().gap_before;
@@ -49,9 +47,10 @@ std::string candidate_table(const Diagnosis& d) {
                      "<td></td><td></td></tr>\n",
                      d.gap_before, d.criterion_before, d.before.free.size());
   for (const CandidateOutcome& c : d.candidates) {
-    std::string note = chosen(d, c) ? "chosen" : "";
+    std::string note = c.chosen ? "chosen" : "";
+    if (!c.limit_of.empty()) note += (note.empty() ? "" : "; ") + c.limit_of;
     if (!c.unresolved.empty()) note = "cannot earn: " + c.unresolved;
-    out += fmt::format("<tr{}><td>{}</td><td class=\"num\">{:.1f} %</td>", chosen(d, c) ? " class=\"chosen\"" : "",
+    out += fmt::format("<tr{}><td>{}</td><td class=\"num\">{:.1f} %</td>", c.chosen ? " class=\"chosen\"" : "",
                        effect_name(c.screened.effect), 100.0 * c.screened.gain);
     if (c.refitted)
       out += fmt::format("<td class=\"num\">{:.4g}</td><td class=\"num\">{:.1f}</td><td class=\"num\">{}</td>", c.gap_after, c.criterion, c.parameters);

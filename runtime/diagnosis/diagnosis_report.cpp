@@ -21,8 +21,6 @@ std::string data_lines(const FitResult& r) {
   return out;
 }
 
-bool chosen(const Diagnosis& d, const CandidateOutcome& c) { return d.effect == c.screened.effect && c.element == d.added_element; }
-
 }  // namespace
 
 std::string diagnosis_report_text(const std::string& source_file, const Diagnosis& d) {
@@ -37,10 +35,11 @@ std::string diagnosis_report_text(const std::string& source_file, const Diagnosi
   for (const auto& c : d.candidates) {
     const std::string refit = c.refitted ? fmt::format("{:>12.4g}  {:>10.1f}", c.gap_after, c.criterion) : fmt::format("{:>12}  {:>10}", "-", "-");
     out += fmt::format("  {:<28}  {:>6.1f} %  {}  {}{}\n", effect_name(c.screened.effect), 100.0 * c.screened.gain, refit,
-                       trial_summary(c.screened.trial), chosen(d, c) ? "  <- chosen" : "");
+                       trial_summary(c.screened.trial), c.chosen ? "  <- chosen" : "");
   }
   for (const auto& c : d.candidates)
     if (!c.unresolved.empty()) out += fmt::format("  {} cannot earn: {}\n", effect_name(c.screened.effect), c.unresolved);
+    else if (!c.limit_of.empty()) out += fmt::format("  {} also tried as {}: {}\n", effect_name(c.screened.effect), trial_summary(c.screened.trial), c.limit_of);
   out += fmt::format("\neffect: {}\n  why: {}\n", effect_name(d.effect), d.reason);
   if (d.effect != Effect::none) {
     out += fmt::format("  {}: {:.4g} -> {:.4g} after a final polish ({:.2f} times lower)\n", d.gap_name, d.gap_before, d.gap_after,
@@ -82,8 +81,9 @@ std::string diagnosis_report_json(const std::string& source_file, const Diagnosi
   json candidates = json::array();
   for (const auto& c : d.candidates) {
     json e{{"effect", effect_name(c.screened.effect)}, {"screened_gain", c.screened.gain}, {"element", c.element},
-           {"trial", trial_summary(c.screened.trial)}, {"refitted", c.refitted}, {"chosen", chosen(d, c)}};
+           {"trial", trial_summary(c.screened.trial)}, {"refitted", c.refitted}, {"chosen", c.chosen}};
     if (!c.unresolved.empty()) e["unresolved"] = c.unresolved;
+    if (!c.limit_of.empty()) e["limit_of"] = c.limit_of;
     if (c.refitted) e["gap_after"] = c.gap_after, e["criterion"] = c.criterion, e["parameters"] = c.parameters, e["wall_seconds"] = c.wall_seconds;
     candidates.push_back(e);
   }
@@ -96,7 +96,7 @@ std::string diagnosis_report_json(const std::string& source_file, const Diagnosi
   if (d.after) {
     criterion["after"] = d.criterion_before;
     for (const auto& c : d.candidates)
-      if (chosen(d, c)) criterion["after"] = c.criterion;
+      if (c.chosen) criterion["after"] = c.criterion;
     json parameters = json::array();
     const lang::CheckedModel& model = d.after->network.model();
     for (std::size_t i = 0; i < model.parameters.size(); ++i) {

@@ -49,11 +49,14 @@ std::string pattern_sentence(Effect effect, const ResidualPatterns& p) {
 }
 
 std::string effect_reason(const Diagnosis& d, const CandidateOutcome& w) {
-  return fmt::format("{}; {} alone would remove {:.0f} % of the objective; refitted with every parameter, {} fell from {:.4g} to {:.4g} "
-                     "({:.2f} times lower) and BIC from {:.1f} to {:.1f} with {} more parameters",
-                     pattern_sentence(w.screened.effect, d.patterns), trial_summary(w.screened.trial), percent(w.screened.gain), d.gap_name,
-                     d.gap_before, w.gap_after, d.gap_before / w.gap_after, d.criterion_before, w.criterion,
-                     w.parameters - static_cast<int>(d.before.free.size()));
+  const std::string screened =
+      w.limit_of.empty() ? fmt::format("{} alone would remove {:.0f} % of the objective", trial_summary(w.screened.trial), percent(w.screened.gain))
+                         : fmt::format("a slider-capped fluid column alone would remove {:.0f} % of the objective, and {}, {}, earns it",
+                                       percent(w.screened.gain), trial_summary(w.screened.trial), w.limit_of);
+  return fmt::format("{}; {}; refitted with every parameter, {} fell from {:.4g} to {:.4g} ({:.2f} times lower) and BIC from {:.1f} to "
+                     "{:.1f} with {} more parameters",
+                     pattern_sentence(w.screened.effect, d.patterns), screened, d.gap_name, d.gap_before, w.gap_after,
+                     d.gap_before / w.gap_after, d.criterion_before, w.criterion, w.parameters - static_cast<int>(d.before.free.size()));
 }
 
 std::string none_reason(const Diagnosis& d, const DiagnoseSettings& s) {

@@ -57,12 +57,6 @@ void require_none(const dx::Diagnosis& d) {
   CHECK(d.gap_after == d.gap_before);
 }
 
-// Three harmonic cases hinge on refits of time-stepped candidates (sliders and inerters nested
-// in series) on 36 points. With thorough budgets for those they passed in 1-2 min each, but
-// other cases then ran for minutes; with the lean budgets diagnose now gives time-stepped
-// candidates, the slider-capped case is expected to fail (issue #5 notes). They run with
-// `runtime_tests -tc="diagnose?*" --no-skip`.
-constexpr bool kAwaitingBoundedRefits = true;
 
 }  // namespace
 
@@ -120,7 +114,7 @@ TEST_CASE("diagnose, harmonic: stiffening at large amplitude is nonlinear-elasti
   require_effect(diagnose(start, {harmonic_measurement(truth, 5, {0.1, 0.3, 1.0, 2.0, 3.0, 4.0})}), dx::Effect::nonlinear_elasticity);
 }
 
-TEST_CASE("diagnose, harmonic: a slider-capped Maxwell branch is coupled-amplitude-frequency" * doctest::skip(kAwaitingBoundedRefits)) {
+TEST_CASE("diagnose, harmonic: a slider-capped Maxwell branch is coupled-amplitude-frequency") {
   const std::string truth = R"(model truth { spring s (k = 500 N/mm)  maxwell m (k = 100 N/mm, tau = 3 ms)
                                series b { slider cap (fy = 40 N)  maxwell arm (k = 400 N/mm, tau = 10 ms) } })";
   const std::string start = R"(model start {
@@ -132,7 +126,7 @@ TEST_CASE("diagnose, harmonic: a slider-capped Maxwell branch is coupled-amplitu
   require_effect(diagnose(start, {harmonic_measurement(truth, 6)}), dx::Effect::coupled_amplitude_frequency);
 }
 
-TEST_CASE("diagnose, harmonic: a resonant column is inertia" * doctest::skip(kAwaitingBoundedRefits)) {
+TEST_CASE("diagnose, harmonic: a resonant column is inertia") {
   const std::string truth = R"(model truth { spring s (k = 500 N/mm)  friction f (k = 200 N/mm, uy = 50 um)
                                series c { spring k1 (k = 300 N/mm)  parallel y { inerter b (b = 20 kg)  dashpot d (c = 1 N*s/mm) } } })";
   const std::string start =
@@ -140,7 +134,7 @@ TEST_CASE("diagnose, harmonic: a resonant column is inertia" * doctest::skip(kAw
   require_effect(diagnose(start, {harmonic_measurement(truth, 7)}), dx::Effect::inertia);
 }
 
-TEST_CASE("diagnose, harmonic: data the model already explains gives none" * doctest::skip(kAwaitingBoundedRefits)) {
+TEST_CASE("diagnose, harmonic: data the model already explains gives none") {
   const std::string truth = "model truth { spring s (k = 700 N/mm)  maxwell m (k = 90 N/mm, tau = 6 ms)  friction f (k = 250 N/mm, uy = 60 um) }";
   const std::string start = R"(model start {
   spring s (k = 500 N/mm in [10, 10000])
