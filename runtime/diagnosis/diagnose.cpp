@@ -278,8 +278,7 @@ Diagnosis diagnose(const ModelSource& source, const std::vector<FitDataSet>& dat
     d.interrupted = d.interrupted || result.interrupted;
     outcome.unresolved = resolved_resonance(trial, *candidate.model, result.network, outcome.element, scales);
     std::optional<Trial> limit;
-    if (!outcome.unresolved.empty() && trial.shape == Shape::capped_column)
-      limit = resonance_free_limit(trial, *candidate.model, result.network, outcome.element);
+    if (trial.shape == Shape::capped_column) limit = resonance_free_limit(trial, *candidate.model, result.network, outcome.element);
     const bool earns = outcome.unresolved.empty() && outcome.criterion < d.criterion_before && outcome.gap_after <= (1.0 - s.min_improvement) * d.gap_before;
     if (earns && (!chosen || preferred(outcome, d.candidates[chosen->candidate], s.parsimony)))
       chosen = Chosen{d.candidates.size(), trial, std::move(candidate), std::move(result)};
@@ -298,13 +297,15 @@ Diagnosis diagnose(const ModelSource& source, const std::vector<FitDataSet>& dat
     ++refitted;
     const std::optional<Trial> limit = refit_candidate(trial, outcome);
     if (!limit || d.interrupted) continue;
+    // The column's limit without inertia competes with it: where the data hold no resonance
+    // (or cannot place it) the limit earns the coupling with one parameter fewer.
     CandidateOutcome limit_outcome;
     limit_outcome.screened = screened;
     limit_outcome.screened.trial = *limit;
     limit_outcome.element = outcome.element;
     limit_outcome.limit_of = fmt::format("the limit without inertia of the fluid column before it (its chamber and channel as a Maxwell "
-                                         "element, tau = c/k = {:.4g} ms), whose resonance the data cannot place",
-                                         limit->time * 1e3);
+                                         "element, tau = c/k = {:.4g} ms){}",
+                                         limit->time * 1e3, outcome.unresolved.empty() ? "" : ", whose resonance the data cannot place");
     refit_candidate(*limit, limit_outcome);
   }
 

@@ -82,8 +82,9 @@ struct CandidateOutcome {
   // the measured frequencies (diagnose.cpp resolved_resonance).
   std::string unresolved;
   // Empty, or why this trial was refitted although not screened: the limit without inertia of
-  // the candidate before it (a slider-capped fluid column whose resonance the data cannot
-  // place becomes the slider-capped Maxwell element of its refitted chamber and channel).
+  // the candidate before it (a refitted slider-capped fluid column becomes the slider-capped
+  // Maxwell element of its chamber and channel, which earns where the data hold no resonance
+  // or cannot place it).
   std::string limit_of;
   bool chosen = false;  // the element added
 };

@@ -5,6 +5,7 @@
 // start model already explains must give `none` with nothing added. The hidden models vary in
 // values and in which branch carries the effect, so that no threshold is tuned to one case.
 #include "runtime/diagnosis/diagnose.hpp"
+#include "runtime/diagnosis/diagnosis_report.hpp"
 
 #include "diagnosis_support.hpp"
 #include "runtime/drives.hpp"
@@ -12,6 +13,7 @@
 #include <doctest/doctest.h>
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <random>
 
 using namespace rheo;
@@ -123,7 +125,16 @@ TEST_CASE("diagnose, harmonic: a slider-capped Maxwell branch is coupled-amplitu
   friction f (k = 100 N/mm in [1, 10000], uy = 50 um in [0.1, 10000])
 }
 )";
-  require_effect(diagnose(start, {harmonic_measurement(truth, 6)}), dx::Effect::coupled_amplitude_frequency);
+  const dx::Diagnosis d = diagnose(start, {harmonic_measurement(truth, 6)});
+  require_effect(d, dx::Effect::coupled_amplitude_frequency);
+  // No inertia hides here: the screened fluid column refits its resonance out of the band, and
+  // its limit without inertia, the true shape, is the candidate that earns.
+  const auto chosen = std::find_if(d.candidates.begin(), d.candidates.end(), [](const dx::CandidateOutcome& c) { return c.chosen; });
+  REQUIRE(chosen != d.candidates.end());
+  CHECK(chosen->screened.trial.shape == dx::Shape::capped_maxwell);
+  CHECK(chosen->limit_of.find("limit without inertia") != std::string::npos);
+  CHECK(dx::diagnosis_report_text("start.rheo", d).find("also tried as a slider") != std::string::npos);
+  CHECK(dx::diagnosis_report_json("start.rheo", d, "").find("\"limit_of\"") != std::string::npos);
 }
 
 TEST_CASE("diagnose, harmonic: a hydromount's slider-capped fluid column is coupled-amplitude-frequency") {
