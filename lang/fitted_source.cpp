@@ -25,7 +25,7 @@ UnitChoice choose_unit(const Parameter& p) {
   if (p.dimension == dim::frequency) return {"Hz", 1.0};
   std::string internal = internal_unit(p.dimension);
   if (parse_unit(internal)) return {internal, 1.0};
-  return {internal.substr(2), 1.0, true};  // "1/mm^2" -> "V / 1 mm^2"
+  return {internal_unit(dim::none / p.dimension), 1.0, true};  // 1/(N*mm^2) -> "V / 1 N*mm^2"
 }
 
 // Where P's value text is not its own, why (for the error), or "" when it is.

@@ -105,8 +105,8 @@ std::string internal_unit(const Dimension& d) {
     if (power > 0) {
       if (!numerator.empty()) numerator += "*";
       append_power(numerator, base, power);
-    } else if (power < 0) {
-      if (!denominator.empty()) denominator += "*";
+    } else if (power < 0) {  // each divisor after its own '/': parse_unit reads left to right
+      if (!denominator.empty()) denominator += "/";
       append_power(denominator, base, -power);
     }
   };

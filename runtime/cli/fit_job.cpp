@@ -115,8 +115,15 @@ void set_yeoh_start(FitJob& job, const std::string& path) {
     }
   if (!yeoh)
     throw runtime::UsageError(fmt::format("--yeoh-start: model '{}' has no yeoh spring in its root block to start", model.name));
-  const runtime::YeohConstants d = runtime::fit_yeoh_least_squares(
-      runtime::mean_curve(runtime::largest_loop(runtime::loop_samples_from_table(runtime::read_table(path)))));
+  const runtime::LoopSamples record = runtime::loop_samples_from_table(runtime::read_table(path));  // errors name file:row
+  runtime::YeohConstants d;
+  try {
+    d = runtime::fit_yeoh_least_squares(runtime::mean_curve(runtime::largest_loop(record)));
+  } catch (const runtime::DataError& e) {
+    throw runtime::DataError(fmt::format("{}: --yeoh-start: {}; give a static loop record (displacement and force over at least one "
+                                         "full cycle, as specimen_D_static.csv)",
+                                         path, e.what()));
+  }
   if (job.start_values.empty())
     for (const auto& p : model.parameters) job.start_values.push_back(p.value);
   job.settings.yeoh_start_from_history = false;

@@ -33,6 +33,28 @@ TEST_CASE("describe and internal_unit") {
   CHECK(describe(dim::frequency) == "frequency (1/s)");
   CHECK(internal_unit(dim::damping) == "N*s/mm");
   CHECK(internal_unit(dim::none).empty());
+  CHECK(internal_unit(Dimension{1, -1, -1}) == "N/mm/s");  // not N/mm*s, which reads as N*s/mm
+}
+
+TEST_CASE("internal_unit reads back as its own dimension with scale 1") {
+  for (int force = -2; force <= 2; ++force)
+    for (int length = -3; length <= 3; ++length)
+      for (int time = -2; time <= 2; ++time) {
+        const Dimension d{force, length, time};
+        if (d.dimensionless()) continue;
+        // A reciprocal ("1/...") is written as a divisor, V / 1 UNIT (fitted_source.cpp), UNIT
+        // being the unit of the inverse dimension.
+        const std::string text = internal_unit(d);
+        const bool reciprocal = text.starts_with("1/");
+        const Dimension read_as = reciprocal ? dim::none / d : d;
+        const std::string unit = reciprocal ? internal_unit(read_as) : text;
+        CAPTURE(text);
+        CAPTURE(unit);
+        const auto u = parse_unit(unit);
+        REQUIRE(u);
+        CHECK(u->dimension == read_as);
+        CHECK(u->scale == 1.0);
+      }
 }
 
 TEST_CASE("angular frequency converts to Hz") {

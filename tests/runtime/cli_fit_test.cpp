@@ -278,6 +278,17 @@ TEST_CASE("--yeoh-start writes the least-squares constants of the static loop's 
   }
 }
 
+TEST_CASE("--yeoh-start on a record without a full cycle names the file and what it needs (exit 4, nothing written)") {
+  const fs::path ramp = scratch() / "ramp.csv", out = scratch() / "ramp_started.rheo";
+  write_text(ramp, "time [s],displacement [mm],force [N]\n0,0,0\n1,0.5,100\n2,1,210\n3,1.5,330\n");
+  fs::remove(out);
+  const Run r = run(fmt::format("fit {} --yeoh-start {} --max-evaluations 1 -o {}", example("specimen_d_fit.rheo"), ramp.string(), out.string()));
+  CHECK(r.code == 4);
+  CHECK(contains(r.err, ramp.string() + ": --yeoh-start: largest_loop: the record holds no full cycle"));
+  CHECK(contains(r.err, "give a static loop record"));
+  CHECK(!fs::exists(out));
+}
+
 TEST_CASE("--yeoh-start leaves fixed yeoh constants as written, so the fitted file still reproduces the fit") {
   // specimen_d_methods.rheo's model: D20 and D30 without bounds (fixed), D10 free.
   const std::string source = read_text(example("specimen_d_methods.rheo"));
