@@ -10,6 +10,7 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <optional>
 #include <sstream>
 
 namespace rheo::runtime {
@@ -42,6 +43,17 @@ std::vector<Cell> split(const std::string& line) {
     start = comma + 1;
   }
   return cells;
+}
+
+// The dimension a reader expects of a column it knows by name; other columns are not checked.
+std::optional<lang::Dimension> expected_dimension(std::string_view name) {
+  if (name == "time") return lang::dim::time;
+  if (name == "displacement" || name == "amplitude") return lang::dim::length;
+  if (name == "force") return lang::dim::force;
+  if (name == "frequency") return lang::dim::frequency;
+  if (name == "stiffness" || name == "storage" || name == "loss") return lang::dim::stiffness;
+  if (name == "phase" || name == "weight") return lang::dim::none;
+  return std::nullopt;
 }
 
 }  // namespace
@@ -106,6 +118,12 @@ Table parse_table(const std::string& path, const std::string& raw) {
           fail(path, row, cell.column + static_cast<int>(open) + 1,
                fmt::format("unknown unit '{}' in column '{}'; use units such as s, ms, mm, um, m, N, kN, N/mm, Hz, deg",
                            lang::printable(unit), lang::printable(name)));
+        if (const auto expected = expected_dimension(name); expected && parsed->dimension != *expected)
+          fail(path, row, cell.column + static_cast<int>(open) + 1,
+               fmt::format("column '{}' has unit '{}', a {}; {} needs a unit of {}, e.g. '{} [{}]'", name, lang::printable(unit),
+                           parsed->dimension.dimensionless() ? std::string("plain number") : lang::describe(parsed->dimension), name,
+                           expected->dimensionless() ? std::string("none (a plain number, or deg for a phase)") : lang::describe(*expected), name,
+                           name == "phase" ? "deg" : expected->dimensionless() ? "-" : name == "frequency" ? "Hz" : lang::internal_unit(*expected)));
         if (table.column(name) >= 0) fail(path, row, cell.column, fmt::format("column '{}' appears twice in the header; rename or remove one", lang::printable(name)));
         table.names.push_back(name);
         table.units.push_back(unit);

@@ -41,6 +41,13 @@ TEST_CASE("malformed tables are errors that name file:row:column") {
   CHECK(error_of("time [s],displacement [furlong]\n0,0\n").find("t.csv:1:") == 0);
   CHECK(error_of("time [s],displacement [furlong]\n0,0\n").find("unknown unit 'furlong'") != std::string::npos);
   CHECK(error_of("time [s],displacement\n0,0\n").find("has no unit") != std::string::npos);
+  // A unit of the wrong dimension for a column the readers know, at the unit's column.
+  CHECK(error_of("time [mm],displacement [mm]\n0,0\n").find(
+            "t.csv:1:7: error: column 'time' has unit 'mm', a length (mm); time needs a unit of time (s), e.g. 'time [s]'") == 0);
+  CHECK(error_of("time [s],force [N/mm]\n0,0\n").find("column 'force' has unit 'N/mm', a stiffness (N/mm)") != std::string::npos);
+  CHECK(error_of("time [s],phase [N]\n0,0\n").find("phase needs a unit of none (a plain number, or deg for a phase), e.g. 'phase [deg]'") !=
+        std::string::npos);
+  CHECK(error_of("time [s],strain [N]\n0,0\n").empty());  // columns no reader knows are not checked
   CHECK(error_of("time [s],displacement [mm]\n0,0\n1,abc\n").find("t.csv:3:3: error: 'abc' is not a number") == 0);
   CHECK(error_of("time [s],displacement [mm]\n0,0\n1,nan\n").find("t.csv:3:3: error: 'nan' is not a finite number") == 0);
   CHECK(error_of("time [s],displacement [mm]\n0,0\n1\n").find("t.csv:3:1: error: this row has 1 values") == 0);
