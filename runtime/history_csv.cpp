@@ -45,14 +45,22 @@ std::vector<Cell> split(const std::string& line) {
   return cells;
 }
 
-// The dimension a reader expects of a column it knows by name; other columns are not checked.
-std::optional<lang::Dimension> expected_dimension(std::string_view name) {
-  if (name == "time") return lang::dim::time;
-  if (name == "displacement" || name == "amplitude") return lang::dim::length;
-  if (name == "force") return lang::dim::force;
-  if (name == "frequency") return lang::dim::frequency;
-  if (name == "stiffness" || name == "storage" || name == "loss") return lang::dim::stiffness;
-  if (name == "phase" || name == "weight") return lang::dim::none;
+// What a reader expects of a column it knows by name: its dimension and a unit to suggest.
+// Other columns are not checked.
+struct ColumnKind {
+  lang::Dimension dimension;
+  const char* kind;     // for the message
+  const char* example;  // a unit of that kind
+};
+std::optional<ColumnKind> known_column(std::string_view name) {
+  using namespace lang;
+  if (name == "time") return ColumnKind{dim::time, "time (s)", "s"};
+  if (name == "displacement" || name == "amplitude") return ColumnKind{dim::length, "length (mm)", "mm"};
+  if (name == "force") return ColumnKind{dim::force, "force (N)", "N"};
+  if (name == "frequency") return ColumnKind{dim::frequency, "frequency (1/s)", "Hz"};
+  if (name == "stiffness" || name == "storage" || name == "loss") return ColumnKind{dim::stiffness, "stiffness (N/mm)", "N/mm"};
+  if (name == "phase") return ColumnKind{dim::none, "none (a plain number, or deg for a phase)", "deg"};
+  if (name == "weight") return ColumnKind{dim::none, "none (a plain number, or deg for a phase)", "-"};
   return std::nullopt;
 }
 
@@ -118,12 +126,11 @@ Table parse_table(const std::string& path, const std::string& raw) {
           fail(path, row, cell.column + static_cast<int>(open) + 1,
                fmt::format("unknown unit '{}' in column '{}'; use units such as s, ms, mm, um, m, N, kN, N/mm, Hz, deg",
                            lang::printable(unit), lang::printable(name)));
-        if (const auto expected = expected_dimension(name); expected && parsed->dimension != *expected)
+        if (const auto known = known_column(name); known && parsed->dimension != known->dimension)
           fail(path, row, cell.column + static_cast<int>(open) + 1,
-               fmt::format("column '{}' has unit '{}', a {}; {} needs a unit of {}, e.g. '{} [{}]'", name, lang::printable(unit),
-                           parsed->dimension.dimensionless() ? std::string("plain number") : lang::describe(parsed->dimension), name,
-                           expected->dimensionless() ? std::string("none (a plain number, or deg for a phase)") : lang::describe(*expected), name,
-                           name == "phase" ? "deg" : expected->dimensionless() ? "-" : name == "frequency" ? "Hz" : lang::internal_unit(*expected)));
+               fmt::format("column '{}' has unit '{}', {}; {} needs a unit of {}, e.g. '{} [{}]'", name, lang::printable(unit),
+                           parsed->dimension.dimensionless() ? std::string("a plain number") : "a " + lang::describe(parsed->dimension), name,
+                           known->kind, name, known->example));
         if (table.column(name) >= 0) fail(path, row, cell.column, fmt::format("column '{}' appears twice in the header; rename or remove one", lang::printable(name)));
         table.names.push_back(name);
         table.units.push_back(unit);

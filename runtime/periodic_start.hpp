@@ -15,9 +15,10 @@
 //
 // Root Maxwell elements start at their discrete periodic state; root friction elements and
 // sliders at the force they reach on the first loading. A subtree starts at the discrete
-// periodic state of its linearisation with sliders stuck (rigid members of their chains) and
-// friction elements within their caps (springs k), if every cap holds at that state's force
-// amplitude: the first cycle is then periodic up to rounding. Otherwise (a cap slips), and for
+// periodic state of its linearisation with sliders stuck (rigid members of their chains),
+// friction elements within their caps (springs k) and yeoh springs at their slope at rest
+// (2 D10), if every cap holds at that state's force amplitude: without yeoh springs the first
+// cycle is then periodic up to rounding, with them it starts near the periodic state. Otherwise (a cap slips), and for
 // subtrees with a gap, bouc_wen or quadratic dashpot, or a block that is rigid while its sliders
 // stick, the subtree starts at rest (measured on the hydrobushing grid: a clamped linear start
 // takes more cycles than rest where the cap slips).
