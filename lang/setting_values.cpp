@@ -44,7 +44,9 @@ std::optional<double> constant(const ast::Expr& e, const SettingSpec& s, const s
     return std::nullopt;
   }
   if (s.positive && !(value > 0)) {
-    errors.push_back({e.where, fmt::format("{} must be positive, got {}", s.key, show_value(value, s.dimension, literal_unit(e)))});
+    // At a vanishing amplitude every friction element sticks: the limit is a tiny amplitude's point.
+    const char* advice = s.key == "amplitude" && value == 0 ? "; for the small-amplitude limit give a tiny one, e.g. 1 um" : "";
+    errors.push_back({e.where, fmt::format("{} must be positive, got {}{}", s.key, show_value(value, s.dimension, literal_unit(e)), advice)});
     return std::nullopt;
   }
   if (!(value >= s.lowest && value <= s.highest)) {

@@ -123,6 +123,7 @@ DaeIntegrator::DaeIntegrator(const DaeGraph& graph, const DaeOptions& options) :
   solver_->jacobian.reset(owned(SUNDenseMatrix(n_, n_, ctx), "SUNDenseMatrix"));
   solver_->linear_solver.reset(owned(SUNLinSol_Dense(solver_->y.get(), solver_->jacobian.get(), ctx), "SUNLinSol_Dense"));
   check_ida(IDASetLinearSolver(mem, solver_->linear_solver.get(), solver_->jacobian.get()), "IDASetLinearSolver");
+  check_ida(IDASetNonlinConvCoef(mem, options_.newton_tolerance), "IDASetNonlinConvCoef");
   if (nl_ > 0) {
     check_ida(IDARootInit(mem, 2 * nl_, Callbacks::roots), "IDARootInit");
     check_ida(IDASetNoInactiveRootWarn(mem), "IDASetNoInactiveRootWarn");

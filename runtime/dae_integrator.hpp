@@ -41,6 +41,9 @@ struct DaeOptions {
   double length_scale = 1.0;    // mm: absolute tolerance of positions is rtol * this
   double force_scale = 1.0;     // N
   double velocity_scale = 1.0;  // mm/s
+  // IDA's Newton convergence coefficient (IDASetNonlinConvCoef; IDA's default 0.33): the
+  // corrector stops when its estimated error is this fraction of the local error weights.
+  double newton_tolerance = 0.33;
   long max_steps = 500000;      // per advance()
 };
 

@@ -7,18 +7,62 @@
 
 namespace rheo::runtime {
 
-double dae_force_scale(const DaeGraph& graph, double length) {
-  double scale = 0.0;
-  for (const Edge& edge : graph.edges) {
-    switch (edge.kind) {
-      case EdgeKind::spring: scale += edge.p[0] * length; break;
-      case EdgeKind::yeoh: scale += 2.0 * std::abs(edge.p[0]) * length; break;
-      case EdgeKind::bouc_wen: scale += std::min(edge.p[2], edge.p[0] * length); break;
-      case EdgeKind::slider: scale += edge.p[0]; break;
-      default: break;
+namespace {
+
+// What a subtree node carries at elongation `length` and rate `rate` (see dae_force_scale).
+double node_force_scale(const Network& network, int node_index, double length, double rate) {
+  const Topology& topology = network.topology();
+  const TreeNode& node = topology.nodes[static_cast<std::size_t>(node_index)];
+  const auto p = [&](int i) { return network.parameter(node.param[i]); };
+  const double omega = rate / length;
+  switch (node.kind) {
+    case NodeKind::spring: return p(0) * length;
+    case NodeKind::yeoh: return 2.0 * std::abs(p(0)) * length;
+    case NodeKind::dashpot: return p(0) * rate;
+    case NodeKind::quadratic_dashpot: return p(0) * rate * rate;
+    case NodeKind::maxwell: return std::min(p(0) * length, p(1) * rate);
+    case NodeKind::friction: return std::min(p(0) * length, p(1));
+    case NodeKind::slider: return p(0);
+    case NodeKind::inerter: return p(0) * omega * omega * length;
+    case NodeKind::bouc_wen: return std::min(p(2), p(0) * length);
+    case NodeKind::gap: return std::numeric_limits<double>::infinity();  // rigid in contact
+    case NodeKind::parallel:
+    case NodeKind::series: {
+      const bool series = node.kind == NodeKind::series;
+      double scale = series ? std::numeric_limits<double>::infinity() : 0.0;
+      for (int c = 0; c < node.child_count; ++c) {
+        const double child = node_force_scale(network, topology.children[static_cast<std::size_t>(node.first_child + c)], length, rate);
+        scale = series ? std::min(scale, child) : scale + child;
+      }
+      return scale;
     }
   }
-  return std::max(scale, 1e-6);
+  return 0.0;
+}
+
+}  // namespace
+
+double dae_force_scale(const Network& network, double length, double rate) {
+  const Topology& t = network.topology();
+  const auto p = [&](int i) { return network.parameter(i); };
+  double scale = 0.0;
+  for (int k : t.springs) scale += p(k) * length;
+  for (const auto& y : t.yeohs) scale += 2.0 * std::abs(p(y[0])) * length;
+  for (int c : t.dashpots) scale += p(c) * rate;
+  for (const auto& m : t.maxwells) scale += std::min(p(m[0]) * length, p(m[1]) * rate);
+  for (const auto& f : t.frictions) scale += std::min(p(f[0]) * length, p(f[1]));
+  for (int s : t.sliders) scale += p(s);
+  for (int root : t.subtrees) scale += node_force_scale(network, root, length, rate);
+  return std::isfinite(scale) && scale > 1e-6 ? scale : 1e-6;
+}
+
+double dae_newton_tolerance(const DaeGraph& graph, double length, double force_scale) {
+  double stiffest = 0.0;
+  for (const Edge& edge : graph.edges)
+    if (edge.kind == EdgeKind::spring || edge.kind == EdgeKind::yeoh)
+      stiffest = std::max(stiffest, (edge.kind == EdgeKind::yeoh ? 2.0 : 1.0) * std::abs(edge.p[0]) * length);
+  constexpr double ida_default = 0.33, floor = 1e-6;
+  return stiffest > 0.0 ? std::clamp(ida_default * force_scale / stiffest, floor, ida_default) : ida_default;
 }
 
 HarmonicPoint dae_harmonic_point(const Network& network, double amplitude, double frequency, const HarmonicOptions& options,
@@ -28,8 +72,9 @@ HarmonicPoint dae_harmonic_point(const Network& network, double amplitude, doubl
   DaeOptions dae;
   dae.relative_tolerance = kDaeRelativeTolerance;
   dae.length_scale = amplitude;
-  dae.force_scale = dae_force_scale(graph, amplitude);
+  dae.force_scale = dae_force_scale(network, amplitude, omega * amplitude);
   dae.velocity_scale = omega * amplitude;
+  dae.newton_tolerance = dae_newton_tolerance(graph, amplitude, dae.force_scale);
   DaeIntegrator integrator(graph, dae);
   integrator.start({DriveSignal::Kind::sine, amplitude, omega, nullptr});
 
@@ -79,8 +124,9 @@ History dae_history(const Network& network, const Drive& drive, bool elements, D
   DaeOptions dae;
   dae.relative_tolerance = kDaeRelativeTolerance;
   dae.length_scale = length;
-  dae.force_scale = dae_force_scale(graph, length);
   dae.velocity_scale = duration > 0.0 ? length / duration : 1.0;
+  dae.force_scale = dae_force_scale(network, length, dae.velocity_scale);
+  dae.newton_tolerance = dae_newton_tolerance(graph, length, dae.force_scale);
   DaeIntegrator integrator(graph, dae);
   integrator.start({DriveSignal::Kind::samples, 0.0, 0.0, &drive});
 

@@ -22,7 +22,18 @@ HarmonicPoint dae_harmonic_point(const Network& network, double amplitude, doubl
 
 History dae_history(const Network& network, const Drive& drive, bool elements, DaeStatistics* statistics = nullptr);
 
-// A force scale [N] for a length scale [mm]: what the network's springs and sliders carry.
-double dae_force_scale(const DaeGraph& graph, double length);
+// A force scale [N] for a length scale [mm] and a rate scale [mm/s]: what the network carries,
+// to set IDA's absolute force tolerance. Members in parallel add; a series chain carries what
+// its weakest member carries (so a 1e9 N/mm spring in series with a soft arm does not inflate
+// the scale and loosen the tolerance 1e9-fold). Per element: spring k L, yeoh 2|D10| L, dashpot
+// c v, quadratic dashpot cq v^2, Maxwell min(k L, c v), friction min(k L, fy), slider fy,
+// inerter b (v/L)^2 L, Bouc-Wen min(fy, k L); a gap is rigid in contact. Never below 1e-6 N.
+double dae_force_scale(const Network& network, double length, double rate);
+
+// IDA's Newton convergence coefficient for a network whose stiffest spring carries
+// F_k = k L [N] at the length scale: 0.33 F / F_k, in [1e-6, 0.33]. Internal node positions
+// are unknowns, so a position error dx is a force error k dx in that spring; with the default
+// coefficient, a 1e9 N/mm spring in series with a 1 N/mm arm put 1e-2 errors in K.
+double dae_newton_tolerance(const DaeGraph& graph, double length, double force_scale);
 
 }  // namespace rheo::runtime

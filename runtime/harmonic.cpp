@@ -66,6 +66,10 @@ bool uses_closed_form(const Network& network, const HarmonicOptions& options) {
 
 HarmonicPoint simulate_harmonic_point(const Network& network, double amplitude, double frequency,
                                       const HarmonicOptions& options) {
+  // The measures divide by u0 and the cycle by f: a zero would be NaN in every column.
+  if (!(amplitude > 0.0 && std::isfinite(amplitude) && frequency > 0.0 && std::isfinite(frequency)))
+    throw std::invalid_argument(fmt::format("model '{}': a harmonic point needs a positive, finite amplitude and frequency, got {} mm and {} Hz",
+                                            network.model().name, amplitude, frequency));
   if (uses_closed_form(network, options)) return closed_form_harmonic_point(network, amplitude, frequency, options.definition);
   if (uses_sundials(network, options.solver)) return dae_harmonic_point(network, amplitude, frequency, options);
   if (options.steady_state == SteadyState::closed_form)

@@ -57,6 +57,8 @@ struct HarmonicPoint {
 // Whether simulate_harmonic_point takes the closed form for this network and these options.
 bool uses_closed_form(const Network& network, const HarmonicOptions& options);
 
+// Throws std::invalid_argument unless amplitude and frequency are positive and finite (the
+// language and data readers refuse others at their file:line:col first).
 HarmonicPoint simulate_harmonic_point(const Network& network, double amplitude, double frequency,
                                       const HarmonicOptions& options);
 
