@@ -1,5 +1,10 @@
 #include "runtime/dae_protocols.hpp"
 
+#include "runtime/errors.hpp"
+#include "runtime/leaf_kernels.hpp"
+
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -65,8 +70,38 @@ double dae_newton_tolerance(const DaeGraph& graph, double length, double force_s
   return stiffest > 0.0 ? std::clamp(ida_default * force_scale / stiffest, floor, ida_default) : ida_default;
 }
 
-HarmonicPoint dae_harmonic_point(const Network& network, double amplitude, double frequency, const HarmonicOptions& options,
-                                 DaeStatistics* statistics) {
+namespace {
+
+// IDA's own message when its corrector fails says nothing about why; a yeoh in series that
+// softens (its tangent reaching zero, YeohLaw::softening_elongation) is the usual reason.
+std::string softening_hint(const Network& network) {
+  const Topology& t = network.topology();
+  std::string hint;
+  for (const ElementProbe& probe : t.probes) {
+    if (probe.source != ElementProbe::Source::tree_node) continue;
+    const TreeNode& n = t.nodes[static_cast<std::size_t>(probe.index)];
+    if (n.kind != NodeKind::yeoh) continue;
+    const YeohLaw law{network.parameter(n.param[0]), network.parameter(n.param[1]), network.parameter(n.param[2])};
+    const double e = law.softening_elongation();
+    if (std::isfinite(e))
+      hint += fmt::format("{} yeoh '{}' softens to zero tangent stiffness at |e| = {:.6g} mm (carrying {:.6g} N), where a spring "
+                          "in series snaps through: keep its elongation below that, or bound D20 so that D20^2 < (5/3) D10 D30",
+                          hint.empty() ? " Likely cause:" : ";", probe.path, e, std::abs(law.force(e)));
+  }
+  return hint;
+}
+
+template <class Run>
+auto with_softening_hint(const Network& network, Run run) {
+  try {
+    return run();
+  } catch (const NumericalError& error) {
+    throw NumericalError(error.what() + softening_hint(network));
+  }
+}
+
+HarmonicPoint harmonic_point(const Network& network, double amplitude, double frequency, const HarmonicOptions& options,
+                             DaeStatistics* statistics) {
   const DaeGraph graph = DaeGraph::build(network);
   const double omega = 2.0 * std::numbers::pi * frequency;
   DaeOptions dae;
@@ -115,7 +150,7 @@ HarmonicPoint dae_harmonic_point(const Network& network, double amplitude, doubl
   return point;
 }
 
-History dae_history(const Network& network, const Drive& drive, bool elements, DaeStatistics* statistics) {
+History history(const Network& network, const Drive& drive, bool elements, DaeStatistics* statistics) {
   const DaeGraph graph = DaeGraph::build(network);
   double length = 0.0;
   for (double u : drive.displacement) length = std::max(length, std::abs(u));
@@ -153,6 +188,17 @@ History dae_history(const Network& network, const Drive& drive, bool elements, D
   }
   if (statistics) *statistics = integrator.statistics();
   return h;
+}
+
+}  // namespace
+
+HarmonicPoint dae_harmonic_point(const Network& network, double amplitude, double frequency, const HarmonicOptions& options,
+                                 DaeStatistics* statistics) {
+  return with_softening_hint(network, [&] { return harmonic_point(network, amplitude, frequency, options, statistics); });
+}
+
+History dae_history(const Network& network, const Drive& drive, bool elements, DaeStatistics* statistics) {
+  return with_softening_hint(network, [&] { return history(network, drive, elements, statistics); });
 }
 
 }  // namespace rheo::runtime

@@ -162,6 +162,7 @@ FitResult fit(const Network& start, const std::vector<int>& free, const std::vec
                                                search, settings.progress, settings.interrupt);
     result.evaluations += found.evaluations;
     result.non_finite += found.non_finite;
+    if (result.first_failure.empty()) result.first_failure = found.first_failure;
     result.status = found.status;
     result.interrupted = result.interrupted || found.interrupted;
     result.objective = found.value;

@@ -69,7 +69,8 @@ struct FitResult {
   std::vector<DataSetFit> datasets{};
   ParameterStatistics statistics{}; // per free parameter, in parameter units
   int evaluations = 0;
-  int non_finite = 0;
+  int non_finite = 0;                // rejected evaluations: NaN, inf, or not simulable
+  std::string first_failure{};       // why the first evaluation that could not be simulated failed
   double wall_seconds = 0.0;
   std::string status{};
   bool interrupted = false;

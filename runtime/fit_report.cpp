@@ -88,6 +88,7 @@ std::string fit_report_text(const FitDescription& d, const FitResult& r) {
   out += fmt::format("  {} evaluations in {:.2f} s; {}\n", r.evaluations, r.wall_seconds,
                      r.interrupted ? "interrupted: these are the best values found so far" : fmt::format("optimizer status {}", r.status));
   if (r.non_finite > 0) out += fmt::format("  note: {} evaluations gave a non-finite objective and were rejected\n", r.non_finite);
+  if (!r.first_failure.empty()) out += fmt::format("  note: the first that could not be simulated: {}\n", r.first_failure);
   return out;
 }
 
@@ -104,6 +105,7 @@ std::string fit_report_json(const FitDescription& d, const FitResult& r) {
   j["interrupted"] = r.interrupted;
   j["evaluations"] = r.evaluations;
   j["non_finite_evaluations"] = r.non_finite;
+  j["first_failure"] = r.first_failure;
   j["wall_seconds"] = r.wall_seconds;
   j["phi"] = r.phi;
   j["err"] = r.err;

@@ -4,7 +4,8 @@
 //
 // JSON summary (one object per fit):
 //   model, source, method, objective, optimizer, seed, status, interrupted, evaluations,
-//   non_finite_evaluations, wall_seconds, phi, err, notes: [text...] (FitResult::notes),
+//   non_finite_evaluations, first_failure (why the first evaluation that could not be simulated
+//   failed; "" when none), wall_seconds, phi, err, notes: [text...] (FitResult::notes),
 //   parameters: [{path, unit, start, value, lower, upper, free, standard_error, identifiable}],
 //   correlation: {parameters: [path...], matrix: [[...]]}  (free parameters),
 //   data: [{file, kind, weight, points, err, phi?, residuals: [{amplitude_mm, frequency_hz,

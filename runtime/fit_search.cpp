@@ -1,5 +1,7 @@
 #include "runtime/fit_search.hpp"
 
+#include "runtime/errors.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -24,7 +26,12 @@ class Tracker {
   double operator()(const std::vector<double>& z) {
     if (evaluations_ > 0 && interrupt_ && interrupt_->load(std::memory_order_relaxed)) throw Interrupted{};
     if (evaluations_ >= limit_) throw Exhausted{};
-    const double value = objective_(z);
+    double value = std::numeric_limits<double>::quiet_NaN();
+    try {
+      value = objective_(z);
+    } catch (const NumericalError& e) {  // this point cannot be simulated: rejected like NaN
+      if (first_failure_.empty()) first_failure_ = e.what();
+    }
     ++evaluations_;
     if (!std::isfinite(value)) ++non_finite_;
     if (std::isfinite(value) && value < best_value_) {
@@ -37,6 +44,7 @@ class Tracker {
   void stage(const char* name) { stage_ = name; }
   int evaluations() const { return evaluations_; }
   int non_finite() const { return non_finite_; }
+  const std::string& first_failure() const { return first_failure_; }
   double best_value() const { return best_value_; }
   const std::vector<double>& best_z() const { return best_z_; }
 
@@ -49,6 +57,7 @@ class Tracker {
   int non_finite_ = 0;
   double best_value_ = std::numeric_limits<double>::infinity();
   std::vector<double> best_z_;
+  std::string first_failure_;
   const char* stage_ = "";
 };
 
@@ -154,6 +163,7 @@ SearchResult search(const Objective& objective, const std::vector<double>& start
   result.value = tracker.best_value();
   result.evaluations = tracker.evaluations();
   result.non_finite = tracker.non_finite();
+  result.first_failure = tracker.first_failure();
   return result;
 }
 

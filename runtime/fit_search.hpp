@@ -51,7 +51,8 @@ struct SearchResult {
   std::vector<double> z;  // the best point evaluated (the start when none was finite)
   double value = 0.0;     // the objective at z; +inf when no evaluation was finite
   int evaluations = 0;
-  int non_finite = 0;     // evaluations that returned NaN or inf (any stage)
+  int non_finite = 0;     // evaluations that returned NaN or inf, or threw NumericalError (any stage)
+  std::string first_failure;  // the message of the first NumericalError, if any
   std::string status;  // the last local stage's NLopt result, "MAXEVAL_REACHED" when the budget
                        // ran out before or during a stage, or "interrupted"
   bool interrupted = false;

@@ -11,6 +11,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 namespace rheo::runtime {
 
@@ -118,6 +119,21 @@ struct YeohLaw {
   double slope(double e) const {
     const double e2 = e * e;
     return 2.0 * d10 + e2 * (12.0 * d20 + 30.0 * d30 * e2);
+  }
+  // The smallest |e| [mm] at which the tangent reaches zero: the smallest positive root s = e^2
+  // of 30 D30 s^2 + 12 D20 s + 2 D10 (D10 > 0); infinity when the law is monotone, which is
+  // when D20 >= 0 and D30 >= 0, or D30 > 0 and D20^2 < (5/3) D10 D30.
+  double softening_elongation() const {
+    const double a = 30.0 * d30, b = 12.0 * d20, c = 2.0 * d10;
+    double s = std::numeric_limits<double>::infinity();
+    if (a == 0.0) {
+      if (b < 0.0) s = -c / b;
+    } else if (const double disc = b * b - 4.0 * a * c; disc >= 0.0) {
+      const double q = -0.5 * (b + std::copysign(std::sqrt(disc), b));  // roots q/a and c/q
+      for (double r : {q / a, q != 0.0 ? c / q : -1.0})
+        if (r > 0.0) s = std::min(s, r);
+    }
+    return std::sqrt(s);
   }
 };
 

@@ -5,11 +5,13 @@
 #include "runtime/dae_protocols.hpp"
 #include "runtime/harmonic.hpp"
 #include "runtime/history_csv.hpp"
+#include "runtime/leaf_kernels.hpp"
 #include "runtime/output.hpp"
 #include "runtime/periodic_closed_form.hpp"
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 
@@ -31,8 +33,29 @@ std::string word(const Protocol& p, const char* key, const char* fallback) {
   return s && !s->text.empty() ? s->text : fallback;
 }
 
-std::string render_history(const Protocol& p, const ResultHeader& header, const History& h) {
-  return word(p, "format", "csv") == "json" ? history_json(header, h) : history_csv(header, h);
+// A yeoh in the root block follows the drive; past YeohLaw::softening_elongation its
+// tangent is negative: the force is still the law's, but the law is extrapolated.
+std::string yeoh_softening_note(const Network& network, double reach) {
+  std::string note;
+  for (const ElementProbe& probe : network.topology().probes) {
+    if (probe.source != ElementProbe::Source::root_yeoh) continue;
+    const auto& y = network.topology().yeohs[static_cast<std::size_t>(probe.index)];
+    const YeohLaw law{network.parameter(y[0]), network.parameter(y[1]), network.parameter(y[2])};
+    const double e = law.softening_elongation();
+    if (e < reach)
+      note += fmt::format("warning: yeoh '{}' softens to zero tangent stiffness at |e| = {:.6g} mm (eq. 3.3) and the drive reaches "
+                          "{:g} mm: its force falls beyond that; check D20 and D30 (D20^2 < (5/3) D10 D30 stiffens again)\n",
+                          probe.path, e, reach);
+  }
+  return note;
+}
+
+void finish_history(const Network& network, const Protocol& p, const ResultHeader& header, const History& h, ProtocolRun& run) {
+  run.points = static_cast<int>(h.time.size());
+  run.content = word(p, "format", "csv") == "json" ? history_json(header, h) : history_csv(header, h);
+  double reach = 0.0;
+  for (double u : h.displacement) reach = std::max(reach, std::abs(u));
+  run.notes += yeoh_softening_note(network, reach);
 }
 
 }  // namespace
@@ -104,6 +127,8 @@ ProtocolRun run_protocol(const Network& network, const Protocol& p, const std::s
                                    point.amplitude, point.frequency, point.measures.damping);
           break;
         }
+      const auto amplitudes = numbers(p, "amplitude");
+      run.notes += yeoh_softening_note(network, *std::max_element(amplitudes.begin(), amplitudes.end()));
       run.points = static_cast<int>(points.size());
       run.content = word(p, "format", "csv") == "json" ? harmonic_json(header, points, options.definition)
                                                         : harmonic_csv(header, points, options.definition);
@@ -131,8 +156,7 @@ ProtocolRun run_protocol(const Network& network, const Protocol& p, const std::s
       header.protocol = fmt::format("static velocity={:g} mm/s cycles={}", velocity, cycles);
       header.protocol += solver_note(network, solver);
       const History h = run_history(network, drive, elements, solver);
-      run.points = static_cast<int>(h.time.size());
-      run.content = render_history(p, header, h);
+      finish_history(network, p, header, h, run);
       return run;
     }
     case lang::ProtocolKind::quasistatic: {
@@ -142,8 +166,7 @@ ProtocolRun run_protocol(const Network& network, const Protocol& p, const std::s
       header.protocol = fmt::format("quasistatic frequency={:g} Hz cycles={}", frequency, cycles);
       header.protocol += solver_note(network, solver);
       const History h = run_history(network, quasistatic_sine(numbers(p, "amplitude"), frequency, cycles, steps), elements, solver);
-      run.points = static_cast<int>(h.time.size());
-      run.content = render_history(p, header, h);
+      finish_history(network, p, header, h, run);
       return run;
     }
     case lang::ProtocolKind::history: {
@@ -153,8 +176,7 @@ ProtocolRun run_protocol(const Network& network, const Protocol& p, const std::s
       header.protocol = fmt::format("history file={}", file.string());
       header.protocol += solver_note(network, solver);
       const History h = run_history(network, drive, elements, solver);
-      run.points = static_cast<int>(h.time.size());
-      run.content = render_history(p, header, h);
+      finish_history(network, p, header, h, run);
       return run;
     }
     case lang::ProtocolKind::step: {
@@ -164,8 +186,7 @@ ProtocolRun run_protocol(const Network& network, const Protocol& p, const std::s
       header.protocol = fmt::format("step amplitude={:g} mm duration={:g} s", amplitude, duration);
       header.protocol += solver_note(network, solver);
       const History h = run_history(network, step_relaxation(amplitude, number(p, "rise", dt), duration, dt), elements, solver);
-      run.points = static_cast<int>(h.time.size());
-      run.content = render_history(p, header, h);
+      finish_history(network, p, header, h, run);
       return run;
     }
   }

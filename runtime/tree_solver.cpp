@@ -1,6 +1,10 @@
 #include "runtime/tree_solver.hpp"
 
+#include "runtime/errors.hpp"
+
 #include "runtime/monotone_solve.hpp"
+
+#include <fmt/format.h>
 
 #include <algorithm>
 #include <cmath>
@@ -78,9 +82,29 @@ void TreeStepPlan::prepare(const Network& network, double step, double piece_len
       case NodeKind::dashpot: coefficient[i] = p(0) / dt; break;
       case NodeKind::quadratic_dashpot: coefficient[i] = p(0) / (dt * dt); break;
       case NodeKind::inerter: coefficient[i] = 4.0 * p(0) / (dt * dt); break;
+      case NodeKind::yeoh: {
+        const YeohLaw law{p(0), p(1), p(2)};
+        const double e = law.softening_elongation();
+        coefficient[i] = std::isfinite(e) ? std::abs(law.force(e)) : kInf;
+        break;
+      }
       default: break;
     }
   }
+}
+
+void TreeSolver::throw_softened(int node, double force) const {
+  const TreeNode& n = at(node);
+  const YeohLaw law{p(n, 0), p(n, 1), p(n, 2)};
+  std::string path = "?";
+  for (const ElementProbe& probe : topology_.probes)
+    if (probe.source == ElementProbe::Source::tree_node && probe.index == node) path = probe.path;
+  throw NumericalError(fmt::format(
+      "model '{}': yeoh '{}' is asked to carry {:.6g} N, but its tangent stiffness 2 D10 + 12 D20 e^2 + 30 D30 e^4 reaches "
+      "zero at |e| = {:.6g} mm, where it carries its most, {:.6g} N (eq. 3.3); a softening spring in series cannot hold "
+      "a larger force (it would snap through). Keep the drive small enough that its elongation stays below that, or bound D20 so that D20^2 < (5/3) D10 D30 "
+      "(a Yeoh law that stiffens again)",
+      network_.model().name, path, force, law.softening_elongation(), coefficient(node)));
 }
 
 bool steps_without_iteration(const Topology& topology) {
@@ -183,6 +207,7 @@ ForceSlope TreeSolver::inverse(int node, double force) const {
     case NodeKind::spring: return {force / p(n, 0) - e_before(n), 1.0 / p(n, 0)};
     case NodeKind::yeoh: {
       const YeohLaw law{p(n, 0), p(n, 1), p(n, 2)};
+      if (!(std::abs(force) < coefficient(node))) throw_softened(node, force);
       auto residual = [&](double e) { return ForceSlope{law.force(e) - force, law.slope(e)}; };
       const double tol = kRelTol * (std::abs(force) + 1e-9);
       const double e = solve_monotone(residual, e_before(n), force / law.slope(0.0), -kInf, kInf, tol);

@@ -45,7 +45,8 @@ struct TreeStepPlan {
   // harmonic protocol's midpoint probes (half a step along a piece of 2 dt).
   double piece = 0.0;
   std::vector<MaxwellStep> maxwell;  // per node (unused entries for other kinds)
-  // Per node: dashpot c/dt [N/mm], quadratic_dashpot cq/dt^2 [N/mm^2], inerter 4 b/dt^2 [N/mm].
+  // Per node: dashpot c/dt [N/mm], quadratic_dashpot cq/dt^2 [N/mm^2], inerter 4 b/dt^2 [N/mm],
+  // yeoh the largest force [N] it carries before its tangent reaches zero (infinite if never).
   std::vector<double> coefficient;
   // Per node: the forces [N] it can carry (caps of friction elements, sliders and bouc_wen,
   // intersected along series chains, added across parallel blocks); unbounded otherwise.
@@ -85,6 +86,8 @@ class TreeSolver {
   void assign(int node, double de, double force, double* after) const;
   void assign_play(const TreeNode& n, double de, double* after) const;
   ForceSlope inerter(int node, double de) const;
+  // NumericalError: a yeoh in series asked for more force than it carries before softening.
+  [[noreturn]] void throw_softened(int node, double force) const;
 
   const TreeNode& at(int node) const { return topology_.nodes[static_cast<std::size_t>(node)]; }
   double e_before(const TreeNode& n) const { return before_[n.state]; }

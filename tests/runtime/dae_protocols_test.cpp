@@ -4,6 +4,7 @@
 // smooth standard-library model.
 #include "lang/stdlib.hpp"
 #include "runtime/dae_protocols.hpp"
+#include "runtime/errors.hpp"
 #include "runtime/harmonic_data.hpp"
 #include "support.hpp"
 
@@ -84,4 +85,17 @@ TEST_CASE("fixed-step and SUNDIALS agree on a quasi-static history of a friction
   }
   MESSAGE("history: worst force difference " << worst << " N of " << scale << " N");
   CHECK(worst < 1e-4 * scale);
+}
+
+TEST_CASE("IDA failing on a yeoh that softens in series names the yeoh and its limit; below the limit it agrees with fixed steps") {
+  const auto network = test::network_from("model y { series { yeoh r (D10 = 1, D20 = -1, D30 = 0) spring k (k = 1) } }", "y");
+  runtime::HarmonicOptions options;
+  options.solver = runtime::SolverChoice::sundials;
+  CHECK_THROWS_WITH_AS(runtime::dae_harmonic_point(network, 2.0, 1.0, options),
+                       doctest::Contains("Likely cause: yeoh 'r' softens to zero tangent stiffness at |e| = 0.408248 mm"),
+                       runtime::NumericalError);
+  const auto dae = runtime::dae_harmonic_point(network, 0.5, 1.0, options);
+  options.solver = runtime::SolverChoice::fixed;
+  const auto fixed = runtime::simulate_harmonic_point(network, 0.5, 1.0, options);
+  CHECK(dae.measures.stiffness == doctest::Approx(fixed.measures.stiffness).epsilon(1e-5));
 }

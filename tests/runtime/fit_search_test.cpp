@@ -3,6 +3,8 @@
 // Ctrl-C (the interrupt flag) and the named global algorithms followed by the polish.
 #include "runtime/fit_search.hpp"
 
+#include "runtime/errors.hpp"
+
 #include <doctest/doctest.h>
 
 #include <algorithm>
@@ -209,6 +211,21 @@ TEST_CASE("non-finite objective values are counted in every stage, the start's i
   CHECK(nan_count > 1);  // the start and some samples
   CHECK(r.non_finite == nan_count);
   check_at_bowl_minimum(r, 1e-6);
+}
+
+TEST_CASE("a point that cannot be simulated (NumericalError) is rejected like NaN, and the first message is kept") {
+  int failures = 0;
+  const Objective failing = [&](const std::vector<double>& z) {
+    if (z[0] < -1.5) throw NumericalError("cannot simulate " + std::to_string(++failures));
+    return bowl(z);
+  };
+  const SearchResult r = search(failing, bowl_start, bowl_lower, bowl_upper, linear3, {});
+  CHECK(failures > 1);  // the start (z0 = -2) and some samples
+  CHECK(r.non_finite == failures);
+  CHECK(r.first_failure == "cannot simulate 1");
+  check_at_bowl_minimum(r, 1e-6);
+  const SearchResult clean = search(bowl, bowl_start, bowl_lower, bowl_upper, linear3, {});
+  CHECK(clean.first_failure.empty());
 }
 
 TEST_CASE("extra starts are searched from, and a start that is already optimal is kept") {

@@ -66,3 +66,16 @@ TEST_CASE("solver = sundials names itself in the header; with steady_state = clo
       run_first(model + "simulate { harmonic frequency = 5 Hz, amplitude = 0.5 mm, solver = sundials, steady_state = closed_form }", "s.rheo"),
       doctest::Contains("s.rheo:3:12: steady_state = closed_form and the SUNDIALS solver exclude each other"), runtime::UsageError);
 }
+
+TEST_CASE("a yeoh driven past where it softens: a warning in the root block (once per protocol), an error in series") {
+  const std::string soft = "model y { yeoh r (D10 = 1, D20 = -1, D30 = 0) spring k (k = 1) }\n";  // e* = 1/sqrt(6) mm
+  const auto past = run_first(soft + "simulate { harmonic frequency = 1 Hz, amplitude = [0.1, 2] mm }", "y.rheo");
+  CHECK(past.notes == "warning: yeoh 'r' softens to zero tangent stiffness at |e| = 0.408248 mm (eq. 3.3) and the drive reaches "
+                      "2 mm: its force falls beyond that; check D20 and D30 (D20^2 < (5/3) D10 D30 stiffens again)\n");
+  CHECK(run_first(soft + "simulate { harmonic frequency = 1 Hz, amplitude = [0.1, 0.4] mm }", "y.rheo").notes.empty());
+  const auto history = run_first(soft + "simulate { static velocity = 1 mm/s, amplitude = 0.5 mm }", "y.rheo");
+  CHECK(history.notes.find("the drive reaches 0.5 mm") != std::string::npos);
+  const std::string chain = "model y { series { yeoh r (D10 = 1, D20 = -1, D30 = 0) spring k (k = 1) } }\n";
+  CHECK_THROWS_WITH_AS(run_first(chain + "simulate { static velocity = 1 mm/s, amplitude = 2 mm }", "y.rheo"),
+                       doctest::Contains("yeoh 'r' is asked to carry"), runtime::NumericalError);
+}

@@ -2,6 +2,7 @@
 #include "runtime/tree_solver.hpp"
 
 #include "runtime/drives.hpp"
+#include "runtime/errors.hpp"
 #include "runtime/simulator.hpp"
 #include "support.hpp"
 
@@ -335,4 +336,30 @@ TEST_CASE("capped-linear chains and linear blocks: the closed-form step equals t
   MESSAGE("worst force difference " << worst << " N of " << peak << " N");
   CHECK(peak > 300.0 * 1.5 + 40.0 * 0.9);  // the cap slipped at the largest amplitude
   CHECK(worst < 1e-9 * peak);
+}
+
+TEST_CASE("a softening yeoh: the tangent's zero in closed form, and in series a force beyond its peak is an error naming it") {
+  // slope = 2 D10 + 12 D20 e^2 + 30 D30 e^4 (eq. 3.3).
+  const runtime::YeohLaw cubic{1.0, -1.0, 0.0};  // e*^2 = 2/12
+  CHECK(cubic.softening_elongation() == doctest::Approx(std::sqrt(1.0 / 6.0)).epsilon(1e-14));
+  const runtime::YeohLaw quintic{10.0, -3.0, 0.1};  // D20^2 = 9 > (5/3) 10 0.1: softens
+  const double e = quintic.softening_elongation();
+  CHECK(std::abs(quintic.slope(e)) < 1e-12 * 20.0);
+  CHECK(quintic.slope(0.99 * e) > 0.0);
+  CHECK(quintic.slope(1.01 * e) < 0.0);
+  CHECK(std::isinf(runtime::YeohLaw{53.4938, -0.1648, 0.0015}.softening_elongation()));  // specimen A stiffens again
+  CHECK(std::isinf(runtime::YeohLaw{10.0, -1.0, 0.1}.softening_elongation()));  // D20^2 = 1 < 5/3
+  CHECK(std::isfinite(runtime::YeohLaw{10.0, 1.0, -0.1}.softening_elongation()));  // D30 < 0 always turns over
+
+  // Peak force of the cubic: F(e*) = 2 e* - 4 e*^3 = 0.5443 N. A 1 N/mm spring in series.
+  const auto net = test::network_from("model y { series { yeoh r (D10 = 1, D20 = -1, D30 = 0) spring s (k = 1) } }", "y");
+  const double peak = 2.0 * std::sqrt(1.0 / 6.0) - 4.0 * std::pow(1.0 / 6.0, 1.5);
+  const auto below = ramp(net, 0.6, 60);  // e_yeoh < e* all along: F = 2 e - 4 e^3, u = e + F
+  for (std::size_t i = 0; i < below.time.size(); ++i) {
+    const double f = below.force[i];
+    CHECK(f < peak);
+    const double e_yeoh = below.displacement[i] - f;
+    CHECK(std::abs(2.0 * e_yeoh - 4.0 * e_yeoh * e_yeoh * e_yeoh - f) < 1e-9);
+  }
+  CHECK_THROWS_WITH_AS(ramp(net, 2.0, 60), doctest::Contains("yeoh 'r' is asked to carry"), runtime::NumericalError);
 }
