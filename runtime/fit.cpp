@@ -199,8 +199,13 @@ FitResult fit(const Network& start, const std::vector<int>& free, const std::vec
   }
 
   result.network = coordinates.network(z);
-  if (!result.interrupted && settings.statistics)
+  if (!result.interrupted && settings.statistics) {
     result.statistics = parameter_statistics(residuals_for(final_method), z, coordinates.logarithmic);
+    if (!result.statistics.has_noise_estimate())
+      result.notes.push_back(fmt::format("no standard errors: {} residuals for {} identifiable directions leave no degree of freedom to "
+                                         "estimate the noise; add data points or fix parameters",
+                                         result.statistics.residuals, result.statistics.rank));
+  }
   std::size_t harmonic_points = 0;
   for (const FitDataSet& set : data) {
     DataSetFit d;

@@ -62,11 +62,11 @@ ParameterStatistics parameter_statistics(const std::function<std::vector<double>
       inverse_square(k) = 1.0 / (s(k) * s(k));
       ++out.rank;
     }
-  if (m <= static_cast<std::size_t>(out.rank))
-    throw std::invalid_argument(fmt::format("parameter_statistics: {} residuals for {} identifiable directions leave no degree of "
-                                            "freedom to estimate the noise; add data", m, out.rank));
-  const double s2 = r0.squaredNorm() / static_cast<double>(m - static_cast<std::size_t>(out.rank));
-  const Eigen::MatrixXd covariance = s2 * v * inverse_square.asDiagonal() * v.transpose();
+  out.residuals = static_cast<int>(m);
+  const double s2 = m > static_cast<std::size_t>(out.rank)
+                        ? r0.squaredNorm() / static_cast<double>(m - static_cast<std::size_t>(out.rank))
+                        : std::numeric_limits<double>::quiet_NaN();
+  const Eigen::MatrixXd covariance = v * inverse_square.asDiagonal() * v.transpose();  // Cov_z / s^2
 
   for (Eigen::Index j = 0; j < nn; ++j) {
     double null_part = 0.0;
@@ -79,7 +79,7 @@ ParameterStatistics parameter_statistics(const std::function<std::vector<double>
   for (std::size_t i = 0; i < n; ++i) {
     const auto ii = static_cast<Eigen::Index>(i);
     const double dp_dz = logarithmic[i] ? std::exp(z[i]) : 1.0;
-    out.standard_error.push_back(out.identifiable[i] ? dp_dz * std::sqrt(covariance(ii, ii))
+    out.standard_error.push_back(out.identifiable[i] ? dp_dz * std::sqrt(s2 * covariance(ii, ii))
                                                      : std::numeric_limits<double>::infinity());
     out.correlation[i][i] = 1.0;
     for (std::size_t j = 0; j < n; ++j) {

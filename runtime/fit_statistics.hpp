@@ -27,17 +27,22 @@
 namespace rheo::runtime {
 
 struct ParameterStatistics {
-  std::vector<double> standard_error;            // parameter units; +inf when not identifiable
+  std::vector<double> standard_error;            // parameter units; +inf when not identifiable,
+                                                 // NaN when residuals <= rank (no s^2)
   std::vector<std::vector<double>> correlation;  // n x n, diagonal 1; NaN off the diagonal in
                                                  // rows and columns of non-identifiable parameters
                                                  // (and where a variance is 0: a perfect fit)
   std::vector<bool> identifiable;
   int rank = 0;                                  // numerical rank of J
+  int residuals = 0;                             // m
+  bool has_noise_estimate() const { return residuals > rank; }
 };
 
-// `residuals` is called 2 n + 1 times; `logarithmic` has n entries. Throws std::invalid_argument
-// when sizes disagree, when r changes size between calls, or when m <= rank (no degree of
-// freedom left for s^2); std::runtime_error when a residual is not finite.
+// `residuals` is called 2 n + 1 times; `logarithmic` has n entries. When m <= rank no degree of
+// freedom is left for s^2: identifiability and correlations are still given (they do not
+// depend on s^2), standard errors of identifiable parameters are NaN. Throws
+// std::invalid_argument when sizes disagree or r changes size between calls;
+// std::runtime_error when a residual is not finite.
 ParameterStatistics parameter_statistics(const std::function<std::vector<double>(const std::vector<double>&)>& residuals,
                                          const std::vector<double>& z, const std::vector<bool>& logarithmic);
 

@@ -106,9 +106,22 @@ TEST_CASE("rank deficiency: only the estimable parameters get finite statistics"
   CHECK(unused.correlation[0][1] == doctest::Approx(line.corr).epsilon(1e-7));
 }
 
-TEST_CASE("statistics need degrees of freedom and consistent sizes") {
+TEST_CASE("without a degree of freedom: identifiability and correlation, but no standard errors; sizes must agree") {
+  // r = (1 - z0 - z1, 2 - z0 - 2 z1): J = -[[1, 1], [1, 2]], full rank, m = rank = 2.
   const auto two = [](const std::vector<double>& z) { return std::vector<double>{1.0 - z[0] - z[1], 2.0 - z[0] - 2 * z[1]}; };
-  CHECK_THROWS_AS(parameter_statistics(two, {0.0, 1.0}, {false, false}), std::invalid_argument);
+  const auto exact = parameter_statistics(two, {0.0, 1.0}, {false, false});
+  CHECK(exact.rank == 2);
+  CHECK(!exact.has_noise_estimate());
+  CHECK(exact.identifiable == std::vector<bool>{true, true});
+  CHECK(std::isnan(exact.standard_error[0]));
+  CHECK(std::isnan(exact.standard_error[1]));
+  // (J^T J)^-1 = [[5, -3], [-3, 2]]: correlation -3 / sqrt(10).
+  CHECK(exact.correlation[0][1] == doctest::Approx(-3.0 / std::sqrt(10.0)).epsilon(1e-7));
+  // One residual for two coordinates: rank 1, neither identifiable alone.
+  const auto one = parameter_statistics([](const std::vector<double>& z) { return std::vector<double>{1.0 - z[0] - z[1]}; },
+                                        {0.3, 0.7}, {false, false});
+  CHECK(one.rank == 1);
+  CHECK(one.identifiable == std::vector<bool>{false, false});
   CHECK_THROWS_AS(parameter_statistics(two, {0.0, 1.0}, {false}), std::invalid_argument);
   int calls = 0;
   const auto growing = [&](const std::vector<double>&) { return std::vector<double>(static_cast<std::size_t>(3 + calls++), 1.0); };

@@ -12,6 +12,7 @@
 #include <doctest/doctest.h>
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cmath>
 #include <complex>
 #include <numbers>
@@ -155,6 +156,19 @@ TEST_CASE("a fit that starts with every parameter on a bound still finds the tru
   CHECK(result.network.parameter(1) == doctest::Approx(60.0).epsilon(1e-4));
   CHECK(result.network.parameter(2) == doctest::Approx(5e-3).epsilon(1e-4));
   CHECK(result.err < 1e-6);
+}
+
+TEST_CASE("a fit with more free parameters than residuals matches the data and says why it has no standard errors") {
+  const auto truth = test::network_from("model t { spring e (k = 100) maxwell m (k = 60, tau = 5 ms) }", "t");
+  const auto data = harmonic_data_of(truth, {0.5}, {10}, {});  // 2 residuals, 3 free parameters
+  const auto start = test::network_from("model t { spring e (k = 50 in [10, 1000]) maxwell m (k = 20 in [1, 1000], tau = 2 ms in [0.1 ms, 100 ms]) }", "t");
+  const auto result = runtime::fit(start, runtime::bounded_parameters(start), {data}, {});
+  CHECK(result.err < 1e-8);
+  CHECK(result.statistics.rank == 2);
+  CHECK(std::count(result.statistics.identifiable.begin(), result.statistics.identifiable.end(), true) == 0);
+  REQUIRE(!result.notes.empty());
+  CHECK(result.notes.back() == "no standard errors: 2 residuals for 2 identifiable directions leave no degree of freedom to estimate "
+                               "the noise; add data points or fix parameters");
 }
 
 TEST_CASE("a fit with a fixed seed repeats bit for bit, on one thread or two") {
