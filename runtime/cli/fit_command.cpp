@@ -49,7 +49,7 @@ Command add_fit_command(CLI::App& app) {
   const runtime::SearchSettings defaults;
   app.add_option("--method", o->method, "exact | approximate | corrected (thesis eqs. 5.5-5.21, Table 5.1); default exact");
   app.add_option("--optimizer", o->optimizer, "default | bobyqa | sbplx | neldermead | direct_l | crs2 | isres | mlsl; default: default");
-  app.add_option("--max-evaluations", o->max_evaluations, fmt::format("Evaluation budget over all stages; default {}", defaults.max_evaluations))
+  app.add_option("--max-evaluations", o->max_evaluations, fmt::format("Evaluation budget of the search over all its stages; default {}. The exact method's cheaper surrogate stage has a budget of its own, so the count reported can reach twice this", defaults.max_evaluations))
       ->check(CLI::Range(1, std::numeric_limits<int>::max()));
   app.add_option("--starts", o->starts, fmt::format("Local searches of the default strategy; default {}", defaults.starts))
       ->check(CLI::Range(1, std::numeric_limits<int>::max()));
