@@ -38,7 +38,10 @@ constexpr std::array<AtomEntry, 17> kAtoms{{
 void append_power(std::string& out, std::string_view base, int power) {
   if (power == 0) return;
   out += base;
-  if (power != 1) out += "^" + std::to_string(power);
+  if (power != 1) {  // two appends: "^" + to_string trips GCC 12's -Wrestrict (bug 105651)
+    out += '^';
+    out += std::to_string(power);
+  }
 }
 
 }  // namespace
@@ -115,7 +118,7 @@ std::string internal_unit(const Dimension& d) {
   place("mm", d.length);
   place("s", d.time < 0 ? d.time : 0);
   if (numerator.empty() && denominator.empty()) return "";
-  if (numerator.empty()) numerator = "1";
+  if (numerator.empty()) numerator.push_back('1');  // not = "1": GCC 12 -Wrestrict (bug 105651)
   return denominator.empty() ? numerator : numerator + "/" + denominator;
 }
 

@@ -50,7 +50,7 @@ struct GraphBuilder {
       }
       default: break;
     }
-    EdgeProbe probe{e.path, {}};
+    EdgeProbe probe{e.path, {}, {}};
     where = e.where;
     switch (e.kind) {
       case ElementKind::spring: probe.edges = {add_edge(EdgeKind::spring, a, b, {value(e, 0)}, e.path)}; break;
@@ -107,7 +107,7 @@ bool is_switch(EdgeKind kind) { return kind == EdgeKind::slider || kind == EdgeK
 DaeGraph DaeGraph::build(const Network& network) {
   DaeGraph graph;
   graph.model = network.model().name;
-  GraphBuilder builder{network, graph};
+  GraphBuilder builder{network, graph, {}};
   builder.place(network.model().root, kTerminal, kGround);
 
   std::vector<int> held(static_cast<std::size_t>(graph.internal_nodes), 0);

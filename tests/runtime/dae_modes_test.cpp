@@ -44,9 +44,9 @@ TEST_CASE("an inerter held to the drive by a stuck slider is refused with advice
   runtime::DaeGraph graph;
   graph.model = "m";
   graph.internal_nodes = 1;
-  graph.edges = {{runtime::EdgeKind::spring, runtime::kTerminal, runtime::kGround, {1.0}, "k0"},
-                 {runtime::EdgeKind::slider, runtime::kTerminal, 0, {1.0}, "s.f"},
-                 {runtime::EdgeKind::inerter, 0, runtime::kGround, {1.0}, "s.b"}};
+  graph.edges = {{runtime::EdgeKind::spring, runtime::kTerminal, runtime::kGround, {1.0}, "k0", {}},
+                 {runtime::EdgeKind::slider, runtime::kTerminal, 0, {1.0}, "s.f", {}},
+                 {runtime::EdgeKind::inerter, 0, runtime::kGround, {1.0}, "s.b", {}}};
   graph.rate_edges = {2};
   graph.switch_edges = {1};
   CHECK_THROWS_WITH_AS(runtime::ModeKinematics::make(graph, {0}), doctest::Contains("inerter 's.b' of model 'm' is held rigidly to the drive"),
