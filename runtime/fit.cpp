@@ -148,6 +148,9 @@ FitResult fit(const Network& start, const std::vector<int>& free, const std::vec
 
   FitResult result{.network = start, .free = free, .start_values = start.parameters()};
   result.notes = std::move(notes);
+  for (const FitDataSet& set : data)
+    if (set.is_harmonic())
+      for (std::string& note : damping_left_out(set.harmonic())) result.notes.push_back(std::move(note));
   std::vector<ThesisCorrection> corrections;
   auto residuals_for = [&](FitMethod method) {
     return [&, method](const std::vector<double>& z) { return residuals(coordinates.network(z), data, score, method, corrections); };

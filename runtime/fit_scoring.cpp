@@ -43,7 +43,7 @@ void append_residuals(const FitDataSet& set, const Prediction& prediction, const
     const double point_scale = d.weight.empty() ? scale : scale * std::sqrt(d.weight[i]);
     if (settings.objective == FitObjective::phi) {
       out.push_back(point_scale * std::sqrt(settings.stiffness_weight) * (m.stiffness / d.stiffness[i] - 1.0));
-      out.push_back(point_scale * std::sqrt(settings.damping_weight) * (std::sin(m.phase) / std::sin(d.phase[i]) - 1.0));
+      out.push_back(point_scale * std::sqrt(settings.damping_weight) * damping_residual(m.phase, d.phase[i]));
     } else {
       const std::complex<double> model = std::polar(m.stiffness, m.phase), measured = std::polar(d.stiffness[i], d.phase[i]);
       const std::complex<double> r = (model - measured) / d.stiffness[i];

@@ -49,9 +49,9 @@ HarmonicData harmonic_data_from_table(const Table& t) {
     if (!(d.amplitude[i] > 0.0)) fail("amplitude", fmt::format("amplitude must be positive, got {:g} mm", d.amplitude[i]));
     if (!(d.frequency[i] > 0.0)) fail("frequency", fmt::format("frequency must be positive, got {:g} Hz", d.frequency[i]));
     if (!(d.stiffness[i] > 0.0)) fail(t.column("stiffness") >= 0 ? "stiffness" : "storage", fmt::format("stiffness must be positive, got {:g} N/mm", d.stiffness[i]));
-    if (!(d.phase[i] > 0.0 && d.phase[i] <= std::numbers::pi / 2))
+    if (!(d.phase[i] > -std::numbers::pi / 2 && d.phase[i] <= std::numbers::pi / 2))
       fail(t.column("phase") >= 0 ? "phase" : "loss",
-           fmt::format("phase must lie in (0, 90] deg, got {:g} deg; the relative damping error of eq. 5.1 divides by sin(phase)",
+           fmt::format("phase must lie in (-90, 90] deg, got {:g} deg; check the column's unit (deg or rad) and sign convention",
                        d.phase[i] * 180.0 / std::numbers::pi));
     const auto [it, fresh] = seen.emplace(std::make_pair(d.amplitude[i], d.frequency[i]), t.rows[i]);
     if (!fresh)

@@ -3,7 +3,9 @@
 // (`amplitude [mm],frequency [Hz],stiffness [N/mm],phase [deg]`). Converted to the internal
 // system: amplitude mm, frequency Hz, stiffness N/mm, phase rad. Malformed input (missing
 // column, negative or zero amplitude or frequency, non-positive stiffness, a phase outside
-// (0, 90] deg, duplicate point, negative weight) is a DataError naming file:row:column.
+// (-90, 90] deg, duplicate point, negative weight) is a DataError naming file:row:column. A
+// phase <= 0 (noise on a nearly elastic point) is kept: fits leave its damping term out
+// (objective.hpp, damping_residual).
 // An optional `weight [-]` column weighs each point's residuals in a fit.
 #pragma once
 

@@ -2,17 +2,34 @@
 
 #include "runtime/parallel_for.hpp"
 
+#include <fmt/format.h>
+
 #include <cmath>
+#include <numbers>
 #include <stdexcept>
 
 namespace rheo::runtime {
+
+double damping_residual(double model_phase, double measured_phase) {
+  return measured_phase > 0.0 ? std::sin(model_phase) / std::sin(measured_phase) - 1.0 : 0.0;
+}
+
+std::vector<std::string> damping_left_out(const HarmonicData& data) {
+  std::vector<std::string> notes;
+  for (std::size_t i = 0; i < data.size(); ++i)
+    if (!(data.phase[i] > 0.0))
+      notes.push_back(fmt::format("{}:{}: phase {:g} deg <= 0 (noise on a nearly elastic point): its damping term is left out of "
+                                  "eq. 5.1, which divides by sin(phase)",
+                                  data.path, data.rows[i], data.phase[i] * 180.0 / std::numbers::pi));
+  return notes;
+}
 
 RelativeResiduals relative_residuals(const HarmonicData& data, const std::vector<HarmonicPoint>& model) {
   if (model.size() != data.size()) throw std::invalid_argument("model and data have different numbers of points");
   RelativeResiduals r;
   for (std::size_t i = 0; i < data.size(); ++i) {
     r.stiffness.push_back(model[i].measures.stiffness / data.stiffness[i] - 1.0);
-    r.damping.push_back(std::sin(model[i].measures.phase) / std::sin(data.phase[i]) - 1.0);
+    r.damping.push_back(damping_residual(model[i].measures.phase, data.phase[i]));
   }
   return r;
 }

@@ -8,9 +8,18 @@
 #include "runtime/harmonic.hpp"
 #include "runtime/harmonic_data.hpp"
 
+#include <string>
 #include <vector>
 
 namespace rheo::runtime {
+
+// Eq. 5.1's relative damping error sin(phase_model) / sin(phase_measured) - 1 [-]; 0 (the term
+// left out) where the measured phase [rad] is <= 0, which noise on a nearly elastic point can
+// give (it has no relative error: the quotient changes sign or is infinite).
+double damping_residual(double model_phase, double measured_phase);
+
+// "FILE:ROW: phase ... <= 0 ..." for each such point of `data`, for the fit's notes.
+std::vector<std::string> damping_left_out(const HarmonicData& data);
 
 struct RelativeResiduals {
   std::vector<double> stiffness;  // K_th / K_exp - 1

@@ -7,6 +7,7 @@
 #include "runtime/cli/report_files.hpp"
 #include "runtime/errors.hpp"
 #include "runtime/fit_scoring.hpp"
+#include "runtime/objective.hpp"
 #include "runtime/run_protocols.hpp"
 
 #include <fmt/format.h>
@@ -31,9 +32,10 @@ void add_data(report::ReportContent& content, const runtime::Network& network, c
   options.threads = threads;
   for (const runtime::FitDataSet& set : data) {
     const runtime::Prediction p = runtime::predict(network, set, runtime::FitMethod::exact, options, nullptr);
-    if (set.is_harmonic())
+    if (set.is_harmonic()) {
       content.harmonic.push_back(report::compare_harmonic(set.harmonic(), p.points));
-    else
+      for (std::string& note : runtime::damping_left_out(set.harmonic())) content.notes.push_back(std::move(note));
+    } else
       content.histories.push_back(report::compare_history(set.history(), p.force));
   }
 }
