@@ -47,7 +47,7 @@ const std::vector<ProtocolSpec>& schema() {
        {{"amplitude", Shape::single, dim::length, true},
         {"duration", Shape::single, dim::time, true, true},
         {"dt", Shape::single, dim::time, false, true},
-        {"rise", Shape::single, dim::time},
+        {"rise", Shape::single, dim::time, false, true},
         elements, format, solver}},
   };
   return protocols;
