@@ -1,4 +1,5 @@
-// Every example runs through the real binary, and its key numbers are checked against the
+// Every example runs through the real binary (the last test case lists them, so none is left
+// out), and its key numbers are checked against closed forms, the documented numbers and the
 // reference data of examples/data (README.md there): the Appendix D models reproduce the
 // noise-free harmonic grids within 0.05 % in stiffness and 0.01 deg in phase, and specimen D's
 // static and quasi-static tests within the stated force noise (0.3 % of the maximum).
@@ -9,7 +10,10 @@
 #include <nlohmann/json.hpp>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cmath>
+#include <complex>
+#include <tuple>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -174,4 +178,83 @@ TEST_CASE("hydrobushing: rheo diagnose names the uncoupled model's missing coupl
   CHECK(statement.find("slider") != std::string::npos);
   CHECK(statement.find("inerter") != std::string::npos);
   CHECK(rheo_run(fmt::format("check {} > /dev/null", refined.string())) == 0);
+}
+
+TEST_CASE("examples/hydromount.rheo: at 0.05 mm its cap holds and the grid is K* of the uncapped mount; at 2 mm F^ <= k_rubber u0 + fy") {
+  const fs::path out = scratch() / "hydromount_harmonic.csv";
+  REQUIRE(rheo_run(fmt::format("simulate {} -o {}", example("hydromount.rheo"), out.string())) == 0);
+  const runtime::Table t = runtime::read_table(out.string());
+  REQUIRE(t.rows.size() == 3 * 8);
+  int small = 0, large = 0;
+  for (std::size_t i = 0; i < t.rows.size(); ++i) {
+    const double u0 = t.columns[0][i], w = 2.0 * M_PI * t.columns[1][i], stiffness = t.columns[2][i], phase = t.columns[3][i];
+    CAPTURE(u0);
+    CAPTURE(t.columns[1][i]);
+    if (u0 == 0.05) {  // stdlib/hydromount.rheo: k_rubber 800, k1 600, b 40 kg = 0.04 N*s^2/mm, c 3, k2 150
+      const std::complex<double> k_star = 800.0 + 1.0 / (1.0 / 600.0 + 1.0 / std::complex<double>{150.0 - 0.04 * w * w, 3.0 * w});
+      CHECK(std::abs(stiffness / std::abs(k_star) - 1.0) < 1e-5);
+      CHECK(std::abs(phase - std::arg(k_star)) * 180.0 / M_PI < 1e-3);
+      ++small;
+    } else if (u0 == 2.0) {  // the slider slips: the fluid adds at most fy = 60 N, and the resonance peak is gone
+      CHECK(stiffness <= (800.0 * 2.0 + 60.0) / 2.0 * (1.0 + 1e-6));
+      CHECK(stiffness >= 800.0);
+      CHECK(phase * 180.0 / M_PI < 3.0);
+      ++large;
+    }
+  }
+  CHECK(small == 8);
+  CHECK(large == 8);
+}
+
+TEST_CASE("the example fits of specimens C and D reach their documented err through the binary") {
+  // docs/tutorial.md: C 2.7922e-3 (Table D.4: 2.8506e-3), D 1.4901e-3 (noise floor 1.5043e-3).
+  // A fixed seed repeats bit for bit on one machine; 1e-3 relative leaves room for another libm.
+  for (const auto& [file, documented] : {std::pair{"specimen_c_fit.rheo", 2.7922e-3}, std::pair{"specimen_d_fit.rheo", 1.4901e-3}}) {
+    const fs::path json = scratch() / (std::string(file) + ".json"), fitted = scratch() / (std::string(file) + ".fitted.rheo");
+    REQUIRE(rheo_run(fmt::format("fit {} --json -o {} > {}", example(file), fitted.string(), json.string())) == 0);
+    std::ifstream in(json);
+    const double err = nlohmann::json::parse(in).at("err").get<double>();
+    CAPTURE(file);
+    CHECK(err == doctest::Approx(documented).epsilon(1e-3));
+  }
+}
+
+TEST_CASE("each committed *_fitted.rheo scores the err its header states on its harmonic data") {
+  for (const auto& [file, harmonic, stated] : {std::tuple{"specimen_c_fitted.rheo", "specimen_C_harmonic.csv", "2.7922e-03"},
+                                               std::tuple{"specimen_d_fitted.rheo", "specimen_D_harmonic.csv", "1.4901e-03"},
+                                               std::tuple{"specimen_d_all_fitted.rheo", "specimen_D_harmonic.csv", "1.4974e-03"}}) {
+    const fs::path page = scratch() / (std::string(file) + ".html");
+    REQUIRE(rheo_run(fmt::format("report {} --data {} -o {} > /dev/null 2>&1", example(file), data(harmonic), page.string())) == 0);
+    std::ifstream in(page);
+    const std::string html((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    CAPTURE(file);
+    CHECK(html.find(fmt::format("err (6.1) = {}", stated)) != std::string::npos);
+  }
+}
+
+TEST_CASE("the README's 30-second example prints the first row the README shows") {
+  const fs::path dir = scratch() / "readme";
+  fs::create_directories(dir);
+  fs::copy_file(example("bushing_d.rheo"), dir / "bushing_d.rheo", fs::copy_options::overwrite_existing);
+  REQUIRE(rheo_run(fmt::format("simulate {} > /dev/null 2>&1", (dir / "bushing_d.rheo").string())) == 0);
+  std::ifstream csv(dir / "bushing_d_harmonic.csv");
+  std::string line;
+  for (int i = 0; i < 4; ++i) std::getline(csv, line);  // two comment lines, the header, the first row
+  const std::string first_four = line.substr(0, line.find(',', line.find(',', line.find(',', line.find(',') + 1) + 1) + 1));
+  std::ifstream readme(fmt::format("{}/README.md", RHEO_SOURCE_DIR));
+  const std::string text((std::istreambuf_iterator<char>(readme)), std::istreambuf_iterator<char>());
+  CHECK(first_four == "0.2,1,1358.505496,16.641805");
+  CHECK(text.find("\n" + first_four + "\n") != std::string::npos);
+}
+
+TEST_CASE("every example is run by a test: a new one fails here until it is") {
+  // Examples checked elsewhere: cli_fit_test (specimen_d_methods.rheo), stdlib_test.
+  std::vector<std::string> names;
+  for (const auto& entry : fs::directory_iterator(RHEO_EXAMPLES_DIR))
+    if (entry.path().extension() == ".rheo") names.push_back(entry.path().filename().string());
+  std::sort(names.begin(), names.end());
+  CHECK(names == std::vector<std::string>{"bushing_d.rheo", "hydrobushing.rheo", "hydrobushing_fit.rheo", "hydromount.rheo", "specimen_a.rheo",
+                                          "specimen_b.rheo", "specimen_c.rheo", "specimen_c_fit.rheo", "specimen_c_fitted.rheo", "specimen_d.rheo",
+                                          "specimen_d_all_fitted.rheo", "specimen_d_fit.rheo", "specimen_d_fit_all.rheo", "specimen_d_fitted.rheo",
+                                          "specimen_d_methods.rheo"});
 }
