@@ -43,6 +43,11 @@ std::optional<double> constant(const ast::Expr& e, const SettingSpec& s, const s
     errors.push_back({e.where, fmt::format("{} expects {}, got {}", s.key, with_article(s.dimension), with_article(typed.dimension))});
     return std::nullopt;
   }
+  if (!std::isfinite(value)) {
+    errors.push_back({e.where, fmt::format("{} must be a finite number, got {}; write a value that fits in a double (|x| < 1.8e308 in "
+                                           "internal units)", s.key, show_value(value, s.dimension, literal_unit(e)))});
+    return std::nullopt;
+  }
   if (s.positive && !(value > 0)) {
     // At a vanishing amplitude every friction element sticks: the limit is a tiny amplitude's point.
     const char* advice = s.key == "amplitude" && value == 0 ? "; for the small-amplitude limit give a tiny one, e.g. 1 um" : "";

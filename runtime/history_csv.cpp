@@ -150,6 +150,9 @@ Table parse_table(const std::string& path, const std::string& raw) {
         fail(path, row, cells[c].column, fmt::format("'{}' is not a number (column '{}'); write a number such as 0.25 or 1e-3", lang::printable(s), table.names[c]));
       if (ec == std::errc::result_out_of_range || !std::isfinite(value))
         fail(path, row, cells[c].column, fmt::format("'{}' is not a finite number (column '{}'); remove or repair the row", lang::printable(s), table.names[c]));
+      if (!std::isfinite(value * scales[c]))
+        fail(path, row, cells[c].column, fmt::format("'{}' {} overflows a double (column '{}'); remove or repair the row", lang::printable(s),
+                                                     table.units[c], table.names[c]));
       table.columns[c].push_back(value * scales[c]);
       table.cell_columns.push_back(cells[c].column);
     }

@@ -38,7 +38,7 @@ std::string harmonic_csv(const ResultHeader& header, const std::vector<HarmonicP
          "force_amplitude [N],energy [N*mm],cycles [-],converged [-]\n";
   for (const auto& p : points) {
     const auto& m = p.measures;
-    out += fmt::format("{:.6g},{:.6g},{:.10g},{:.8g},{:.8g},{:.10g},{:.10g},{:.10g},{:.10g},{},{}\n", p.amplitude,
+    out += fmt::format("{},{},{:.10g},{:.8g},{:.8g},{:.10g},{:.10g},{:.10g},{:.10g},{},{}\n", p.amplitude,
                        p.frequency, m.stiffness, m.phase * kDegree, m.damping, m.storage, m.loss, m.force_amplitude,
                        m.energy, p.cycles, p.converged ? 1 : 0);
   }

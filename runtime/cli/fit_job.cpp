@@ -205,6 +205,8 @@ runtime::FitResult run_fit_job(const FitJob& job) {
   runtime::FitResult result = [&] {
     try {
       return runtime::fit(start, job.free, job.data, settings);
+    } catch (const runtime::ModelError&) {
+      throw;  // exit 3, as from simulate
     } catch (const std::invalid_argument& e) {
       const std::string prefix = fmt::format("model '{}': ", job.model->name);
       std::string why = e.what();

@@ -149,6 +149,15 @@ TEST_CASE("a file without a fit block is fitted to --data; without --data it exi
   CHECK(missing.out.empty());
 }
 
+TEST_CASE("a model the fit's solver cannot simulate exits 3 naming the element, as from simulate") {
+  const fs::path model = scratch() / "inerter_root.rheo";
+  write_text(model, "model m { spring s (k = 100 N/mm in [1, 1000]) inerter b (b = 0.001 N*s^2/mm) }\nfit { solver = sundials }\n");
+  const Run r = run(fmt::format("fit {} --data {}", model.string(), truth_data().string()));
+  CHECK(r.code == 3);
+  CHECK(contains(r.err, "inerter_root.rheo:1:48: error: inerter 'b' of model 'm' sits directly between the terminal and ground"));
+  CHECK(contains(r.err, "or use solver = fixed"));
+}
+
 TEST_CASE("bad data exits 4 naming file:row:col, and leaves an existing output untouched") {
   const std::string good = read_text(data("specimen_D_harmonic.csv"));
   std::vector<std::string> lines;

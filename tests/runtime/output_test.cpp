@@ -19,6 +19,10 @@ TEST_CASE("harmonic CSV starts with the data files' four columns") {
   const std::string csv = harmonic_csv({"m", "m.rheo", "harmonic"}, {p}, HarmonicDefinition::thesis);
   CHECK(csv.find("\namplitude [mm],frequency [Hz],stiffness [N/mm],phase [deg],") != std::string::npos);
   CHECK(csv.find("\n0.2,3,1420.5,17.76169") != std::string::npos);
+  // Amplitude and frequency are written so that they read back exactly (a result can be fitted
+  // later: points 1e-7 apart stay apart).
+  p.amplitude = 0.12345678901234, p.frequency = 1000001;
+  CHECK(harmonic_csv({"m", "m.rheo", "harmonic"}, {p}, HarmonicDefinition::thesis).find("\n0.12345678901234,1000001,") != std::string::npos);
 }
 
 TEST_CASE("outputs are written atomically and a failed write leaves the old file intact") {
