@@ -93,11 +93,24 @@ std::string history_json(const ResultHeader& header, const History& h) {
   return j.dump() + "\n";
 }
 
+void check_output_destination(const std::string& path) {
+  if (path.empty() || path == "-") return;
+  namespace fs = std::filesystem;
+  const fs::path target(path);
+  std::error_code ec;
+  if (fs::is_directory(target, ec))
+    throw DataError(fmt::format("{}: error: the output is a directory; name a file in it, e.g. {}", path, (target / "result.csv").string()));
+  const fs::path parent = target.parent_path().empty() ? fs::path(".") : target.parent_path();
+  if (!fs::is_directory(parent, ec))
+    throw DataError(fmt::format("{}: error: the output's directory {} does not exist; create it or choose another path", path, parent.string()));
+}
+
 void write_output(const std::string& path, const std::string& content) {
   if (path.empty() || path == "-") {
     std::cout << content << std::flush;
     return;
   }
+  check_output_destination(path);
   namespace fs = std::filesystem;
   const fs::path target(path);
   std::error_code status_error;

@@ -33,4 +33,9 @@ std::string history_json(const ResultHeader& header, const History& history);
 // Writes `content` to `path` atomically ("-" or empty: standard output). Throws DataError.
 void write_output(const std::string& path, const std::string& content);
 
+// DataError unless `path` ("-" or empty: standard output) can be written: a directory, or a
+// parent directory that does not exist, is named with advice. Called before long runs, so
+// that a fit does not end with its result unwritable.
+void check_output_destination(const std::string& path);
+
 }  // namespace rheo::runtime

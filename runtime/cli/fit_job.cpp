@@ -2,6 +2,7 @@
 
 #include "runtime/cli/program_lookup.hpp"
 #include "runtime/errors.hpp"
+#include "runtime/output.hpp"
 #include "runtime/yeoh_mean_curve.hpp"
 
 #include <fmt/format.h>
@@ -166,6 +167,7 @@ std::vector<FitJob> fit_jobs(const lang::Program& program, const FitOptions& o) 
     if (job.data.empty())
       throw runtime::UsageError(fmt::format("no data to fit model '{}' to; give --data FILE.csv or add `data \"FILE.csv\"` to its fit block", model.name));
     job.output = !o.output.empty() ? o.output : block ? relative_to(o.file, block->output) : std::string();
+    runtime::check_output_destination(job.output);  // before the search, not after it
     if (!o.yeoh_start.empty()) set_yeoh_start(job, o.yeoh_start);
     jobs.push_back(std::move(job));
   };

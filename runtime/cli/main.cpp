@@ -1,5 +1,5 @@
 // rheo: a language and interpreter for 1-D rheological networks of rubber bushings.
-// Exit codes: 0 ok, 1 internal error, 2 usage, 3 model file, 4 data or I/O, 5 numerical, 130 interrupted fit.
+// Exit codes: 0 ok, 1 internal error, 2 usage, 3 model file, 4 data or I/O, 5 numerical, 130 interrupted fit, diagnose or refine.
 #include "lang/diagnostics.hpp"
 #include "lang/frontend.hpp"
 #include "runtime/cli/commands.hpp"
@@ -14,7 +14,7 @@ int main(int argc, char** argv) {
   CLI::App app{"rheo: model rubber bushings as 1-D rheological networks.\n"
                "Exit codes: 0 ok, 1 internal error, 2 usage, 3 model file error, 4 data or I/O error,\n"
                "5 numerical (e.g. a harmonic point did not reach steady state; results are still written),\n"
-               "130 a fit stopped by Ctrl-C (its best result so far is still written)."};
+               "130 a fit, diagnose or refine stopped by Ctrl-C (its best result so far is still written)."};
   app.require_subcommand(1);
   app.set_version_flag("--version", "rheo 0.1.0");
   std::vector<std::pair<CLI::App*, cli::Command>> commands;

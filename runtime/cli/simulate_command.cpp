@@ -13,6 +13,7 @@
 #include <iostream>
 #include <memory>
 #include <optional>
+#include <vector>
 
 namespace rheo::cli {
 namespace {
@@ -99,8 +100,10 @@ Command add_simulate_command(CLI::App& app) {
         if (job.model != jobs.front().model)
           throw runtime::UsageError(fmt::format("--report and --plot show one model, but models {} and {} would run; select one with --model",
                                                 jobs.front().model->name, job.model->name));
+    // Every protocol runs before any output is written: a later protocol's bad data file or
+    // numerical failure leaves every earlier output intact.
     std::optional<runtime::report::ReportContent> report;
-    int not_converged = 0;
+    std::vector<runtime::ProtocolRun> runs;
     for (auto& job : jobs) {
       apply_overrides(job.protocol, *o);
       const runtime::Network network = runtime::Network::compile(*job.model);
@@ -111,6 +114,12 @@ Command add_simulate_command(CLI::App& app) {
                                                                     job.protocol.where.file, job.protocol.where.line),
                                                run.content);
       }
+      runs.push_back(std::move(run));
+    }
+    int not_converged = 0;
+    for (std::size_t k = 0; k < jobs.size(); ++k) {
+      const auto& job = jobs[k];
+      const runtime::ProtocolRun& run = runs[k];
       std::string destination = o->output;
       if (destination.empty() && !run.destination.empty())
         destination = (std::filesystem::path(o->file).parent_path() / run.destination).string();

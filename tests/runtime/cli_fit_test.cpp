@@ -158,6 +158,17 @@ TEST_CASE("a model the fit's solver cannot simulate exits 3 naming the element, 
   CHECK(contains(r.err, "or use solver = fixed"));
 }
 
+TEST_CASE("an output that cannot be written exits 4 before the search, with advice") {
+  const Run missing_dir = run(fmt::format("fit {} --data {} -o {} --json", start_model().string(), truth_data().string(),
+                                          (scratch() / "no_such_dir" / "x.rheo").string()));
+  CHECK(missing_dir.code == 4);
+  CHECK(contains(missing_dir.err, "no_such_dir does not exist; create it or choose another path"));
+  CHECK(missing_dir.out.empty());  // no report: the fit never ran
+  const Run directory = run(fmt::format("fit {} --data {} -o {}", start_model().string(), truth_data().string(), scratch().string()));
+  CHECK(directory.code == 4);
+  CHECK(contains(directory.err, "the output is a directory; name a file in it"));
+}
+
 TEST_CASE("bad data exits 4 naming file:row:col, and leaves an existing output untouched") {
   const std::string good = read_text(data("specimen_D_harmonic.csv"));
   std::vector<std::string> lines;

@@ -86,6 +86,15 @@ TEST_CASE("data errors exit 4 and leave no output") {
   CHECK(r.code == 4);
   CHECK(r.output.find("h.csv:3:5: error:") != std::string::npos);
   CHECK_FALSE(fs::exists(model.parent_path() / "h_out.csv"));
+  // A later protocol's bad data leaves the earlier protocol's existing output as it was.
+  const auto earlier = write("first_out.csv", "earlier result\n");
+  const auto two = write("two.rheo", fmt::format("model m {{ spring s (k = 5) }}\nsimulate {{\n harmonic frequency = 1 Hz, amplitude = 1 mm\n"
+                                                 " output \"first_out.csv\"\n history file = \"{}\"\n output \"h_out.csv\" }}\n", history.string()));
+  CHECK(run("simulate " + two.string()).code == 4);
+  std::ifstream kept(earlier);
+  std::string line;
+  std::getline(kept, line);
+  CHECK(line == "earlier result");
 }
 
 TEST_CASE("simulate --threads gives the same file as one thread; a negative count is a usage error") {
