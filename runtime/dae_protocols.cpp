@@ -85,8 +85,8 @@ std::string softening_hint(const Network& network) {
     const double e = law.softening_elongation();
     if (std::isfinite(e))
       hint += fmt::format("{} yeoh '{}' softens to zero tangent stiffness at |e| = {:.6g} mm (carrying {:.6g} N), where a spring "
-                          "in series snaps through: keep its elongation below that, or bound D20 so that D20^2 < (5/3) D10 D30",
-                          hint.empty() ? " Likely cause:" : ";", probe.path, e, std::abs(law.force(e)));
+                          "in series snaps through: keep its elongation below that, or {}",
+                          hint.empty() ? " Likely cause:" : ";", probe.path, e, std::abs(law.force(e)), YeohLaw::monotone_advice);
   }
   return hint;
 }

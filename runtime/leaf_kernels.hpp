@@ -123,6 +123,8 @@ struct YeohLaw {
   // The smallest |e| [mm] at which the tangent reaches zero: the smallest positive root s = e^2
   // of 30 D30 s^2 + 12 D20 s + 2 D10 (D10 > 0); infinity when the law is monotone, which is
   // when D20 >= 0 and D30 >= 0, or D30 > 0 and D20^2 < (5/3) D10 D30.
+  // What to tell a user whose Yeoh constants soften (every message about it ends with this).
+  static constexpr const char* monotone_advice = "bound D20 so that D20^2 < (5/3) D10 D30 (a Yeoh law that stiffens again)";
   double softening_elongation() const {
     const double a = 30.0 * d30, b = 12.0 * d20, c = 2.0 * d10;
     double s = std::numeric_limits<double>::infinity();

@@ -44,8 +44,8 @@ std::string yeoh_softening_note(const Network& network, double reach) {
     const double e = law.softening_elongation();
     if (e < reach)
       note += fmt::format("warning: yeoh '{}' softens to zero tangent stiffness at |e| = {:.6g} mm (eq. 3.3) and the drive reaches "
-                          "{:g} mm: its force falls beyond that; check D20 and D30 (D20^2 < (5/3) D10 D30 stiffens again)\n",
-                          probe.path, e, reach);
+                          "{:g} mm: its force falls beyond that; {}\n",
+                          probe.path, e, reach, YeohLaw::monotone_advice);
   }
   return note;
 }

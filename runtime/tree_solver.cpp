@@ -102,9 +102,8 @@ void TreeSolver::throw_softened(int node, double force) const {
   throw NumericalError(fmt::format(
       "model '{}': yeoh '{}' is asked to carry {:.6g} N, but its tangent stiffness 2 D10 + 12 D20 e^2 + 30 D30 e^4 reaches "
       "zero at |e| = {:.6g} mm, where it carries its most, {:.6g} N (eq. 3.3); a softening spring in series cannot hold "
-      "a larger force (it would snap through). Keep the drive small enough that its elongation stays below that, or bound D20 so that D20^2 < (5/3) D10 D30 "
-      "(a Yeoh law that stiffens again)",
-      network_.model().name, path, force, law.softening_elongation(), coefficient(node)));
+      "a larger force (it would snap through). Keep the drive small enough that its elongation stays below that, or {}",
+      network_.model().name, path, force, law.softening_elongation(), coefficient(node), YeohLaw::monotone_advice));
 }
 
 bool steps_without_iteration(const Topology& topology) {

@@ -71,7 +71,7 @@ TEST_CASE("a yeoh driven past where it softens: a warning in the root block (onc
   const std::string soft = "model y { yeoh r (D10 = 1, D20 = -1, D30 = 0) spring k (k = 1) }\n";  // e* = 1/sqrt(6) mm
   const auto past = run_first(soft + "simulate { harmonic frequency = 1 Hz, amplitude = [0.1, 2] mm }", "y.rheo");
   CHECK(past.notes == "warning: yeoh 'r' softens to zero tangent stiffness at |e| = 0.408248 mm (eq. 3.3) and the drive reaches "
-                      "2 mm: its force falls beyond that; check D20 and D30 (D20^2 < (5/3) D10 D30 stiffens again)\n");
+                      "2 mm: its force falls beyond that; bound D20 so that D20^2 < (5/3) D10 D30 (a Yeoh law that stiffens again)\n");
   CHECK(run_first(soft + "simulate { harmonic frequency = 1 Hz, amplitude = [0.1, 0.4] mm }", "y.rheo").notes.empty());
   const auto history = run_first(soft + "simulate { static velocity = 1 mm/s, amplitude = 0.5 mm }", "y.rheo");
   CHECK(history.notes.find("the drive reaches 0.5 mm") != std::string::npos);
