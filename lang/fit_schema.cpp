@@ -1,5 +1,6 @@
 #include "lang/fit_schema.hpp"
 
+#include "lang/limits.hpp"
 #include "lang/names.hpp"
 #include "lang/setting_values.hpp"
 
@@ -26,7 +27,12 @@ const std::vector<SettingSpec>& fit_schema() {
       {.key = "seed", .shape = Shape::integer, .dimension = dim::none, .minimum = 0},
       {.key = "tolerance", .shape = Shape::number, .dimension = dim::none, .positive = true},
       {.key = "definition", .shape = Shape::identifier, .dimension = dim::none, .choices = {"thesis", "first_harmonic"}},
-      {.key = "steps_per_cycle", .shape = Shape::integer, .dimension = dim::none, .minimum = 16, .multiple_of = 4},
+      {.key = "steps_per_cycle",
+       .shape = Shape::integer,
+       .dimension = dim::none,
+       .minimum = 16,
+       .multiple_of = 4,
+       .maximum = max_steps_per_cycle},
       {.key = "solver", .shape = Shape::identifier, .dimension = dim::none, .choices = {"auto", "fixed", "sundials"}},
       {.key = "free", .shape = Shape::paths, .dimension = dim::none},
       {.key = "fixed", .shape = Shape::paths, .dimension = dim::none},

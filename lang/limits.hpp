@@ -20,4 +20,25 @@ inline constexpr int max_expression_depth = 200;
 // Elements and parameters of one model once the models it instantiates are copied into it.
 inline constexpr std::size_t max_model_size = 100000;
 
+// Physical ranges of what a test rig drives and measures, internal units. Inside them every
+// closed form and time-stepping path stays well inside double range: the hysteresis energy
+// ~ k u0^2 (eq. 1.2), the force amplitude k u0 and the rate omega u0 neither underflow to zero
+// nor overflow. A protocol setting or a data row outside is an error naming where.
+inline constexpr double min_amplitude = 1e-9;  // mm (1 pm)
+inline constexpr double max_amplitude = 1e6;   // mm (1 km)
+inline constexpr double min_frequency = 1e-9;  // Hz
+inline constexpr double max_frequency = 1e9;   // Hz
+inline constexpr double min_stiffness = 1e-9;  // N/mm, a measured |K*|
+inline constexpr double max_stiffness = 1e12;  // N/mm
+
+// Work a protocol may ask for, so that no setting makes rheo run out of memory or seemingly
+// hang: samples of one drive (rows of a history result), points of a harmonic grid, time
+// steps of one harmonic point (steps_per_cycle x cycles_max), and the whole-number settings.
+inline constexpr long max_drive_samples = 10'000'000;
+inline constexpr long max_harmonic_points = 1'000'000;
+inline constexpr long max_steps_per_point = 100'000'000;
+inline constexpr int max_steps_per_cycle = 1'000'000;
+inline constexpr int max_cycles = 100'000;
+inline constexpr int max_substeps = 100'000;
+
 }  // namespace rheo::lang

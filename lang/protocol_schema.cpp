@@ -1,5 +1,6 @@
 #include "lang/protocol_schema.hpp"
 
+#include "lang/limits.hpp"
 #include "lang/setting_values.hpp"
 
 #include <fmt/format.h>
@@ -13,38 +14,52 @@ struct ProtocolSpec {
   std::vector<SettingSpec> settings;
 };
 
+// Drive and measurement quantities within the physical ranges of limits.hpp.
+SettingSpec amplitude(Shape shape, bool positive = true) {
+  return {.key = "amplitude", .shape = shape, .dimension = dim::length, .required = true, .positive = positive,
+          .lowest = positive ? min_amplitude : -max_amplitude, .highest = max_amplitude};
+}
+SettingSpec frequency(Shape shape) {
+  return {.key = "frequency", .shape = shape, .dimension = dim::frequency, .required = true, .positive = true,
+          .lowest = min_frequency, .highest = max_frequency};
+}
+SettingSpec whole(std::string_view key, int minimum, int maximum, int multiple_of = 0) {
+  return {.key = key, .shape = Shape::integer, .dimension = dim::none, .minimum = minimum, .multiple_of = multiple_of, .maximum = maximum};
+}
+
 const std::vector<ProtocolSpec>& schema() {
   static const SettingSpec elements{"elements", Shape::identifier, dim::none, false, false, 0, 0, {"all", "none"}};
   static const SettingSpec format{"format", Shape::identifier, dim::none, false, false, 0, 0, {"csv", "json"}};
   static const SettingSpec solver{"solver", Shape::identifier, dim::none, false, false, 0, 0, {"auto", "fixed", "sundials"}};
+  static const SettingSpec steps_per_cycle = whole("steps_per_cycle", 16, max_steps_per_cycle, 4);
   static const std::vector<ProtocolSpec> protocols{
       {ProtocolKind::harmonic, "harmonic",
-       {{"frequency", Shape::list, dim::frequency, true, true},
-        {"amplitude", Shape::list, dim::length, true, true},
+       {frequency(Shape::list),
+        amplitude(Shape::list),
         {"definition", Shape::identifier, dim::none, false, false, 0, 0, {"thesis", "first_harmonic"}},
         {"steady_state", Shape::identifier, dim::none, false, false, 0, 0, {"auto", "closed_form", "time_stepping"}},
-        {"steps_per_cycle", Shape::integer, dim::none, false, false, 16, 4},
-        {"cycles_max", Shape::integer, dim::none, false, false, 1},
+        steps_per_cycle,
+        whole("cycles_max", 1, max_cycles),
         {"tolerance", Shape::number, dim::none, false, true},
         elements, format, solver}},
       {ProtocolKind::static_triangle, "static",
        {{"velocity", Shape::single, dim::velocity, true, true},
-        {"amplitude", Shape::list, dim::length, true, true},
-        {"cycles", Shape::integer, dim::none, false, false, 1},
+        amplitude(Shape::list),
+        whole("cycles", 1, max_cycles),
         {"dt", Shape::single, dim::time, false, true},
         elements, format, solver}},
       {ProtocolKind::quasistatic, "quasistatic",
-       {{"frequency", Shape::single, dim::frequency, true, true},
-        {"amplitude", Shape::list, dim::length, true, true},
-        {"cycles", Shape::integer, dim::none, false, false, 1},
-        {"steps_per_cycle", Shape::integer, dim::none, false, false, 16, 4},
+       {frequency(Shape::single),
+        amplitude(Shape::list),
+        whole("cycles", 1, max_cycles),
+        steps_per_cycle,
         elements, format, solver}},
       {ProtocolKind::history, "history",
        {{"file", Shape::string, dim::none, true},
-        {"substeps", Shape::integer, dim::none, false, false, 1},
+        whole("substeps", 1, max_substeps),
         elements, format, solver}},
       {ProtocolKind::step, "step",
-       {{"amplitude", Shape::single, dim::length, true},
+       {amplitude(Shape::single, false),
         {"duration", Shape::single, dim::time, true, true},
         {"dt", Shape::single, dim::time, false, true},
         {"rise", Shape::single, dim::time, false, true},

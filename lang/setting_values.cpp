@@ -17,10 +17,12 @@ std::optional<ResolvedReference> no_references(const ast::Expr& e, std::vector<D
   return std::nullopt;
 }
 
-std::string allowed_range(const SettingSpec& s) {
-  if (std::isfinite(s.lowest) && std::isfinite(s.highest)) return fmt::format("between {:g} and {:g}", s.lowest, s.highest);
-  if (std::isfinite(s.lowest)) return fmt::format("at least {:g}", s.lowest);
-  return fmt::format("at most {:g}", s.highest);
+// The range of S in UNIT (the one the value was written in; internal units when empty).
+std::string allowed_range(const SettingSpec& s, const std::string& unit) {
+  const auto bound = [&](double v) { return show_value(v, s.dimension, unit); };
+  if (std::isfinite(s.lowest) && std::isfinite(s.highest)) return fmt::format("between {} and {}", bound(s.lowest), bound(s.highest));
+  if (std::isfinite(s.lowest)) return fmt::format("at least {}", bound(s.lowest));
+  return fmt::format("at most {}", bound(s.highest));
 }
 
 // One number of the setting in internal units; a free number takes `fallback_unit` if given.
@@ -43,19 +45,20 @@ std::optional<double> constant(const ast::Expr& e, const SettingSpec& s, const s
     errors.push_back({e.where, fmt::format("{} expects {}, got {}", s.key, with_article(s.dimension), with_article(typed.dimension))});
     return std::nullopt;
   }
+  const std::string unit = literal_unit(e).empty() ? fallback_unit : literal_unit(e);  // as written, for messages
   if (!std::isfinite(value)) {
     errors.push_back({e.where, fmt::format("{} must be a finite number, got {}; write a value that fits in a double (|x| < 1.8e308 in "
-                                           "internal units)", s.key, show_value(value, s.dimension, literal_unit(e)))});
+                                           "internal units)", s.key, show_value(value, s.dimension, unit))});
     return std::nullopt;
   }
   if (s.positive && !(value > 0)) {
     // At a vanishing amplitude every friction element sticks: the limit is a tiny amplitude's point.
     const char* advice = s.key == "amplitude" && value == 0 ? "; for the small-amplitude limit give a tiny one, e.g. 1 um" : "";
-    errors.push_back({e.where, fmt::format("{} must be positive, got {}{}", s.key, show_value(value, s.dimension, literal_unit(e)), advice)});
+    errors.push_back({e.where, fmt::format("{} must be positive, got {}{}", s.key, show_value(value, s.dimension, unit), advice)});
     return std::nullopt;
   }
   if (!(value >= s.lowest && value <= s.highest)) {
-    errors.push_back({e.where, fmt::format("{} must be {}, got {}", s.key, allowed_range(s), show_value(value, s.dimension, literal_unit(e)))});
+    errors.push_back({e.where, fmt::format("{} must be {}, got {}", s.key, allowed_range(s, unit), show_value(value, s.dimension, unit))});
     return std::nullopt;
   }
   return value;
@@ -156,8 +159,9 @@ bool check_setting_value(const ast::SettingNode& n, const SettingSpec& s, Settin
       if (!single_value(n, "a whole number", errors)) return false;
       auto value = constant(*v.items[0], s, "", errors);
       if (!value) return false;
-      if (*value != std::floor(*value) || *value < s.minimum || (s.multiple_of && std::fmod(*value, s.multiple_of) != 0)) {
-        errors.push_back({v.where, fmt::format("{} must be a whole number >= {}{}, got {:g}", n.key, s.minimum,
+      if (*value != std::floor(*value) || *value < s.minimum || *value > s.maximum ||
+          (s.multiple_of && std::fmod(*value, s.multiple_of) != 0)) {
+        errors.push_back({v.where, fmt::format("{} must be a whole number from {} to {}{}, got {:g}", n.key, s.minimum, s.maximum,
                                                s.multiple_of ? fmt::format(" and a multiple of {}", s.multiple_of) : "", *value)});
         return false;
       }

@@ -35,6 +35,7 @@ struct SettingSpec {
   std::vector<std::string> choices = {};  // identifier
   double lowest = -std::numeric_limits<double>::infinity();   // list/single/number: every value >= lowest
   double highest = std::numeric_limits<double>::infinity();   // ... and <= highest
+  int maximum = std::numeric_limits<int>::max();              // integer: value <= maximum
 };
 
 // A parameter path written in a Shape::paths setting.

@@ -2,6 +2,8 @@
 
 #include "runtime/errors.hpp"
 
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -152,13 +154,18 @@ SearchResult search(const Objective& objective, const std::vector<double>& start
         local(starts[k], remaining() / static_cast<int>(starts.size() - k + 1), local_algorithm);
     }
     tracker.stage("polish");
-    if (remaining() > 0) local(tracker.best_z(), remaining(), local_algorithm);
+    if (remaining() > 0 && !tracker.best_z().empty()) local(tracker.best_z(), remaining(), local_algorithm);
   } catch (const Exhausted&) {
     result.status = "MAXEVAL_REACHED";
   } catch (const Interrupted&) {
     result.interrupted = true;
     result.status = "interrupted";
   }
+  if (tracker.best_z().empty() && !result.interrupted)
+    throw NumericalError(fmt::format("none of the {} trial points of the search gave a finite objective{}; check that the data and the "
+                                     "parameters' bounds describe something this model can simulate",
+                                     tracker.evaluations(),
+                                     tracker.first_failure().empty() ? "" : fmt::format(" (first failure: {})", tracker.first_failure())));
   result.z = tracker.best_z().empty() ? start : tracker.best_z();
   result.value = tracker.best_value();
   result.evaluations = tracker.evaluations();

@@ -48,8 +48,8 @@ struct SearchProgress {
 };
 
 struct SearchResult {
-  std::vector<double> z;  // the best point evaluated (the start when none was finite)
-  double value = 0.0;     // the objective at z; +inf when no evaluation was finite
+  std::vector<double> z;  // the best point evaluated (the start when interrupted before a finite one)
+  double value = 0.0;     // the objective at z; +inf when interrupted before a finite evaluation
   int evaluations = 0;
   int non_finite = 0;     // evaluations that returned NaN or inf, or threw NumericalError (any stage)
   std::string first_failure;  // the message of the first NumericalError, if any
@@ -59,6 +59,8 @@ struct SearchResult {
 };
 
 // `logarithmic[j]`: coordinate j is ln p (sampled a decade either side of the start).
+// Throws NumericalError, naming the first failure, when no evaluation of an uninterrupted
+// search is finite: there is no point to report.
 SearchResult search(const Objective& objective, const std::vector<double>& start, const std::vector<double>& lower,
                     const std::vector<double>& upper, const std::vector<bool>& logarithmic, const SearchSettings& settings,
                     const std::function<void(const SearchProgress&)>& progress = {},

@@ -1,5 +1,6 @@
 #include "runtime/harmonic_data.hpp"
 
+#include "lang/limits.hpp"
 #include "runtime/errors.hpp"
 
 #include <fmt/format.h>
@@ -46,9 +47,17 @@ HarmonicData harmonic_data_from_table(const Table& t) {
       throw DataError(fmt::format("{}:{}:{}: error: {} (column '{}')", t.path, t.rows[i], t.cell_column(i, t.column(column)), message, column));
     };
     if (!(d.weight[i] >= 0.0)) fail("weight", fmt::format("a point's weight must be >= 0, got {:g}", d.weight[i]));
-    if (!(d.amplitude[i] > 0.0)) fail("amplitude", fmt::format("amplitude must be positive, got {:g} mm", d.amplitude[i]));
-    if (!(d.frequency[i] > 0.0)) fail("frequency", fmt::format("frequency must be positive, got {:g} Hz", d.frequency[i]));
-    if (!(d.stiffness[i] > 0.0)) fail(t.column("stiffness") >= 0 ? "stiffness" : "storage", fmt::format("stiffness must be positive, got {:g} N/mm", d.stiffness[i]));
+    // Positive, then within the physical range of lang/limits.hpp.
+    auto physical = [&](const char* column, const char* quantity, double value, double lowest, double highest, const char* unit) {
+      if (!(value > 0.0)) fail(column, fmt::format("{} must be positive, got {:g} {}", quantity, value, unit));
+      if (!(value >= lowest && value <= highest))
+        fail(column, fmt::format("{} must lie between {:g} and {:g} {}, got {:g} {}; check the column's unit", quantity, lowest, highest,
+                                 unit, value, unit));
+    };
+    physical("amplitude", "amplitude", d.amplitude[i], lang::min_amplitude, lang::max_amplitude, "mm");
+    physical("frequency", "frequency", d.frequency[i], lang::min_frequency, lang::max_frequency, "Hz");
+    physical(t.column("stiffness") >= 0 ? "stiffness" : "storage", "stiffness", d.stiffness[i], lang::min_stiffness, lang::max_stiffness,
+             "N/mm");
     if (!(d.phase[i] > -std::numbers::pi / 2 && d.phase[i] <= std::numbers::pi / 2))
       fail(t.column("phase") >= 0 ? "phase" : "loss",
            fmt::format("phase must lie in (-90, 90] deg, got {:g} deg; check the column's unit (deg or rad) and sign convention",

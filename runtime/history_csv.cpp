@@ -1,5 +1,6 @@
 #include "runtime/history_csv.hpp"
 
+#include "lang/limits.hpp"
 #include "lang/text_encoding.hpp"
 #include "lang/units.hpp"
 #include "runtime/errors.hpp"
@@ -182,6 +183,9 @@ Drive drive_from_table(const Table& table) {
       fail(table.path, table.rows[i], table.cell_column(i, t),
            fmt::format("time must increase strictly (row {} has {:g} s after {:g} s at row {}); sort the rows by time and remove repeated ones",
                        table.rows[i], time[i], time[i - 1], table.rows[i - 1]));
+    if (!(std::abs(disp[i]) <= lang::max_amplitude))
+      fail(table.path, table.rows[i], table.cell_column(i, u),
+           fmt::format("displacement {:g} mm is beyond the {:g} mm a rig can drive; check the column's unit", disp[i], lang::max_amplitude));
     d.time.push_back(time[i] - time[0]);
     d.displacement.push_back(disp[i]);
   }

@@ -1,5 +1,6 @@
 #include "runtime/run_protocols.hpp"
 
+#include "lang/limits.hpp"
 #include "runtime/drives.hpp"
 #include "runtime/errors.hpp"
 #include "runtime/dae_protocols.hpp"
@@ -72,6 +73,13 @@ const char* protocol_name(lang::ProtocolKind kind) {
 }
 
 namespace {
+// The work limits of lang/limits.hpp, checked before a drive or grid is built.
+void require_within(double amount, long limit, const Protocol& p, const char* what, const char* advice) {
+  if (!(amount <= static_cast<double>(limit)))
+    throw ModelError(fmt::format("{}the {} protocol asks for {:.4g} {}, more than the limit of {}; {}", error_at(p.where),
+                                 protocol_name(p.kind), amount, what, limit, advice));
+}
+
 // Histories name the backend in their header when it is not the fixed-step one.
 std::string solver_note(const Network& network, SolverChoice solver) {
   return uses_sundials(network, solver) ? fmt::format(" solver=sundials (IDA, rtol {:g})", kDaeRelativeTolerance) : std::string();
@@ -106,6 +114,10 @@ ProtocolRun run_protocol(const Network& network, const Protocol& p, const std::s
         throw UsageError(fmt::format("{}:{}:{}: steady_state = closed_form needs every non-linear element of model '{}' in its "
                                      "parallel body, and no quadratic_dashpot, gap or bouc_wen: use steady_state = auto or time_stepping",
                                      p.where.file, p.where.line, p.where.column, network.model().name));
+      require_within(static_cast<double>(numbers(p, "amplitude").size()) * static_cast<double>(numbers(p, "frequency").size()),
+                     lang::max_harmonic_points, p, "points (amplitudes x frequencies)", "split the grid over several protocols");
+      require_within(static_cast<double>(options.steps_per_cycle) * options.max_cycles, lang::max_steps_per_point, p,
+                     "time steps per point (steps_per_cycle x cycles_max)", "lower steps_per_cycle or cycles_max");
       const auto points = simulate_harmonic_grid(network, numbers(p, "amplitude"), numbers(p, "frequency"), options);
       header.protocol = uses_closed_form(network, options) ? std::string("harmonic steady_state=closed_form")
                         : uses_sundials(network, solver)
@@ -138,8 +150,16 @@ ProtocolRun run_protocol(const Network& network, const Protocol& p, const std::s
       const auto amplitudes = numbers(p, "amplitude");
       const double velocity = number(p, "velocity", 0.0);
       const int cycles = static_cast<int>(number(p, "cycles", 2));
-      Drive drive = static_triangle(amplitudes, velocity, cycles, 400);
-      if (const lang::Setting* dt = p.find("dt")) {
+      constexpr int steps_per_cycle = 400;
+      // With dt, each of a cycle's steps is cut into ceil(step time / dt) parts.
+      const lang::Setting* dt = p.find("dt");
+      double samples = 0.0;
+      for (double a : amplitudes)
+        samples += static_cast<double>(cycles) * steps_per_cycle *
+                   (dt ? std::max(1.0, std::ceil(4.0 * a / (steps_per_cycle * velocity * dt->values.front()))) : 1.0);
+      require_within(samples, lang::max_drive_samples, p, "samples", "raise dt or velocity, or give fewer cycles or amplitudes");
+      Drive drive = static_triangle(amplitudes, velocity, cycles, steps_per_cycle);
+      if (dt) {
         // A fixed sample interval: resample each quarter cycle with that step.
         Drive fine;
         fine.time.assign(1, 0.0);
@@ -163,6 +183,8 @@ ProtocolRun run_protocol(const Network& network, const Protocol& p, const std::s
       const int cycles = static_cast<int>(number(p, "cycles", 2));
       const int steps = static_cast<int>(number(p, "steps_per_cycle", 400));
       const double frequency = number(p, "frequency", 0.0);
+      require_within(static_cast<double>(numbers(p, "amplitude").size()) * cycles * steps, lang::max_drive_samples, p, "samples",
+                     "lower steps_per_cycle, or give fewer cycles or amplitudes");
       header.protocol = fmt::format("quasistatic frequency={:g} Hz cycles={}", frequency, cycles);
       header.protocol += solver_note(network, solver);
       const History h = run_history(network, quasistatic_sine(numbers(p, "amplitude"), frequency, cycles, steps), elements, solver);
@@ -172,7 +194,11 @@ ProtocolRun run_protocol(const Network& network, const Protocol& p, const std::s
     case lang::ProtocolKind::history: {
       std::filesystem::path file = word(p, "file", "");
       if (file.is_relative()) file = std::filesystem::path(source_file).parent_path() / file;
-      const Drive drive = refine(drive_from_table(read_table(file.string())), static_cast<int>(number(p, "substeps", 1)));
+      const Drive measured = drive_from_table(read_table(file.string()));
+      const int substeps = static_cast<int>(number(p, "substeps", 1));
+      require_within((static_cast<double>(measured.time.size()) - 1.0) * substeps + 1.0, lang::max_drive_samples, p,
+                     "samples (rows x substeps)", "lower substeps or split the file");
+      const Drive drive = refine(measured, substeps);
       header.protocol = fmt::format("history file={}", file.string());
       header.protocol += solver_note(network, solver);
       const History h = run_history(network, drive, elements, solver);
@@ -183,6 +209,7 @@ ProtocolRun run_protocol(const Network& network, const Protocol& p, const std::s
       const double duration = number(p, "duration", 1.0);
       const double dt = number(p, "dt", duration / 1000.0);
       const double amplitude = number(p, "amplitude", 0.0);
+      require_within(std::ceil(duration / dt), lang::max_drive_samples, p, "samples (duration / dt)", "raise dt or shorten duration");
       header.protocol = fmt::format("step amplitude={:g} mm duration={:g} s", amplitude, duration);
       header.protocol += solver_note(network, solver);
       const History h = run_history(network, step_relaxation(amplitude, number(p, "rise", dt), duration, dt), elements, solver);

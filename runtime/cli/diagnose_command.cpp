@@ -2,6 +2,7 @@
 // and `rheo refine FILE --data CSV... [-o FINAL.rheo] [--rounds N] [--report ...] [--plot ...]`: name the effect a model misses,
 // add the element that supplies it and refit (runtime/diagnosis/diagnose.hpp); see docs/cli.md.
 #include "lang/frontend.hpp"
+#include "lang/limits.hpp"
 #include "runtime/cli/commands.hpp"
 #include "runtime/cli/fit_job.hpp"
 #include "runtime/cli/program_lookup.hpp"
@@ -38,8 +39,13 @@ void add_common_options(CLI::App& app, DiagnoseOptions& o) {
   app.add_option("--block", o.fit.block, "Take model, data and settings from the N-th fit block of the file (1-based)")->check(CLI::PositiveNumber);
   app.add_option("--candidates", o.candidates, "Leading effects confirmed by a refit; default 3")->check(CLI::Range(1, 5));
   app.add_option("--steps-per-cycle", o.steps_per_cycle,
-                 "Time steps per cycle where harmonic points are time-stepped; default: the fit block's, else 128")
-      ->check(CLI::Range(16, 1 << 20));
+                 "Time steps per cycle where harmonic points are time-stepped, a multiple of 4; default: the fit block's, else 128")
+      ->check(CLI::Range(16, lang::max_steps_per_cycle))
+      ->check([](const std::string& text) {
+        int steps = 0;
+        const bool whole = CLI::detail::lexical_cast(text, steps);
+        return whole && steps % 4 == 0 ? std::string() : "must be a multiple of 4 (the turning points are sampled), e.g. 128";
+      });
   app.add_option("--seed", o.fit.seed, "Seed of the searches' sampling; the same seed gives the same result; default 1")
       ->check(CLI::Range(0LL, std::numeric_limits<long long>::max()));
   app.add_option("--threads", o.fit.threads, "Harmonic points evaluated at once (0: every hardware thread); results do not depend on it; default 1")

@@ -25,7 +25,7 @@ TEST_CASE("check_setting_value: inclusive value ranges") {
   CHECK(errors[0].message == "w must be between 0 and 1, got 1.01");
   const SettingSpec at_least{.key = "w", .shape = Shape::list, .dimension = dim::length, .lowest = 0.0};
   CHECK_FALSE(check(at_least, "w = [1, -2] mm", out, errors));
-  CHECK(errors.back().message == "w must be at least 0, got -2 mm");
+  CHECK(errors.back().message == "w must be at least 0 mm, got -2 mm");
 }
 
 TEST_CASE("check_setting_value: parameter paths, one or a list") {

@@ -9,6 +9,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
+#include <optional>
 #include <string>
 
 using namespace rheo::runtime;
@@ -226,6 +228,24 @@ TEST_CASE("a point that cannot be simulated (NumericalError) is rejected like Na
   check_at_bowl_minimum(r, 1e-6);
   const SearchResult clean = search(bowl, bowl_start, bowl_lower, bowl_upper, linear3, {});
   CHECK(clean.first_failure.empty());
+}
+
+TEST_CASE("when no trial point is finite the search says so, for every strategy, instead of returning a point") {
+  int calls = 0;
+  const Objective nowhere = [&](const std::vector<double>&) -> double {
+    if (++calls % 2) throw NumericalError("cannot simulate anywhere");
+    return std::numeric_limits<double>::infinity();
+  };
+  for (const auto algorithm : {std::optional<Algorithm>{}, std::optional<Algorithm>{Algorithm::direct_l}}) {
+    SearchSettings s;
+    s.algorithm = algorithm;
+    s.max_evaluations = 200;
+    calls = 0;
+    CHECK_THROWS_WITH_AS(search(nowhere, bowl_start, bowl_lower, bowl_upper, linear3, s),
+                         doctest::Contains("trial points of the search gave a finite objective (first failure: cannot simulate anywhere)"),
+                         NumericalError);
+    CHECK(calls > 40);  // the start, the samples or the global stage, and the local searches ran
+  }
 }
 
 TEST_CASE("extra starts are searched from, and a start that is already optimal is kept") {

@@ -79,3 +79,24 @@ TEST_CASE("a yeoh driven past where it softens: a warning in the root block (onc
   CHECK_THROWS_WITH_AS(run_first(chain + "simulate { static velocity = 1 mm/s, amplitude = 2 mm }", "y.rheo"),
                        doctest::Contains("yeoh 'r' is asked to carry"), runtime::NumericalError);
 }
+
+TEST_CASE("work limits: a protocol asking for more samples or steps than lang/limits.hpp allows fails before allocating") {
+  const std::string model = "model m { spring k (k = 100 N/mm) }\n";
+  auto fails = [&](const std::string& protocol, const char* message) {
+    CAPTURE(protocol);
+    CHECK_THROWS_WITH_AS(run_first(model + "simulate {\n  " + protocol + " }", "w.rheo"), doctest::Contains(message), runtime::ModelError);
+  };
+  // 2 amplitudes x 100000 cycles x 400 steps = 8e7 samples.
+  fails("static velocity = 1 mm/s, amplitude = [1, 2] mm, cycles = 100000",
+        "w.rheo:3:3: error: the static protocol asks for 8e+07 samples, more than the limit of 10000000; raise dt or velocity");
+  // dt cuts each of the 400 steps of a 1 mm cycle (4 mm at 1 mm/s: 10 ms per step) into 10000 parts.
+  fails("static velocity = 1 mm/s, amplitude = 1 mm, cycles = 3, dt = 1 us", "asks for 1.2e+07 samples");
+  fails("quasistatic frequency = 1 Hz, amplitude = 1 mm, cycles = 100, steps_per_cycle = 1000000", "asks for 1e+08 samples");
+  fails("step amplitude = 1 mm, duration = 1000 s, dt = 1 us", "asks for 1e+09 samples (duration / dt)");
+  fails("harmonic frequency = 1 Hz .. 1000 Hz step 1 Hz, amplitude = 0.001 mm .. 1.001 mm step 0.001 mm",
+        "asks for 1.001e+06 points (amplitudes x frequencies), more than the limit of 1000000");
+  fails("harmonic frequency = 1 Hz, amplitude = 1 mm, steps_per_cycle = 1000000",
+        "asks for 4e+08 time steps per point (steps_per_cycle x cycles_max), more than the limit of 100000000; lower");
+  // At the limits they run: 10^7 samples are not built here, but the largest cheap case is.
+  CHECK(run_first(model + "simulate { step amplitude = 1 mm, duration = 1 s, dt = 1 ms }", "w.rheo").points == 1001);
+}
