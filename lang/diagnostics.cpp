@@ -1,5 +1,6 @@
 #include "lang/diagnostics.hpp"
 
+#include "lang/limits.hpp"
 #include "lang/text_encoding.hpp"
 
 #include <fmt/format.h>
@@ -71,9 +72,14 @@ std::string format(const Diagnostic& d, const SourceSet& sources) {
 }
 
 namespace {
+// The first max_printed_errors diagnostics, then a count of the rest: a binary or mangled file
+// can have one error per line, and a terminal full of them helps no one.
 std::string format_all(const std::vector<Diagnostic>& diagnostics, const SourceSet& sources) {
   std::string out;
-  for (const auto& d : diagnostics) out += format(d, sources);
+  const std::size_t shown = std::min(diagnostics.size(), max_printed_errors);
+  for (std::size_t i = 0; i < shown; ++i) out += format(diagnostics[i], sources);
+  if (diagnostics.size() > shown)
+    out += fmt::format("... and {} more errors, not shown; fix the ones above first (is this the right file?)\n", diagnostics.size() - shown);
   return out;
 }
 }  // namespace

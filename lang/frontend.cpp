@@ -1,7 +1,9 @@
 #include "lang/frontend.hpp"
 
 #include "lang/checker.hpp"
+#include "lang/file_text.hpp"
 #include "lang/fit_schema.hpp"
+#include "lang/limits.hpp"
 #include "lang/names.hpp"
 #include "lang/parser.hpp"
 #include "lang/protocol_schema.hpp"
@@ -10,31 +12,21 @@
 #include <fmt/format.h>
 
 #include <algorithm>
-#include <cerrno>
-#include <cstring>
-#include <filesystem>
-#include <fstream>
 #include <functional>
 #include <list>
 #include <set>
-#include <sstream>
 #include <stdexcept>
 
 namespace rheo::lang {
 
-Program load_program(const std::string& path) {
-  auto unreadable = [&](const std::string& reason) {
-    return UnreadableSource(fmt::format("{}: error: cannot read it ({}); check the path", path, reason));
-  };
-  std::error_code error;
-  if (std::filesystem::is_directory(path, error)) throw unreadable("it is a directory");
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw unreadable(std::strerror(errno));
-  std::ostringstream text;
-  text << in.rdbuf();
-  if (in.bad()) throw unreadable(std::strerror(errno));
-  return compile_source(path, text.str());
+std::string read_source(const std::string& path) {
+  FileText source = read_file_text(path, max_source_bytes);
+  if (!source.failure.empty())
+    throw UnreadableSource(fmt::format("{}: error: cannot read it ({}); {}", path, source.failure, source.advice()));
+  return std::move(source.text);
 }
+
+Program load_program(const std::string& path) { return compile_source(path, read_source(path)); }
 
 Program compile_source(const std::string& file_name, std::string_view text) {
   SourceSet sources;

@@ -11,10 +11,13 @@
 namespace rheo::lang {
 
 // A source file that cannot be read (missing, a directory, no permission): what() is
-// "FILE: error: cannot read it (REASON); check the path".
+// "FILE: error: cannot read it (REASON); ADVICE" (lang/file_text.hpp).
 struct UnreadableSource : std::runtime_error {
   using std::runtime_error::runtime_error;
 };
+
+// The bytes of a source FILE, at most max_source_bytes (limits.hpp); UnreadableSource otherwise.
+std::string read_source(const std::string& path);
 
 // Reads, parses and checks FILE (imports resolved from the embedded stdlib). Throws
 // CompileError with EVERY semantic error found (parse errors: the first). Throws

@@ -20,6 +20,14 @@ inline constexpr int max_expression_depth = 200;
 // Elements and parameters of one model once the models it instantiates are copied into it.
 inline constexpr std::size_t max_model_size = 100000;
 
+// Bytes read from one file: a .rheo source (the 10 MB of the hostile-input tests and far more
+// than any model needs) and a CSV table (about 25 million rows of a measured history).
+inline constexpr std::size_t max_source_bytes = std::size_t{64} << 20;
+inline constexpr std::size_t max_table_bytes = std::size_t{512} << 20;
+
+// Errors printed for one file; the rest are counted ("... and N more errors").
+inline constexpr std::size_t max_printed_errors = 100;
+
 // Physical ranges of what a test rig drives and measures, internal units. Inside them every
 // closed form and time-stepping path stays well inside double range: the hysteresis energy
 // ~ k u0^2 (eq. 1.2), the force amplitude k u0 and the rate omega u0 neither underflow to zero

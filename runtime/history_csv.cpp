@@ -1,5 +1,6 @@
 #include "runtime/history_csv.hpp"
 
+#include "lang/file_text.hpp"
 #include "lang/limits.hpp"
 #include "lang/text_encoding.hpp"
 #include "lang/units.hpp"
@@ -9,8 +10,6 @@
 
 #include <charconv>
 #include <cmath>
-#include <filesystem>
-#include <fstream>
 #include <optional>
 #include <sstream>
 
@@ -86,14 +85,10 @@ int Table::column(const std::string& name) const {
 }
 
 Table read_table(const std::string& path) {
-  std::error_code error;
-  std::ifstream in(path, std::ios::binary);
-  if (!in || std::filesystem::is_directory(path, error))
-    throw DataError(fmt::format("{}: error: cannot open the file{}; check the path", path,
-                                std::filesystem::is_directory(path, error) ? " (it is a directory)" : ""));
-  std::ostringstream text;
-  text << in.rdbuf();
-  return parse_table(path, text.str());
+  const lang::FileText table = lang::read_file_text(path, lang::max_table_bytes);
+  if (!table.failure.empty())
+    throw DataError(fmt::format("{}: error: cannot read the file ({}); {}", path, table.failure, table.advice()));
+  return parse_table(path, table.text);
 }
 
 Table parse_table(const std::string& path, const std::string& raw) {

@@ -68,7 +68,7 @@ std::unique_ptr<Prepared> prepare(const DiagnoseOptions& o) {
   if (jobs.size() != 1)
     throw runtime::UsageError(fmt::format("{} has {} fit blocks; choose the one to diagnose with --block N or --model NAME", o.fit.file, jobs.size()));
   p->job = std::move(jobs.front());
-  p->source = {o.fit.file, read_source_text(o.fit.file), p->job.model->name};
+  p->source = {o.fit.file, lang::read_source(o.fit.file), p->job.model->name};
   p->settings.fit = p->job.settings;
   if (o.steps_per_cycle > 0) p->settings.fit.score.harmonic.steps_per_cycle = o.steps_per_cycle;
   else if (!p->job.steps_per_cycle_given) p->settings.fit.score.harmonic.steps_per_cycle = 128;

@@ -30,7 +30,7 @@ std::string fitted_file_text(const FitJob& job, const runtime::FitResult& result
   if (result.phi > 0.0) header.push_back(fmt::format("phi (5.1) = {:.6g}, err (6.1) = {:.6g}", result.phi, result.err));
   if (result.interrupted) header.push_back("Interrupted: the best values found before the interruption.");
   header.push_back(fmt::format("Start values: {}", source_file));
-  return lang::write_fitted_source(read_source_text(source_file), source_file, result.network.model(), result.network.parameters(),
+  return lang::write_fitted_source(lang::read_source(source_file), source_file, result.network.model(), result.network.parameters(),
                                    result.free, header);
 }
 

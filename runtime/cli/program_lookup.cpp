@@ -6,18 +6,9 @@
 #include <fmt/ranges.h>
 
 #include <filesystem>
-#include <fstream>
-#include <sstream>
 #include <vector>
 
 namespace rheo::cli {
-
-std::string read_source_text(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::stringstream text;
-  text << in.rdbuf();
-  return text.str();
-}
 
 const lang::CheckedModel& chosen_model(const lang::Program& program, const std::string& file, const std::string& name,
                                        const std::string& purpose, const std::string& advice) {

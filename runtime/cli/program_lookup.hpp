@@ -14,10 +14,6 @@ namespace rheo::cli {
 const lang::CheckedModel& chosen_model(const lang::Program& program, const std::string& file, const std::string& name,
                                        const std::string& purpose, const std::string& advice);
 
-// The bytes of a source file already loaded by lang::load_program (which has reported an
-// unreadable one), for writing fitted or refined copies of it.
-std::string read_source_text(const std::string& path);
-
 // `path` as written in `base_file`: relative to that file's directory unless absolute or empty.
 std::string relative_to(const std::string& base_file, const std::string& path);
 

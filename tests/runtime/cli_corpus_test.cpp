@@ -150,3 +150,38 @@ TEST_CASE("deep nesting: 10,000 levels exit 3 with the limit's message; a model 
   CHECK(simulated.out.find("\n1,10,101,") != std::string::npos);  // 101 unit springs in parallel
   CHECK(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() < 10.0);
 }
+
+TEST_CASE("hostile files through the binary: 10 MB of errors, invalid UTF-8, NUL bytes, /dev/zero") {
+  // 400,000 elements each with a wrong unit: every error is found, the first 100 are printed.
+  std::string big = "model m {\n";
+  for (int i = 0; i < 400000; ++i) big += fmt::format("  spring s{} (k = 1 s)\n", i);
+  const auto many = write("many.rheo", big + "}\n");
+  REQUIRE(fs::file_size(many) > 10'000'000);
+  const auto r = run_rheo("check " + many.string());
+  CHECK(r.code == 3);
+  CHECK(r.err.find(many.string() + ":2:") == 0);
+  CHECK(r.err.find(fmt::format("... and {} more errors, not shown; fix the ones above first", 400000 - rheo::lang::max_printed_errors)) !=
+        std::string::npos);
+  CHECK(r.err.size() < 50'000);
+
+  const auto latin1 = write("latin1.rheo", "model m { spring s (k = 1 N/mm) }\n# caf\xE9\n");
+  const auto u = run_rheo("check " + latin1.string());
+  CHECK(u.code == 3);
+  CHECK(u.err.find("latin1.rheo:2:6: error: found byte 0xE9, which is not UTF-8") != std::string::npos);
+
+  const auto nul = write("nul.rheo", "model m { spring s (k = 1"s + '\0' + " N/mm) }\n");
+  const auto z = run_rheo("check " + nul.string());
+  CHECK(z.code == 3);
+  CHECK(z.err.find("nul.rheo:1:26: error: found a NUL byte; the file must be text: remove it") != std::string::npos);
+  CHECK(z.err.find('\0') == std::string::npos);
+
+  // An endless file is read up to the bound, not into all memory.
+  const auto endless = run_rheo("check /dev/zero");
+  CHECK(endless.code == 4);
+  CHECK(endless.err == fmt::format("/dev/zero: error: cannot read it (it is larger than {} MiB, the most rheo reads); is it the right file?\n",
+                                   rheo::lang::max_source_bytes >> 20));
+  const auto model = write("zero.rheo", "model m { spring s (k = 100 N/mm in [1, 1000]) }\n");
+  const auto table = run_rheo("fit " + model.string() + " --data /dev/zero");
+  CHECK(table.code == 4);
+  CHECK(table.err.find("/dev/zero: error: cannot read the file (it is larger than 512 MiB, the most rheo reads)") != std::string::npos);
+}

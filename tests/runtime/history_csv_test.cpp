@@ -90,5 +90,5 @@ TEST_CASE("a history's rows: at least two, time strictly increasing (no repeated
 }
 
 TEST_CASE("read_table: a directory is not a table") {
-  CHECK_THROWS_WITH_AS(read_table(RHEO_DATA_DIR), doctest::Contains("cannot open the file (it is a directory)"), DataError);
+  CHECK_THROWS_WITH_AS(read_table(RHEO_DATA_DIR), doctest::Contains("cannot read the file (it is a directory)"), DataError);
 }

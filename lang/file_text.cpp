@@ -1,0 +1,41 @@
+#include "lang/file_text.hpp"
+
+#include <fmt/format.h>
+
+#include <cerrno>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+
+namespace rheo::lang {
+const char* FileText::advice() const { return failure.rfind("it is larger than", 0) == 0 ? "is it the right file?" : "check the path"; }
+
+FileText read_file_text(const std::string& path, std::size_t max_bytes) {
+  FileText out;
+  std::error_code error;
+  if (std::filesystem::is_directory(path, error)) {
+    out.failure = "it is a directory";
+    return out;
+  }
+  std::ifstream in(path, std::ios::binary);
+  if (!in) {
+    out.failure = std::strerror(errno);
+    return out;
+  }
+  // Chunks up to one byte past the bound, so that a file of exactly MAX_BYTES is read whole.
+  char chunk[1 << 16];
+  while (in && out.text.size() <= max_bytes) {
+    in.read(chunk, static_cast<std::streamsize>(std::min(sizeof chunk, max_bytes + 1 - out.text.size())));
+    out.text.append(chunk, static_cast<std::size_t>(in.gcount()));
+  }
+  if (in.bad()) {
+    out.failure = std::strerror(errno);
+    out.text.clear();
+  } else if (out.text.size() > max_bytes) {
+    out.failure = fmt::format("it is larger than {} MiB, the most rheo reads", max_bytes >> 20);
+    out.text.clear();
+  }
+  return out;
+}
+
+}  // namespace rheo::lang
