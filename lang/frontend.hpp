@@ -16,7 +16,8 @@ struct UnreadableSource : std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
-// The bytes of a source FILE, at most max_source_bytes (limits.hpp); UnreadableSource otherwise.
+// The bytes of a source FILE, at most max_source_bytes (limits.hpp), without a leading UTF-8
+// byte-order mark; UnreadableSource otherwise.
 std::string read_source(const std::string& path);
 
 // Reads, parses and checks FILE (imports resolved from the embedded stdlib). Throws

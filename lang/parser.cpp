@@ -187,6 +187,23 @@ std::string describe_found(std::string_view text, std::size_t offset) {
   return fmt::format("'{}'", printable(text.substr(offset, end - offset)));
 }
 
+// A word right after a number on its line that the unit table does not know ("1 Nmm"): the
+// grammar stopped at it, but what the writer needs to hear is that it is no unit. Empty when
+// the word at OFFSET is not such a word.
+std::string unknown_unit_hint(std::string_view text, std::size_t offset) {
+  while (offset < text.size() && (text[offset] == ' ' || text[offset] == '\t')) ++offset;
+  std::size_t end = offset;
+  while (end < text.size() && (std::isalnum(static_cast<unsigned char>(text[end])) || text[end] == '_')) ++end;
+  if (end == offset || !std::isalpha(static_cast<unsigned char>(text[offset]))) return {};
+  std::size_t before = offset;
+  while (before > 0 && (text[before - 1] == ' ' || text[before - 1] == '\t')) --before;
+  if (before == 0 || !(std::isdigit(static_cast<unsigned char>(text[before - 1])) || text[before - 1] == '.')) return {};
+  const std::string_view word = text.substr(offset, end - offset);
+  if (unit_atom(word)) return {};
+  return fmt::format("; '{}' is not a unit rheo knows: use {}, combined with '*', '/' and '^' (e.g. N/mm, N*s/mm)", printable(word),
+                     unit_names());
+}
+
 std::string describe_element(const State& s) {
   if (s.elements.empty()) return "the element";
   const auto& e = s.elements.back();
@@ -219,6 +236,7 @@ void run(const std::string& file_name, std::string_view text, State& state) {
     replace_all(message, "{found}", describe_found(text, p.byte));
     replace_all(message, "{element}", describe_element(state));
     replace_all(message, "{model}", state.file.models.empty() ? std::string() : state.file.models.back().name);
+    message += unknown_unit_hint(text, p.byte);
     fail(static_cast<int>(p.line), static_cast<int>(p.column), message);
   }
 }

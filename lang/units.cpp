@@ -53,6 +53,15 @@ std::optional<Unit> unit_atom(std::string_view name) {
   return std::nullopt;
 }
 
+std::string unit_names() {
+  std::string out;
+  for (const auto& entry : kAtoms) {
+    out += entry.name;
+    out += ", ";
+  }
+  return out + "deg";
+}
+
 std::optional<Unit> parse_unit(std::string_view text) {
   // Angular frequency: the internal frequency unit is Hz (cycles per second), so one radian
   // per second is 1/(2 pi) Hz, not the 1 Hz that rad = 1 would give.

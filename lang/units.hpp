@@ -50,6 +50,8 @@ struct Unit {
 
 // A single unit atom such as "kN", "um", "ms", "Hz", "kg", "deg", "rad". Unknown: nullopt.
 std::optional<Unit> unit_atom(std::string_view name);
+// Every unit atom, for messages: "N, kN, mN, mm, ..., rad, deg".
+std::string unit_names();
 // A compound unit such as "N/mm", "N*s/mm", "N/mm^3", "kN/mm", "N s/mm" is not accepted
 // (use '*'). Grammar: atom ('^' int)? (('*'|'/') atom ('^' int)?)* . Unknown: nullopt.
 // "rad/s" is angular frequency: 1 rad/s = 1/(2 pi) Hz. Also nullopt, whatever the input, when

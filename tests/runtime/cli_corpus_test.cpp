@@ -185,3 +185,22 @@ TEST_CASE("hostile files through the binary: 10 MB of errors, invalid UTF-8, NUL
   CHECK(table.code == 4);
   CHECK(table.err.find("/dev/zero: error: cannot read the file (it is larger than 512 MiB, the most rheo reads)") != std::string::npos);
 }
+
+TEST_CASE("a UTF-8 byte-order mark opening a .rheo file is ignored, by check, simulate and the fitted copy fit writes") {
+  const std::string bom = "\xEF\xBB\xBF";
+  const auto file = write("bom.rheo", bom + "model m { spring s (k = 100 N/mm in [1, 1000]) }\n"
+                                            "simulate { harmonic frequency = 1 Hz, amplitude = 1 mm }\n");
+  CHECK(run_rheo("check " + file.string()).code == 0);
+  const auto simulated = run_rheo("simulate " + file.string() + " -o -");
+  CHECK(simulated.code == 0);
+  CHECK(simulated.out.find("\n1,1,100,") != std::string::npos);
+  const auto data = write("bom_data.csv", "amplitude [mm],frequency [Hz],stiffness [N/mm],phase [deg]\n1,1,250,1\n1,2,250,1\n");
+  const auto fitted = scratch() / "bom_fitted.rheo";
+  CHECK(run_rheo(fmt::format("fit {} --data {} -o {}", file.string(), data.string(), fitted.string())).code == 0);
+  std::ifstream in(fitted);
+  const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  // The edit landed on the value (k = 250 within the search's tolerance), not 3 bytes off.
+  CHECK(text.find("\nmodel m { spring s (k = 249.99999") != std::string::npos);
+  CHECK(text.find(" N/mm in [1, 1000]) }\n") != std::string::npos);
+  CHECK(run_rheo("check " + fitted.string()).code == 0);
+}
