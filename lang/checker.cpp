@@ -6,6 +6,7 @@
 #include "lang/model_builder.hpp"
 #include "lang/names.hpp"
 #include "lang/protocol_schema.hpp"
+#include "lang/setting_values.hpp"
 
 #include <fmt/format.h>
 
@@ -128,7 +129,7 @@ SimulateDirective check_simulate(const ast::Simulate& s, const ast::File& file, 
   enum class Last { nothing, protocol, unknown_protocol, output } last = Last::nothing;
   for (const auto& line : s.lines) {
     if (line.output) {
-      if (last == Last::protocol) out.protocols.back().output = line.file;
+      if (last == Last::protocol && check_file_name(line.file, line.where, errors)) out.protocols.back().output = line.file;
       else if (last == Last::nothing)
         errors.push_back({line.where, "'output' names the results of the protocol line before it, but there is none; put it after a protocol line"});
       else if (last == Last::output)

@@ -53,6 +53,7 @@ std::string duplicate(const ast::SettingNode& node, const SourceLocation& first)
 
 FitData check_data(const ast::FitLine& line, std::vector<Diagnostic>& errors) {
   FitData out{line.file, 1.0, line.file_where};
+  check_file_name(line.file, line.file_where, errors);
   std::map<std::string, SourceLocation> seen;
   for (const auto& node : line.settings) {
     if (auto [it, fresh] = seen.emplace(node.key, node.where); !fresh) {
@@ -187,6 +188,7 @@ FitDirective check_fit(const ast::Fit& fit, const std::string& model, const Chec
       } else {
         out.output = line.file;
         output = &line;
+        check_file_name(line.file, line.file_where, errors);
       }
     } else {
       for (const auto& node : line.settings) {

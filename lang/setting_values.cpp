@@ -125,6 +125,19 @@ bool check_paths(const ast::SettingNode& n, std::vector<PathItem>* paths, std::v
 
 }  // namespace
 
+bool check_file_name(const std::string& name, const SourceLocation& where, std::vector<Diagnostic>& errors) {
+  if (name.empty()) {
+    errors.push_back({where, "the file name is empty; write one, e.g. \"road.csv\""});
+    return false;
+  }
+  for (const char c : name)
+    if (static_cast<unsigned char>(c) < 0x20 || c == 0x7F) {
+      errors.push_back({where, fmt::format("the file name holds the control character 0x{:02X}; remove it", static_cast<unsigned char>(c))});
+      return false;
+    }
+  return true;
+}
+
 bool check_setting_value(const ast::SettingNode& n, const SettingSpec& s, Setting& out, std::vector<Diagnostic>& errors,
                          std::vector<PathItem>* paths) {
   using Kind = ast::SettingValue::Kind;
@@ -186,7 +199,7 @@ bool check_setting_value(const ast::SettingNode& n, const SettingSpec& s, Settin
         return false;
       }
       out.text = v.text;
-      return true;
+      return check_file_name(v.text, v.where, errors);
     case Shape::paths:
       return check_paths(n, paths, errors);
   }

@@ -44,6 +44,11 @@ struct PathItem {
   SourceLocation where;
 };
 
+// A file name written in a .rheo file (`output`, `data`, a history's `file`): not empty and
+// without control characters, which no file name needs and a terminal would act on when the
+// name is echoed. Reports at WHERE and returns false otherwise.
+bool check_file_name(const std::string& name, const SourceLocation& where, std::vector<Diagnostic>& errors);
+
 // Checks NODE's value against SPEC (shape, dimension, range) into OUT: numbers in internal
 // units into OUT.values, identifiers and strings into OUT.text. Shape::paths leaves OUT alone
 // and appends the paths to PATHS (when given). Reports to ERRORS and returns false when invalid.

@@ -27,8 +27,8 @@ HistoryData history_data_from_table(const Table& table) {
   return h;
 }
 
-FitDataSet read_fit_data(const std::string& path, double weight) {
-  const Table table = read_table(path);
+FitDataSet read_fit_data(const std::string& path, double weight, const lang::SourceLocation* named_at) {
+  const Table table = read_table(path, named_at);
   FitDataSet set{path, weight, HarmonicData{}};
   if (table.column("amplitude") >= 0 && table.column("frequency") >= 0) {
     set.data = harmonic_data_from_table(table);

@@ -32,6 +32,7 @@ struct FitDataSet {
 };
 
 HistoryData history_data_from_table(const Table& table);
-FitDataSet read_fit_data(const std::string& path, double weight);
+// NAMED_AT: where a .rheo file's `data` line names PATH (read_table).
+FitDataSet read_fit_data(const std::string& path, double weight, const lang::SourceLocation* named_at = nullptr);
 
 }  // namespace rheo::runtime

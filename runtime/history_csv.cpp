@@ -84,10 +84,13 @@ int Table::column(const std::string& name) const {
   return -1;
 }
 
-Table read_table(const std::string& path) {
+Table read_table(const std::string& path, const lang::SourceLocation* named_at) {
   const lang::FileText table = lang::read_file_text(path, lang::max_table_bytes);
+  if (!table.failure.empty() && named_at)
+    throw DataError(fmt::format("{}cannot read '{}', named here ({}); {} (a relative name is relative to the .rheo file)", error_at(*named_at),
+                                lang::printable(path), table.failure, table.advice()));
   if (!table.failure.empty())
-    throw DataError(fmt::format("{}: error: cannot read the file ({}); {}", path, table.failure, table.advice()));
+    throw DataError(fmt::format("{}: error: cannot read the file ({}); {}", lang::printable(path), table.failure, table.advice()));
   return parse_table(path, table.text);
 }
 

@@ -6,6 +6,7 @@
 // and what to do; nothing is guessed. Cells are quoted in messages as printable text.
 #pragma once
 
+#include "lang/model.hpp"
 #include "runtime/drives.hpp"
 
 #include <string>
@@ -32,7 +33,9 @@ std::string header_error(const Table& table);
 // "the header has: time, force", printable.
 std::string header_columns(const Table& table);
 
-Table read_table(const std::string& path);
+// NAMED_AT, when given, is where a .rheo file names PATH: a file that cannot be read is then
+// reported there (file:line:col of the name), since that is where to fix it.
+Table read_table(const std::string& path, const lang::SourceLocation* named_at = nullptr);
 Table parse_table(const std::string& path, const std::string& text);
 
 // A displacement history from a table with "time" and "displacement" columns: strictly

@@ -194,7 +194,7 @@ ProtocolRun run_protocol(const Network& network, const Protocol& p, const std::s
     case lang::ProtocolKind::history: {
       std::filesystem::path file = word(p, "file", "");
       if (file.is_relative()) file = std::filesystem::path(source_file).parent_path() / file;
-      const Drive measured = drive_from_table(read_table(file.string()));
+      const Drive measured = drive_from_table(read_table(file.string(), &p.find("file")->where));
       const int substeps = static_cast<int>(number(p, "substeps", 1));
       require_within((static_cast<double>(measured.time.size()) - 1.0) * substeps + 1.0, lang::max_drive_samples, p,
                      "samples (rows x substeps)", "lower substeps or split the file");

@@ -36,7 +36,7 @@ void add_common_options(CLI::App& app, DiagnoseOptions& o) {
   app.add_option("file", o.fit.file, "The .rheo file: the model, with bounds on the parameters to fit")->required();
   app.add_option("--data", o.fit.data, "Measured data (harmonic table or time history); replaces the fit block's data lines. Repeatable");
   app.add_option("--model", o.fit.model, "The model to diagnose (when the file has several)");
-  app.add_option("--block", o.fit.block, "Take model, data and settings from the N-th fit block of the file (1-based)")->check(CLI::PositiveNumber);
+  app.add_option("--block", o.fit.block, "Take model, data and settings from the N-th fit block of the file (1-based)")->check(CLI::Range(1, std::numeric_limits<int>::max()));
   app.add_option("--candidates", o.candidates, "Leading effects confirmed by a refit; default 3")->check(CLI::Range(1, 5));
   app.add_option("--steps-per-cycle", o.steps_per_cycle,
                  "Time steps per cycle where harmonic points are time-stepped, a multiple of 4; default: the fit block's, else 128")

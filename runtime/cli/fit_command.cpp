@@ -44,7 +44,7 @@ Command add_fit_command(CLI::App& app) {
   app.add_option("-o,--output", o->output, "Write the fitted model (.rheo, comments kept) here; needs exactly one fit to run");
   app.add_flag("--json", o->json, "Print the JSON summary instead of the text report");
   app.add_option("--model", o->model, "Fit only this model's fit blocks (or this model, when the file has none)");
-  app.add_option("--block", o->block, "Run only the N-th fit block of the file (1-based)")->check(CLI::PositiveNumber);
+  app.add_option("--block", o->block, "Run only the N-th fit block of the file (1-based)")->check(CLI::Range(1, std::numeric_limits<int>::max()));
   // Defaults: the fit block's setting, else these (runtime::SearchSettings).
   const runtime::SearchSettings defaults;
   app.add_option("--method", o->method, "exact | approximate | corrected (thesis eqs. 5.5-5.21, Table 5.1); default exact");

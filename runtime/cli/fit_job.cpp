@@ -162,7 +162,7 @@ std::vector<FitJob> fit_jobs(const lang::Program& program, const FitOptions& o) 
     if (!o.data.empty()) {
       for (const auto& path : o.data) job.data.push_back(runtime::read_fit_data(path, 1.0));
     } else if (block) {
-      for (const auto& d : block->data) job.data.push_back(runtime::read_fit_data(relative_to(o.file, d.file), d.weight));
+      for (const auto& d : block->data) job.data.push_back(runtime::read_fit_data(relative_to(o.file, d.file), d.weight, &d.where));
     }
     if (job.data.empty())
       throw runtime::UsageError(fmt::format("no data to fit model '{}' to; give --data FILE.csv or add `data \"FILE.csv\"` to its fit block", model.name));

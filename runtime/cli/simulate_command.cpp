@@ -1,5 +1,6 @@
 #include "lang/diagnostics.hpp"
 #include "lang/frontend.hpp"
+#include "lang/text_encoding.hpp"
 #include "runtime/cli/commands.hpp"
 #include "runtime/cli/report_files.hpp"
 #include "runtime/errors.hpp"
@@ -37,7 +38,8 @@ void apply_overrides(lang::Protocol& protocol, const Options& o) {
     try {
       setting = lang::parse_setting(protocol.kind, text);
     } catch (const lang::CompileError& e) {
-      throw runtime::UsageError(fmt::format("--set '{}' for protocol {}:\n{}", text, runtime::protocol_name(protocol.kind), e.what()));
+      throw runtime::UsageError(
+          fmt::format("--set '{}' for protocol {}:\n{}", lang::printable(text), runtime::protocol_name(protocol.kind), e.what()));
     }
     bool replaced = false;
     for (auto& existing : protocol.settings)

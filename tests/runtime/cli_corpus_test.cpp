@@ -204,3 +204,21 @@ TEST_CASE("a UTF-8 byte-order mark opening a .rheo file is ignored, by check, si
   CHECK(text.find(" N/mm in [1, 1000]) }\n") != std::string::npos);
   CHECK(run_rheo("check " + fitted.string()).code == 0);
 }
+
+TEST_CASE("a data or history file that cannot be read is reported where the .rheo file names it") {
+  const auto fit = write("named_data.rheo", "model m { spring s (k = 100 N/mm in [1, 1000]) }\nfit {\n  data \"absent.csv\"\n}\n");
+  const auto f = run_rheo("fit " + fit.string());
+  CHECK(f.code == 4);
+  CHECK(f.err.find(fit.string() + ":3:8: error: cannot read '" + (scratch() / "absent.csv").string() +
+                   "', named here (No such file or directory); check the path") == 0);
+  const auto report = run_rheo("report " + fit.string() + " -o " + (scratch() / "r.html").string());
+  CHECK(report.code == 4);
+  CHECK(report.err.find(fit.string() + ":3:8: error: cannot read") == 0);
+  const auto history = write("named_history.rheo", "model m { spring s (k = 100 N/mm) }\nsimulate { history file = \"absent.csv\" }\n");
+  const auto h = run_rheo("simulate " + history.string() + " -o -");
+  CHECK(h.code == 4);
+  CHECK(h.err.find(history.string() + ":2:20: error: cannot read '") == 0);  // at the setting
+  // Given on the command line, the file is its own location.
+  const auto given = run_rheo("fit " + fit.string() + " --data " + (scratch() / "absent.csv").string());
+  CHECK(given.err.find((scratch() / "absent.csv").string() + ": error: cannot read the file (No such file or directory)") == 0);
+}
