@@ -2,12 +2,14 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cerrno>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
 
 namespace rheo::lang {
+
 const char* FileText::advice() const { return failure.rfind("it is larger than", 0) == 0 ? "is it the right file?" : "check the path"; }
 
 FileText read_file_text(const std::string& path, std::size_t max_bytes) {

@@ -90,6 +90,12 @@ std::vector<std::string> protocol_names() {
   return out;
 }
 
+std::vector<std::string> protocol_setting_keys(ProtocolKind kind) {
+  std::vector<std::string> out;
+  for (const auto& s : spec(kind).settings) out.emplace_back(s.key);
+  return out;
+}
+
 std::optional<Setting> check_setting(ProtocolKind kind, const ast::SettingNode& node, std::vector<Diagnostic>& errors) {
   return check_keyed_setting(spec(kind).settings, spec(kind).name, node, errors);
 }

@@ -15,6 +15,8 @@ namespace rheo::lang {
 std::optional<ProtocolKind> protocol_kind(const std::string& name);
 std::string protocol_name(ProtocolKind kind);
 std::vector<std::string> protocol_names();
+// The setting keys KIND accepts, in schema order (docs/language.md lists them).
+std::vector<std::string> protocol_setting_keys(ProtocolKind kind);
 
 // Validates one setting against KIND's schema (key known, value shape, dimension, range) and
 // converts it to internal units. Reports to ERRORS and returns nullopt when invalid.
