@@ -112,7 +112,17 @@ void write_output(const std::string& path, const std::string& content) {
   }
   check_output_destination(path);
   namespace fs = std::filesystem;
-  const fs::path target(path);
+  // A symbolic link is written through: the file it points to (created if missing) is
+  // replaced, the link kept. Chains are followed as the kernel would, to a depth of 40.
+  fs::path target(path);
+  std::error_code link_error;
+  for (int depth = 0; fs::is_symlink(fs::symlink_status(target, link_error)); ++depth) {
+    const fs::path next = fs::read_symlink(target, link_error);
+    if (link_error || depth == 40)
+      throw DataError(fmt::format("{}: error: cannot follow the link ({}); write to its target instead", path,
+                                  link_error ? link_error.message() : "too many levels of links"));
+    target = next.is_absolute() ? next : target.parent_path() / next;
+  }
   std::error_code status_error;
   const auto status = fs::status(target, status_error);
   if (fs::exists(status) && !fs::is_regular_file(status)) {

@@ -8,7 +8,7 @@
 // "PATH.elongation [mm]". '#' lines before the header say what produced the file.
 // Files are written to a temporary sibling and renamed, so a failed run never leaves a
 // half-written file and earlier outputs stay intact. Devices and pipes (/dev/null, FIFOs) are
-// written in place.
+// written in place; a symbolic link is written through to its target and stays a link.
 #pragma once
 
 #include "runtime/drives.hpp"

@@ -88,7 +88,6 @@ std::string solver_note(const Network& network, SolverChoice solver) {
 
 ProtocolRun run_protocol(const Network& network, const Protocol& p, const std::string& source_file, int threads) {
   ProtocolRun run;
-  run.destination = p.output;
   ResultHeader header{network.model().name, source_file, protocol_name(p.kind)};
   const bool elements = word(p, "elements", "none") == "all";
   const SolverChoice solver = parse_solver_choice(word(p, "solver", "auto")).value_or(SolverChoice::automatic);

@@ -17,7 +17,6 @@ namespace rheo::runtime {
 
 struct ProtocolRun {
   std::string content;      // the rendered result (CSV or JSON)
-  std::string destination;  // file path, or empty for standard output
   int points = 0;           // harmonic points or history samples
   int not_converged = 0;    // harmonic points that did not reach steady state
   std::string notes;        // warnings for standard error, one per line

@@ -81,6 +81,8 @@ void add_report_options(CLI::App& app, ReportTargets& targets, bool html_option)
 }
 
 void check_report_targets(const ReportTargets& targets) {
+  runtime::check_output_destination(targets.html);
+  runtime::check_output_destination(targets.plot);
   if (wants_png(targets)) png_converter(targets.plot);
 }
 

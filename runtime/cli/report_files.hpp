@@ -22,8 +22,9 @@ struct ReportTargets {
 // Adds --plot, and --report unless `html_option` is false (`rheo report` names it -o).
 void add_report_options(CLI::App& app, ReportTargets& targets, bool html_option);
 
-// Throws UsageError when the files cannot be written as asked (a .png plot without
-// rsvg-convert): for commands that run long before they write.
+// Throws DataError when a file's directory does not exist or the name is a directory, and
+// UsageError when the files cannot be written as asked (a .png plot without rsvg-convert): for
+// commands that run long before they write.
 void check_report_targets(const ReportTargets& targets);
 
 // Writes the requested files and says so on standard error.

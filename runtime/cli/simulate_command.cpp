@@ -102,8 +102,18 @@ Command add_simulate_command(CLI::App& app) {
         if (job.model != jobs.front().model)
           throw runtime::UsageError(fmt::format("--report and --plot show one model, but models {} and {} would run; select one with --model",
                                                 jobs.front().model->name, job.model->name));
-    // Every protocol runs before any output is written: a later protocol's bad data file or
-    // numerical failure leaves every earlier output intact.
+    // Every destination is checked before anything runs, and every protocol runs before any
+    // output is written: a bad path, a later protocol's bad data file or a numerical failure
+    // leaves every earlier output intact.
+    std::vector<std::string> destinations;
+    for (const auto& job : jobs) {
+      std::string destination = o->output;
+      if (destination.empty() && !job.protocol.output.empty())
+        destination = (std::filesystem::path(o->file).parent_path() / job.protocol.output).string();
+      runtime::check_output_destination(destination);
+      destinations.push_back(std::move(destination));
+    }
+    check_report_targets(o->report);
     std::optional<runtime::report::ReportContent> report;
     std::vector<runtime::ProtocolRun> runs;
     for (auto& job : jobs) {
@@ -122,9 +132,7 @@ Command add_simulate_command(CLI::App& app) {
     for (std::size_t k = 0; k < jobs.size(); ++k) {
       const auto& job = jobs[k];
       const runtime::ProtocolRun& run = runs[k];
-      std::string destination = o->output;
-      if (destination.empty() && !run.destination.empty())
-        destination = (std::filesystem::path(o->file).parent_path() / run.destination).string();
+      const std::string& destination = destinations[k];
       runtime::write_output(destination, run.content);
       std::cerr << run.notes;
       if (!destination.empty() && destination != "-")

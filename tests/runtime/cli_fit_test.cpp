@@ -167,6 +167,15 @@ TEST_CASE("an output that cannot be written exits 4 before the search, with advi
   const Run directory = run(fmt::format("fit {} --data {} -o {}", start_model().string(), truth_data().string(), scratch().string()));
   CHECK(directory.code == 4);
   CHECK(contains(directory.err, "the output is a directory; name a file in it"));
+  // The --report and --plot files too, before the search (no "fitted model written" line).
+  for (const char* option : {"--report", "--plot"}) {
+    CAPTURE(option);
+    const Run report = run(fmt::format("fit {} --data {} -o {} {} {}", start_model().string(), truth_data().string(),
+                                       (scratch() / "ok.rheo").string(), option, (scratch() / "no_such_dir" / "r.html").string()));
+    CHECK(report.code == 4);
+    CHECK(contains(report.err, "no_such_dir does not exist; create it or choose another path"));
+    CHECK(!contains(report.err, "written"));
+  }
 }
 
 TEST_CASE("bad data exits 4 naming file:row:col, and leaves an existing output untouched") {

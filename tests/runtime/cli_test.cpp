@@ -95,6 +95,18 @@ TEST_CASE("data errors exit 4 and leave no output") {
   std::string line;
   std::getline(kept, line);
   CHECK(line == "earlier result");
+  // So does a later protocol's, or the report's, unwritable destination: found before anything runs.
+  const auto bad_path = write("bad_path.rheo", "model m { spring s (k = 5) }\nsimulate {\n harmonic frequency = 1 Hz, amplitude = 1 mm\n"
+                                               " output \"first_out.csv\"\n step amplitude = 1 mm, duration = 1 s\n output \"no_dir/x.csv\" }\n");
+  const Result path_run = run("simulate " + bad_path.string());
+  CHECK(path_run.code == 4);
+  CHECK(path_run.output.find("no_dir does not exist; create it or choose another path") != std::string::npos);
+  const Result report_run = run("simulate " + two.string() + " --protocol harmonic --report " + (earlier.parent_path() / "no_dir" / "r.html").string());
+  CHECK(report_run.code == 4);
+  CHECK(report_run.output.find("r.html: error: the output's directory") != std::string::npos);
+  std::ifstream still(earlier);
+  std::getline(still, line);
+  CHECK(line == "earlier result");
 }
 
 TEST_CASE("simulate --threads gives the same file as one thread; a negative count is a usage error") {
