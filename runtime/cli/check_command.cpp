@@ -1,6 +1,9 @@
 #include "lang/frontend.hpp"
 #include "runtime/cli/commands.hpp"
+#include "runtime/dae_graph.hpp"
+#include "runtime/harmonic.hpp"
 #include "runtime/network.hpp"
+#include "runtime/solver_choice.hpp"
 
 #include <fmt/format.h>
 
@@ -8,6 +11,36 @@
 #include <memory>
 
 namespace rheo::cli {
+namespace {
+
+// Whether a run of the file certainly integrates MODEL with SUNDIALS IDA: a simulate protocol
+// that takes IDA (a harmonic one only where no closed form serves it, harmonic.hpp), or a fit
+// block that names solver = sundials (with `auto` a fit's data decide, which check does not
+// read). check then raises what those runs would (dae_graph.hpp).
+bool runs_on_sundials(const lang::Program& program, const runtime::Network& network) {
+  auto solver = [](const lang::Setting* s) {
+    return s ? runtime::parse_solver_choice(s->text).value_or(runtime::SolverChoice::automatic) : runtime::SolverChoice::automatic;
+  };
+  const std::string& model = network.model().name;
+  for (const auto& simulation : program.simulations) {
+    if (simulation.model != model) continue;
+    for (const auto& protocol : simulation.protocols) {
+      const runtime::SolverChoice choice = solver(protocol.find("solver"));
+      if (!runtime::uses_sundials(network, choice)) continue;
+      if (protocol.kind != lang::ProtocolKind::harmonic) return true;
+      runtime::HarmonicOptions options;
+      options.solver = choice;
+      const lang::Setting* steady = protocol.find("steady_state");
+      if (steady && steady->text == "time_stepping") options.steady_state = runtime::SteadyState::time_stepping;
+      if (!runtime::uses_closed_form(network, options)) return true;
+    }
+  }
+  for (const auto& fit : program.fits)
+    if (fit.model == model && solver(fit.find("solver")) == runtime::SolverChoice::sundials) return true;
+  return false;
+}
+
+}  // namespace
 
 Command add_check_command(CLI::App& app) {
   struct Options {
@@ -24,6 +57,7 @@ Command add_check_command(CLI::App& app) {
     std::string graphs;  // every model compiles (or the check fails) before "ok" is printed
     for (const auto& model : program.models) {
       const runtime::Network network = runtime::Network::compile(model);
+      if (runs_on_sundials(program, network)) (void)runtime::DaeGraph::build(network);  // ModelError for what IDA cannot integrate
       if (options->graph) graphs += network.describe();
     }
     std::cout << fmt::format("{}: ok: {} model(s), {} parameter(s), {} simulate block(s)\n", options->file,

@@ -60,6 +60,27 @@ TEST_CASE("a network that cannot be simulated exits 3 from check and simulate, n
   CHECK(simulate.output.find("'play'") != std::string::npos);
 }
 
+TEST_CASE("check raises the integrator's errors exactly where a run of the file would meet them") {
+  // An inerter between the terminal and ground: IDA cannot integrate it (it needs the drive's
+  // acceleration), the fixed-step kernels and the harmonic closed form can.
+  const std::string model = "model m {\n  spring s (k = 100 N/mm)\n  inerter i (b = 1 kg)\n}\n";
+  for (const auto& [protocol, fails] : {std::pair{"static velocity = 1 mm/s, amplitude = 1 mm", true},
+                                        std::pair{"harmonic frequency = 1 Hz, amplitude = 1 mm, steady_state = time_stepping", true},
+                                        std::pair{"harmonic frequency = 1 Hz, amplitude = 1 mm", false},
+                                        std::pair{"static velocity = 1 mm/s, amplitude = 1 mm, solver = fixed", false}}) {
+    const std::string line = protocol;
+    CAPTURE(line);
+    const auto file = write("inerter.rheo", model + "simulate { " + protocol + " }\n");
+    const Result check = run("check " + file.string());
+    const Result simulate = run("simulate " + file.string() + " -o /dev/null");
+    CHECK(check.code == (fails ? 3 : 0));
+    CHECK(simulate.code == check.code);
+    if (fails)
+      CHECK(check.output.find("inerter.rheo:3:3: error: inerter 'i' of model 'm' sits directly between the terminal and ground") !=
+            std::string::npos);
+  }
+}
+
 TEST_CASE("usage errors exit 2 and say what to do") {
   CHECK(run("").code == 2);
   CHECK(run("simulate").code == 2);
