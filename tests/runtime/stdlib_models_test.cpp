@@ -147,6 +147,38 @@ TEST_CASE("stdlib series_friction_maxwell: below the slip force it is a Zener mo
   check(p, 100.0 + maxwell(200, 0.01, 7.0));
 }
 
+TEST_CASE("stdlib series_friction_maxwell slipping: a Jenkins element when the arm cannot relax; IDA agrees when it can") {
+  // tau = 1e6 s: at 3 Hz the arm is a spring (relaxation ~ 1/(omega tau) = 5e-8), so the branch
+  // is a friction element (k 200 N/mm, uy = fy / k = 0.1 mm): slipping at u0 = 0.5 mm, C.17-C.20.
+  for (double u0 : {0.05, 0.5, 2.0}) {
+    CAPTURE(u0);
+    const auto p = point("import series_friction_maxwell\nmodel m { series_friction_maxwell s (tau = 1e6 s) }", "m", u0, 3.0);
+    const Measures want = parallel_closed_form([](double u) { return 100 * u; }, {}, {{200, 0.1}}, u0, 3.0);
+    CHECK(p.converged);
+    CHECK(test::relative_error(p.measures.stiffness, want.stiffness) < 1e-6);
+    CHECK(std::abs(test::degrees(p.measures.phase - want.phase)) < 1e-4);
+  }
+  // The default tau = 10 ms slips and relaxes at once (no closed form): the fixed-step kernels
+  // and SUNDIALS IDA, two independent integrators, give the same point.
+  const auto network = test::network_from("import series_friction_maxwell\nmodel m { series_friction_maxwell s () }", "m");
+  runtime::HarmonicOptions ida;
+  ida.solver = runtime::SolverChoice::sundials;
+  // At 20 and 50 Hz (omega tau = 1.3, 3.1) the stuck arm's force amplitude, k u0 omega tau /
+  // sqrt(1 + (omega tau)^2) = 78 and 95 N, would pass fy = 20 N.
+  for (double f : {20.0, 50.0}) {
+    CAPTURE(f);
+    const auto fixed = runtime::simulate_harmonic_point(network, 0.5, f, {});
+    const auto variable = runtime::simulate_harmonic_point(network, 0.5, f, ida);
+    CHECK(fixed.converged);
+    CHECK(variable.converged);
+    CHECK(test::relative_error(fixed.measures.stiffness, variable.measures.stiffness) < 1e-5);  // seen: 4e-7
+    CHECK(std::abs(test::degrees(fixed.measures.phase - variable.measures.phase)) < 1e-3);     // seen: 1.4e-5 deg
+    // It does slip: the branch carries at most fy = 20 N above the spring's 100 u0.
+    CHECK(fixed.measures.force_amplitude <= 100 * 0.5 + 20.0 * (1 + 1e-9));
+    CHECK(fixed.measures.force_amplitude > 100 * 0.5 + 19.0);  // seen: 69.58 N at 20 Hz, 69.93 N at 50 Hz
+  }
+}
+
 TEST_CASE("stdlib maxwell2: K* = k_inf + sum of two Maxwell arms (C.9)") {
   for (double f : {0.5, 9.0, 45.0}) {
     CAPTURE(f);
