@@ -79,7 +79,8 @@ std::string format_all(const std::vector<Diagnostic>& diagnostics, const SourceS
   const std::size_t shown = std::min(diagnostics.size(), max_printed_errors);
   for (std::size_t i = 0; i < shown; ++i) out += format(diagnostics[i], sources);
   if (diagnostics.size() > shown)
-    out += fmt::format("... and {} more errors, not shown; fix the ones above first (is this the right file?)\n", diagnostics.size() - shown);
+    out += fmt::format("... and {} more {}, not shown; fix the ones above first (is this the right file?)\n", diagnostics.size() - shown,
+                       diagnostics.size() - shown == 1 ? "error" : "errors");
   return out;
 }
 }  // namespace

@@ -1,6 +1,9 @@
 #include "lang/diagnostics.hpp"
 
+#include "lang/limits.hpp"
+
 #include <doctest/doctest.h>
+#include <fmt/format.h>
 
 using namespace rheo::lang;
 
@@ -20,6 +23,24 @@ TEST_CASE("CompileError carries every diagnostic and the formatted text") {
   CompileError e({{{"a.rheo", 1, 2}, "one"}, {{"a.rheo", 1, 3}, "two"}}, sources);
   CHECK(e.diagnostics().size() == 2);
   CHECK(std::string(e.what()) == "a.rheo:1:2: error: one\n  abc\n   ^\na.rheo:1:3: error: two\n  abc\n    ^\n");
+}
+
+TEST_CASE("CompileError prints the first max_printed_errors diagnostics, then how many more, keeping every one") {
+  SourceSet sources;
+  sources.add("a.rheo", "abc\n");
+  for (const std::size_t count : {max_printed_errors, max_printed_errors + 1, max_printed_errors + 7}) {
+    CAPTURE(count);
+    const std::vector<Diagnostic> all(count, Diagnostic{{"a.rheo", 1, 2}, "bad"});
+    const CompileError e(all, sources);
+    CHECK(e.diagnostics().size() == count);
+    const std::string text = e.what();
+    std::size_t printed = 0;
+    for (auto at = text.find("a.rheo:1:2: error: bad"); at != std::string::npos; at = text.find("a.rheo:1:2: error: bad", at + 1)) ++printed;
+    CHECK(printed == max_printed_errors);
+    const std::size_t cut = count - max_printed_errors;
+    const std::string tail = cut == 0 ? "" : cut == 1 ? "... and 1 more error, not shown" : fmt::format("... and {} more errors, not shown", cut);
+    CHECK((tail.empty() ? text.find("... and") == std::string::npos : text.find(tail) != std::string::npos));
+  }
 }
 
 TEST_CASE("format: the caret stands under the column's character after multi-byte characters") {
