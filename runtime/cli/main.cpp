@@ -16,7 +16,7 @@ int main(int argc, char** argv) {
                "5 numerical (e.g. a harmonic point did not reach steady state; results are still written),\n"
                "130 a fit, diagnose or refine stopped by Ctrl-C (its best result so far is still written)."};
   app.require_subcommand(1);
-  app.set_version_flag("--version", "rheo 0.1.0");
+  app.set_version_flag("--version", "rheo " RHEO_VERSION);  // project(VERSION) in CMakeLists.txt
   std::vector<std::pair<CLI::App*, cli::Command>> commands;
   auto* check = app.add_subcommand("check", "Parse and check a .rheo file; report every error found");
   commands.emplace_back(check, cli::add_check_command(*check));

@@ -8,12 +8,35 @@
 
 #include <array>
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
 #include <string>
+#include <string_view>
 
 namespace rheo::test {
+
+// True under CI (.ci/run exports CI=true): there every tool a test needs must be installed.
+inline bool in_ci() {
+  const char* ci = std::getenv("CI");
+  return ci != nullptr && std::string_view(ci) == "true";
+}
+
+// Whether `tool` (a name looked up on PATH, or an absolute path) is installed. When it is not, a
+// test that needs it fails under CI, naming the Debian package, and outside CI says that it
+// is skipped (the caller then returns).
+inline bool tool_installed(const std::string& tool, const std::string& debian_package) {
+  const std::string probe = tool.starts_with('/') ? "test -x '" + tool + "'" : "command -v '" + tool + "' >/dev/null";
+  if (std::system(probe.c_str()) == 0) return true;
+  const std::string advice = fmt::format("{} is not installed (Debian package {}; .ci/install-deps installs it)", tool, debian_package);
+  if (in_ci()) {
+    FAIL_CHECK(advice << ": CI needs it");
+  } else {
+    MESSAGE("SKIPPED: " << advice);
+  }
+  return false;
+}
 
 struct BinaryRun {
   int code = -1;  // the exit code; -1 when rheo did not exit (e.g. killed by a signal)
@@ -27,11 +50,12 @@ inline std::filesystem::path scratch_directory(const std::string& name) {
   return dir;
 }
 
-// Runs `rheo ARGUMENTS` (a shell command line: quote what needs it).
-inline BinaryRun run_rheo(const std::string& arguments) {
+// Runs `rheo ARGUMENTS` (a shell command line: quote what needs it), with the environment
+// assignments `environment` (e.g. "PATH=/nonexistent") in front when given.
+inline BinaryRun run_rheo(const std::string& arguments, const std::string& environment = "") {
   const auto err = scratch_directory("run") / "stderr.txt";
   BinaryRun r;
-  FILE* pipe = popen(fmt::format("{} {} 2> {}", RHEO_BINARY, arguments, err.string()).c_str(), "r");
+  FILE* pipe = popen(fmt::format("{} {} {} 2> {}", environment, RHEO_BINARY, arguments, err.string()).c_str(), "r");
   REQUIRE(pipe != nullptr);
   std::array<char, 4096> buffer{};
   while (std::size_t n = std::fread(buffer.data(), 1, buffer.size(), pipe)) r.out.append(buffer.data(), n);

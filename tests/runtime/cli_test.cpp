@@ -152,3 +152,9 @@ TEST_CASE("a model file that cannot be read exits 4 naming it, for every command
     CHECK(directory.output.find("cannot read it (it is a directory)") != std::string::npos);
   }
 }
+
+TEST_CASE("--version prints the version of project(VERSION) in CMakeLists.txt") {
+  const Result r = run("--version");
+  CHECK(r.code == 0);
+  CHECK(r.output == fmt::format("rheo {}\n", RHEO_PROJECT_VERSION));
+}

@@ -3,8 +3,8 @@
 // it dumps must hold every figure with the expected number of series and reference nothing
 // outside the page; the browser's log must show no console message (uncaught errors included). A screenshot is kept as the test artifact
 // (BUILD_DIR/test-artifacts/specimen_d_report.png and diagnose_report.png, a `rheo diagnose`
-// report; the paths are printed). Without chromium the
-// test says it is skipped and passes.
+// report; the paths are printed). Without chromium the test fails under CI (CI=true) and
+// elsewhere says it is skipped.
 #include "lang/frontend.hpp"
 #include "runtime/harmonic_data.hpp"
 #include "cli_support.hpp"
@@ -94,10 +94,7 @@ TEST_CASE("report in a browser: headless chromium renders every figure with its 
                                                      RHEO_DATA_DIR, html.string(), svg.string()));
   CAPTURE(made.err);
   REQUIRE(made.code == 0);
-  if (!fs::exists(kChromium)) {
-    MESSAGE("SKIPPED: chromium not installed (install it with .ci/install-deps)");
-    return;
-  }
+  if (!rheo::test::tool_installed(kChromium, "chromium")) return;
 
   // The detector itself: a page that logs an error must be caught.
   const fs::path bad = rheo::test::scratch_directory("report") / "bad.html";
@@ -166,10 +163,7 @@ TEST_CASE("report in a browser: a diagnosis report draws the model before dashed
                                                      html.string()));
   CAPTURE(made.err);
   REQUIRE(made.code == 0);
-  if (!fs::exists(kChromium)) {
-    MESSAGE("SKIPPED: chromium not installed (install it with .ci/install-deps)");
-    return;
-  }
+  if (!rheo::test::tool_installed(kChromium, "chromium")) return;
   const fs::path dom_file = dir / "diagnose_report.dom.html", log_file = dir / "diagnose_report.chromium.log";
   REQUIRE(chromium("--dump-dom", html, dom_file, log_file) == 0);
   const std::string dom = rheo::test::read_file(dom_file.string());

@@ -76,17 +76,19 @@ TEST_CASE("rheo simulate --report and rheo fit --report") {
   CHECK(rheo::test::read_file((dir / "fit.svg").string()).starts_with("<?xml"));
 }
 
-TEST_CASE("rheo report --plot FILE.png: converted when rsvg-convert is installed, a usage error naming it otherwise") {
+TEST_CASE("rheo report --plot FILE.png: converted by rsvg-convert, a usage error naming it where it is not on PATH") {
   const auto dir = rheo::test::scratch_directory("report");
   const auto png = dir / "plot.png";
-  const auto r = run_rheo(fmt::format("report {} --data {} --plot {}", example("specimen_c.rheo"), data("specimen_C_harmonic.csv"), png.string()));
+  const std::string arguments = fmt::format("report {} --data {} --plot {}", example("specimen_c.rheo"), data("specimen_C_harmonic.csv"), png.string());
+  // Without the converter on PATH (rheo needs nothing else from it): refused, naming the package.
+  const auto without = run_rheo(arguments, "PATH=/nonexistent");
+  CAPTURE(without.err);
+  CHECK(without.code == 2);
+  CHECK(without.err.find("librsvg2-bin") != std::string::npos);
+  CHECK(!std::filesystem::exists(png));
+  if (!rheo::test::tool_installed("rsvg-convert", "librsvg2-bin")) return;
+  const auto r = run_rheo(arguments);
   CAPTURE(r.err);
-  if (rheo::test::run_command("command -v rsvg-convert").code == 0) {
-    REQUIRE(r.code == 0);
-    CHECK(rheo::test::read_file(png.string()).starts_with("\x89PNG"));
-  } else {
-    MESSAGE("rsvg-convert not installed: checking the PNG error only");
-    CHECK(r.code == 2);
-    CHECK(r.err.find("librsvg2-bin") != std::string::npos);
-  }
+  REQUIRE(r.code == 0);
+  CHECK(rheo::test::read_file(png.string()).starts_with("\x89PNG"));
 }
