@@ -15,25 +15,22 @@ namespace {
 
 const std::vector<SettingSpec>& fit_schema() {
   static const std::vector<SettingSpec> specs{
-      {.key = "objective", .shape = Shape::identifier, .dimension = dim::none, .choices = {"phi", "least_squares"}},
+      {.key = "objective", .shape = Shape::identifier, .dimension = dim::none, .choices = fit_objective_words()},
       {.key = "stiffness_weight", .shape = Shape::number, .dimension = dim::none, .lowest = 0.0, .highest = 1.0},
-      {.key = "method", .shape = Shape::identifier, .dimension = dim::none, .choices = {"exact", "approximate", "corrected"}},
-      {.key = "optimizer",
-       .shape = Shape::identifier,
-       .dimension = dim::none,
-       .choices = {"default", "bobyqa", "sbplx", "neldermead", "direct_l", "crs2", "isres", "mlsl"}},
+      {.key = "method", .shape = Shape::identifier, .dimension = dim::none, .choices = fit_method_words()},
+      {.key = "optimizer", .shape = Shape::identifier, .dimension = dim::none, .choices = optimizer_words()},
       {.key = "max_evaluations", .shape = Shape::integer, .dimension = dim::none, .minimum = 1},
       {.key = "starts", .shape = Shape::integer, .dimension = dim::none, .minimum = 1},
       {.key = "seed", .shape = Shape::integer, .dimension = dim::none, .minimum = 0},
       {.key = "tolerance", .shape = Shape::number, .dimension = dim::none, .positive = true},
-      {.key = "definition", .shape = Shape::identifier, .dimension = dim::none, .choices = {"thesis", "first_harmonic"}},
+      {.key = "definition", .shape = Shape::identifier, .dimension = dim::none, .choices = harmonic_definition_words()},
       {.key = "steps_per_cycle",
        .shape = Shape::integer,
        .dimension = dim::none,
        .minimum = 16,
        .multiple_of = 4,
        .maximum = max_steps_per_cycle},
-      {.key = "solver", .shape = Shape::identifier, .dimension = dim::none, .choices = {"auto", "fixed", "sundials"}},
+      {.key = "solver", .shape = Shape::identifier, .dimension = dim::none, .choices = solver_choice_words()},
       {.key = "free", .shape = Shape::paths, .dimension = dim::none},
       {.key = "fixed", .shape = Shape::paths, .dimension = dim::none},
   };
@@ -156,6 +153,27 @@ class FreeSet {
   std::vector<Diagnostic>& errors_;
 };
 
+// The typed settings of a block from its validated settings lines (free/fixed excluded).
+FitSettings decode_fit_settings(const std::vector<Setting>& written) {
+  FitSettings out;
+  for (const Setting& s : written) {
+    const double number = s.values.empty() ? 0.0 : s.values.front();
+    const auto whole = static_cast<int>(number);
+    if (s.key == "objective") out.objective = fit_objective_named(s.text).value_or(out.objective);
+    else if (s.key == "stiffness_weight") out.stiffness_weight = number;
+    else if (s.key == "method") out.method = fit_method_named(s.text).value_or(out.method);
+    else if (s.key == "optimizer") out.optimizer = optimizer_named(s.text).value_or(out.optimizer);
+    else if (s.key == "max_evaluations") out.max_evaluations = whole;
+    else if (s.key == "starts") out.starts = whole;
+    else if (s.key == "seed") out.seed = whole;
+    else if (s.key == "tolerance") out.tolerance = number;
+    else if (s.key == "definition") out.definition = harmonic_definition_named(s.text).value_or(out.definition);
+    else if (s.key == "steps_per_cycle") out.steps_per_cycle = whole;
+    else if (s.key == "solver") out.solver = solver_choice_named(s.text).value_or(out.solver);
+  }
+  return out;
+}
+
 }  // namespace
 
 std::optional<Setting> check_fit_setting(const ast::SettingNode& node, std::vector<Diagnostic>& errors) {
@@ -174,6 +192,7 @@ std::vector<std::string> fit_setting_keys() {
 
 FitDirective check_fit(const ast::Fit& fit, const std::string& model, const CheckedModel* checked, std::vector<Diagnostic>& errors) {
   FitDirective out{model, {}, {}, {}, {}, fit.where};
+  std::vector<Setting> written;
   std::map<std::string, SourceLocation> seen;  // keys of the settings lines
   std::vector<PathItem> free, fixed;
   bool free_given = false;
@@ -204,11 +223,12 @@ FitDirective check_fit(const ast::Fit& fit, const std::string& model, const Chec
         auto setting = check_keyed_setting(fit_schema(), "fit", node, errors, paths);
         free_given = free_given || node.key == "free";
         if (!setting) lists_ok = lists_ok && !paths;
-        else if (!paths) out.settings.push_back(std::move(*setting));
+        else if (!paths) written.push_back(std::move(*setting));
       }
     }
   }
   if (checked) out.free = FreeSet(*checked, errors).resolve(free_given, free, fixed, lists_ok, fit.where);
+  out.settings = decode_fit_settings(written);
   return out;
 }
 

@@ -53,18 +53,6 @@ bool Expression::is_constant() const {
   return true;
 }
 
-const Setting* Protocol::find(const std::string& key) const {
-  for (const auto& s : settings)
-    if (s.key == key) return &s;
-  return nullptr;
-}
-
-const Setting* FitDirective::find(const std::string& key) const {
-  for (const auto& s : settings)
-    if (s.key == key) return &s;
-  return nullptr;
-}
-
 std::vector<int> default_free_parameters(const CheckedModel& model) {
   std::vector<int> out;
   for (std::size_t i = 0; i < model.parameters.size(); ++i)

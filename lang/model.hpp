@@ -6,6 +6,9 @@
 // and every dimension has been verified. The runtime may trust it without re-checking.
 #pragma once
 
+#include "lang/fit_settings.hpp"
+#include "lang/protocol_settings.hpp"
+#include "lang/source_location.hpp"
 #include "lang/units.hpp"
 
 #include <cstdint>
@@ -14,12 +17,6 @@
 #include <vector>
 
 namespace rheo::lang {
-
-struct SourceLocation {
-  std::string file;  // as given on the command line, or "<stdlib>/NAME.rheo"
-  int line = 0;      // 1-based
-  int column = 0;    // 1-based, in bytes
-};
 
 // A parameter value that may depend on other parameters of the same model, kept as a
 // postfix program so that fitting can re-evaluate derived parameters when free ones change.
@@ -113,11 +110,11 @@ enum class ProtocolKind : std::uint8_t { harmonic, static_triangle, quasistatic,
 
 struct Protocol {
   ProtocolKind kind = ProtocolKind::harmonic;
-  std::vector<Setting> settings;  // validated against the protocol's schema by the checker
+  ProtocolSettings settings;      // the alternative of `kind`, defaults filled in (protocol_settings.hpp)
+  std::vector<Setting> written;   // the settings as written, validated: what `settings` is decoded
+                                  // from, and what a command-line override replaces (protocol_schema.hpp)
   std::string output;             // file named by the `output "..."` line after it; empty: stdout
   SourceLocation where;
-
-  const Setting* find(const std::string& key) const;
 };
 
 struct SimulateDirective {
@@ -133,16 +130,14 @@ struct FitData {
   SourceLocation where;  // of the file name
 };
 
-// `fit [MODEL] { ... }`. Defaults of absent settings are the runtime's (docs/language.md).
+// `fit [MODEL] { ... }`.
 struct FitDirective {
   std::string model;               // resolved like SimulateDirective::model
   std::vector<FitData> data;       // may be empty: the command line can supply the data
-  std::vector<Setting> settings;   // validated against the fit schema (fit_schema.hpp); free/fixed excluded
+  FitSettings settings;            // decoded from the block's settings lines, defaults filled in (fit_settings.hpp)
   std::vector<int> free;           // indices into the model's parameters, sorted: the free set after free/fixed
   std::string output;              // `output "..."`; empty when absent
   SourceLocation where;            // of the `fit` keyword
-
-  const Setting* find(const std::string& key) const;
 };
 
 struct Program {

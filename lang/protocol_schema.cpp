@@ -5,6 +5,8 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
+
 namespace rheo::lang {
 namespace {
 
@@ -29,15 +31,15 @@ SettingSpec whole(std::string_view key, int minimum, int maximum, int multiple_o
 
 const std::vector<ProtocolSpec>& schema() {
   static const SettingSpec elements{"elements", Shape::identifier, dim::none, false, false, 0, 0, {"all", "none"}};
-  static const SettingSpec format{"format", Shape::identifier, dim::none, false, false, 0, 0, {"csv", "json"}};
-  static const SettingSpec solver{"solver", Shape::identifier, dim::none, false, false, 0, 0, {"auto", "fixed", "sundials"}};
+  static const SettingSpec format{"format", Shape::identifier, dim::none, false, false, 0, 0, output_format_words()};
+  static const SettingSpec solver{"solver", Shape::identifier, dim::none, false, false, 0, 0, solver_choice_words()};
   static const SettingSpec steps_per_cycle = whole("steps_per_cycle", 16, max_steps_per_cycle, 4);
   static const std::vector<ProtocolSpec> protocols{
       {ProtocolKind::harmonic, "harmonic",
        {frequency(Shape::list),
         amplitude(Shape::list),
-        {"definition", Shape::identifier, dim::none, false, false, 0, 0, {"thesis", "first_harmonic"}},
-        {"steady_state", Shape::identifier, dim::none, false, false, 0, 0, {"auto", "closed_form", "time_stepping"}},
+        {"definition", Shape::identifier, dim::none, false, false, 0, 0, harmonic_definition_words()},
+        {"steady_state", Shape::identifier, dim::none, false, false, 0, 0, steady_state_words()},
         steps_per_cycle,
         whole("cycles_max", 1, max_cycles),
         {"tolerance", Shape::number, dim::none, false, true},
@@ -102,7 +104,7 @@ std::optional<Setting> check_setting(ProtocolKind kind, const ast::SettingNode& 
 
 Protocol check_protocol(ProtocolKind kind, const std::vector<ast::SettingNode>& settings, const SourceLocation& where,
                         std::vector<Diagnostic>& errors) {
-  Protocol out{kind, {}, {}, where};
+  Protocol out{kind, {}, {}, {}, where};
   for (const auto& node : settings) {
     const ast::SettingNode* first = nullptr;
     for (const auto& earlier : settings) {
@@ -113,7 +115,7 @@ Protocol check_protocol(ProtocolKind kind, const std::vector<ast::SettingNode>& 
       errors.push_back({node.where, fmt::format("duplicate setting '{}' (first given at line {}); give it once", node.key, first->where.line)});
       continue;
     }
-    if (auto s = check_setting(kind, node, errors)) out.settings.push_back(std::move(*s));
+    if (auto s = check_setting(kind, node, errors)) out.written.push_back(std::move(*s));
   }
   for (const auto& s : spec(kind).settings) {
     if (!s.required) continue;
@@ -121,7 +123,114 @@ Protocol check_protocol(ProtocolKind kind, const std::vector<ast::SettingNode>& 
     for (const auto& node : settings) given = given || node.key == s.key;
     if (!given) errors.push_back({where, fmt::format("{} requires the setting '{}'; add `{} = ...`", spec(kind).name, s.key, s.key)});
   }
+  out.settings = decode_protocol_settings(kind, out.written);
   return out;
+}
+
+namespace {
+
+// Reads the validated settings of one protocol line by key; absent keys leave a value as it is.
+class Written {
+ public:
+  explicit Written(const std::vector<Setting>& settings) : settings_(settings) {}
+
+  const Setting* find(std::string_view key) const {
+    for (const auto& s : settings_)
+      if (s.key == key) return &s;
+    return nullptr;
+  }
+  void get(std::string_view key, double& value) const {
+    if (const Setting* s = find(key); s && !s->values.empty()) value = s->values.front();
+  }
+  void get(std::string_view key, std::optional<double>& value) const {
+    if (const Setting* s = find(key); s && !s->values.empty()) value = s->values.front();
+  }
+  void get(std::string_view key, int& value) const {
+    if (const Setting* s = find(key); s && !s->values.empty()) value = static_cast<int>(s->values.front());
+  }
+  void get(std::string_view key, std::vector<double>& values) const {
+    if (const Setting* s = find(key)) values = s->values;
+  }
+  template <class E>
+  void get(std::string_view key, E& value, std::optional<E> (*named)(std::string_view)) const {
+    if (const Setting* s = find(key))
+      if (auto v = named(s->text)) value = *v;
+  }
+
+  void get_common(CommonSettings& c) const {
+    if (const Setting* s = find("elements")) c.elements = s->text == "all";
+    get("format", c.format, output_format_named);
+    get("solver", c.solver, solver_choice_named);
+  }
+
+ private:
+  const std::vector<Setting>& settings_;
+};
+
+}  // namespace
+
+ProtocolSettings decode_protocol_settings(ProtocolKind kind, const std::vector<Setting>& written) {
+  const Written w(written);
+  switch (kind) {
+    case ProtocolKind::harmonic: {
+      HarmonicSettings h;
+      w.get_common(h);
+      w.get("frequency", h.frequencies);
+      w.get("amplitude", h.amplitudes);
+      w.get("definition", h.definition, harmonic_definition_named);
+      w.get("steady_state", h.steady_state, steady_state_named);
+      w.get("steps_per_cycle", h.steps_per_cycle);
+      w.get("cycles_max", h.cycles_max);
+      w.get("tolerance", h.tolerance);
+      return h;
+    }
+    case ProtocolKind::static_triangle: {
+      StaticSettings s;
+      w.get_common(s);
+      w.get("velocity", s.velocity);
+      w.get("amplitude", s.amplitudes);
+      w.get("cycles", s.cycles);
+      w.get("dt", s.dt);
+      return s;
+    }
+    case ProtocolKind::quasistatic: {
+      QuasistaticSettings q;
+      w.get_common(q);
+      w.get("frequency", q.frequency);
+      w.get("amplitude", q.amplitudes);
+      w.get("cycles", q.cycles);
+      w.get("steps_per_cycle", q.steps_per_cycle);
+      return q;
+    }
+    case ProtocolKind::history: {
+      HistorySettings h;
+      w.get_common(h);
+      if (const Setting* file = w.find("file")) h.file = file->text, h.file_where = file->where;
+      w.get("substeps", h.substeps);
+      return h;
+    }
+    case ProtocolKind::step: {
+      StepSettings s;
+      w.get_common(s);
+      w.get("amplitude", s.amplitude);
+      w.get("duration", s.duration);
+      s.dt = s.duration / 1000.0;
+      w.get("dt", s.dt);
+      s.rise = s.dt;
+      w.get("rise", s.rise);
+      return s;
+    }
+  }
+  return HarmonicSettings{};
+}
+
+void override_setting(Protocol& protocol, Setting setting) {
+  auto same_key = [&](const Setting& s) { return s.key == setting.key; };
+  if (auto it = std::find_if(protocol.written.begin(), protocol.written.end(), same_key); it != protocol.written.end())
+    *it = std::move(setting);
+  else
+    protocol.written.push_back(std::move(setting));
+  protocol.settings = decode_protocol_settings(protocol.kind, protocol.written);
 }
 
 }  // namespace rheo::lang

@@ -1,5 +1,5 @@
-// The settings each simulate protocol accepts, and their validation. Defaults are not filled
-// in here: the runtime applies them to settings that are absent.
+// The settings each simulate protocol accepts, their validation, and their decoding into the
+// typed settings of protocol_settings.hpp (whose member initialisers are the defaults).
 #pragma once
 
 #include "lang/ast.hpp"
@@ -23,8 +23,16 @@ std::vector<std::string> protocol_setting_keys(ProtocolKind kind);
 std::optional<Setting> check_setting(ProtocolKind kind, const ast::SettingNode& node, std::vector<Diagnostic>& errors);
 
 // The protocol line `KIND SETTING, ...` as a whole: every setting, no duplicates, required ones
-// present (missing ones reported at WHERE).
+// present (missing ones reported at WHERE); the result's settings decoded from those given.
 Protocol check_protocol(ProtocolKind kind, const std::vector<ast::SettingNode>& settings, const SourceLocation& where,
                         std::vector<Diagnostic>& errors);
+
+// The typed settings of a KIND protocol from settings validated against its schema; absent ones
+// take their defaults.
+ProtocolSettings decode_protocol_settings(ProtocolKind kind, const std::vector<Setting>& written);
+
+// PROTOCOL with SETTING (validated against its schema, e.g. by parse_setting) in place of the
+// written one of the same key, or added; its settings decoded again.
+void override_setting(Protocol& protocol, Setting setting);
 
 }  // namespace rheo::lang

@@ -12,11 +12,13 @@
 // Samples: N equally spaced over exactly one period, periodic (sample N would repeat sample 0).
 #pragma once
 
+#include "lang/protocol_settings.hpp"
+
 #include <span>
 
 namespace rheo::runtime {
 
-enum class HarmonicDefinition { thesis, first_harmonic };
+using lang::HarmonicDefinition;  // the `definition` setting's vocabulary
 
 struct CycleMeasures {
   double force_amplitude = 0.0;  // F^ [N]

@@ -18,6 +18,7 @@
 //   corrected    the approximation calibrated by time-stepping factors, eqs. 5.2-5.4
 #pragma once
 
+#include "lang/fit_settings.hpp"
 #include "runtime/drives.hpp"
 #include "runtime/fit_data.hpp"
 #include "runtime/harmonic.hpp"
@@ -27,8 +28,8 @@
 
 namespace rheo::runtime {
 
-enum class FitObjective { phi, least_squares };
-enum class FitMethod { exact, approximate, corrected };
+using lang::FitMethod;     // the `method` setting's vocabulary (lang/fit_settings.hpp)
+using lang::FitObjective;  // the `objective` setting's
 
 struct ScoreSettings {
   FitObjective objective = FitObjective::phi;

@@ -32,15 +32,15 @@ namespace rheo::runtime {
 // periodic_closed_form.hpp where the network allows it (non-linear elements only in the root
 // parallel block) unless the solver is explicitly `sundials`, and time stepping otherwise;
 // `closed_form` insists on it (std::invalid_argument when the network has none);
-// `time_stepping` always steps.
-enum class SteadyState { automatic, closed_form, time_stepping };
+// `time_stepping` always steps. (The `steady_state` setting's vocabulary.)
+using lang::SteadyState;
 
 struct HarmonicOptions {
   HarmonicDefinition definition = HarmonicDefinition::thesis;
   SteadyState steady_state = SteadyState::automatic;
-  int steps_per_cycle = 2048;  // N, a multiple of 4 so that the turning points are sampled
-  int max_cycles = 400;
-  double tolerance = 1e-9;
+  int steps_per_cycle = lang::HarmonicSettings::default_steps_per_cycle;  // N, a multiple of 4 (turning points sampled)
+  int max_cycles = lang::HarmonicSettings::default_cycles_max;
+  double tolerance = lang::HarmonicSettings::default_tolerance;
   SolverChoice solver = SolverChoice::automatic;
   int threads = 1;  // grid and fit points evaluated at once (runtime/parallel_for.hpp; <= 0: all)
 };

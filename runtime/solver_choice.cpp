@@ -27,20 +27,4 @@ bool uses_sundials(const Network& network, SolverChoice choice) {
   return false;
 }
 
-std::optional<SolverChoice> parse_solver_choice(std::string_view word) {
-  if (word == "auto") return SolverChoice::automatic;
-  if (word == "fixed") return SolverChoice::fixed;
-  if (word == "sundials") return SolverChoice::sundials;
-  return std::nullopt;
-}
-
-const char* solver_word(SolverChoice choice) {
-  switch (choice) {
-    case SolverChoice::automatic: return "auto";
-    case SolverChoice::fixed: return "fixed";
-    case SolverChoice::sundials: return "sundials";
-  }
-  return "auto";
-}
-
 }  // namespace rheo::runtime

@@ -8,6 +8,7 @@
 // parallel block, first order in nested dashpots).
 #pragma once
 
+#include "lang/protocol_settings.hpp"
 #include "runtime/network.hpp"
 
 #include <optional>
@@ -15,15 +16,11 @@
 
 namespace rheo::runtime {
 
-enum class SolverChoice { automatic, fixed, sundials };
+using lang::SolverChoice;  // the `solver` setting's vocabulary (lang/protocol_settings.hpp)
 
 inline constexpr int kFixedStepMaxBlockDepth = 3;  // nested blocks below the model's body
 
 // Whether `choice` resolves to the SUNDIALS backend for this network.
 bool uses_sundials(const Network& network, SolverChoice choice);
-
-// "auto", "fixed", "sundials"; nullopt for anything else.
-std::optional<SolverChoice> parse_solver_choice(std::string_view word);
-const char* solver_word(SolverChoice choice);
 
 }  // namespace rheo::runtime

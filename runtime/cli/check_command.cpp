@@ -18,25 +18,22 @@ namespace {
 // block that names solver = sundials (with `auto` a fit's data decide, which check does not
 // read). check then raises what those runs would (dae_graph.hpp).
 bool runs_on_sundials(const lang::Program& program, const runtime::Network& network) {
-  auto solver = [](const lang::Setting* s) {
-    return s ? runtime::parse_solver_choice(s->text).value_or(runtime::SolverChoice::automatic) : runtime::SolverChoice::automatic;
-  };
   const std::string& model = network.model().name;
   for (const auto& simulation : program.simulations) {
     if (simulation.model != model) continue;
     for (const auto& protocol : simulation.protocols) {
-      const runtime::SolverChoice choice = solver(protocol.find("solver"));
+      const runtime::SolverChoice choice = lang::common(protocol.settings).solver;
       if (!runtime::uses_sundials(network, choice)) continue;
-      if (protocol.kind != lang::ProtocolKind::harmonic) return true;
+      const auto* harmonic = std::get_if<lang::HarmonicSettings>(&protocol.settings);
+      if (!harmonic) return true;
       runtime::HarmonicOptions options;
       options.solver = choice;
-      const lang::Setting* steady = protocol.find("steady_state");
-      if (steady && steady->text == "time_stepping") options.steady_state = runtime::SteadyState::time_stepping;
+      if (harmonic->steady_state == runtime::SteadyState::time_stepping) options.steady_state = runtime::SteadyState::time_stepping;
       if (!runtime::uses_closed_form(network, options)) return true;
     }
   }
   for (const auto& fit : program.fits)
-    if (fit.model == model && solver(fit.find("solver")) == runtime::SolverChoice::sundials) return true;
+    if (fit.model == model && fit.settings.solver == runtime::SolverChoice::sundials) return true;
   return false;
 }
 

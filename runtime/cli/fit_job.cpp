@@ -42,60 +42,58 @@ class InterruptScope {
   struct sigaction previous_ {};
 };
 
-std::optional<runtime::Algorithm> algorithm_named(const std::string& name) {
-  static const std::pair<const char*, runtime::Algorithm> table[] = {
-      {"bobyqa", runtime::Algorithm::bobyqa},     {"sbplx", runtime::Algorithm::sbplx}, {"neldermead", runtime::Algorithm::neldermead},
-      {"direct_l", runtime::Algorithm::direct_l}, {"crs2", runtime::Algorithm::crs2},   {"isres", runtime::Algorithm::isres},
-      {"mlsl", runtime::Algorithm::mlsl}};
-  for (const auto& [n, a] : table)
-    if (name == n) return a;
-  if (name == "default") return std::nullopt;
-  throw runtime::UsageError(fmt::format("unknown optimizer '{}'; use default, bobyqa, sbplx, neldermead, direct_l, crs2, isres or mlsl", name));
+// The NLopt algorithm an `optimizer` names; nullopt for `default` (the staged strategy of
+// fit_search.hpp).
+std::optional<runtime::Algorithm> algorithm_of(lang::Optimizer optimizer) {
+  switch (optimizer) {
+    case lang::Optimizer::automatic: return std::nullopt;
+    case lang::Optimizer::bobyqa: return runtime::Algorithm::bobyqa;
+    case lang::Optimizer::sbplx: return runtime::Algorithm::sbplx;
+    case lang::Optimizer::neldermead: return runtime::Algorithm::neldermead;
+    case lang::Optimizer::direct_l: return runtime::Algorithm::direct_l;
+    case lang::Optimizer::crs2: return runtime::Algorithm::crs2;
+    case lang::Optimizer::isres: return runtime::Algorithm::isres;
+    case lang::Optimizer::mlsl: return runtime::Algorithm::mlsl;
+  }
+  return std::nullopt;
 }
 
-runtime::FitMethod method_named(const std::string& name) {
-  if (name == "exact") return runtime::FitMethod::exact;
-  if (name == "approximate") return runtime::FitMethod::approximate;
-  if (name == "corrected") return runtime::FitMethod::corrected;
-  throw runtime::UsageError(fmt::format("unknown method '{}'; use exact, approximate or corrected", name));
-}
-
-std::string text_of(const lang::FitDirective* block, const char* key, const std::string& fallback) {
-  const lang::Setting* s = block ? block->find(key) : nullptr;
-  return s ? s->text : fallback;
-}
-
-double number_of(const lang::FitDirective* block, const char* key, double fallback) {
-  const lang::Setting* s = block ? block->find(key) : nullptr;
-  return s && !s->values.empty() ? s->values.front() : fallback;
+// A word given on the command line (--method, --optimizer), or the usage error listing the words.
+template <class E>
+E named_on_command_line(const std::string& word, std::optional<E> (*named)(std::string_view), const std::vector<std::string>& words,
+                        const char* what) {
+  if (auto value = named(word)) return *value;
+  const std::vector<std::string> all_but_last(words.begin(), words.end() - 1);
+  throw runtime::UsageError(fmt::format("unknown {} '{}'; use {} or {}", what, word, fmt::join(all_but_last, ", "), words.back()));
 }
 
 // Block settings first, then the command line over them.
 void configure(FitJob& job, const lang::FitDirective* block, const FitOptions& o) {
+  const lang::FitSettings given = block ? block->settings : lang::FitSettings{};
   runtime::FitSettings& s = job.settings;
-  job.description.objective = text_of(block, "objective", "phi");
-  s.score.objective = job.description.objective == "least_squares" ? runtime::FitObjective::least_squares : runtime::FitObjective::phi;
-  if (block && block->find("stiffness_weight")) {
-    const double k = number_of(block, "stiffness_weight", 0.5);
-    s.score.stiffness_weight = k;
-    s.score.damping_weight = 1.0 - k;
+  s.score.objective = given.objective;
+  job.description.objective = lang::word_of(given.objective);
+  if (given.stiffness_weight) {
+    s.score.stiffness_weight = *given.stiffness_weight;
+    s.score.damping_weight = 1.0 - *given.stiffness_weight;
   }
-  job.description.method = o.method.empty() ? text_of(block, "method", "exact") : o.method;
-  s.score.method = method_named(job.description.method);
-  job.description.optimizer = o.optimizer.empty() ? text_of(block, "optimizer", "default") : o.optimizer;
-  s.search.algorithm = algorithm_named(job.description.optimizer);
-  s.search.max_evaluations = o.max_evaluations > 0 ? o.max_evaluations : static_cast<int>(number_of(block, "max_evaluations", s.search.max_evaluations));
-  s.search.starts = o.starts > 0 ? o.starts : static_cast<int>(number_of(block, "starts", s.search.starts));
-  s.search.seed = o.seed >= 0 ? static_cast<unsigned long>(o.seed) : static_cast<unsigned long>(number_of(block, "seed", 1.0));
-  s.search.tolerance = number_of(block, "tolerance", s.search.tolerance);
+  s.score.method = o.method.empty() ? given.method : named_on_command_line(o.method, lang::fit_method_named, lang::fit_method_words(), "method");
+  job.description.method = lang::word_of(s.score.method);
+  const lang::Optimizer optimizer =
+      o.optimizer.empty() ? given.optimizer : named_on_command_line(o.optimizer, lang::optimizer_named, lang::optimizer_words(), "optimizer");
+  job.description.optimizer = lang::word_of(optimizer);
+  s.search.algorithm = algorithm_of(optimizer);
+  s.search.max_evaluations = o.max_evaluations > 0 ? o.max_evaluations : given.max_evaluations.value_or(s.search.max_evaluations);
+  s.search.starts = o.starts > 0 ? o.starts : given.starts.value_or(s.search.starts);
+  s.search.seed = o.seed >= 0 ? static_cast<unsigned long>(o.seed) : static_cast<unsigned long>(given.seed);
+  s.search.tolerance = given.tolerance.value_or(s.search.tolerance);
   job.description.seed = s.search.seed;
-  s.score.harmonic.definition = text_of(block, "definition", "thesis") == "first_harmonic" ? runtime::HarmonicDefinition::first_harmonic
-                                                                                           : runtime::HarmonicDefinition::thesis;
-  s.score.harmonic.steps_per_cycle = static_cast<int>(number_of(block, "steps_per_cycle", s.score.harmonic.steps_per_cycle));
-  job.steps_per_cycle_given = block && block->find("steps_per_cycle");
+  s.score.harmonic.definition = given.definition;
+  s.score.harmonic.steps_per_cycle = given.steps_per_cycle.value_or(s.score.harmonic.steps_per_cycle);
+  job.steps_per_cycle_given = given.steps_per_cycle.has_value();
   // Periodicity to 1e-6 is far inside any measurement's noise, and a third of the cycles of 1e-9.
   s.score.harmonic.tolerance = 1e-6;
-  s.score.harmonic.solver = runtime::parse_solver_choice(text_of(block, "solver", "auto")).value_or(runtime::SolverChoice::automatic);
+  s.score.harmonic.solver = given.solver;
   s.score.harmonic.threads = o.threads;
   if (o.max_evaluations < 0 || o.starts < 0) throw runtime::UsageError("--max-evaluations and --starts must be positive");
 }

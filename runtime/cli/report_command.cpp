@@ -2,6 +2,7 @@
 // model against measured data (or its simulate protocols' results) as an HTML report; see
 // docs/cli.md.
 #include "lang/frontend.hpp"
+#include "lang/protocol_schema.hpp"
 #include "runtime/cli/commands.hpp"
 #include "runtime/cli/program_lookup.hpp"
 #include "runtime/cli/report_files.hpp"
@@ -45,9 +46,11 @@ void add_protocols(report::ReportContent& content, const runtime::Network& netwo
   for (const auto& sim : program.simulations) {
     if (sim.model != network.model().name) continue;
     for (lang::Protocol protocol : sim.protocols) {
-      std::erase_if(protocol.settings, [](const lang::Setting& s) { return s.key == "format" || s.key == "elements"; });
+      lang::CommonSettings& common = lang::common(protocol.settings);
+      common.format = lang::OutputFormat::csv;
+      common.elements = false;
       const runtime::ProtocolRun run = runtime::run_protocol(network, protocol, o.file, o.threads);
-      report::add_simulation_result(content, fmt::format("{} protocol ({}:{})", runtime::protocol_name(protocol.kind), protocol.where.file,
+      report::add_simulation_result(content, fmt::format("{} protocol ({}:{})", lang::protocol_name(protocol.kind), protocol.where.file,
                                                          protocol.where.line),
                                     run.content);
     }

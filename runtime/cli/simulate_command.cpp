@@ -1,5 +1,6 @@
 #include "lang/diagnostics.hpp"
 #include "lang/frontend.hpp"
+#include "lang/protocol_schema.hpp"
 #include "lang/text_encoding.hpp"
 #include "runtime/cli/commands.hpp"
 #include "runtime/cli/report_files.hpp"
@@ -27,31 +28,24 @@ struct Options {
   std::vector<std::string> settings;
   bool json = false;
   bool elements = false;
-  std::string solver;
+  std::optional<lang::SolverChoice> solver;
   int threads = 1;
   ReportTargets report;
 };
 
 void apply_overrides(lang::Protocol& protocol, const Options& o) {
   for (const auto& text : o.settings) {
-    lang::Setting setting;
     try {
-      setting = lang::parse_setting(protocol.kind, text);
+      lang::override_setting(protocol, lang::parse_setting(protocol.kind, text));
     } catch (const lang::CompileError& e) {
       throw runtime::UsageError(
-          fmt::format("--set '{}' for protocol {}:\n{}", lang::printable(text), runtime::protocol_name(protocol.kind), e.what()));
+          fmt::format("--set '{}' for protocol {}:\n{}", lang::printable(text), lang::protocol_name(protocol.kind), e.what()));
     }
-    bool replaced = false;
-    for (auto& existing : protocol.settings)
-      if (existing.key == setting.key) existing = setting, replaced = true;
-    if (!replaced) protocol.settings.push_back(setting);
   }
-  if (!o.solver.empty()) {
-    std::erase_if(protocol.settings, [](const lang::Setting& s) { return s.key == "solver"; });
-    protocol.settings.push_back({"solver", {}, {}, o.solver, {}});
-  }
-  if (o.json) protocol.settings.push_back({"format", {}, {}, "json", {}});
-  if (o.elements) protocol.settings.push_back({"elements", {}, {}, "all", {}});
+  lang::CommonSettings& common = lang::common(protocol.settings);
+  if (o.solver) common.solver = *o.solver;
+  if (o.json) common.format = lang::OutputFormat::json;
+  if (o.elements) common.elements = true;
 }
 
 }  // namespace
@@ -67,11 +61,12 @@ Command add_simulate_command(CLI::App& app) {
                  "--set 'frequency = 1 Hz .. 20 Hz step 1 Hz' --set 'steps_per_cycle = 4096'");
   app.add_flag("--json", o->json, "Write JSON instead of CSV");
   app.add_flag("--elements", o->elements, "Time histories: add every element's force and elongation");
-  app.add_option("--solver", o->solver,
+  app.add_option_function<std::string>(
+         "--solver", [o](const std::string& word) { o->solver = lang::solver_choice_named(word); },
                  "auto | fixed | sundials: the integrator of every protocol (overrides `solver =` in the file); "
                  "auto takes SUNDIALS IDA for networks with an inerter or blocks alternating more than 3 deep, "
                  "the fixed-step kernels otherwise")
-      ->check(CLI::IsMember({"auto", "fixed", "sundials"}));
+      ->check(CLI::IsMember(lang::solver_choice_words()));
   app.add_option("--threads", o->threads,
                  "Harmonic grid points simulated at once (0: every hardware thread); results do not depend on it; default 1")
       ->check(CLI::Range(0, 1024));
@@ -88,7 +83,7 @@ Command add_simulate_command(CLI::App& app) {
     for (const auto& sim : program.simulations) {
       if (!o->model.empty() && sim.model != o->model) continue;
       for (const auto& protocol : sim.protocols) {
-        if (!o->protocol.empty() && o->protocol != runtime::protocol_name(protocol.kind)) continue;
+        if (!o->protocol.empty() && o->protocol != lang::protocol_name(protocol.kind)) continue;
         jobs.push_back({program.find_model(sim.model), protocol});
       }
     }
@@ -122,7 +117,7 @@ Command add_simulate_command(CLI::App& app) {
       runtime::ProtocolRun run = runtime::run_protocol(network, job.protocol, o->file, o->threads);
       if (o->report.any()) {
         if (!report) report = runtime::report::report_for_model(network, o->file, "rheo simulate");
-        runtime::report::add_simulation_result(*report, fmt::format("{} protocol ({}:{})", runtime::protocol_name(job.protocol.kind),
+        runtime::report::add_simulation_result(*report, fmt::format("{} protocol ({}:{})", lang::protocol_name(job.protocol.kind),
                                                                     job.protocol.where.file, job.protocol.where.line),
                                                run.content);
       }
@@ -136,7 +131,7 @@ Command add_simulate_command(CLI::App& app) {
       runtime::write_output(destination, run.content);
       std::cerr << run.notes;
       if (!destination.empty() && destination != "-")
-        std::cerr << fmt::format("rheo: {} of model {}: {} {} written to {}\n", runtime::protocol_name(job.protocol.kind),
+        std::cerr << fmt::format("rheo: {} of model {}: {} {} written to {}\n", lang::protocol_name(job.protocol.kind),
                                  job.model->name, run.points,
                                  job.protocol.kind == lang::ProtocolKind::harmonic ? "points" : "samples", destination);
       not_converged += run.not_converged;

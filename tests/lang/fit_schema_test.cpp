@@ -44,14 +44,35 @@ TEST_CASE("check_fit: settings in internal units, data lines with weights, outpu
   CHECK(f.data[1].where.column == 8);
   CHECK(f.output == "fitted.rheo");
   CHECK(f.where.line == 7);
-  CHECK(f.find("objective")->text == "least_squares");
-  CHECK(f.find("stiffness_weight")->values == std::vector<double>{0.25});
-  CHECK(f.find("optimizer")->text == "sbplx");
-  CHECK(f.find("seed")->values == std::vector<double>{0.0});
-  CHECK(f.find("steps_per_cycle")->values == std::vector<double>{512.0});
-  CHECK(f.find("free") == nullptr);
-  CHECK(f.settings.size() == 10);
+  CHECK(f.settings.objective == FitObjective::least_squares);
+  CHECK(f.settings.stiffness_weight == 0.25);
+  CHECK(f.settings.method == FitMethod::approximate);
+  CHECK(f.settings.optimizer == Optimizer::sbplx);
+  CHECK(f.settings.max_evaluations == 100);
+  CHECK(f.settings.starts == 3);
+  CHECK(f.settings.seed == 0);
+  CHECK(f.settings.tolerance == 1e-6);
+  CHECK(f.settings.definition == HarmonicDefinition::thesis);
+  CHECK(f.settings.steps_per_cycle == 512);
+  CHECK(f.settings.solver == SolverChoice::automatic);  // not given: the default
   CHECK(free_paths(p, f) == std::vector<std::string>{"k0", "m1.tau"});  // sorted by parameter index
+}
+
+TEST_CASE("check_fit: a block without settings takes the defaults of fit_settings.hpp") {
+  const Program p = compile_source("f.rheo", std::string(kModel) + "fit {}\n");
+  const FitSettings& s = p.fits.at(0).settings;
+  CHECK(s.objective == FitObjective::phi);
+  CHECK_FALSE(s.stiffness_weight.has_value());
+  CHECK(s.method == FitMethod::exact);
+  CHECK(s.optimizer == Optimizer::automatic);
+  CHECK(word_of(s.optimizer) == "default");
+  CHECK_FALSE(s.max_evaluations.has_value());
+  CHECK_FALSE(s.starts.has_value());
+  CHECK_FALSE(s.tolerance.has_value());
+  CHECK(s.seed == 1);
+  CHECK(s.definition == HarmonicDefinition::thesis);
+  CHECK_FALSE(s.steps_per_cycle.has_value());
+  CHECK(s.solver == SolverChoice::automatic);
 }
 
 TEST_CASE("check_fit: the free set is every bounded parameter, restricted by free, less fixed") {
@@ -72,7 +93,7 @@ TEST_CASE("check_fit: without a usable model only the shape of free/fixed is che
   REQUIRE(errors.size() == 1);
   CHECK(errors[0].message == "fixed lists parameters by path, not values; e.g. `fixed = [m1.k, m1.tau]`");
   CHECK(f.free.empty());
-  CHECK(f.settings.size() == 1);
+  CHECK(f.settings.method == FitMethod::exact);
 }
 
 TEST_CASE("check_fit_setting and parse_fit_setting: the fit schema for one setting") {

@@ -20,11 +20,7 @@ TEST_CASE("Expression::evaluate runs postfix code over parameter values") {
   CHECK(sum.evaluate({}) == 3.5);
 }
 
-TEST_CASE("Protocol::find and Program::find_model look up by name") {
-  Protocol p;
-  p.settings.push_back({"frequency", {1.0}, dim::frequency, "", {}});
-  CHECK(p.find("frequency") == &p.settings[0]);
-  CHECK(p.find("amplitude") == nullptr);
+TEST_CASE("Program::find_model looks up by name") {
   Program prog;
   prog.models.emplace_back().name = "a";
   CHECK(prog.find_model("a") == &prog.models[0]);

@@ -62,7 +62,8 @@ TEST_CASE("check_protocol: duplicates and missing required settings") {
   nodes.push_back(parse_setting_text("s", "amplitude = 1 mm"));
   nodes.push_back(parse_setting_text("s", "amplitude = 2 mm"));
   Protocol p = check_protocol(ProtocolKind::harmonic, nodes, {"s", 1, 1}, errors);
-  CHECK(p.settings.size() == 1);
+  CHECK(p.written.size() == 1);
+  CHECK(std::get<HarmonicSettings>(p.settings).amplitudes == std::vector<double>{1.0});  // the first given
   REQUIRE(errors.size() == 2);
   CHECK(errors[0].message.find("duplicate setting 'amplitude'") != std::string::npos);
   CHECK(errors[1].message.find("harmonic requires the setting 'frequency'") != std::string::npos);

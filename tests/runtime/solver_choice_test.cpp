@@ -16,12 +16,6 @@ TEST_CASE("auto takes SUNDIALS for a network with an inerter, fixed steps otherw
   CHECK_FALSE(runtime::uses_sundials(inertial, runtime::SolverChoice::fixed));
 }
 
-TEST_CASE("solver words round-trip and unknown words are refused") {
-  for (auto c : {runtime::SolverChoice::automatic, runtime::SolverChoice::fixed, runtime::SolverChoice::sundials})
-    CHECK(runtime::parse_solver_choice(runtime::solver_word(c)) == c);
-  CHECK_FALSE(runtime::parse_solver_choice("cvode").has_value());
-}
-
 TEST_CASE("auto takes SUNDIALS when series and parallel blocks alternate more than 3 deep") {
   // Blocks below the model's body: series { spring; parallel { spring; series { ... } } }.
   auto alternating = [](int depth) {
