@@ -78,6 +78,14 @@ std::string history_csv(const ResultHeader& header, const History& h) {
   return out;
 }
 
+std::string rendered(const ProtocolResult& result, lang::OutputFormat format) {
+  const bool json = format == lang::OutputFormat::json;
+  if (const auto* grid = std::get_if<HarmonicGrid>(&result.data))
+    return json ? harmonic_json(result.header, grid->points, grid->definition) : harmonic_csv(result.header, grid->points, grid->definition);
+  const History& history = std::get<History>(result.data);
+  return json ? history_json(result.header, history) : history_csv(result.header, history);
+}
+
 std::string history_json(const ResultHeader& header, const History& h) {
   nlohmann::ordered_json j;
   j["model"] = header.model;

@@ -11,24 +11,22 @@
 // written in place; a symbolic link is written through to its target and stays a link.
 #pragma once
 
+#include "lang/protocol_settings.hpp"
 #include "runtime/drives.hpp"
 #include "runtime/harmonic.hpp"
+#include "runtime/protocol_result.hpp"
 
 #include <string>
 #include <vector>
 
 namespace rheo::runtime {
 
-struct ResultHeader {
-  std::string model;
-  std::string source;    // the .rheo file
-  std::string protocol;  // "harmonic definition=thesis steps_per_cycle=2048"
-};
-
 std::string harmonic_csv(const ResultHeader& header, const std::vector<HarmonicPoint>& points, HarmonicDefinition definition);
 std::string harmonic_json(const ResultHeader& header, const std::vector<HarmonicPoint>& points, HarmonicDefinition definition);
 std::string history_csv(const ResultHeader& header, const History& history);
 std::string history_json(const ResultHeader& header, const History& history);
+// A protocol's result in FORMAT: one of the four above.
+std::string rendered(const ProtocolResult& result, lang::OutputFormat format);
 
 // Writes `content` to `path` atomically ("-" or empty: standard output). Throws DataError.
 void write_output(const std::string& path, const std::string& content);

@@ -8,7 +8,6 @@
 #include "runtime/harmonic.hpp"
 #include "runtime/history_csv.hpp"
 #include "runtime/leaf_kernels.hpp"
-#include "runtime/output.hpp"
 #include "runtime/periodic_closed_form.hpp"
 
 #include <fmt/format.h>
@@ -60,16 +59,13 @@ std::string solver_note(const Network& network, SolverChoice solver) {
   return uses_sundials(network, solver) ? fmt::format(" solver=sundials (IDA, rtol {:g})", kDaeRelativeTolerance) : std::string();
 }
 
-ProtocolRun history_run(RunContext& c, const lang::CommonSettings& common, const Drive& drive, std::string description) {
+ProtocolResult history_run(RunContext& c, const lang::CommonSettings& common, const Drive& drive, std::string description) {
   c.header.protocol = std::move(description) + solver_note(c.network, common.solver);
-  const History h = run_history(c.network, drive, common.elements, common.solver);
-  ProtocolRun run;
-  run.points = static_cast<int>(h.time.size());
-  run.content = common.format == lang::OutputFormat::json ? history_json(c.header, h) : history_csv(c.header, h);
+  History h = run_history(c.network, drive, common.elements, common.solver);
   double reach = 0.0;
   for (double u : h.displacement) reach = std::max(reach, std::abs(u));
-  run.notes += yeoh_softening_note(c.network, reach);
-  return run;
+  ProtocolResult result{c.header, std::move(h), 0, yeoh_softening_note(c.network, reach)};
+  return result;
 }
 
 HarmonicOptions harmonic_options(const lang::HarmonicSettings& s, int threads) {
@@ -122,22 +118,19 @@ std::string harmonic_notes(const Network& network, const std::vector<HarmonicPoi
   return notes + yeoh_softening_note(network, *std::max_element(amplitudes.begin(), amplitudes.end()));
 }
 
-ProtocolRun run(RunContext& c, const lang::HarmonicSettings& s) {
+ProtocolResult run(RunContext& c, const lang::HarmonicSettings& s) {
   const HarmonicOptions options = harmonic_options(s, c.threads);
   require_consistent(c, options);
   require_within(static_cast<double>(s.amplitudes.size()) * static_cast<double>(s.frequencies.size()), lang::max_harmonic_points,
                  c.protocol, "points (amplitudes x frequencies)", "split the grid over several protocols");
   require_within(static_cast<double>(options.steps_per_cycle) * options.max_cycles, lang::max_steps_per_point, c.protocol,
                  "time steps per point (steps_per_cycle x cycles_max)", "lower steps_per_cycle or cycles_max");
-  const auto points = simulate_harmonic_grid(c.network, s.amplitudes, s.frequencies, options);
+  HarmonicGrid grid{simulate_harmonic_grid(c.network, s.amplitudes, s.frequencies, options), options.definition};
   c.header.protocol = harmonic_method(c.network, options);
-  ProtocolRun run;
-  for (const auto& point : points) run.not_converged += point.converged ? 0 : 1;
-  run.notes = harmonic_notes(c.network, points, s.amplitudes);
-  run.points = static_cast<int>(points.size());
-  run.content = s.format == lang::OutputFormat::json ? harmonic_json(c.header, points, options.definition)
-                                                     : harmonic_csv(c.header, points, options.definition);
-  return run;
+  int not_converged = 0;
+  for (const auto& point : grid.points) not_converged += point.converged ? 0 : 1;
+  std::string notes = harmonic_notes(c.network, grid.points, s.amplitudes);
+  return ProtocolResult{c.header, std::move(grid), not_converged, std::move(notes)};
 }
 
 // The static triangle resampled at a fixed interval: each of its steps cut into
@@ -156,7 +149,7 @@ Drive resampled(const Drive& drive, double dt) {
   return fine;
 }
 
-ProtocolRun run(RunContext& c, const lang::StaticSettings& s) {
+ProtocolResult run(RunContext& c, const lang::StaticSettings& s) {
   constexpr int steps_per_cycle = lang::StaticSettings::samples_per_cycle;
   double samples = 0.0;
   for (double a : s.amplitudes)
@@ -168,14 +161,14 @@ ProtocolRun run(RunContext& c, const lang::StaticSettings& s) {
   return history_run(c, s, drive, fmt::format("static velocity={:g} mm/s cycles={}", s.velocity, s.cycles));
 }
 
-ProtocolRun run(RunContext& c, const lang::QuasistaticSettings& s) {
+ProtocolResult run(RunContext& c, const lang::QuasistaticSettings& s) {
   require_within(static_cast<double>(s.amplitudes.size()) * s.cycles * s.steps_per_cycle, lang::max_drive_samples, c.protocol, "samples",
                  "lower steps_per_cycle, or give fewer cycles or amplitudes");
   return history_run(c, s, quasistatic_sine(s.amplitudes, s.frequency, s.cycles, s.steps_per_cycle),
                      fmt::format("quasistatic frequency={:g} Hz cycles={}", s.frequency, s.cycles));
 }
 
-ProtocolRun run(RunContext& c, const lang::HistorySettings& s) {
+ProtocolResult run(RunContext& c, const lang::HistorySettings& s) {
   std::filesystem::path file = s.file;
   if (file.is_relative()) file = std::filesystem::path(c.source_file).parent_path() / file;
   const Drive measured = drive_from_table(read_table(file.string(), &s.file_where));
@@ -184,7 +177,7 @@ ProtocolRun run(RunContext& c, const lang::HistorySettings& s) {
   return history_run(c, s, refine(measured, s.substeps), fmt::format("history file={}", file.string()));
 }
 
-ProtocolRun run(RunContext& c, const lang::StepSettings& s) {
+ProtocolResult run(RunContext& c, const lang::StepSettings& s) {
   require_within(std::ceil(s.duration / s.dt), lang::max_drive_samples, c.protocol, "samples (duration / dt)",
                  "raise dt or shorten duration");
   return history_run(c, s, step_relaxation(s.amplitude, s.rise, s.duration, s.dt),
@@ -193,7 +186,7 @@ ProtocolRun run(RunContext& c, const lang::StepSettings& s) {
 
 }  // namespace
 
-ProtocolRun run_protocol(const Network& network, const Protocol& p, const std::string& source_file, int threads) {
+ProtocolResult run_protocol(const Network& network, const Protocol& p, const std::string& source_file, int threads) {
   RunContext context{network, p, source_file, threads, {network.model().name, source_file, lang::protocol_name(p.kind)}};
   return std::visit([&](const auto& settings) { return run(context, settings); }, p.settings);
 }

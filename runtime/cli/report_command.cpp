@@ -41,18 +41,16 @@ void add_data(report::ReportContent& content, const runtime::Network& network, c
   }
 }
 
-// The results of the model's simulate protocols, rendered as CSV whatever their format.
+// The results of the model's simulate protocols, whatever format they would be written in.
 void add_protocols(report::ReportContent& content, const runtime::Network& network, const lang::Program& program, const Options& o) {
   for (const auto& sim : program.simulations) {
     if (sim.model != network.model().name) continue;
     for (lang::Protocol protocol : sim.protocols) {
-      lang::CommonSettings& common = lang::common(protocol.settings);
-      common.format = lang::OutputFormat::csv;
-      common.elements = false;
-      const runtime::ProtocolRun run = runtime::run_protocol(network, protocol, o.file, o.threads);
+      lang::common(protocol.settings).elements = false;  // the report draws the whole network's force
+      const runtime::ProtocolResult result = runtime::run_protocol(network, protocol, o.file, o.threads);
       report::add_simulation_result(content, fmt::format("{} protocol ({}:{})", lang::protocol_name(protocol.kind), protocol.where.file,
                                                          protocol.where.line),
-                                    run.content);
+                                    result);
     }
   }
 }

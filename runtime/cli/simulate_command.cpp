@@ -110,31 +110,31 @@ Command add_simulate_command(CLI::App& app) {
     }
     check_report_targets(o->report);
     std::optional<runtime::report::ReportContent> report;
-    std::vector<runtime::ProtocolRun> runs;
+    std::vector<runtime::ProtocolResult> results;
     for (auto& job : jobs) {
       apply_overrides(job.protocol, *o);
       const runtime::Network network = runtime::Network::compile(*job.model);
-      runtime::ProtocolRun run = runtime::run_protocol(network, job.protocol, o->file, o->threads);
+      runtime::ProtocolResult result = runtime::run_protocol(network, job.protocol, o->file, o->threads);
       if (o->report.any()) {
         if (!report) report = runtime::report::report_for_model(network, o->file, "rheo simulate");
         runtime::report::add_simulation_result(*report, fmt::format("{} protocol ({}:{})", lang::protocol_name(job.protocol.kind),
                                                                     job.protocol.where.file, job.protocol.where.line),
-                                               run.content);
+                                               result);
       }
-      runs.push_back(std::move(run));
+      results.push_back(std::move(result));
     }
     int not_converged = 0;
     for (std::size_t k = 0; k < jobs.size(); ++k) {
       const auto& job = jobs[k];
-      const runtime::ProtocolRun& run = runs[k];
+      const runtime::ProtocolResult& result = results[k];
       const std::string& destination = destinations[k];
-      runtime::write_output(destination, run.content);
-      std::cerr << run.notes;
+      runtime::write_output(destination, runtime::rendered(result, lang::common(job.protocol.settings).format));
+      std::cerr << result.notes;
       if (!destination.empty() && destination != "-")
         std::cerr << fmt::format("rheo: {} of model {}: {} {} written to {}\n", lang::protocol_name(job.protocol.kind),
-                                 job.model->name, run.points,
+                                 job.model->name, result.size(),
                                  job.protocol.kind == lang::ProtocolKind::harmonic ? "points" : "samples", destination);
-      not_converged += run.not_converged;
+      not_converged += result.not_converged;
     }
     if (report) write_report_files(*report, o->report);
     if (not_converged > 0) {

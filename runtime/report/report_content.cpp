@@ -1,11 +1,9 @@
 #include "runtime/report/report_content.hpp"
 
 #include "runtime/errors.hpp"
-#include "runtime/history_csv.hpp"
 #include "runtime/objective.hpp"
 
 #include <fmt/format.h>
-#include <nlohmann/json.hpp>
 
 #include <algorithm>
 #include <cmath>
@@ -27,39 +25,6 @@ std::string standard_error_of(const FitResult& r, std::size_t j, const lang::Par
   if (j >= s.standard_error.size() || !std::isfinite(s.standard_error[j])) return "-";
   const double se = s.standard_error[j];
   return fmt::format("{:.3g} ({:.2g} %)", in_written_unit(p, se), value != 0.0 ? 100.0 * se / std::abs(value) : 0.0);
-}
-
-std::vector<double> column_of(const Table& table, const char* name) {
-  const int c = table.column(name);
-  return c < 0 ? std::vector<double>{} : table.columns[static_cast<std::size_t>(c)];
-}
-
-void add_table(ReportContent& content, const std::string& label, const Table& table) {
-  if (table.column("stiffness") >= 0 && table.column("phase") >= 0) {
-    HarmonicComparison h{label, column_of(table, "amplitude"), column_of(table, "frequency"), column_of(table, "stiffness"),
-                         column_of(table, "phase"), {}, {}, 0.0, 0.0, {}, {}, 0.0};
-    content.harmonic.push_back(std::move(h));
-  } else if (table.column("displacement") >= 0 && table.column("force") >= 0) {
-    content.histories.push_back({label, column_of(table, "displacement"), column_of(table, "force"), {}, 0.0, 0.0, {}, 0.0});
-  } else {
-    throw DataError(fmt::format("{}: a report draws harmonic grids (stiffness, phase) and histories (displacement, force); {}",
-                                label, header_columns(table)));
-  }
-}
-
-void add_json(ReportContent& content, const std::string& label, const nlohmann::json& j) {
-  if (j.contains("points")) {
-    HarmonicComparison h{label, {}, {}, {}, {}, {}, {}, 0.0, 0.0, {}, {}, 0.0};
-    for (const auto& p : j["points"]) {
-      h.amplitude.push_back(p.at("amplitude").get<double>());
-      h.frequency.push_back(p.at("frequency").get<double>());
-      h.model_stiffness.push_back(p.at("stiffness").get<double>());
-      h.model_phase.push_back(p.at("phase").get<double>() * std::numbers::pi / 180.0);
-    }
-    content.harmonic.push_back(std::move(h));
-  } else {
-    content.histories.push_back({label, j.at("displacement").get<std::vector<double>>(), j.at("force").get<std::vector<double>>(), {}, 0.0, 0.0, {}, 0.0});
-  }
 }
 
 }  // namespace
@@ -146,12 +111,20 @@ void add_baseline(ReportContent& content, const FitResult& earlier, const std::s
   content.baseline = what;
 }
 
-void add_simulation_result(ReportContent& content, const std::string& label, const std::string& rendered) {
-  const auto first = rendered.find_first_not_of(" \t\r\n");
-  if (first != std::string::npos && rendered[first] == '{')
-    add_json(content, label, nlohmann::json::parse(rendered));
-  else
-    add_table(content, label, parse_table(label, rendered));
+void add_simulation_result(ReportContent& content, const std::string& label, const ProtocolResult& result) {
+  if (const auto* grid = std::get_if<HarmonicGrid>(&result.data)) {
+    HarmonicComparison h{label, {}, {}, {}, {}, {}, {}, 0.0, 0.0, {}, {}, 0.0};
+    for (const HarmonicPoint& p : grid->points) {
+      h.amplitude.push_back(p.amplitude);
+      h.frequency.push_back(p.frequency);
+      h.model_stiffness.push_back(p.measures.stiffness);
+      h.model_phase.push_back(p.measures.phase);
+    }
+    content.harmonic.push_back(std::move(h));
+  } else {
+    const History& history = std::get<History>(result.data);
+    content.histories.push_back({label, history.displacement, history.force, {}, 0.0, 0.0, {}, 0.0});
+  }
 }
 
 }  // namespace rheo::runtime::report

@@ -8,6 +8,7 @@
 #include "runtime/fit.hpp"
 #include "runtime/fit_report.hpp"
 #include "runtime/harmonic.hpp"
+#include "runtime/protocol_result.hpp"
 
 #include <optional>
 #include <string>
@@ -82,7 +83,7 @@ HistoryComparison compare_history(const HistoryData& data, const std::vector<dou
 // from report_from_fit on the same data, in order), described as `what`.
 void add_baseline(ReportContent& content, const FitResult& earlier, const std::string& what);
 
-// Adds a `rheo simulate` result (harmonic or time-history CSV or JSON as output.hpp writes it).
-void add_simulation_result(ReportContent& content, const std::string& label, const std::string& rendered);
+// Adds a simulate protocol's result, labelled LABEL: a harmonic grid or a history.
+void add_simulation_result(ReportContent& content, const std::string& label, const ProtocolResult& result);
 
 }  // namespace rheo::runtime::report

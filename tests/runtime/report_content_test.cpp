@@ -19,28 +19,25 @@ std::vector<runtime::HarmonicPoint> two_points() {
 }
 }  // namespace
 
-TEST_CASE("report content: simulate results are read back from CSV and JSON alike") {
+TEST_CASE("report content: simulate results are drawn from their data, phase in radians") {
   const runtime::ResultHeader header{"m", "m.rheo", "harmonic"};
-  for (const std::string& rendered : {runtime::harmonic_csv(header, two_points(), runtime::HarmonicDefinition::thesis),
-                                      runtime::harmonic_json(header, two_points(), runtime::HarmonicDefinition::thesis)}) {
-    runtime::report::ReportContent content;
-    runtime::report::add_simulation_result(content, "grid", rendered);
-    REQUIRE(content.harmonic.size() == 1);
-    const auto& h = content.harmonic.front();
-    CHECK_FALSE(h.measured());
-    CHECK(h.frequency == std::vector<double>{1.0, 5.0});
-    CHECK(h.model_stiffness[1] == doctest::Approx(90.0));
-    CHECK(h.model_phase[1] == doctest::Approx(0.2));  // degrees in the file, radians here
-  }
-  const runtime::History history{{0.0, 1.0, 2.0}, {0.0, 0.5, 0.0}, {0.0, 50.0, 10.0}, {}, {}, {}};
-  for (const std::string& rendered : {runtime::history_csv(header, history), runtime::history_json(header, history)}) {
-    runtime::report::ReportContent content;
-    runtime::report::add_simulation_result(content, "loop", rendered);
-    REQUIRE(content.histories.size() == 1);
-    CHECK(content.histories.front().model_force == std::vector<double>{0.0, 50.0, 10.0});
-  }
   runtime::report::ReportContent content;
-  CHECK_THROWS_AS(runtime::report::add_simulation_result(content, "odd.csv", "a [-],b [-]\n1,2\n"), runtime::DataError);
+  runtime::report::add_simulation_result(content, "grid", {header, runtime::HarmonicGrid{two_points(), runtime::HarmonicDefinition::thesis}, 0, ""});
+  REQUIRE(content.harmonic.size() == 1);
+  const auto& h = content.harmonic.front();
+  CHECK(h.label == "grid");
+  CHECK_FALSE(h.measured());
+  CHECK(h.amplitude == std::vector<double>{0.2, 0.2});
+  CHECK(h.frequency == std::vector<double>{1.0, 5.0});
+  CHECK(h.model_stiffness == std::vector<double>{110.0, 90.0});
+  CHECK(h.model_phase == std::vector<double>{0.1, 0.2});
+
+  const runtime::History history{{0.0, 1.0, 2.0}, {0.0, 0.5, 0.0}, {0.0, 50.0, 10.0}, {}, {}, {}};
+  runtime::report::add_simulation_result(content, "loop", {header, history, 0, ""});
+  REQUIRE(content.histories.size() == 1);
+  CHECK(content.histories.front().displacement == std::vector<double>{0.0, 0.5, 0.0});
+  CHECK(content.histories.front().model_force == std::vector<double>{0.0, 50.0, 10.0});
+  CHECK_FALSE(content.histories.front().measured());
 }
 
 TEST_CASE("report content: residuals of a harmonic grid and of a history") {

@@ -4,6 +4,7 @@
 
 #include "runtime/errors.hpp"
 #include "runtime/history_csv.hpp"
+#include "runtime/output.hpp"
 #include "support.hpp"
 
 #include <doctest/doctest.h>
@@ -12,10 +13,19 @@
 using namespace rheo;
 
 namespace {
-runtime::ProtocolRun run_first(const std::string& source, const std::string& file) {
+// The first protocol's result, and its text in the format the protocol names.
+struct Run {
+  runtime::ProtocolResult result;
+  std::string content;
+  const std::string& notes() const { return result.notes; }
+};
+Run run_first(const std::string& source, const std::string& file) {
   const lang::Program program = lang::compile_source(file, source);
   const auto network = runtime::Network::compile(*program.find_model(program.simulations.at(0).model));
-  return runtime::run_protocol(network, program.simulations.at(0).protocols.at(0), file);
+  const lang::Protocol& protocol = program.simulations.at(0).protocols.at(0);
+  runtime::ProtocolResult result = runtime::run_protocol(network, protocol, file);
+  std::string content = runtime::rendered(result, lang::common(protocol.settings).format);
+  return {std::move(result), std::move(content)};
 }
 const char* kSpecimenD = R"(
 model d {
@@ -70,11 +80,11 @@ TEST_CASE("solver = sundials names itself in the header; with steady_state = clo
 TEST_CASE("a yeoh driven past where it softens: a warning in the root block (once per protocol), an error in series") {
   const std::string soft = "model y { yeoh r (D10 = 1, D20 = -1, D30 = 0) spring k (k = 1) }\n";  // e* = 1/sqrt(6) mm
   const auto past = run_first(soft + "simulate { harmonic frequency = 1 Hz, amplitude = [0.1, 2] mm }", "y.rheo");
-  CHECK(past.notes == "warning: yeoh 'r' softens to zero tangent stiffness at |e| = 0.408248 mm (eq. 3.3) and the drive reaches "
+  CHECK(past.notes() == "warning: yeoh 'r' softens to zero tangent stiffness at |e| = 0.408248 mm (eq. 3.3) and the drive reaches "
                       "2 mm: its force falls beyond that; bound D20 so that D20^2 < (5/3) D10 D30 (a Yeoh law that stiffens again)\n");
-  CHECK(run_first(soft + "simulate { harmonic frequency = 1 Hz, amplitude = [0.1, 0.4] mm }", "y.rheo").notes.empty());
+  CHECK(run_first(soft + "simulate { harmonic frequency = 1 Hz, amplitude = [0.1, 0.4] mm }", "y.rheo").notes().empty());
   const auto history = run_first(soft + "simulate { static velocity = 1 mm/s, amplitude = 0.5 mm }", "y.rheo");
-  CHECK(history.notes.find("the drive reaches 0.5 mm") != std::string::npos);
+  CHECK(history.notes().find("the drive reaches 0.5 mm") != std::string::npos);
   const std::string chain = "model y { series { yeoh r (D10 = 1, D20 = -1, D30 = 0) spring k (k = 1) } }\n";
   CHECK_THROWS_WITH_AS(run_first(chain + "simulate { static velocity = 1 mm/s, amplitude = 2 mm }", "y.rheo"),
                        doctest::Contains("yeoh 'r' is asked to carry"), runtime::NumericalError);
@@ -98,5 +108,5 @@ TEST_CASE("work limits: a protocol asking for more samples or steps than lang/li
   fails("harmonic frequency = 1 Hz, amplitude = 1 mm, steps_per_cycle = 1000000",
         "asks for 4e+08 time steps per point (steps_per_cycle x cycles_max), more than the limit of 100000000; lower");
   // At the limits they run: 10^7 samples are not built here, but the largest cheap case is.
-  CHECK(run_first(model + "simulate { step amplitude = 1 mm, duration = 1 s, dt = 1 ms }", "w.rheo").points == 1001);
+  CHECK(run_first(model + "simulate { step amplitude = 1 mm, duration = 1 s, dt = 1 ms }", "w.rheo").result.size() == 1001);
 }
