@@ -47,6 +47,24 @@ struct DaeOptions {
   long max_steps = 500000;      // per advance()
 };
 
+// Where each block of the unknowns lies in y (the layout above): positions x, then switch forces
+// lambda, rate coordinates s, inerter velocities w and Bouc-Wen states z, each block in the
+// order of its DaeGraph list (switch_edges, rate_edges, bouc_wen_edges).
+struct DaeLayout {
+  enum class Block { position, switch_force, rate_coordinate, inerter_velocity, bouc_wen_state };
+  int positions = 0, switch_forces = 0, rate_coordinates = 0, inerter_velocities = 0, bouc_wen_states = 0;
+
+  static DaeLayout of(const DaeGraph& graph);
+  int switch_force(int l) const { return positions + l; }
+  int rate_coordinate(int k) const { return switch_force(switch_forces) + k; }
+  int inerter_velocity(int v) const { return rate_coordinate(rate_coordinates) + v; }
+  int bouc_wen_state(int b) const { return inerter_velocity(inerter_velocities) + b; }
+  int size() const { return bouc_wen_state(bouc_wen_states); }
+  Block block_of(int i) const;
+  // IDA's id vector: s, w and z are differential, x and lambda algebraic.
+  bool differential(int i) const { return i >= rate_coordinate(0); }
+};
+
 struct DaeStatistics {
   long steps = 0;
   long residual_evaluations = 0;
@@ -92,7 +110,11 @@ class DaeIntegrator {
   static double elongation_rate(const double* yp, const DriveState& drive, const Edge& edge);
   void edge_forces(const DriveState& drive, const double* y, const double* yp, double* force) const;
   double terminal_force(const double* force) const;
+  const Edge& switch_edge(int l) const;
   void restart(double t, bool modes_changed);
+  void rechoose_coordinates(double t);
+  bool switch_inconsistent_modes();
+  void copy_from_solver();
   void switch_modes(double t, const std::vector<int>& found);
   double solve_to(double t_stop);
   void collect_statistics();
@@ -102,7 +124,7 @@ class DaeIntegrator {
   DaeOptions options_;
   DriveSignal drive_;
   std::size_t segment_ = 0;  // samples: the interval [time[segment_], time[segment_ + 1]]
-  int nx_, nl_, ns_, nw_, nz_, n_;
+  DaeLayout layout_;
   std::vector<int> rate_of_edge_, switch_of_edge_, bouc_wen_of_edge_;  // -1 where not
   SwitchModes modes_;
   std::vector<double> held_;  // elongation held by each rigid switch edge
@@ -110,6 +132,7 @@ class DaeIntegrator {
   std::vector<double> y_, yp_;
   mutable std::vector<double> rate_, acceleration_, force_;  // scratch per residual call
   std::vector<double> y_saved_, yp_saved_, root_values_;      // scratch of stick_reversed_sliders
+  std::vector<int> root_direction_, roots_found_;              // scratch of restart and solve_to
   double time_ = 0.0;
   long events_ = 0;
   DaeStatistics totals_;  // steps and residual evaluations before the last re-initialisation

@@ -105,3 +105,34 @@ TEST_CASE("a failing SUNDIALS call is reported with the call and the flag name")
                        "SUNDIALS IDASolve failed: IDA_TOO_MUCH_WORK: model 'm' at t = 1 s", runtime::NumericalError);
   CHECK(runtime::sundials::check_ida(IDA_ROOT_RETURN, "IDASolve") == IDA_ROOT_RETURN);
 }
+
+TEST_CASE("DaeLayout: the blocks of y follow each other in the order x, lambda, s, w, z") {
+  // Two internal nodes (a chain of three members), a slider, a gap, a dashpot, an inerter and a
+  // bouc_wen: one unknown of each kind at least.
+  const auto network = test::network_from(
+      "model m {\n  series { spring a (k = 1 N/mm)\n    slider s (fy = 1 N)\n    dashpot d (c = 1 N*s/mm) }\n"
+      "  series { spring b (k = 1 N/mm)\n    inerter i (b = 1 kg) }\n  series { spring g0 (k = 1 N/mm)\n    gap g (width = 1 mm) }\n"
+      "  bouc_wen w (k = 1 N/mm, n = 1, fy = 1 N)\n}",
+      "m");
+  const runtime::DaeGraph graph = runtime::DaeGraph::build(network);
+  const runtime::DaeLayout l = runtime::DaeLayout::of(graph);
+  CHECK(l.positions == graph.internal_nodes);
+  CHECK(l.switch_forces == static_cast<int>(graph.switch_edges.size()));
+  CHECK(l.switch_forces == 2);
+  CHECK(l.rate_coordinates == static_cast<int>(graph.rate_edges.size()));
+  CHECK(l.inerter_velocities == 1);
+  CHECK(l.bouc_wen_states == 1);
+  CHECK(l.size() == l.positions + l.switch_forces + l.rate_coordinates + l.inerter_velocities + l.bouc_wen_states);
+  using B = runtime::DaeLayout::Block;
+  const B order[] = {B::position, B::switch_force, B::rate_coordinate, B::inerter_velocity, B::bouc_wen_state};
+  int i = 0;
+  for (const auto [block, count] : {std::pair{order[0], l.positions}, std::pair{order[1], l.switch_forces}, std::pair{order[2], l.rate_coordinates},
+                                    std::pair{order[3], l.inerter_velocities}, std::pair{order[4], l.bouc_wen_states}})
+    for (int k = 0; k < count; ++k, ++i) {
+      CHECK(l.block_of(i) == block);
+      CHECK(l.differential(i) == (block != B::position && block != B::switch_force));
+    }
+  CHECK(i == l.size());
+  CHECK(l.switch_force(1) == l.positions + 1);
+  CHECK(l.bouc_wen_state(0) == l.size() - 1);
+}
