@@ -385,8 +385,11 @@ void Network::derive() {
   const auto own = static_cast<int>(parameters_.size());
   for (const auto& chain : t.springpots) {
     auto at = [&](int slot) { return parameters_[static_cast<std::size_t>(chain.param[slot])]; };
-    if (!(at(3) < at(4)))
-      throw std::invalid_argument(fmt::format("springpot '{}': f_low = {:g} Hz is not below f_high = {:g} Hz", chain.path, at(3), at(4)));
+    if (!(at(3) < at(4)))  // compile() checked the written values: these are a fit's, within the bounds
+      throw ModelError(fmt::format("{}model '{}': springpot '{}' would have f_low = {:g} Hz not below f_high = {:g} Hz; give f_low and "
+                                   "f_high bounds that do not overlap",
+                                   error_at(model_->parameters[static_cast<std::size_t>(chain.param[3])].where), model_->name,
+                                   chain.path, at(3), at(4)));
     const auto modes = static_cast<std::size_t>(chain.modes);
     const std::span<double> stiffness(derived_.data() + (chain.first_derived - own), modes);
     springpot_modes({at(0), at(1), at(2), at(3), at(4)}, stiffness, {stiffness.data() + modes, modes});
@@ -396,7 +399,7 @@ void Network::derive() {
 
 Network Network::with_parameters(const std::vector<double>& values) const {
   if (values.size() != parameters_.size())
-    throw std::invalid_argument(fmt::format("model '{}' has {} parameters, {} values given", model_->name,
+    throw std::logic_error(fmt::format("model '{}' has {} parameters, {} values given", model_->name,
                                             parameters_.size(), values.size()));
   Network copy = *this;
   // Parameters are stored in dependency order by the checker only for literals; evaluate

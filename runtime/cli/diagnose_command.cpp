@@ -82,14 +82,6 @@ std::unique_ptr<Prepared> prepare(const DiagnoseOptions& o) {
   return p;
 }
 
-dx::Diagnosis run(const Prepared& p, const dx::ModelSource& source, const dx::DiagnoseSettings& settings) {
-  try {
-    return dx::diagnose(source, p.job.data, settings);
-  } catch (const std::invalid_argument& e) {
-    throw runtime::UsageError(fmt::format("cannot diagnose model '{}': {}", source.model, e.what()));
-  }
-}
-
 void write_report(const DiagnoseOptions& o, const Prepared& p, const std::vector<dx::Diagnosis>& rounds, const char* command) {
   if (o.report.any()) write_report_files(dx::diagnosis_report_content(rounds, p.job.data, p.job.description, command), o.report);
 }
@@ -117,7 +109,7 @@ Command add_diagnose_command(CLI::App& app) {
              "leading ones and names the effect whose element earns its parameters (BIC), or `none`. See docs/cli.md.");
   return [o] {
     const auto p = prepare(*o);
-    const dx::Diagnosis d = run(*p, p->source, p->settings);
+    const dx::Diagnosis d = dx::diagnose(p->source, p->job.data, p->settings);
     if (!o->fit.output.empty()) {
       runtime::write_output(o->fit.output, d.refined_text);
       std::cerr << fmt::format("rheo: refined model {} written to {}\n", p->source.model, o->fit.output);
@@ -143,7 +135,7 @@ Command add_refine_command(CLI::App& app) {
     bool interrupted = false;
     std::vector<dx::Diagnosis> rounds;
     for (int round = 1; round <= o->rounds; ++round) {
-      const dx::Diagnosis& d = rounds.emplace_back(run(*p, source, settings));
+      const dx::Diagnosis& d = rounds.emplace_back(dx::diagnose(source, p->job.data, settings));
       if (round == 1) std::cout << fmt::format("rheo refine: model {} from {}; gap measure {}\n", source.model, o->fit.file, d.gap_name);
       std::cout << fmt::format("  round {}: {} = {:.4g} -> {:.4g}  effect {}{}\n", round, d.gap_name, d.gap_before, d.gap_after,
                                dx::effect_name(d.effect), d.added_element.empty() ? "" : fmt::format(", added '{}'", d.added_element))

@@ -105,7 +105,7 @@ TEST_CASE("placement: gaps only in series with a compliant member, inerters neve
   auto error_of = [](const char* source) -> std::string {
     try {
       test::network_from(source, "p");
-    } catch (const std::invalid_argument& e) {
+    } catch (const runtime::ModelError& e) {
       return e.what();
     }
     return "";
