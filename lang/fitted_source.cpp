@@ -80,7 +80,7 @@ std::string write_fitted_source(const std::string& source, const std::string& fi
                                 const std::vector<std::string>& header) {
   if (values.size() != model.parameters.size())
     throw std::logic_error(fmt::format("write_fitted_source: {} values for the {} parameters of model '{}'", values.size(),
-                                            model.parameters.size(), model.name));
+                                       model.parameters.size(), model.name));
   struct Edit {
     int begin, end;
     std::string text;

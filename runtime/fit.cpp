@@ -134,7 +134,7 @@ FitResult fit(const Network& start, const std::vector<int>& free, const std::vec
   const auto clock_start = std::chrono::steady_clock::now();
   if (free.empty())
     throw std::logic_error(fmt::format("model '{}' has no free parameter; give bounds to the ones to fit, e.g. `k = 300 N/mm in [10, 5000]`",
-                                            start.model().name));
+                                       start.model().name));
   if (data.empty()) throw std::logic_error("a fit needs data: add `data \"FILE.csv\"` to the fit block or --data FILE.csv");
   if (settings.score.method != FitMethod::exact && std::any_of(data.begin(), data.end(), [](const FitDataSet& s) { return s.is_harmonic(); }))
     if (const std::string why = approximation_misfit(start); !why.empty())

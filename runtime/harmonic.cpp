@@ -69,7 +69,7 @@ HarmonicPoint simulate_harmonic_point(const Network& network, double amplitude, 
   // The measures divide by u0 and the cycle by f: a zero would be NaN in every column.
   if (!(amplitude > 0.0 && std::isfinite(amplitude) && frequency > 0.0 && std::isfinite(frequency)))
     throw std::logic_error(fmt::format("model '{}': a harmonic point needs a positive, finite amplitude and frequency, got {} mm and {} Hz",
-                                            network.model().name, amplitude, frequency));
+                                       network.model().name, amplitude, frequency));
   if (uses_closed_form(network, options)) return closed_form_harmonic_point(network, amplitude, frequency, options.definition);
   if (uses_sundials(network, options.solver)) return dae_harmonic_point(network, amplitude, frequency, options);
   if (options.steady_state == SteadyState::closed_form)

@@ -400,7 +400,7 @@ void Network::derive() {
 Network Network::with_parameters(const std::vector<double>& values) const {
   if (values.size() != parameters_.size())
     throw std::logic_error(fmt::format("model '{}' has {} parameters, {} values given", model_->name,
-                                            parameters_.size(), values.size()));
+                                       parameters_.size(), values.size()));
   Network copy = *this;
   // Parameters are stored in dependency order by the checker only for literals; evaluate
   // derived ones repeatedly until stable (chains are short and acyclic).

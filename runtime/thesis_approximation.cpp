@@ -127,14 +127,14 @@ std::vector<HarmonicPoint> approximate_harmonic(const Network& network, const st
                                                 const std::vector<double>& frequencies) {
   if (amplitudes.size() != frequencies.size())
     throw std::logic_error(fmt::format("approximate_harmonic: {} amplitudes but {} frequencies (pointwise pairs)",
-                                            amplitudes.size(), frequencies.size()));
+                                       amplitudes.size(), frequencies.size()));
   const ThesisElements elements = thesis_elements(network);
   std::vector<HarmonicPoint> points;
   points.reserve(amplitudes.size());
   for (std::size_t i = 0; i < amplitudes.size(); ++i) {
     if (!(amplitudes[i] > 0.0) || !(frequencies[i] > 0.0))
       throw std::logic_error(fmt::format("approximate_harmonic: point {} has amplitude {} mm, frequency {} Hz; both must be > 0",
-                                              i + 1, amplitudes[i], frequencies[i]));
+                                         i + 1, amplitudes[i], frequencies[i]));
     points.push_back(approximate_point(elements, amplitudes[i], frequencies[i]));
   }
   return points;
@@ -144,7 +144,7 @@ ThesisCorrection thesis_correction(const std::vector<HarmonicPoint>& approximate
                                    const std::vector<HarmonicPoint>& numerical) {
   if (approximate.size() != numerical.size())
     throw std::logic_error(fmt::format("thesis_correction: {} approximate but {} numerical points",
-                                            approximate.size(), numerical.size()));
+                                       approximate.size(), numerical.size()));
   ThesisCorrection c;
   c.stiffness.reserve(approximate.size());
   c.damping.reserve(approximate.size());
@@ -164,7 +164,7 @@ ThesisCorrection thesis_correction(const std::vector<HarmonicPoint>& approximate
 void apply_correction(const ThesisCorrection& correction, std::vector<HarmonicPoint>& approximate) {
   if (correction.stiffness.size() != approximate.size() || correction.damping.size() != approximate.size())
     throw std::logic_error(fmt::format("apply_correction: {} correction factors for {} points",
-                                            correction.stiffness.size(), approximate.size()));
+                                       correction.stiffness.size(), approximate.size()));
   for (std::size_t i = 0; i < approximate.size(); ++i) {
     HarmonicPoint& p = approximate[i];
     set_measures(p, p.measures.stiffness * correction.stiffness[i], p.measures.damping * correction.damping[i]);  // (5.4)

@@ -185,7 +185,7 @@ YeohConstants fit_yeoh_least_squares(const MeanCurve& curve) {
   const std::size_t m = curve.displacement.size();
   if (m < 3 || curve.force.size() != m)
     throw std::logic_error(fmt::format("fit_yeoh_least_squares: need at least 3 (u, F) pairs of equal count, got {} and {}",
-                                            m, curve.force.size()));
+                                       m, curve.force.size()));
   Eigen::MatrixXd a(static_cast<Eigen::Index>(m), 3);
   Eigen::VectorXd f(static_cast<Eigen::Index>(m));
   for (std::size_t i = 0; i < m; ++i) {

@@ -63,12 +63,13 @@ struct Prepared {
 std::unique_ptr<Prepared> prepare(const DiagnoseOptions& o) {
   check_report_targets(o.report);
   auto p = std::make_unique<Prepared>();
-  p->program = lang::load_program(o.fit.file);
+  const std::string text = lang::read_source(o.fit.file);  // read once: diagnose edits the text compiled
+  p->program = lang::compile_source(o.fit.file, text);
   std::vector<FitJob> jobs = fit_jobs(p->program, o.fit);
   if (jobs.size() != 1)
     throw runtime::UsageError(fmt::format("{} has {} fit blocks; choose the one to diagnose with --block N or --model NAME", o.fit.file, jobs.size()));
   p->job = std::move(jobs.front());
-  p->source = {o.fit.file, lang::read_source(o.fit.file), p->job.model->name};
+  p->source = {o.fit.file, text, p->job.model->name};
   p->settings.fit = p->job.settings;
   if (o.steps_per_cycle > 0) p->settings.fit.score.harmonic.steps_per_cycle = o.steps_per_cycle;
   else if (!p->job.steps_per_cycle_given) p->settings.fit.score.harmonic.steps_per_cycle = 128;
