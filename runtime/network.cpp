@@ -315,7 +315,7 @@ Network Network::compile(const lang::CheckedModel& model) {
   topology->has_rate_jump = rate_jump(root);
 
   std::vector<Proto> branches;
-  if (root.kind == NodeKind::parallel) branches = std::move(root.children);
+  if (root.kind == NodeKind::parallel && !root.opaque) branches = std::move(root.children);  // a lone springpot is one branch
   else branches.push_back(std::move(root));
   const PlacementCheck placement{model, topology->probes};
   for (const auto& b : branches) placement.visit(b, true, !b.is_block());
