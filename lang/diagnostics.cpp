@@ -86,6 +86,6 @@ std::string format_all(const std::vector<Diagnostic>& diagnostics, const SourceS
 }  // namespace
 
 CompileError::CompileError(std::vector<Diagnostic> diagnostics, const SourceSet& sources)
-    : std::runtime_error(format_all(diagnostics, sources)), diagnostics_(std::move(diagnostics)) {}
+    : ModelError(format_all(diagnostics, sources)), diagnostics_(std::move(diagnostics)) {}
 
 }  // namespace rheo::lang

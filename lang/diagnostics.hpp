@@ -2,10 +2,10 @@
 // under the column.
 #pragma once
 
+#include "lang/errors.hpp"
 #include "lang/model.hpp"
 
 #include <map>
-#include <stdexcept>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -37,8 +37,9 @@ class SourceSet {
 // (marked "..."), with the caret under the column's character.
 std::string format(const Diagnostic& d, const SourceSet& sources);
 
-// Every diagnostic of a failed compilation; what() is all of them formatted.
-class CompileError : public std::runtime_error {
+// Every diagnostic of a failed compilation; what() is all of them formatted, each ending in a
+// newline. A model error (exit 3).
+class CompileError : public ModelError {
  public:
   CompileError(std::vector<Diagnostic> diagnostics, const SourceSet& sources);
   const std::vector<Diagnostic>& diagnostics() const { return diagnostics_; }

@@ -62,7 +62,7 @@ std::string header_lines(const std::vector<std::string>& header) {
 }  // namespace
 
 std::string format_parameter_value(const Parameter& p, double value) {
-  if (!std::isfinite(value)) throw std::invalid_argument(fmt::format("the value of '{}' is not finite ({})", p.path, value));
+  if (!std::isfinite(value)) throw std::logic_error(fmt::format("the value of '{}' is not finite ({})", p.path, value));
   const UnitChoice unit = choose_unit(p);
   const double written = value / unit.scale;
   std::string number;
@@ -79,8 +79,8 @@ std::string write_fitted_source(const std::string& source, const std::string& fi
                                 const std::vector<double>& values, const std::vector<int>& changed,
                                 const std::vector<std::string>& header) {
   if (values.size() != model.parameters.size())
-    throw std::invalid_argument(fmt::format("write_fitted_source: {} values for the {} parameters of model '{}'", values.size(),
-                                            model.parameters.size(), model.name));
+    throw std::logic_error(fmt::format("write_fitted_source: {} values for the {} parameters of model '{}'", values.size(),
+                                       model.parameters.size(), model.name));
   struct Edit {
     int begin, end;
     std::string text;
@@ -91,7 +91,7 @@ std::string write_fitted_source(const std::string& source, const std::string& fi
   sources.add(file, source);
   for (int i : std::set<int>(changed.begin(), changed.end())) {
     if (i < 0 || static_cast<std::size_t>(i) >= model.parameters.size())
-      throw std::invalid_argument(fmt::format("write_fitted_source: parameter index {} out of range", i));
+      throw std::logic_error(fmt::format("write_fitted_source: parameter index {} out of range", i));
     const Parameter& p = model.parameters[static_cast<std::size_t>(i)];
     if (std::string why = not_writable(p, file); !why.empty()) {
       add_stdlib_source(sources, p.where.file);
@@ -99,7 +99,7 @@ std::string write_fitted_source(const std::string& source, const std::string& fi
       continue;
     }
     if (static_cast<std::size_t>(p.value_end) > source.size() || p.value_end <= p.value_begin)
-      throw std::invalid_argument(fmt::format("write_fitted_source: the value of '{}' lies outside the given source of {}", p.path, file));
+      throw std::logic_error(fmt::format("write_fitted_source: the value of '{}' lies outside the given source of {}", p.path, file));
     edits.push_back({p.value_begin, p.value_end, format_parameter_value(p, values[static_cast<std::size_t>(i)])});
   }
   if (!errors.empty()) throw CompileError(std::move(errors), sources);
@@ -107,7 +107,7 @@ std::string write_fitted_source(const std::string& source, const std::string& fi
   std::string out = source;
   int limit = static_cast<int>(source.size());
   for (const auto& e : edits) {
-    if (e.end > limit) throw std::invalid_argument("write_fitted_source: two parameters share one value expression");
+    if (e.end > limit) throw std::logic_error("write_fitted_source: two parameters share one value expression");
     out.replace(static_cast<std::size_t>(e.begin), static_cast<std::size_t>(e.end - e.begin), e.text);
     limit = e.begin;
   }

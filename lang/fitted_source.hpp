@@ -18,8 +18,9 @@ namespace rheo::lang {
 // Throws CompileError, located at the parameter, when a changed parameter's value is computed
 // from other parameters or is not written for it in FILE (a stdlib default, an instantiated
 // model's default): the message says to override it in the instantiation. Throws
-// std::invalid_argument when VALUES has the wrong size, an index is out of range, a value is not
-// finite, or a range lies outside SOURCE (SOURCE is not the text MODEL was compiled from).
+// std::logic_error (a bug of the caller) when VALUES has the wrong size, an index is out of
+// range, a value is not finite, or a range lies outside SOURCE (SOURCE is not the text MODEL was
+// compiled from).
 std::string write_fitted_source(const std::string& source, const std::string& file, const CheckedModel& model,
                                 const std::vector<double>& values, const std::vector<int>& changed,
                                 const std::vector<std::string>& header);
@@ -27,7 +28,8 @@ std::string write_fitted_source(const std::string& source, const std::string& fi
 // VALUE (internal units) as the value expression of P: in P's unit when it has one, else in
 // the internal unit of P's dimension ("Hz" for frequencies; plain when dimensionless). The
 // number has 10 significant digits, or the fewest more (up to 17) that compile back to VALUE
-// within 1e-13 relative; trailing zeros are dropped ("101.58 um").
+// within 1e-13 relative; trailing zeros are dropped ("101.58 um"). VALUE must be finite
+// (std::logic_error otherwise).
 std::string format_parameter_value(const Parameter& p, double value);
 
 }  // namespace rheo::lang

@@ -2,6 +2,7 @@
 #pragma once
 
 #include "lang/diagnostics.hpp"
+#include "lang/errors.hpp"
 #include "lang/model.hpp"
 
 #include <stdexcept>
@@ -11,9 +12,9 @@
 namespace rheo::lang {
 
 // A source file that cannot be read (missing, a directory, no permission): what() is
-// "FILE: error: cannot read it (REASON); ADVICE" (lang/file_text.hpp).
-struct UnreadableSource : std::runtime_error {
-  using std::runtime_error::runtime_error;
+// "FILE: error: cannot read it (REASON); ADVICE" (lang/file_text.hpp). A data error (exit 4).
+struct UnreadableSource : DataError {
+  using DataError::DataError;
 };
 
 // The bytes of a source FILE, at most max_source_bytes (limits.hpp), without a leading UTF-8

@@ -26,7 +26,7 @@ TextSpan matching_brackets(std::string_view text, std::size_t from, char open, c
       if (--depth == 0) return {first, i};
     }
   }
-  throw std::invalid_argument(fmt::format("no matching '{}{}' after byte {}: the text is not the model's source", open, close, from));
+  throw std::logic_error(fmt::format("no matching '{}{}' after byte {}: the text is not the model's source", open, close, from));
 }
 
 // The first of '(' and '{' after the kind word and name of an element statement.
@@ -39,7 +39,7 @@ char statement_opener(std::string_view text, std::size_t from) {
       return text[i];
     }
   }
-  throw std::invalid_argument(fmt::format("no element arguments or body after byte {}", from));
+  throw std::logic_error(fmt::format("no element arguments or body after byte {}", from));
 }
 
 }  // namespace
@@ -48,11 +48,11 @@ std::size_t byte_offset(std::string_view text, const SourceLocation& where) {
   std::size_t offset = 0;
   for (int line = 1; line < where.line; ++line) {
     offset = text.find('\n', offset);
-    if (offset == std::string_view::npos) throw std::invalid_argument(fmt::format("line {} lies beyond the text", where.line));
+    if (offset == std::string_view::npos) throw std::logic_error(fmt::format("line {} lies beyond the text", where.line));
     ++offset;
   }
   offset += static_cast<std::size_t>(where.column > 0 ? where.column - 1 : 0);
-  if (where.line < 1 || offset > text.size()) throw std::invalid_argument(fmt::format("{}:{} lies outside the text", where.line, where.column));
+  if (where.line < 1 || offset > text.size()) throw std::logic_error(fmt::format("{}:{} lies outside the text", where.line, where.column));
   return offset;
 }
 
@@ -92,7 +92,7 @@ std::string append_to_model(std::string_view text, const CheckedModel& model, co
 }
 
 std::string replace_span(std::string_view text, TextSpan span, std::string_view replacement) {
-  if (span.begin > span.end || span.end > text.size()) throw std::invalid_argument("span lies outside the text");
+  if (span.begin > span.end || span.end > text.size()) throw std::logic_error("span lies outside the text");
   return std::string(text.substr(0, span.begin)) + std::string(replacement) + std::string(text.substr(span.end));
 }
 

@@ -3,8 +3,9 @@
 // elements it names to the user's own file this way, comments and layout intact).
 //
 // Offsets are byte offsets into the text the model was compiled from; the scanner skips `#`
-// comments and "strings" when it matches brackets. Functions throw std::invalid_argument when
-// a location lies outside TEXT or the brackets do not match (TEXT is not the model's source).
+// comments and "strings" when it matches brackets. TEXT must be the model's source: functions
+// throw std::logic_error (a bug of the caller) when a location lies outside TEXT or the brackets
+// do not match.
 #pragma once
 
 #include "lang/model.hpp"

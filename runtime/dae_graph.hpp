@@ -61,7 +61,7 @@ struct DaeGraph {
   std::vector<int> bouc_wen_edges; // each carries the state z
   std::string model;
 
-  // Throws std::invalid_argument with advice when the network cannot be posed as an index-1
+  // Throws ModelError with advice when the network cannot be posed as an index-1
   // DAE: an internal node held only by sliders and gaps, an inerter directly between terminal
   // and ground.
   static DaeGraph build(const Network& network);

@@ -1,5 +1,6 @@
 #include "runtime/fit.hpp"
 
+#include "runtime/errors.hpp"
 #include "runtime/fit_report.hpp"
 #include "runtime/yeoh_mean_curve.hpp"
 
@@ -21,7 +22,7 @@ class Coordinates {
     for (int i : free) {
       const auto& p = parameters.at(static_cast<std::size_t>(i));
       if (!p.free)
-        throw std::invalid_argument(fmt::format("parameter '{}' has no bounds; give it bounds to fit it, e.g. `{} in [lo, hi]`", p.path, p.path));
+        throw std::logic_error(fmt::format("parameter '{}' has no bounds; give it bounds to fit it, e.g. `{} in [lo, hi]`", p.path, p.path));
       const bool log_space = p.lower > 0.0;
       logarithmic.push_back(log_space);
       auto map = [&](double v) { return log_space ? std::log(v) : v; };
@@ -80,13 +81,7 @@ std::vector<ThesisCorrection> corrections_at(const Network& network, const std::
 bool approximation_applies(const Network& network, const std::vector<FitDataSet>& data) {
   for (const FitDataSet& set : data)
     if (!set.is_harmonic() || set.harmonic().size() == 0) return false;
-  try {
-    const HarmonicData& first = data.front().harmonic();
-    approximate_harmonic(network, {first.amplitude.front()}, {first.frequency.front()});
-    return true;
-  } catch (const std::invalid_argument&) {
-    return false;
-  }
+  return approximation_misfit(network).empty();
 }
 
 // The yeoh start of FitSettings::yeoh_start_from_history: new start values, or the old ones.
@@ -107,7 +102,7 @@ std::vector<double> yeoh_start(const Network& start, const std::vector<int>& fre
   YeohConstants d{};
   try {
     d = fit_yeoh_least_squares(mean_curve(largest_loop({widest->drive.displacement, widest->force})));
-  } catch (const std::exception& e) {
+  } catch (const UserError& e) {  // the record holds no usable loop: the start stays as written
     notes.push_back(fmt::format("no yeoh start from {}: {}", widest->path, e.what()));
     return values;
   }
@@ -138,9 +133,12 @@ FitResult fit(const Network& start, const std::vector<int>& free, const std::vec
               const FitSettings& settings) {
   const auto clock_start = std::chrono::steady_clock::now();
   if (free.empty())
-    throw std::invalid_argument(fmt::format("model '{}' has no free parameter; give bounds to the ones to fit, e.g. `k = 300 N/mm in [10, 5000]`",
-                                            start.model().name));
-  if (data.empty()) throw std::invalid_argument("a fit needs data: add `data \"FILE.csv\"` to the fit block or --data FILE.csv");
+    throw std::logic_error(fmt::format("model '{}' has no free parameter; give bounds to the ones to fit, e.g. `k = 300 N/mm in [10, 5000]`",
+                                       start.model().name));
+  if (data.empty()) throw std::logic_error("a fit needs data: add `data \"FILE.csv\"` to the fit block or --data FILE.csv");
+  if (settings.score.method != FitMethod::exact && std::any_of(data.begin(), data.end(), [](const FitDataSet& s) { return s.is_harmonic(); }))
+    if (const std::string why = approximation_misfit(start); !why.empty())
+      throw UsageError(fmt::format("cannot fit model '{}': {}", start.model().name, why));
   std::vector<std::string> notes;
   const Network first = settings.yeoh_start_from_history ? start.with_parameters(yeoh_start(start, free, data, notes)) : start;
   const Coordinates coordinates(first, free);

@@ -80,8 +80,10 @@ struct FitResult {
 // Indices of the parameters declared with bounds.
 std::vector<int> bounded_parameters(const Network& network);
 
-// Throws std::invalid_argument when `free` is empty or names a parameter without bounds, and
-// when the corrected or approximate method meets a structure the approximation cannot take.
+// Preconditions (std::logic_error otherwise; the front end reports them to the user first):
+// `free` is non-empty and names parameters with bounds, `data` is non-empty. Throws UsageError
+// when the approximate or corrected method meets harmonic data and a structure the
+// approximation cannot take (approximation_misfit), and what simulating the model throws.
 FitResult fit(const Network& start, const std::vector<int>& free, const std::vector<FitDataSet>& data,
               const FitSettings& settings);
 

@@ -22,7 +22,7 @@ Prediction predict(const Network& network, const FitDataSet& set, FitMethod meth
   }
   p.points = approximate_harmonic(network, data.amplitude, data.frequency);
   if (method == FitMethod::corrected) {
-    if (!correction) throw std::invalid_argument("the corrected method needs correction factors");
+    if (!correction) throw std::logic_error("the corrected method needs correction factors");
     apply_correction(*correction, p.points);
   }
   return p;

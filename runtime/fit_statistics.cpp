@@ -1,5 +1,7 @@
 #include "runtime/fit_statistics.hpp"
 
+#include "runtime/errors.hpp"
+
 #include <Eigen/Dense>
 #include <fmt/format.h>
 
@@ -19,9 +21,11 @@ Eigen::VectorXd evaluate(const std::function<std::vector<double>(const std::vect
                          const std::vector<double>& z, std::size_t expected_size) {
   const std::vector<double> r = residuals(z);
   if (expected_size != 0 && r.size() != expected_size)
-    throw std::invalid_argument(fmt::format("parameter_statistics: the residual vector changed size ({} -> {})", expected_size, r.size()));
+    throw std::logic_error(fmt::format("parameter_statistics: the residual vector changed size ({} -> {})", expected_size, r.size()));
   for (double v : r)
-    if (!std::isfinite(v)) throw std::runtime_error("parameter_statistics: a residual is not finite near the optimum");
+    if (!std::isfinite(v))
+      throw NumericalError("parameter_statistics: a residual is not finite near the optimum, so no standard errors can be computed; a "
+                           "parameter is likely at the edge of the range the model can be simulated in: fix it or narrow its bounds");
   return Eigen::Map<const Eigen::VectorXd>(r.data(), static_cast<Eigen::Index>(r.size()));
 }
 
@@ -31,10 +35,10 @@ ParameterStatistics parameter_statistics(const std::function<std::vector<double>
                                          const std::vector<double>& z, const std::vector<bool>& logarithmic) {
   const std::size_t n = z.size();
   if (n == 0 || logarithmic.size() != n)
-    throw std::invalid_argument(fmt::format("parameter_statistics: {} coordinates and {} log flags", n, logarithmic.size()));
+    throw std::logic_error(fmt::format("parameter_statistics: {} coordinates and {} log flags", n, logarithmic.size()));
   const Eigen::VectorXd r0 = evaluate(residuals, z, 0);
   const std::size_t m = static_cast<std::size_t>(r0.size());
-  if (m == 0) throw std::invalid_argument("parameter_statistics: empty residual vector");
+  if (m == 0) throw std::logic_error("parameter_statistics: empty residual vector");
 
   Eigen::MatrixXd jacobian(static_cast<Eigen::Index>(m), static_cast<Eigen::Index>(n));
   std::vector<double> shifted = z;

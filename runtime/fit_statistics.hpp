@@ -41,8 +41,8 @@ struct ParameterStatistics {
 // `residuals` is called 2 n + 1 times; `logarithmic` has n entries. When m <= rank no degree of
 // freedom is left for s^2: identifiability and correlations are still given (they do not
 // depend on s^2), standard errors of identifiable parameters are NaN. Throws
-// std::invalid_argument when sizes disagree or r changes size between calls;
-// std::runtime_error when a residual is not finite.
+// std::logic_error when sizes disagree or r changes size between calls; NumericalError when a
+// residual is not finite.
 ParameterStatistics parameter_statistics(const std::function<std::vector<double>(const std::vector<double>&)>& residuals,
                                          const std::vector<double>& z, const std::vector<bool>& logarithmic);
 

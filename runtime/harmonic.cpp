@@ -68,12 +68,12 @@ HarmonicPoint simulate_harmonic_point(const Network& network, double amplitude, 
                                       const HarmonicOptions& options) {
   // The measures divide by u0 and the cycle by f: a zero would be NaN in every column.
   if (!(amplitude > 0.0 && std::isfinite(amplitude) && frequency > 0.0 && std::isfinite(frequency)))
-    throw std::invalid_argument(fmt::format("model '{}': a harmonic point needs a positive, finite amplitude and frequency, got {} mm and {} Hz",
-                                            network.model().name, amplitude, frequency));
+    throw std::logic_error(fmt::format("model '{}': a harmonic point needs a positive, finite amplitude and frequency, got {} mm and {} Hz",
+                                       network.model().name, amplitude, frequency));
   if (uses_closed_form(network, options)) return closed_form_harmonic_point(network, amplitude, frequency, options.definition);
   if (uses_sundials(network, options.solver)) return dae_harmonic_point(network, amplitude, frequency, options);
   if (options.steady_state == SteadyState::closed_form)
-    throw std::invalid_argument(fmt::format(
+    throw std::logic_error(fmt::format(
         "model '{}' has non-linear elements inside nested series/parallel blocks, or quadratic_dashpot, gap or bouc_wen elements, "
         "which have no closed-form periodic state; use steady_state = time_stepping (or auto)",
         network.model().name));

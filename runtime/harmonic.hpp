@@ -31,8 +31,9 @@ namespace rheo::runtime {
 // How the periodic state is found: `automatic` uses the closed form of
 // periodic_closed_form.hpp where the network allows it (non-linear elements only in the root
 // parallel block) unless the solver is explicitly `sundials`, and time stepping otherwise;
-// `closed_form` insists on it (std::invalid_argument when the network has none);
-// `time_stepping` always steps. (The `steady_state` setting's vocabulary.)
+// `closed_form` insists on it (std::logic_error when the network has none: callers check
+// has_closed_form_periodic_state first); `time_stepping` always steps. (The `steady_state`
+// setting's vocabulary.)
 using lang::SteadyState;
 
 struct HarmonicOptions {
@@ -57,7 +58,7 @@ struct HarmonicPoint {
 // Whether simulate_harmonic_point takes the closed form for this network and these options.
 bool uses_closed_form(const Network& network, const HarmonicOptions& options);
 
-// Throws std::invalid_argument unless amplitude and frequency are positive and finite (the
+// Throws std::logic_error unless amplitude and frequency are positive and finite (the
 // language and data readers refuse others at their file:line:col first).
 HarmonicPoint simulate_harmonic_point(const Network& network, double amplitude, double frequency,
                                       const HarmonicOptions& options);

@@ -315,7 +315,7 @@ Network Network::compile(const lang::CheckedModel& model) {
   topology->has_rate_jump = rate_jump(root);
 
   std::vector<Proto> branches;
-  if (root.kind == NodeKind::parallel) branches = std::move(root.children);
+  if (root.kind == NodeKind::parallel && !root.opaque) branches = std::move(root.children);  // a lone springpot is one branch
   else branches.push_back(std::move(root));
   const PlacementCheck placement{model, topology->probes};
   for (const auto& b : branches) placement.visit(b, true, !b.is_block());
@@ -385,8 +385,11 @@ void Network::derive() {
   const auto own = static_cast<int>(parameters_.size());
   for (const auto& chain : t.springpots) {
     auto at = [&](int slot) { return parameters_[static_cast<std::size_t>(chain.param[slot])]; };
-    if (!(at(3) < at(4)))
-      throw std::invalid_argument(fmt::format("springpot '{}': f_low = {:g} Hz is not below f_high = {:g} Hz", chain.path, at(3), at(4)));
+    if (!(at(3) < at(4)))  // compile() checked the written values: these are a fit's, within the bounds
+      throw ModelError(fmt::format("{}model '{}': springpot '{}' would have f_low = {:g} Hz not below f_high = {:g} Hz; give f_low and "
+                                   "f_high bounds that do not overlap",
+                                   error_at(model_->parameters[static_cast<std::size_t>(chain.param[3])].where), model_->name,
+                                   chain.path, at(3), at(4)));
     const auto modes = static_cast<std::size_t>(chain.modes);
     const std::span<double> stiffness(derived_.data() + (chain.first_derived - own), modes);
     springpot_modes({at(0), at(1), at(2), at(3), at(4)}, stiffness, {stiffness.data() + modes, modes});
@@ -396,8 +399,8 @@ void Network::derive() {
 
 Network Network::with_parameters(const std::vector<double>& values) const {
   if (values.size() != parameters_.size())
-    throw std::invalid_argument(fmt::format("model '{}' has {} parameters, {} values given", model_->name,
-                                            parameters_.size(), values.size()));
+    throw std::logic_error(fmt::format("model '{}' has {} parameters, {} values given", model_->name,
+                                       parameters_.size(), values.size()));
   Network copy = *this;
   // Parameters are stored in dependency order by the checker only for literals; evaluate
   // derived ones repeatedly until stable (chains are short and acyclic).

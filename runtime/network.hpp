@@ -18,7 +18,7 @@
 //    is a subtree solved by TreeSolver.
 // Internal nodes are the junctions inside series chains: a chain of m members has m-1.
 //
-// Placement rules (std::invalid_argument naming the element, with advice, otherwise):
+// Placement rules (ModelError naming the element, with advice, otherwise):
 //  - a gap is a direct member of a series chain with at least one compliant member;
 //  - an inerter below the root block has a compliant member in series with it (in some
 //    enclosing chain), so that it is never rigidly driven: a velocity jump of the drive would
@@ -134,13 +134,15 @@ struct Coefficients {
 
 class Network {
  public:
-  // Compiles a checked model. Throws std::invalid_argument with advice for networks that
+  // Compiles a checked model. Throws ModelError with advice for networks that
   // cannot be driven (e.g. a yeoh spring whose force law is not monotone over the range used
   // is diagnosed at run time, not here).
   static Network compile(const lang::CheckedModel& model);
 
   // The same structure with new values for all parameters (internal units); derived
-  // parameters are re-evaluated from their expressions. Used by fitting.
+  // parameters are re-evaluated from their expressions. Used by fitting. One value per model
+  // parameter (std::logic_error otherwise); ModelError when the values put a springpot's f_low
+  // at or above its f_high (bounds that overlap).
   Network with_parameters(const std::vector<double>& values) const;
 
   const lang::CheckedModel& model() const { return *model_; }

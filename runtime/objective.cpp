@@ -25,7 +25,7 @@ std::vector<std::string> damping_left_out(const HarmonicData& data) {
 }
 
 RelativeResiduals relative_residuals(const HarmonicData& data, const std::vector<HarmonicPoint>& model) {
-  if (model.size() != data.size()) throw std::invalid_argument("model and data have different numbers of points");
+  if (model.size() != data.size()) throw std::logic_error("model and data have different numbers of points");
   RelativeResiduals r;
   for (std::size_t i = 0; i < data.size(); ++i) {
     r.stiffness.push_back(model[i].measures.stiffness / data.stiffness[i] - 1.0);

@@ -17,11 +17,10 @@ struct ThesisElements {
   std::vector<double> friction_k, friction_fy;  // K_p [N/mm], F_y = K_p u_s [N]
 };
 
-[[noreturn]] void reject(const Network& network, const ElementProbe& probe, const char* why) {
-  throw std::invalid_argument(fmt::format(
-      "model '{}': {} '{}' {}; the thesis approximation (eqs. 5.12-5.21) covers springs, yeoh springs, Maxwell and "
-      "friction elements in parallel only (Figs. 5.1, 5.3); use method = exact",
-      network.model().name, lang::kind_word(probe.kind), probe.path, why));
+std::string reject(const ElementProbe& probe, const char* why) {
+  return fmt::format("{} '{}' {}; the thesis approximation (eqs. 5.12-5.21) covers springs, yeoh springs, Maxwell and "
+                     "friction elements in parallel only (Figs. 5.1, 5.3); use method = exact",
+                     lang::kind_word(probe.kind), probe.path, why);
 }
 
 bool is_subtree_root(const Topology& t, int node) {
@@ -29,27 +28,11 @@ bool is_subtree_root(const Topology& t, int node) {
 }
 
 ThesisElements thesis_elements(const Network& network) {
+  if (const std::string why = approximation_misfit(network); !why.empty())
+    throw std::logic_error(fmt::format("approximate_harmonic: model '{}': {}", network.model().name, why));
   const Topology& t = network.topology();
   const Coefficients& c = network.coefficients();
   ThesisElements e;
-  for (const auto& probe : t.probes) {
-    using S = ElementProbe::Source;
-    switch (probe.source) {
-      case S::root_spring:
-      case S::root_yeoh:
-      case S::root_maxwell:
-      case S::root_springpot:  // its Maxwell chain
-      case S::root_friction: break;
-      case S::root_dashpot: reject(network, probe, "is a dashpot (no elastic part)");
-      case S::root_slider: reject(network, probe, "is a rigid-plastic slider");
-      case S::tree_maxwell_spring:
-      case S::tree_maxwell_dashpot:
-        if (is_subtree_root(t, probe.index)) break;  // a spring + dashpot pair in the root block
-        reject(network, probe, "sits inside a nested series/parallel block");
-      case S::tree_node:  // a subtree root is an inerter, quadratic_dashpot, gap or bouc_wen leaf
-        reject(network, probe, is_subtree_root(t, probe.index) ? "is not covered" : "sits inside a nested series/parallel block");
-    }
-  }
   e.elastic = c.spring_k;
   for (double d10 : c.yeoh_d10) e.elastic += 2.0 * d10;
   for (std::size_t j = 0; j < c.maxwell_k.size(); ++j) {
@@ -117,18 +100,41 @@ bool same(double a, double b) { return std::abs(a - b) <= 1e-12 * std::max(std::
 
 }  // namespace
 
+std::string approximation_misfit(const Network& network) {
+  const Topology& t = network.topology();
+  for (const auto& probe : t.probes) {
+    using S = ElementProbe::Source;
+    switch (probe.source) {
+      case S::root_spring:
+      case S::root_yeoh:
+      case S::root_maxwell:
+      case S::root_springpot:  // its Maxwell chain
+      case S::root_friction: break;
+      case S::root_dashpot: return reject(probe, "is a dashpot (no elastic part)");
+      case S::root_slider: return reject(probe, "is a rigid-plastic slider");
+      case S::tree_maxwell_spring:
+      case S::tree_maxwell_dashpot:
+        if (is_subtree_root(t, probe.index)) break;  // a spring + dashpot pair in the root block
+        return reject(probe, "sits inside a nested series/parallel block");
+      case S::tree_node:  // a subtree root is an inerter, quadratic_dashpot, gap or bouc_wen leaf
+        return reject(probe, is_subtree_root(t, probe.index) ? "is not covered" : "sits inside a nested series/parallel block");
+    }
+  }
+  return {};
+}
+
 std::vector<HarmonicPoint> approximate_harmonic(const Network& network, const std::vector<double>& amplitudes,
                                                 const std::vector<double>& frequencies) {
   if (amplitudes.size() != frequencies.size())
-    throw std::invalid_argument(fmt::format("approximate_harmonic: {} amplitudes but {} frequencies (pointwise pairs)",
-                                            amplitudes.size(), frequencies.size()));
+    throw std::logic_error(fmt::format("approximate_harmonic: {} amplitudes but {} frequencies (pointwise pairs)",
+                                       amplitudes.size(), frequencies.size()));
   const ThesisElements elements = thesis_elements(network);
   std::vector<HarmonicPoint> points;
   points.reserve(amplitudes.size());
   for (std::size_t i = 0; i < amplitudes.size(); ++i) {
     if (!(amplitudes[i] > 0.0) || !(frequencies[i] > 0.0))
-      throw std::invalid_argument(fmt::format("approximate_harmonic: point {} has amplitude {} mm, frequency {} Hz; both must be > 0",
-                                              i + 1, amplitudes[i], frequencies[i]));
+      throw std::logic_error(fmt::format("approximate_harmonic: point {} has amplitude {} mm, frequency {} Hz; both must be > 0",
+                                         i + 1, amplitudes[i], frequencies[i]));
     points.push_back(approximate_point(elements, amplitudes[i], frequencies[i]));
   }
   return points;
@@ -137,8 +143,8 @@ std::vector<HarmonicPoint> approximate_harmonic(const Network& network, const st
 ThesisCorrection thesis_correction(const std::vector<HarmonicPoint>& approximate,
                                    const std::vector<HarmonicPoint>& numerical) {
   if (approximate.size() != numerical.size())
-    throw std::invalid_argument(fmt::format("thesis_correction: {} approximate but {} numerical points",
-                                            approximate.size(), numerical.size()));
+    throw std::logic_error(fmt::format("thesis_correction: {} approximate but {} numerical points",
+                                       approximate.size(), numerical.size()));
   ThesisCorrection c;
   c.stiffness.reserve(approximate.size());
   c.damping.reserve(approximate.size());
@@ -146,7 +152,7 @@ ThesisCorrection thesis_correction(const std::vector<HarmonicPoint>& approximate
     const HarmonicPoint& a = approximate[i];
     const HarmonicPoint& n = numerical[i];
     if (!same(a.amplitude, n.amplitude) || !same(a.frequency, n.frequency))
-      throw std::invalid_argument(fmt::format(
+      throw std::logic_error(fmt::format(
           "thesis_correction: point {} differs (approximate {} mm, {} Hz; numerical {} mm, {} Hz)", i + 1, a.amplitude,
           a.frequency, n.amplitude, n.frequency));
     c.stiffness.push_back(n.measures.stiffness / a.measures.stiffness);                            // (5.2)
@@ -157,8 +163,8 @@ ThesisCorrection thesis_correction(const std::vector<HarmonicPoint>& approximate
 
 void apply_correction(const ThesisCorrection& correction, std::vector<HarmonicPoint>& approximate) {
   if (correction.stiffness.size() != approximate.size() || correction.damping.size() != approximate.size())
-    throw std::invalid_argument(fmt::format("apply_correction: {} correction factors for {} points",
-                                            correction.stiffness.size(), approximate.size()));
+    throw std::logic_error(fmt::format("apply_correction: {} correction factors for {} points",
+                                       correction.stiffness.size(), approximate.size()));
   for (std::size_t i = 0; i < approximate.size(); ++i) {
     HarmonicPoint& p = approximate[i];
     set_measures(p, p.measures.stiffness * correction.stiffness[i], p.measures.damping * correction.damping[i]);  // (5.4)

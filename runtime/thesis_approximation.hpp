@@ -43,21 +43,26 @@
 #include "runtime/harmonic.hpp"
 #include "runtime/network.hpp"
 
+#include <string>
 #include <vector>
 
 namespace rheo::runtime {
 
+// Why NETWORK does not have the structure above, naming the first element (source order) that
+// does not fit it (a dashpot, a slider or any element inside a nested block; a series spring +
+// dashpot pair is a Maxwell element and fits) and saying to use method = exact; empty when it
+// has. fit() reports it as the UsageError of a fit by the approximate or corrected method.
+std::string approximation_misfit(const Network& network);
+
 // One point per (amplitudes[i], frequencies[i]) pair (same length; pointwise, not a grid), in
-// that order; converged = true, cycles = 0. Throws std::invalid_argument naming the first
-// element (source order) that does not fit the structure above (a dashpot, a slider or any
-// element inside a nested block; a series spring + dashpot pair is a Maxwell element and fits),
-// and for mismatched lengths or non-positive amplitudes or frequencies.
+// that order; converged = true, cycles = 0. Preconditions (std::logic_error otherwise): an
+// empty approximation_misfit, equal lengths, positive amplitudes and frequencies.
 std::vector<HarmonicPoint> approximate_harmonic(const Network& network, const std::vector<double>& amplitudes,
                                                 const std::vector<double>& frequencies);
 
 // Correction factors of Table 5.1, one per point. `approximate` and `numerical` must hold the
 // same points (amplitude and frequency equal to 1e-12 relative) in the same order, else
-// std::invalid_argument. Where d_approx = 0 (no Maxwell element, no slipping friction element:
+// std::logic_error. Where d_approx = 0 (no Maxwell element, no slipping friction element:
 // then d_num = 0 too) eq. 5.3 is undefined and corr_d = 1.
 struct ThesisCorrection {
   std::vector<double> stiffness;  // corr_K (5.2)
@@ -67,7 +72,7 @@ ThesisCorrection thesis_correction(const std::vector<HarmonicPoint>& approximate
                                    const std::vector<HarmonicPoint>& numerical);
 
 // In place (5.4): K *= corr_K, d *= corr_d, phase = asin(min(d, 1)); storage, loss, F^ and U
-// follow. Throws std::invalid_argument when the sizes differ.
+// follow. Throws std::logic_error when the sizes differ.
 void apply_correction(const ThesisCorrection& correction, std::vector<HarmonicPoint>& approximate);
 
 }  // namespace rheo::runtime

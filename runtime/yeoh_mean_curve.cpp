@@ -102,7 +102,7 @@ double interpolate(const Branch& b, double x) {
 
 void check_sizes(const LoopSamples& s, const char* what) {
   if (s.displacement.size() != s.force.size())
-    throw std::invalid_argument(fmt::format("{}: {} displacements but {} forces", what, s.displacement.size(), s.force.size()));
+    throw std::logic_error(fmt::format("{}: {} displacements but {} forces", what, s.displacement.size(), s.force.size()));
 }
 
 }  // namespace
@@ -150,7 +150,7 @@ LoopSamples largest_loop(const LoopSamples& history) {
 MeanCurve mean_curve(const LoopSamples& loop, double turning_margin) {
   check_sizes(loop, "mean_curve");
   if (!(turning_margin >= 0.0 && turning_margin < 0.5))
-    throw std::invalid_argument(fmt::format("mean_curve: turning margin {} is outside [0, 0.5)", turning_margin));
+    throw std::logic_error(fmt::format("mean_curve: turning margin {} is outside [0, 0.5)", turning_margin));
   if (loop.displacement.size() < 3) throw DataError("mean_curve: the loop has fewer than 3 samples");
   const auto [lo_it, hi_it] = std::minmax_element(loop.displacement.begin(), loop.displacement.end());
   const double u_min = *lo_it, u_max = *hi_it, range = u_max - u_min;
@@ -184,8 +184,8 @@ MeanCurve mean_curve(const LoopSamples& loop, double turning_margin) {
 YeohConstants fit_yeoh_least_squares(const MeanCurve& curve) {
   const std::size_t m = curve.displacement.size();
   if (m < 3 || curve.force.size() != m)
-    throw std::invalid_argument(fmt::format("fit_yeoh_least_squares: need at least 3 (u, F) pairs of equal count, got {} and {}",
-                                            m, curve.force.size()));
+    throw std::logic_error(fmt::format("fit_yeoh_least_squares: need at least 3 (u, F) pairs of equal count, got {} and {}",
+                                       m, curve.force.size()));
   Eigen::MatrixXd a(static_cast<Eigen::Index>(m), 3);
   Eigen::VectorXd f(static_cast<Eigen::Index>(m));
   for (std::size_t i = 0; i < m; ++i) {
@@ -209,9 +209,9 @@ YeohConstants fit_yeoh_least_squares(const MeanCurve& curve) {
 }
 
 YeohConstants yeoh_from_shape(const YeohConstants& least_squares, double elastic_stiffness) {
-  if (!(elastic_stiffness > 0.0) || least_squares.d10 == 0.0)
-    throw std::invalid_argument(fmt::format("yeoh_from_shape: need K_e > 0 and a fitted D10 != 0 (K_e = {}, D10 = {})",
-                                            elastic_stiffness, least_squares.d10));
+  if (!(elastic_stiffness > 0.0)) throw std::logic_error(fmt::format("yeoh_from_shape: need K_e > 0, got {}", elastic_stiffness));
+  if (least_squares.d10 == 0.0)
+    throw NumericalError("yeoh_from_shape: the least-squares D10 is 0, so the shape ratios D20/D10 and D30/D10 (eq. 5.33) are undefined");
   const double a = least_squares.d20 / least_squares.d10, b = least_squares.d30 / least_squares.d10;  // (5.33)
   const double d10 = 0.5 * elastic_stiffness;                                                          // (5.35)
   return {d10, a * d10, b * d10};                                                                      // (5.36)

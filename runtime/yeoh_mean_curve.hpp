@@ -69,15 +69,15 @@ LoopSamples largest_loop(const LoopSamples& history);
 //     (duplicates within 1e-12 R merged); each branch is interpolated linearly there (exact at
 //     its own samples, so a triangle sampled alike on both branches involves no interpolation).
 // DataError when no full loading and unloading branch exist, or fewer than 3 common
-// displacements remain; std::invalid_argument for mismatched sizes or a margin outside [0, 0.5).
+// displacements remain; std::logic_error for mismatched sizes or a margin outside [0, 0.5).
 MeanCurve mean_curve(const LoopSamples& loop, double turning_margin = 0.05);
 
-// Eqs. 5.29-5.32. std::invalid_argument when the curve has fewer than 3 points or sizes differ;
+// Eqs. 5.29-5.32. std::logic_error when the curve has fewer than 3 points or sizes differ;
 // NumericalError when A has rank < 3 (e.g. fewer than 3 distinct |u| > 0).
 YeohConstants fit_yeoh_least_squares(const MeanCurve& curve);
 
-// Eqs. 5.33-5.36. elastic_stiffness = K_e [N/mm] of the dynamic fit, > 0; least_squares.d10 != 0
-// (std::invalid_argument otherwise).
+// Eqs. 5.33-5.36. elastic_stiffness = K_e [N/mm] of the dynamic fit, > 0 (std::logic_error
+// otherwise); NumericalError when least_squares.d10 = 0 (the ratios of 5.33 are undefined).
 YeohConstants yeoh_from_shape(const YeohConstants& least_squares, double elastic_stiffness);
 
 }  // namespace rheo::runtime

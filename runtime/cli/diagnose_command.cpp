@@ -63,12 +63,13 @@ struct Prepared {
 std::unique_ptr<Prepared> prepare(const DiagnoseOptions& o) {
   check_report_targets(o.report);
   auto p = std::make_unique<Prepared>();
-  p->program = lang::load_program(o.fit.file);
+  const std::string text = lang::read_source(o.fit.file);  // read once: diagnose edits the text compiled
+  p->program = lang::compile_source(o.fit.file, text);
   std::vector<FitJob> jobs = fit_jobs(p->program, o.fit);
   if (jobs.size() != 1)
     throw runtime::UsageError(fmt::format("{} has {} fit blocks; choose the one to diagnose with --block N or --model NAME", o.fit.file, jobs.size()));
   p->job = std::move(jobs.front());
-  p->source = {o.fit.file, lang::read_source(o.fit.file), p->job.model->name};
+  p->source = {o.fit.file, text, p->job.model->name};
   p->settings.fit = p->job.settings;
   if (o.steps_per_cycle > 0) p->settings.fit.score.harmonic.steps_per_cycle = o.steps_per_cycle;
   else if (!p->job.steps_per_cycle_given) p->settings.fit.score.harmonic.steps_per_cycle = 128;
@@ -80,14 +81,6 @@ std::unique_ptr<Prepared> prepare(const DiagnoseOptions& o) {
   p->settings.standard_errors = o.report.any();  // the report's parameter table shows them
   p->settings.stage = [](const std::string& what) { std::cerr << "rheo: " << what << "\n"; };
   return p;
-}
-
-dx::Diagnosis run(const Prepared& p, const dx::ModelSource& source, const dx::DiagnoseSettings& settings) {
-  try {
-    return dx::diagnose(source, p.job.data, settings);
-  } catch (const std::invalid_argument& e) {
-    throw runtime::UsageError(fmt::format("cannot diagnose model '{}': {}", source.model, e.what()));
-  }
 }
 
 void write_report(const DiagnoseOptions& o, const Prepared& p, const std::vector<dx::Diagnosis>& rounds, const char* command) {
@@ -117,7 +110,7 @@ Command add_diagnose_command(CLI::App& app) {
              "leading ones and names the effect whose element earns its parameters (BIC), or `none`. See docs/cli.md.");
   return [o] {
     const auto p = prepare(*o);
-    const dx::Diagnosis d = run(*p, p->source, p->settings);
+    const dx::Diagnosis d = dx::diagnose(p->source, p->job.data, p->settings);
     if (!o->fit.output.empty()) {
       runtime::write_output(o->fit.output, d.refined_text);
       std::cerr << fmt::format("rheo: refined model {} written to {}\n", p->source.model, o->fit.output);
@@ -143,7 +136,7 @@ Command add_refine_command(CLI::App& app) {
     bool interrupted = false;
     std::vector<dx::Diagnosis> rounds;
     for (int round = 1; round <= o->rounds; ++round) {
-      const dx::Diagnosis& d = rounds.emplace_back(run(*p, source, settings));
+      const dx::Diagnosis& d = rounds.emplace_back(dx::diagnose(source, p->job.data, settings));
       if (round == 1) std::cout << fmt::format("rheo refine: model {} from {}; gap measure {}\n", source.model, o->fit.file, d.gap_name);
       std::cout << fmt::format("  round {}: {} = {:.4g} -> {:.4g}  effect {}{}\n", round, d.gap_name, d.gap_before, d.gap_after,
                                dx::effect_name(d.effect), d.added_element.empty() ? "" : fmt::format(", added '{}'", d.added_element))

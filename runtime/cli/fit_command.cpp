@@ -23,14 +23,15 @@
 namespace rheo::cli {
 namespace {
 
-std::string fitted_file_text(const FitJob& job, const runtime::FitResult& result, const std::string& source_file) {
+// SOURCE: the text the fitted model was compiled from (not the file as it is after the fit).
+std::string fitted_file_text(const FitJob& job, const runtime::FitResult& result, const std::string& source_file, const std::string& source) {
   std::vector<std::string> header{
       fmt::format("Fitted by `rheo fit` (method {}, objective {}) to:", job.description.method, job.description.objective)};
   for (const auto& set : result.datasets) header.push_back(fmt::format("  {} (weight {:g}): err = {:.6g}", set.path, set.weight, set.err));
   if (result.phi > 0.0) header.push_back(fmt::format("phi (5.1) = {:.6g}, err (6.1) = {:.6g}", result.phi, result.err));
   if (result.interrupted) header.push_back("Interrupted: the best values found before the interruption.");
   header.push_back(fmt::format("Start values: {}", source_file));
-  return lang::write_fitted_source(lang::read_source(source_file), source_file, result.network.model(), result.network.parameters(),
+  return lang::write_fitted_source(source, source_file, result.network.model(), result.network.parameters(),
                                    result.free, header);
 }
 
@@ -70,7 +71,9 @@ Command add_fit_command(CLI::App& app) {
              "(exit code 130).");
   return [o, report] {
     check_report_targets(*report);
-    const lang::Program program = lang::load_program(o->file);
+    // Read once: the fitted file is written from the text compiled, however the file changes meanwhile.
+    const std::string source = lang::read_source(o->file);
+    const lang::Program program = lang::compile_source(o->file, source);
     std::vector<FitJob> jobs = fit_jobs(program, *o);
     if (report->any() && !o->orders.empty())
       throw runtime::UsageError("--report and --plot show one fit, --orders many: run the study, then fit the structure chosen with --report");
@@ -87,7 +90,7 @@ Command add_fit_command(CLI::App& app) {
       interrupted = interrupted || result.interrupted;
       if (report->any()) write_report_files(runtime::report::report_from_fit(result, job.data, job.description), *report);
       if (!job.output.empty()) {
-        runtime::write_output(job.output, fitted_file_text(job, result, o->file));
+        runtime::write_output(job.output, fitted_file_text(job, result, o->file, source));
         std::cerr << fmt::format("rheo: fitted model {} written to {}\n", result.network.model().name, job.output);
       }
       if (o->json) {

@@ -202,18 +202,7 @@ runtime::FitResult run_fit_job(const FitJob& job) {
   std::cerr << job.notes;
   runtime::Network start = runtime::Network::compile(*job.model);
   if (!job.start_values.empty()) start = start.with_parameters(job.start_values);
-  runtime::FitResult result = [&] {
-    try {
-      return runtime::fit(start, job.free, job.data, settings);
-    } catch (const runtime::ModelError&) {
-      throw;  // exit 3, as from simulate
-    } catch (const std::invalid_argument& e) {
-      const std::string prefix = fmt::format("model '{}': ", job.model->name);
-      std::string why = e.what();
-      if (why.starts_with(prefix)) why.erase(0, prefix.size());  // said once, below
-      throw runtime::UsageError(fmt::format("cannot fit model '{}': {}", job.model->name, why));
-    }
-  }();
+  runtime::FitResult result = runtime::fit(start, job.free, job.data, settings);
   if (show_progress) std::cerr << "\r" << std::string(100, ' ') << "\r" << std::flush;
   return result;
 }

@@ -40,26 +40,20 @@ int main(int argc, char** argv) {
     for (auto& [sub, run] : commands)
       if (sub->parsed()) return run();
   } catch (const lang::CompileError& e) {
-    std::cerr << e.what();
-    return runtime::exit_code::model;
-  } catch (const lang::UnreadableSource& e) {
-    std::cerr << e.what() << "\n";
-    return runtime::exit_code::data;
-  } catch (const runtime::ModelError& e) {
-    std::cerr << e.what() << "\n";  // "file:line:col: error: ..." naming the element
-    return runtime::exit_code::model;
-  } catch (const runtime::UsageError& e) {
+    std::cerr << e.what();  // every diagnostic, each ending in a newline
+    return exit_code_of(e);
+  } catch (const UsageError& e) {
     std::cerr << "rheo: error: " << e.what() << "\n";
-    return runtime::exit_code::usage;
-  } catch (const runtime::DataError& e) {
-    std::cerr << e.what() << "\n";
-    return runtime::exit_code::data;
-  } catch (const runtime::NumericalError& e) {
+    return exit_code_of(e);
+  } catch (const NumericalError& e) {
     std::cerr << "rheo: numerical error: " << e.what() << "\n";
-    return runtime::exit_code::numerical;
-  } catch (const std::exception& e) {
+    return exit_code_of(e);
+  } catch (const UserError& e) {  // model and data errors: "file:line:col: error: ..." naming the element or cell
+    std::cerr << e.what() << "\n";
+    return exit_code_of(e);
+  } catch (const std::exception& e) {  // any other exception is a bug, whatever the input
     std::cerr << "rheo: internal error: " << e.what() << "\nPlease report this with the input that caused it.\n";
-    return runtime::exit_code::internal;
+    return exit_code_of(e);
   }
   return runtime::exit_code::internal;
 }

@@ -28,7 +28,7 @@ struct Compiled {
 Compiled compile(const ModelSource& source, const std::string& text) {
   auto program = std::make_shared<const lang::Program>(lang::compile_source(source.file, text));
   const lang::CheckedModel* model = program->find_model(source.model);
-  if (!model) throw std::invalid_argument(fmt::format("{} has no model '{}'", source.file, source.model));
+  if (!model) throw std::logic_error(fmt::format("{} has no model '{}'", source.file, source.model));
   return {program, model};
 }
 
@@ -84,7 +84,7 @@ std::string with_trial(const std::string& fitted_text, const lang::CheckedModel&
       const lang::TextSpan span = lang::element_statement(fitted_text, e);
       return lang::replace_span(fitted_text, span, "# " + comment + "\n" + lang::line_indent(fitted_text, span.begin) + lines.front());
     }
-  throw std::invalid_argument(fmt::format("model '{}' has no root element '{}' to replace", fitted.name, trial.replaces));
+  throw std::logic_error(fmt::format("model '{}' has no root element '{}' to replace", fitted.name, trial.replaces));
 }
 
 // Work of one evaluation of NETWORK in fixed time steps of a nested network, counted on one
@@ -222,7 +222,7 @@ Diagnosis diagnose(const ModelSource& source, const std::vector<FitDataSet>& dat
     free = lang::default_free_parameters(*base.model);
   } else {
     for (const auto& path : settings.free) free.push_back(index_of(*base.model, path));
-    if (std::count(free.begin(), free.end(), -1)) throw std::invalid_argument(fmt::format("model '{}': a free parameter is not in it", source.model));
+    if (std::count(free.begin(), free.end(), -1)) throw std::logic_error(fmt::format("model '{}': a free parameter is not in it", source.model));
   }
   DiagnoseSettings s = settings;
   s.fit.score.method = FitMethod::exact;

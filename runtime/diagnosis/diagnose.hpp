@@ -109,7 +109,9 @@ struct Diagnosis {
   std::shared_ptr<const lang::Program> before_program, after_program;
 };
 
-// Throws what fit() throws, and lang::CompileError when SOURCE does not compile.
+// Throws what fit() throws, and lang::CompileError when SOURCE does not compile; std::logic_error
+// (a bug of the caller) when SOURCE has no model SOURCE.model or SETTINGS.free names a parameter
+// it does not have.
 Diagnosis diagnose(const ModelSource& source, const std::vector<FitDataSet>& data, const DiagnoseSettings& settings);
 
 // The gap of a fit as defined above.

@@ -81,7 +81,7 @@ std::string round_html(const Diagnosis& d, std::size_t index, bool several) {
 
 report::ReportContent diagnosis_report_content(const std::vector<Diagnosis>& rounds, const std::vector<FitDataSet>& data,
                                                const FitDescription& description, const std::string& command) {
-  if (rounds.empty()) throw std::invalid_argument("diagnosis_report_content: no rounds");
+  if (rounds.empty()) throw std::logic_error("diagnosis_report_content: no rounds");
   const Diagnosis& first = rounds.front();
   const Diagnosis& last = rounds.back();
   report::ReportContent content = report::report_from_fit(final_fit(last), data, description);

@@ -23,7 +23,7 @@ namespace rheo::runtime::diagnosis {
 
 // `rounds`: the diagnoses in order, each on the previous one's refined model (one for
 // `rheo diagnose`); `data`: the data sets they were fitted to, in order; `command`: "rheo
-// diagnose" or "rheo refine". Throws std::invalid_argument when `rounds` is empty.
+// diagnose" or "rheo refine". Throws std::logic_error when `rounds` is empty.
 report::ReportContent diagnosis_report_content(const std::vector<Diagnosis>& rounds, const std::vector<FitDataSet>& data,
                                                const FitDescription& description, const std::string& command);
 

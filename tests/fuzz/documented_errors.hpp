@@ -17,11 +17,7 @@ template <class Body>
 void expect_only_documented_errors(Body&& body) {
   try {
     body();
-  } catch (const lang::CompileError&) {
-  } catch (const runtime::ModelError&) {
-  } catch (const runtime::UsageError&) {
-  } catch (const runtime::DataError&) {
-  } catch (const runtime::NumericalError&) {
+  } catch (const UserError&) {  // lang/errors.hpp
   } catch (const std::exception& e) {
     std::fprintf(stderr, "rheo fuzz: undocumented exception (an internal error): %s\n", e.what());
     std::abort();

@@ -128,11 +128,11 @@ TEST_CASE("write_fitted_source: values not written in the file are errors that s
     CHECK(text.find("param k1 = 50 N/mm\n") != std::string::npos);  // the stdlib line is quoted
     CHECK(text.find("'m1.c' is computed from other parameters") != std::string::npos);
   }
-  CHECK_THROWS_AS(write_fitted_source(kSource, "f.rheo", m, {1.0}, {}, {}), std::invalid_argument);
-  CHECK_THROWS_AS(write_fitted_source(kSource, "f.rheo", m, values, {static_cast<int>(values.size())}, {}), std::invalid_argument);
+  CHECK_THROWS_AS(write_fitted_source(kSource, "f.rheo", m, {1.0}, {}, {}), std::logic_error);
+  CHECK_THROWS_AS(write_fitted_source(kSource, "f.rheo", m, values, {static_cast<int>(values.size())}, {}), std::logic_error);
   values[static_cast<std::size_t>(index_of(m, "k0"))] = std::nan("");
-  CHECK_THROWS_AS(write_fitted_source(kSource, "f.rheo", m, values, {index_of(m, "k0")}, {}), std::invalid_argument);
-  CHECK_THROWS_AS(write_fitted_source("model bushing {}", "f.rheo", m, values, {index_of(m, "m1.k")}, {}), std::invalid_argument);
+  CHECK_THROWS_AS(write_fitted_source(kSource, "f.rheo", m, values, {index_of(m, "k0")}, {}), std::logic_error);
+  CHECK_THROWS_AS(write_fitted_source("model bushing {}", "f.rheo", m, values, {index_of(m, "m1.k")}, {}), std::logic_error);
 }
 
 TEST_CASE("format_parameter_value: the parameter's unit, at least 10 digits, the shortest that round-trips") {

@@ -1,6 +1,7 @@
 // The edge graph of the variable-step backend: expansion of composite leaves, node numbering,
 // and the networks it refuses with advice.
 #include "runtime/dae_graph.hpp"
+#include "runtime/errors.hpp"
 #include "support.hpp"
 
 #include <doctest/doctest.h>
@@ -38,9 +39,9 @@ TEST_CASE("a gap stores its half width") {
 TEST_CASE("refused: an inerter between terminal and ground, and sliders meeting at a free node") {
   CHECK_THROWS_WITH_AS(runtime::DaeGraph::build(test::network_from("model m { inerter b (b = 1 kg)\n spring k (k = 1 N/mm) }", "m")),
                        doctest::Contains("inerter 'b' of model 'm' sits directly between the terminal and ground"),
-                       std::invalid_argument);
+                       runtime::ModelError);
   CHECK_THROWS_WITH_AS(
       runtime::DaeGraph::build(test::network_from(
           "model m { spring k (k = 1 N/mm)\n series s { slider a (fy = 1 N)\n slider b (fy = 2 N) } }", "m")),
-      doctest::Contains("merge the sliders or put a spring between them"), std::invalid_argument);
+      doctest::Contains("merge the sliders or put a spring between them"), runtime::ModelError);
 }

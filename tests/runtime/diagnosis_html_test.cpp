@@ -100,5 +100,5 @@ TEST_CASE("diagnosis html: none draws the model as fitted, without a baseline, a
   CHECK(html.find("<td>round 1: nothing added (none)</td>") != std::string::npos);
   CHECK(html.find("<p>Nothing added.</p>") != std::string::npos);
   CHECK(html.find("network-before") == std::string::npos);
-  CHECK_THROWS_AS(dx::diagnosis_report_content({}, data, kDescription, "rheo diagnose"), std::invalid_argument);
+  CHECK_THROWS_AS(dx::diagnosis_report_content({}, data, kDescription, "rheo diagnose"), std::logic_error);
 }

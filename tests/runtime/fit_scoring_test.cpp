@@ -174,7 +174,7 @@ TEST_CASE("predict: approximate and corrected are thesis_approximation's respons
     CHECK(corrected[i].measures.phase == calibrated[i].measures.phase);
     CHECK(corrected[i].measures.stiffness == doctest::Approx(direct[i].measures.stiffness * correction.stiffness[i]).epsilon(1e-14));
   }
-  CHECK_THROWS_AS(runtime::predict(network, set, runtime::FitMethod::corrected, {}, nullptr), std::invalid_argument);
+  CHECK_THROWS_AS(runtime::predict(network, set, runtime::FitMethod::corrected, {}, nullptr), std::logic_error);
   // The exact response is the harmonic module's periodic steady state, point by point.
   const auto exact = runtime::predict(network, set, runtime::FitMethod::exact, {}, nullptr).points;
   for (std::size_t i = 0; i < direct.size(); ++i) {

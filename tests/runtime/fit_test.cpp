@@ -137,5 +137,5 @@ TEST_CASE("specimens C and D: the default strategy from a generic start matches 
 
 TEST_CASE("a model without free parameters cannot be fitted, and says how to declare one") {
   const auto net = test::network_from("model z { spring e (k = 100) }", "z");
-  CHECK_THROWS_WITH_AS(runtime::fit(net, {}, {}, {}), doctest::Contains("give bounds"), std::invalid_argument);
+  CHECK_THROWS_WITH_AS(runtime::fit(net, {}, {}, {}), doctest::Contains("give bounds"), std::logic_error);
 }

@@ -105,7 +105,7 @@ TEST_CASE("placement: gaps only in series with a compliant member, inerters neve
   auto error_of = [](const char* source) -> std::string {
     try {
       test::network_from(source, "p");
-    } catch (const std::invalid_argument& e) {
+    } catch (const runtime::ModelError& e) {
       return e.what();
     }
     return "";
@@ -166,6 +166,16 @@ TEST_CASE("a springpot is a Maxwell chain: spliced into the root group, kept who
   const auto& sp = tn.probes[1];
   CHECK(sp.source == runtime::ElementProbe::Source::tree_node);
   CHECK(tn.nodes[static_cast<std::size_t>(sp.index)].child_count == runtime::springpot_mode_count(1.0, 100.0));
+}
+
+TEST_CASE("a lone springpot is the root group's one chain (its modes are no branches of their own)") {
+  const auto lone = test::network_from("model l { springpot sp (k = 50, alpha = 0.3, tau = 10 ms) }", "l");
+  const auto& t = lone.topology();
+  REQUIRE(t.probes.size() == 1);
+  CHECK(t.probes[0].source == runtime::ElementProbe::Source::root_springpot);
+  CHECK(t.probes[0].index == 0);
+  CHECK(t.probes[0].count == runtime::springpot_mode_count(0.01, 1000.0));
+  CHECK(t.maxwells.size() == static_cast<std::size_t>(t.probes[0].count));
 }
 
 TEST_CASE("a springpot band with f_low not below f_high is a model error at the element") {

@@ -121,7 +121,7 @@ TEST_CASE("nested networks have no closed form: automatic falls back to time ste
   CHECK(p.cycles > 0);
   HarmonicOptions closed;
   closed.steady_state = SteadyState::closed_form;
-  CHECK_THROWS_AS(runtime::simulate_harmonic_point(net, 0.5, 5.0, closed), std::invalid_argument);
+  CHECK_THROWS_AS(runtime::simulate_harmonic_point(net, 0.5, 5.0, closed), std::logic_error);
 }
 
 TEST_CASE("linear subtrees beside non-linear root elements: the closed form agrees with IDA") {

@@ -173,18 +173,18 @@ TEST_CASE("shape transfer (5.33-5.36): D10 = K_e / 2, the ratios kept") {
   CHECK(d.d10 == 350.0);
   CHECK(d.d20 == doctest::Approx(-2.0 * 350.0 / 400.0).epsilon(1e-15));
   CHECK(d.d30 == doctest::Approx(0.08 * 350.0 / 400.0).epsilon(1e-15));
-  CHECK_THROWS_AS(runtime::yeoh_from_shape({0.0, 1.0, 1.0}, 700.0), std::invalid_argument);
-  CHECK_THROWS_AS(runtime::yeoh_from_shape({1.0, 1.0, 1.0}, 0.0), std::invalid_argument);
+  CHECK_THROWS_AS(runtime::yeoh_from_shape({0.0, 1.0, 1.0}, 700.0), runtime::NumericalError);
+  CHECK_THROWS_AS(runtime::yeoh_from_shape({1.0, 1.0, 1.0}, 0.0), std::logic_error);
 }
 
 TEST_CASE("loops without both branches, tables without the columns and degenerate curves are refused") {
   runtime::LoopSamples ramp{{0.0, 1.0, 2.0, 3.0}, {0.0, 1.0, 2.0, 3.0}};
   CHECK_THROWS_AS(runtime::mean_curve(ramp), runtime::DataError);
   CHECK_THROWS_AS(runtime::largest_loop(ramp), runtime::DataError);
-  CHECK_THROWS_AS(runtime::mean_curve(ramp, 0.5), std::invalid_argument);
-  CHECK_THROWS_AS(runtime::mean_curve({{0.0, 1.0}, {0.0}}), std::invalid_argument);
+  CHECK_THROWS_AS(runtime::mean_curve(ramp, 0.5), std::logic_error);
+  CHECK_THROWS_AS(runtime::mean_curve({{0.0, 1.0}, {0.0}}), std::logic_error);
   const auto table = runtime::parse_table("t.csv", "time [s],displacement [mm]\n0,0\n1,1\n");
   CHECK_THROWS_WITH_AS(runtime::loop_samples_from_table(table), doctest::Contains("'force'"), runtime::DataError);
   CHECK_THROWS_AS(runtime::fit_yeoh_least_squares({{0.0, 0.0, 0.0}, {1.0, 2.0, 3.0}}), runtime::NumericalError);
-  CHECK_THROWS_AS(runtime::fit_yeoh_least_squares({{1.0, 2.0}, {1.0, 2.0}}), std::invalid_argument);
+  CHECK_THROWS_AS(runtime::fit_yeoh_least_squares({{1.0, 2.0}, {1.0, 2.0}}), std::logic_error);
 }
