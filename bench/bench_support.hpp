@@ -2,7 +2,7 @@
 #pragma once
 
 #include "lang/model.hpp"
-#include "runtime/fit_data.hpp"
+#include "runtime/io/fit_data.hpp"
 
 #include <string>
 

@@ -2,7 +2,7 @@
 // with the default strategy and settings, on their measured harmonic grids. Reported: wall time
 // per fit, evaluations and the err (6.1) reached.
 #include "bench_support.hpp"
-#include "runtime/fit.hpp"
+#include "runtime/fit/fit.hpp"
 
 #include <benchmark/benchmark.h>
 

@@ -1,7 +1,7 @@
 // The specimen-D harmonic grid of the data (182 points, 0.2-3 mm x 1-51 Hz), evaluated by the
 // closed-form periodic state (the default) and by time stepping to steady state.
 #include "bench_support.hpp"
-#include "runtime/fit_scoring.hpp"
+#include "runtime/fit/fit_scoring.hpp"
 
 #include <benchmark/benchmark.h>
 

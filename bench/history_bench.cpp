@@ -2,7 +2,7 @@
 // elements): 1e6 steps of a two-sine drive (1.5 Hz, 2 mm plus 23 Hz, 0.1 mm; dt = 0.1 ms).
 // Reported: time per run and ns per element-step.
 #include "bench_support.hpp"
-#include "runtime/drives.hpp"
+#include "runtime/protocols/run_history.hpp"
 
 #include <benchmark/benchmark.h>
 

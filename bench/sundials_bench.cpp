@@ -7,8 +7,10 @@
 // steps / wall time). Fixed steps use 256 steps per cycle on the grid (0.2 % / 0.26 deg from the
 // reference) and 2048 (0.05 % / 0.02 deg), and the drive's own samples on the history.
 #include "bench_support.hpp"
-#include "runtime/dae_protocols.hpp"
-#include "runtime/harmonic_data.hpp"
+#include "runtime/dae/dae_protocols.hpp"
+#include "runtime/protocols/harmonic.hpp"
+#include "runtime/protocols/run_history.hpp"
+#include "runtime/io/harmonic_data.hpp"
 
 #include <benchmark/benchmark.h>
 

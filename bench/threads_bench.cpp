@@ -4,8 +4,8 @@
 //    (solver = fixed, 128 steps per cycle, periodicity tolerance 1e-6): time stepped;
 //  - the specimen-D fit of examples/specimen_d_fit.rheo (closed-form points, microseconds each).
 #include "bench_support.hpp"
-#include "runtime/fit.hpp"
-#include "runtime/objective.hpp"
+#include "runtime/fit/fit.hpp"
+#include "runtime/fit/objective.hpp"
 
 #include <benchmark/benchmark.h>
 

@@ -31,7 +31,7 @@ struct FitSettings {
   std::optional<double> stiffness_weight;  // k of eq. 5.38: w_K = k, w_d = 1 - k; absent: both weights 1
   FitMethod method = FitMethod::exact;
   Optimizer optimizer = Optimizer::automatic;
-  // Absent: the search's own defaults (runtime/fit_search.hpp, SearchSettings).
+  // Absent: the search's own defaults (runtime/fit/fit_search.hpp, SearchSettings).
   std::optional<int> max_evaluations;
   std::optional<int> starts;
   std::optional<double> tolerance;  // relative, on the scaled parameters

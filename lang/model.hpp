@@ -66,7 +66,7 @@ enum class ElementKind : std::uint8_t {
              //   dz/dt = (k/fy) de/dt (1 - |z|^n (1 + sgn(z de/dt)) / 2); n -> inf: friction(k, fy)
   springpot, // k [N/mm], alpha [-], tau [s], f_low, f_high [Hz]: fractional derivative element,
              //   K* = k (i w tau)^alpha, approximated over [f_low, f_high] by a Maxwell chain
-             //   (runtime/springpot.hpp)
+             //   (runtime/network/springpot.hpp)
   parallel,  // children share the elongation; forces add
   series,    // children share the force; elongations add
 };

@@ -20,7 +20,7 @@ namespace rheo::lang {
 // line (each has a word table in protocol_settings.cpp).
 enum class HarmonicDefinition { thesis, first_harmonic };   // `definition`: eqs. 5.26-5.27, or K' and K''
 enum class SteadyState { automatic, closed_form, time_stepping };  // `steady_state`
-enum class SolverChoice { automatic, fixed, sundials };            // `solver` (runtime/solver_choice.hpp)
+enum class SolverChoice { automatic, fixed, sundials };            // `solver` (runtime/protocols/solver_choice.hpp)
 enum class OutputFormat { csv, json };                             // `format`
 
 std::string_view word_of(HarmonicDefinition value);

@@ -4,9 +4,9 @@
 #include "lang/frontend.hpp"
 #include "lang/source_edit.hpp"
 #include "runtime/diagnosis/evidence_text.hpp"
-#include "runtime/fit_scoring.hpp"
-#include "runtime/solver_choice.hpp"
-#include "runtime/tree_solver.hpp"
+#include "runtime/fit/fit_scoring.hpp"
+#include "runtime/protocols/solver_choice.hpp"
+#include "runtime/stepping/tree_solver.hpp"
 
 #include <fmt/format.h>
 

@@ -27,7 +27,7 @@
 
 #include "runtime/diagnosis/patterns.hpp"
 #include "runtime/diagnosis/screen.hpp"
-#include "runtime/fit.hpp"
+#include "runtime/fit/fit.hpp"
 
 #include <functional>
 #include <memory>

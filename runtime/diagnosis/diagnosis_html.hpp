@@ -13,7 +13,7 @@
 #pragma once
 
 #include "runtime/diagnosis/diagnose.hpp"
-#include "runtime/fit_report.hpp"
+#include "runtime/fit/fit_report.hpp"
 #include "runtime/report/report_content.hpp"
 
 #include <string>

@@ -1,7 +1,7 @@
 #include "runtime/diagnosis/diagnosis_report.hpp"
 
 #include "runtime/diagnosis/evidence_text.hpp"
-#include "runtime/fit_report.hpp"
+#include "runtime/fit/fit_report.hpp"
 
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>

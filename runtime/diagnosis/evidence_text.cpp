@@ -2,7 +2,7 @@
 
 #include "lang/frontend.hpp"
 #include "lang/source_edit.hpp"
-#include "runtime/fit_report.hpp"
+#include "runtime/fit/fit_report.hpp"
 
 #include <fmt/format.h>
 

@@ -9,7 +9,7 @@
 // Histories: the RMS and largest force residual relative to max|F_exp|.
 #pragma once
 
-#include "runtime/fit.hpp"
+#include "runtime/fit/fit.hpp"
 
 #include <vector>
 

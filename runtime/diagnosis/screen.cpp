@@ -1,7 +1,7 @@
 #include "runtime/diagnosis/screen.hpp"
 
 #include "lang/frontend.hpp"
-#include "runtime/fit_scoring.hpp"
+#include "runtime/fit/fit_scoring.hpp"
 
 #include <fmt/format.h>
 

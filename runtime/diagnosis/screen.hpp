@@ -17,7 +17,7 @@
 #pragma once
 
 #include "runtime/diagnosis/trial.hpp"
-#include "runtime/fit.hpp"
+#include "runtime/fit/fit.hpp"
 
 #include <vector>
 

@@ -1,7 +1,7 @@
 #include "runtime/report/report_content.hpp"
 
-#include "runtime/errors.hpp"
-#include "runtime/objective.hpp"
+#include "runtime/core/errors.hpp"
+#include "runtime/fit/objective.hpp"
 
 #include <fmt/format.h>
 

@@ -5,10 +5,10 @@
 #pragma once
 
 #include "lang/model.hpp"
-#include "runtime/fit.hpp"
-#include "runtime/fit_report.hpp"
-#include "runtime/harmonic.hpp"
-#include "runtime/protocol_result.hpp"
+#include "runtime/fit/fit.hpp"
+#include "runtime/fit/fit_report.hpp"
+#include "runtime/protocols/harmonic.hpp"
+#include "runtime/core/protocol_result.hpp"
 
 #include <optional>
 #include <string>

@@ -1,6 +1,6 @@
 #include "runtime/report/report_figures.hpp"
 
-#include "runtime/errors.hpp"
+#include "runtime/core/errors.hpp"
 
 #include <fmt/format.h>
 

@@ -5,7 +5,7 @@
 #pragma once
 
 #include "lang/diagnostics.hpp"
-#include "runtime/errors.hpp"
+#include "runtime/core/errors.hpp"
 
 #include <cstdio>
 #include <cstdlib>

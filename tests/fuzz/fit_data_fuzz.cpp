@@ -1,8 +1,8 @@
-// libFuzzer target: the input is a fit's measured-data file (runtime/fit_data.hpp), read by
+// libFuzzer target: the input is a fit's measured-data file (runtime/io/fit_data.hpp), read by
 // read_fit_data itself, which takes only a path: each input is written to an in-memory file of
 // this process (memfd) and read back through /proc/self/fd, so nothing touches the disk.
 #include "documented_errors.hpp"
-#include "runtime/fit_data.hpp"
+#include "runtime/io/fit_data.hpp"
 
 #include <sys/mman.h>
 #include <unistd.h>

@@ -1,9 +1,9 @@
 // libFuzzer target: the input is a .rheo source file, run through what `rheo check` does
-// (runtime/cli/check_command.cpp) minus printing: parse, resolve imports, check, and compile
+// (cli/check_command.cpp) minus printing: parse, resolve imports, check, and compile
 // every model to a network.
 #include "documented_errors.hpp"
 #include "lang/frontend.hpp"
-#include "runtime/network.hpp"
+#include "runtime/network/network.hpp"
 
 #include <cstddef>
 #include <cstdint>

@@ -1,7 +1,7 @@
-// libFuzzer target: the input is a measured harmonic table (runtime/harmonic_data.hpp), read
+// libFuzzer target: the input is a measured harmonic table (runtime/io/harmonic_data.hpp), read
 // from memory as read_harmonic_data reads it from a file.
 #include "documented_errors.hpp"
-#include "runtime/harmonic_data.hpp"
+#include "runtime/io/harmonic_data.hpp"
 
 #include <cstddef>
 #include <cstdint>

@@ -1,7 +1,7 @@
-// libFuzzer target: the input is a displacement history table (runtime/history_csv.hpp), read
+// libFuzzer target: the input is a displacement history table (runtime/io/history_csv.hpp), read
 // from memory into a drive as `history file = ...` reads it from a file.
 #include "documented_errors.hpp"
-#include "runtime/history_csv.hpp"
+#include "runtime/io/history_csv.hpp"
 
 #include <cstddef>
 #include <cstdint>

@@ -8,7 +8,7 @@
 #include "runtime/diagnosis/diagnosis_report.hpp"
 
 #include "diagnosis_support.hpp"
-#include "runtime/drives.hpp"
+#include "runtime/protocols/run_history.hpp"
 
 #include <doctest/doctest.h>
 #include <fmt/format.h>

@@ -4,8 +4,8 @@
 #pragma once
 
 #include "runtime/diagnosis/diagnose.hpp"
-#include "runtime/harmonic.hpp"
-#include "runtime/drives.hpp"
+#include "runtime/protocols/harmonic.hpp"
+#include "runtime/protocols/run_history.hpp"
 #include "support.hpp"
 
 #include <algorithm>

@@ -3,7 +3,7 @@
 // reference data of examples/data (README.md there): the Appendix D models reproduce the
 // noise-free harmonic grids within 0.05 % in stiffness and 0.01 deg in phase, and specimen D's
 // static and quasi-static tests within the stated force noise (0.3 % of the maximum).
-#include "runtime/history_csv.hpp"
+#include "runtime/io/history_csv.hpp"
 
 #include <doctest/doctest.h>
 #include <fmt/format.h>

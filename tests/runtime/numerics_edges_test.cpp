@@ -3,10 +3,10 @@
 // on their bounds (at the start and at the optimum), and fits that repeat bit for bit.
 // (Non-finite objectives: optimizer_test and fit_search_test.) Each against a closed form or a
 // second path, with tolerances that fail on a wrong answer.
-#include "runtime/fit.hpp"
-#include "runtime/harmonic.hpp"
-#include "runtime/periodic_closed_form.hpp"
-#include "runtime/phasor.hpp"
+#include "runtime/fit/fit.hpp"
+#include "runtime/protocols/harmonic.hpp"
+#include "runtime/closed_form/periodic_closed_form.hpp"
+#include "runtime/closed_form/phasor.hpp"
 #include "support.hpp"
 
 #include <doctest/doctest.h>

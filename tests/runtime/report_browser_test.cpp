@@ -6,7 +6,7 @@
 // report; the paths are printed). Without chromium the test fails under CI (CI=true) and
 // elsewhere says it is skipped.
 #include "lang/frontend.hpp"
-#include "runtime/harmonic_data.hpp"
+#include "runtime/io/harmonic_data.hpp"
 #include "cli_support.hpp"
 #include "report_support.hpp"
 #include "support.hpp"

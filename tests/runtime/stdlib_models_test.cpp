@@ -4,8 +4,8 @@
 // waveform composed by hand, the slider-capped ones against their uncapped closed forms below
 // the slip force and against the cap's force bound above it.
 #include "lang/stdlib.hpp"
-#include "runtime/harmonic.hpp"
-#include "runtime/phasor.hpp"
+#include "runtime/protocols/harmonic.hpp"
+#include "runtime/closed_form/phasor.hpp"
 #include "support.hpp"
 
 #include <doctest/doctest.h>

@@ -2,7 +2,7 @@
 #pragma once
 
 #include "lang/frontend.hpp"
-#include "runtime/network.hpp"
+#include "runtime/network/network.hpp"
 
 #include <cmath>
 #include <fstream>

@@ -1,0 +1,104 @@
+// `rheo report FILE [--data CSV]... [--model NAME] [-o REPORT.html] [--plot FIG.svg]`: the
+// model against measured data (or its simulate protocols' results) as an HTML report; see
+// docs/cli.md.
+#include "lang/frontend.hpp"
+#include "lang/protocol_schema.hpp"
+#include "cli/commands.hpp"
+#include "cli/program_lookup.hpp"
+#include "cli/report_files.hpp"
+#include "runtime/core/errors.hpp"
+#include "runtime/fit/fit_scoring.hpp"
+#include "runtime/fit/objective.hpp"
+#include "runtime/protocols/run_protocols.hpp"
+
+#include <fmt/format.h>
+
+#include <memory>
+
+namespace rheo::cli {
+namespace {
+
+namespace report = runtime::report;
+
+struct Options {
+  std::string file, model;
+  std::vector<std::string> data;
+  ReportTargets targets;
+  int threads = 1;
+};
+
+// The model simulated at every point of every data file.
+void add_data(report::ReportContent& content, const runtime::Network& network, const std::vector<runtime::FitDataSet>& data, int threads) {
+  runtime::HarmonicOptions options;
+  options.threads = threads;
+  for (const runtime::FitDataSet& set : data) {
+    const runtime::Prediction p = runtime::predict(network, set, runtime::FitMethod::exact, options, nullptr);
+    if (set.is_harmonic()) {
+      content.harmonic.push_back(report::compare_harmonic(set.harmonic(), p.points));
+      for (std::string& note : runtime::damping_left_out(set.harmonic())) content.notes.push_back(std::move(note));
+    } else
+      content.histories.push_back(report::compare_history(set.history(), p.force));
+  }
+}
+
+// The results of the model's simulate protocols, whatever format they would be written in.
+void add_protocols(report::ReportContent& content, const runtime::Network& network, const lang::Program& program, const Options& o) {
+  for (const auto& sim : program.simulations) {
+    if (sim.model != network.model().name) continue;
+    for (lang::Protocol protocol : sim.protocols) {
+      lang::common(protocol.settings).elements = false;  // the report draws the whole network's force
+      const runtime::ProtocolResult result = runtime::run_protocol(network, protocol, o.file, o.threads);
+      report::add_simulation_result(content, fmt::format("{} protocol ({}:{})", lang::protocol_name(protocol.kind), protocol.where.file,
+                                                         protocol.where.line),
+                                    result);
+    }
+  }
+}
+
+std::vector<runtime::FitDataSet> fit_block_data(const lang::Program& program, const std::string& model, const std::string& file) {
+  std::vector<runtime::FitDataSet> data;
+  for (const auto& block : program.fits) {
+    if (block.model != model) continue;
+    for (const auto& d : block.data) {
+      data.push_back(runtime::read_fit_data(relative_to(file, d.file), d.weight, &d.where));
+    }
+  }
+  return data;
+}
+
+}  // namespace
+
+Command add_report_command(CLI::App& app) {
+  auto o = std::make_shared<Options>();
+  app.add_option("file", o->file, "The .rheo file")->required();
+  app.add_option("--data", o->data, "Measured data (harmonic table or time history) to compare the model with. Repeatable");
+  app.add_option("--model", o->model, "The model to report on (needed when the file defines several)");
+  app.add_option("-o,--output", o->targets.html, "Write the HTML report here");
+  add_report_options(app, o->targets, false);
+  app.add_option("--threads", o->threads, "Harmonic points simulated at once (0: every hardware thread); default 1")->check(CLI::Range(0, 1024));
+  app.footer("Without --data the report shows the model's simulate protocols, or, when it has none, the data of its fit\n"
+             "blocks. --data is relative to the working directory, data lines of fit blocks to the .rheo file.");
+  return [o] {
+    if (!o->targets.any()) throw runtime::UsageError("rheo report writes nothing without -o REPORT.html or --plot FIGURE.svg; add one");
+    const lang::Program program = lang::load_program(o->file);
+    const lang::CheckedModel& model = chosen_model(program, o->file, o->model, "to report on", "choose one with --model");
+    const runtime::Network network = runtime::Network::compile(model);
+    report::ReportContent content = report::report_for_model(network, o->file, "rheo report");
+    if (!o->data.empty()) {
+      std::vector<runtime::FitDataSet> data;
+      for (const auto& path : o->data) data.push_back(runtime::read_fit_data(path, 1.0));
+      add_data(content, network, data, o->threads);
+    } else {
+      add_protocols(content, network, program, *o);
+      if (content.harmonic.empty() && content.histories.empty()) add_data(content, network, fit_block_data(program, model.name, o->file), o->threads);
+    }
+    if (content.harmonic.empty() && content.histories.empty())
+      throw runtime::UsageError(fmt::format("model '{}' in {} has no simulate protocol and no fit data to report; give --data FILE.csv "
+                                            "or add a simulate block",
+                                            model.name, o->file));
+    write_report_files(content, o->targets);
+    return runtime::exit_code::ok;
+  };
+}
+
+}  // namespace rheo::cli

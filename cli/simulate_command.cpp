@@ -1,0 +1,148 @@
+#include "lang/diagnostics.hpp"
+#include "lang/frontend.hpp"
+#include "lang/protocol_schema.hpp"
+#include "lang/text_encoding.hpp"
+#include "cli/commands.hpp"
+#include "cli/report_files.hpp"
+#include "runtime/core/errors.hpp"
+#include "runtime/network/network.hpp"
+#include "runtime/io/output.hpp"
+#include "runtime/protocols/run_protocols.hpp"
+
+#include <fmt/format.h>
+
+#include <filesystem>
+#include <iostream>
+#include <memory>
+#include <optional>
+#include <vector>
+
+namespace rheo::cli {
+namespace {
+
+struct Options {
+  std::string file;
+  std::string output;
+  std::string model;
+  std::string protocol;
+  std::vector<std::string> settings;
+  bool json = false;
+  bool elements = false;
+  std::optional<lang::SolverChoice> solver;
+  int threads = 1;
+  ReportTargets report;
+};
+
+void apply_overrides(lang::Protocol& protocol, const Options& o) {
+  for (const auto& text : o.settings) {
+    try {
+      lang::override_setting(protocol, lang::parse_setting(protocol.kind, text));
+    } catch (const lang::CompileError& e) {
+      throw runtime::UsageError(
+          fmt::format("--set '{}' for protocol {}:\n{}", lang::printable(text), lang::protocol_name(protocol.kind), e.what()));
+    }
+  }
+  lang::CommonSettings& common = lang::common(protocol.settings);
+  if (o.solver) common.solver = *o.solver;
+  if (o.json) common.format = lang::OutputFormat::json;
+  if (o.elements) common.elements = true;
+}
+
+}  // namespace
+
+Command add_simulate_command(CLI::App& app) {
+  auto o = std::make_shared<Options>();
+  app.add_option("file", o->file, "The .rheo file")->required();
+  app.add_option("-o,--output", o->output, "Write the result here ('-' for standard output); needs exactly one protocol to run");
+  app.add_option("--model", o->model, "Run only the simulate blocks of this model");
+  app.add_option("--protocol", o->protocol, "Run only protocols of this kind (harmonic, static, quasistatic, history, step)");
+  app.add_option("--set", o->settings,
+                 "Override a protocol setting, in the file's syntax, e.g. --set 'amplitude = [0.1, 1] mm' "
+                 "--set 'frequency = 1 Hz .. 20 Hz step 1 Hz' --set 'steps_per_cycle = 4096'");
+  app.add_flag("--json", o->json, "Write JSON instead of CSV");
+  app.add_flag("--elements", o->elements, "Time histories: add every element's force and elongation");
+  app.add_option_function<std::string>(
+         "--solver", [o](const std::string& word) { o->solver = lang::solver_choice_named(word); },
+                 "auto | fixed | sundials: the integrator of every protocol (overrides `solver =` in the file); "
+                 "auto takes SUNDIALS IDA for networks with an inerter or blocks alternating more than 3 deep, "
+                 "the fixed-step kernels otherwise")
+      ->check(CLI::IsMember(lang::solver_choice_words()));
+  app.add_option("--threads", o->threads,
+                 "Harmonic grid points simulated at once (0: every hardware thread); results do not depend on it; default 1")
+      ->check(CLI::Range(0, 1024));
+  add_report_options(app, o->report, true);
+  app.footer("Results go where each protocol's `output \"FILE\"` line says (relative to the .rheo file), "
+             "else to standard output.");
+  return [o] {
+    const lang::Program program = lang::load_program(o->file);
+    struct Job {
+      const lang::CheckedModel* model;
+      lang::Protocol protocol;
+    };
+    std::vector<Job> jobs;
+    for (const auto& sim : program.simulations) {
+      if (!o->model.empty() && sim.model != o->model) continue;
+      for (const auto& protocol : sim.protocols) {
+        if (!o->protocol.empty() && o->protocol != lang::protocol_name(protocol.kind)) continue;
+        jobs.push_back({program.find_model(sim.model), protocol});
+      }
+    }
+    if (jobs.empty())
+      throw runtime::UsageError(fmt::format("{} has no simulate block{}; add one, e.g.\n  simulate {{\n    harmonic frequency = 1 Hz .. 51 Hz step 2 Hz, amplitude = [0.2, 1.0] mm\n  }}",
+                                            o->file, o->model.empty() && o->protocol.empty() ? "" : " matching --model/--protocol"));
+    if (!o->output.empty() && jobs.size() != 1)
+      throw runtime::UsageError(fmt::format("-o names one output but {} protocols would run; select one with --protocol or --model", jobs.size()));
+    if (o->report.any())
+      for (const auto& job : jobs)
+        if (job.model != jobs.front().model)
+          throw runtime::UsageError(fmt::format("--report and --plot show one model, but models {} and {} would run; select one with --model",
+                                                jobs.front().model->name, job.model->name));
+    // Every destination is checked before anything runs, and every protocol runs before any
+    // output is written: a bad path, a later protocol's bad data file or a numerical failure
+    // leaves every earlier output intact.
+    std::vector<std::string> destinations;
+    for (const auto& job : jobs) {
+      std::string destination = o->output;
+      if (destination.empty() && !job.protocol.output.empty())
+        destination = (std::filesystem::path(o->file).parent_path() / job.protocol.output).string();
+      runtime::check_output_destination(destination);
+      destinations.push_back(std::move(destination));
+    }
+    check_report_targets(o->report);
+    std::optional<runtime::report::ReportContent> report;
+    std::vector<runtime::ProtocolResult> results;
+    for (auto& job : jobs) {
+      apply_overrides(job.protocol, *o);
+      const runtime::Network network = runtime::Network::compile(*job.model);
+      runtime::ProtocolResult result = runtime::run_protocol(network, job.protocol, o->file, o->threads);
+      if (o->report.any()) {
+        if (!report) report = runtime::report::report_for_model(network, o->file, "rheo simulate");
+        runtime::report::add_simulation_result(*report, fmt::format("{} protocol ({}:{})", lang::protocol_name(job.protocol.kind),
+                                                                    job.protocol.where.file, job.protocol.where.line),
+                                               result);
+      }
+      results.push_back(std::move(result));
+    }
+    int not_converged = 0;
+    for (std::size_t k = 0; k < jobs.size(); ++k) {
+      const auto& job = jobs[k];
+      const runtime::ProtocolResult& result = results[k];
+      const std::string& destination = destinations[k];
+      runtime::write_output(destination, runtime::rendered(result, lang::common(job.protocol.settings).format));
+      std::cerr << result.notes;
+      if (!destination.empty() && destination != "-")
+        std::cerr << fmt::format("rheo: {} of model {}: {} {} written to {}\n", lang::protocol_name(job.protocol.kind),
+                                 job.model->name, result.size(),
+                                 job.protocol.kind == lang::ProtocolKind::harmonic ? "points" : "samples", destination);
+      not_converged += result.not_converged;
+    }
+    if (report) write_report_files(*report, o->report);
+    if (not_converged > 0) {
+      std::cerr << fmt::format("rheo: {} harmonic point(s) did not reach steady state (column 'converged' = 0)\n", not_converged);
+      return runtime::exit_code::numerical;
+    }
+    return runtime::exit_code::ok;
+  };
+}
+
+}  // namespace rheo::cli

@@ -1,0 +1,218 @@
+#include "runtime/closed_form/periodic_closed_form.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <complex>
+#include <numbers>
+#include <vector>
+
+namespace rheo::runtime {
+namespace {
+
+constexpr double half_pi = 0.5 * std::numbers::pi;
+constexpr int samples_per_half_cycle = 32;
+
+// The loading half of the steady cycle, theta in [-pi/2, pi/2], as the sum of
+//   a sin(theta) + b cos(theta) + Y(u0 sin theta) + constant + sum over slipping frictions,
+// where a gathers every branch linear in u (springs, Maxwell K', frictions that never slip).
+// The per-friction arrays are scratch space reused from point to point (no allocation once
+// they have grown).
+struct LoadingHalf {
+  double u0 = 0.0;
+  double a = 0.0;         // N
+  double b = 0.0;         // N
+  double d10 = 0.0, d20 = 0.0, d30 = 0.0;  // summed Yeoh constants
+  double constant = 0.0;  // sliders, N
+  std::vector<double> slip_k, slip_fy, slip_theta;  // frictions with u0 > uy; theta_q where they start to slip
+  std::vector<double> ends;                         // piece ends
+
+  void clear() {
+    a = b = d10 = d20 = d30 = constant = 0.0;
+    slip_k.clear(), slip_fy.clear(), slip_theta.clear(), ends.clear();
+  }
+  double force(double theta) const {
+    const double s = std::sin(theta);
+    const double u = u0 * s;
+    const double u2 = u * u;
+    double f = a * s + b * std::cos(theta) + u * (2.0 * d10 + u2 * (4.0 * d20 + 6.0 * d30 * u2)) + constant;
+    for (std::size_t q = 0; q < slip_k.size(); ++q) f += std::min(slip_fy[q], -slip_fy[q] + slip_k[q] * u0 * (1.0 + s));
+    return f;
+  }
+  // Stiffness (dF/du) of the slipping frictions still elastic on the piece holding `piece_mid`.
+  double elastic_stiffness_on(double piece_mid) const {
+    double k = 0.0;
+    for (std::size_t q = 0; q < slip_k.size(); ++q)
+      if (piece_mid < slip_theta[q]) k += slip_k[q];
+    return k;
+  }
+  // dF/dtheta and d2F/dtheta2 at (sin, cos) of theta inside a piece whose elastic frictions add `k_elastic` [N/mm].
+  void derivatives(double s, double c, double k_elastic, double& first, double& second) const {
+    const double u = u0 * s, u2 = u * u;
+    const double dy = 2.0 * d10 + u2 * (12.0 * d20 + 30.0 * d30 * u2);
+    const double d2y = u * (24.0 * d20 + 120.0 * d30 * u2);
+    const double in_phase = a + u0 * (dy + k_elastic);
+    first = c * in_phase - b * s;
+    second = -s * in_phase + c * c * u0 * u0 * d2y - b * c;
+  }
+  // A lower bound of dF/du over |u| <= u0 without the frictions' share (>= 0).
+  double least_in_phase() const {
+    const double s_max = u0 * u0;
+    auto dy = [&](double s) { return 2.0 * d10 + s * (12.0 * d20 + 30.0 * d30 * s); };
+    double least = std::min(dy(0.0), dy(s_max));
+    if (d30 != 0.0) {
+      const double s_star = -d20 / (5.0 * d30);
+      if (s_star > 0.0 && s_star < s_max) least = std::min(least, dy(s_star));
+    }
+    return a + u0 * least;
+  }
+};
+
+// Root of dF/dtheta in [lo, hi] with dF(lo) > 0 >= dF(hi): Newton, bisecting whenever a step leaves the bracket.
+double stationary_point(const LoadingHalf& h, double lo, double hi, double k_elastic) {
+  double x = 0.5 * (lo + hi);
+  for (int iteration = 0; iteration < 100 && hi - lo > 1e-15; ++iteration) {
+    double first = 0.0, second = 0.0;
+    h.derivatives(std::sin(x), std::cos(x), k_elastic, first, second);
+    if (first > 0.0) lo = x; else hi = x;
+    const double newton = second < 0.0 ? x - first / second : lo - 1.0;
+    const double next = (newton > lo && newton < hi) ? newton : 0.5 * (lo + hi);
+    if (std::abs(next - x) <= 1e-16 * (1.0 + std::abs(x))) return next;
+    x = next;
+  }
+  return x;
+}
+
+// max F over the loading half. When dF/dtheta >= 0 on [-pi/2, 0] is guaranteed (every branch's
+// in-phase stiffness non-negative, b >= 0), only [0, pi/2] is searched.
+double loading_half_maximum(LoadingHalf& h) {
+  const double from = h.b >= 0.0 && h.least_in_phase() >= 0.0 ? 0.0 : -half_pi;
+  h.ends.assign({from, half_pi});
+  for (double t : h.slip_theta)
+    if (t > from) h.ends.push_back(t);
+  std::sort(h.ends.begin(), h.ends.end());
+  double best = h.force(from);
+  for (std::size_t p = 0; p + 1 < h.ends.size(); ++p) {
+    const double lo = h.ends[p], hi = h.ends[p + 1];
+    if (!(hi > lo)) continue;
+    best = std::max(best, h.force(hi));
+    const double k_elastic = h.elastic_stiffness_on(0.5 * (lo + hi));
+    const int samples = std::max(2, static_cast<int>(std::ceil(samples_per_half_cycle * (hi - lo) / std::numbers::pi)));
+    // sin and cos along the piece by rotation: theta_j = lo + j step.
+    const double step = (hi - lo) / samples, cos_step = std::cos(step), sin_step = std::sin(step);
+    double s = std::sin(lo), c = std::cos(lo);
+    double previous_slope = 0.0, unused = 0.0;
+    h.derivatives(s, c, k_elastic, previous_slope, unused);
+    for (int j = 1; j <= samples; ++j) {
+      const double next_s = s * cos_step + c * sin_step;
+      c = c * cos_step - s * sin_step;
+      s = next_s;
+      double slope = 0.0;
+      h.derivatives(s, c, k_elastic, slope, unused);
+      if (previous_slope > 0.0 && slope <= 0.0) {
+        const double left = lo + (j - 1) * step, right = j == samples ? hi : lo + j * step;
+        best = std::max(best, h.force(stationary_point(h, left, right, k_elastic)));
+      }
+      previous_slope = slope;
+    }
+  }
+  return best;
+}
+
+using Complex = std::complex<double>;
+
+// K* of a linear subtree at angular frequency omega [rad/s] (see the header).
+Complex subtree_stiffness(const Network& network, int index, double omega) {
+  const Topology& t = network.topology();
+  const TreeNode& node = t.nodes[static_cast<std::size_t>(index)];
+  auto p = [&](int slot) { return network.parameter(node.param[slot]); };
+  const Complex i{0.0, 1.0};
+  switch (node.kind) {
+    case NodeKind::spring: return p(0);
+    case NodeKind::dashpot: return i * omega * p(0);
+    case NodeKind::inerter: return -p(0) * omega * omega;
+    case NodeKind::maxwell: {
+      const double tau = p(1) / p(0);
+      return p(0) * i * omega * tau / (1.0 + i * omega * tau);
+    }
+    case NodeKind::parallel:
+    case NodeKind::series: {
+      Complex sum{0.0, 0.0};
+      for (int c = 0; c < node.child_count; ++c) {
+        const Complex k = subtree_stiffness(network, t.children[static_cast<std::size_t>(node.first_child + c)], omega);
+        if (node.kind == NodeKind::parallel) sum += k;
+        else if (k == Complex{0.0, 0.0}) return k;
+        else sum += 1.0 / k;
+      }
+      return node.kind == NodeKind::parallel || sum == Complex{0.0, 0.0} ? sum : 1.0 / sum;
+    }
+    default: return 0.0;  // excluded by has_closed_form_periodic_state
+  }
+}
+
+}  // namespace
+
+bool has_closed_form_periodic_state(const Network& network) {
+  const Topology& t = network.topology();
+  return std::all_of(t.subtrees.begin(), t.subtrees.end(), [&](int root) { return t.nodes[static_cast<std::size_t>(root)].linear; });
+}
+
+HarmonicPoint closed_form_harmonic_point(const Network& network, double amplitude, double frequency,
+                                         HarmonicDefinition definition) {
+  const Coefficients& c = network.coefficients();
+  const double u0 = amplitude;
+  const double omega = 2.0 * std::numbers::pi * frequency;
+  const double pi = std::numbers::pi;
+
+  thread_local LoadingHalf h;
+  h.clear();
+  h.u0 = u0;
+  double storage = c.spring_k;         // K'_1 [N/mm]
+  double loss = c.dashpot_c * omega;   // K''_1 [N/mm]; U = pi u0^2 K''_1 for every branch
+  for (std::size_t i = 0; i < c.maxwell_k.size(); ++i) {
+    const double wt = omega * c.maxwell_c[i] / c.maxwell_k[i];
+    const double scale = c.maxwell_k[i] / (1.0 + wt * wt);
+    storage += scale * wt * wt;
+    loss += scale * wt;
+  }
+  for (int root : network.topology().subtrees) {
+    const Complex k = subtree_stiffness(network, root, omega);
+    storage += k.real();
+    loss += k.imag();
+  }
+  h.a = u0 * storage;
+  h.b = u0 * loss;
+  for (std::size_t i = 0; i < c.yeoh_d10.size(); ++i) {
+    h.d10 += c.yeoh_d10[i];
+    h.d20 += c.yeoh_d20[i];
+    h.d30 += c.yeoh_d30[i];
+  }
+  storage += 2.0 * h.d10 + 3.0 * h.d20 * u0 * u0 + 3.75 * h.d30 * u0 * u0 * u0 * u0;
+  for (std::size_t i = 0; i < c.friction_k.size(); ++i) {
+    const double k = c.friction_k[i], fy = c.friction_fy[i], uy = fy / k;
+    if (u0 <= uy) {
+      h.a += k * u0;
+      storage += k;
+      continue;
+    }
+    const double s = 2.0 * uy / u0 - 1.0;
+    const double theta = std::asin(s);
+    h.slip_k.push_back(k);
+    h.slip_fy.push_back(fy);
+    h.slip_theta.push_back(theta);
+    storage += k / pi * (theta + half_pi + s * std::cos(theta));
+    loss += 4.0 * fy * (u0 - uy) / (pi * u0 * u0);
+  }
+  for (double fy : c.slider_fy) {
+    h.constant += fy;
+    loss += 4.0 * fy / (pi * u0);
+  }
+
+  HarmonicPoint point;
+  point.amplitude = amplitude;
+  point.frequency = frequency;
+  point.converged = true;
+  point.measures = measures_from(loading_half_maximum(h), storage, loss, u0, definition);
+  return point;
+}
+
+}  // namespace rheo::runtime

@@ -1,0 +1,179 @@
+// DaeIntegrator's events: where an element switches, the modes change, the coordinates are
+// re-chosen and IDA restarts (the contract is in dae_integrator.hpp).
+#include "runtime/dae/dae_integrator.hpp"
+
+#include "runtime/dae/dae_integrator_detail.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+#include <utility>
+
+namespace rheo::runtime {
+
+// Re-chooses the coordinates for the current modes, mapping s and w from the positions and the
+// rates of the rate edges under the previous coordinates, and sets which way each root
+// function may cross next (a stuck slider's force or an open gap's elongation either way; a
+// slipping slider's rate or a closed gap's force only back towards zero).
+void DaeIntegrator::rechoose_coordinates(double t) {
+  const DriveState drive = drive_at(t);
+  edge_forces(drive, y_.data(), yp_.data(), force_.data());  // rate_: every rate edge's, old coordinates
+  kinematics_ = ModeKinematics::make(graph_, modes_);
+  const int s0 = layout_.rate_coordinate(0), w0 = layout_.inerter_velocity(0);
+  std::fill(y_.begin() + s0, y_.begin() + layout_.bouc_wen_state(0), 0.0);
+  std::fill(yp_.begin() + s0, yp_.begin() + layout_.bouc_wen_state(0), 0.0);
+  for (int j = 0; j < kinematics_.coordinates; ++j) {
+    const int rate_index = at(kinematics_.coordinate_rate, j);
+    const Edge& edge = at(graph_.edges, at(graph_.rate_edges, rate_index));
+    at(y_, s0 + j) = elongation(y_.data(), drive, edge);
+    at(yp_, s0 + j) = at(rate_, rate_index);
+    const int slot = at(kinematics_.velocity_slot, j);
+    if (slot >= 0) at(y_, w0 + slot) = at(rate_, rate_index);
+  }
+  for (int l = 0; l < layout_.switch_forces; ++l) {
+    const int mode = at(modes_, l);
+    at(root_direction_, 2 * l) = mode == 0 ? 1 : -mode;
+    at(root_direction_, 2 * l + 1) = mode == 0 ? -1 : 0;
+  }
+  if (layout_.switch_forces > 0) sundials::check_ida(IDASetRootDirection(solver_->ida.get(), root_direction_.data()), "IDASetRootDirection");
+}
+
+// After IDACalcIC: a slider stuck beyond its yield force slips, a gap closed under tension opens.
+// True when no mode had to change.
+bool DaeIntegrator::switch_inconsistent_modes() {
+  bool consistent = true;
+  for (int l = 0; l < layout_.switch_forces; ++l) {
+    const Edge& edge = switch_edge(l);
+    std::int8_t& mode = at(modes_, l);
+    const double lambda = at(y_, layout_.switch_force(l));
+    if (edge.kind == EdgeKind::slider && mode == 0 && std::abs(lambda) > edge.p[0] * (1.0 + 0.5 * kSlack)) {
+      mode = lambda > 0.0 ? 1 : -1;
+      consistent = false;
+    } else if (edge.kind == EdgeKind::gap && mode != 0 && lambda * mode < -1e-12 * options_.force_scale) {
+      mode = 0;
+      consistent = false;
+    }
+  }
+  return consistent;
+}
+
+// Re-initialises IDA at t (with new coordinates when the modes changed) and makes the state
+// consistent; modes found inconsistent are switched and the restart repeated.
+void DaeIntegrator::restart(double t, bool modes_changed) {
+  if (!solver_) {
+    kinematics_ = ModeKinematics::make(graph_, modes_);
+    return;
+  }
+  void* mem = solver_->ida.get();
+  for (int attempt = 0;; ++attempt) {
+    if (modes_changed) rechoose_coordinates(t);
+    std::copy(y_.begin(), y_.end(), N_VGetArrayPointer(solver_->y.get()));
+    std::copy(yp_.begin(), yp_.end(), N_VGetArrayPointer(solver_->yp.get()));
+    collect_statistics();  // IDAReInit zeroes IDA's counters
+    sundials::check_ida(IDAReInit(mem, t, solver_->y.get(), solver_->yp.get()), "IDAReInit");
+    const double horizon = drive_.kind == DriveSignal::Kind::sine ? 1e-3 / std::max(drive_.omega, 1e-12)
+                                                                   : 1e-3 * (drive_.samples->time.back() - drive_.samples->time.front());
+    const int flag = IDACalcIC(mem, IDA_YA_YDP_INIT, t + horizon);
+    if (flag < 0) {
+      if (error_) std::rethrow_exception(std::exchange(error_, nullptr));
+      sundials::check_ida(flag, "IDACalcIC", fmt::format("no consistent state of model '{}' at t = {:g} s after an element switched; {}",
+                                                         graph_.model, t, last_message_));
+    }
+    sundials::check_ida(IDAGetConsistentIC(mem, solver_->y.get(), solver_->yp.get()), "IDAGetConsistentIC");
+    copy_from_solver();
+    if (switch_inconsistent_modes()) return;
+    if (attempt > 2 * layout_.switch_forces + 2)
+      throw NumericalError(fmt::format("model '{}': the sliders and gaps find no consistent state at t = {:g} s", graph_.model, t));
+    modes_changed = true;
+  }
+}
+
+// y_ and yp_ from IDA's vectors.
+void DaeIntegrator::copy_from_solver() {
+  const double* y = N_VGetArrayPointer(solver_->y.get());
+  const double* yp = N_VGetArrayPointer(solver_->yp.get());
+  std::copy(y, y + layout_.size(), y_.begin());
+  std::copy(yp, yp + layout_.size(), yp_.begin());
+}
+
+void DaeIntegrator::switch_modes(double t, const std::vector<int>& found) {
+  const DriveState drive = drive_at(t);
+  for (int l = 0; l < layout_.switch_forces; ++l) {
+    if (!at(found, 2 * l) && !at(found, 2 * l + 1)) continue;
+    const Edge& edge = switch_edge(l);
+    std::int8_t& mode = at(modes_, l);
+    double& held = at(held_, l);
+    if (edge.kind == EdgeKind::slider) {
+      if (mode == 0) {
+        mode = at(y_, layout_.switch_force(l)) > 0.0 ? 1 : -1;
+      } else {
+        mode = 0;
+        held = elongation(y_.data(), drive, edge);
+      }
+    } else if (mode == 0) {
+      mode = at(found, 2 * l) ? 1 : -1;
+      held = mode * edge.p[0];
+    } else {
+      mode = 0;
+    }
+  }
+  ++events_;
+  restart(t, true);
+}
+
+double DaeIntegrator::solve_to(double t_stop) {
+  void* mem = solver_->ida.get();
+  sundials::check_ida(IDASetStopTime(mem, t_stop), "IDASetStopTime");
+  double t_reached = time_;
+  const int flag = IDASolve(mem, t_stop, &t_reached, solver_->y.get(), solver_->yp.get(), IDA_NORMAL);
+  if (flag < 0) {
+    if (error_) std::rethrow_exception(std::exchange(error_, nullptr));
+    sundials::check_ida(flag, "IDASolve", fmt::format("model '{}' at t = {:g} s: {}", graph_.model, t_reached, last_message_));
+  }
+  copy_from_solver();
+  time_ = t_reached;
+  if (flag == IDA_ROOT_RETURN) {
+    sundials::check_ida(IDAGetRootInfo(mem, roots_found_.data()), "IDAGetRootInfo");
+    switch_modes(t_reached, roots_found_);
+  }
+  return t_reached;
+}
+
+// A slipping slider whose rate changes sign exactly at a sample of a piecewise-linear drive has
+// no root inside a step to find (the drive rate, and often the slip rate, are constant between
+// samples). A probe step of 1e-6 of the next interval shows the new sign; a reversed slider sticks
+// at the sample and the integration restarts there.
+void DaeIntegrator::stick_reversed_sliders() {
+  bool slipping = false;
+  for (int l = 0; l < layout_.switch_forces; ++l) slipping |= switch_edge(l).kind == EdgeKind::slider && at(modes_, l) != 0;
+  if (!slipping) return;
+  const double t0 = time_;
+  y_saved_ = y_;  // same sizes: copies without allocation
+  yp_saved_ = yp_;
+  const long events_before = events_;
+  const double interval = drive_.samples->time[segment_ + 1] - drive_.samples->time[segment_];
+  solve_to(t0 + 1e-6 * interval);
+  if (events_ != events_before) return;  // an event inside the probe step was handled there
+  std::vector<double>& g = root_values_;
+  roots(time_, y_.data(), yp_.data(), g.data());
+  bool reversed = false;
+  for (int l = 0; l < layout_.switch_forces; ++l) {
+    const std::int8_t mode = at(modes_, l);
+    if (switch_edge(l).kind != EdgeKind::slider || mode == 0 || at(g, 2 * l) * mode >= 0.0) continue;
+    at(modes_, l) = 0;
+    at(held_, l) = 0.0;
+    reversed = true;
+  }
+  if (!reversed) return;
+  y_ = y_saved_;
+  yp_ = yp_saved_;
+  time_ = t0;
+  const DriveState drive = drive_at(t0);
+  for (int l = 0; l < layout_.switch_forces; ++l)
+    if (switch_edge(l).kind == EdgeKind::slider && at(modes_, l) == 0) at(held_, l) = elongation(y_.data(), drive, switch_edge(l));
+  ++events_;
+  restart(t0, true);
+}
+
+}  // namespace rheo::runtime

@@ -1,0 +1,145 @@
+#include "runtime/dae/dae_graph.hpp"
+
+#include "runtime/core/errors.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <stdexcept>
+
+namespace rheo::runtime {
+namespace {
+
+using lang::ElementKind;
+
+struct GraphBuilder {
+  const Network& network;
+  DaeGraph& graph;
+
+  double value(const lang::Element& e, int slot) const { return network.parameter(e.parameters[static_cast<std::size_t>(slot)]); }
+  int new_node() { return graph.internal_nodes++; }
+
+  lang::SourceLocation where;  // of the leaf being placed
+
+  int add_edge(EdgeKind kind, int a, int b, std::initializer_list<double> p, const std::string& path) {
+    Edge edge;
+    edge.kind = kind;
+    edge.a = a;
+    edge.b = b;
+    int i = 0;
+    for (double v : p) edge.p[i++] = v;
+    edge.path = path;
+    edge.where = where;
+    graph.edges.push_back(edge);
+    return static_cast<int>(graph.edges.size()) - 1;
+  }
+
+  void place(const lang::Element& e, int a, int b) {
+    switch (e.kind) {
+      case ElementKind::parallel:
+        for (const auto& child : e.children) place(child, a, b);
+        return;
+      case ElementKind::series: {
+        int from = a;
+        for (std::size_t i = 0; i < e.children.size(); ++i) {
+          const int to = i + 1 == e.children.size() ? b : new_node();
+          place(e.children[i], from, to);
+          from = to;
+        }
+        return;
+      }
+      default: break;
+    }
+    EdgeProbe probe{e.path, {}, {}};
+    where = e.where;
+    switch (e.kind) {
+      case ElementKind::spring: probe.edges = {add_edge(EdgeKind::spring, a, b, {value(e, 0)}, e.path)}; break;
+      case ElementKind::yeoh:
+        probe.edges = {add_edge(EdgeKind::yeoh, a, b, {value(e, 0), value(e, 1), value(e, 2)}, e.path)};
+        break;
+      case ElementKind::dashpot: probe.edges = {add_edge(EdgeKind::dashpot, a, b, {value(e, 0)}, e.path)}; break;
+      case ElementKind::quadratic_dashpot:
+        probe.edges = {add_edge(EdgeKind::quadratic_dashpot, a, b, {value(e, 0)}, e.path)};
+        break;
+      case ElementKind::inerter: probe.edges = {add_edge(EdgeKind::inerter, a, b, {value(e, 0)}, e.path)}; break;
+      case ElementKind::bouc_wen:
+        probe.edges = {add_edge(EdgeKind::bouc_wen, a, b, {value(e, 0), value(e, 1), value(e, 2)}, e.path)};
+        break;
+      case ElementKind::slider: probe.edges = {add_edge(EdgeKind::slider, a, b, {value(e, 0)}, e.path)}; break;
+      case ElementKind::gap: probe.edges = {add_edge(EdgeKind::gap, a, b, {0.5 * value(e, 0)}, e.path)}; break;
+      case ElementKind::maxwell: {
+        const int mid = new_node();
+        probe.edges = {add_edge(EdgeKind::spring, a, mid, {value(e, 0)}, e.path),
+                       add_edge(EdgeKind::dashpot, mid, b, {value(e, 1)}, e.path)};
+        break;
+      }
+      case ElementKind::friction: {
+        const int mid = new_node();
+        probe.edges = {add_edge(EdgeKind::spring, a, mid, {value(e, 0)}, e.path),
+                       add_edge(EdgeKind::slider, mid, b, {value(e, 1)}, e.path)};
+        break;
+      }
+      case ElementKind::springpot: place_springpot(e, a, b, probe); break;
+      default: break;
+    }
+    if (probe.force_edges.empty()) probe.force_edges = {probe.edges.front()};
+    graph.probes.push_back(std::move(probe));
+  }
+
+  // The modes are the compiled network's (derived parameters), so both backends share one chain.
+  void place_springpot(const lang::Element& e, int a, int b, EdgeProbe& probe) {
+    const auto& chains = network.topology().springpots;
+    const auto chain = std::find_if(chains.begin(), chains.end(), [&](const SpringpotChain& c) { return c.path == e.path; });
+    for (int j = 0; j < chain->modes; ++j) {
+      const int mid = new_node();
+      const int spring = add_edge(EdgeKind::spring, a, mid, {network.parameter(chain->first_derived + j)}, e.path);
+      const int dashpot = add_edge(EdgeKind::dashpot, mid, b, {network.parameter(chain->first_derived + chain->modes + j)}, e.path);
+      if (j == 0) probe.edges = {spring, dashpot};
+      probe.force_edges.push_back(spring);
+    }
+  }
+};
+
+bool is_switch(EdgeKind kind) { return kind == EdgeKind::slider || kind == EdgeKind::gap; }
+
+}  // namespace
+
+DaeGraph DaeGraph::build(const Network& network) {
+  DaeGraph graph;
+  graph.model = network.model().name;
+  GraphBuilder builder{network, graph, {}};
+  builder.place(network.model().root, kTerminal, kGround);
+
+  std::vector<int> held(static_cast<std::size_t>(graph.internal_nodes), 0);
+  for (std::size_t i = 0; i < graph.edges.size(); ++i) {
+    const Edge& edge = graph.edges[i];
+    const int index = static_cast<int>(i);
+    switch (edge.kind) {
+      case EdgeKind::dashpot:
+      case EdgeKind::quadratic_dashpot:
+      case EdgeKind::inerter: graph.rate_edges.push_back(index); break;
+      case EdgeKind::bouc_wen: graph.bouc_wen_edges.push_back(index); break;
+      case EdgeKind::slider:
+      case EdgeKind::gap: graph.switch_edges.push_back(index); break;
+      default: break;
+    }
+    if (edge.kind == EdgeKind::inerter && edge.a < 0 && edge.b < 0)
+      throw ModelError(fmt::format(
+          "{}inerter '{}' of model '{}' sits directly between the terminal and ground, so its force b d2u/dt2 needs the "
+          "drive's acceleration, which a sampled drive does not have; put it in series with a spring, or use solver = fixed",
+          error_at(edge.where), edge.path, graph.model));
+    if (!is_switch(edge.kind))
+      for (int node : {edge.a, edge.b})
+        if (node >= 0) held[static_cast<std::size_t>(node)] = 1;
+  }
+  for (const Edge& edge : graph.edges)
+    for (int node : {edge.a, edge.b})
+      if (node >= 0 && !held[static_cast<std::size_t>(node)])
+        throw ModelError(fmt::format(
+            "{}element '{}' of model '{}' meets another slider or gap at a node that nothing else holds, so the node's "
+            "position is undetermined while they slip; merge the sliders or put a spring between them",
+            error_at(edge.where), edge.path, graph.model));
+  return graph;
+}
+
+}  // namespace rheo::runtime

@@ -1,0 +1,359 @@
+#include "runtime/dae/dae_integrator.hpp"
+
+#include "runtime/dae/dae_integrator_detail.hpp"
+#include "runtime/network/leaf_kernels.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <utility>
+
+namespace rheo::runtime {
+
+void capture_ida_message(int, const char*, const char* function, char* message, void* user_data) {
+  auto* self = static_cast<DaeIntegrator*>(user_data);
+  self->last_message_ = fmt::format("{}: {}", function ? function : "IDA", message ? message : "");
+}
+
+namespace {
+
+// C trampolines: exceptions never cross the C library; they are stored and rethrown after the
+// call returns (a negative return makes IDA stop with IDA_RES_FAIL / IDA_RTFUNC_FAIL).
+struct Callbacks {
+  static int residual(realtype t, N_Vector y, N_Vector yp, N_Vector r, void* data) noexcept;
+  static int roots(realtype t, N_Vector y, N_Vector yp, realtype* g, void* data) noexcept;
+};
+
+}  // namespace
+
+namespace {
+DaeIntegrator* self(void* data) { return static_cast<DaeIntegrator*>(data); }
+}  // namespace
+
+DaeLayout DaeLayout::of(const DaeGraph& graph) {
+  DaeLayout l;
+  l.positions = graph.internal_nodes;
+  l.switch_forces = static_cast<int>(graph.switch_edges.size());
+  l.rate_coordinates = static_cast<int>(graph.rate_edges.size());
+  for (int e : graph.rate_edges) l.inerter_velocities += at(graph.edges, e).kind == EdgeKind::inerter ? 1 : 0;
+  l.bouc_wen_states = static_cast<int>(graph.bouc_wen_edges.size());
+  return l;
+}
+
+DaeLayout::Block DaeLayout::block_of(int i) const {
+  if (i < switch_force(0)) return Block::position;
+  if (i < rate_coordinate(0)) return Block::switch_force;
+  if (i < inerter_velocity(0)) return Block::rate_coordinate;
+  if (i < bouc_wen_state(0)) return Block::inerter_velocity;
+  return Block::bouc_wen_state;
+}
+
+const Edge& DaeIntegrator::switch_edge(int l) const { return at(graph_.edges, at(graph_.switch_edges, l)); }
+
+int Callbacks::residual(realtype t, N_Vector y, N_Vector yp, N_Vector r, void* data) noexcept {
+  try {
+    self(data)->residual(t, N_VGetArrayPointer(y), N_VGetArrayPointer(yp), N_VGetArrayPointer(r));
+    return 0;
+  } catch (...) {
+    self(data)->store_error(std::current_exception());
+    return -1;
+  }
+}
+
+int Callbacks::roots(realtype t, N_Vector y, N_Vector yp, realtype* g, void* data) noexcept {
+  try {
+    self(data)->roots(t, N_VGetArrayPointer(y), N_VGetArrayPointer(yp), g);
+    return 0;
+  } catch (...) {
+    self(data)->store_error(std::current_exception());
+    return -1;
+  }
+}
+
+DaeIntegrator::DaeIntegrator(const DaeGraph& graph, const DaeOptions& options)
+    : graph_(graph), options_(options), layout_(DaeLayout::of(graph)) {
+  const auto ne = graph.edges.size();
+  auto index_of_edge = [ne](const std::vector<int>& list) {
+    std::vector<int> index(ne, -1);
+    for (std::size_t i = 0; i < list.size(); ++i) at(index, list[i]) = static_cast<int>(i);
+    return index;
+  };
+  rate_of_edge_ = index_of_edge(graph.rate_edges);
+  switch_of_edge_ = index_of_edge(graph.switch_edges);
+  bouc_wen_of_edge_ = index_of_edge(graph.bouc_wen_edges);
+  const int n = layout_.size();
+  const auto roots = static_cast<std::size_t>(2 * layout_.switch_forces);  // two root functions per switch edge
+  rate_.assign(graph.rate_edges.size(), 0.0);
+  acceleration_.assign(graph.rate_edges.size(), 0.0);
+  force_.assign(ne, 0.0);
+  y_.assign(static_cast<std::size_t>(n), 0.0);
+  yp_ = y_;
+  y_saved_ = y_;
+  yp_saved_ = y_;
+  root_values_.assign(roots, 0.0);
+  root_direction_.assign(roots, 0);
+  roots_found_.assign(roots, 0);
+  if (n == 0) return;  // purely algebraic: forces follow the drive directly
+
+  using namespace sundials;
+  solver_ = std::make_unique<Solver>();
+  SUNContext ctx = nullptr;
+  check_sundials(SUNContext_Create(nullptr, &ctx), "SUNContext_Create");
+  solver_->context.reset(ctx);
+  solver_->y.reset(owned(N_VNew_Serial(n, ctx), "N_VNew_Serial"));
+  solver_->yp.reset(owned(N_VNew_Serial(n, ctx), "N_VNew_Serial"));
+  solver_->id.reset(owned(N_VNew_Serial(n, ctx), "N_VNew_Serial"));
+  solver_->tolerance.reset(owned(N_VNew_Serial(n, ctx), "N_VNew_Serial"));
+  N_VConst(0.0, solver_->y.get());
+  N_VConst(0.0, solver_->yp.get());
+  double* id = N_VGetArrayPointer(solver_->id.get());
+  double* atol = N_VGetArrayPointer(solver_->tolerance.get());
+  const double rtol = options_.relative_tolerance;
+  for (int i = 0; i < n; ++i) {
+    id[i] = layout_.differential(i) ? 1.0 : 0.0;
+    double scale = 1.0;  // Bouc-Wen states
+    switch (layout_.block_of(i)) {
+      case DaeLayout::Block::position:
+      case DaeLayout::Block::rate_coordinate: scale = options_.length_scale; break;
+      case DaeLayout::Block::switch_force: scale = options_.force_scale; break;
+      case DaeLayout::Block::inerter_velocity: scale = options_.velocity_scale; break;
+      case DaeLayout::Block::bouc_wen_state: break;
+    }
+    atol[i] = rtol * scale;
+  }
+  solver_->ida.reset(owned(IDACreate(ctx), "IDACreate"));
+  void* mem = solver_->ida.get();
+  check_ida(IDASetErrHandlerFn(mem, capture_ida_message, this), "IDASetErrHandlerFn");
+  check_ida(IDAInit(mem, Callbacks::residual, 0.0, solver_->y.get(), solver_->yp.get()), "IDAInit");
+  check_ida(IDASVtolerances(mem, rtol, solver_->tolerance.get()), "IDASVtolerances");
+  check_ida(IDASetUserData(mem, this), "IDASetUserData");
+  check_ida(IDASetId(mem, solver_->id.get()), "IDASetId");
+  check_ida(IDASetMaxNumSteps(mem, options_.max_steps), "IDASetMaxNumSteps");
+  solver_->jacobian.reset(owned(SUNDenseMatrix(n, n, ctx), "SUNDenseMatrix"));
+  solver_->linear_solver.reset(owned(SUNLinSol_Dense(solver_->y.get(), solver_->jacobian.get(), ctx), "SUNLinSol_Dense"));
+  check_ida(IDASetLinearSolver(mem, solver_->linear_solver.get(), solver_->jacobian.get()), "IDASetLinearSolver");
+  check_ida(IDASetNonlinConvCoef(mem, options_.newton_tolerance), "IDASetNonlinConvCoef");
+  if (layout_.switch_forces > 0) {
+    check_ida(IDARootInit(mem, 2 * layout_.switch_forces, Callbacks::roots), "IDARootInit");
+    check_ida(IDASetNoInactiveRootWarn(mem), "IDASetNoInactiveRootWarn");
+  }
+}
+
+DaeIntegrator::~DaeIntegrator() = default;
+
+DaeIntegrator::DriveState DaeIntegrator::drive_at(double t) const {
+  if (drive_.kind == DriveSignal::Kind::sine) {
+    const double s = std::sin(drive_.omega * t), c = std::cos(drive_.omega * t);
+    const double a = drive_.amplitude, w = drive_.omega;
+    return {a * s, a * w * c, -a * w * w * s};
+  }
+  const Drive& d = *drive_.samples;
+  const std::size_t k = std::min(segment_, d.time.size() - 2);
+  const double du = (d.displacement[k + 1] - d.displacement[k]) / (d.time[k + 1] - d.time[k]);
+  return {d.displacement[k] + du * (t - d.time[k]), du, 0.0};
+}
+
+double DaeIntegrator::elongation(const double* y, const DriveState& drive, const Edge& edge) {
+  auto position = [&](int node) { return node >= 0 ? y[node] : node == kTerminal ? drive.u : 0.0; };
+  return position(edge.a) - position(edge.b);
+}
+
+double DaeIntegrator::elongation_rate(const double* yp, const DriveState& drive, const Edge& edge) {
+  auto velocity = [&](int node) { return node >= 0 ? yp[node] : node == kTerminal ? drive.du : 0.0; };
+  return velocity(edge.a) - velocity(edge.b);
+}
+
+void DaeIntegrator::edge_forces(const DriveState& drive, const double* y, const double* yp, double* force) const {
+  const double* s_rate = yp + layout_.rate_coordinate(0);
+  const double* w_rate = yp + layout_.inerter_velocity(0);
+  const int q = kinematics_.coordinates;
+  for (int i = 0; i < layout_.rate_coordinates; ++i) {
+    const double* alpha = kinematics_.alpha.data() + static_cast<std::size_t>(i) * static_cast<std::size_t>(q);
+    double rate = at(kinematics_.beta, i) * drive.du;
+    double acceleration = at(kinematics_.beta, i) * drive.ddu;
+    for (int j = 0; j < q; ++j) {
+      rate += alpha[j] * s_rate[j];
+      const int slot = at(kinematics_.velocity_slot, j);
+      if (slot >= 0) acceleration += alpha[j] * w_rate[slot];
+    }
+    at(rate_, i) = rate;
+    at(acceleration_, i) = acceleration;
+  }
+  for (std::size_t i = 0; i < graph_.edges.size(); ++i) {
+    const Edge& edge = graph_.edges[i];
+    const double e = elongation(y, drive, edge);
+    const int rate_index = rate_of_edge_[i];
+    switch (edge.kind) {
+      case EdgeKind::spring: force[i] = edge.p[0] * e; break;
+      case EdgeKind::yeoh: force[i] = YeohLaw{edge.p[0], edge.p[1], edge.p[2]}.force(e); break;
+      case EdgeKind::dashpot: force[i] = edge.p[0] * at(rate_, rate_index); break;
+      case EdgeKind::quadratic_dashpot: {
+        const double v = at(rate_, rate_index);
+        force[i] = edge.p[0] * v * std::sqrt(v * v + kQuadraticDashpotVelocityEps * kQuadraticDashpotVelocityEps);
+        break;
+      }
+      case EdgeKind::inerter: force[i] = edge.p[0] * at(acceleration_, rate_index); break;
+      case EdgeKind::bouc_wen: force[i] = edge.p[2] * y[layout_.bouc_wen_state(bouc_wen_of_edge_[i])]; break;
+      case EdgeKind::slider:
+      case EdgeKind::gap: force[i] = y[layout_.switch_force(switch_of_edge_[i])]; break;
+    }
+  }
+}
+
+double DaeIntegrator::terminal_force(const double* force) const {
+  double f = 0.0;
+  for (std::size_t i = 0; i < graph_.edges.size(); ++i) {
+    if (graph_.edges[i].a == kTerminal) f += force[i];
+    if (graph_.edges[i].b == kTerminal) f -= force[i];
+  }
+  return f;
+}
+
+void DaeIntegrator::residual(double t, const double* y, const double* yp, double* r) {
+  const DriveState drive = drive_at(t);
+  edge_forces(drive, y, yp, force_.data());
+  std::fill(r, r + layout_.positions, 0.0);
+  for (std::size_t i = 0; i < graph_.edges.size(); ++i) {
+    const Edge& edge = graph_.edges[i];
+    if (edge.a >= 0) r[edge.a] -= force_[i];
+    if (edge.b >= 0) r[edge.b] += force_[i];
+  }
+  for (int l = 0; l < layout_.switch_forces; ++l) {
+    const Edge& edge = switch_edge(l);
+    const std::int8_t mode = at(modes_, l);
+    const int i = layout_.switch_force(l);
+    const double lambda = y[i];
+    if (is_rigid(edge, mode)) r[i] = elongation(y, drive, edge) - at(held_, l);
+    else if (edge.kind == EdgeKind::slider) r[i] = lambda - mode * edge.p[0];
+    else r[i] = lambda;
+  }
+  const int s0 = layout_.rate_coordinate(0), w0 = layout_.inerter_velocity(0), z0 = layout_.bouc_wen_state(0);
+  for (int k = 0; k < layout_.rate_coordinates; ++k) {
+    if (k < kinematics_.coordinates) {
+      const Edge& edge = at(graph_.edges, at(graph_.rate_edges, at(kinematics_.coordinate_rate, k)));
+      r[s0 + k] = y[s0 + k] - elongation(y, drive, edge);
+    } else {
+      r[s0 + k] = yp[s0 + k];
+    }
+  }
+  for (int v = 0; v < layout_.inerter_velocities; ++v) r[w0 + v] = yp[w0 + v];
+  for (int j = 0; j < kinematics_.coordinates; ++j) {
+    const int slot = at(kinematics_.velocity_slot, j);
+    if (slot >= 0) r[w0 + slot] = y[w0 + slot] - yp[s0 + j];
+  }
+  for (int b = 0; b < layout_.bouc_wen_states; ++b) {
+    const Edge& edge = at(graph_.edges, at(graph_.bouc_wen_edges, b));
+    const double k = edge.p[0], n = edge.p[1], fy = edge.p[2];
+    const double z = y[z0 + b];
+    const double rate = elongation_rate(yp, drive, edge);
+    const double loading = z * rate > 0.0 ? 1.0 : 0.0;
+    r[z0 + b] = yp[z0 + b] - (k / fy) * rate * (1.0 - std::pow(std::abs(z), n) * loading);
+  }
+}
+
+void DaeIntegrator::roots(double t, const double* y, const double* yp, double* g) {
+  const DriveState drive = drive_at(t);
+  for (int l = 0; l < layout_.switch_forces; ++l) {
+    const Edge& edge = switch_edge(l);
+    const std::int8_t mode = at(modes_, l);
+    const double lambda = y[layout_.switch_force(l)];
+    double* out = g + 2 * l;
+    if (edge.kind == EdgeKind::slider) {
+      if (mode == 0) out[0] = lambda - edge.p[0] * (1.0 + kSlack), out[1] = lambda + edge.p[0] * (1.0 + kSlack);
+      else out[0] = elongation_rate(yp, drive, edge), out[1] = 1.0;
+    } else {
+      const double e = elongation(y, drive, edge);
+      if (mode == 0) out[0] = e - edge.p[0] * (1.0 + kGapSlack), out[1] = e + edge.p[0] * (1.0 + kGapSlack);
+      else out[0] = lambda, out[1] = 1.0;
+    }
+  }
+}
+
+void DaeIntegrator::start(const DriveSignal& drive) {
+  drive_ = drive;
+  segment_ = 0;
+  time_ = drive.kind == DriveSignal::Kind::samples ? drive.samples->time.front() : 0.0;
+  events_ = 0;
+  totals_ = {};
+  modes_.assign(static_cast<std::size_t>(layout_.switch_forces), 0);  // sliders stuck, gaps open
+  held_.assign(static_cast<std::size_t>(layout_.switch_forces), 0.0);
+  std::fill(y_.begin(), y_.end(), 0.0);
+  std::fill(yp_.begin(), yp_.end(), 0.0);
+  kinematics_ = ModeKinematics::make(graph_, modes_);
+  restart(time_, true);
+}
+
+double DaeIntegrator::advance(double t) {
+  const bool samples = drive_.kind == DriveSignal::Kind::samples;
+  if (!solver_) {
+    time_ = t;
+    if (samples)
+      while (segment_ + 2 < drive_.samples->time.size() && drive_.samples->time[segment_ + 1] < t) ++segment_;
+  }
+  while (solver_ && time_ < t) {
+    double stop = t;
+    const bool at_breakpoint = samples && segment_ + 2 < drive_.samples->time.size() && drive_.samples->time[segment_ + 1] <= t;
+    if (at_breakpoint) stop = drive_.samples->time[segment_ + 1];
+    solve_to(stop);
+    if (at_breakpoint && time_ >= stop) {
+      ++segment_;
+      restart(time_, false);  // the drive rate jumps here
+      stick_reversed_sliders();
+    }
+  }
+  edge_forces(drive_at(time_), y_.data(), yp_.data(), force_.data());
+  return terminal_force(force_.data());
+}
+
+void DaeIntegrator::element_outputs(std::vector<double>& force, std::vector<double>& element_elongation) const {
+  const DriveState drive = drive_at(time_);
+  edge_forces(drive, y_.data(), yp_.data(), force_.data());
+  force.resize(graph_.probes.size());
+  element_elongation.resize(graph_.probes.size());
+  for (std::size_t i = 0; i < graph_.probes.size(); ++i) {
+    const EdgeProbe& probe = graph_.probes[i];
+    force[i] = 0.0;
+    for (int edge : probe.force_edges) force[i] += at(force_, edge);
+    double e = 0.0;
+    for (int edge : probe.edges) e += elongation(y_.data(), drive, at(graph_.edges, edge));
+    element_elongation[i] = e;
+  }
+}
+
+void DaeIntegrator::collect_statistics() {
+  if (!solver_) return;
+  long steps = 0, residuals = 0;
+  IDAGetNumSteps(solver_->ida.get(), &steps);
+  IDAGetNumResEvals(solver_->ida.get(), &residuals);
+  totals_.steps += steps;
+  totals_.residual_evaluations += residuals;
+}
+
+double DaeIntegrator::change_since(const std::vector<double>& start, double length, double force, double velocity) const {
+  double change = 0.0;
+  for (int i = 0; i < layout_.size(); ++i) {
+    double scale = 1.0;  // Bouc-Wen states
+    switch (layout_.block_of(i)) {
+      case DaeLayout::Block::rate_coordinate: continue;  // events re-choose them
+      case DaeLayout::Block::position: scale = length; break;
+      case DaeLayout::Block::switch_force: scale = force; break;
+      case DaeLayout::Block::inerter_velocity: scale = velocity; break;
+      case DaeLayout::Block::bouc_wen_state: break;
+    }
+    change = std::max(change, std::abs(at(y_, i) - at(start, i)) / scale);
+  }
+  return change;
+}
+
+DaeStatistics DaeIntegrator::statistics() const {
+  DaeStatistics s = totals_;
+  s.events = events_;
+  if (!solver_) return s;
+  long steps = 0, residuals = 0;
+  IDAGetNumSteps(solver_->ida.get(), &steps);
+  IDAGetNumResEvals(solver_->ida.get(), &residuals);
+  s.steps += steps;
+  s.residual_evaluations += residuals;
+  return s;
+}
+
+}  // namespace rheo::runtime

@@ -1,0 +1,146 @@
+// Variable-step integration of a DaeGraph with SUNDIALS IDA (variable-order BDF), with events
+// where an element switches.
+//
+// Unknowns y = [x (internal node positions, mm, algebraic) | lambda (slider and gap forces, N,
+// algebraic) | s (rate coordinates, mm, differential; dae_modes.hpp) | w (velocities of inerter
+// coordinates, mm/s, differential) | z (Bouc-Wen states, -, differential)]. Residuals:
+//   node balance      sum of edge forces pulling the node = 0
+//   slider / gap      stuck or closed: e - e_held = 0;  slipping: lambda -+ fy = 0;  open: lambda = 0
+//   coordinate j      s_j - e_j(x, u) = 0                (slots beyond q: s' = 0)
+//   inerter coord j   w_j - s_j' = 0                     (unused slots: w' = 0)
+//   Bouc-Wen          z' - (k/fy) e' (1 - |z|^n (1 + sgn(z e'))/2) = 0, e' from the node rates
+// Events (IDA root functions, two per switch edge): a stuck slider's force reaches +-fy; a
+// slipping slider's rate crosses zero; an open gap's elongation reaches +-w/2; a closed gap's
+// force changes sign. At an event the mode changes, the coordinates are re-chosen, IDA is
+// re-initialised and IDACalcIC makes the algebraic unknowns and the rates consistent.
+//
+// The drive is a sine (its rate and acceleration exact) or piecewise linear: each sample is a
+// stop time at which the rate jumps, and the integration restarts there.
+#pragma once
+
+#include "runtime/dae/dae_graph.hpp"
+#include "runtime/dae/dae_modes.hpp"
+#include "runtime/core/drive.hpp"
+
+#include <exception>
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace rheo::runtime {
+
+struct DriveSignal {
+  enum class Kind { sine, samples } kind = Kind::sine;
+  double amplitude = 0.0;        // sine: u = amplitude sin(omega t) [mm]
+  double omega = 0.0;            // rad/s
+  const Drive* samples = nullptr;  // samples: linear between them; not owned
+};
+
+struct DaeOptions {
+  double relative_tolerance = 1e-8;
+  double length_scale = 1.0;    // mm: absolute tolerance of positions is rtol * this
+  double force_scale = 1.0;     // N
+  double velocity_scale = 1.0;  // mm/s
+  // IDA's Newton convergence coefficient (IDASetNonlinConvCoef; IDA's default 0.33): the
+  // corrector stops when its estimated error is this fraction of the local error weights.
+  double newton_tolerance = 0.33;
+  long max_steps = 500000;      // per advance()
+};
+
+// Where each block of the unknowns lies in y (the layout above): positions x, then switch forces
+// lambda, rate coordinates s, inerter velocities w and Bouc-Wen states z, each block in the
+// order of its DaeGraph list (switch_edges, rate_edges, bouc_wen_edges).
+struct DaeLayout {
+  enum class Block { position, switch_force, rate_coordinate, inerter_velocity, bouc_wen_state };
+  int positions = 0, switch_forces = 0, rate_coordinates = 0, inerter_velocities = 0, bouc_wen_states = 0;
+
+  static DaeLayout of(const DaeGraph& graph);
+  int switch_force(int l) const { return positions + l; }
+  int rate_coordinate(int k) const { return switch_force(switch_forces) + k; }
+  int inerter_velocity(int v) const { return rate_coordinate(rate_coordinates) + v; }
+  int bouc_wen_state(int b) const { return inerter_velocity(inerter_velocities) + b; }
+  int size() const { return bouc_wen_state(bouc_wen_states); }
+  Block block_of(int i) const;
+  // IDA's id vector: s, w and z are differential, x and lambda algebraic.
+  bool differential(int i) const { return i >= rate_coordinate(0); }
+};
+
+struct DaeStatistics {
+  long steps = 0;
+  long residual_evaluations = 0;
+  long events = 0;
+};
+
+class DaeIntegrator {
+ public:
+  DaeIntegrator(const DaeGraph& graph, const DaeOptions& options);
+  ~DaeIntegrator();
+  DaeIntegrator(const DaeIntegrator&) = delete;
+  DaeIntegrator& operator=(const DaeIntegrator&) = delete;
+
+  // Starts from rest (every position, force and rate zero) at t = 0 under `drive`.
+  void start(const DriveSignal& drive);
+  // Integrates to time t [s] (> the current time); returns the terminal force [N] at t.
+  double advance(double t);
+
+  double time() const { return time_; }
+  // The unknowns y at the current time (layout above) and their rates.
+  const std::vector<double>& state() const { return y_; }
+  // Force [N] and elongation [mm] of each element the user wrote, at the current time.
+  void element_outputs(std::vector<double>& force, std::vector<double>& elongation) const;
+  DaeStatistics statistics() const;
+  // Largest change of the state since `start` (a copy of state()), each unknown relative to its
+  // scale: positions to `length` [mm], forces to `force` [N], velocities to `velocity` [mm/s],
+  // Bouc-Wen states to 1. Rate coordinates are left out: events re-choose them.
+  double change_since(const std::vector<double>& start, double length, double force, double velocity) const;
+
+  // Residual and root functions, called by the C trampolines.
+  void residual(double t, const double* y, const double* yp, double* r);
+  void roots(double t, const double* y, const double* yp, double* g);
+  // Keeps an exception thrown inside a callback until the C call returns.
+  void store_error(std::exception_ptr error) { error_ = std::move(error); }
+
+ private:
+  struct Solver;  // the SUNDIALS handles
+  struct DriveState {
+    double u, du, ddu;  // mm, mm/s, mm/s^2
+  };
+  DriveState drive_at(double t) const;
+  static double elongation(const double* y, const DriveState& drive, const Edge& edge);
+  static double elongation_rate(const double* yp, const DriveState& drive, const Edge& edge);
+  void edge_forces(const DriveState& drive, const double* y, const double* yp, double* force) const;
+  double terminal_force(const double* force) const;
+  const Edge& switch_edge(int l) const;
+  void restart(double t, bool modes_changed);
+  void rechoose_coordinates(double t);
+  bool switch_inconsistent_modes();
+  void copy_from_solver();
+  void switch_modes(double t, const std::vector<int>& found);
+  double solve_to(double t_stop);
+  void collect_statistics();
+  void stick_reversed_sliders();
+
+  const DaeGraph& graph_;
+  DaeOptions options_;
+  DriveSignal drive_;
+  std::size_t segment_ = 0;  // samples: the interval [time[segment_], time[segment_ + 1]]
+  DaeLayout layout_;
+  std::vector<int> rate_of_edge_, switch_of_edge_, bouc_wen_of_edge_;  // -1 where not
+  SwitchModes modes_;
+  std::vector<double> held_;  // elongation held by each rigid switch edge
+  ModeKinematics kinematics_;
+  std::vector<double> y_, yp_;
+  mutable std::vector<double> rate_, acceleration_, force_;  // scratch per residual call
+  std::vector<double> y_saved_, yp_saved_, root_values_;      // scratch of stick_reversed_sliders
+  std::vector<int> root_direction_, roots_found_;              // scratch of restart and solve_to
+  double time_ = 0.0;
+  long events_ = 0;
+  DaeStatistics totals_;  // steps and residual evaluations before the last re-initialisation
+  std::exception_ptr error_;
+  std::string last_message_;
+  std::unique_ptr<Solver> solver_;
+
+  friend void capture_ida_message(int, const char*, const char*, char*, void*);
+};
+
+}  // namespace rheo::runtime

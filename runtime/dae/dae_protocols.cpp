@@ -1,0 +1,204 @@
+#include "runtime/dae/dae_protocols.hpp"
+
+#include "runtime/core/errors.hpp"
+#include "runtime/network/leaf_kernels.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <numbers>
+
+namespace rheo::runtime {
+
+namespace {
+
+// What a subtree node carries at elongation `length` and rate `rate` (see dae_force_scale).
+double node_force_scale(const Network& network, int node_index, double length, double rate) {
+  const Topology& topology = network.topology();
+  const TreeNode& node = topology.nodes[static_cast<std::size_t>(node_index)];
+  const auto p = [&](int i) { return network.parameter(node.param[i]); };
+  const double omega = rate / length;
+  switch (node.kind) {
+    case NodeKind::spring: return p(0) * length;
+    case NodeKind::yeoh: return 2.0 * std::abs(p(0)) * length;
+    case NodeKind::dashpot: return p(0) * rate;
+    case NodeKind::quadratic_dashpot: return p(0) * rate * rate;
+    case NodeKind::maxwell: return std::min(p(0) * length, p(1) * rate);
+    case NodeKind::friction: return std::min(p(0) * length, p(1));
+    case NodeKind::slider: return p(0);
+    case NodeKind::inerter: return p(0) * omega * omega * length;
+    case NodeKind::bouc_wen: return std::min(p(2), p(0) * length);
+    case NodeKind::gap: return std::numeric_limits<double>::infinity();  // rigid in contact
+    case NodeKind::parallel:
+    case NodeKind::series: {
+      const bool series = node.kind == NodeKind::series;
+      double scale = series ? std::numeric_limits<double>::infinity() : 0.0;
+      for (int c = 0; c < node.child_count; ++c) {
+        const double child = node_force_scale(network, topology.children[static_cast<std::size_t>(node.first_child + c)], length, rate);
+        scale = series ? std::min(scale, child) : scale + child;
+      }
+      return scale;
+    }
+  }
+  return 0.0;
+}
+
+}  // namespace
+
+double dae_force_scale(const Network& network, double length, double rate) {
+  const Topology& t = network.topology();
+  const auto p = [&](int i) { return network.parameter(i); };
+  double scale = 0.0;
+  for (int k : t.springs) scale += p(k) * length;
+  for (const auto& y : t.yeohs) scale += 2.0 * std::abs(p(y[0])) * length;
+  for (int c : t.dashpots) scale += p(c) * rate;
+  for (const auto& m : t.maxwells) scale += std::min(p(m[0]) * length, p(m[1]) * rate);
+  for (const auto& f : t.frictions) scale += std::min(p(f[0]) * length, p(f[1]));
+  for (int s : t.sliders) scale += p(s);
+  for (int root : t.subtrees) scale += node_force_scale(network, root, length, rate);
+  return std::isfinite(scale) && scale > 1e-6 ? scale : 1e-6;
+}
+
+double dae_newton_tolerance(const DaeGraph& graph, double length, double force_scale) {
+  double stiffest = 0.0;
+  for (const Edge& edge : graph.edges)
+    if (edge.kind == EdgeKind::spring || edge.kind == EdgeKind::yeoh)
+      stiffest = std::max(stiffest, (edge.kind == EdgeKind::yeoh ? 2.0 : 1.0) * std::abs(edge.p[0]) * length);
+  constexpr double ida_default = 0.33, floor = 1e-6;
+  return stiffest > 0.0 ? std::clamp(ida_default * force_scale / stiffest, floor, ida_default) : ida_default;
+}
+
+namespace {
+
+// IDA's own message when its corrector fails says nothing about why; a yeoh in series that
+// softens (its tangent reaching zero, YeohLaw::softening_elongation) is the usual reason.
+std::string softening_hint(const Network& network) {
+  const Topology& t = network.topology();
+  std::string hint;
+  for (const ElementProbe& probe : t.probes) {
+    if (probe.source != ElementProbe::Source::tree_node) continue;
+    const TreeNode& n = t.nodes[static_cast<std::size_t>(probe.index)];
+    if (n.kind != NodeKind::yeoh) continue;
+    const YeohLaw law{network.parameter(n.param[0]), network.parameter(n.param[1]), network.parameter(n.param[2])};
+    const double e = law.softening_elongation();
+    if (std::isfinite(e))
+      hint += fmt::format("{} yeoh '{}' softens to zero tangent stiffness at |e| = {:.6g} mm (carrying {:.6g} N), where a spring "
+                          "in series snaps through: keep its elongation below that, or {}",
+                          hint.empty() ? " Likely cause:" : ";", probe.path, e, std::abs(law.force(e)), YeohLaw::monotone_advice);
+  }
+  return hint;
+}
+
+template <class Run>
+auto with_softening_hint(const Network& network, Run run) {
+  try {
+    return run();
+  } catch (const NumericalError& error) {
+    throw NumericalError(error.what() + softening_hint(network));
+  }
+}
+
+HarmonicPoint harmonic_point(const Network& network, double amplitude, double frequency, const HarmonicOptions& options,
+                             DaeStatistics* statistics) {
+  const DaeGraph graph = DaeGraph::build(network);
+  const double omega = 2.0 * std::numbers::pi * frequency;
+  DaeOptions dae;
+  dae.relative_tolerance = kDaeRelativeTolerance;
+  dae.length_scale = amplitude;
+  dae.force_scale = dae_force_scale(network, amplitude, omega * amplitude);
+  dae.velocity_scale = omega * amplitude;
+  dae.newton_tolerance = dae_newton_tolerance(graph, amplitude, dae.force_scale);
+  DaeIntegrator integrator(graph, dae);
+  integrator.start({DriveSignal::Kind::sine, amplitude, omega, nullptr});
+
+  const int n = options.steps_per_cycle;
+  const double period = 1.0 / frequency;
+  const double tolerance = std::max(options.tolerance, 100.0 * kDaeRelativeTolerance);
+  std::vector<double> phase(static_cast<std::size_t>(n)), displacement(phase.size()), force(phase.size());
+
+  std::vector<double> start;
+  HarmonicPoint point;
+  point.amplitude = amplitude;
+  point.frequency = frequency;
+  double previous_change = std::numeric_limits<double>::infinity();
+  for (int cycle = 1; cycle <= options.max_cycles; ++cycle) {
+    start = integrator.state();  // reuses the capacity
+    const double t0 = (cycle - 1) * period;
+    for (int k = 0; k < n; ++k) {
+      const double t = t0 + (k + 1) * period / n;
+      const auto i = static_cast<std::size_t>(k);
+      phase[i] = 2.0 * std::numbers::pi * (k + 1) / n;
+      displacement[i] = amplitude * std::sin(phase[i]);
+      force[i] = integrator.advance(t);
+    }
+    point.measures = measure_cycle(CycleSamples{phase, displacement, force}, amplitude, options.definition);
+    point.cycles = cycle;
+    const double force_scale = std::max(point.measures.force_amplitude, std::numeric_limits<double>::min());
+    const double change = integrator.change_since(start, amplitude, force_scale, omega * amplitude);
+    const double rate = change / previous_change;
+    const double remaining = rate < 1.0 ? change * rate / (1.0 - rate) : change;
+    previous_change = change;
+    point.residual = std::max(change, remaining);
+    if (cycle >= 2 && change <= tolerance && remaining <= tolerance) {
+      point.converged = true;
+      break;
+    }
+  }
+  if (statistics) *statistics = integrator.statistics();
+  return point;
+}
+
+History history(const Network& network, const Drive& drive, bool elements, DaeStatistics* statistics) {
+  const DaeGraph graph = DaeGraph::build(network);
+  double length = 0.0;
+  for (double u : drive.displacement) length = std::max(length, std::abs(u));
+  length = std::max(length, 1e-6);
+  const double duration = drive.time.back() - drive.time.front();
+  DaeOptions dae;
+  dae.relative_tolerance = kDaeRelativeTolerance;
+  dae.length_scale = length;
+  dae.velocity_scale = duration > 0.0 ? length / duration : 1.0;
+  dae.force_scale = dae_force_scale(network, length, dae.velocity_scale);
+  dae.newton_tolerance = dae_newton_tolerance(graph, length, dae.force_scale);
+  DaeIntegrator integrator(graph, dae);
+  integrator.start({DriveSignal::Kind::samples, 0.0, 0.0, &drive});
+
+  History h;
+  const std::size_t n = drive.time.size();
+  h.time = drive.time;
+  h.displacement = drive.displacement;
+  h.force.assign(n, 0.0);
+  if (elements) {
+    for (const auto& probe : graph.probes) h.element_paths.push_back(probe.path);
+    h.element_force.assign(graph.probes.size(), std::vector<double>(n, 0.0));
+    h.element_elongation.assign(graph.probes.size(), std::vector<double>(n, 0.0));
+  }
+  std::vector<double> f, e;
+  for (std::size_t k = 1; k < n; ++k) {
+    h.force[k] = integrator.advance(drive.time[k]);
+    if (elements) {
+      integrator.element_outputs(f, e);
+      for (std::size_t i = 0; i < graph.probes.size(); ++i) {
+        h.element_force[i][k] = f[i];
+        h.element_elongation[i][k] = e[i];
+      }
+    }
+  }
+  if (statistics) *statistics = integrator.statistics();
+  return h;
+}
+
+}  // namespace
+
+HarmonicPoint dae_harmonic_point(const Network& network, double amplitude, double frequency, const HarmonicOptions& options,
+                                 DaeStatistics* statistics) {
+  return with_softening_hint(network, [&] { return harmonic_point(network, amplitude, frequency, options, statistics); });
+}
+
+History dae_history(const Network& network, const Drive& drive, bool elements, DaeStatistics* statistics) {
+  return with_softening_hint(network, [&] { return history(network, drive, elements, statistics); });
+}
+
+}  // namespace rheo::runtime

@@ -1,0 +1,242 @@
+#include "runtime/fit/fit.hpp"
+
+#include "runtime/core/errors.hpp"
+#include "runtime/fit/fit_report.hpp"
+#include "runtime/fit/yeoh_mean_curve.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <stdexcept>
+
+namespace rheo::runtime {
+namespace {
+
+// Maps search coordinates z to the full parameter vector of the model.
+class Coordinates {
+ public:
+  Coordinates(const Network& start, const std::vector<int>& free) : start_(start), free_(free) {
+    const auto& parameters = start.model().parameters;
+    for (int i : free) {
+      const auto& p = parameters.at(static_cast<std::size_t>(i));
+      if (!p.free)
+        throw std::logic_error(fmt::format("parameter '{}' has no bounds; give it bounds to fit it, e.g. `{} in [lo, hi]`", p.path, p.path));
+      const bool log_space = p.lower > 0.0;
+      logarithmic.push_back(log_space);
+      auto map = [&](double v) { return log_space ? std::log(v) : v; };
+      z0.push_back(map(start.parameter(i)));
+      lower.push_back(map(p.lower));
+      upper.push_back(map(p.upper));
+    }
+  }
+  std::vector<double> values(const std::vector<double>& z) const {
+    std::vector<double> v = start_.parameters();
+    for (std::size_t j = 0; j < free_.size(); ++j)
+      v[static_cast<std::size_t>(free_[j])] = logarithmic[j] ? std::exp(z[j]) : z[j];
+    return v;
+  }
+  Network network(const std::vector<double>& z) const { return start_.with_parameters(values(z)); }
+
+  std::vector<double> z0, lower, upper;
+  std::vector<bool> logarithmic;
+
+ private:
+  const Network& start_;
+  const std::vector<int>& free_;
+};
+
+// Residual vector of all files for one method (and, for `corrected`, its factors).
+std::vector<double> residuals(const Network& network, const std::vector<FitDataSet>& data, const ScoreSettings& score,
+                              FitMethod method, const std::vector<ThesisCorrection>& corrections) {
+  std::vector<double> r;
+  std::size_t harmonic_index = 0;
+  for (const FitDataSet& set : data) {
+    const ThesisCorrection* correction =
+        set.is_harmonic() && method == FitMethod::corrected ? &corrections.at(harmonic_index) : nullptr;
+    if (set.is_harmonic()) ++harmonic_index;
+    append_residuals(set, predict(network, set, method, score.harmonic, correction), score, r);
+  }
+  return r;
+}
+
+double sum_of_squares(const std::vector<double>& r) {
+  double s = 0.0;
+  for (double v : r) s += v * v;
+  return s;
+}
+
+std::vector<ThesisCorrection> corrections_at(const Network& network, const std::vector<FitDataSet>& data, const HarmonicOptions& harmonic) {
+  std::vector<ThesisCorrection> result;
+  for (const FitDataSet& set : data)
+    if (set.is_harmonic())
+      result.push_back(thesis_correction(predict(network, set, FitMethod::approximate, harmonic, nullptr).points,
+                                         predict(network, set, FitMethod::exact, harmonic, nullptr).points));
+  return result;
+}
+
+// True when every file is a harmonic table and the network has the structure of the thesis
+// approximation (springs, yeoh, Maxwell and friction elements in parallel).
+bool approximation_applies(const Network& network, const std::vector<FitDataSet>& data) {
+  for (const FitDataSet& set : data)
+    if (!set.is_harmonic() || set.harmonic().size() == 0) return false;
+  return approximation_misfit(network).empty();
+}
+
+// The yeoh start of FitSettings::yeoh_start_from_history: new start values, or the old ones.
+std::vector<double> yeoh_start(const Network& start, const std::vector<int>& free, const std::vector<FitDataSet>& data,
+                               std::vector<std::string>& notes) {
+  std::vector<double> values = start.parameters();
+  const Topology& t = start.topology();
+  if (t.yeohs.size() != 1) return values;
+  const HistoryData* widest = nullptr;
+  double widest_range = 0.0;
+  for (const FitDataSet& set : data)
+    if (!set.is_harmonic()) {
+      const auto& u = set.history().drive.displacement;
+      const auto [lo, hi] = std::minmax_element(u.begin(), u.end());
+      if (*hi - *lo > widest_range) widest = &set.history(), widest_range = *hi - *lo;
+    }
+  if (!widest) return values;
+  YeohConstants d{};
+  try {
+    d = fit_yeoh_least_squares(mean_curve(largest_loop({widest->drive.displacement, widest->force})));
+  } catch (const UserError& e) {  // the record holds no usable loop: the start stays as written
+    notes.push_back(fmt::format("no yeoh start from {}: {}", widest->path, e.what()));
+    return values;
+  }
+  const double constants[] = {d.d10, d.d20, d.d30};
+  const auto& parameters = start.model().parameters;
+  for (int slot = 0; slot < 3; ++slot) {
+    const int index = t.yeohs.front()[static_cast<std::size_t>(slot)];
+    if (std::find(free.begin(), free.end(), index) == free.end()) continue;
+    const lang::Parameter& p = parameters[static_cast<std::size_t>(index)];
+    values[static_cast<std::size_t>(index)] = std::clamp(constants[slot], p.lower, p.upper);
+    notes.push_back(fmt::format("start {} = {:.6g} {} from the mean curve of {} (eq. 5.32)", p.path,
+                                in_written_unit(p, values[static_cast<std::size_t>(index)]), written_unit(p), widest->path));
+  }
+  return values;
+}
+
+}  // namespace
+
+std::vector<int> bounded_parameters(const Network& network) {
+  std::vector<int> free;
+  const auto& parameters = network.model().parameters;
+  for (std::size_t i = 0; i < parameters.size(); ++i)
+    if (parameters[i].free) free.push_back(static_cast<int>(i));
+  return free;
+}
+
+FitResult fit(const Network& start, const std::vector<int>& free, const std::vector<FitDataSet>& data,
+              const FitSettings& settings) {
+  const auto clock_start = std::chrono::steady_clock::now();
+  if (free.empty())
+    throw std::logic_error(fmt::format("model '{}' has no free parameter; give bounds to the ones to fit, e.g. `k = 300 N/mm in [10, 5000]`",
+                                       start.model().name));
+  if (data.empty()) throw std::logic_error("a fit needs data: add `data \"FILE.csv\"` to the fit block or --data FILE.csv");
+  if (settings.score.method != FitMethod::exact && std::any_of(data.begin(), data.end(), [](const FitDataSet& s) { return s.is_harmonic(); }))
+    if (const std::string why = approximation_misfit(start); !why.empty())
+      throw UsageError(fmt::format("cannot fit model '{}': {}", start.model().name, why));
+  std::vector<std::string> notes;
+  const Network first = settings.yeoh_start_from_history ? start.with_parameters(yeoh_start(start, free, data, notes)) : start;
+  const Coordinates coordinates(first, free);
+  const ScoreSettings& score = settings.score;
+
+  FitResult result{.network = start, .free = free, .start_values = start.parameters()};
+  result.notes = std::move(notes);
+  for (const FitDataSet& set : data)
+    if (set.is_harmonic())
+      for (std::string& note : damping_left_out(set.harmonic())) result.notes.push_back(std::move(note));
+  std::vector<ThesisCorrection> corrections;
+  auto residuals_for = [&](FitMethod method) {
+    return [&, method](const std::vector<double>& z) { return residuals(coordinates.network(z), data, score, method, corrections); };
+  };
+  auto run = [&](FitMethod method, const std::vector<double>& from, int budget, std::vector<std::vector<double>> extra_starts = {}) {
+    const auto r = residuals_for(method);
+    const Objective objective = [&](const std::vector<double>& z) { return sum_of_squares(r(z)); };
+    SearchSettings search = settings.search;
+    search.max_evaluations = std::max(1, budget);
+    search.extra_starts = std::move(extra_starts);
+    const SearchResult found = runtime::search(objective, from, coordinates.lower, coordinates.upper, coordinates.logarithmic,
+                                               search, settings.progress, settings.interrupt);
+    result.evaluations += found.evaluations;
+    result.non_finite += found.non_finite;
+    if (result.first_failure.empty()) result.first_failure = found.first_failure;
+    result.status = found.status;
+    result.interrupted = result.interrupted || found.interrupted;
+    result.objective = found.value;
+    return found.z;
+  };
+
+  std::vector<double> z;
+  FitMethod final_method = score.method;
+  if (score.method == FitMethod::corrected) {
+    // Table 5.1: analytical part, numerical part (5.2, 5.3), calibrated analytical part (5.4).
+    const int half = settings.search.max_evaluations / 2;
+    z = run(FitMethod::approximate, coordinates.z0, half);
+    if (!result.interrupted) {
+      corrections = corrections_at(coordinates.network(z), data, score.harmonic);
+      z = run(FitMethod::corrected, z, settings.search.max_evaluations - result.evaluations);
+    } else {
+      final_method = FitMethod::approximate;
+    }
+  } else if (score.method == FitMethod::exact && !settings.search.algorithm && approximation_applies(first, data)) {
+    // The corrected approximation is a cheap surrogate (~30 times faster per evaluation): the
+    // Table 5.1 fit, with its own budget, gives one more start of the exact search, which
+    // therefore ends no worse than the corrected method.
+    const int half = settings.search.max_evaluations / 2;
+    z = run(FitMethod::approximate, coordinates.z0, half);
+    std::vector<std::vector<double>> surrogate{z};
+    if (!result.interrupted) {
+      corrections = corrections_at(coordinates.network(z), data, score.harmonic);
+      surrogate = {run(FitMethod::corrected, z, settings.search.max_evaluations - result.evaluations)};
+    }
+    if (!result.interrupted) z = run(FitMethod::exact, coordinates.z0, settings.search.max_evaluations, surrogate);
+    else z = surrogate.front();
+  } else {
+    z = run(score.method, coordinates.z0, settings.search.max_evaluations);
+  }
+
+  result.network = coordinates.network(z);
+  if (!result.interrupted && settings.statistics) {
+    result.statistics = parameter_statistics(residuals_for(final_method), z, coordinates.logarithmic);
+    if (!result.statistics.has_noise_estimate())
+      result.notes.push_back(fmt::format("no standard errors: {} residuals for {} identifiable directions leave no degree of freedom to "
+                                         "estimate the noise; add data points or fix parameters",
+                                         result.statistics.residuals, result.statistics.rank));
+  }
+  std::size_t harmonic_points = 0;
+  for (const FitDataSet& set : data) {
+    DataSetFit d;
+    d.path = set.path;
+    d.weight = set.weight;
+    d.harmonic = set.is_harmonic();
+    d.prediction = predict(result.network, set, FitMethod::exact, score.harmonic, nullptr);
+    if (d.harmonic) {
+      d.residuals = relative_residuals(set.harmonic(), d.prediction.points);
+      d.measured_stiffness = set.harmonic().stiffness;
+      d.measured_phase = set.harmonic().phase;
+      d.phi = phi(d.residuals, 1.0, 1.0);
+      d.err = thesis_err(d.residuals);
+      result.phi += d.phi;
+      harmonic_points += set.harmonic().size();
+    } else {
+      const HistoryData& h = set.history();
+      double sum = 0.0;
+      for (std::size_t j = 0; j < h.force.size(); ++j) {
+        const double r = (d.prediction.force[j] - h.force[j]) / h.force_scale;
+        sum += r * r;
+        d.worst = std::max(d.worst, std::abs(r));
+      }
+      d.err = std::sqrt(sum / static_cast<double>(h.force.size()));
+    }
+    result.datasets.push_back(std::move(d));
+  }
+  result.err = harmonic_points > 0 ? std::sqrt(result.phi) / static_cast<double>(harmonic_points) : 0.0;
+  result.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - clock_start).count();
+  return result;
+}
+
+}  // namespace rheo::runtime

@@ -1,0 +1,90 @@
+// Parameter identification: `rheo fit` without the command line.
+//
+// The free parameters (indices into the model's parameters) are searched in coordinates
+// z = ln p when their bounds are positive (relative changes weigh alike), z = p otherwise;
+// derived parameters (c = k tau, fy = k uy) follow their inputs. The objective is the sum of
+// squares of fit_scoring.hpp's residuals, minimised by fit_search.hpp's strategy.
+//
+// Methods (fit_scoring.hpp): exact and approximate minimise with that model response;
+// corrected follows Table 5.1: fit the approximation, compute the correction factors
+// (5.2, 5.3) by the exact response at that optimum, and fit the calibrated approximation (5.4)
+// from there. The exact method with the default strategy, on harmonic data and a network the
+// approximation covers, first runs the corrected fit as a cheap surrogate (with a budget of its
+// own: an approximate evaluation costs about 1/30 of an exact one) and adds its optimum to the
+// starts of the exact search, so that exact ends no worse than corrected.
+//
+// Reported whatever the method: phi (5.1) and err (6.1) over all harmonic points by the exact
+// response at the fitted parameters, per file too; for histories the RMS force residual
+// relative to max|F|. Standard errors and correlations come from the Jacobian of the
+// method's residuals at the optimum (fit_statistics.hpp).
+#pragma once
+
+#include "runtime/io/fit_data.hpp"
+#include "runtime/fit/fit_scoring.hpp"
+#include "runtime/fit/fit_search.hpp"
+#include "runtime/fit/fit_statistics.hpp"
+#include "runtime/network/network.hpp"
+#include "runtime/fit/objective.hpp"
+
+#include <atomic>
+#include <functional>
+#include <string>
+#include <vector>
+
+namespace rheo::runtime {
+
+struct FitSettings {
+  ScoreSettings score;
+  SearchSettings search;
+  // With a time history among the data and one yeoh spring in the root block whose constants
+  // are free: start them at the least-squares fit to the mean curve of the history's largest
+  // loop (eqs. 5.28-5.32), as the thesis identifies them, before searching.
+  bool yeoh_start_from_history = true;
+  // Standard errors and correlations at the optimum (a Jacobian: about 2 evaluations per free
+  // parameter); off, FitResult::statistics stays empty.
+  bool statistics = true;
+  std::function<void(const SearchProgress&)> progress;  // called after every evaluation
+  const std::atomic<bool>* interrupt = nullptr;          // set (e.g. by SIGINT) to stop with the best so far
+};
+
+struct DataSetFit {
+  std::string path;
+  double weight = 1.0;
+  bool harmonic = true;
+  Prediction prediction;  // exact response at the fitted parameters
+  double phi = 0.0;       // harmonic: eq. 5.1
+  double err = 0.0;       // harmonic: eq. 6.1; history: RMS of (F - F_exp) / max|F_exp|
+  double worst = 0.0;     // history: max |F - F_exp| / max|F_exp|
+  std::vector<double> measured_stiffness, measured_phase;  // harmonic: the data [N/mm], [rad]
+  RelativeResiduals residuals;                             // harmonic: K/K_exp - 1, d/d_exp - 1
+};
+
+struct FitResult {
+  Network network;                  // the model with the fitted values
+  std::vector<int> free{};
+  std::vector<double> start_values{}; // all parameters, before the fit
+  double objective = 0.0;           // the minimised sum of squares, with the method's response
+  double phi = 0.0;                 // eq. 5.1 over all harmonic points (exact response)
+  double err = 0.0;                 // eq. 6.1 over all harmonic points; 0 when there are none
+  std::vector<DataSetFit> datasets{};
+  ParameterStatistics statistics{}; // per free parameter, in parameter units
+  int evaluations = 0;
+  int non_finite = 0;                // rejected evaluations: NaN, inf, or not simulable
+  std::string first_failure{};       // why the first evaluation that could not be simulated failed
+  double wall_seconds = 0.0;
+  std::string status{};
+  bool interrupted = false;
+  std::vector<std::string> notes{};  // what the fit did beyond the search (e.g. the yeoh start)
+};
+
+// Indices of the parameters declared with bounds.
+std::vector<int> bounded_parameters(const Network& network);
+
+// Preconditions (std::logic_error otherwise; the front end reports them to the user first):
+// `free` is non-empty and names parameters with bounds, `data` is non-empty. Throws UsageError
+// when the approximate or corrected method meets harmonic data and a structure the
+// approximation cannot take (approximation_misfit), and what simulating the model throws.
+FitResult fit(const Network& start, const std::vector<int>& free, const std::vector<FitDataSet>& data,
+              const FitSettings& settings);
+
+}  // namespace rheo::runtime

@@ -1,0 +1,157 @@
+#include "runtime/fit/fit_report.hpp"
+
+#include <fmt/format.h>
+#include <nlohmann/json.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <numbers>
+
+namespace rheo::runtime {
+namespace {
+
+double degrees(double radians) { return radians * 180.0 / std::numbers::pi; }
+
+const lang::Parameter& parameter_of(const FitResult& r, int index) {
+  return r.network.model().parameters.at(static_cast<std::size_t>(index));
+}
+
+std::string data_kind(const DataSetFit& d) { return d.harmonic ? "harmonic" : "history"; }
+
+std::size_t data_points(const DataSetFit& d) { return d.harmonic ? d.prediction.points.size() : d.prediction.force.size(); }
+
+std::string standard_error_text(const FitResult& r, std::size_t j, int index) {
+  const auto& s = r.statistics;
+  if (j >= s.standard_error.size()) return "-";
+  if (j < s.identifiable.size() && !s.identifiable[j]) return "not identifiable";
+  const double value = r.network.parameter(index);
+  const double se = s.standard_error[j];
+  if (!std::isfinite(se)) return "-";
+  return fmt::format("{:.3g} ({:.2g} %)", in_written_unit(parameter_of(r, index), se), value != 0.0 ? 100.0 * se / std::abs(value) : 0.0);
+}
+
+}  // namespace
+
+std::string written_unit(const lang::Parameter& p) { return p.unit.empty() ? lang::internal_unit(p.dimension) : p.unit; }
+
+double in_written_unit(const lang::Parameter& p, double internal_value) {
+  if (p.unit.empty()) return internal_value;
+  const auto unit = lang::parse_unit(p.unit);
+  return unit ? internal_value / unit->scale : internal_value;
+}
+
+std::string fit_report_text(const FitDescription& d, const FitResult& r) {
+  std::string out = fmt::format("rheo fit: model {} from {}\n", r.network.model().name, d.source);
+  for (const DataSetFit& set : r.datasets)
+    out += fmt::format("  data {} ({}, {} {}, weight {:g})\n", set.path, data_kind(set), data_points(set), set.harmonic ? "points" : "samples", set.weight);
+  out += fmt::format("  method {}, objective {}, optimizer {}, seed {}\n", d.method, d.objective, d.optimizer, d.seed);
+  for (const std::string& note : r.notes) out += fmt::format("  {}\n", note);
+  out += "\n";
+  std::size_t width = 9;
+  for (int i : r.free) width = std::max(width, parameter_of(r, i).path.size());
+  out += fmt::format("  {:<{}}  {:>12}  {:>12}  {:<22}  {:<8}  {}\n", "parameter", width, "start", "fitted", "std. error", "unit", "bounds");
+  for (std::size_t j = 0; j < r.free.size(); ++j) {
+    const int i = r.free[j];
+    const lang::Parameter& p = parameter_of(r, i);
+    const double start = r.start_values.at(static_cast<std::size_t>(i));
+    const bool at_bound = std::abs(r.network.parameter(i) - p.lower) <= 1e-9 * std::max(1.0, std::abs(p.lower)) ||
+                          std::abs(r.network.parameter(i) - p.upper) <= 1e-9 * std::max(1.0, std::abs(p.upper));
+    out += fmt::format("  {:<{}}  {:>12.6g}  {:>12.6g}  {:<22}  {:<8}  [{:g}, {:g}]{}\n", p.path, width, in_written_unit(p, start),
+                       in_written_unit(p, r.network.parameter(i)), standard_error_text(r, j, i), written_unit(p),
+                       in_written_unit(p, p.lower), in_written_unit(p, p.upper), at_bound ? "  at a bound: widen it?" : "");
+  }
+  out += "\n";
+  for (const DataSetFit& set : r.datasets) {
+    if (!set.harmonic) {
+      out += fmt::format("  {}: force residual RMS {:.3g} %, worst {:.3g} % of max |F|\n", set.path, 100.0 * set.err, 100.0 * set.worst);
+      continue;
+    }
+    std::size_t worst = 0;
+    for (std::size_t k = 1; k < set.residuals.stiffness.size(); ++k)
+      if (std::hypot(set.residuals.stiffness[k], set.residuals.damping[k]) > std::hypot(set.residuals.stiffness[worst], set.residuals.damping[worst]))
+        worst = k;
+    out += fmt::format("  {}: phi (5.1) = {:.6g}, err (6.1) = {:.4e}\n", set.path, set.phi, set.err);
+    if (!set.prediction.points.empty()) {
+      const HarmonicPoint& p = set.prediction.points[worst];
+      out += fmt::format("    worst point {:g} mm, {:g} Hz: stiffness {:+.2f} %, phase {:+.3f} deg\n", p.amplitude, p.frequency,
+                         100.0 * set.residuals.stiffness[worst], degrees(p.measures.phase - set.measured_phase[worst]));
+    }
+  }
+  if (r.datasets.size() > 1 && r.phi > 0.0) out += fmt::format("  all harmonic data: phi = {:.6g}, err = {:.4e}\n", r.phi, r.err);
+  const auto& s = r.statistics;
+  for (std::size_t a = 0; a < s.correlation.size(); ++a)
+    for (std::size_t b = a + 1; b < s.correlation[a].size(); ++b)
+      if (std::abs(s.correlation[a][b]) > 0.95)
+        out += fmt::format("  strongly correlated: {} and {} (r = {:.3f})\n", parameter_of(r, r.free[a]).path, parameter_of(r, r.free[b]).path,
+                           s.correlation[a][b]);
+  out += fmt::format("  {} evaluations in {:.2f} s; {}\n", r.evaluations, r.wall_seconds,
+                     r.interrupted ? "interrupted: these are the best values found so far" : fmt::format("optimizer status {}", r.status));
+  if (r.non_finite > 0) out += fmt::format("  note: {} evaluations gave a non-finite objective and were rejected\n", r.non_finite);
+  if (!r.first_failure.empty()) out += fmt::format("  note: the first that could not be simulated: {}\n", r.first_failure);
+  return out;
+}
+
+std::string fit_report_json(const FitDescription& d, const FitResult& r) {
+  using nlohmann::json;
+  json j;
+  j["model"] = r.network.model().name;
+  j["source"] = d.source;
+  j["method"] = d.method;
+  j["objective"] = d.objective;
+  j["optimizer"] = d.optimizer;
+  j["seed"] = d.seed;
+  j["status"] = r.status;
+  j["interrupted"] = r.interrupted;
+  j["evaluations"] = r.evaluations;
+  j["non_finite_evaluations"] = r.non_finite;
+  j["first_failure"] = r.first_failure;
+  j["wall_seconds"] = r.wall_seconds;
+  j["phi"] = r.phi;
+  j["err"] = r.err;
+  j["notes"] = r.notes;
+  json parameters = json::array();
+  const auto& all = r.network.model().parameters;
+  for (std::size_t i = 0; i < all.size(); ++i) {
+    const lang::Parameter& p = all[i];
+    json e{{"path", p.path}, {"unit", written_unit(p)}, {"start", in_written_unit(p, r.start_values[i])},
+           {"value", in_written_unit(p, r.network.parameter(static_cast<int>(i)))}};
+    const auto it = std::find(r.free.begin(), r.free.end(), static_cast<int>(i));
+    e["free"] = it != r.free.end();
+    if (p.free) e["lower"] = in_written_unit(p, p.lower), e["upper"] = in_written_unit(p, p.upper);
+    if (it != r.free.end()) {
+      const auto k = static_cast<std::size_t>(it - r.free.begin());
+      if (k < r.statistics.standard_error.size() && std::isfinite(r.statistics.standard_error[k]))
+        e["standard_error"] = in_written_unit(p, r.statistics.standard_error[k]);
+      if (k < r.statistics.identifiable.size()) e["identifiable"] = static_cast<bool>(r.statistics.identifiable[k]);
+    }
+    parameters.push_back(e);
+  }
+  j["parameters"] = parameters;
+  json names = json::array();
+  for (int i : r.free) names.push_back(parameter_of(r, i).path);
+  j["correlation"] = {{"parameters", names}, {"matrix", r.statistics.correlation}};
+  json data = json::array();
+  for (const DataSetFit& set : r.datasets) {
+    json s{{"file", set.path}, {"kind", data_kind(set)}, {"weight", set.weight}, {"points", data_points(set)}, {"err", set.err}};
+    if (set.harmonic) {
+      s["phi"] = set.phi;
+      json residuals = json::array();
+      for (std::size_t k = 0; k < set.prediction.points.size(); ++k) {
+        const HarmonicPoint& p = set.prediction.points[k];
+        residuals.push_back({{"amplitude_mm", p.amplitude}, {"frequency_hz", p.frequency},
+                             {"stiffness_measured", set.measured_stiffness[k]}, {"stiffness_model", p.measures.stiffness},
+                             {"phase_measured_deg", degrees(set.measured_phase[k])}, {"phase_model_deg", degrees(p.measures.phase)},
+                             {"stiffness_residual", set.residuals.stiffness[k]}, {"damping_residual", set.residuals.damping[k]}});
+      }
+      s["residuals"] = residuals;
+    } else {
+      s["residuals"] = {{"rms", set.err}, {"max", set.worst}};
+    }
+    data.push_back(s);
+  }
+  j["data"] = data;
+  return j.dump(2) + "\n";
+}
+
+}  // namespace rheo::runtime

@@ -1,0 +1,57 @@
+#include "runtime/fit/fit_scoring.hpp"
+#include "runtime/protocols/run_history.hpp"
+
+#include "runtime/fit/objective.hpp"
+
+#include <cmath>
+#include <complex>
+#include <stdexcept>
+
+namespace rheo::runtime {
+
+Prediction predict(const Network& network, const FitDataSet& set, FitMethod method, const HarmonicOptions& harmonic,
+                   const ThesisCorrection* correction) {
+  Prediction p;
+  if (!set.is_harmonic()) {
+    p.force = run_history(network, set.history().drive, false, harmonic.solver).force;
+    return p;
+  }
+  const HarmonicData& data = set.harmonic();
+  if (method == FitMethod::exact) {
+    p.points = simulate_at(network, data, harmonic);
+    return p;
+  }
+  p.points = approximate_harmonic(network, data.amplitude, data.frequency);
+  if (method == FitMethod::corrected) {
+    if (!correction) throw std::logic_error("the corrected method needs correction factors");
+    apply_correction(*correction, p.points);
+  }
+  return p;
+}
+
+void append_residuals(const FitDataSet& set, const Prediction& prediction, const ScoreSettings& settings,
+                      std::vector<double>& out) {
+  if (!set.is_harmonic()) {
+    const HistoryData& h = set.history();
+    const double scale = std::sqrt(set.weight / static_cast<double>(h.force.size())) / h.force_scale;
+    for (std::size_t j = 0; j < h.force.size(); ++j) out.push_back(scale * (prediction.force[j] - h.force[j]));
+    return;
+  }
+  const HarmonicData& d = set.harmonic();
+  const double scale = std::sqrt(set.weight / (2.0 * static_cast<double>(d.size())));
+  for (std::size_t i = 0; i < d.size(); ++i) {
+    const CycleMeasures& m = prediction.points[i].measures;
+    const double point_scale = d.weight.empty() ? scale : scale * std::sqrt(d.weight[i]);
+    if (settings.objective == FitObjective::phi) {
+      out.push_back(point_scale * std::sqrt(settings.stiffness_weight) * (m.stiffness / d.stiffness[i] - 1.0));
+      out.push_back(point_scale * std::sqrt(settings.damping_weight) * damping_residual(m.phase, d.phase[i]));
+    } else {
+      const std::complex<double> model = std::polar(m.stiffness, m.phase), measured = std::polar(d.stiffness[i], d.phase[i]);
+      const std::complex<double> r = (model - measured) / d.stiffness[i];
+      out.push_back(point_scale * r.real());
+      out.push_back(point_scale * r.imag());
+    }
+  }
+}
+
+}  // namespace rheo::runtime

@@ -1,0 +1,177 @@
+#include "runtime/fit/fit_search.hpp"
+
+#include "runtime/core/errors.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <numeric>
+#include <random>
+
+namespace rheo::runtime {
+namespace {
+
+struct Interrupted {};
+struct Exhausted {};
+
+// Counts evaluations, keeps the best point, reports progress, and stops on interrupt or when
+// the budget is spent (some NLopt algorithms, e.g. DIRECT-L, overrun their own maxeval).
+class Tracker {
+ public:
+  Tracker(const Objective& objective, const std::function<void(const SearchProgress&)>& progress, const std::atomic<bool>* interrupt,
+          int limit)
+      : objective_(objective), progress_(progress), interrupt_(interrupt), limit_(std::max(1, limit)) {}
+
+  // The first call (the start) is always evaluated, so that the best point has a value.
+  double operator()(const std::vector<double>& z) {
+    if (evaluations_ > 0 && interrupt_ && interrupt_->load(std::memory_order_relaxed)) throw Interrupted{};
+    if (evaluations_ >= limit_) throw Exhausted{};
+    double value = std::numeric_limits<double>::quiet_NaN();
+    try {
+      value = objective_(z);
+    } catch (const NumericalError& e) {  // this point cannot be simulated: rejected like NaN
+      if (first_failure_.empty()) first_failure_ = e.what();
+    }
+    ++evaluations_;
+    if (!std::isfinite(value)) ++non_finite_;
+    if (std::isfinite(value) && value < best_value_) {
+      best_value_ = value;
+      best_z_ = z;
+    }
+    if (progress_) progress_({evaluations_, best_value_, stage_});
+    return value;
+  }
+  void stage(const char* name) { stage_ = name; }
+  int evaluations() const { return evaluations_; }
+  int non_finite() const { return non_finite_; }
+  const std::string& first_failure() const { return first_failure_; }
+  double best_value() const { return best_value_; }
+  const std::vector<double>& best_z() const { return best_z_; }
+
+ private:
+  const Objective& objective_;
+  const std::function<void(const SearchProgress&)>& progress_;
+  const std::atomic<bool>* interrupt_;
+  int limit_;
+  int evaluations_ = 0;
+  int non_finite_ = 0;
+  double best_value_ = std::numeric_limits<double>::infinity();
+  std::vector<double> best_z_;
+  std::string first_failure_;
+  const char* stage_ = "";
+};
+
+bool is_global(Algorithm a) {
+  return a == Algorithm::direct_l || a == Algorithm::crs2 || a == Algorithm::isres || a == Algorithm::mlsl;
+}
+
+// Radical inverse of `index` in base `base`: the Halton coordinate.
+double radical_inverse(unsigned long index, unsigned base) {
+  double result = 0.0, fraction = 1.0 / base;
+  for (; index > 0; index /= base, fraction /= base) result += fraction * static_cast<double>(index % base);
+  return result;
+}
+
+std::vector<unsigned> first_primes(std::size_t count) {
+  std::vector<unsigned> primes;
+  for (unsigned candidate = 2; primes.size() < count; ++candidate)
+    if (std::none_of(primes.begin(), primes.end(), [&](unsigned p) { return candidate % p == 0; })) primes.push_back(candidate);
+  return primes;
+}
+
+}  // namespace
+
+SearchResult search(const Objective& objective, const std::vector<double>& start, const std::vector<double>& lower,
+                    const std::vector<double>& upper, const std::vector<bool>& logarithmic, const SearchSettings& settings,
+                    const std::function<void(const SearchProgress&)>& progress, const std::atomic<bool>* interrupt) {
+  const std::size_t n = start.size();
+  Tracker tracker(objective, progress, interrupt, settings.max_evaluations);
+  const Objective tracked = [&](const std::vector<double>& z) { return tracker(z); };
+  SearchResult result;
+  auto remaining = [&] { return settings.max_evaluations - tracker.evaluations(); };
+  auto local = [&](const std::vector<double>& from, int budget, Algorithm algorithm) {
+    OptimizerSettings o;
+    o.algorithm = algorithm;
+    o.max_evaluations = std::max(1, budget);
+    o.relative_x_tolerance = settings.tolerance;
+    o.relative_f_tolerance = 1e-9;
+    o.seed = settings.seed;
+    result.status = minimize(tracked, from, lower, upper, o).status;
+  };
+  const Algorithm local_algorithm =
+      settings.algorithm && !is_global(*settings.algorithm) ? *settings.algorithm : Algorithm::bobyqa;
+  result.status = "MAXEVAL_REACHED";  // when the budget leaves no local stage to run
+  try {
+    tracker.stage("start");
+    tracked(start);
+    if (settings.algorithm && is_global(*settings.algorithm)) {
+      if (remaining() > 0) {
+        tracker.stage("global");
+        OptimizerSettings o;
+        o.algorithm = *settings.algorithm;
+        o.max_evaluations = std::max(1, remaining() / 2);
+        o.seed = settings.seed;
+        minimize(tracked, start, lower, upper, o);
+      }
+    } else {
+      // Sample a box around the start, then run local searches from the start and the best samples.
+      tracker.stage("sample");
+      std::mt19937_64 random(settings.seed);
+      std::uniform_real_distribution<double> unit(0.0, 1.0);
+      const std::vector<unsigned> primes = first_primes(n);
+      std::vector<double> shift(n), box_lo(n), box_hi(n);
+      for (std::size_t j = 0; j < n; ++j) {
+        shift[j] = unit(random);
+        const double half = logarithmic[j] ? std::log(10.0) : 0.25 * (upper[j] - lower[j]);
+        box_lo[j] = std::max(lower[j], start[j] - half);
+        box_hi[j] = std::min(upper[j], start[j] + half);
+      }
+      const int wanted_samples = settings.samples >= 0 ? settings.samples : std::max(10 * static_cast<int>(n), 40);
+      const int samples = std::max(0, std::min(wanted_samples, remaining() / 4));
+      std::vector<std::pair<double, std::vector<double>>> sampled;
+      std::vector<double> z(n);
+      for (int s = 1; s <= samples; ++s) {
+        for (std::size_t j = 0; j < n; ++j) {
+          const double t = std::fmod(radical_inverse(static_cast<unsigned long>(s), primes[j]) + shift[j], 1.0);
+          z[j] = box_lo[j] + t * (box_hi[j] - box_lo[j]);
+        }
+        sampled.emplace_back(tracked(z), z);
+      }
+      // Non-finite samples sort last (NaN would break the ordering std::sort relies on).
+      auto key = [](double v) { return std::isfinite(v) ? v : std::numeric_limits<double>::infinity(); };
+      std::stable_sort(sampled.begin(), sampled.end(), [&](const auto& a, const auto& b) { return key(a.first) < key(b.first); });
+      std::vector<std::vector<double>> starts{start};
+      starts.insert(starts.end(), settings.extra_starts.begin(), settings.extra_starts.end());
+      const std::size_t wanted = static_cast<std::size_t>(std::max(settings.starts, 1));
+      for (const auto& [value, point] : sampled) {
+        if (starts.size() >= wanted) break;
+        if (std::isfinite(value)) starts.push_back(point);
+      }
+      tracker.stage("local");
+      for (std::size_t k = 0; k < starts.size() && remaining() > 0; ++k)
+        local(starts[k], remaining() / static_cast<int>(starts.size() - k + 1), local_algorithm);
+    }
+    tracker.stage("polish");
+    if (remaining() > 0 && !tracker.best_z().empty()) local(tracker.best_z(), remaining(), local_algorithm);
+  } catch (const Exhausted&) {
+    result.status = "MAXEVAL_REACHED";
+  } catch (const Interrupted&) {
+    result.interrupted = true;
+    result.status = "interrupted";
+  }
+  if (tracker.best_z().empty() && !result.interrupted)
+    throw NumericalError(fmt::format("none of the {} trial points of the search gave a finite objective{}; check that the data and the "
+                                     "parameters' bounds describe something this model can simulate",
+                                     tracker.evaluations(),
+                                     tracker.first_failure().empty() ? "" : fmt::format(" (first failure: {})", tracker.first_failure())));
+  result.z = tracker.best_z().empty() ? start : tracker.best_z();
+  result.value = tracker.best_value();
+  result.evaluations = tracker.evaluations();
+  result.non_finite = tracker.non_finite();
+  result.first_failure = tracker.first_failure();
+  return result;
+}
+
+}  // namespace rheo::runtime

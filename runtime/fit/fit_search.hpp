@@ -1,0 +1,69 @@
+// The search strategy of `rheo fit` over the free parameters' search coordinates z (ln p for
+// parameters with positive bounds, p otherwise), within box bounds.
+//
+// Default (no algorithm named): a global look, then local polish.
+//   1. sample: max(10 n, 40) points (or `samples`) of a Halton sequence (randomly shifted by the seed) over
+//      the box z0 -+ ln 10 (a decade either side of the start; a quarter of the bounds for
+//      linear coordinates), clipped to the bounds;
+//   2. local: BOBYQA from the start, from any extra starts given (e.g. a surrogate's optimum)
+//      and from the best samples, `starts` searches in all (at least the start and the extra
+//      ones), sharing the evaluation budget;
+//   3. polish: BOBYQA again from the best point found, with a fresh trust region.
+// A local algorithm named (bobyqa, sbplx, neldermead) takes BOBYQA's place; a global one
+// (direct_l, crs2, isres, mlsl) searches the whole box with half the budget, then BOBYQA polishes.
+// The same seed gives the same result, evaluation for evaluation.
+//
+// Budget: the start is always evaluated first; after it, no evaluation is made beyond
+// max_evaluations in all (stages share what is left; an NLopt stage that would take the total
+// beyond it, as DIRECT-L can overrun its own maxeval, is stopped), so
+// 1 <= evaluations <= max(1, max_evaluations).
+// The best point seen is kept: when `interrupt` becomes true (Ctrl-C) the search stops at the
+// next evaluation (never before the start's) and returns it, with interrupted = true.
+#pragma once
+
+#include "runtime/fit/optimizer.hpp"
+
+#include <atomic>
+#include <functional>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace rheo::runtime {
+
+struct SearchSettings {
+  std::optional<Algorithm> algorithm;  // nullopt: the default strategy above
+  int max_evaluations = 20000;         // over all stages
+  int starts = 3;
+  int samples = -1;                    // default strategy's sample count; -1: max(10 n, 40)
+  unsigned long seed = 1;
+  double tolerance = 1e-10;            // relative, on z (local stages)
+  std::vector<std::vector<double>> extra_starts;  // default strategy: local searches from these too
+};
+
+struct SearchProgress {
+  int evaluations = 0;
+  double best = 0.0;  // best objective so far
+  const char* stage = "";  // "start", "sample", "local", "global" or "polish"
+};
+
+struct SearchResult {
+  std::vector<double> z;  // the best point evaluated (the start when interrupted before a finite one)
+  double value = 0.0;     // the objective at z; +inf when interrupted before a finite evaluation
+  int evaluations = 0;
+  int non_finite = 0;     // evaluations that returned NaN or inf, or threw NumericalError (any stage)
+  std::string first_failure;  // the message of the first NumericalError, if any
+  std::string status;  // the last local stage's NLopt result, "MAXEVAL_REACHED" when the budget
+                       // ran out before or during a stage, or "interrupted"
+  bool interrupted = false;
+};
+
+// `logarithmic[j]`: coordinate j is ln p (sampled a decade either side of the start).
+// Throws NumericalError, naming the first failure, when no evaluation of an uninterrupted
+// search is finite: there is no point to report.
+SearchResult search(const Objective& objective, const std::vector<double>& start, const std::vector<double>& lower,
+                    const std::vector<double>& upper, const std::vector<bool>& logarithmic, const SearchSettings& settings,
+                    const std::function<void(const SearchProgress&)>& progress = {},
+                    const std::atomic<bool>* interrupt = nullptr);
+
+}  // namespace rheo::runtime

@@ -1,0 +1,98 @@
+#include "runtime/fit/fit_statistics.hpp"
+
+#include "runtime/core/errors.hpp"
+
+#include <Eigen/Dense>
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+
+namespace rheo::runtime {
+namespace {
+
+constexpr double kRelativeStep = 1e-6;
+constexpr double kSingularTolerance = 1e-8;  // of the largest singular value
+constexpr double kNullComponent = 1e-6;
+
+Eigen::VectorXd evaluate(const std::function<std::vector<double>(const std::vector<double>&)>& residuals,
+                         const std::vector<double>& z, std::size_t expected_size) {
+  const std::vector<double> r = residuals(z);
+  if (expected_size != 0 && r.size() != expected_size)
+    throw std::logic_error(fmt::format("parameter_statistics: the residual vector changed size ({} -> {})", expected_size, r.size()));
+  for (double v : r)
+    if (!std::isfinite(v))
+      throw NumericalError("parameter_statistics: a residual is not finite near the optimum, so no standard errors can be computed; a "
+                           "parameter is likely at the edge of the range the model can be simulated in: fix it or narrow its bounds");
+  return Eigen::Map<const Eigen::VectorXd>(r.data(), static_cast<Eigen::Index>(r.size()));
+}
+
+}  // namespace
+
+ParameterStatistics parameter_statistics(const std::function<std::vector<double>(const std::vector<double>&)>& residuals,
+                                         const std::vector<double>& z, const std::vector<bool>& logarithmic) {
+  const std::size_t n = z.size();
+  if (n == 0 || logarithmic.size() != n)
+    throw std::logic_error(fmt::format("parameter_statistics: {} coordinates and {} log flags", n, logarithmic.size()));
+  const Eigen::VectorXd r0 = evaluate(residuals, z, 0);
+  const std::size_t m = static_cast<std::size_t>(r0.size());
+  if (m == 0) throw std::logic_error("parameter_statistics: empty residual vector");
+
+  Eigen::MatrixXd jacobian(static_cast<Eigen::Index>(m), static_cast<Eigen::Index>(n));
+  std::vector<double> shifted = z;
+  for (std::size_t j = 0; j < n; ++j) {
+    const double h = kRelativeStep * std::max(1.0, std::abs(z[j]));
+    shifted[j] = z[j] + h;
+    const double up = shifted[j];
+    const Eigen::VectorXd r_up = evaluate(residuals, shifted, m);
+    shifted[j] = z[j] - h;
+    const double down = shifted[j];
+    const Eigen::VectorXd r_down = evaluate(residuals, shifted, m);
+    shifted[j] = z[j];
+    jacobian.col(static_cast<Eigen::Index>(j)) = (r_up - r_down) / (up - down);
+  }
+
+  const Eigen::JacobiSVD<Eigen::MatrixXd> svd(jacobian, Eigen::ComputeFullV);
+  const Eigen::VectorXd& s = svd.singularValues();  // min(m, n) of them, decreasing
+  const Eigen::MatrixXd& v = svd.matrixV();          // n x n; columns beyond min(m, n) span null directions
+  const auto nn = static_cast<Eigen::Index>(n);
+  const double cutoff = kSingularTolerance * s(0);
+  ParameterStatistics out;
+  Eigen::VectorXd inverse_square = Eigen::VectorXd::Zero(nn);
+  for (Eigen::Index k = 0; k < s.size(); ++k)
+    if (s(k) > cutoff && s(k) > 0.0) {
+      inverse_square(k) = 1.0 / (s(k) * s(k));
+      ++out.rank;
+    }
+  out.residuals = static_cast<int>(m);
+  const double s2 = m > static_cast<std::size_t>(out.rank)
+                        ? r0.squaredNorm() / static_cast<double>(m - static_cast<std::size_t>(out.rank))
+                        : std::numeric_limits<double>::quiet_NaN();
+  const Eigen::MatrixXd covariance = v * inverse_square.asDiagonal() * v.transpose();  // Cov_z / s^2
+
+  for (Eigen::Index j = 0; j < nn; ++j) {
+    double null_part = 0.0;
+    for (Eigen::Index k = 0; k < nn; ++k)
+      if (inverse_square(k) == 0.0) null_part += v(j, k) * v(j, k);
+    out.identifiable.push_back(std::sqrt(null_part) <= kNullComponent);
+  }
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  out.correlation.assign(n, std::vector<double>(n, nan));
+  for (std::size_t i = 0; i < n; ++i) {
+    const auto ii = static_cast<Eigen::Index>(i);
+    const double dp_dz = logarithmic[i] ? std::exp(z[i]) : 1.0;
+    out.standard_error.push_back(out.identifiable[i] ? dp_dz * std::sqrt(s2 * covariance(ii, ii))
+                                                     : std::numeric_limits<double>::infinity());
+    out.correlation[i][i] = 1.0;
+    for (std::size_t j = 0; j < n; ++j) {
+      const auto jj = static_cast<Eigen::Index>(j);
+      if (i != j && out.identifiable[i] && out.identifiable[j])
+        out.correlation[i][j] = covariance(ii, jj) / std::sqrt(covariance(ii, ii) * covariance(jj, jj));
+    }
+  }
+  return out;
+}
+
+}  // namespace rheo::runtime

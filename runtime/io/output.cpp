@@ -1,0 +1,161 @@
+#include "runtime/io/output.hpp"
+
+#include "runtime/core/errors.hpp"
+
+#include <fmt/format.h>
+#include <nlohmann/json.hpp>
+#include <unistd.h>
+
+#include <cerrno>
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <filesystem>
+#include <iostream>
+#include <numbers>
+
+namespace rheo::runtime {
+namespace {
+
+constexpr double kDegree = 180.0 / std::numbers::pi;
+
+std::string comment_lines(const ResultHeader& h) {
+  return fmt::format("# rheo {}: model {} from {}\n", h.protocol, h.model, h.source);
+}
+
+const char* definition_name(HarmonicDefinition d) {
+  return d == HarmonicDefinition::thesis ? "thesis" : "first_harmonic";
+}
+
+}  // namespace
+
+std::string harmonic_csv(const ResultHeader& header, const std::vector<HarmonicPoint>& points, HarmonicDefinition definition) {
+  std::string out = comment_lines(header);
+  out += definition == HarmonicDefinition::thesis
+             ? "# definition thesis: stiffness = (max F - min F)/(2 u0), phase = asin(U/(pi F^ u0)) (eqs. 1.2, 5.26, 5.27)\n"
+             : "# definition first_harmonic: stiffness = |F1|/u0, phase = arg F1 of the first harmonic of the force\n";
+  out += "amplitude [mm],frequency [Hz],stiffness [N/mm],phase [deg],damping [-],storage [N/mm],loss [N/mm],"
+         "force_amplitude [N],energy [N*mm],cycles [-],converged [-]\n";
+  for (const auto& p : points) {
+    const auto& m = p.measures;
+    out += fmt::format("{},{},{:.10g},{:.8g},{:.8g},{:.10g},{:.10g},{:.10g},{:.10g},{},{}\n", p.amplitude,
+                       p.frequency, m.stiffness, m.phase * kDegree, m.damping, m.storage, m.loss, m.force_amplitude,
+                       m.energy, p.cycles, p.converged ? 1 : 0);
+  }
+  return out;
+}
+
+std::string harmonic_json(const ResultHeader& header, const std::vector<HarmonicPoint>& points, HarmonicDefinition definition) {
+  nlohmann::ordered_json j;
+  j["model"] = header.model;
+  j["source"] = header.source;
+  j["protocol"] = "harmonic";
+  j["definition"] = definition_name(definition);
+  j["units"] = {{"amplitude", "mm"}, {"frequency", "Hz"}, {"stiffness", "N/mm"}, {"phase", "deg"},
+                {"storage", "N/mm"}, {"loss", "N/mm"}, {"force_amplitude", "N"}, {"energy", "N*mm"}};
+  auto& list = j["points"] = nlohmann::ordered_json::array();
+  for (const auto& p : points) {
+    const auto& m = p.measures;
+    list.push_back({{"amplitude", p.amplitude}, {"frequency", p.frequency}, {"stiffness", m.stiffness},
+                    {"phase", m.phase * kDegree}, {"damping", m.damping}, {"storage", m.storage}, {"loss", m.loss},
+                    {"force_amplitude", m.force_amplitude}, {"energy", m.energy}, {"cycles", p.cycles},
+                    {"converged", p.converged}});
+  }
+  return j.dump(2) + "\n";
+}
+
+std::string history_csv(const ResultHeader& header, const History& h) {
+  std::string out = comment_lines(header);
+  out += "time [s],displacement [mm],force [N]";
+  for (const auto& path : h.element_paths) out += fmt::format(",{0}.force [N],{0}.elongation [mm]", path);
+  out += "\n";
+  for (std::size_t k = 0; k < h.time.size(); ++k) {
+    out += fmt::format("{:.10g},{:.10g},{:.10g}", h.time[k], h.displacement[k], h.force[k]);
+    for (std::size_t i = 0; i < h.element_paths.size(); ++i)
+      out += fmt::format(",{:.10g},{:.10g}", h.element_force[i][k], h.element_elongation[i][k]);
+    out += "\n";
+  }
+  return out;
+}
+
+std::string rendered(const ProtocolResult& result, lang::OutputFormat format) {
+  const bool json = format == lang::OutputFormat::json;
+  if (const auto* grid = std::get_if<HarmonicGrid>(&result.data))
+    return json ? harmonic_json(result.header, grid->points, grid->definition) : harmonic_csv(result.header, grid->points, grid->definition);
+  const History& history = std::get<History>(result.data);
+  return json ? history_json(result.header, history) : history_csv(result.header, history);
+}
+
+std::string history_json(const ResultHeader& header, const History& h) {
+  nlohmann::ordered_json j;
+  j["model"] = header.model;
+  j["source"] = header.source;
+  j["protocol"] = header.protocol;
+  j["units"] = {{"time", "s"}, {"displacement", "mm"}, {"force", "N"}, {"elongation", "mm"}};
+  j["time"] = h.time;
+  j["displacement"] = h.displacement;
+  j["force"] = h.force;
+  auto& elements = j["elements"] = nlohmann::ordered_json::array();
+  for (std::size_t i = 0; i < h.element_paths.size(); ++i)
+    elements.push_back({{"path", h.element_paths[i]}, {"force", h.element_force[i]}, {"elongation", h.element_elongation[i]}});
+  return j.dump() + "\n";
+}
+
+void check_output_destination(const std::string& path) {
+  if (path.empty() || path == "-") return;
+  namespace fs = std::filesystem;
+  const fs::path target(path);
+  std::error_code ec;
+  if (fs::is_directory(target, ec))
+    throw DataError(fmt::format("{}: error: the output is a directory; name a file in it, e.g. {}", path, (target / "result.csv").string()));
+  const fs::path parent = target.parent_path().empty() ? fs::path(".") : target.parent_path();
+  if (!fs::is_directory(parent, ec))
+    throw DataError(fmt::format("{}: error: the output's directory {} does not exist; create it or choose another path", path, parent.string()));
+}
+
+void write_output(const std::string& path, const std::string& content) {
+  if (path.empty() || path == "-") {
+    std::cout << content << std::flush;
+    return;
+  }
+  check_output_destination(path);
+  namespace fs = std::filesystem;
+  // A symbolic link is written through: the file it points to (created if missing) is
+  // replaced, the link kept. Chains are followed as the kernel would, to a depth of 40.
+  fs::path target(path);
+  std::error_code link_error;
+  for (int depth = 0; fs::is_symlink(fs::symlink_status(target, link_error)); ++depth) {
+    const fs::path next = fs::read_symlink(target, link_error);
+    if (link_error || depth == 40)
+      throw DataError(fmt::format("{}: error: cannot follow the link ({}); write to its target instead", path,
+                                  link_error ? link_error.message() : "too many levels of links"));
+    target = next.is_absolute() ? next : target.parent_path() / next;
+  }
+  std::error_code status_error;
+  const auto status = fs::status(target, status_error);
+  if (fs::exists(status) && !fs::is_regular_file(status)) {
+    // A device or pipe (/dev/null, a FIFO): write in place; renaming over it would replace it.
+    std::FILE* stream = std::fopen(target.c_str(), "wb");
+    const bool ok = stream && std::fwrite(content.data(), 1, content.size(), stream) == content.size();
+    if (stream) std::fclose(stream);
+    if (!ok) throw DataError(fmt::format("{}: error: cannot write output ({})", path, std::strerror(errno)));
+    return;
+  }
+  const fs::path temporary = target.parent_path() / fmt::format(".{}.rheo-tmp-{}", target.filename().string(), ::getpid());
+  std::FILE* file = std::fopen(temporary.c_str(), "wb");
+  if (!file) throw DataError(fmt::format("{}: error: cannot write output ({}); check that the directory exists and is writable", path, std::strerror(errno)));
+  const bool written = std::fwrite(content.data(), 1, content.size(), file) == content.size();
+  const bool closed = std::fclose(file) == 0;
+  std::error_code ec;
+  if (!written || !closed) {
+    fs::remove(temporary, ec);
+    throw DataError(fmt::format("{}: error: writing the output failed (disk full?); nothing was written", path));
+  }
+  fs::rename(temporary, target, ec);
+  if (ec) {
+    fs::remove(temporary, ec);
+    throw DataError(fmt::format("{}: error: cannot replace the output file ({})", path, ec.message()));
+  }
+}
+
+}  // namespace rheo::runtime

@@ -1,0 +1,39 @@
+// Result formats and atomic output.
+//
+// Harmonic CSV: the first four columns are exactly
+//   amplitude [mm],frequency [Hz],stiffness [N/mm],phase [deg]
+// (the format of the measured data, so a result can be fitted later), then
+//   damping [-],storage [N/mm],loss [N/mm],force_amplitude [N],energy [N*mm],cycles [-],converged [-]
+// History CSV: time [s],displacement [mm],force [N], then per element "PATH.force [N]" and
+// "PATH.elongation [mm]". '#' lines before the header say what produced the file.
+// Files are written to a temporary sibling and renamed, so a failed run never leaves a
+// half-written file and earlier outputs stay intact. Devices and pipes (/dev/null, FIFOs) are
+// written in place; a symbolic link is written through to its target and stays a link.
+#pragma once
+
+#include "lang/protocol_settings.hpp"
+#include "runtime/core/drive.hpp"
+#include "runtime/core/harmonic_point.hpp"
+#include "runtime/core/protocol_result.hpp"
+
+#include <string>
+#include <vector>
+
+namespace rheo::runtime {
+
+std::string harmonic_csv(const ResultHeader& header, const std::vector<HarmonicPoint>& points, HarmonicDefinition definition);
+std::string harmonic_json(const ResultHeader& header, const std::vector<HarmonicPoint>& points, HarmonicDefinition definition);
+std::string history_csv(const ResultHeader& header, const History& history);
+std::string history_json(const ResultHeader& header, const History& history);
+// A protocol's result in FORMAT: one of the four above.
+std::string rendered(const ProtocolResult& result, lang::OutputFormat format);
+
+// Writes `content` to `path` atomically ("-" or empty: standard output). Throws DataError.
+void write_output(const std::string& path, const std::string& content);
+
+// DataError unless `path` ("-" or empty: standard output) can be written: a directory, or a
+// parent directory that does not exist, is named with advice. Called before long runs, so
+// that a fit does not end with its result unwritable.
+void check_output_destination(const std::string& path);
+
+}  // namespace rheo::runtime

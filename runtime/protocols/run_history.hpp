@@ -1,0 +1,16 @@
+// Runs a displacement drive through a network: the fixed-step simulator, or SUNDIALS IDA where
+// the solver choice takes it (solver_choice.hpp).
+#pragma once
+
+#include "runtime/core/drive.hpp"
+#include "runtime/network/network.hpp"
+#include "runtime/protocols/solver_choice.hpp"
+
+namespace rheo::runtime {
+
+// Simulates the drive from rest; sample 0 is the rest state. With `elements`, records every
+// element's force and elongation.
+History run_history(const Network& network, const Drive& drive, bool elements,
+                    SolverChoice solver = SolverChoice::automatic);
+
+}  // namespace rheo::runtime

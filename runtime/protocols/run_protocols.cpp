@@ -1,0 +1,194 @@
+#include "runtime/protocols/run_protocols.hpp"
+
+#include "lang/limits.hpp"
+#include "lang/protocol_schema.hpp"
+#include "runtime/protocols/run_history.hpp"
+#include "runtime/core/errors.hpp"
+#include "runtime/dae/dae_protocols.hpp"
+#include "runtime/protocols/harmonic.hpp"
+#include "runtime/io/history_csv.hpp"
+#include "runtime/network/leaf_kernels.hpp"
+#include "runtime/closed_form/periodic_closed_form.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+
+namespace rheo::runtime {
+namespace {
+
+using lang::Protocol;
+
+// A yeoh in the root block follows the drive; past YeohLaw::softening_elongation its
+// tangent is negative: the force is still the law's, but the law is extrapolated.
+std::string yeoh_softening_note(const Network& network, double reach) {
+  std::string note;
+  for (const ElementProbe& probe : network.topology().probes) {
+    if (probe.source != ElementProbe::Source::root_yeoh) continue;
+    const auto& y = network.topology().yeohs[static_cast<std::size_t>(probe.index)];
+    const YeohLaw law{network.parameter(y[0]), network.parameter(y[1]), network.parameter(y[2])};
+    const double e = law.softening_elongation();
+    if (e < reach)
+      note += fmt::format("warning: yeoh '{}' softens to zero tangent stiffness at |e| = {:.6g} mm (eq. 3.3) and the drive reaches "
+                          "{:g} mm: its force falls beyond that; {}\n",
+                          probe.path, e, reach, YeohLaw::monotone_advice);
+  }
+  return note;
+}
+
+// The work limits of lang/limits.hpp, checked before a drive or grid is built.
+void require_within(double amount, long limit, const Protocol& p, const char* what, const char* advice) {
+  if (!(amount <= static_cast<double>(limit)))
+    throw ModelError(fmt::format("{}the {} protocol asks for {:.4g} {}, more than the limit of {}; {}", error_at(p.where),
+                                 lang::protocol_name(p.kind), amount, what, limit, advice));
+}
+
+// One protocol run: the network, the protocol line (for its location) and the result's header.
+struct RunContext {
+  const Network& network;
+  const Protocol& protocol;
+  const std::string& source_file;
+  int threads;
+  ResultHeader header;
+};
+
+// Histories name the backend in their header when it is not the fixed-step one.
+std::string solver_note(const Network& network, SolverChoice solver) {
+  return uses_sundials(network, solver) ? fmt::format(" solver=sundials (IDA, rtol {:g})", kDaeRelativeTolerance) : std::string();
+}
+
+ProtocolResult history_run(RunContext& c, const lang::CommonSettings& common, const Drive& drive, std::string description) {
+  c.header.protocol = std::move(description) + solver_note(c.network, common.solver);
+  History h = run_history(c.network, drive, common.elements, common.solver);
+  double reach = 0.0;
+  for (double u : h.displacement) reach = std::max(reach, std::abs(u));
+  ProtocolResult result{c.header, std::move(h), 0, yeoh_softening_note(c.network, reach)};
+  return result;
+}
+
+HarmonicOptions harmonic_options(const lang::HarmonicSettings& s, int threads) {
+  HarmonicOptions options;
+  options.definition = s.definition;
+  options.steady_state = s.steady_state;
+  options.steps_per_cycle = s.steps_per_cycle;
+  options.max_cycles = s.cycles_max;
+  options.tolerance = s.tolerance;
+  options.solver = s.solver;
+  options.threads = threads;
+  return options;
+}
+
+void require_consistent(const RunContext& c, const HarmonicOptions& options) {
+  const lang::SourceLocation& where = c.protocol.where;
+  if (options.steady_state == SteadyState::closed_form && options.solver == SolverChoice::sundials)
+    throw UsageError(fmt::format("{}:{}:{}: steady_state = closed_form and the SUNDIALS solver exclude each other; "
+                                 "drop one (solver = fixed with closed_form, or steady_state = auto)",
+                                 where.file, where.line, where.column));
+  if (options.steady_state == SteadyState::closed_form && !has_closed_form_periodic_state(c.network))
+    throw UsageError(fmt::format("{}:{}:{}: steady_state = closed_form needs every non-linear element of model '{}' in its "
+                                 "parallel body, and no quadratic_dashpot, gap or bouc_wen: use steady_state = auto or time_stepping",
+                                 where.file, where.line, where.column, c.network.model().name));
+}
+
+// The header line's description of how the grid's periodic states were found.
+std::string harmonic_method(const Network& network, const HarmonicOptions& options) {
+  if (uses_closed_form(network, options)) return "harmonic steady_state=closed_form";
+  if (uses_sundials(network, options.solver))
+    return fmt::format("harmonic solver=sundials (IDA, rtol {:g}) samples_per_cycle={} tolerance={:g}", kDaeRelativeTolerance,
+                       options.steps_per_cycle, std::max(options.tolerance, 100.0 * kDaeRelativeTolerance));
+  return fmt::format("harmonic steady_state=time_stepping steps_per_cycle={} tolerance={:g}", options.steps_per_cycle, options.tolerance);
+}
+
+std::string harmonic_notes(const Network& network, const std::vector<HarmonicPoint>& points, const std::vector<double>& amplitudes) {
+  std::string notes;
+  for (const auto& point : points)
+    if (!point.converged)
+      notes += fmt::format(
+          "warning: amplitude {:g} mm, frequency {:g} Hz did not reach steady state in {} cycles (residual {:.2e}); "
+          "raise cycles_max or loosen tolerance\n",
+          point.amplitude, point.frequency, point.cycles, point.residual);
+  for (const auto& point : points)
+    if (point.measures.damping_clamped) {
+      notes += fmt::format("warning: amplitude {:g} mm, frequency {:g} Hz: normalised damping {:.4f} > 1, phase reported as 90 deg\n",
+                           point.amplitude, point.frequency, point.measures.damping);
+      break;
+    }
+  return notes + yeoh_softening_note(network, *std::max_element(amplitudes.begin(), amplitudes.end()));
+}
+
+ProtocolResult run(RunContext& c, const lang::HarmonicSettings& s) {
+  const HarmonicOptions options = harmonic_options(s, c.threads);
+  require_consistent(c, options);
+  require_within(static_cast<double>(s.amplitudes.size()) * static_cast<double>(s.frequencies.size()), lang::max_harmonic_points,
+                 c.protocol, "points (amplitudes x frequencies)", "split the grid over several protocols");
+  require_within(static_cast<double>(options.steps_per_cycle) * options.max_cycles, lang::max_steps_per_point, c.protocol,
+                 "time steps per point (steps_per_cycle x cycles_max)", "lower steps_per_cycle or cycles_max");
+  HarmonicGrid grid{simulate_harmonic_grid(c.network, s.amplitudes, s.frequencies, options), options.definition};
+  c.header.protocol = harmonic_method(c.network, options);
+  int not_converged = 0;
+  for (const auto& point : grid.points) not_converged += point.converged ? 0 : 1;
+  std::string notes = harmonic_notes(c.network, grid.points, s.amplitudes);
+  return ProtocolResult{c.header, std::move(grid), not_converged, std::move(notes)};
+}
+
+// The static triangle resampled at a fixed interval: each of its steps cut into
+// ceil(step time / dt) parts.
+Drive resampled(const Drive& drive, double dt) {
+  Drive fine;
+  fine.time.assign(1, 0.0);
+  fine.displacement.assign(1, 0.0);
+  for (std::size_t k = 1; k < drive.time.size(); ++k) {
+    const int parts = std::max(1, static_cast<int>(std::ceil((drive.time[k] - drive.time[k - 1]) / dt - 1e-9)));
+    Drive piece{{drive.time[k - 1], drive.time[k]}, {drive.displacement[k - 1], drive.displacement[k]}};
+    Drive refined = refine(piece, parts);
+    fine.time.insert(fine.time.end(), refined.time.begin() + 1, refined.time.end());
+    fine.displacement.insert(fine.displacement.end(), refined.displacement.begin() + 1, refined.displacement.end());
+  }
+  return fine;
+}
+
+ProtocolResult run(RunContext& c, const lang::StaticSettings& s) {
+  constexpr int steps_per_cycle = lang::StaticSettings::samples_per_cycle;
+  double samples = 0.0;
+  for (double a : s.amplitudes)
+    samples += static_cast<double>(s.cycles) * steps_per_cycle *
+               (s.dt ? std::max(1.0, std::ceil(4.0 * a / (steps_per_cycle * s.velocity * *s.dt))) : 1.0);
+  require_within(samples, lang::max_drive_samples, c.protocol, "samples", "raise dt or velocity, or give fewer cycles or amplitudes");
+  Drive drive = static_triangle(s.amplitudes, s.velocity, s.cycles, steps_per_cycle);
+  if (s.dt) drive = resampled(drive, *s.dt);
+  return history_run(c, s, drive, fmt::format("static velocity={:g} mm/s cycles={}", s.velocity, s.cycles));
+}
+
+ProtocolResult run(RunContext& c, const lang::QuasistaticSettings& s) {
+  require_within(static_cast<double>(s.amplitudes.size()) * s.cycles * s.steps_per_cycle, lang::max_drive_samples, c.protocol, "samples",
+                 "lower steps_per_cycle, or give fewer cycles or amplitudes");
+  return history_run(c, s, quasistatic_sine(s.amplitudes, s.frequency, s.cycles, s.steps_per_cycle),
+                     fmt::format("quasistatic frequency={:g} Hz cycles={}", s.frequency, s.cycles));
+}
+
+ProtocolResult run(RunContext& c, const lang::HistorySettings& s) {
+  std::filesystem::path file = s.file;
+  if (file.is_relative()) file = std::filesystem::path(c.source_file).parent_path() / file;
+  const Drive measured = drive_from_table(read_table(file.string(), &s.file_where));
+  require_within((static_cast<double>(measured.time.size()) - 1.0) * s.substeps + 1.0, lang::max_drive_samples, c.protocol,
+                 "samples (rows x substeps)", "lower substeps or split the file");
+  return history_run(c, s, refine(measured, s.substeps), fmt::format("history file={}", file.string()));
+}
+
+ProtocolResult run(RunContext& c, const lang::StepSettings& s) {
+  require_within(std::ceil(s.duration / s.dt), lang::max_drive_samples, c.protocol, "samples (duration / dt)",
+                 "raise dt or shorten duration");
+  return history_run(c, s, step_relaxation(s.amplitude, s.rise, s.duration, s.dt),
+                     fmt::format("step amplitude={:g} mm duration={:g} s", s.amplitude, s.duration));
+}
+
+}  // namespace
+
+ProtocolResult run_protocol(const Network& network, const Protocol& p, const std::string& source_file, int threads) {
+  RunContext context{network, p, source_file, threads, {network.model().name, source_file, lang::protocol_name(p.kind)}};
+  return std::visit([&](const auto& settings) { return run(context, settings); }, p.settings);
+}
+
+}  // namespace rheo::runtime

@@ -1,0 +1,105 @@
+// Implicit step solution of nested series/parallel subtrees.
+//
+// Every node's step relation F(de) (force at the end of the step against its elongation
+// increment over the step) is monotone non-decreasing, so composition is well posed:
+//   parallel: F(de) = sum_i F_i(de)                  (common elongation, forces add)
+//   series:   de(F) = sum_i de_i(F)                  (common force, elongations add)
+// A series chain's F(de) is found by a safeguarded Newton iteration on de(F) = de in the
+// common force; a parallel block inside a chain is inverted the same way in de. Capped members
+// (friction elements, sliders) bound the chain force to [lo, hi]; when the chain cannot take
+// up de below the cap, the capped member slips and absorbs the rest: the return mapping of
+// section 2.4 generalised to chains with internal nodes. Rigid-plastic sliders make a relation
+// set-valued at de = 0; that case is resolved exactly from the force interval at zero rate.
+// Gaps (direct members of chains only, network.hpp) are the dual: their inverse is set-valued
+// at F = 0 (any elongation in [-w/2, w/2]) and rigid otherwise (e = +-w/2). A chain with gaps
+// first tests whether de is reachable at F = 0, the gaps spanning their play: then F = 0 exactly
+// and the gaps take what the other members leave; otherwise it is solved on the side of F = 0
+// that de lies on, each gap at its end stop with zero compliance.
+//
+// Linear subtrees (springs, dashpots, Maxwell elements, inerters) have affine step relations,
+// F(de) = F0 + S de, and so do their compositions:
+//   parallel: F0 = sum F0_i, S = sum S_i;   series: S = 1 / sum(1/S_i), F0 = S sum(F0_i/S_i);
+// they are evaluated bottom-up without iteration. A capped-linear chain (linear members,
+// friction elements within their caps acting as springs of force F_n, sliders rigid) is
+// F(de) = clamp(F0 + S de, cap): the return mapping of eq. 2.9 with the chain as the spring.
+//
+// No allocation: recursion over the flat node array, state read from `before`.
+#pragma once
+
+#include "runtime/network/bouc_wen.hpp"
+#include "runtime/network/leaf_kernels.hpp"
+#include "runtime/network/network.hpp"
+
+#include <vector>
+
+namespace rheo::runtime {
+
+struct Interval {
+  double lo, hi;
+};
+
+// Per-step constants of subtree leaves (depend on dt).
+struct TreeStepPlan {
+  double dt = 0.0;                   // s
+  // Length [s] of the linear piece of the drive that the step begins (>= dt): dt except for the
+  // harmonic protocol's midpoint probes (half a step along a piece of 2 dt).
+  double piece = 0.0;
+  std::vector<MaxwellStep> maxwell;  // per node (unused entries for other kinds)
+  // Per node: dashpot c/dt [N/mm], quadratic_dashpot cq/dt^2 [N/mm^2], inerter 4 b/dt^2 [N/mm],
+  // yeoh the largest force [N] it carries before its tangent reaches zero (infinite if never).
+  std::vector<double> coefficient;
+  // Per node: the forces [N] it can carry (caps of friction elements, sliders and bouc_wen,
+  // intersected along series chains, added across parallel blocks); unbounded otherwise.
+  std::vector<Interval> bounds;
+  void prepare(const Network& network, double dt, double piece);
+};
+
+// Whether every subtree steps without iteration: each series chain linear, capped-linear or
+// rigid while stuck (its parallel blocks then are only evaluated forward, never inverted).
+bool steps_without_iteration(const Topology& topology);
+
+class TreeSolver {
+ public:
+  TreeSolver(const Network& network, const TreeStepPlan& plan, const double* before)
+      : topology_(network.topology()), network_(network), plan_(plan), before_(before) {}
+
+  // Force at the end of the step for an elongation increment de of subtree `node`.
+  double force(int node, double de) const { return forward(node, de).force; }
+
+  // Solves the subtree for increment de and writes every node's new state into `after`.
+  // Returns the subtree force.
+  double advance(int node, double de, double* after) const;
+
+  int child(const TreeNode& n, int i) const { return topology_.children[static_cast<std::size_t>(n.first_child + i)]; }
+
+ private:
+  ForceSlope forward(int node, double de) const;
+  ForceSlope affine(int node) const;  // {F0 [N], S [N/mm]} of a linear node
+  ForceSlope capped_linear(int node, double de, Interval cap) const;
+  ForceSlope inverse(int node, double force) const;  // {elongation increment, d de / dF}
+  Interval bounds(int node) const { return plan_.bounds[static_cast<std::size_t>(node)]; }
+  Interval zero_rate_interval(int node) const;  // forces admissible at de = 0 (rigid nodes)
+  ForceSlope series_force(int node, double de) const;
+  ForceSlope parallel_elongation(int node, double force) const;
+  Interval play(const TreeNode& n) const;  // increments of a chain reachable at F = 0
+  bool has_gap(const TreeNode& n) const;
+  void assign(int node, double de, double force, double* after) const;
+  void assign_play(const TreeNode& n, double de, double* after) const;
+  ForceSlope inerter(int node, double de) const;
+  // NumericalError: a yeoh in series asked for more force than it carries before softening.
+  [[noreturn]] void throw_softened(int node, double force) const;
+
+  const TreeNode& at(int node) const { return topology_.nodes[static_cast<std::size_t>(node)]; }
+  double e_before(const TreeNode& n) const { return before_[n.state]; }
+  double f_before(const TreeNode& n) const { return before_[n.state + 1]; }
+  double slot_before(const TreeNode& n, int slot) const { return before_[n.state + slot]; }
+  double coefficient(int node) const { return plan_.coefficient[static_cast<std::size_t>(node)]; }
+  double p(const TreeNode& n, int slot) const { return network_.parameter(n.param[slot]); }
+
+  const Topology& topology_;
+  const Network& network_;
+  const TreeStepPlan& plan_;
+  const double* before_;
+};
+
+}  // namespace rheo::runtime

@@ -1,0 +1,152 @@
+// The closed-form periodic state against the independent time-stepping path: the two must agree
+// to the time-stepping error, which is O(1/N^2) in the steps per cycle N (the sampled maximum
+// of F alone is off by up to (2 pi/N)^2/8 relative, erratically in N), so the gap must be
+// below 5e-6 at N = 2048 and below 2e-8 at N = 32768.
+#include "runtime/closed_form/periodic_closed_form.hpp"
+#include "runtime/protocols/harmonic.hpp"
+
+#include "support.hpp"
+
+#include <doctest/doctest.h>
+
+#include <cmath>
+#include <stdexcept>
+
+using namespace rheo;
+using runtime::HarmonicDefinition;
+using runtime::HarmonicOptions;
+using runtime::SteadyState;
+
+namespace {
+
+const char* kSpecimenD = R"(
+  model d {
+    yeoh     rubber (D10 = 389.4253, D20 = -2.1094, D30 = 0.0786)
+    maxwell  m1 (k = 61.476, tau = 0.004335 s)
+    friction f1 (k = 1016.6, uy = 101.58 um)
+    friction f2 (k = 301.04, uy = 42.256 um)
+    friction f3 (k = 25.516, uy = 12.695 um)
+    friction f4 (k = 33.918, uy = 17.763 um)
+    friction f5 (k = 54.962, uy = 35.116 um)
+    friction f6 (k = 84.955, uy = 110.68 um)
+  })";
+
+runtime::HarmonicPoint stepped(const runtime::Network& net, double u0, double f, HarmonicDefinition definition, int steps) {
+  HarmonicOptions options;
+  options.definition = definition;
+  options.steady_state = SteadyState::time_stepping;
+  options.steps_per_cycle = steps;
+  return runtime::simulate_harmonic_point(net, u0, f, options);
+}
+
+struct Deviation {
+  double stiffness;  // relative
+  double phase;      // rad
+};
+
+Deviation deviation(const runtime::HarmonicPoint& a, const runtime::HarmonicPoint& b) {
+  return {test::relative_error(a.measures.stiffness, b.measures.stiffness), std::abs(a.measures.phase - b.measures.phase)};
+}
+
+void check_against_time_stepping(const runtime::Network& net, double u0, double f, HarmonicDefinition definition) {
+  const auto exact = runtime::closed_form_harmonic_point(net, u0, f, definition);
+  const Deviation coarse = deviation(stepped(net, u0, f, definition, 2048), exact);
+  const Deviation fine = deviation(stepped(net, u0, f, definition, 32768), exact);
+  CAPTURE(u0);
+  CAPTURE(f);
+  CAPTURE(coarse.stiffness);
+  CAPTURE(fine.stiffness);
+  CAPTURE(coarse.phase);
+  CAPTURE(fine.phase);
+  CHECK(exact.converged);
+  CHECK(exact.cycles == 0);
+  CHECK(coarse.stiffness < 5e-6);
+  CHECK(coarse.phase < 5e-6);
+  CHECK(fine.stiffness < 2e-8);
+  CHECK(fine.phase < 2e-8);
+}
+
+}  // namespace
+
+TEST_CASE("specimen D (yeoh + Maxwell + 6 friction): closed form is the limit of time stepping") {
+  const auto net = test::network_from(kSpecimenD, "d");
+  REQUIRE(runtime::has_closed_form_periodic_state(net));
+  for (auto definition : {HarmonicDefinition::thesis, HarmonicDefinition::first_harmonic})
+    for (double u0 : {0.02, 0.2, 1.0, 3.0, 6.0})
+      for (double f : {1.0, 25.0, 51.0}) check_against_time_stepping(net, u0, f, definition);
+}
+
+TEST_CASE("dashpot, bare slider, never-slipping friction and two yeoh springs together") {
+  const auto net = test::network_from(R"(
+    model mix {
+      spring   e  (k = 50)
+      dashpot  d  (c = 0.4 N*s/mm)
+      slider   s  (fy = 3 N)
+      friction f  (k = 100, uy = 5 mm)
+      yeoh     y1 (D10 = 20, D20 = 1.5, D30 = 0.01)
+      yeoh     y2 (D10 = 10, D20 = -0.5, D30 = 0.02)
+      maxwell  m  (k = 80, tau = 2 ms)
+    })", "mix");
+  for (auto definition : {HarmonicDefinition::thesis, HarmonicDefinition::first_harmonic})
+    for (double u0 : {0.1, 1.0, 2.5})
+      for (double f : {0.5, 10.0, 40.0}) check_against_time_stepping(net, u0, f, definition);
+}
+
+TEST_CASE("first harmonic of a yeoh spring: K' = 2 D10 + 3 D20 u0^2 + 15/4 D30 u0^4, no loss") {
+  const auto net = test::network_from("model y { yeoh y (D10 = 389.4253, D20 = -2.1094, D30 = 0.0786) }", "y");
+  for (double u0 : {0.5, 3.0, 6.25}) {
+    const auto p = runtime::closed_form_harmonic_point(net, u0, 5.0, HarmonicDefinition::first_harmonic);
+    const double expected = 2 * 389.4253 + 3 * -2.1094 * u0 * u0 + 3.75 * 0.0786 * std::pow(u0, 4);
+    CHECK(test::relative_error(p.measures.stiffness, expected) < 1e-14);
+    CHECK(p.measures.phase == 0.0);
+    // F^ of a monotone elastic law is the force at the amplitude.
+    const double f_max = u0 * (2 * 389.4253 + u0 * u0 * (4 * -2.1094 + 6 * 0.0786 * u0 * u0));
+    CHECK(test::relative_error(p.measures.force_amplitude, f_max) < 1e-14);
+  }
+}
+
+TEST_CASE("a bare slider: F^ = fy and d = 4/pi > 1 is clamped to 90 deg and flagged") {
+  const auto net = test::network_from("model s { slider s (fy = 7 N) }", "s");
+  const auto p = runtime::closed_form_harmonic_point(net, 0.5, 3.0, HarmonicDefinition::thesis);
+  CHECK(p.measures.force_amplitude == doctest::Approx(7.0).epsilon(1e-15));
+  CHECK(p.measures.damping == doctest::Approx(4.0 / std::numbers::pi).epsilon(1e-14));
+  CHECK(p.measures.damping_clamped);
+  CHECK(p.measures.phase == doctest::Approx(std::numbers::pi / 2));
+}
+
+TEST_CASE("nested networks have no closed form: automatic falls back to time stepping, closed_form refuses") {
+  const auto net = test::network_from("model n { spring e (k = 100) series { friction f (k = 50, fy = 2) maxwell m (k = 80, tau = 1 ms) } }", "n");
+  CHECK_FALSE(runtime::has_closed_form_periodic_state(net));
+  HarmonicOptions automatic;
+  const auto p = runtime::simulate_harmonic_point(net, 0.5, 5.0, automatic);
+  CHECK(p.cycles > 0);
+  HarmonicOptions closed;
+  closed.steady_state = SteadyState::closed_form;
+  CHECK_THROWS_AS(runtime::simulate_harmonic_point(net, 0.5, 5.0, closed), std::logic_error);
+}
+
+TEST_CASE("linear subtrees beside non-linear root elements: the closed form agrees with IDA") {
+  const auto net = test::network_from(R"(
+    model lin {
+      yeoh     y (D10 = 40, D20 = -0.3, D30 = 0.01)
+      friction f (k = 120, uy = 0.05 mm)
+      series { spring a (k = 300) parallel { dashpot d (c = 0.5 N*s/mm) spring b (k = 40) } }
+      series { spring s (k = 500) parallel { inerter i (b = 10 kg) dashpot c (c = 0.3 N*s/mm) } }
+    })", "lin");
+  REQUIRE(runtime::has_closed_form_periodic_state(net));
+  HarmonicOptions ida;
+  ida.solver = runtime::SolverChoice::sundials;
+  ida.tolerance = 1e-7;
+  for (double u0 : {0.02, 0.5})
+    for (double f : {1.0, 25.0, 60.0}) {
+      const auto exact = runtime::closed_form_harmonic_point(net, u0, f, HarmonicDefinition::thesis);
+      const auto stepped = runtime::simulate_harmonic_point(net, u0, f, ida);
+      CAPTURE(u0);
+      CAPTURE(f);
+      CHECK(exact.cycles == 0);
+      CHECK(stepped.converged);
+      const Deviation d = deviation(stepped, exact);
+      CHECK(d.stiffness < 2e-5);
+      CHECK(d.phase < 2e-5);
+    }
+}

@@ -1,0 +1,47 @@
+// The edge graph of the variable-step backend: expansion of composite leaves, node numbering,
+// and the networks it refuses with advice.
+#include "runtime/dae/dae_graph.hpp"
+#include "runtime/core/errors.hpp"
+#include "support.hpp"
+
+#include <doctest/doctest.h>
+
+using namespace rheo;
+using runtime::EdgeKind;
+
+TEST_CASE("maxwell and friction expand into spring + dashpot / slider through a new node") {
+  const auto graph = runtime::DaeGraph::build(test::network_from(
+      "model m { maxwell m1 (k = 10 N/mm, tau = 0.1 s)\n friction f (k = 5 N/mm, fy = 2 N)\n series s { spring a (k = 1 N/mm)\n dashpot d (c = 1 N*s/mm) } }",
+      "m"));
+  REQUIRE(graph.edges.size() == 6);
+  CHECK(graph.internal_nodes == 3);
+  CHECK(graph.edges[0].kind == EdgeKind::spring);
+  CHECK(graph.edges[0].a == runtime::kTerminal);
+  CHECK(graph.edges[1].kind == EdgeKind::dashpot);
+  CHECK(graph.edges[1].p[0] == doctest::Approx(1.0));  // c = k tau
+  CHECK(graph.edges[1].b == runtime::kGround);
+  CHECK(graph.edges[0].b == graph.edges[1].a);
+  CHECK(graph.edges[3].kind == EdgeKind::slider);
+  CHECK(graph.rate_edges == std::vector<int>{1, 5});
+  CHECK(graph.switch_edges == std::vector<int>{3});
+  REQUIRE(graph.probes.size() == 4);
+  CHECK(graph.probes[0].edges == std::vector<int>{0, 1});
+  CHECK(graph.probes[3].path == "s.d");
+}
+
+TEST_CASE("a gap stores its half width") {
+  const auto graph = runtime::DaeGraph::build(
+      test::network_from("model m { series s { gap g (width = 0.4 mm)\n spring k (k = 3 N/mm) } }", "m"));
+  CHECK(graph.edges[0].kind == EdgeKind::gap);
+  CHECK(graph.edges[0].p[0] == doctest::Approx(0.2));
+}
+
+TEST_CASE("refused: an inerter between terminal and ground, and sliders meeting at a free node") {
+  CHECK_THROWS_WITH_AS(runtime::DaeGraph::build(test::network_from("model m { inerter b (b = 1 kg)\n spring k (k = 1 N/mm) }", "m")),
+                       doctest::Contains("inerter 'b' of model 'm' sits directly between the terminal and ground"),
+                       runtime::ModelError);
+  CHECK_THROWS_WITH_AS(
+      runtime::DaeGraph::build(test::network_from(
+          "model m { spring k (k = 1 N/mm)\n series s { slider a (fy = 1 N)\n slider b (fy = 2 N) } }", "m")),
+      doctest::Contains("merge the sliders or put a spring between them"), runtime::ModelError);
+}

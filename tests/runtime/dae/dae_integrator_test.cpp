@@ -1,0 +1,140 @@
+// The variable-step (IDA) backend against closed forms: a linear network with an internal mass,
+// rate-independent elements under monotone loading, the free play of a gap, the energy of a
+// quadratic dashpot, and Maxwell relaxation.
+#include "runtime/dae/dae_integrator.hpp"
+#include "runtime/protocols/run_history.hpp"
+#include "runtime/protocols/harmonic.hpp"
+#include "runtime/dae/dae_protocols.hpp"
+#include "runtime/dae/sundials_owners.hpp"
+#include "support.hpp"
+
+#include <doctest/doctest.h>
+
+#include <complex>
+
+using namespace rheo;
+
+namespace {
+
+runtime::History history(const std::string& source, const runtime::Drive& drive) {
+  return runtime::dae_history(test::network_from(source, "m"), drive, false);
+}
+
+runtime::Drive ramp(double u_end, double duration, int samples) {
+  runtime::Drive d{{0.0}, {0.0}};
+  for (int k = 1; k <= samples; ++k) {
+    d.time.push_back(duration * k / samples);
+    d.displacement.push_back(u_end * k / samples);
+  }
+  return d;
+}
+
+}  // namespace
+
+TEST_CASE("an internal mass: K* = k0 + 1 / (1/k1 + 1/(k2 - b w^2 + i w c)) at and around its resonance") {
+  const std::string source =
+      "model m { spring k0 (k = 800 N/mm)\n series fluid { spring k1 (k = 600 N/mm)\n"
+      " parallel y { inerter b (b = 40 kg)\n dashpot c (c = 3 N*s/mm)\n spring k2 (k = 150 N/mm) } } }";
+  const auto network = test::network_from(source, "m");
+  runtime::HarmonicOptions options;
+  options.steps_per_cycle = 1024;
+  for (double f : {2.0, 17.0, 21.8, 40.0}) {
+    const double w = 2 * std::numbers::pi * f;
+    const std::complex<double> branch{150.0 - 0.040 * w * w, w * 3.0};
+    const std::complex<double> k_star = 800.0 + 1.0 / (1.0 / 600.0 + 1.0 / branch);
+    const auto p = runtime::dae_harmonic_point(network, 0.3, f, options);
+    CAPTURE(f);
+    CHECK(p.converged);
+    CHECK(test::relative_error(p.measures.stiffness, std::abs(k_star)) < 2e-5);
+    CHECK(std::abs(test::degrees(p.measures.phase - std::arg(k_star))) < 2e-3);
+  }
+}
+
+TEST_CASE("friction elements by events agree with the closed-form periodic state (C.15)") {
+  const auto network = test::network_from(
+      "model m { spring k (k = 800 N/mm)\n friction f1 (k = 200 N/mm, uy = 0.02 mm)\n friction f2 (k = 100 N/mm, uy = 0.1 mm) }", "m");
+  for (double u0 : {0.05, 0.2, 1.0}) {
+    runtime::HarmonicOptions options;
+    options.steps_per_cycle = 1024;
+    const auto exact = runtime::simulate_harmonic_point(network, u0, 5.0, {});  // closed form
+    const auto dae = runtime::dae_harmonic_point(network, u0, 5.0, options);
+    CAPTURE(u0);
+    CHECK(dae.converged);
+    CHECK(test::relative_error(dae.measures.stiffness, exact.measures.stiffness) < 1e-5);
+    CHECK(std::abs(test::degrees(dae.measures.phase - exact.measures.phase)) < 1e-3);
+  }
+}
+
+TEST_CASE("bouc_wen under monotone loading from rest: n = 1 gives F = fy (1 - exp(-k u / fy))") {
+  const auto h = history("model m { bouc_wen bw (k = 200 N/mm, n = 1, fy = 10 N) }", ramp(0.3, 1.0, 30));
+  for (std::size_t i = 1; i < h.time.size(); ++i) {
+    const double exact = 10.0 * (1.0 - std::exp(-200.0 * h.displacement[i] / 10.0));
+    CHECK(std::abs(h.force[i] - exact) < 1e-5 * 10.0);
+  }
+}
+
+TEST_CASE("a gap in series with a spring: no force inside the play, k (|u| - w/2) beyond it") {
+  runtime::Drive drive = runtime::static_triangle({0.5}, 1.0, 1, 80);
+  const auto h = history("model m { spring k0 (k = 10 N/mm)\n series s { gap g (width = 0.4 mm)\n spring k (k = 100 N/mm) } }", drive);
+  for (std::size_t i = 0; i < h.time.size(); ++i) {
+    const double u = h.displacement[i];
+    const double play = std::max(0.0, std::abs(u) - 0.2) * (u < 0 ? -1.0 : 1.0);
+    CHECK(std::abs(h.force[i] - (10.0 * u + 100.0 * play)) < 1e-6 * 60.0);
+  }
+}
+
+TEST_CASE("quadratic dashpot: energy per cycle U = (8/3) cq w^2 u0^3 (v_eps correction below 1e-6)") {
+  const auto network = test::network_from("model m { spring k (k = 50 N/mm)\n series s { spring k1 (k = 1e5 N/mm)\n quadratic_dashpot q (cq = 0.02 N*s^2/mm^2) } }", "m");
+  runtime::HarmonicOptions options;
+  options.steps_per_cycle = 2048;
+  const double u0 = 0.5, f = 10.0, w = 2 * std::numbers::pi * f;
+  const auto p = runtime::dae_harmonic_point(network, u0, f, options);
+  CHECK(p.converged);
+  // The series spring (1e5 N/mm) takes F/k1 of the elongation: a relative energy change ~ F^/(k1 u0) = 1e-4.
+  CHECK(test::relative_error(p.measures.energy, 8.0 / 3.0 * 0.02 * w * w * u0 * u0 * u0) < 5e-4);
+}
+
+TEST_CASE("Maxwell relaxation after a ramp matches the exact fixed-step update to 1e-6") {
+  const std::string source = "model m { maxwell m1 (k = 100 N/mm, tau = 0.05 s)\n spring k (k = 10 N/mm) }";
+  const auto drive = runtime::step_relaxation(0.5, 0.01, 0.3, 0.002);
+  const auto dae = history(source, drive);
+  const auto exact = runtime::run_history(test::network_from(source, "m"), drive, false, runtime::SolverChoice::fixed);
+  for (std::size_t i = 0; i < drive.time.size(); ++i) CHECK(std::abs(dae.force[i] - exact.force[i]) < 1e-6 * 55.0);
+}
+
+TEST_CASE("a failing SUNDIALS call is reported with the call and the flag name") {
+  CHECK_THROWS_WITH_AS(runtime::sundials::check_ida(IDA_TOO_MUCH_WORK, "IDASolve", "model 'm' at t = 1 s"),
+                       "SUNDIALS IDASolve failed: IDA_TOO_MUCH_WORK: model 'm' at t = 1 s", runtime::NumericalError);
+  CHECK(runtime::sundials::check_ida(IDA_ROOT_RETURN, "IDASolve") == IDA_ROOT_RETURN);
+}
+
+TEST_CASE("DaeLayout: the blocks of y follow each other in the order x, lambda, s, w, z") {
+  // Two internal nodes (a chain of three members), a slider, a gap, a dashpot, an inerter and a
+  // bouc_wen: one unknown of each kind at least.
+  const auto network = test::network_from(
+      "model m {\n  series { spring a (k = 1 N/mm)\n    slider s (fy = 1 N)\n    dashpot d (c = 1 N*s/mm) }\n"
+      "  series { spring b (k = 1 N/mm)\n    inerter i (b = 1 kg) }\n  series { spring g0 (k = 1 N/mm)\n    gap g (width = 1 mm) }\n"
+      "  bouc_wen w (k = 1 N/mm, n = 1, fy = 1 N)\n}",
+      "m");
+  const runtime::DaeGraph graph = runtime::DaeGraph::build(network);
+  const runtime::DaeLayout l = runtime::DaeLayout::of(graph);
+  CHECK(l.positions == graph.internal_nodes);
+  CHECK(l.switch_forces == static_cast<int>(graph.switch_edges.size()));
+  CHECK(l.switch_forces == 2);
+  CHECK(l.rate_coordinates == static_cast<int>(graph.rate_edges.size()));
+  CHECK(l.inerter_velocities == 1);
+  CHECK(l.bouc_wen_states == 1);
+  CHECK(l.size() == l.positions + l.switch_forces + l.rate_coordinates + l.inerter_velocities + l.bouc_wen_states);
+  using B = runtime::DaeLayout::Block;
+  const B order[] = {B::position, B::switch_force, B::rate_coordinate, B::inerter_velocity, B::bouc_wen_state};
+  int i = 0;
+  for (const auto [block, count] : {std::pair{order[0], l.positions}, std::pair{order[1], l.switch_forces}, std::pair{order[2], l.rate_coordinates},
+                                    std::pair{order[3], l.inerter_velocities}, std::pair{order[4], l.bouc_wen_states}})
+    for (int k = 0; k < count; ++k, ++i) {
+      CHECK(l.block_of(i) == block);
+      CHECK(l.differential(i) == (block != B::position && block != B::switch_force));
+    }
+  CHECK(i == l.size());
+  CHECK(l.switch_force(1) == l.positions + 1);
+  CHECK(l.bouc_wen_state(0) == l.size() - 1);
+}

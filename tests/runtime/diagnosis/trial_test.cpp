@@ -1,0 +1,73 @@
+#include "runtime/diagnosis/trial.hpp"
+
+#include "lang/frontend.hpp"
+#include "runtime/protocols/harmonic.hpp"
+#include "runtime/network/network.hpp"
+
+#include <doctest/doctest.h>
+
+#include <cmath>
+#include <complex>
+#include <numbers>
+
+using namespace rheo;
+namespace dx = runtime::diagnosis;
+
+namespace {
+
+lang::Program compiled(const dx::Trial& trial) {
+  std::string text = "model probe {\n";
+  for (const auto& line : dx::trial_statement(trial, "added", {500.0, 2.0})) text += "  " + line + "\n";
+  return lang::compile_source("probe.rheo", text + "}\n");
+}
+
+dx::Trial trial_of(dx::Shape shape) {
+  dx::Trial t;
+  t.shape = shape, t.stiffness = 200.0, t.time = 0.004, t.slip = 0.05, t.frequency = 20.0, t.damping_ratio = 0.3;
+  return t;
+}
+
+}  // namespace
+
+TEST_CASE("diagnosis trial: every shape writes a statement that compiles, with bounds around its values") {
+  for (dx::Shape shape : {dx::Shape::maxwell, dx::Shape::friction, dx::Shape::capped_maxwell, dx::Shape::capped_column, dx::Shape::tuned_column,
+                          dx::Shape::yeoh}) {
+    const dx::Trial trial = trial_of(shape);
+    const lang::Program program = compiled(trial);
+    const lang::CheckedModel& m = program.models.front();
+    int bounded = 0;
+    for (const auto& p : m.parameters)
+      if (p.free) {
+        ++bounded;
+        CHECK(p.lower <= p.value);
+        CHECK(p.value <= p.upper);
+      }
+    CHECK(bounded == dx::added_parameter_count(trial));  // an added yeoh: D10, D20, D30
+    CHECK(!dx::trial_summary(trial).empty());
+  }
+}
+
+TEST_CASE("diagnosis trial: the tuned column resonates where its frequency says (closed form K*)") {
+  // K* = 1/(1/k + 1/(i w c - b w^2)) with b = k/(2 pi f_r)^2: at f_r, b w^2 = k and
+  // 1/K* = 1/k + 1/(i w c - k), which is infinite without damping (the resonance).
+  const dx::Trial trial = trial_of(dx::Shape::tuned_column);
+  const lang::Program program = compiled(trial);
+  const runtime::Network network = runtime::Network::compile(program.models.front());
+  runtime::HarmonicOptions o;
+  o.definition = runtime::HarmonicDefinition::first_harmonic;
+  const auto point = runtime::simulate_harmonic_point(network, 1.0, trial.frequency, o);
+  const double w = 2.0 * std::numbers::pi * trial.frequency, b = trial.stiffness / (w * w);
+  const double c = 2.0 * trial.damping_ratio * std::sqrt(trial.stiffness * b);
+  const std::complex<double> expected = 1.0 / (1.0 / trial.stiffness + 1.0 / std::complex<double>(-trial.stiffness, w * c));
+  CHECK(point.measures.stiffness == doctest::Approx(std::abs(expected)).epsilon(1e-4));
+  CHECK(point.measures.phase == doctest::Approx(std::arg(expected)).epsilon(1e-4));
+}
+
+TEST_CASE("diagnosis trial: a yeoh replacing a spring keeps its linear stiffness, D10 = k / 2") {
+  dx::Trial trial = trial_of(dx::Shape::yeoh);
+  trial.replaces = "rubber";
+  const auto lines = dx::trial_statement(trial, "rubber", {500.0, 2.0});
+  REQUIRE(lines.size() == 1);
+  CHECK(lines.front().starts_with("yeoh rubber (D10 = 100 N/mm"));
+  CHECK(dx::added_parameter_count(trial) == 2);
+}

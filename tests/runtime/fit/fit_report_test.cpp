@@ -1,0 +1,216 @@
+// The reports of `rheo fit` (runtime/fit/fit_report.hpp): the JSON summary has every documented
+// field, with parameter values, bounds and standard errors in the unit the model wrote; the
+// text report lists every free parameter with its unit and flags values at a bound.
+#include "runtime/fit/fit_report.hpp"
+#include "runtime/protocols/run_history.hpp"
+#include "runtime/protocols/harmonic.hpp"
+
+#include "support.hpp"
+
+#include <doctest/doctest.h>
+#include <nlohmann/json.hpp>
+
+#include <cmath>
+
+using namespace rheo;
+using nlohmann::json;
+
+namespace {
+
+// tau written in ms, uy in um, the spring's k without a unit (internal N/mm); the spring's upper
+// bound (250) lies below the true value (300), so the fit ends on it.
+constexpr const char* start_source = R"(model r {
+  spring   e (k = 200 in [10, 250])
+  maxwell  m (k = 30 N/mm in [1, 1000], tau = 8 ms in [0.1, 100])
+  friction f (k = 120 N/mm in [1, 5000], uy = 25 um in [1, 1000])
+})";
+
+runtime::FitDataSet harmonic_from(const runtime::Network& truth) {
+  runtime::HarmonicData d;
+  d.path = "grid.csv";
+  for (double u0 : {0.01, 0.05, 0.2, 1.0})
+    for (double f : {1.0, 10.0, 40.0}) {
+      const auto p = runtime::simulate_harmonic_point(truth, u0, f, {});
+      d.amplitude.push_back(u0), d.frequency.push_back(f);
+      d.stiffness.push_back(p.measures.stiffness), d.phase.push_back(p.measures.phase);
+      d.rows.push_back(static_cast<int>(d.rows.size()) + 3);
+    }
+  return {"grid.csv", 1.0, d};
+}
+
+runtime::FitDataSet history_from(const runtime::Network& truth) {
+  runtime::HistoryData h;
+  h.path = "loop.csv";
+  h.drive = runtime::static_triangle({0.5, 0.1}, 0.5, 1, 100);
+  h.force = runtime::run_history(truth, h.drive, false).force;
+  for (double f : h.force) h.force_scale = std::max(h.force_scale, std::abs(f));
+  h.rows.assign(h.force.size(), 0);
+  return {"loop.csv", 0.5, h};
+}
+
+struct Fitted {
+  runtime::FitDescription description{"r.rheo", "exact", "phi", "default", 3};
+  runtime::FitResult result;
+};
+
+Fitted fitted(bool interrupt_first) {
+  const auto truth = test::network_from(
+      "model r { spring e (k = 300) maxwell m (k = 60, tau = 5 ms) friction f (k = 200, uy = 40 um) }", "r");
+  const auto start = test::network_from(start_source, "r");
+  runtime::FitSettings settings;
+  settings.search.max_evaluations = 400;
+  settings.search.seed = 3;
+  const std::atomic<bool> stop{interrupt_first};
+  settings.interrupt = &stop;
+  Fitted f;
+  f.result = runtime::fit(start, runtime::bounded_parameters(start), {harmonic_from(truth), history_from(truth)}, settings);
+  return f;
+}
+
+int index_of(const runtime::FitResult& r, const std::string& path) {
+  const auto& parameters = r.network.model().parameters;
+  for (std::size_t i = 0; i < parameters.size(); ++i)
+    if (parameters[i].path == path) return static_cast<int>(i);
+  FAIL("no parameter " << path);
+  return -1;
+}
+
+const json& parameter_entry(const json& j, const std::string& path) {
+  for (const json& p : j.at("parameters"))
+    if (p.at("path") == path) return p;
+  FAIL("no JSON entry for " << path);
+  return j;
+}
+
+}  // namespace
+
+TEST_CASE("in_written_unit converts internal values to the unit written, and keeps unitless ones") {
+  const auto model = test::model_from("model u { maxwell m (k = 2 kN/mm, tau = 5 ms) friction f (k = 100, uy = 40 um) }", "u");
+  for (const auto& p : model.parameters) {
+    CAPTURE(p.path);
+    if (p.path == "m.k") CHECK(runtime::in_written_unit(p, p.value) == doctest::Approx(2.0).epsilon(1e-15));
+    if (p.path == "m.tau") CHECK(runtime::in_written_unit(p, p.value) == doctest::Approx(5.0).epsilon(1e-15));
+    if (p.path == "f.uy") CHECK(runtime::in_written_unit(p, p.value) == doctest::Approx(40.0).epsilon(1e-15));
+    if (p.path == "f.k") {
+      CHECK(runtime::in_written_unit(p, p.value) == 100.0);
+      CHECK(runtime::written_unit(p) == "N/mm");  // the internal unit of a stiffness
+    }
+  }
+}
+
+TEST_CASE("the JSON summary has the documented fields, parameters in the units the model wrote") {
+  const Fitted f = fitted(false);
+  const runtime::FitResult& r = f.result;
+  const json j = json::parse(runtime::fit_report_json(f.description, r));
+  for (const char* key : {"model", "source", "method", "objective", "optimizer", "seed", "status", "interrupted", "evaluations",
+                          "non_finite_evaluations", "wall_seconds", "phi", "err", "notes", "parameters", "correlation", "data"})
+    CHECK_MESSAGE(j.contains(key), key);
+  CHECK(j["model"] == "r");
+  CHECK(j["source"] == "r.rheo");
+  CHECK(j["seed"] == 3);
+  CHECK(j["interrupted"] == false);
+  CHECK(j["evaluations"] == r.evaluations);
+  CHECK(j["err"].get<double>() == r.err);
+  CHECK(j["phi"].get<double>() == r.phi);
+
+  REQUIRE(j["parameters"].size() == r.network.model().parameters.size());
+  struct Expect {
+    const char* path;
+    const char* unit;
+    double scale;  // internal value / written value
+    double start, lower, upper;
+  };
+  for (const Expect& e : {Expect{"e.k", "N/mm", 1.0, 200, 10, 250}, Expect{"m.tau", "ms", 1e-3, 8, 0.1, 100},
+                          Expect{"f.uy", "um", 1e-3, 25, 1, 1000}, Expect{"f.k", "N/mm", 1.0, 120, 1, 5000}}) {
+    CAPTURE(e.path);
+    const json& p = parameter_entry(j, e.path);
+    const int i = index_of(r, e.path);
+    const auto k = static_cast<std::size_t>(std::find(r.free.begin(), r.free.end(), i) - r.free.begin());
+    REQUIRE(k < r.free.size());
+    CHECK(p["unit"] == e.unit);
+    CHECK(p["free"] == true);
+    CHECK(p["start"].get<double>() == doctest::Approx(e.start).epsilon(1e-14));
+    CHECK(p["lower"].get<double>() == doctest::Approx(e.lower).epsilon(1e-14));
+    CHECK(p["upper"].get<double>() == doctest::Approx(e.upper).epsilon(1e-14));
+    CHECK(p["value"].get<double>() == doctest::Approx(r.network.parameter(i) / e.scale).epsilon(1e-14));
+    REQUIRE(p.contains("identifiable"));
+    if (p["identifiable"] == true) {
+      REQUIRE(p.contains("standard_error"));
+      CHECK(p["standard_error"].get<double>() == doctest::Approx(r.statistics.standard_error[k] / e.scale).epsilon(1e-14));
+    }
+  }
+  // The fit found the truth where the bounds allow it (tau = 5 ms, uy = 40 um) and e.k on its bound.
+  CHECK(parameter_entry(j, "e.k")["value"].get<double>() == doctest::Approx(250.0).epsilon(1e-6));
+  // A computed parameter (the Maxwell element's c = k tau) is reported but not free, without bounds.
+  const json& c = parameter_entry(j, "m.c");
+  CHECK(c["free"] == false);
+  CHECK_FALSE(c.contains("lower"));
+  CHECK_FALSE(c.contains("standard_error"));
+
+  const json& correlation = j["correlation"];
+  REQUIRE(correlation["parameters"].size() == r.free.size());
+  REQUIRE(correlation["matrix"].size() == r.free.size());
+  for (std::size_t a = 0; a < r.free.size(); ++a) {
+    CHECK(correlation["parameters"][a] == r.network.model().parameters[static_cast<std::size_t>(r.free[a])].path);
+    CHECK(correlation["matrix"][a].size() == r.free.size());
+  }
+
+  REQUIRE(j["data"].size() == 2);
+  const json& grid = j["data"][0];
+  CHECK(grid["file"] == "grid.csv");
+  CHECK(grid["kind"] == "harmonic");
+  CHECK(grid["points"] == 12);
+  CHECK(grid["weight"] == 1.0);
+  CHECK(grid.contains("phi"));
+  REQUIRE(grid["residuals"].size() == 12);
+  const json& point = grid["residuals"][11];
+  for (const char* key : {"amplitude_mm", "frequency_hz", "stiffness_measured", "stiffness_model", "phase_measured_deg",
+                          "phase_model_deg", "stiffness_residual", "damping_residual"})
+    CHECK_MESSAGE(point.contains(key), key);
+  CHECK(point["amplitude_mm"] == 1.0);
+  CHECK(point["frequency_hz"] == 40.0);
+  const double measured_deg = r.datasets[0].measured_phase[11] * 180.0 / std::numbers::pi;
+  CHECK(point["phase_measured_deg"].get<double>() == doctest::Approx(measured_deg).epsilon(1e-14));
+  CHECK(point["stiffness_residual"].get<double>() ==
+        doctest::Approx(point["stiffness_model"].get<double>() / point["stiffness_measured"].get<double>() - 1.0).epsilon(1e-9));
+  const json& loop = j["data"][1];
+  CHECK(loop["kind"] == "history");
+  CHECK(loop["weight"] == 0.5);
+  CHECK(loop["points"] == r.datasets[1].prediction.force.size());
+  CHECK(loop["residuals"]["rms"].get<double>() == r.datasets[1].err);
+  CHECK(loop["residuals"]["max"].get<double>() == r.datasets[1].worst);
+  CHECK_FALSE(loop.contains("phi"));
+}
+
+TEST_CASE("the text report lists every free parameter with its unit, the data and the error measures") {
+  const Fitted f = fitted(false);
+  const std::string text = runtime::fit_report_text(f.description, f.result);
+  CAPTURE(text);
+  CHECK(text.find("rheo fit: model r from r.rheo") != std::string::npos);
+  CHECK(text.find("data grid.csv (harmonic, 12 points, weight 1)") != std::string::npos);
+  CHECK(text.find("data loop.csv (history, ") != std::string::npos);
+  CHECK(text.find("method exact, objective phi, optimizer default, seed 3") != std::string::npos);
+  for (const auto& [path, unit] : {std::pair{"e.k", "N/mm"}, {"m.k", "N/mm"}, {"m.tau", "ms"}, {"f.k", "N/mm"}, {"f.uy", "um"}}) {
+    CAPTURE(path);
+    const auto line_start = text.find(std::string("\n  ") + path + " ");
+    REQUIRE(line_start != std::string::npos);
+    const std::string line = text.substr(line_start + 1, text.find('\n', line_start + 1) - line_start - 1);
+    CHECK(line.find(std::string("  ") + unit + " ") != std::string::npos);
+    CHECK((line.find("at a bound") != std::string::npos) == (std::string(path) == "e.k"));
+  }
+  CHECK(text.find("m.c") == std::string::npos);  // not free: not listed
+  CHECK(text.find("grid.csv: phi (5.1) = ") != std::string::npos);
+  CHECK(text.find("loop.csv: force residual RMS") != std::string::npos);
+  CHECK(text.find("optimizer status") != std::string::npos);
+}
+
+TEST_CASE("an interrupted fit says so in both reports and has no standard errors") {
+  const Fitted f = fitted(true);
+  CHECK(f.result.interrupted);
+  const std::string text = runtime::fit_report_text(f.description, f.result);
+  CHECK(text.find("interrupted: these are the best values found so far") != std::string::npos);
+  const json j = json::parse(runtime::fit_report_json(f.description, f.result));
+  CHECK(j["interrupted"] == true);
+  CHECK(j["status"] == "interrupted");
+  for (const json& p : j["parameters"]) CHECK_FALSE(p.contains("standard_error"));
+}

@@ -1,0 +1,124 @@
+// Fit data import (runtime/io/fit_data.hpp): the kind of a file is read from its header, values
+// arrive in internal units, and a file that is neither kind, a history without force and an
+// all-zero force are DataErrors that name the file (and row) and say what is needed.
+#include "runtime/io/fit_data.hpp"
+
+#include "runtime/core/errors.hpp"
+
+#include <doctest/doctest.h>
+#include <fmt/format.h>
+#include <unistd.h>
+
+#include <filesystem>
+#include <fstream>
+#include <numbers>
+
+using namespace rheo;
+namespace fs = std::filesystem;
+
+namespace {
+
+std::string write(const std::string& name, const std::string& text) {
+  const fs::path dir = fs::temp_directory_path() / fmt::format("rheo-fit-data-{}", ::getpid());
+  fs::create_directories(dir);
+  std::ofstream(dir / name) << text;
+  return (dir / name).string();
+}
+
+std::string data_error(const std::string& path) {
+  try {
+    runtime::read_fit_data(path, 1.0);
+  } catch (const runtime::DataError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+bool contains(const std::string& text, const std::string& part) { return text.find(part) != std::string::npos; }
+
+}  // namespace
+
+TEST_CASE("a table with amplitude and frequency is harmonic, in internal units, with its weight") {
+  const auto path = write("harmonic.csv", "# measured\namplitude [um],frequency [Hz],stiffness [kN/mm],phase [deg]\n200,1,1.4,17.5\n3000,51,0.7,12\n");
+  const runtime::FitDataSet set = runtime::read_fit_data(path, 0.25);
+  REQUIRE(set.is_harmonic());
+  CHECK(set.path == path);
+  CHECK(set.weight == 0.25);
+  const auto& h = set.harmonic();
+  REQUIRE(h.size() == 2);
+  CHECK(h.amplitude[0] == doctest::Approx(0.2).epsilon(1e-15));
+  CHECK(h.amplitude[1] == doctest::Approx(3.0).epsilon(1e-15));
+  CHECK(h.frequency[1] == 51.0);
+  CHECK(h.stiffness[0] == doctest::Approx(1400.0).epsilon(1e-15));
+  CHECK(h.phase[1] == doctest::Approx(12.0 * std::numbers::pi / 180.0).epsilon(1e-15));
+  CHECK(h.rows == std::vector<int>{3, 4});
+}
+
+TEST_CASE("a harmonic table may give storage and loss instead of stiffness and phase") {
+  const auto path = write("storage.csv", "amplitude [mm],frequency [Hz],storage [N/mm],loss [N/mm]\n0.5,10,300,400\n");
+  const auto set = runtime::read_fit_data(path, 1.0);
+  REQUIRE(set.is_harmonic());
+  CHECK(set.harmonic().stiffness[0] == doctest::Approx(500.0).epsilon(1e-15));
+  CHECK(set.harmonic().phase[0] == doctest::Approx(std::atan2(4.0, 3.0)).epsilon(1e-15));
+}
+
+TEST_CASE("a table with time, displacement and force is a history; its force scale is max |F|") {
+  const auto path = write("history.csv", "time [ms],displacement [um],force [kN]\n0,0,0.01\n500,100,0.2\n1000,-300,-0.45\n");
+  const runtime::FitDataSet set = runtime::read_fit_data(path, 2.0);
+  REQUIRE_FALSE(set.is_harmonic());
+  CHECK(set.weight == 2.0);
+  const auto& h = set.history();
+  CHECK(h.path == path);
+  CHECK(h.drive.time == std::vector<double>{0.0, 0.5, 1.0});
+  REQUIRE(h.drive.displacement.size() == 3);
+  CHECK(h.drive.displacement[2] == doctest::Approx(-0.3).epsilon(1e-15));
+  REQUIRE(h.force.size() == 3);
+  CHECK(h.force[1] == doctest::Approx(200.0).epsilon(1e-15));
+  CHECK(h.force_scale == doctest::Approx(450.0).epsilon(1e-15));
+  CHECK(h.rows == std::vector<int>{2, 3, 4});
+}
+
+TEST_CASE("a table that is neither kind: the message names the file, lists the columns each kind needs and the header's") {
+  const auto path = write("neither.csv", "strain [-],stress [N]\n0,0\n0.1,5\n");
+  const std::string message = data_error(path);
+  CAPTURE(message);
+  CHECK(message.rfind(path + ":1:1: error:", 0) == 0);  // at the header
+  for (const char* column : {"'amplitude'", "'frequency'", "'stiffness'", "'phase'", "'storage'", "'loss'", "'time'", "'displacement'", "'force'"})
+    CHECK(contains(message, column));
+  CHECK(contains(message, "the header has: strain, stress"));
+}
+
+TEST_CASE("a history without a force column names the file and the column to add") {
+  const auto path = write("noforce.csv", "time [s],displacement [mm]\n0,0\n1,0.5\n");
+  const std::string message = data_error(path);
+  CAPTURE(message);
+  CHECK(message.rfind(path + ":1:1: error:", 0) == 0);
+  CHECK(contains(message, "'force [N]'"));
+  CHECK(contains(message, "the header has: time, displacement"));
+}
+
+TEST_CASE("a history whose force is zero throughout names the file and its first data row") {
+  const auto path = write("zero.csv", "# no signal\n\ntime [s],displacement [mm],force [N]\n0,0,0\n1,0.5,0\n2,0,-0\n");
+  const std::string message = data_error(path);
+  CAPTURE(message);
+  CHECK(message.rfind(path + ":4:5: error:", 0) == 0);  // the first force cell
+  CHECK(contains(message, "zero"));
+}
+
+TEST_CASE("a harmonic table lacking a needed column, or a history not from rest, says so at the header or the cell") {
+  const auto no_phase = write("nophase.csv", "amplitude [mm],frequency [Hz],stiffness [N/mm]\n0.5,10,300\n");
+  const std::string phase_message = data_error(no_phase);
+  CAPTURE(phase_message);
+  CHECK(phase_message.rfind(no_phase + ":1:1: error:", 0) == 0);
+  CHECK(contains(phase_message, "'phase'"));
+  const auto moving = write("moving.csv", "time [s],displacement [mm],force [N]\n0,0.2,1\n1,0.5,2\n");
+  const std::string rest_message = data_error(moving);
+  CAPTURE(rest_message);
+  CHECK(rest_message.rfind(moving + ":2:3: error:", 0) == 0);  // the displacement cell
+  CHECK(contains(rest_message, "from rest"));
+}
+
+TEST_CASE("a missing file is a DataError naming it") {
+  const std::string message = data_error("/nonexistent/rheo/fit-data.csv");
+  CHECK(message.rfind("/nonexistent/rheo/fit-data.csv: error:", 0) == 0);
+}

@@ -1,0 +1,94 @@
+// Table reading: units converted, every malformed input named by file:row:column.
+#include "runtime/io/history_csv.hpp"
+
+#include "runtime/core/errors.hpp"
+
+#include <doctest/doctest.h>
+
+#include <string>
+
+using namespace rheo::runtime;
+
+namespace {
+std::string error_of(const std::string& text) {
+  try {
+    parse_table("t.csv", text);
+  } catch (const DataError& e) {
+    return e.what();
+  }
+  return "";
+}
+std::string drive_error(const std::string& text) {
+  try {
+    drive_from_table(parse_table("h.csv", text));
+  } catch (const DataError& e) {
+    return e.what();
+  }
+  return "";
+}
+}  // namespace
+
+TEST_CASE("units in the header convert to N, mm, s; comments, BOM and CRLF are accepted") {
+  const Table t = parse_table("t.csv", "\xEF\xBB\xBF# a comment\r\ntime [ms],displacement [um],force [kN]\r\n0,0,0\r\n10,500,1.5\r\n");
+  REQUIRE(t.rows.size() == 2);
+  CHECK(t.columns[0][1] == doctest::Approx(0.01));
+  CHECK(t.columns[1][1] == doctest::Approx(0.5));
+  CHECK(t.columns[2][1] == doctest::Approx(1500.0));
+  CHECK(t.rows[1] == 4);
+}
+
+TEST_CASE("malformed tables are errors that name file:row:column") {
+  CHECK(error_of("time [s],displacement [furlong]\n0,0\n").find("t.csv:1:") == 0);
+  CHECK(error_of("time [s],displacement [furlong]\n0,0\n").find("unknown unit 'furlong'") != std::string::npos);
+  CHECK(error_of("time [s],displacement\n0,0\n").find("has no unit") != std::string::npos);
+  // A unit of the wrong dimension for a column the readers know, at the unit's column.
+  CHECK(error_of("time [mm],displacement [mm]\n0,0\n").find(
+            "t.csv:1:7: error: column 'time' has unit 'mm', a length (mm); time needs a unit of time (s), e.g. 'time [s]'") == 0);
+  CHECK(error_of("time [s],force [N/mm]\n0,0\n").find("column 'force' has unit 'N/mm', a stiffness (N/mm)") != std::string::npos);
+  CHECK(error_of("time [s],phase [N]\n0,0\n").find("phase needs a unit of none (a plain number, or deg for a phase), e.g. 'phase [deg]'") !=
+        std::string::npos);
+  CHECK(error_of("time [s],strain [N]\n0,0\n").empty());  // columns no reader knows are not checked
+  CHECK(error_of("time [s],displacement [mm]\n0,0\n1,abc\n").find("t.csv:3:3: error: 'abc' is not a number") == 0);
+  CHECK(error_of("time [s],displacement [mm]\n0,0\n1,nan\n").find("t.csv:3:3: error: 'nan' is not a finite number") == 0);
+  CHECK(error_of("time [s],displacement [mm]\n0,0\n1\n").find("t.csv:3:1: error: this row has 1 values") == 0);
+  CHECK(error_of("").find("no header") != std::string::npos);
+  CHECK(error_of("time [s],displacement [mm]\n").find("no data rows") != std::string::npos);
+  CHECK(error_of(std::string("time [s]\n0\0", 11)).find("NUL") != std::string::npos);
+}
+
+TEST_CASE("a drive needs time and displacement, increasing time, and a start from rest") {
+  CHECK(drive_error("time [s],force [N]\n0,0\n1,1\n").find("needs columns 'time [s]' and 'displacement [mm]'") != std::string::npos);
+  CHECK(drive_error("time [s],displacement [mm]\n0,0\n1,1\n1,2\n").find("h.csv:4:1: error: time must increase strictly") == 0);
+  CHECK(drive_error("time [s],displacement [mm]\n0,0.5\n1,1\n").find("must start from rest") != std::string::npos);
+  const Drive d = drive_from_table(parse_table("h.csv", "time [s],displacement [mm]\n2,0\n3,1\n"));
+  CHECK(d.time[0] == 0.0);
+  CHECK(d.time[1] == 1.0);
+}
+
+TEST_CASE("text that is not UTF-8, NUL bytes and control characters: errors at row:col that quote nothing raw") {
+  CHECK(error_of("time [s],displacement [mm]\n0,0\n0.1,0\xb7" "5\n").find("t.csv:3:6: error: found byte 0xB7, which is not UTF-8") == 0);
+  CHECK(error_of(std::string("time [s],displacement [mm]\n0,0\n0.1,\0\n", 36)).find("t.csv:3:5: error: found a NUL byte") == 0);
+  const std::string control = error_of("time [s],displacement [mm]\n0,0\n0.1,\x1b[2J\n");
+  CHECK(control.find("t.csv:3:5: error: '\xEF\xBF\xBD[2J' is not a number") == 0);
+  CHECK(error_of("time [s],displacement [mm]\n0,0\n0.1," + std::string(1000, '9') + "x\n").size() < 300);  // a long cell is cut
+  CHECK(error_of("time [s],displacement [mm]\n0,0\n0.1,1e999\n").find("t.csv:3:5: error: '1e999' is not a finite number") == 0);
+}
+
+TEST_CASE("an empty table, a header alone and a missing column are errors at a row and column") {
+  CHECK(error_of("").find("t.csv:1:1: error: no header found") == 0);
+  CHECK(error_of("# only\n# comments\n").find("t.csv:1:1: error: no header found") == 0);
+  CHECK(error_of("# rig 2\ntime [s],displacement [mm]\n").find("t.csv:2:1: error: the table has a header but no data rows") == 0);
+  const std::string drive = drive_error("# x\ntime [s],force [N]\n0,0\n1,1\n");
+  CHECK(drive.find("h.csv:2:1: error: a displacement history needs columns 'time [s]' and 'displacement [mm]'") == 0);
+  CHECK(drive.find("the header has: time, force") != std::string::npos);
+}
+
+TEST_CASE("a history's rows: at least two, time strictly increasing (no repeated row)") {
+  CHECK(drive_error("time [s],displacement [mm]\n0,0\n").find("h.csv:2:1: error: a history needs at least two rows") == 0);
+  CHECK(drive_error("time [s],displacement [mm]\n0,0\n0.1,0.5\n0.1,0.5\n").find("h.csv:4:1: error: time must increase strictly (row 4 has 0.1 s after 0.1 s at row 3)") == 0);
+  CHECK(drive_error("time [s],displacement [mm]\n0,0\n0.2,0.5\n0.1,0\n").find("h.csv:4:1: error: time must increase strictly") == 0);
+}
+
+TEST_CASE("read_table: a directory is not a table") {
+  CHECK_THROWS_WITH_AS(read_table(RHEO_DATA_DIR), doctest::Contains("cannot read the file (it is a directory)"), DataError);
+}

@@ -1,0 +1,119 @@
+#include "runtime/report/html_report.hpp"
+#include "runtime/core/errors.hpp"
+#include "runtime/report/report_figures.hpp"
+#include "report_support.hpp"
+#include "support.hpp"
+
+#include <doctest/doctest.h>
+
+#include <cmath>
+
+using namespace rheo;
+using rheo::test::count;
+
+namespace {
+
+// A 3 x 4 harmonic grid of a Kelvin-Voigt model, "measured" 1 % stiffer, and a short history.
+runtime::report::ReportContent sample_content() {
+  const runtime::Network network = test::network_from("model kv { spring k (k = 100 N/mm in [1, 1000])\n dashpot c (c = 0.5 N*s/mm) }", "kv");
+  runtime::report::ReportContent content = runtime::report::report_for_model(network, "dir/<odd> & name.rheo", "rheo report");
+  runtime::report::HarmonicComparison grid;
+  grid.label = "data/grid.csv";
+  for (const double a : {0.1, 0.5, 2.0})
+    for (const double f : {1.0, 5.0, 20.0, 50.0}) {
+      const double w = 2 * M_PI * f;
+      grid.amplitude.push_back(a), grid.frequency.push_back(f);
+      grid.model_stiffness.push_back(std::hypot(100.0, 0.5 * w)), grid.model_phase.push_back(std::atan2(0.5 * w, 100.0));
+      grid.measured_stiffness.push_back(1.01 * grid.model_stiffness.back()), grid.measured_phase.push_back(grid.model_phase.back() + 0.01);
+    }
+  content.harmonic.push_back(grid);
+  content.histories.push_back({"data/loop.csv", {0, 1, 0, -1, 0}, {0, 100, 10, -100, -10}, {0, 98, 12, -99, -11}, 0.01, 0.02, {}, 0.0});
+  content.sections.push_back({"gap", "Gap before and after", "<p>before 1e-2, after 1e-3</p>"});
+  return content;
+}
+
+}  // namespace
+
+TEST_CASE("report html: self-contained, no script, every figure and section present") {
+  const std::string html = runtime::report::html_report(sample_content());
+  CHECK(html.starts_with("<!DOCTYPE html>"));
+  CHECK(html.find("http") == std::string::npos);
+  CHECK(html.find("<script") == std::string::npos);
+  CHECK(html.find("src=") == std::string::npos);
+  CHECK(html.find("@import") == std::string::npos);
+  CHECK(count(html, "url(") == count(html, "url(#clip-"));  // only in-page clip paths
+  CHECK(count(html, "<figure") == 8);  // network, 4 curves, 2 residual maps, 1 loop
+  for (const char* kind : {"network", "stiffness-frequency", "phase-frequency", "stiffness-amplitude", "phase-amplitude", "residual-stiffness",
+                           "residual-phase", "hysteresis"})
+    CHECK(count(html, fmt::format("data-figure=\"{}\"", kind)) == 1);
+  // 3 amplitudes x (measured + model) over frequency, 4 frequencies x 2 over amplitude, 2 loops.
+  CHECK(count(html, "class=\"series\"") == 2 * (6 + 8) + 2);
+  CHECK(count(html, "class=\"cell\"") == 2 * 12);
+  CHECK(html.find("<section id=\"gap\">") != std::string::npos);
+  CHECK(html.find("@media print") != std::string::npos);
+  CHECK(test::xml_problem(html.substr(html.find("<body>"), html.find("</body>") + 7 - html.find("<body>"))) == "");
+}
+
+TEST_CASE("report html: names are escaped; parameters with units and bounds; err per data set") {
+  const std::string html = runtime::report::html_report(sample_content());
+  CHECK(html.find("dir/&lt;odd&gt; &amp; name.rheo") != std::string::npos);
+  CHECK(html.find("<odd>") == std::string::npos);
+  CHECK(html.find("<td><code>k.k</code></td><td class=\"num\">100</td><td>N/mm</td><td>[1, 1000]</td>") != std::string::npos);
+  CHECK(html.find("N*s/mm") != std::string::npos);
+  CHECK(html.find("err (6.1) = ") != std::string::npos);
+  CHECK(html.find("force residual RMS 1 %, worst 2 %") != std::string::npos);
+}
+
+TEST_CASE("report html: a baseline (the model before a diagnosis) adds dashed curves and its residual maps on the same colour scale") {
+  runtime::report::ReportContent content = sample_content();
+  runtime::report::HarmonicComparison& grid = content.harmonic.front();
+  for (std::size_t i = 0; i < grid.amplitude.size(); ++i) {
+    grid.baseline_stiffness.push_back(0.9 * grid.measured_stiffness[i]);  // 10 % soft: the before map spans -10 %
+    grid.baseline_phase.push_back(grid.measured_phase[i] - 0.05);
+  }
+  grid.baseline_err = 0.07;
+  content.histories.front().baseline_force = {0, 80, 0, -80, 0};
+  content.histories.front().baseline_rms = 0.12;
+  content.baseline = "model kv as given, fitted";
+  const std::string html = runtime::report::html_report(content);
+  CHECK(count(html, "<figure") == 10);  // and the two maps of the baseline
+  for (const char* kind : {"residual-stiffness-before", "residual-phase-before"}) CHECK(count(html, fmt::format("data-figure=\"{}\"", kind)) == 1);
+  // Per curve a dashed twin: 3 amplitudes x 2 plots + 4 frequencies x 2 plots, and one loop.
+  CHECK(count(html, "data-style=\"dashed\"") == 2 * (3 + 4) + 1);
+  CHECK(count(html, "class=\"cell\"") == 4 * 12);
+  CHECK(html.find("Dashed curves: model kv as given, fitted.") != std::string::npos);
+  CHECK(html.find("(model before: 7.0000e-02)") != std::string::npos);
+  CHECK(html.find("(model before: RMS 12 %)") != std::string::npos);
+  // Both stiffness maps end their colour scale at 10 % (the baseline's largest residual), so
+  // the refined model's 1 % cells are pale where the baseline's are saturated.
+  const auto maps = runtime::report::residual_maps(grid);
+  REQUIRE(maps.size() == 4);
+  CHECK(maps[0].limit == doctest::Approx(10.0));
+  CHECK(maps[2].limit == doctest::Approx(10.0));
+  CHECK(maps[1].limit == maps[3].limit);
+  CHECK(maps[2].title.find("before") != std::string::npos);
+  CHECK(test::xml_problem(html.substr(html.find("<body>"), html.find("</body>") + 7 - html.find("<body>"))) == "");
+}
+
+TEST_CASE("report figures: at most 8 curves, spread over the values; the primary figure is standalone") {
+  runtime::report::HarmonicComparison grid;
+  for (int a = 1; a <= 12; ++a)
+    for (const double f : {1.0, 10.0}) {
+      grid.amplitude.push_back(0.1 * a), grid.frequency.push_back(f);
+      grid.model_stiffness.push_back(100.0), grid.model_phase.push_back(0.1);
+    }
+  const auto plots = runtime::report::harmonic_plots(grid, "x");
+  REQUIRE(plots.size() == 4);
+  CHECK(plots[0].series.size() == 8);  // model only: one line per amplitude, 8 of 12
+  CHECK(plots[0].series.front().group == "0.1 mm");
+  CHECK(plots[0].series.back().group == "1.2 mm");
+  CHECK(plots[2].series.size() == 2);  // one per frequency
+  CHECK(runtime::report::residual_maps(grid).empty());
+  runtime::report::ReportContent content;
+  content.harmonic.push_back(grid);
+  const std::string svg = runtime::report::primary_figure_svg(content);
+  CHECK(svg.starts_with("<?xml"));
+  CHECK(test::xml_problem(svg) == "");
+  CHECK(svg.find("Dynamic stiffness over frequency") != std::string::npos);
+  CHECK_THROWS_AS(runtime::report::primary_figure_svg(runtime::report::ReportContent{}), runtime::UsageError);
+}
