@@ -4,9 +4,8 @@
 #include "lang/frontend.hpp"
 #include "lang/source_edit.hpp"
 #include "runtime/diagnosis/evidence_text.hpp"
+#include "runtime/diagnosis/refit.hpp"
 #include "runtime/fit/fit_scoring.hpp"
-#include "runtime/protocols/solver_choice.hpp"
-#include "runtime/stepping/tree_solver.hpp"
 
 #include <fmt/format.h>
 
@@ -87,72 +86,6 @@ std::string with_trial(const std::string& fitted_text, const lang::CheckedModel&
   throw std::logic_error(fmt::format("model '{}' has no root element '{}' to replace", fitted.name, trial.replaces));
 }
 
-// Work of one evaluation of NETWORK in fixed time steps of a nested network, counted on one
-// prediction: a time-stepped harmonic point costs the cycles it took to its periodic state
-// times the steps per cycle, a history sample one step, and a closed-form point 10. A step
-// under IDA (whose steps solve a DAE with Newton iterations) counts 10. A step of a network
-// whose elements all sit in the root parallel block counts 0.05 (its kernel is one update per
-// element, ~20 ns a step), of one whose subtrees step without iteration (linear and
-// capped-linear chains, tree_solver.hpp) 0.3 (~0.13 us), of others 1 (the nested Newton
-// iterations, 0.3-3 us; docs/performance.md). Counted, not timed, so that budgets, and
-// results, do not depend on the machine.
-double evaluation_work(const Network& network, const std::vector<FitDataSet>& data, const HarmonicOptions& options) {
-  const Topology& t = network.topology();
-  const double step_cost = uses_sundials(network, options.solver) ? 10.0
-                           : t.subtrees.empty()                   ? 0.05
-                           : steps_without_iteration(t)           ? 0.3
-                                                                  : 1.0;
-  double work = 0.0;
-  for (const auto& set : data) {
-    if (!set.is_harmonic()) {
-      work += step_cost * static_cast<double>(set.history().force.size());
-      continue;
-    }
-    for (const HarmonicPoint& point : predict(network, set, FitMethod::exact, options, nullptr).points)
-      work += point.cycles == 0 ? 10.0 : step_cost * point.cycles * options.steps_per_cycle;
-  }
-  return work;
-}
-
-// Evaluations REFIT_WORK affords at the work per evaluation of NETWORK, within [floor, max_evaluations].
-int affordable_evaluations(const Network& network, const std::vector<FitDataSet>& data, const DiagnoseSettings& s, int floor) {
-  const double per_evaluation = std::max(1.0, evaluation_work(network, data, s.fit.score.harmonic));
-  return static_cast<int>(std::clamp(s.refit_work / per_evaluation, static_cast<double>(floor), static_cast<double>(s.max_evaluations)));
-}
-
-FitSettings local_search(const FitSettings& base, int evaluations) {
-  FitSettings f = base;
-  f.yeoh_start_from_history = false;
-  f.statistics = false;
-  f.search.algorithm = Algorithm::bobyqa;
-  f.search.starts = 1;
-  f.search.samples = 0;
-  f.search.extra_starts.clear();
-  f.search.max_evaluations = evaluations;
-  return f;
-}
-
-// Stage 1: the new parameters alone; stage 2: every free parameter (DiagnoseSettings budgets).
-FitResult staged_refit(const Network& start, const std::vector<int>& kept, const std::vector<int>& added, const std::vector<FitDataSet>& data,
-                       const DiagnoseSettings& settings) {
-  const int n_added = static_cast<int>(added.size()), n_all = n_added + static_cast<int>(kept.size());
-  const int affordable = affordable_evaluations(start, data, settings, 0);
-  const bool thorough = affordable >= settings.thorough_evaluations * (n_added + n_all);
-  FitSettings first = local_search(settings.fit, thorough ? affordable / 2 : 2 * n_added + 1 + 15 * n_added);
-  if (thorough) first.search.algorithm.reset(), first.search.starts = 3, first.search.samples = -1;
-  FitResult stage1 = fit(start, added, data, first);
-  if (stage1.interrupted || kept.empty()) return stage1;
-  std::vector<int> all = kept;
-  all.insert(all.end(), added.begin(), added.end());
-  std::sort(all.begin(), all.end());
-  FitResult stage2 = fit(stage1.network, all, data, local_search(settings.fit, thorough ? affordable / 2 : 2 * n_all + 1 + 4 * n_all));
-  stage2.start_values = stage1.start_values;
-  stage2.evaluations += stage1.evaluations;
-  stage2.non_finite += stage1.non_finite;
-  stage2.wall_seconds += stage1.wall_seconds;
-  return stage2;
-}
-
 // Empty when the resonance of a refitted fluid column (the element ELEMENT of MODEL) lies inside
 // the measured frequencies with a margin of 10 % either side, else why not. Shapes without a
 // resonance are always resolved.
@@ -215,139 +148,198 @@ double fit_gap(const FitResult& result) {
   return histories ? std::sqrt(sum / histories) : result.err;
 }
 
-Diagnosis diagnose(const ModelSource& source, const std::vector<FitDataSet>& data, const DiagnoseSettings& settings) {
-  const Compiled base = compile(source, source.text);
-  std::vector<int> free;
-  if (settings.free.empty()) {
-    free = lang::default_free_parameters(*base.model);
-  } else {
-    for (const auto& path : settings.free) free.push_back(index_of(*base.model, path));
-    if (std::count(free.begin(), free.end(), -1)) throw std::logic_error(fmt::format("model '{}': a free parameter is not in it", source.model));
+namespace {
+
+// One diagnosis, its steps as methods in the order of diagnose.hpp: fit the model (1), screen the
+// effects (2), refit the leading ones and keep the one that earns (3, 4), polish it (5), and write
+// the refined source.
+class Diagnoser {
+ public:
+  Diagnoser(const ModelSource& source, const std::vector<FitDataSet>& data, const DiagnoseSettings& settings)
+      : source_(source), data_(data), settings_(settings), s_(settings), base_(compile(source, source.text)) {
+    s_.fit.score.method = FitMethod::exact;
+    s_.fit.statistics = settings.standard_errors;
   }
-  DiagnoseSettings s = settings;
-  s.fit.score.method = FitMethod::exact;
-  s.fit.statistics = settings.standard_errors;
 
-  Diagnosis d;
-  const bool harmonic = std::any_of(data.begin(), data.end(), [](const FitDataSet& set) { return set.is_harmonic(); });
-  d.gap_name = harmonic ? "err (6.1)" : "RMS force residual";
-  auto stage = [&](const std::string& what) {
-    if (s.stage) s.stage(what);
-  };
-  stage(fmt::format("fitting model {}", source.model));
-  d.before_program = base.program;
-  d.before = fit(Network::compile(*base.model), free, data, s.fit);
-  d.gap_before = d.gap_after = fit_gap(d.before);
-  d.residual_terms = residual_terms(data);
-  d.criterion_before = criterion(d.before, d.residual_terms);
-  d.patterns = residual_patterns(d.before, data);
-  const std::string fitted_text =
-      lang::write_fitted_source(source.text, source.file, *base.model, d.before.network.parameters(), d.before.free, {});
-  d.interrupted = d.before.interrupted;
+  Diagnosis run() {
+    fit_model();
+    refit_leading(screen_effects());
+    if (!chosen_) return finish_none();
+    polish();
+    return finish_refined();
+  }
 
-  std::vector<std::string> kept_paths;
-  for (int i : d.before.free) kept_paths.push_back(base.model->parameters[static_cast<std::size_t>(i)].path);
-  const Compiled fitted = compile(source, fitted_text);
-  const DataScales scales = data_scales(data);
-  std::optional<Chosen> chosen;
-  int refitted = 0;
-  if (!d.interrupted) stage("screening the effects");
-  const std::vector<ScreenedEffect> screened_effects = d.interrupted ? std::vector<ScreenedEffect>{} : screen(d.before, data, s.fit.score);
-  const double leading_gain = screened_effects.empty() ? 0.0 : screened_effects.front().gain;
-  // Refits the fitted model with TRIAL added as OUTCOME.element, records the outcome and keeps
-  // it as the choice if it earns its parameters and beats the choice so far.
-  auto refit_candidate = [&](const Trial& trial, CandidateOutcome& outcome) {
+ private:
+  void stage(const std::string& what) const {
+    if (s_.stage) s_.stage(what);
+  }
+
+  std::vector<int> free_parameters() const {
+    if (settings_.free.empty()) return lang::default_free_parameters(*base_.model);
+    std::vector<int> free;
+    for (const auto& path : settings_.free) free.push_back(index_of(*base_.model, path));
+    if (std::count(free.begin(), free.end(), -1))
+      throw std::logic_error(fmt::format("model '{}': a free parameter is not in it", source_.model));
+    return free;
+  }
+
+  // Step 1: the model as given, fitted; its residual patterns and its fitted source.
+  void fit_model() {
+    const std::vector<int> free = free_parameters();
+    const bool harmonic = std::any_of(data_.begin(), data_.end(), [](const FitDataSet& set) { return set.is_harmonic(); });
+    d_.gap_name = harmonic ? "err (6.1)" : "RMS force residual";
+    stage(fmt::format("fitting model {}", source_.model));
+    d_.before_program = base_.program;
+    d_.before = fit(Network::compile(*base_.model), free, data_, s_.fit);
+    d_.gap_before = d_.gap_after = fit_gap(d_.before);
+    d_.residual_terms = residual_terms(data_);
+    d_.criterion_before = criterion(d_.before, d_.residual_terms);
+    d_.patterns = residual_patterns(d_.before, data_);
+    fitted_text_ = lang::write_fitted_source(source_.text, source_.file, *base_.model, d_.before.network.parameters(), d_.before.free, {});
+    d_.interrupted = d_.before.interrupted;
+    for (int i : d_.before.free) kept_paths_.push_back(base_.model->parameters[static_cast<std::size_t>(i)].path);
+    fitted_ = compile(source_, fitted_text_);
+    scales_ = data_scales(data_);
+  }
+
+  // Step 2: every effect screened, leading first.
+  std::vector<ScreenedEffect> screen_effects() {
+    if (d_.interrupted) return {};
+    stage("screening the effects");
+    return screen(d_.before, data_, s_.fit.score);
+  }
+
+  // Step 3: the leading effects refitted (a refitted capped fluid column is followed by its limit
+  // without inertia); the others recorded as screened only.
+  void refit_leading(const std::vector<ScreenedEffect>& screened_effects) {
+    const double leading_gain = screened_effects.empty() ? 0.0 : screened_effects.front().gain;
+    int refitted = 0;
+    for (const ScreenedEffect& screened : screened_effects) {
+      CandidateOutcome outcome;
+      outcome.screened = screened;
+      const Trial& trial = screened.trial;
+      outcome.element = trial.replaces.empty() ? unique_name(*fitted_.model, element_word(screened.effect)) : trial.replaces;
+      if (refitted >= s_.confirm || screened.gain < std::max(s_.min_screen_gain, s_.relative_screen_gain * leading_gain) || d_.interrupted) {
+        d_.candidates.push_back(outcome);
+        continue;
+      }
+      ++refitted;
+      const std::optional<Trial> limit = refit_candidate(trial, outcome);
+      if (!limit || d_.interrupted) continue;
+      // The column's limit without inertia competes with it: where the data hold no resonance
+      // (or cannot place it) the limit earns the coupling with one parameter fewer.
+      CandidateOutcome limit_outcome;
+      limit_outcome.screened = screened;
+      limit_outcome.screened.trial = *limit;
+      limit_outcome.element = outcome.element;
+      limit_outcome.limit_of = fmt::format("the limit without inertia of the fluid column before it (its chamber and channel as a Maxwell "
+                                           "element, tau = c/k = {:.4g} ms){}",
+                                           limit->time * 1e3, outcome.unresolved.empty() ? "" : ", whose resonance the data cannot place");
+      refit_candidate(*limit, limit_outcome);
+    }
+  }
+
+  // Steps 3 and 4 for one candidate: the fitted model with TRIAL added as OUTCOME.element,
+  // refitted in two stages; recorded, and kept as the choice if it earns its parameters and is
+  // preferred to the choice so far. Returns the limit without inertia of a capped fluid column.
+  std::optional<Trial> refit_candidate(const Trial& trial, CandidateOutcome& outcome) {
     const auto started = std::chrono::steady_clock::now();
     stage(fmt::format("refitting with {} for {}", trial_summary(trial), effect_name(outcome.screened.effect)));
     const std::string comment = fmt::format("candidate for {}", effect_name(outcome.screened.effect));
-    Compiled candidate = compile(source, with_trial(fitted_text, *fitted.model, trial, outcome.element, scales.bounds, comment));
+    Compiled candidate = compile(source_, with_trial(fitted_text_, *fitted_.model, trial, outcome.element, scales_.bounds, comment));
     std::vector<int> kept, added;
-    for (const auto& path : kept_paths)
+    for (const auto& path : kept_paths_)
       if (const int i = index_of(*candidate.model, path); i >= 0) kept.push_back(i);
     for (std::size_t i = 0; i < candidate.model->parameters.size(); ++i) {
       const lang::Parameter& p = candidate.model->parameters[i];
       if (p.free && p.path.starts_with(outcome.element + ".") && std::find(kept.begin(), kept.end(), static_cast<int>(i)) == kept.end())
         added.push_back(static_cast<int>(i));
     }
-    FitResult result = staged_refit(Network::compile(*candidate.model), kept, added, data, s);
+    FitResult result = staged_refit(Network::compile(*candidate.model), kept, added, data_, s_);
     outcome.refitted = true;
     outcome.gap_after = fit_gap(result);
-    outcome.criterion = criterion(result, d.residual_terms);
+    outcome.criterion = criterion(result, d_.residual_terms);
     outcome.parameters = static_cast<int>(result.free.size());
     outcome.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
-    d.interrupted = d.interrupted || result.interrupted;
-    outcome.unresolved = resolved_resonance(trial, *candidate.model, result.network, outcome.element, scales);
+    d_.interrupted = d_.interrupted || result.interrupted;
+    outcome.unresolved = resolved_resonance(trial, *candidate.model, result.network, outcome.element, scales_);
     std::optional<Trial> limit;
     if (trial.shape == Shape::capped_column) limit = resonance_free_limit(trial, *candidate.model, result.network, outcome.element);
-    const bool earns = outcome.unresolved.empty() && outcome.criterion < d.criterion_before && outcome.gap_after <= (1.0 - s.min_improvement) * d.gap_before;
-    if (earns && (!chosen || preferred(outcome, d.candidates[chosen->candidate], s.parsimony)))
-      chosen = Chosen{d.candidates.size(), trial, std::move(candidate), std::move(result)};
-    d.candidates.push_back(outcome);
+    const bool earns =
+        outcome.unresolved.empty() && outcome.criterion < d_.criterion_before && outcome.gap_after <= (1.0 - s_.min_improvement) * d_.gap_before;
+    if (earns && (!chosen_ || preferred(outcome, d_.candidates[chosen_->candidate], s_.parsimony)))
+      chosen_ = Chosen{d_.candidates.size(), trial, std::move(candidate), std::move(result)};
+    d_.candidates.push_back(outcome);
     return limit;
-  };
-  for (const ScreenedEffect& screened : screened_effects) {
-    CandidateOutcome outcome;
-    outcome.screened = screened;
-    const Trial& trial = screened.trial;
-    outcome.element = trial.replaces.empty() ? unique_name(*fitted.model, element_word(screened.effect)) : trial.replaces;
-    if (refitted >= s.confirm || screened.gain < std::max(s.min_screen_gain, s.relative_screen_gain * leading_gain) || d.interrupted) {
-      d.candidates.push_back(outcome);
-      continue;
-    }
-    ++refitted;
-    const std::optional<Trial> limit = refit_candidate(trial, outcome);
-    if (!limit || d.interrupted) continue;
-    // The column's limit without inertia competes with it: where the data hold no resonance
-    // (or cannot place it) the limit earns the coupling with one parameter fewer.
-    CandidateOutcome limit_outcome;
-    limit_outcome.screened = screened;
-    limit_outcome.screened.trial = *limit;
-    limit_outcome.element = outcome.element;
-    limit_outcome.limit_of = fmt::format("the limit without inertia of the fluid column before it (its chamber and channel as a Maxwell "
-                                         "element, tau = c/k = {:.4g} ms){}",
-                                         limit->time * 1e3, outcome.unresolved.empty() ? "" : ", whose resonance the data cannot place");
-    refit_candidate(*limit, limit_outcome);
   }
 
-  if (!chosen) {
-    d.effect = Effect::none;
-    d.reason = none_reason(d, s);
-    std::vector<std::string> header{fmt::format("Checked by `rheo diagnose`: effect none, nothing added. {} = {:.4g}.", d.gap_name, d.gap_before)};
-    d.refined_text = lang::write_fitted_source(source.text, source.file, *base.model, d.before.network.parameters(), d.before.free, header);
-    return d;
-  }
-  d.candidates[chosen->candidate].chosen = true;
-  const CandidateOutcome& winner = d.candidates[chosen->candidate];
-  if (!d.interrupted) {
+  // Step 5: BOBYQA over every free parameter of the chosen model again, kept when no worse.
+  void polish() {
+    if (d_.interrupted) return;
     stage("polishing the refined model");
-    const int n = static_cast<int>(chosen->result.free.size());
-    FitSettings polish = local_search(s.fit, affordable_evaluations(chosen->result.network, data, s, 2 * n + 1 + 20 * n));
-    polish.statistics = settings.standard_errors;
-    FitResult polished = fit(chosen->result.network, chosen->result.free, data, polish);
-    d.interrupted = polished.interrupted;
-    if (polished.objective <= chosen->result.objective) {
-      polished.start_values = chosen->result.start_values;
-      polished.evaluations += chosen->result.evaluations;
-      polished.wall_seconds += chosen->result.wall_seconds;
-      chosen->result = std::move(polished);
+    const int n = static_cast<int>(chosen_->result.free.size());
+    FitSettings settings = local_search(s_.fit, affordable_evaluations(chosen_->result.network, data_, s_, 2 * n + 1 + 20 * n));
+    settings.statistics = settings_.standard_errors;
+    FitResult polished = fit(chosen_->result.network, chosen_->result.free, data_, settings);
+    d_.interrupted = polished.interrupted;
+    if (polished.objective <= chosen_->result.objective) {
+      polished.start_values = chosen_->result.start_values;
+      polished.evaluations += chosen_->result.evaluations;
+      polished.wall_seconds += chosen_->result.wall_seconds;
+      chosen_->result = std::move(polished);
     }
   }
-  d.effect = winner.screened.effect;
-  d.gap_after = fit_gap(chosen->result);
-  d.added_element = winner.element;
-  d.reason = effect_reason(d, winner);
-  // The final text: the same structure as the refitted candidate, under the comment that says why.
-  const std::string comment = fmt::format("added by rheo diagnose: {}; {} {:.4g} -> {:.4g}", effect_name(d.effect), d.gap_name, d.gap_before, d.gap_after);
-  const std::string structure = with_trial(fitted_text, *fitted.model, chosen->trial, winner.element, scales.bounds, comment);
-  const Compiled refined = compile(source, structure);
-  std::vector<std::string> header{fmt::format("Refined by `rheo diagnose`: effect {}; added '{}'; {} {:.4g} -> {:.4g}.", effect_name(d.effect),
-                                              winner.element, d.gap_name, d.gap_before, d.gap_after)};
-  d.refined_text = lang::write_fitted_source(structure, source.file, *refined.model, chosen->result.network.parameters(), chosen->result.free, header);
-  d.added_summary = added_summary(chosen->result, winner.element);
-  d.added_statement = statement_lines(d.refined_text, source, winner.element);
-  d.after = std::move(chosen->result);
-  d.after_program = chosen->compiled.program;
-  return d;
+
+  // No candidate earned: effect none, the model as fitted.
+  Diagnosis finish_none() {
+    d_.effect = Effect::none;
+    d_.reason = none_reason(d_, s_);
+    std::vector<std::string> header{fmt::format("Checked by `rheo diagnose`: effect none, nothing added. {} = {:.4g}.", d_.gap_name, d_.gap_before)};
+    d_.refined_text = lang::write_fitted_source(source_.text, source_.file, *base_.model, d_.before.network.parameters(), d_.before.free, header);
+    return std::move(d_);
+  }
+
+  // The chosen candidate: the refined source (the same structure as the refitted candidate,
+  // under the comment that says why) with its fitted values.
+  Diagnosis finish_refined() {
+    d_.candidates[chosen_->candidate].chosen = true;
+    const CandidateOutcome& winner = d_.candidates[chosen_->candidate];
+    d_.effect = winner.screened.effect;
+    d_.gap_after = fit_gap(chosen_->result);
+    d_.added_element = winner.element;
+    d_.reason = effect_reason(d_, winner);
+    const std::string comment =
+        fmt::format("added by rheo diagnose: {}; {} {:.4g} -> {:.4g}", effect_name(d_.effect), d_.gap_name, d_.gap_before, d_.gap_after);
+    const std::string structure = with_trial(fitted_text_, *fitted_.model, chosen_->trial, winner.element, scales_.bounds, comment);
+    const Compiled refined = compile(source_, structure);
+    std::vector<std::string> header{fmt::format("Refined by `rheo diagnose`: effect {}; added '{}'; {} {:.4g} -> {:.4g}.", effect_name(d_.effect),
+                                                winner.element, d_.gap_name, d_.gap_before, d_.gap_after)};
+    d_.refined_text =
+        lang::write_fitted_source(structure, source_.file, *refined.model, chosen_->result.network.parameters(), chosen_->result.free, header);
+    d_.added_summary = added_summary(chosen_->result, winner.element);
+    d_.added_statement = statement_lines(d_.refined_text, source_, winner.element);
+    d_.after = std::move(chosen_->result);
+    d_.after_program = chosen_->compiled.program;
+    return std::move(d_);
+  }
+
+  const ModelSource& source_;
+  const std::vector<FitDataSet>& data_;
+  const DiagnoseSettings& settings_;
+  DiagnoseSettings s_;  // settings_ with the method exact and the statistics asked for
+  const Compiled base_;
+  Diagnosis d_;
+  std::string fitted_text_;              // the source with the values of step 1
+  Compiled fitted_;                      // fitted_text_ compiled
+  std::vector<std::string> kept_paths_;  // the free parameters of step 1, by path
+  DataScales scales_;
+  std::optional<Chosen> chosen_;
+};
+
+}  // namespace
+
+Diagnosis diagnose(const ModelSource& source, const std::vector<FitDataSet>& data, const DiagnoseSettings& settings) {
+  return Diagnoser(source, data, settings).run();
 }
 
 }  // namespace rheo::runtime::diagnosis
