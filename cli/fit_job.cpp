@@ -115,9 +115,10 @@ void set_yeoh_start(FitJob& job, const std::string& path) {
   if (!yeoh)
     throw runtime::UsageError(fmt::format("--yeoh-start: model '{}' has no yeoh spring in its root block to start", model.name));
   const runtime::LoopSamples record = runtime::loop_samples_from_table(runtime::read_table(path));  // errors name file:row
-  runtime::YeohConstants d;
+  const std::array<int, 3> constants{yeoh->parameters.at(0), yeoh->parameters.at(1), yeoh->parameters.at(2)};
+  std::array<runtime::YeohStartValue, 3> started;
   try {
-    d = runtime::fit_yeoh_least_squares(runtime::mean_curve(runtime::largest_loop(record)));
+    started = runtime::yeoh_start_values(model, constants, job.free, record);
   } catch (const runtime::DataError& e) {
     throw runtime::DataError(fmt::format("{}: --yeoh-start: {}; give a static loop record (displacement and force over at least one "
                                          "full cycle, as specimen_D_static.csv)",
@@ -126,21 +127,17 @@ void set_yeoh_start(FitJob& job, const std::string& path) {
   if (job.start_values.empty())
     for (const auto& p : model.parameters) job.start_values.push_back(p.value);
   job.settings.yeoh_start_from_history = false;
-  const double constants[] = {d.d10, d.d20, d.d30};
-  for (int slot = 0; slot < 3; ++slot) {
-    const int index = yeoh->parameters.at(static_cast<std::size_t>(slot));
-    const lang::Parameter& p = model.parameters.at(static_cast<std::size_t>(index));
-    if (std::find(job.free.begin(), job.free.end(), index) == job.free.end()) {
+  for (const runtime::YeohStartValue& s : started) {
+    const lang::Parameter& p = model.parameters.at(static_cast<std::size_t>(s.parameter));
+    if (!s.free) {
       job.notes += fmt::format("rheo: --yeoh-start {}: {} is not free and keeps its value\n", path, p.path);
       continue;
     }
-    double value = constants[slot];
-    if (p.free) value = std::clamp(value, p.lower, p.upper);
-    job.start_values[static_cast<std::size_t>(index)] = value;
+    job.start_values[static_cast<std::size_t>(s.parameter)] = s.value;
     job.notes += fmt::format("rheo: --yeoh-start {}: {} = {:.6g} {} (least squares on the mean curve, eq. 5.32){}\n", path, p.path,
-                             runtime::in_written_unit(p, value), runtime::written_unit(p),
-                             value != constants[slot] ? fmt::format(", clamped into its bounds from {:.6g}", runtime::in_written_unit(p, constants[slot]))
-                                                      : std::string());
+                             runtime::in_written_unit(p, s.value), runtime::written_unit(p),
+                             s.value != s.unclamped ? fmt::format(", clamped into its bounds from {:.6g}", runtime::in_written_unit(p, s.unclamped))
+                                                    : std::string());
   }
 }
 

@@ -99,22 +99,19 @@ std::vector<double> yeoh_start(const Network& start, const std::vector<int>& fre
       if (*hi - *lo > widest_range) widest = &set.history(), widest_range = *hi - *lo;
     }
   if (!widest) return values;
-  YeohConstants d{};
+  std::array<YeohStartValue, 3> started;
   try {
-    d = fit_yeoh_least_squares(mean_curve(largest_loop({widest->drive.displacement, widest->force})));
+    started = yeoh_start_values(start.model(), t.yeohs.front(), free, {widest->drive.displacement, widest->force});
   } catch (const UserError& e) {  // the record holds no usable loop: the start stays as written
     notes.push_back(fmt::format("no yeoh start from {}: {}", widest->path, e.what()));
     return values;
   }
-  const double constants[] = {d.d10, d.d20, d.d30};
-  const auto& parameters = start.model().parameters;
-  for (int slot = 0; slot < 3; ++slot) {
-    const int index = t.yeohs.front()[static_cast<std::size_t>(slot)];
-    if (std::find(free.begin(), free.end(), index) == free.end()) continue;
-    const lang::Parameter& p = parameters[static_cast<std::size_t>(index)];
-    values[static_cast<std::size_t>(index)] = std::clamp(constants[slot], p.lower, p.upper);
+  for (const YeohStartValue& s : started) {
+    if (!s.free) continue;
+    const lang::Parameter& p = start.model().parameters[static_cast<std::size_t>(s.parameter)];
+    values[static_cast<std::size_t>(s.parameter)] = std::clamp(s.unclamped, p.lower, p.upper);
     notes.push_back(fmt::format("start {} = {:.6g} {} from the mean curve of {} (eq. 5.32)", p.path,
-                                in_written_unit(p, values[static_cast<std::size_t>(index)]), written_unit(p), widest->path));
+                                in_written_unit(p, values[static_cast<std::size_t>(s.parameter)]), written_unit(p), widest->path));
   }
   return values;
 }

@@ -217,4 +217,17 @@ YeohConstants yeoh_from_shape(const YeohConstants& least_squares, double elastic
   return {d10, a * d10, b * d10};                                                                      // (5.36)
 }
 
+std::array<YeohStartValue, 3> yeoh_start_values(const lang::CheckedModel& model, const std::array<int, 3>& yeoh, const std::vector<int>& free,
+                                                const LoopSamples& record) {
+  const YeohConstants d = fit_yeoh_least_squares(mean_curve(largest_loop(record)));
+  const double constants[] = {d.d10, d.d20, d.d30};
+  std::array<YeohStartValue, 3> out;
+  for (std::size_t slot = 0; slot < 3; ++slot) {
+    const lang::Parameter& p = model.parameters.at(static_cast<std::size_t>(yeoh[slot]));
+    out[slot] = {yeoh[slot], p.free ? std::clamp(constants[slot], p.lower, p.upper) : constants[slot], constants[slot],
+                 std::find(free.begin(), free.end(), yeoh[slot]) != free.end()};
+  }
+  return out;
+}
+
 }  // namespace rheo::runtime

@@ -17,8 +17,11 @@
 // excluded (`turning_margin` below).
 #pragma once
 
+#include "lang/model.hpp"
+
 #include "runtime/io/history_csv.hpp"
 
+#include <array>
 #include <vector>
 
 namespace rheo::runtime {
@@ -79,5 +82,19 @@ YeohConstants fit_yeoh_least_squares(const MeanCurve& curve);
 // Eqs. 5.33-5.36. elastic_stiffness = K_e [N/mm] of the dynamic fit, > 0 (std::logic_error
 // otherwise); NumericalError when least_squares.d10 = 0 (the ratios of 5.33 are undefined).
 YeohConstants yeoh_from_shape(const YeohConstants& least_squares, double elastic_stiffness);
+
+// A start value of one yeoh constant from a loop record.
+struct YeohStartValue {
+  int parameter = -1;      // index into the model's parameters
+  double value = 0.0;      // internal units, clamped into the parameter's bounds when it has them
+  double unclamped = 0.0;  // the least-squares value (eq. 5.32)
+  bool free = false;       // in the fit's free set; a fixed constant keeps its value and is not started
+};
+
+// Start values of the yeoh spring whose constants are the parameters YEOH (D10, D20, D30) of
+// MODEL: least squares on the mean curve of the largest loop of RECORD (eqs. 5.28-5.32). Throws
+// DataError (from largest_loop, mean_curve) when RECORD holds no usable loop.
+std::array<YeohStartValue, 3> yeoh_start_values(const lang::CheckedModel& model, const std::array<int, 3>& yeoh, const std::vector<int>& free,
+                                                const LoopSamples& record);
 
 }  // namespace rheo::runtime

@@ -188,3 +188,24 @@ TEST_CASE("loops without both branches, tables without the columns and degenerat
   CHECK_THROWS_AS(runtime::fit_yeoh_least_squares({{0.0, 0.0, 0.0}, {1.0, 2.0, 3.0}}), runtime::NumericalError);
   CHECK_THROWS_AS(runtime::fit_yeoh_least_squares({{1.0, 2.0}, {1.0, 2.0}}), std::logic_error);
 }
+
+TEST_CASE("yeoh start values: the loop's constants, free ones clamped into their bounds, fixed ones marked") {
+  // A pure yeoh spring's loop holds its constants exactly; D10's bounds exclude the true value.
+  const std::string source =
+      "model y { yeoh r (D10 = 100 N/mm in [10, 300], D20 = -1 N/mm^3 in [-10, 10], D30 = 0.05 N/mm^5) }";
+  const lang::CheckedModel model = test::model_from(source, "y");
+  const auto truth = test::network_from("model t { yeoh r (D10 = 389.4253 N/mm, D20 = -2.1094 N/mm^3, D30 = 0.0786 N/mm^5) }", "t");
+  const auto loop = loop_of(runtime::run_history(truth, runtime::static_triangle({3.0}, 0.05, 2, 400), false));
+  const std::array<int, 3> yeoh{model.root.children[0].parameters[0], model.root.children[0].parameters[1], model.root.children[0].parameters[2]};
+  const std::vector<int> free{yeoh[0], yeoh[1]};  // D30 has no bounds: fixed
+  const auto started = runtime::yeoh_start_values(model, yeoh, free, loop);
+  CHECK(started[0].parameter == yeoh[0]);
+  CHECK(relative_error(started[0].unclamped, kTableD4.d10) < 1e-9);
+  CHECK(started[0].value == 300.0);  // clamped into [10, 300]
+  CHECK(started[0].free);
+  CHECK(relative_error(started[1].value, kTableD4.d20) < 1e-9);  // inside its bounds
+  CHECK(started[1].value == started[1].unclamped);
+  CHECK_FALSE(started[2].free);
+  CHECK(relative_error(started[2].unclamped, kTableD4.d30) < 1e-9);
+  CHECK_THROWS_AS(runtime::yeoh_start_values(model, yeoh, free, {{0.0, 1.0, 2.0}, {0.0, 1.0, 2.0}}), runtime::DataError);
+}

@@ -1,0 +1,119 @@
+#include "runtime/fit/order_study.hpp"
+
+#include "lang/fitted_source.hpp"
+#include "runtime/core/errors.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+
+namespace rheo::runtime {
+namespace {
+
+std::vector<double> log_spread(double lo, double hi, int count) {
+  std::vector<double> v;
+  for (int i = 0; i < count; ++i)
+    v.push_back(count == 1 ? std::sqrt(lo * hi) : lo * std::pow(hi / lo, static_cast<double>(i) / (count - 1)));
+  return v;
+}
+
+const lang::Parameter* parameter(const lang::CheckedModel& model, const std::string& path) {
+  for (const auto& p : model.parameters)
+    if (p.path == path) return &p;
+  return nullptr;
+}
+
+std::string argument(const lang::Parameter& p, const std::string& name, double value) {
+  std::string text = fmt::format("{} = {}", name, lang::format_parameter_value(p, value));
+  if (p.free) {
+    const double clamped = std::clamp(value, p.lower, p.upper);
+    text = fmt::format("{} = {} in [{}, {}]", name, lang::format_parameter_value(p, clamped), lang::format_parameter_value(p, p.lower),
+                       lang::format_parameter_value(p, p.upper));
+  }
+  return text;
+}
+
+// The written arguments of a leaf (generated ones, like c from tau, left out).
+std::string arguments_of(const lang::CheckedModel& model, const lang::Element& e) {
+  std::vector<std::string> args;
+  for (const auto& p : model.parameters)
+    if (p.path.starts_with(e.path + ".") && p.value_begin >= 0 && p.path.find('.', e.path.size() + 1) == std::string::npos)
+      args.push_back(argument(p, p.path.substr(e.path.size() + 1), p.value));
+  return fmt::format("{}", fmt::join(args, ", "));
+}
+
+
+// The copies of `templ` (a maxwell or friction leaf), as source lines.
+std::string copies(const lang::CheckedModel& model, const lang::Element& templ, int count, const StartSpreads& spreads) {
+  const bool is_maxwell = templ.kind == lang::ElementKind::maxwell;
+  const lang::Parameter* k = parameter(model, templ.path + ".k");
+  const lang::Parameter* tau = parameter(model, templ.path + (is_maxwell ? ".tau" : ".uy"));
+  const lang::Parameter* direct = parameter(model, templ.path + (is_maxwell ? ".c" : ".fy"));
+  const bool by_ratio = tau && tau->value_begin >= 0;
+  const std::vector<double> spread = is_maxwell ? log_spread(spreads.tau.front(), spreads.tau.back(), count)
+                                                : log_spread(spreads.uy.front(), spreads.uy.back(), count);
+  std::string out;
+  for (int i = 0; i < count; ++i) {
+    const std::string name = fmt::format("{}{}", is_maxwell ? "order_m" : "order_f", i + 1);
+    const std::string second = by_ratio ? argument(*tau, is_maxwell ? "tau" : "uy", spread[static_cast<std::size_t>(i)])
+                                        : argument(*direct, is_maxwell ? "c" : "fy", k->value * spread[static_cast<std::size_t>(i)]);
+    out += fmt::format("  {} {} ({}, {})\n", lang::kind_word(templ.kind), name, argument(*k, "k", k->value), second);
+  }
+  return out;
+}
+
+StartSpreads spreads_of(const std::vector<runtime::FitDataSet>& data) {
+  double f_lo = 1.0, f_hi = 50.0, a_lo = 0.01, a_hi = 1.0;
+  bool harmonic = false;
+  for (const auto& set : data) {
+    if (!set.is_harmonic()) continue;
+    const auto& h = set.harmonic();
+    const auto [fl, fh] = std::minmax_element(h.frequency.begin(), h.frequency.end());
+    const auto [al, ah] = std::minmax_element(h.amplitude.begin(), h.amplitude.end());
+    f_lo = harmonic ? std::min(f_lo, *fl) : *fl, f_hi = harmonic ? std::max(f_hi, *fh) : *fh;
+    a_lo = harmonic ? std::min(a_lo, *al) : *al, a_hi = harmonic ? std::max(a_hi, *ah) : *ah;
+    harmonic = true;
+  }
+  const double two_pi = 2.0 * std::numbers::pi;
+  return {{1.0 / (two_pi * f_hi), 1.0 / (two_pi * f_lo)}, {a_lo / 4.0, a_hi / 2.0}};
+}
+
+}  // namespace
+
+OrderStudy::OrderStudy(const lang::CheckedModel& model, const OrderSpec& spec, const std::vector<FitDataSet>& data)
+    : model_(model), spec_(spec), spreads_(spreads_of(data)) {
+  for (const auto& e : model.root.children) {
+    if (e.kind == lang::ElementKind::parallel || e.kind == lang::ElementKind::series)
+      throw UsageError(fmt::format("--orders needs a model whose elements all act in parallel; '{}' in model '{}' is a {} block",
+                                   e.path, model.name, e.kind == lang::ElementKind::series ? "series" : "parallel"));
+    if (e.kind == lang::ElementKind::maxwell && spec.maxwell) {
+      if (!maxwell_template_) maxwell_template_ = &e;
+    } else if (e.kind == lang::ElementKind::friction && spec.friction) {
+      if (!friction_template_) friction_template_ = &e;
+    } else {
+      kept_ += fmt::format("  {} {} ({})\n", lang::kind_word(e.kind), e.name, arguments_of(model, e));
+    }
+  }
+  if (spec.maxwell && !maxwell_template_)
+    throw UsageError(fmt::format("--orders maxwell=...: model '{}' has no maxwell element to copy bounds from; add one", model.name));
+  if (spec.friction && !friction_template_)
+    throw UsageError(fmt::format("--orders friction=...: model '{}' has no friction element to copy bounds from; add one", model.name));
+}
+
+std::vector<OrderStudy::Variant> OrderStudy::variants() const {
+  const CountRange maxwells = spec_.maxwell.value_or(CountRange{-1, -1}), frictions = spec_.friction.value_or(CountRange{-1, -1});
+  std::vector<Variant> out;
+  for (int m = maxwells.first; m <= maxwells.last; ++m)
+    for (int f = frictions.first; f <= frictions.last; ++f) {
+      std::string source = fmt::format("model {} {{\n{}", model_.name, kept_);
+      if (m >= 0) source += copies(model_, *maxwell_template_, m, spreads_);
+      if (f >= 0) source += copies(model_, *friction_template_, f, spreads_);
+      source += "}\n";
+      out.push_back({m, f, std::move(source)});
+    }
+  return out;
+}
+
+}  // namespace rheo::runtime

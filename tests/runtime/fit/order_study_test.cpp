@@ -1,0 +1,68 @@
+// The structures of the model-order study (thesis Fig. 6.2): every combination of counts, the
+// copies spread over the measured frequencies and amplitudes, the other elements kept.
+#include "runtime/fit/order_study.hpp"
+
+#include "lang/frontend.hpp"
+#include "runtime/core/errors.hpp"
+#include "support.hpp"
+
+#include <doctest/doctest.h>
+
+#include <numbers>
+
+using namespace rheo;
+
+namespace {
+std::vector<runtime::FitDataSet> grid(double f_low, double f_high) {
+  runtime::HarmonicData h;
+  h.path = "g.csv";
+  h.amplitude = {0.2, 2.0};
+  h.frequency = {f_low, f_high};
+  h.stiffness = {100.0, 100.0};
+  h.phase = {0.1, 0.1};
+  return {runtime::FitDataSet{"g.csv", 1.0, h}};
+}
+const char* kModel =
+    "model b {\n  spring k0 (k = 300 N/mm in [10, 3000])\n  maxwell m1 (k = 50 N/mm in [1, 1000], tau = 10 ms in [0.01, 1000])\n"
+    "  friction f1 (k = 100 N/mm in [1, 1000], uy = 50 um in [0.1, 1000])\n}";
+}  // namespace
+
+TEST_CASE("order study: every count combination, copies spread over the data, each a model that compiles") {
+  const lang::CheckedModel model = test::model_from(kModel, "b");
+  const runtime::OrderStudy study(model, {runtime::CountRange{1, 3}, runtime::CountRange{2, 2}}, grid(1.0, 100.0));
+  const auto variants = study.variants();
+  REQUIRE(variants.size() == 3);
+  CHECK(variants[0].maxwell == 1);
+  CHECK(variants[2].maxwell == 3);
+  CHECK(variants[2].friction == 2);
+  for (const auto& v : variants) {
+    const lang::Program program = lang::compile_source("v.rheo", v.source);
+    const lang::CheckedModel* m = program.find_model("b");
+    REQUIRE(m != nullptr);
+    CHECK(m->root.children.size() == static_cast<std::size_t>(1 + v.maxwell + v.friction));  // k0 kept
+    CAPTURE(v.source);
+    CHECK(v.source.find("spring k0 (k = 300 N/mm in [10 N/mm, 3000 N/mm])") != std::string::npos);
+  }
+  // Three relaxation times log-even over 1/(2 pi f) for f from 100 Hz to 1 Hz.
+  const lang::Program three = lang::compile_source("v.rheo", variants[2].source);
+  const lang::CheckedModel& m3 = *three.find_model("b");
+  auto value = [&](const std::string& path) {
+    for (const auto& p : m3.parameters)
+      if (p.path == path) return p.value;
+    FAIL("no parameter " << path);
+    return 0.0;
+  };
+  const double tau_low = 1.0 / (2.0 * std::numbers::pi * 100.0), tau_high = 1.0 / (2.0 * std::numbers::pi * 1.0);
+  CHECK(value("order_m1.c") / value("order_m1.k") == doctest::Approx(tau_low).epsilon(1e-4));
+  CHECK(value("order_m2.c") / value("order_m2.k") == doctest::Approx(std::sqrt(tau_low * tau_high)).epsilon(1e-4));
+  CHECK(value("order_m3.c") / value("order_m3.k") == doctest::Approx(tau_high).epsilon(1e-4));
+}
+
+TEST_CASE("order study: a model with a block, or without the element to copy, is refused with advice") {
+  const lang::CheckedModel nested = test::model_from("model n { series { spring a (k = 1 N/mm in [0.1, 10]) spring b (k = 1 N/mm) } }", "n");
+  CHECK_THROWS_WITH_AS(runtime::OrderStudy(nested, {runtime::CountRange{1, 2}, std::nullopt}, grid(1.0, 10.0)),
+                       doctest::Contains("needs a model whose elements all act in parallel"), runtime::UsageError);
+  const lang::CheckedModel plain = test::model_from("model p { spring a (k = 1 N/mm in [0.1, 10]) }", "p");
+  CHECK_THROWS_WITH_AS(runtime::OrderStudy(plain, {std::nullopt, runtime::CountRange{1, 2}}, grid(1.0, 10.0)),
+                       doctest::Contains("has no friction element to copy bounds from"), runtime::UsageError);
+}
