@@ -9,6 +9,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <functional>
 #include <stdexcept>
 
 namespace rheo::runtime {
@@ -126,9 +127,79 @@ std::vector<int> bounded_parameters(const Network& network) {
   return free;
 }
 
-FitResult fit(const Network& start, const std::vector<int>& free, const std::vector<FitDataSet>& data,
-              const FitSettings& settings) {
-  const auto clock_start = std::chrono::steady_clock::now();
+namespace {
+
+// The searches of one fit, in the coordinates of COORDINATES, each adding its counts and status
+// to RESULT: one search by method, and the staged strategies of the corrected method (Table
+// 5.1) and of the exact one with the corrected fit as a surrogate start.
+class StagedSearch {
+ public:
+  StagedSearch(const Coordinates& coordinates, const std::vector<FitDataSet>& data, const FitSettings& settings, FitResult& result)
+      : coordinates_(coordinates), data_(data), settings_(settings), result_(result) {}
+
+  // The residual vector of METHOD at z (for `corrected`, with the factors found so far).
+  std::function<std::vector<double>(const std::vector<double>&)> residuals_for(FitMethod method) const {
+    return [this, method](const std::vector<double>& z) {
+      return residuals(coordinates_.network(z), data_, settings_.score, method, corrections_);
+    };
+  }
+
+  // One search of METHOD from FROM with at most BUDGET evaluations (at least 1).
+  std::vector<double> run(FitMethod method, const std::vector<double>& from, int budget, std::vector<std::vector<double>> extra_starts = {}) {
+    const auto r = residuals_for(method);
+    const Objective objective = [&](const std::vector<double>& z) { return sum_of_squares(r(z)); };
+    SearchSettings search = settings_.search;
+    search.max_evaluations = std::max(1, budget);
+    search.extra_starts = std::move(extra_starts);
+    const SearchResult found = runtime::search(objective, from, coordinates_.lower, coordinates_.upper, coordinates_.logarithmic, search,
+                                               settings_.progress, settings_.interrupt);
+    result_.evaluations += found.evaluations;
+    result_.non_finite += found.non_finite;
+    if (result_.first_failure.empty()) result_.first_failure = found.first_failure;
+    result_.status = found.status;
+    result_.interrupted = result_.interrupted || found.interrupted;
+    result_.objective = found.value;
+    return found.z;
+  }
+
+  // Table 5.1: analytical part, numerical part (5.2, 5.3), calibrated analytical part (5.4).
+  // Sets FINAL_METHOD to the method the returned z was fitted with.
+  std::vector<double> corrected(FitMethod& final_method) {
+    std::vector<double> z = run(FitMethod::approximate, coordinates_.z0, total() / 2);
+    if (result_.interrupted) {
+      final_method = FitMethod::approximate;
+      return z;
+    }
+    corrections_ = corrections_at(coordinates_.network(z), data_, settings_.score.harmonic);
+    return run(FitMethod::corrected, z, total() - result_.evaluations);
+  }
+
+  // The corrected approximation is a cheap surrogate (~30 times faster per evaluation): the
+  // Table 5.1 fit, with its own budget, gives one more start of the exact search, which
+  // therefore ends no worse than the corrected method.
+  std::vector<double> exact_with_surrogate() {
+    const std::vector<double> approximate = run(FitMethod::approximate, coordinates_.z0, total() / 2);
+    std::vector<std::vector<double>> surrogate{approximate};
+    if (!result_.interrupted) {
+      corrections_ = corrections_at(coordinates_.network(approximate), data_, settings_.score.harmonic);
+      surrogate = {run(FitMethod::corrected, approximate, total() - result_.evaluations)};
+    }
+    if (result_.interrupted) return surrogate.front();
+    return run(FitMethod::exact, coordinates_.z0, total(), surrogate);
+  }
+
+ private:
+  int total() const { return settings_.search.max_evaluations; }
+
+  const Coordinates& coordinates_;
+  const std::vector<FitDataSet>& data_;
+  const FitSettings& settings_;
+  FitResult& result_;
+  std::vector<ThesisCorrection> corrections_;
+};
+
+// Bugs of the caller: the front end and the CLI refuse these first, naming where.
+void require_fittable(const Network& start, const std::vector<int>& free, const std::vector<FitDataSet>& data, const FitSettings& settings) {
   if (free.empty())
     throw std::logic_error(fmt::format("model '{}' has no free parameter; give bounds to the ones to fit, e.g. `k = 300 N/mm in [10, 5000]`",
                                        start.model().name));
@@ -136,6 +207,40 @@ FitResult fit(const Network& start, const std::vector<int>& free, const std::vec
   if (settings.score.method != FitMethod::exact && std::any_of(data.begin(), data.end(), [](const FitDataSet& s) { return s.is_harmonic(); }))
     if (const std::string why = approximation_misfit(start); !why.empty())
       throw UsageError(fmt::format("cannot fit model '{}': {}", start.model().name, why));
+}
+
+// How the fitted NETWORK meets one data set: its prediction, residuals and err (eq. 6.1, or the
+// RMS force residual of a history).
+DataSetFit data_set_fit(const Network& network, const FitDataSet& set, const HarmonicOptions& harmonic) {
+  DataSetFit d;
+  d.path = set.path;
+  d.weight = set.weight;
+  d.harmonic = set.is_harmonic();
+  d.prediction = predict(network, set, FitMethod::exact, harmonic, nullptr);
+  if (d.harmonic) {
+    d.residuals = relative_residuals(set.harmonic(), d.prediction.points);
+    d.measured_stiffness = set.harmonic().stiffness;
+    d.measured_phase = set.harmonic().phase;
+    d.phi = phi(d.residuals, 1.0, 1.0);
+    d.err = thesis_err(d.residuals);
+    return d;
+  }
+  const HistoryData& h = set.history();
+  double sum = 0.0;
+  for (std::size_t j = 0; j < h.force.size(); ++j) {
+    const double r = (d.prediction.force[j] - h.force[j]) / h.force_scale;
+    sum += r * r;
+    d.worst = std::max(d.worst, std::abs(r));
+  }
+  d.err = std::sqrt(sum / static_cast<double>(h.force.size()));
+  return d;
+}
+
+}  // namespace
+
+FitResult fit(const Network& start, const std::vector<int>& free, const std::vector<FitDataSet>& data, const FitSettings& settings) {
+  const auto clock_start = std::chrono::steady_clock::now();
+  require_fittable(start, free, data, settings);
   std::vector<std::string> notes;
   const Network first = settings.yeoh_start_from_history ? start.with_parameters(yeoh_start(start, free, data, notes)) : start;
   const Coordinates coordinates(first, free);
@@ -146,59 +251,20 @@ FitResult fit(const Network& start, const std::vector<int>& free, const std::vec
   for (const FitDataSet& set : data)
     if (set.is_harmonic())
       for (std::string& note : damping_left_out(set.harmonic())) result.notes.push_back(std::move(note));
-  std::vector<ThesisCorrection> corrections;
-  auto residuals_for = [&](FitMethod method) {
-    return [&, method](const std::vector<double>& z) { return residuals(coordinates.network(z), data, score, method, corrections); };
-  };
-  auto run = [&](FitMethod method, const std::vector<double>& from, int budget, std::vector<std::vector<double>> extra_starts = {}) {
-    const auto r = residuals_for(method);
-    const Objective objective = [&](const std::vector<double>& z) { return sum_of_squares(r(z)); };
-    SearchSettings search = settings.search;
-    search.max_evaluations = std::max(1, budget);
-    search.extra_starts = std::move(extra_starts);
-    const SearchResult found = runtime::search(objective, from, coordinates.lower, coordinates.upper, coordinates.logarithmic,
-                                               search, settings.progress, settings.interrupt);
-    result.evaluations += found.evaluations;
-    result.non_finite += found.non_finite;
-    if (result.first_failure.empty()) result.first_failure = found.first_failure;
-    result.status = found.status;
-    result.interrupted = result.interrupted || found.interrupted;
-    result.objective = found.value;
-    return found.z;
-  };
 
+  StagedSearch searches(coordinates, data, settings, result);
   std::vector<double> z;
   FitMethod final_method = score.method;
-  if (score.method == FitMethod::corrected) {
-    // Table 5.1: analytical part, numerical part (5.2, 5.3), calibrated analytical part (5.4).
-    const int half = settings.search.max_evaluations / 2;
-    z = run(FitMethod::approximate, coordinates.z0, half);
-    if (!result.interrupted) {
-      corrections = corrections_at(coordinates.network(z), data, score.harmonic);
-      z = run(FitMethod::corrected, z, settings.search.max_evaluations - result.evaluations);
-    } else {
-      final_method = FitMethod::approximate;
-    }
-  } else if (score.method == FitMethod::exact && !settings.search.algorithm && approximation_applies(first, data)) {
-    // The corrected approximation is a cheap surrogate (~30 times faster per evaluation): the
-    // Table 5.1 fit, with its own budget, gives one more start of the exact search, which
-    // therefore ends no worse than the corrected method.
-    const int half = settings.search.max_evaluations / 2;
-    z = run(FitMethod::approximate, coordinates.z0, half);
-    std::vector<std::vector<double>> surrogate{z};
-    if (!result.interrupted) {
-      corrections = corrections_at(coordinates.network(z), data, score.harmonic);
-      surrogate = {run(FitMethod::corrected, z, settings.search.max_evaluations - result.evaluations)};
-    }
-    if (!result.interrupted) z = run(FitMethod::exact, coordinates.z0, settings.search.max_evaluations, surrogate);
-    else z = surrogate.front();
-  } else {
-    z = run(score.method, coordinates.z0, settings.search.max_evaluations);
-  }
+  if (score.method == FitMethod::corrected)
+    z = searches.corrected(final_method);
+  else if (score.method == FitMethod::exact && !settings.search.algorithm && approximation_applies(first, data))
+    z = searches.exact_with_surrogate();
+  else
+    z = searches.run(score.method, coordinates.z0, settings.search.max_evaluations);
 
   result.network = coordinates.network(z);
   if (!result.interrupted && settings.statistics) {
-    result.statistics = parameter_statistics(residuals_for(final_method), z, coordinates.logarithmic);
+    result.statistics = parameter_statistics(searches.residuals_for(final_method), z, coordinates.logarithmic);
     if (!result.statistics.has_noise_estimate())
       result.notes.push_back(fmt::format("no standard errors: {} residuals for {} identifiable directions leave no degree of freedom to "
                                          "estimate the noise; add data points or fix parameters",
@@ -206,30 +272,11 @@ FitResult fit(const Network& start, const std::vector<int>& free, const std::vec
   }
   std::size_t harmonic_points = 0;
   for (const FitDataSet& set : data) {
-    DataSetFit d;
-    d.path = set.path;
-    d.weight = set.weight;
-    d.harmonic = set.is_harmonic();
-    d.prediction = predict(result.network, set, FitMethod::exact, score.harmonic, nullptr);
-    if (d.harmonic) {
-      d.residuals = relative_residuals(set.harmonic(), d.prediction.points);
-      d.measured_stiffness = set.harmonic().stiffness;
-      d.measured_phase = set.harmonic().phase;
-      d.phi = phi(d.residuals, 1.0, 1.0);
-      d.err = thesis_err(d.residuals);
-      result.phi += d.phi;
+    result.datasets.push_back(data_set_fit(result.network, set, score.harmonic));
+    if (set.is_harmonic()) {
+      result.phi += result.datasets.back().phi;
       harmonic_points += set.harmonic().size();
-    } else {
-      const HistoryData& h = set.history();
-      double sum = 0.0;
-      for (std::size_t j = 0; j < h.force.size(); ++j) {
-        const double r = (d.prediction.force[j] - h.force[j]) / h.force_scale;
-        sum += r * r;
-        d.worst = std::max(d.worst, std::abs(r));
-      }
-      d.err = std::sqrt(sum / static_cast<double>(h.force.size()));
     }
-    result.datasets.push_back(std::move(d));
   }
   result.err = harmonic_points > 0 ? std::sqrt(result.phi) / static_cast<double>(harmonic_points) : 0.0;
   result.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - clock_start).count();
