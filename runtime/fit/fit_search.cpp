@@ -81,6 +81,38 @@ std::vector<unsigned> first_primes(std::size_t count) {
   return primes;
 }
 
+// SAMPLES points of the box a decade (log coordinates) or a quarter of the range (linear ones)
+// either side of START, within the bounds, on a Halton sequence shifted by SEED (Cranley-
+// Patterson rotation), each with its objective value: best first, non-finite values last.
+std::vector<std::pair<double, std::vector<double>>> sample_box(const Objective& objective, const std::vector<double>& start,
+                                                               const std::vector<double>& lower, const std::vector<double>& upper,
+                                                               const std::vector<bool>& logarithmic, int samples, unsigned long seed) {
+  const std::size_t n = start.size();
+  std::mt19937_64 random(seed);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  const std::vector<unsigned> primes = first_primes(n);
+  std::vector<double> shift(n), box_lo(n), box_hi(n);
+  for (std::size_t j = 0; j < n; ++j) {
+    shift[j] = unit(random);
+    const double half = logarithmic[j] ? std::log(10.0) : 0.25 * (upper[j] - lower[j]);
+    box_lo[j] = std::max(lower[j], start[j] - half);
+    box_hi[j] = std::min(upper[j], start[j] + half);
+  }
+  std::vector<std::pair<double, std::vector<double>>> sampled;
+  std::vector<double> z(n);
+  for (int s = 1; s <= samples; ++s) {
+    for (std::size_t j = 0; j < n; ++j) {
+      const double t = std::fmod(radical_inverse(static_cast<unsigned long>(s), primes[j]) + shift[j], 1.0);
+      z[j] = box_lo[j] + t * (box_hi[j] - box_lo[j]);
+    }
+    sampled.emplace_back(objective(z), z);
+  }
+  // Non-finite samples sort last (NaN would break the ordering std::sort relies on).
+  auto key = [](double v) { return std::isfinite(v) ? v : std::numeric_limits<double>::infinity(); };
+  std::stable_sort(sampled.begin(), sampled.end(), [&](const auto& a, const auto& b) { return key(a.first) < key(b.first); });
+  return sampled;
+}
+
 }  // namespace
 
 SearchResult search(const Objective& objective, const std::vector<double>& start, const std::vector<double>& lower,
@@ -118,30 +150,9 @@ SearchResult search(const Objective& objective, const std::vector<double>& start
     } else {
       // Sample a box around the start, then run local searches from the start and the best samples.
       tracker.stage("sample");
-      std::mt19937_64 random(settings.seed);
-      std::uniform_real_distribution<double> unit(0.0, 1.0);
-      const std::vector<unsigned> primes = first_primes(n);
-      std::vector<double> shift(n), box_lo(n), box_hi(n);
-      for (std::size_t j = 0; j < n; ++j) {
-        shift[j] = unit(random);
-        const double half = logarithmic[j] ? std::log(10.0) : 0.25 * (upper[j] - lower[j]);
-        box_lo[j] = std::max(lower[j], start[j] - half);
-        box_hi[j] = std::min(upper[j], start[j] + half);
-      }
       const int wanted_samples = settings.samples >= 0 ? settings.samples : std::max(10 * static_cast<int>(n), 40);
-      const int samples = std::max(0, std::min(wanted_samples, remaining() / 4));
-      std::vector<std::pair<double, std::vector<double>>> sampled;
-      std::vector<double> z(n);
-      for (int s = 1; s <= samples; ++s) {
-        for (std::size_t j = 0; j < n; ++j) {
-          const double t = std::fmod(radical_inverse(static_cast<unsigned long>(s), primes[j]) + shift[j], 1.0);
-          z[j] = box_lo[j] + t * (box_hi[j] - box_lo[j]);
-        }
-        sampled.emplace_back(tracked(z), z);
-      }
-      // Non-finite samples sort last (NaN would break the ordering std::sort relies on).
-      auto key = [](double v) { return std::isfinite(v) ? v : std::numeric_limits<double>::infinity(); };
-      std::stable_sort(sampled.begin(), sampled.end(), [&](const auto& a, const auto& b) { return key(a.first) < key(b.first); });
+      const auto sampled = sample_box(tracked, start, lower, upper, logarithmic, std::max(0, std::min(wanted_samples, remaining() / 4)),
+                                      settings.seed);
       std::vector<std::vector<double>> starts{start};
       starts.insert(starts.end(), settings.extra_starts.begin(), settings.extra_starts.end());
       const std::size_t wanted = static_cast<std::size_t>(std::max(settings.starts, 1));

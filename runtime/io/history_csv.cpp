@@ -64,6 +64,57 @@ std::optional<ColumnKind> known_column(std::string_view name) {
   return std::nullopt;
 }
 
+// The header row ROW: each cell 'name [unit]', the unit known and of the kind the column needs,
+// no name twice. Appends each column's scale to internal units to SCALES.
+void read_header(Table& table, std::vector<double>& scales, const std::vector<Cell>& cells, int row) {
+  const std::string& path = table.path;
+  for (const auto& cell : cells) {
+    const auto open = cell.text.find('['), close = cell.text.rfind(']');
+    if (open == std::string::npos || close == std::string::npos || close < open)
+      fail(path, row, cell.column, fmt::format("header column '{}' has no unit; write it as 'name [unit]', e.g. 'time [s]'", lang::printable(cell.text)));
+    const std::string name = trim(std::string_view(cell.text).substr(0, open));
+    const std::string unit = trim(std::string_view(cell.text).substr(open + 1, close - open - 1));
+    auto parsed = unit.empty() || unit == "-" ? std::optional<lang::Unit>{lang::Unit{}} : lang::parse_unit(unit);
+    if (!parsed)
+      fail(path, row, cell.column + static_cast<int>(open) + 1,
+           fmt::format("unknown unit '{}' in column '{}'; use units such as s, ms, mm, um, m, N, kN, N/mm, Hz, deg",
+                       lang::printable(unit), lang::printable(name)));
+    if (const auto known = known_column(name); known && parsed->dimension != known->dimension)
+      fail(path, row, cell.column + static_cast<int>(open) + 1,
+           fmt::format("column '{}' has unit '{}', {}; {} needs a unit of {}, e.g. '{} [{}]'", name, lang::printable(unit),
+                       parsed->dimension.dimensionless() ? std::string("a plain number") : "a " + lang::describe(parsed->dimension), name,
+                       known->kind, name, known->example));
+    if (table.column(name) >= 0) fail(path, row, cell.column, fmt::format("column '{}' appears twice in the header; rename or remove one", lang::printable(name)));
+    table.names.push_back(name);
+    table.units.push_back(unit);
+    scales.push_back(parsed->scale);
+  }
+  table.columns.resize(table.names.size());
+  table.header_row = row;
+}
+
+// Data row ROW: as many finite numbers as the header has columns, scaled to internal units.
+void read_row(Table& table, const std::vector<double>& scales, const std::vector<Cell>& cells, int row) {
+  const std::string& path = table.path;
+  if (cells.size() != table.names.size())
+    fail(path, row, 1, fmt::format("this row has {} values, the header has {} columns", cells.size(), table.names.size()));
+  for (std::size_t c = 0; c < cells.size(); ++c) {
+    const std::string& s = cells[c].text;
+    double value = 0.0;
+    const auto [ptr, ec] = std::from_chars(s.data(), s.data() + s.size(), value);
+    if (s.empty() || (ec != std::errc{} && ec != std::errc::result_out_of_range) || ptr != s.data() + s.size())
+      fail(path, row, cells[c].column, fmt::format("'{}' is not a number (column '{}'); write a number such as 0.25 or 1e-3", lang::printable(s), table.names[c]));
+    if (ec == std::errc::result_out_of_range || !std::isfinite(value))
+      fail(path, row, cells[c].column, fmt::format("'{}' is not a finite number (column '{}'); remove or repair the row", lang::printable(s), table.names[c]));
+    if (!std::isfinite(value * scales[c]))
+      fail(path, row, cells[c].column, fmt::format("'{}' {} overflows a double (column '{}'); remove or repair the row", lang::printable(s),
+                                                   table.units[c], table.names[c]));
+    table.columns[c].push_back(value * scales[c]);
+    table.cell_columns.push_back(cells[c].column);
+  }
+  table.rows.push_back(row);
+}
+
 }  // namespace
 
 std::string header_error(const Table& table) { return fmt::format("{}:{}:1: error: ", table.path, table.header_row); }
@@ -113,49 +164,10 @@ Table parse_table(const std::string& path, const std::string& raw) {
     const std::string stripped = trim(line);
     if (stripped.empty() || stripped.front() == '#') continue;
     const auto cells = split(line);
-    if (table.names.empty()) {
-      for (const auto& cell : cells) {
-        const auto open = cell.text.find('['), close = cell.text.rfind(']');
-        if (open == std::string::npos || close == std::string::npos || close < open)
-          fail(path, row, cell.column, fmt::format("header column '{}' has no unit; write it as 'name [unit]', e.g. 'time [s]'", lang::printable(cell.text)));
-        const std::string name = trim(std::string_view(cell.text).substr(0, open));
-        const std::string unit = trim(std::string_view(cell.text).substr(open + 1, close - open - 1));
-        auto parsed = unit.empty() || unit == "-" ? std::optional<lang::Unit>{lang::Unit{}} : lang::parse_unit(unit);
-        if (!parsed)
-          fail(path, row, cell.column + static_cast<int>(open) + 1,
-               fmt::format("unknown unit '{}' in column '{}'; use units such as s, ms, mm, um, m, N, kN, N/mm, Hz, deg",
-                           lang::printable(unit), lang::printable(name)));
-        if (const auto known = known_column(name); known && parsed->dimension != known->dimension)
-          fail(path, row, cell.column + static_cast<int>(open) + 1,
-               fmt::format("column '{}' has unit '{}', {}; {} needs a unit of {}, e.g. '{} [{}]'", name, lang::printable(unit),
-                           parsed->dimension.dimensionless() ? std::string("a plain number") : "a " + lang::describe(parsed->dimension), name,
-                           known->kind, name, known->example));
-        if (table.column(name) >= 0) fail(path, row, cell.column, fmt::format("column '{}' appears twice in the header; rename or remove one", lang::printable(name)));
-        table.names.push_back(name);
-        table.units.push_back(unit);
-        scales.push_back(parsed->scale);
-      }
-      table.columns.resize(table.names.size());
-      table.header_row = row;
-      continue;
-    }
-    if (cells.size() != table.names.size())
-      fail(path, row, 1, fmt::format("this row has {} values, the header has {} columns", cells.size(), table.names.size()));
-    for (std::size_t c = 0; c < cells.size(); ++c) {
-      const std::string& s = cells[c].text;
-      double value = 0.0;
-      const auto [ptr, ec] = std::from_chars(s.data(), s.data() + s.size(), value);
-      if (s.empty() || (ec != std::errc{} && ec != std::errc::result_out_of_range) || ptr != s.data() + s.size())
-        fail(path, row, cells[c].column, fmt::format("'{}' is not a number (column '{}'); write a number such as 0.25 or 1e-3", lang::printable(s), table.names[c]));
-      if (ec == std::errc::result_out_of_range || !std::isfinite(value))
-        fail(path, row, cells[c].column, fmt::format("'{}' is not a finite number (column '{}'); remove or repair the row", lang::printable(s), table.names[c]));
-      if (!std::isfinite(value * scales[c]))
-        fail(path, row, cells[c].column, fmt::format("'{}' {} overflows a double (column '{}'); remove or repair the row", lang::printable(s),
-                                                     table.units[c], table.names[c]));
-      table.columns[c].push_back(value * scales[c]);
-      table.cell_columns.push_back(cells[c].column);
-    }
-    table.rows.push_back(row);
+    if (table.names.empty())
+      read_header(table, scales, cells, row);
+    else
+      read_row(table, scales, cells, row);
   }
   if (table.names.empty())
     fail(path, 1, 1, "no header found: the file is empty or holds only comments; start it with a header line such as 'time [s],displacement [mm]'");

@@ -345,74 +345,83 @@ void TreeSolver::assign(int node, double de, double force, double* after) const 
   const TreeNode& n = at(node);
   after[n.state] = e_before(n) + de;
   after[n.state + 1] = force;
-  if (n.kind == NodeKind::inerter) {
-    if (n.drive_prescribed) {
-      after[n.state + 2] = de / plan_.dt;
-      after[n.state + 3] = slot_before(n, 2);
-      after[n.state + 4] = plan_.dt;
-      after[n.state + 5] = slot_before(n, 4);
-    } else {
-      after[n.state + 2] = InerterStep{coefficient(node), plan_.dt}.velocity_after(slot_before(n, 2), de);
-    }
-    return;
-  }
-  if (n.kind == NodeKind::gap) {  // exactly at the stop when loaded
-    const double h = 0.5 * p(n, 0);
-    after[n.state] = force > 0.0 ? h : force < 0.0 ? -h : std::clamp(after[n.state], -h, h);
-    return;
-  }
-  if (n.kind == NodeKind::parallel) {
-    if (de != 0.0 || !n.rigid_when_stuck) {
-      for (int i = 0; i < n.child_count; ++i) assign(child(n, i), de, forward(child(n, i), de).force, after);
+  switch (n.kind) {
+    case NodeKind::inerter: assign_inerter(node, de, after); return;
+    case NodeKind::gap: {  // exactly at the stop when loaded
+      const double h = 0.5 * p(n, 0);
+      after[n.state] = force > 0.0 ? h : force < 0.0 ? -h : std::clamp(after[n.state], -h, h);
       return;
     }
-    // Stuck: rigid children carry whatever the compliant ones leave, within their intervals.
-    double remainder = force;
-    for (int i = 0; i < n.child_count; ++i)
-      if (!at(child(n, i)).rigid_when_stuck) remainder -= forward(child(n, i), 0.0).force;
-    int last_rigid = -1;
-    for (int i = 0; i < n.child_count; ++i) {
-      const int c = child(n, i);
-      if (!at(c).rigid_when_stuck) {
-        assign(c, 0.0, forward(c, 0.0).force, after);
-        continue;
-      }
-      last_rigid = c;
-      const Interval z = zero_rate_interval(c);
-      const double share = std::clamp(remainder, z.lo, z.hi);
-      assign(c, 0.0, share, after);
-      remainder -= share;
-    }
-    if (remainder != 0.0 && last_rigid >= 0) after[at(last_rigid).state + 1] += remainder;
+    case NodeKind::parallel: assign_parallel(n, de, force, after); return;
+    case NodeKind::series: assign_series(node, de, force, after); return;
+    default: return;  // leaves: elongation and force are their whole step state here
+  }
+}
+
+void TreeSolver::assign_inerter(int node, double de, double* after) const {
+  const TreeNode& n = at(node);
+  if (n.drive_prescribed) {
+    after[n.state + 2] = de / plan_.dt;
+    after[n.state + 3] = slot_before(n, 2);
+    after[n.state + 4] = plan_.dt;
+    after[n.state + 5] = slot_before(n, 4);
+  } else {
+    after[n.state + 2] = InerterStep{coefficient(node), plan_.dt}.velocity_after(slot_before(n, 2), de);
+  }
+}
+
+void TreeSolver::assign_parallel(const TreeNode& n, double de, double force, double* after) const {
+  if (de != 0.0 || !n.rigid_when_stuck) {
+    for (int i = 0; i < n.child_count; ++i) assign(child(n, i), de, forward(child(n, i), de).force, after);
     return;
   }
-  if (n.kind == NodeKind::series) {
-    if (force == 0.0 && has_gap(n)) {
-      assign_play(n, de, after);
-      return;
+  // Stuck: rigid children carry whatever the compliant ones leave, within their intervals.
+  double remainder = force;
+  for (int i = 0; i < n.child_count; ++i)
+    if (!at(child(n, i)).rigid_when_stuck) remainder -= forward(child(n, i), 0.0).force;
+  int last_rigid = -1;
+  for (int i = 0; i < n.child_count; ++i) {
+    const int c = child(n, i);
+    if (!at(c).rigid_when_stuck) {
+      assign(c, 0.0, forward(c, 0.0).force, after);
+      continue;
     }
-    // Members take their elongation at the common force; at the cap, the first member whose
-    // bound is reached slips and takes what the others leave.
-    const Interval cap = bounds(node);
-    const bool capped = force >= cap.hi || force <= cap.lo || n.rigid_when_stuck;
-    int slipping = -1;
-    for (int i = 0; i < n.child_count && capped && slipping < 0; ++i) {
-      const Interval b = bounds(child(n, i));
-      if (force >= b.hi || force <= b.lo || (n.rigid_when_stuck && de == 0.0)) slipping = child(n, i);
-    }
-    // Interior: the last member not a gap takes the rounding remainder.
-    for (int i = n.child_count - 1; i >= 0 && slipping < 0; --i)
-      if (at(child(n, i)).kind != NodeKind::gap) slipping = child(n, i);
-    double taken = 0.0;
-    for (int i = 0; i < n.child_count; ++i) {
-      const int c = child(n, i);
-      if (c == slipping) continue;
-      const double e = inverse(c, force).force;
-      taken += e;
-      assign(c, e, force, after);
-    }
-    if (slipping >= 0) assign(slipping, de - taken, force, after);
+    last_rigid = c;
+    const Interval z = zero_rate_interval(c);
+    const double share = std::clamp(remainder, z.lo, z.hi);
+    assign(c, 0.0, share, after);
+    remainder -= share;
   }
+  if (remainder != 0.0 && last_rigid >= 0) after[at(last_rigid).state + 1] += remainder;
+}
+
+void TreeSolver::assign_series(int node, double de, double force, double* after) const {
+  const TreeNode& n = at(node);
+  if (force == 0.0 && has_gap(n)) {
+    assign_play(n, de, after);
+    return;
+  }
+  // Members take their elongation at the common force; at the cap, the first member whose
+  // bound is reached slips and takes what the others leave.
+  const Interval cap = bounds(node);
+  const bool capped = force >= cap.hi || force <= cap.lo || n.rigid_when_stuck;
+  int slipping = -1;
+  for (int i = 0; i < n.child_count && capped && slipping < 0; ++i) {
+    const Interval b = bounds(child(n, i));
+    if (force >= b.hi || force <= b.lo || (n.rigid_when_stuck && de == 0.0)) slipping = child(n, i);
+  }
+  // Interior: the last member not a gap takes the rounding remainder.
+  for (int i = n.child_count - 1; i >= 0 && slipping < 0; --i)
+    if (at(child(n, i)).kind != NodeKind::gap) slipping = child(n, i);
+  double taken = 0.0;
+  for (int i = 0; i < n.child_count; ++i) {
+    const int c = child(n, i);
+    if (c == slipping) continue;
+    const double e = inverse(c, force).force;
+    taken += e;
+    assign(c, e, force, after);
+  }
+  if (slipping >= 0) assign(slipping, de - taken, force, after);
 }
 
 double TreeSolver::advance(int node, double de, double* after) const {

@@ -84,6 +84,9 @@ class TreeSolver {
   Interval play(const TreeNode& n) const;  // increments of a chain reachable at F = 0
   bool has_gap(const TreeNode& n) const;
   void assign(int node, double de, double force, double* after) const;
+  void assign_inerter(int node, double de, double* after) const;
+  void assign_parallel(const TreeNode& n, double de, double force, double* after) const;
+  void assign_series(int node, double de, double force, double* after) const;
   void assign_play(const TreeNode& n, double de, double* after) const;
   ForceSlope inerter(int node, double de) const;
   // NumericalError: a yeoh in series asked for more force than it carries before softening.
