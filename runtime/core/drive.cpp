@@ -53,7 +53,7 @@ Drive step_relaxation(double amplitude, double rise, double duration, double dt)
   start(d);
   const auto samples = static_cast<long>(std::ceil(duration / dt - 1e-9));
   for (long k = 1; k <= samples; ++k) {
-    const double t = std::min(duration, k * dt);
+    const double t = std::min(duration, static_cast<double>(k) * dt);
     d.time.push_back(t);
     d.displacement.push_back(t >= rise ? amplitude : amplitude * t / rise);
   }

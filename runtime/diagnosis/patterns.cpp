@@ -8,20 +8,20 @@ namespace rheo::runtime::diagnosis {
 namespace {
 
 struct GridPoint {
-  int amplitude = 0, frequency = 0;  // level indices
+  std::size_t amplitude = 0, frequency = 0;  // level indices
   double r_k = 0.0, r_d = 0.0;
 };
 
 // Index of VALUE among LEVELS (sorted), adding it when no level lies within 1e-9 relative.
-int level_of(std::vector<double>& levels, double value) {
+std::size_t level_of(std::vector<double>& levels, double value) {
   for (std::size_t i = 0; i < levels.size(); ++i)
-    if (std::abs(levels[i] - value) <= 1e-9 * std::max(std::abs(value), 1e-300)) return static_cast<int>(i);
+    if (std::abs(levels[i] - value) <= 1e-9 * std::max(std::abs(value), 1e-300)) return i;
   levels.push_back(value);
-  return static_cast<int>(levels.size() - 1);
+  return levels.size() - 1;
 }
 
 // Shares of the amplitude and frequency main effects and the interaction, on r_K and r_d alike.
-void decompose(const std::vector<GridPoint>& grid, int n_a, int n_f, HarmonicPatterns& out) {
+void decompose(const std::vector<GridPoint>& grid, std::size_t n_a, std::size_t n_f, HarmonicPatterns& out) {
   double total = 0.0;
   for (const auto& g : grid) total += g.r_k * g.r_k + g.r_d * g.r_d;
   if (!(total > 0.0)) return;
@@ -31,7 +31,7 @@ void decompose(const std::vector<GridPoint>& grid, int n_a, int n_f, HarmonicPat
     double mean = 0.0;
     for (const auto& g : grid) mean += r(g);
     mean /= static_cast<double>(grid.size());
-    std::vector<double> a(static_cast<std::size_t>(n_a), 0.0), f(static_cast<std::size_t>(n_f), 0.0);
+    std::vector<double> a(n_a, 0.0), f(n_f, 0.0);
     for (int sweep = 0; sweep < 50; ++sweep) {  // back-fitting: exact in one sweep on a full grid
       std::vector<double> sum(a.size(), 0.0), count(a.size(), 0.0);
       for (const auto& g : grid) sum[g.amplitude] += r(g) - mean - f[g.frequency], count[g.amplitude] += 1.0;
@@ -58,7 +58,7 @@ ResidualPatterns residual_patterns(const FitResult& fit, const std::vector<FitDa
   ResidualPatterns out;
   std::vector<double> amplitudes, frequencies;
   std::vector<GridPoint> grid;
-  std::map<int, std::pair<double, int>> phase_excess;  // frequency level -> (sum of excess, count)
+  std::map<std::size_t, std::pair<double, int>> phase_excess;  // frequency level -> (sum of excess, count)
   HarmonicPatterns& h = out.harmonic;
   double sum_k = 0.0, sum_phase = 0.0;
   for (std::size_t s = 0; s < data.size(); ++s) {
@@ -91,7 +91,7 @@ ResidualPatterns residual_patterns(const FitResult& fit, const std::vector<FitDa
   h.points = static_cast<int>(grid.size());
   h.stiffness_rms = std::sqrt(sum_k / h.points);
   h.phase_rms = std::sqrt(sum_phase / h.points);
-  decompose(grid, static_cast<int>(amplitudes.size()), static_cast<int>(frequencies.size()), h);
+  decompose(grid, amplitudes.size(), frequencies.size(), h);
   h.phase_peak = -1e300;
   for (const auto& [level, entry] : phase_excess)
     if (const double mean = entry.first / entry.second; mean > h.phase_peak) h.phase_peak = mean, h.phase_peak_frequency = frequencies[level];

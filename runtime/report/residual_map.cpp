@@ -95,11 +95,11 @@ std::string render_residual_map(const ResidualMap& map, bool standalone) {
   }
   out += "</g>\n<g class=\"tick-labels\" fill=\"#222\">";
   for (std::size_t j = 0; j < frequencies.size(); j += label_stride(frequencies.size(), kGridWidth, 36))
-    out += fmt::format("<text x=\"{}\" y=\"{}\" text-anchor=\"middle\">{:g}</text>", coordinate(kLeft + cw * (j + 0.5)),
+    out += fmt::format("<text x=\"{}\" y=\"{}\" text-anchor=\"middle\">{:g}</text>", coordinate(kLeft + cw * (static_cast<double>(j) + 0.5)),
                        kTop + kGridHeight + 17, frequencies[j]);
   for (std::size_t j = 0; j < amplitudes.size(); j += label_stride(amplitudes.size(), kGridHeight, 16))
     out += fmt::format("<text x=\"{}\" y=\"{}\" text-anchor=\"end\">{:g}</text>", kLeft - 6,
-                       coordinate(kTop + kGridHeight - ch * (j + 0.5) + 4.5), amplitudes[j]);
+                       coordinate(kTop + kGridHeight - ch * (static_cast<double>(j) + 0.5) + 4.5), amplitudes[j]);
   out += "</g>\n";
   out += fmt::format("<text class=\"axis-label\" x=\"{}\" y=\"{}\" text-anchor=\"middle\">frequency [Hz]</text>\n",
                      coordinate(kLeft + kGridWidth / 2), kHeight - 12);

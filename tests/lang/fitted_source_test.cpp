@@ -87,8 +87,10 @@ TEST_CASE("write_fitted_source: changed values round-trip to 1e-12; everything e
   const std::size_t shift = std::string("# fitted by rheo fit\n# phi = 0.0123\n").size();
   std::vector<std::pair<std::size_t, std::size_t>> old_ranges, new_ranges;
   for (int i : changed) {
-    old_ranges.emplace_back(m.parameters[static_cast<std::size_t>(i)].value_begin, m.parameters[static_cast<std::size_t>(i)].value_end);
-    new_ranges.emplace_back(n.parameters[static_cast<std::size_t>(i)].value_begin - shift, n.parameters[static_cast<std::size_t>(i)].value_end - shift);
+    const auto& old_p = m.parameters[static_cast<std::size_t>(i)];
+    const auto& new_p = n.parameters[static_cast<std::size_t>(i)];
+    old_ranges.emplace_back(old_p.value_begin, old_p.value_end);
+    new_ranges.emplace_back(static_cast<std::size_t>(new_p.value_begin) - shift, static_cast<std::size_t>(new_p.value_end) - shift);
   }
   std::sort(old_ranges.begin(), old_ranges.end());
   std::sort(new_ranges.begin(), new_ranges.end());

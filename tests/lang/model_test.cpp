@@ -22,7 +22,7 @@ TEST_CASE("Expression::evaluate runs postfix code over parameter values") {
 
 TEST_CASE("Program::find_model looks up by name") {
   Program prog;
-  prog.models.emplace_back().name = "a";
+  prog.models.emplace_back().name = std::string("a");  // not a literal: GCC 12 -Wrestrict misfires (bug 105329)
   CHECK(prog.find_model("a") == &prog.models[0]);
   CHECK(prog.find_model("b") == nullptr);
 }

@@ -1,6 +1,7 @@
 #include "lang/names.hpp"
 
 #include <doctest/doctest.h>
+#include <fmt/format.h>
 
 using namespace rheo::lang;
 
@@ -13,7 +14,7 @@ TEST_CASE("closest suggests only plausible names") {
 
 TEST_CASE("lists and chains in messages are cut past 30 names; suggestions only among a bounded set") {
   std::vector<std::string> many;
-  for (int i = 0; i < 1000000; ++i) many.push_back("p" + std::to_string(i));
+  for (int i = 0; i < 1000000; ++i) many.push_back(fmt::format("p{}", i));
   CHECK(join(many) == "p0, p1, p2, p3, p4, p5, p6, p7, p8, p9, p10, p11, p12, p13, p14, p15, p16, p17, p18, p19, p20, p21, p22, "
                       "p23, p24, p25, p26, p27, p28, p29, ... (999970 more)");
   CHECK(join_chain({"a", "b", "a"}) == "a -> b -> a");

@@ -153,7 +153,7 @@ TEST_CASE("parse: blocks and expressions nest up to the limits of limits.hpp") {
   CHECK(value_of_first_argument(parse("p.rheo", "model m { spring s (k = 2 * (a + 1)) }")).depth == 4);
   CHECK(value_of_first_argument(parse("p.rheo", "model m { spring s (k = 1 + 2 + 3) }")).depth == 3);
   const std::string at_limit[] = {repeat("(", levels - 1) + "1" + repeat(")", levels - 1), repeat("-", levels - 1) + "1",
-                                  "1" + repeat(" + 1", levels - 1), repeat("(", levels / 2) + "1" + repeat(" * 2)", levels / 2 - 1) + ")"};
+                                  repeat("1 + ", levels - 1) + "1", repeat("(", levels / 2) + "1" + repeat(" * 2)", levels / 2 - 1) + ")"};
   for (const auto& expression : at_limit) {
     CAPTURE(expression);
     CHECK(value_of_first_argument(parse("p.rheo", "model m { spring s (k = " + expression + ") }")).depth <= levels);
@@ -169,7 +169,7 @@ TEST_CASE("parse: hostile nesting 10,000 deep is a parse error at the first leve
   CHECK(error.find(fmt::format("error: blocks nested deeper than {} levels", max_block_depth)) != std::string::npos);
   // The 201st block keyword: 100 `parallel { spring aN (...) series { ` groups stand before it.
   CHECK(error.find(fmt::format("p.rheo:2:{}:", alternating.find("parallel { spring a100 ") - alternating.find('\n'))) == 0);
-  for (const std::string& expression : {repeat("(", d) + "1" + repeat(")", d), repeat("-", d) + "1", "1" + repeat(" + 1", d),
+  for (const std::string& expression : {repeat("(", d) + "1" + repeat(")", d), repeat("-", d) + "1", repeat("1 + ", d) + "1",
                                         repeat("(1 + ", d) + "1" + repeat(")", d)}) {
     const std::string message = parse_error("model m { spring s (k = " + expression + ") }");
     CHECK(message.find(fmt::format("expression nested deeper than {} levels", max_expression_depth)) != std::string::npos);

@@ -13,8 +13,8 @@ TEST_CASE("an ellipse: F^ = K u0, U = pi F^ u0 sin(delta), both definitions agre
   // delta a whole number of sample spacings, so that the force peaks fall on samples.
   const double u0 = 0.7, stiffness = 300, delta = 2 * std::numbers::pi * 12 / n;
   std::vector<double> phase(n), u(n), f(n);
-  for (int k = 0; k < n; ++k) {
-    phase[k] = 2 * std::numbers::pi * k / n;
+  for (std::size_t k = 0; k < phase.size(); ++k) {
+    phase[k] = 2 * std::numbers::pi * static_cast<double>(k) / n;
     u[k] = u0 * std::sin(phase[k]);
     f[k] = stiffness * u0 * std::sin(phase[k] + delta);
   }
@@ -34,8 +34,8 @@ TEST_CASE("an ellipse: F^ = K u0, U = pi F^ u0 sin(delta), both definitions agre
 TEST_CASE("a rigid-plastic slider's square loop has d = 4/pi: clamped to 90 deg and flagged") {
   const int n = 64;
   std::vector<double> phase(n), u(n), f(n);
-  for (int k = 0; k < n; ++k) {
-    phase[k] = 2 * std::numbers::pi * (k + 0.5) / n;
+  for (std::size_t k = 0; k < phase.size(); ++k) {
+    phase[k] = 2 * std::numbers::pi * (static_cast<double>(k) + 0.5) / n;
     u[k] = std::sin(phase[k]);
     f[k] = std::cos(phase[k]) > 0 ? 1.0 : -1.0;
   }

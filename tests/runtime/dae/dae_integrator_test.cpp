@@ -128,7 +128,7 @@ TEST_CASE("DaeLayout: the blocks of y follow each other in the order x, lambda, 
   using B = runtime::DaeLayout::Block;
   const B order[] = {B::position, B::switch_force, B::rate_coordinate, B::inerter_velocity, B::bouc_wen_state};
   int i = 0;
-  for (const auto [block, count] : {std::pair{order[0], l.positions}, std::pair{order[1], l.switch_forces}, std::pair{order[2], l.rate_coordinates},
+  for (const auto& [block, count] : {std::pair{order[0], l.positions}, std::pair{order[1], l.switch_forces}, std::pair{order[2], l.rate_coordinates},
                                     std::pair{order[3], l.inerter_velocities}, std::pair{order[4], l.bouc_wen_states}})
     for (int k = 0; k < count; ++k, ++i) {
       CHECK(l.block_of(i) == block);

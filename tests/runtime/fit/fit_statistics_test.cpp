@@ -25,13 +25,13 @@ struct Line {
       y.push_back(1.5 + 0.3 * x.back() + 0.1 * std::sin(7.3 * i));
     }
     double xbar = 0, ybar = 0;
-    for (int i = 0; i < m; ++i) { xbar += x[i] / m; ybar += y[i] / m; }
+    for (std::size_t i = 0; i < x.size(); ++i) { xbar += x[i] / m; ybar += y[i] / m; }
     double sxx = 0, sxy = 0;
-    for (int i = 0; i < m; ++i) { sxx += (x[i] - xbar) * (x[i] - xbar); sxy += (x[i] - xbar) * (y[i] - ybar); }
+    for (std::size_t i = 0; i < x.size(); ++i) { sxx += (x[i] - xbar) * (x[i] - xbar); sxy += (x[i] - xbar) * (y[i] - ybar); }
     b = sxy / sxx;
     a = ybar - b * xbar;
     double rss = 0;
-    for (int i = 0; i < m; ++i) rss += std::pow(y[i] - a - b * x[i], 2);
+    for (std::size_t i = 0; i < x.size(); ++i) rss += std::pow(y[i] - a - b * x[i], 2);
     const double s = std::sqrt(rss / (m - 2));
     se_b = s / std::sqrt(sxx);
     se_a = s * std::sqrt(1.0 / m + xbar * xbar / sxx);
