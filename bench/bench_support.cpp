@@ -13,8 +13,6 @@ lang::CheckedModel example_model(const std::string& file, const std::string& mod
   return *m;
 }
 
-runtime::FitDataSet example_data(const std::string& csv) {
-  return runtime::read_fit_data(std::string(RHEO_EXAMPLES_DIR) + "/data/" + csv, 1.0);
-}
+runtime::FitDataSet example_data(const std::string& csv) { return runtime::read_fit_data(std::string(RHEO_EXAMPLES_DIR) + "/data/" + csv, 1.0); }
 
 }  // namespace rheo::bench

@@ -23,17 +23,16 @@ void BM_SpecimenD_History_1e6Steps(benchmark::State& state) {
   for (int k = 0; k <= steps; ++k) {
     const double t = k * dt;
     drive.time[static_cast<std::size_t>(k)] = t;
-    drive.displacement[static_cast<std::size_t>(k)] =
-        2.0 * std::sin(2 * std::numbers::pi * 1.5 * t) + 0.1 * std::sin(2 * std::numbers::pi * 23.0 * t);
+    drive.displacement[static_cast<std::size_t>(k)] = 2.0 * std::sin(2 * std::numbers::pi * 1.5 * t) +
+                                                      0.1 * std::sin(2 * std::numbers::pi * 23.0 * t);
   }
   for (auto _ : state) {
     const runtime::History h = runtime::run_history(network, drive, false);
     benchmark::DoNotOptimize(h.force.data());
   }
   const double elements = 8.0;
-  state.counters["ns_per_element_step"] = benchmark::Counter(
-      static_cast<double>(state.iterations()) * steps * elements, benchmark::Counter::kIsRate | benchmark::Counter::kInvert,
-      benchmark::Counter::kIs1000);
+  state.counters["ns_per_element_step"] = benchmark::Counter(static_cast<double>(state.iterations()) * steps * elements,
+                                                             benchmark::Counter::kIsRate | benchmark::Counter::kInvert, benchmark::Counter::kIs1000);
 }
 
 }  // namespace

@@ -27,7 +27,7 @@ void BM_Hydrobushing_CoupledGrid_Threads(benchmark::State& state) {
   for (const auto& p : points) cycles += p.cycles;
   state.counters["cycles_per_point"] = cycles / static_cast<double>(points.size());
   state.counters["time_per_step"] = benchmark::Counter(cycles * options.steps_per_cycle,
-                                                     benchmark::Counter::kIsIterationInvariantRate | benchmark::Counter::kInvert);
+                                                       benchmark::Counter::kIsIterationInvariantRate | benchmark::Counter::kInvert);
 }
 
 void BM_SpecimenD_Fit_Threads(benchmark::State& state) {

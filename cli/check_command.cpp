@@ -57,8 +57,8 @@ Command add_check_command(CLI::App& app) {
       if (runs_on_sundials(program, network)) (void)runtime::DaeGraph::build(network);  // ModelError for what IDA cannot integrate
       if (options->graph) graphs += network.describe();
     }
-    std::cout << fmt::format("{}: ok: {} model(s), {} parameter(s), {} simulate block(s)\n", options->file,
-                             program.models.size(), parameters, program.simulations.size())
+    std::cout << fmt::format("{}: ok: {} model(s), {} parameter(s), {} simulate block(s)\n", options->file, program.models.size(), parameters,
+                             program.simulations.size())
               << graphs;
     return 0;
   };

@@ -36,7 +36,8 @@ void add_common_options(CLI::App& app, DiagnoseOptions& o) {
   app.add_option("file", o.fit.file, "The .rheo file: the model, with bounds on the parameters to fit")->required();
   app.add_option("--data", o.fit.data, "Measured data (harmonic table or time history); replaces the fit block's data lines. Repeatable");
   app.add_option("--model", o.fit.model, "The model to diagnose (when the file has several)");
-  app.add_option("--block", o.fit.block, "Take model, data and settings from the N-th fit block of the file (1-based)")->check(CLI::Range(1, std::numeric_limits<int>::max()));
+  app.add_option("--block", o.fit.block, "Take model, data and settings from the N-th fit block of the file (1-based)")
+      ->check(CLI::Range(1, std::numeric_limits<int>::max()));
   app.add_option("--candidates", o.candidates, "Leading effects confirmed by a refit; default 3")->check(CLI::Range(1, 5));
   app.add_option("--steps-per-cycle", o.steps_per_cycle,
                  "Time steps per cycle where harmonic points are time-stepped, a multiple of 4; default: the fit block's, else 128")
@@ -75,7 +76,8 @@ std::unique_ptr<Prepared> prepare(const DiagnoseOptions& o) {
   else if (!p->job.steps_per_cycle_given) p->settings.fit.score.harmonic.steps_per_cycle = 128;
   // The candidates nest sliders and inerters, which `auto` would give to IDA; fixed steps are
   // exact for the sampled drive and much faster per point (docs/numerics.md).
-  if (p->settings.fit.score.harmonic.solver == runtime::SolverChoice::automatic) p->settings.fit.score.harmonic.solver = runtime::SolverChoice::fixed;
+  if (p->settings.fit.score.harmonic.solver == runtime::SolverChoice::automatic)
+    p->settings.fit.score.harmonic.solver = runtime::SolverChoice::fixed;
   for (int i : p->job.free) p->settings.free.push_back(p->job.model->parameters[static_cast<std::size_t>(i)].path);
   p->settings.confirm = o.candidates;
   p->settings.standard_errors = o.report.any();  // the report's parameter table shows them
@@ -105,9 +107,10 @@ Command add_diagnose_command(CLI::App& app) {
   add_common_options(app, *o);
   app.add_option("-o,--output", o->fit.output, "Write the refined model (.rheo: the file with fitted values and the added element) here");
   app.add_flag("--json", o->fit.json, "Print the JSON summary instead of the text report");
-  app.footer("Fits the model, screens every effect (amplitude-dependence, rate-dependence, nonlinear-elasticity,\n"
-             "coupled-amplitude-frequency, inertia) by the share of the residual the matching element explains, refits the\n"
-             "leading ones and names the effect whose element earns its parameters (BIC), or `none`. See docs/cli.md.");
+  app.footer(
+      "Fits the model, screens every effect (amplitude-dependence, rate-dependence, nonlinear-elasticity,\n"
+      "coupled-amplitude-frequency, inertia) by the share of the residual the matching element explains, refits the\n"
+      "leading ones and names the effect whose element earns its parameters (BIC), or `none`. See docs/cli.md.");
   return [o] {
     const auto p = prepare(*o);
     const dx::Diagnosis d = dx::diagnose(p->source, p->job.data, p->settings);
@@ -126,8 +129,9 @@ Command add_refine_command(CLI::App& app) {
   add_common_options(app, *o);
   app.add_option("-o,--output", o->fit.output, "Write the final model here; default FILE_refined.rheo beside FILE");
   app.add_option("--rounds", o->rounds, "Most diagnose-add-refit rounds; default 3")->check(CLI::Range(1, 20));
-  app.footer("Repeats `rheo diagnose` on its own refined model until the effect is `none` or the rounds are spent, printing\n"
-             "the gap after every round, and writes the final model. See docs/cli.md.");
+  app.footer(
+      "Repeats `rheo diagnose` on its own refined model until the effect is `none` or the rounds are spent, printing\n"
+      "the gap after every round, and writes the final model. See docs/cli.md.");
   return [o] {
     const auto p = prepare(*o);
     const std::string output = o->fit.output.empty() ? default_refined_path(o->fit.file) : o->fit.output;

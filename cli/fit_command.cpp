@@ -31,8 +31,7 @@ std::string fitted_file_text(const FitJob& job, const runtime::FitResult& result
   if (result.phi > 0.0) header.push_back(fmt::format("phi (5.1) = {:.6g}, err (6.1) = {:.6g}", result.phi, result.err));
   if (result.interrupted) header.push_back("Interrupted: the best values found before the interruption.");
   header.push_back(fmt::format("Start values: {}", source_file));
-  return lang::write_fitted_source(source, source_file, result.network.model(), result.network.parameters(),
-                                   result.free, header);
+  return lang::write_fitted_source(source, source_file, result.network.model(), result.network.parameters(), result.free, header);
 }
 
 }  // namespace
@@ -50,25 +49,29 @@ Command add_fit_command(CLI::App& app) {
   const runtime::SearchSettings defaults;
   app.add_option("--method", o->method, "exact | approximate | corrected (thesis eqs. 5.5-5.21, Table 5.1); default exact");
   app.add_option("--optimizer", o->optimizer, "default | bobyqa | sbplx | neldermead | direct_l | crs2 | isres | mlsl; default: default");
-  app.add_option("--max-evaluations", o->max_evaluations, fmt::format("Evaluation budget of the search over all its stages; default {}. The exact method's cheaper surrogate stage has a budget of its own, so the count reported can reach twice this", defaults.max_evaluations))
+  app.add_option(
+         "--max-evaluations", o->max_evaluations,
+         fmt::format(
+             "Evaluation budget of the search over all its stages; default {}. The exact method's cheaper surrogate stage has a budget of its own, so the count reported can reach twice this",
+             defaults.max_evaluations))
       ->check(CLI::Range(1, std::numeric_limits<int>::max()));
   app.add_option("--starts", o->starts, fmt::format("Local searches of the default strategy; default {}", defaults.starts))
       ->check(CLI::Range(1, std::numeric_limits<int>::max()));
   app.add_option("--seed", o->seed,
                  fmt::format("Seed of the sampling and stochastic optimizers; the same seed gives the same result; default {}", defaults.seed))
       ->check(CLI::Range(0LL, std::numeric_limits<long long>::max()));
-  app.add_option("--threads", o->threads,
-                 "Harmonic points evaluated at once (0: every hardware thread); results do not depend on it; default 1")
+  app.add_option("--threads", o->threads, "Harmonic points evaluated at once (0: every hardware thread); results do not depend on it; default 1")
       ->check(CLI::Range(0, 1024));
   app.add_option("--yeoh-start", o->yeoh_start,
                  "Static or quasi-static loop (CSV) whose mean curve gives the yeoh spring's start values by least squares (eqs. 5.28-5.32)");
   app.add_option("--orders", o->orders,
                  "Model-order study (thesis Fig. 6.2), e.g. maxwell=1..4,friction=1..6: fits each structure, tables err (6.1)");
   add_report_options(app, *report, true);
-  app.footer("Settings given here override the fit block's. Data lines and `output` in a fit block are relative to the\n"
-             ".rheo file; --data and -o to the working directory. The report goes to standard output, messages to standard\n"
-             "error (with a progress line when it is a terminal). Ctrl-C stops the search and writes the best result so far\n"
-             "(exit code 130).");
+  app.footer(
+      "Settings given here override the fit block's. Data lines and `output` in a fit block are relative to the\n"
+      ".rheo file; --data and -o to the working directory. The report goes to standard output, messages to standard\n"
+      "error (with a progress line when it is a terminal). Ctrl-C stops the search and writes the best result so far\n"
+      "(exit code 130).");
   return [o, report] {
     check_report_targets(*report);
     // Read once: the fitted file is written from the text compiled, however the file changes meanwhile.

@@ -30,7 +30,7 @@ class InterruptScope {
     interrupt_requested.store(false);
     struct sigaction action {};
     action.sa_handler = on_interrupt;
-    action.sa_flags = SA_RESETHAND;
+    action.sa_flags = static_cast<int>(SA_RESETHAND);  // glibc defines it as an unsigned 0x80000000
     sigemptyset(&action.sa_mask);
     sigaction(SIGINT, &action, &previous_);
   }
@@ -79,8 +79,9 @@ void configure(FitJob& job, const lang::FitDirective* block, const FitOptions& o
   }
   s.score.method = o.method.empty() ? given.method : named_on_command_line(o.method, lang::fit_method_named, lang::fit_method_words(), "method");
   job.description.method = lang::word_of(s.score.method);
-  const lang::Optimizer optimizer =
-      o.optimizer.empty() ? given.optimizer : named_on_command_line(o.optimizer, lang::optimizer_named, lang::optimizer_words(), "optimizer");
+  const lang::Optimizer optimizer = o.optimizer.empty()
+                                        ? given.optimizer
+                                        : named_on_command_line(o.optimizer, lang::optimizer_named, lang::optimizer_words(), "optimizer");
   job.description.optimizer = lang::word_of(optimizer);
   s.search.algorithm = algorithm_of(optimizer);
   s.search.max_evaluations = o.max_evaluations > 0 ? o.max_evaluations : given.max_evaluations.value_or(s.search.max_evaluations);
@@ -112,17 +113,17 @@ void set_yeoh_start(FitJob& job, const std::string& path) {
                                               model.name, yeoh->path, e.path));
       yeoh = &e;
     }
-  if (!yeoh)
-    throw runtime::UsageError(fmt::format("--yeoh-start: model '{}' has no yeoh spring in its root block to start", model.name));
+  if (!yeoh) throw runtime::UsageError(fmt::format("--yeoh-start: model '{}' has no yeoh spring in its root block to start", model.name));
   const runtime::LoopSamples record = runtime::loop_samples_from_table(runtime::read_table(path));  // errors name file:row
   const std::array<int, 3> constants{yeoh->parameters.at(0), yeoh->parameters.at(1), yeoh->parameters.at(2)};
   std::array<runtime::YeohStartValue, 3> started;
   try {
     started = runtime::yeoh_start_values(model, constants, job.free, record);
   } catch (const runtime::DataError& e) {
-    throw runtime::DataError(fmt::format("{}: --yeoh-start: {}; give a static loop record (displacement and force over at least one "
-                                         "full cycle, as specimen_D_static.csv)",
-                                         path, e.what()));
+    throw runtime::DataError(
+        fmt::format("{}: --yeoh-start: {}; give a static loop record (displacement and force over at least one "
+                    "full cycle, as specimen_D_static.csv)",
+                    path, e.what()));
   }
   if (job.start_values.empty())
     for (const auto& p : model.parameters) job.start_values.push_back(p.value);
@@ -134,10 +135,10 @@ void set_yeoh_start(FitJob& job, const std::string& path) {
       continue;
     }
     job.start_values[static_cast<std::size_t>(s.parameter)] = s.value;
-    job.notes += fmt::format("rheo: --yeoh-start {}: {} = {:.6g} {} (least squares on the mean curve, eq. 5.32){}\n", path, p.path,
-                             runtime::in_written_unit(p, s.value), runtime::written_unit(p),
-                             s.value != s.unclamped ? fmt::format(", clamped into its bounds from {:.6g}", runtime::in_written_unit(p, s.unclamped))
-                                                    : std::string());
+    job.notes += fmt::format(
+        "rheo: --yeoh-start {}: {} = {:.6g} {} (least squares on the mean curve, eq. 5.32){}\n", path, p.path, runtime::in_written_unit(p, s.value),
+        runtime::written_unit(p),
+        s.value != s.unclamped ? fmt::format(", clamped into its bounds from {:.6g}", runtime::in_written_unit(p, s.unclamped)) : std::string());
   }
 }
 
@@ -150,8 +151,8 @@ std::vector<FitJob> fit_jobs(const lang::Program& program, const FitOptions& o) 
     job.model = &model;
     job.free = block ? block->free : lang::default_free_parameters(model);
     if (job.free.empty())
-      throw runtime::UsageError(fmt::format("model '{}' has no parameter with bounds; give bounds to the ones to fit, e.g. `k = 300 N/mm in [10, 5000]`",
-                                            model.name));
+      throw runtime::UsageError(
+          fmt::format("model '{}' has no parameter with bounds; give bounds to the ones to fit, e.g. `k = 300 N/mm in [10, 5000]`", model.name));
     job.description.source = o.file;
     configure(job, block, o);
     if (!o.data.empty()) {
@@ -160,7 +161,8 @@ std::vector<FitJob> fit_jobs(const lang::Program& program, const FitOptions& o) 
       for (const auto& d : block->data) job.data.push_back(runtime::read_fit_data(relative_to(o.file, d.file), d.weight, &d.where));
     }
     if (job.data.empty())
-      throw runtime::UsageError(fmt::format("no data to fit model '{}' to; give --data FILE.csv or add `data \"FILE.csv\"` to its fit block", model.name));
+      throw runtime::UsageError(
+          fmt::format("no data to fit model '{}' to; give --data FILE.csv or add `data \"FILE.csv\"` to its fit block", model.name));
     job.output = !o.output.empty() ? o.output : block ? relative_to(o.file, block->output) : std::string();
     runtime::check_output_destination(job.output);  // before the search, not after it
     if (!o.yeoh_start.empty()) set_yeoh_start(job, o.yeoh_start);

@@ -21,15 +21,15 @@ struct FitOptions {
   std::string output;
   bool json = false;
   std::string model;
-  int block = 0;            // 1-based index of the only fit block to run; 0: all
+  int block = 0;  // 1-based index of the only fit block to run; 0: all
   std::string method;
   std::string optimizer;
   int max_evaluations = 0;  // 0: the block's or the default
   int starts = 0;
-  long long seed = -1;      // -1: the block's or the default
+  long long seed = -1;  // -1: the block's or the default
   std::string yeoh_start;
   std::string orders;
-  int threads = 1;          // data points evaluated at once; 0: every hardware thread
+  int threads = 1;  // data points evaluated at once; 0: every hardware thread
 };
 
 struct FitJob {
@@ -38,10 +38,10 @@ struct FitJob {
   std::vector<runtime::FitDataSet> data;
   runtime::FitSettings settings;
   runtime::FitDescription description;
-  std::string output;  // fitted .rheo destination; empty: none
-  std::vector<double> start_values;  // all parameters, internal units; empty: the model's
+  std::string output;                  // fitted .rheo destination; empty: none
+  std::vector<double> start_values;    // all parameters, internal units; empty: the model's
   bool steps_per_cycle_given = false;  // the fit block sets steps_per_cycle
-  std::string notes;                 // said before the fit (e.g. where --yeoh-start put the yeoh spring)
+  std::string notes;                   // said before the fit (e.g. where --yeoh-start put the yeoh spring)
 };
 
 std::vector<FitJob> fit_jobs(const lang::Program& program, const FitOptions& options);

@@ -11,10 +11,11 @@
 
 int main(int argc, char** argv) {
   using namespace rheo;
-  CLI::App app{"rheo: model rubber bushings as 1-D rheological networks.\n"
-               "Exit codes: 0 ok, 1 internal error, 2 usage, 3 model file error, 4 data or I/O error,\n"
-               "5 numerical (e.g. a harmonic point did not reach steady state; results are still written),\n"
-               "130 a fit, diagnose or refine stopped by Ctrl-C (its best result so far is still written)."};
+  CLI::App app{
+      "rheo: model rubber bushings as 1-D rheological networks.\n"
+      "Exit codes: 0 ok, 1 internal error, 2 usage, 3 model file error, 4 data or I/O error,\n"
+      "5 numerical (e.g. a harmonic point did not reach steady state; results are still written),\n"
+      "130 a fit, diagnose or refine stopped by Ctrl-C (its best result so far is still written)."};
   app.require_subcommand(1);
   app.set_version_flag("--version", "rheo " RHEO_VERSION);  // project(VERSION) in CMakeLists.txt
   std::vector<std::pair<CLI::App*, cli::Command>> commands;

@@ -56,8 +56,13 @@ int run_order_study(const std::vector<FitJob>& jobs, const FitOptions& options) 
     v.model = variant.find_model(model.name);
     v.free = lang::default_free_parameters(*v.model);
     const runtime::FitResult r = run_fit_job(v);
-    rows.push_back({{"maxwell", std::max(m, 0)}, {"friction", std::max(f, 0)}, {"parameters", r.free.size()}, {"err", r.err},
-                    {"phi", r.phi}, {"evaluations", r.evaluations}, {"wall_seconds", r.wall_seconds}});
+    rows.push_back({{"maxwell", std::max(m, 0)},
+                    {"friction", std::max(f, 0)},
+                    {"parameters", r.free.size()},
+                    {"err", r.err},
+                    {"phi", r.phi},
+                    {"evaluations", r.evaluations},
+                    {"wall_seconds", r.wall_seconds}});
     if (!options.json)
       std::cout << fmt::format("{:>10}  {:>10}  {:>10}  {:>12.4e}  {:>8.2f}\n", m < 0 ? std::string("as is") : std::to_string(m),
                                f < 0 ? std::string("as is") : std::to_string(f), r.free.size(), r.err, r.wall_seconds)

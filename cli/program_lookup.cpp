@@ -10,8 +10,8 @@
 
 namespace rheo::cli {
 
-const lang::CheckedModel& chosen_model(const lang::Program& program, const std::string& file, const std::string& name,
-                                       const std::string& purpose, const std::string& advice) {
+const lang::CheckedModel& chosen_model(const lang::Program& program, const std::string& file, const std::string& name, const std::string& purpose,
+                                       const std::string& advice) {
   if (!name.empty()) {
     if (const lang::CheckedModel* m = program.find_model(name)) return *m;
     throw runtime::UsageError(fmt::format("{} has no model '{}'", file, name));

@@ -36,8 +36,7 @@ void add_data(report::ReportContent& content, const runtime::Network& network, c
     if (set.is_harmonic()) {
       content.harmonic.push_back(report::compare_harmonic(set.harmonic(), p.points));
       for (std::string& note : runtime::damping_left_out(set.harmonic())) content.notes.push_back(std::move(note));
-    } else
-      content.histories.push_back(report::compare_history(set.history(), p.force));
+    } else content.histories.push_back(report::compare_history(set.history(), p.force));
   }
 }
 
@@ -48,9 +47,8 @@ void add_protocols(report::ReportContent& content, const runtime::Network& netwo
     for (lang::Protocol protocol : sim.protocols) {
       lang::common(protocol.settings).elements = false;  // the report draws the whole network's force
       const runtime::ProtocolResult result = runtime::run_protocol(network, protocol, o.file, o.threads);
-      report::add_simulation_result(content, fmt::format("{} protocol ({}:{})", lang::protocol_name(protocol.kind), protocol.where.file,
-                                                         protocol.where.line),
-                                    result);
+      report::add_simulation_result(
+          content, fmt::format("{} protocol ({}:{})", lang::protocol_name(protocol.kind), protocol.where.file, protocol.where.line), result);
     }
   }
 }
@@ -76,8 +74,9 @@ Command add_report_command(CLI::App& app) {
   app.add_option("-o,--output", o->targets.html, "Write the HTML report here");
   add_report_options(app, o->targets, false);
   app.add_option("--threads", o->threads, "Harmonic points simulated at once (0: every hardware thread); default 1")->check(CLI::Range(0, 1024));
-  app.footer("Without --data the report shows the model's simulate protocols, or, when it has none, the data of its fit\n"
-             "blocks. --data is relative to the working directory, data lines of fit blocks to the .rheo file.");
+  app.footer(
+      "Without --data the report shows the model's simulate protocols, or, when it has none, the data of its fit\n"
+      "blocks. --data is relative to the working directory, data lines of fit blocks to the .rheo file.");
   return [o] {
     if (!o->targets.any()) throw runtime::UsageError("rheo report writes nothing without -o REPORT.html or --plot FIGURE.svg; add one");
     const lang::Program program = lang::load_program(o->file);
@@ -90,12 +89,14 @@ Command add_report_command(CLI::App& app) {
       add_data(content, network, data, o->threads);
     } else {
       add_protocols(content, network, program, *o);
-      if (content.harmonic.empty() && content.histories.empty()) add_data(content, network, fit_block_data(program, model.name, o->file), o->threads);
+      if (content.harmonic.empty() && content.histories.empty())
+        add_data(content, network, fit_block_data(program, model.name, o->file), o->threads);
     }
     if (content.harmonic.empty() && content.histories.empty())
-      throw runtime::UsageError(fmt::format("model '{}' in {} has no simulate protocol and no fit data to report; give --data FILE.csv "
-                                            "or add a simulate block",
-                                            model.name, o->file));
+      throw runtime::UsageError(
+          fmt::format("model '{}' in {} has no simulate protocol and no fit data to report; give --data FILE.csv "
+                      "or add a simulate block",
+                      model.name, o->file));
     write_report_files(content, o->targets);
     return runtime::exit_code::ok;
   };

@@ -39,9 +39,10 @@ bool wants_png(const ReportTargets& targets) { return fs::path(targets.plot).ext
 std::string png_converter(const std::string& target) {
   const std::string converter = find_on_path("rsvg-convert");
   if (converter.empty())
-    throw runtime::UsageError(fmt::format("--plot {}: writing PNG needs rsvg-convert (Debian package librsvg2-bin); install it, "
-                                          "or write an .svg file instead",
-                                          target));
+    throw runtime::UsageError(
+        fmt::format("--plot {}: writing PNG needs rsvg-convert (Debian package librsvg2-bin); install it, "
+                    "or write an .svg file instead",
+                    target));
   return converter;
 }
 
@@ -65,16 +66,15 @@ std::string png_of(const std::string& svg, const std::string& target) {
   std::error_code ignored;
   fs::remove_all(dir, ignored);
   if (status != 0 || bytes.str().empty())
-    throw runtime::DataError(fmt::format("--plot {}: rsvg-convert could not convert the plot (exit status {}); write an .svg file instead",
-                                         target, status));
+    throw runtime::DataError(
+        fmt::format("--plot {}: rsvg-convert could not convert the plot (exit status {}); write an .svg file instead", target, status));
   return bytes.str();
 }
 
 }  // namespace
 
 void add_report_options(CLI::App& app, ReportTargets& targets, bool html_option) {
-  if (html_option)
-    app.add_option("--report", targets.html, "Also write a self-contained HTML report (plots, network diagram, parameters) here");
+  if (html_option) app.add_option("--report", targets.html, "Also write a self-contained HTML report (plots, network diagram, parameters) here");
   app.add_option("--plot", targets.plot,
                  "Also write one figure here: stiffness over frequency (a curve per amplitude), or the hysteresis loop when there "
                  "is no harmonic grid; .svg, or .png when rsvg-convert is installed");

@@ -38,8 +38,7 @@ void apply_overrides(lang::Protocol& protocol, const Options& o) {
     try {
       lang::override_setting(protocol, lang::parse_setting(protocol.kind, text));
     } catch (const lang::CompileError& e) {
-      throw runtime::UsageError(
-          fmt::format("--set '{}' for protocol {}:\n{}", lang::printable(text), lang::protocol_name(protocol.kind), e.what()));
+      throw runtime::UsageError(fmt::format("--set '{}' for protocol {}:\n{}", lang::printable(text), lang::protocol_name(protocol.kind), e.what()));
     }
   }
   lang::CommonSettings& common = lang::common(protocol.settings);
@@ -63,16 +62,16 @@ Command add_simulate_command(CLI::App& app) {
   app.add_flag("--elements", o->elements, "Time histories: add every element's force and elongation");
   app.add_option_function<std::string>(
          "--solver", [o](const std::string& word) { o->solver = lang::solver_choice_named(word); },
-                 "auto | fixed | sundials: the integrator of every protocol (overrides `solver =` in the file); "
-                 "auto takes SUNDIALS IDA for networks with an inerter or blocks alternating more than 3 deep, "
-                 "the fixed-step kernels otherwise")
+         "auto | fixed | sundials: the integrator of every protocol (overrides `solver =` in the file); "
+         "auto takes SUNDIALS IDA for networks with an inerter or blocks alternating more than 3 deep, "
+         "the fixed-step kernels otherwise")
       ->check(CLI::IsMember(lang::solver_choice_words()));
-  app.add_option("--threads", o->threads,
-                 "Harmonic grid points simulated at once (0: every hardware thread); results do not depend on it; default 1")
+  app.add_option("--threads", o->threads, "Harmonic grid points simulated at once (0: every hardware thread); results do not depend on it; default 1")
       ->check(CLI::Range(0, 1024));
   add_report_options(app, o->report, true);
-  app.footer("Results go where each protocol's `output \"FILE\"` line says (relative to the .rheo file), "
-             "else to standard output.");
+  app.footer(
+      "Results go where each protocol's `output \"FILE\"` line says (relative to the .rheo file), "
+      "else to standard output.");
   return [o] {
     const lang::Program program = lang::load_program(o->file);
     struct Job {
@@ -88,8 +87,9 @@ Command add_simulate_command(CLI::App& app) {
       }
     }
     if (jobs.empty())
-      throw runtime::UsageError(fmt::format("{} has no simulate block{}; add one, e.g.\n  simulate {{\n    harmonic frequency = 1 Hz .. 51 Hz step 2 Hz, amplitude = [0.2, 1.0] mm\n  }}",
-                                            o->file, o->model.empty() && o->protocol.empty() ? "" : " matching --model/--protocol"));
+      throw runtime::UsageError(fmt::format(
+          "{} has no simulate block{}; add one, e.g.\n  simulate {{\n    harmonic frequency = 1 Hz .. 51 Hz step 2 Hz, amplitude = [0.2, 1.0] mm\n  }}",
+          o->file, o->model.empty() && o->protocol.empty() ? "" : " matching --model/--protocol"));
     if (!o->output.empty() && jobs.size() != 1)
       throw runtime::UsageError(fmt::format("-o names one output but {} protocols would run; select one with --protocol or --model", jobs.size()));
     if (o->report.any())
@@ -117,9 +117,9 @@ Command add_simulate_command(CLI::App& app) {
       runtime::ProtocolResult result = runtime::run_protocol(network, job.protocol, o->file, o->threads);
       if (o->report.any()) {
         if (!report) report = runtime::report::report_for_model(network, o->file, "rheo simulate");
-        runtime::report::add_simulation_result(*report, fmt::format("{} protocol ({}:{})", lang::protocol_name(job.protocol.kind),
-                                                                    job.protocol.where.file, job.protocol.where.line),
-                                               result);
+        runtime::report::add_simulation_result(
+            *report, fmt::format("{} protocol ({}:{})", lang::protocol_name(job.protocol.kind), job.protocol.where.file, job.protocol.where.line),
+            result);
       }
       results.push_back(std::move(result));
     }
@@ -131,9 +131,8 @@ Command add_simulate_command(CLI::App& app) {
       runtime::write_output(destination, runtime::rendered(result, lang::common(job.protocol.settings).format));
       std::cerr << result.notes;
       if (!destination.empty() && destination != "-")
-        std::cerr << fmt::format("rheo: {} of model {}: {} {} written to {}\n", lang::protocol_name(job.protocol.kind),
-                                 job.model->name, result.size(),
-                                 job.protocol.kind == lang::ProtocolKind::harmonic ? "points" : "samples", destination);
+        std::cerr << fmt::format("rheo: {} of model {}: {} {} written to {}\n", lang::protocol_name(job.protocol.kind), job.model->name,
+                                 result.size(), job.protocol.kind == lang::ProtocolKind::harmonic ? "points" : "samples", destination);
       not_converged += result.not_converged;
     }
     if (report) write_report_files(*report, o->report);

@@ -25,7 +25,7 @@ struct Expr {
   std::string path;     // Kind::reference: "m1.k"
   ExprPtr lhs, rhs;     // operands (negate uses lhs)
   SourceLocation where;
-  int depth = 1;        // levels as written, parentheses included (limits.hpp)
+  int depth = 1;  // levels as written, parentheses included (limits.hpp)
 };
 
 struct Bounds {
@@ -46,9 +46,9 @@ struct Argument {
 
 // KIND [NAME] (ARGS)  or  parallel|series [NAME] { CHILDREN }
 struct Element {
-  bool block = false;         // parallel/series block
-  std::string kind;           // "maxwell", "parallel", or a model name
-  std::string name;           // empty when unnamed
+  bool block = false;  // parallel/series block
+  std::string kind;    // "maxwell", "parallel", or a model name
+  std::string name;    // empty when unnamed
   std::vector<Argument> arguments;
   std::vector<Element> children;
   SourceLocation where;       // of the kind word
@@ -59,7 +59,7 @@ struct Model {
   std::string name;
   std::vector<Argument> parameters;  // `param` declarations
   std::vector<Element> elements;
-  SourceLocation where;              // of the name
+  SourceLocation where;  // of the name
 };
 
 struct Import {

@@ -108,8 +108,8 @@ class Checker {
 
 // The model a `simulate`/`fit` block (DIRECTIVE) names, or the file's only (non-imported)
 // model when it names none; "" after reporting when there is none.
-std::string resolve_model(const std::string& directive, const std::string& named, const SourceLocation& named_where,
-                          const SourceLocation& where, const ast::File& file, const Checker& checker, std::vector<Diagnostic>& errors) {
+std::string resolve_model(const std::string& directive, const std::string& named, const SourceLocation& named_where, const SourceLocation& where,
+                          const ast::File& file, const Checker& checker, std::vector<Diagnostic>& errors) {
   if (!named.empty()) {
     if (checker.known_model(named)) return named;
     errors.push_back({named_where, fmt::format("{} names unknown model '{}';{} known: {}", directive, named,
@@ -132,8 +132,7 @@ SimulateDirective check_simulate(const ast::Simulate& s, const ast::File& file, 
       if (last == Last::protocol && check_file_name(line.file, line.where, errors)) out.protocols.back().output = line.file;
       else if (last == Last::nothing)
         errors.push_back({line.where, "'output' names the results of the protocol line before it, but there is none; put it after a protocol line"});
-      else if (last == Last::output)
-        errors.push_back({line.where, "a protocol line has only one 'output'; remove this one"});
+      else if (last == Last::output) errors.push_back({line.where, "a protocol line has only one 'output'; remove this one"});
       last = Last::output;
       continue;
     }
@@ -147,7 +146,8 @@ SimulateDirective check_simulate(const ast::Simulate& s, const ast::File& file, 
     out.protocols.push_back(check_protocol(*kind, line.settings, line.where, errors));
     last = Last::protocol;
   }
-  if (s.lines.empty()) errors.push_back({s.where, "empty simulate block; add a protocol line such as `harmonic frequency = 10 Hz, amplitude = 1 mm`"});
+  if (s.lines.empty())
+    errors.push_back({s.where, "empty simulate block; add a protocol line such as `harmonic frequency = 10 Hz, amplitude = 1 mm`"});
   return out;
 }
 

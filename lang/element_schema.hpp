@@ -12,11 +12,11 @@
 namespace rheo::lang {
 
 struct ParameterSpec {
-  std::string_view name;      // "k"
+  std::string_view name;  // "k"
   Dimension dimension;
-  bool positive;              // value must be > 0
-  std::string_view quantity;  // "stiffness", for messages
-  std::optional<double> default_value = std::nullopt;  // internal units; absent: required
+  bool positive;                                           // value must be > 0
+  std::string_view quantity;                               // "stiffness", for messages
+  std::optional<double> default_value = std::nullopt;      // internal units; absent: required
   double below = std::numeric_limits<double>::infinity();  // value must be < below
 };
 
@@ -33,22 +33,29 @@ struct ElementSpec {
 inline const std::vector<ElementSpec>& element_specs() {
   static const std::vector<ElementSpec> specs{
       {"spring", ElementKind::spring, {{"k", dim::stiffness, true, "stiffness"}}, {}},
-      {"yeoh", ElementKind::yeoh,
+      {"yeoh",
+       ElementKind::yeoh,
        {{"D10", dim::stiffness, true, "coefficient"}, {"D20", {1, -3, 0}, false, "coefficient"}, {"D30", {1, -5, 0}, false, "coefficient"}},
        {}},
       {"dashpot", ElementKind::dashpot, {{"c", dim::damping, true, "damping"}}, {}},
-      {"maxwell", ElementKind::maxwell, {{"k", dim::stiffness, true, "stiffness"}, {"c", dim::damping, true, "damping"}},
+      {"maxwell",
+       ElementKind::maxwell,
+       {{"k", dim::stiffness, true, "stiffness"}, {"c", dim::damping, true, "damping"}},
        {{"tau", dim::time, true, "time constant"}}},
-      {"friction", ElementKind::friction, {{"k", dim::stiffness, true, "stiffness"}, {"fy", dim::force, true, "yield force"}},
+      {"friction",
+       ElementKind::friction,
+       {{"k", dim::stiffness, true, "stiffness"}, {"fy", dim::force, true, "yield force"}},
        {{"uy", dim::length, true, "yield displacement"}}},
       {"slider", ElementKind::slider, {{"fy", dim::force, true, "yield force"}}, {}},
       {"inerter", ElementKind::inerter, {{"b", dim::mass, true, "inertance"}}, {}},
       {"quadratic_dashpot", ElementKind::quadratic_dashpot, {{"cq", dim::quadratic_damping, true, "quadratic damping"}}, {}},
       {"gap", ElementKind::gap, {{"width", dim::length, true, "width"}}, {}},
-      {"bouc_wen", ElementKind::bouc_wen,
+      {"bouc_wen",
+       ElementKind::bouc_wen,
        {{"k", dim::stiffness, true, "stiffness"}, {"n", dim::none, true, "loop-shape exponent"}, {"fy", dim::force, true, "yield force"}},
        {{"uy", dim::length, true, "yield displacement"}}},
-      {"springpot", ElementKind::springpot,
+      {"springpot",
+       ElementKind::springpot,
        {{"k", dim::stiffness, true, "stiffness"},
         {"alpha", dim::none, true, "fractional order", std::nullopt, 1.0},
         {"tau", dim::time, true, "time constant"},

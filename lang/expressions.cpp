@@ -17,19 +17,15 @@ TypedExpression combine(const ast::Expr& e, TypedExpression lhs, TypedExpression
   out.ok = lhs.ok && rhs.ok;
   append(out.expression, lhs.expression);
   append(out.expression, rhs.expression);
-  Op op = e.kind == Kind::add        ? Op::add
-          : e.kind == Kind::subtract ? Op::subtract
-          : e.kind == Kind::multiply ? Op::multiply
-                                     : Op::divide;
+  Op op = e.kind == Kind::add ? Op::add : e.kind == Kind::subtract ? Op::subtract : e.kind == Kind::multiply ? Op::multiply : Op::divide;
   out.expression.code.push_back({op});
   if (op == Op::add || op == Op::subtract) {
     // Free operands adopt the other side's dimension.
     out.free = lhs.free && rhs.free;
     out.dimension = lhs.free ? rhs.dimension : lhs.dimension;
     if (!lhs.free && !rhs.free && lhs.dimension != rhs.dimension && out.ok) {
-      errors.push_back({e.where, fmt::format("cannot {} {} and {}; both operands of '{}' need the same dimension",
-                                             op == Op::add ? "add" : "subtract", with_article(lhs.dimension),
-                                             with_article(rhs.dimension), op == Op::add ? '+' : '-')});
+      errors.push_back({e.where, fmt::format("cannot {} {} and {}; both operands of '{}' need the same dimension", op == Op::add ? "add" : "subtract",
+                                             with_article(lhs.dimension), with_article(rhs.dimension), op == Op::add ? '+' : '-')});
       out.ok = false;
     }
     return out;
@@ -78,8 +74,7 @@ TypedExpression compile_expression(const ast::Expr& e, const Resolver& resolve, 
       out = compile_expression(*e.lhs, resolve, errors);
       out.expression.code.push_back({Op::negate});
       return out;
-    default:
-      return combine(e, compile_expression(*e.lhs, resolve, errors), compile_expression(*e.rhs, resolve, errors), errors);
+    default: return combine(e, compile_expression(*e.lhs, resolve, errors), compile_expression(*e.rhs, resolve, errors), errors);
   }
 }
 

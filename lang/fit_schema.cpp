@@ -24,12 +24,7 @@ const std::vector<SettingSpec>& fit_schema() {
       {.key = "seed", .shape = Shape::integer, .dimension = dim::none, .minimum = 0},
       {.key = "tolerance", .shape = Shape::number, .dimension = dim::none, .positive = true},
       {.key = "definition", .shape = Shape::identifier, .dimension = dim::none, .choices = harmonic_definition_words()},
-      {.key = "steps_per_cycle",
-       .shape = Shape::integer,
-       .dimension = dim::none,
-       .minimum = 16,
-       .multiple_of = 4,
-       .maximum = max_steps_per_cycle},
+      {.key = "steps_per_cycle", .shape = Shape::integer, .dimension = dim::none, .minimum = 16, .multiple_of = 4, .maximum = max_steps_per_cycle},
       {.key = "solver", .shape = Shape::identifier, .dimension = dim::none, .choices = solver_choice_words()},
       {.key = "free", .shape = Shape::paths, .dimension = dim::none},
       {.key = "fixed", .shape = Shape::paths, .dimension = dim::none},
@@ -101,7 +96,8 @@ class FreeSet {
                                               m_.name, example ? ", e.g. " + bounded_example(*example) : std::string())});
       } else {
         errors_.push_back({where, fmt::format("the fit of model '{}' has nothing to fit: `fixed` removes every free parameter; "
-                                              "fix fewer or give more parameters bounds", m_.name)});
+                                              "fix fewer or give more parameters bounds",
+                                              m_.name)});
       }
     }
     return {chosen.begin(), chosen.end()};
@@ -132,18 +128,19 @@ class FreeSet {
           const std::string& path = m_.parameters[static_cast<std::size_t>(op.parameter)].path;
           if (std::find(inputs.begin(), inputs.end(), path) == inputs.end()) inputs.push_back(path);
         }
-      errors_.push_back({item.where, inputs.size() == 1
-                                         ? fmt::format("'{}' is computed from '{}', so it cannot be fitted itself; fit '{}' instead: "
-                                                       "give it bounds and list it in free", p.path, inputs[0], inputs[0])
-                                         : fmt::format("'{}' is computed from {}, so it cannot be fitted itself; fit those instead: "
-                                                       "give them bounds and list them in free", p.path, join(inputs))});
+      errors_.push_back({item.where, inputs.size() == 1 ? fmt::format("'{}' is computed from '{}', so it cannot be fitted itself; fit '{}' instead: "
+                                                                      "give it bounds and list it in free",
+                                                                      p.path, inputs[0], inputs[0])
+                                                        : fmt::format("'{}' is computed from {}, so it cannot be fitted itself; fit those instead: "
+                                                                      "give them bounds and list them in free",
+                                                                      p.path, join(inputs))});
       return false;
     }
     if (!p.free) {
       const bool shared = p.value_begin < 0;
-      errors_.push_back({item.where, fmt::format("parameter '{}' has no bounds; {} to fit it: {}", p.path,
-                                                 shared ? "override it with bounds where its model is instantiated" : "give it bounds",
-                                                 bounded_example(p))});
+      errors_.push_back(
+          {item.where, fmt::format("parameter '{}' has no bounds; {} to fit it: {}", p.path,
+                                   shared ? "override it with bounds where its model is instantiated" : "give it bounds", bounded_example(p))});
       return false;
     }
     return true;

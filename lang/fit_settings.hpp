@@ -12,7 +12,7 @@
 
 namespace rheo::lang {
 
-enum class FitObjective { phi, least_squares };         // `objective`: eq. 5.38, or squared relative residuals
+enum class FitObjective { phi, least_squares };          // `objective`: eq. 5.38, or squared relative residuals
 enum class FitMethod { exact, approximate, corrected };  // `method`: time stepping, eq. 5.4's approximation, or both
 enum class Optimizer { automatic, bobyqa, sbplx, neldermead, direct_l, crs2, isres, mlsl };  // `optimizer` ("default": automatic)
 

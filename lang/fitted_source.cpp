@@ -14,9 +14,9 @@ namespace rheo::lang {
 namespace {
 
 struct UnitChoice {
-  std::string text;    // written after the number; "" for none
-  double scale = 1.0;  // internal value per written value
-  bool divide = false; // a reciprocal unit such as 1/mm: written `V / 1 mm`
+  std::string text;     // written after the number; "" for none
+  double scale = 1.0;   // internal value per written value
+  bool divide = false;  // a reciprocal unit such as 1/mm: written `V / 1 mm`
 };
 
 UnitChoice choose_unit(const Parameter& p) {
@@ -34,9 +34,10 @@ std::string not_writable(const Parameter& p, const std::string& file) {
     return fmt::format("'{}' is computed from other parameters, so it cannot take a fitted value; fit the parameters it is computed from", p.path);
   if (p.value_begin >= 0 && p.where.file == file) return "";
   const std::string name = p.path.substr(p.path.rfind('.') + 1);
-  return fmt::format("the value of '{}' is not written for it in {} (it is the default of an instantiated model, at {}:{}, which every "
-                     "instance shares); override it where the model is instantiated, e.g. `{} = ... in [LO, HI]`, to write its fitted value",
-                     p.path, file, p.where.file, p.where.line, name);
+  return fmt::format(
+      "the value of '{}' is not written for it in {} (it is the default of an instantiated model, at {}:{}, which every "
+      "instance shares); override it where the model is instantiated, e.g. `{} = ... in [LO, HI]`, to write its fitted value",
+      p.path, file, p.where.file, p.where.line, name);
 }
 
 // So that an error located in a stdlib module quotes its line.
@@ -75,12 +76,11 @@ std::string format_parameter_value(const Parameter& p, double value) {
   return unit.divide ? fmt::format("{} / 1 {}", number, unit.text) : fmt::format("{} {}", number, unit.text);
 }
 
-std::string write_fitted_source(const std::string& source, const std::string& file, const CheckedModel& model,
-                                const std::vector<double>& values, const std::vector<int>& changed,
-                                const std::vector<std::string>& header) {
+std::string write_fitted_source(const std::string& source, const std::string& file, const CheckedModel& model, const std::vector<double>& values,
+                                const std::vector<int>& changed, const std::vector<std::string>& header) {
   if (values.size() != model.parameters.size())
-    throw std::logic_error(fmt::format("write_fitted_source: {} values for the {} parameters of model '{}'", values.size(),
-                                       model.parameters.size(), model.name));
+    throw std::logic_error(
+        fmt::format("write_fitted_source: {} values for the {} parameters of model '{}'", values.size(), model.parameters.size(), model.name));
   struct Edit {
     int begin, end;
     std::string text;

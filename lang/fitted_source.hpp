@@ -21,9 +21,8 @@ namespace rheo::lang {
 // std::logic_error (a bug of the caller) when VALUES has the wrong size, an index is out of
 // range, a value is not finite, or a range lies outside SOURCE (SOURCE is not the text MODEL was
 // compiled from).
-std::string write_fitted_source(const std::string& source, const std::string& file, const CheckedModel& model,
-                                const std::vector<double>& values, const std::vector<int>& changed,
-                                const std::vector<std::string>& header);
+std::string write_fitted_source(const std::string& source, const std::string& file, const CheckedModel& model, const std::vector<double>& values,
+                                const std::vector<int>& changed, const std::vector<std::string>& header);
 
 // VALUE (internal units) as the value expression of P: in P's unit when it has one, else in
 // the internal unit of P's dimension ("Hz" for frequencies; plain when dimensionless). The

@@ -21,8 +21,7 @@ namespace rheo::lang {
 
 std::string read_source(const std::string& path) {
   FileText source = read_file_text(path, max_source_bytes);
-  if (!source.failure.empty())
-    throw UnreadableSource(fmt::format("{}: error: cannot read it ({}); {}", path, source.failure, source.advice()));
+  if (!source.failure.empty()) throw UnreadableSource(fmt::format("{}: error: cannot read it ({}); {}", path, source.failure, source.advice()));
   // A byte-order mark (some Windows editors write one) is no text: dropped here, so that
   // columns and the byte offsets of source edits refer to the same text.
   if (source.text.starts_with("\xEF\xBB\xBF")) source.text.erase(0, 3);

@@ -94,9 +94,7 @@ struct unit_word {
     in.bump_in_this_line(n);
     return true;
   }
-  static bool is_word_char(char c) {
-    return (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9') || c == '_';
-  }
+  static bool is_word_char(char c) { return (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9') || c == '_'; }
 };
 struct unit_power : seq<one<'^'>, opt<one<'-'>>, plus<digit>> {};
 struct unit_factor : seq<unit_word, opt<unit_power>> {};

@@ -35,14 +35,14 @@ struct Expression {
 };
 
 struct Parameter {
-  std::string path;          // "m1.tau", "rubber.D10", or a model parameter "k0"
-  Dimension dimension;       // e.g. stiffness
-  double value = 0.0;        // evaluated, internal units
-  Expression expression;     // how value is computed (a single constant for literals)
-  bool free = false;         // declared with bounds: identified by `rheo fit`
-  double lower = 0.0;        // bounds, internal units; meaningful when free
+  std::string path;       // "m1.tau", "rubber.D10", or a model parameter "k0"
+  Dimension dimension;    // e.g. stiffness
+  double value = 0.0;     // evaluated, internal units
+  Expression expression;  // how value is computed (a single constant for literals)
+  bool free = false;      // declared with bounds: identified by `rheo fit`
+  double lower = 0.0;     // bounds, internal units; meaningful when free
   double upper = 0.0;
-  std::string unit;          // the unit the user wrote ("N/mm"), for reporting; may be empty
+  std::string unit;  // the unit the user wrote ("N/mm"), for reporting; may be empty
   SourceLocation where;
   // Byte range [value_begin, value_end) of the value expression in the text of where.file: the
   // argument's own value, or the override's in an instantiation. -1 when no text is written for
@@ -53,22 +53,22 @@ struct Parameter {
 };
 
 enum class ElementKind : std::uint8_t {
-  spring,    // k [N/mm]:               F = k e
-  yeoh,      // D10 [N/mm], D20 [N/mm^3], D30 [N/mm^5]: F = 2 (D10 + 2 D20 e^2 + 3 D30 e^4) e  (eq. 3.3)
-  dashpot,   // c [N*s/mm]:             F = c de/dt
-  maxwell,   // k [N/mm], c [N*s/mm]:   spring k in series with dashpot c (tau = c/k)   (eq. 2.3)
-  friction,  // k [N/mm], fy [N]:       spring k in series with a slider slipping at |F| = fy (eq. 2.9)
-  slider,    // fy [N]:                 rigid-plastic Coulomb slider, |F| <= fy
-  inerter,   // b [N*s^2/mm]:           two-terminal mass, F = b d2e/dt2 (a fluid column)
+  spring,             // k [N/mm]:               F = k e
+  yeoh,               // D10 [N/mm], D20 [N/mm^3], D30 [N/mm^5]: F = 2 (D10 + 2 D20 e^2 + 3 D30 e^4) e  (eq. 3.3)
+  dashpot,            // c [N*s/mm]:             F = c de/dt
+  maxwell,            // k [N/mm], c [N*s/mm]:   spring k in series with dashpot c (tau = c/k)   (eq. 2.3)
+  friction,           // k [N/mm], fy [N]:       spring k in series with a slider slipping at |F| = fy (eq. 2.9)
+  slider,             // fy [N]:                 rigid-plastic Coulomb slider, |F| <= fy
+  inerter,            // b [N*s^2/mm]:           two-terminal mass, F = b d2e/dt2 (a fluid column)
   quadratic_dashpot,  // cq [N*s^2/mm^2]: turbulent channel flow, F = cq |de/dt| de/dt
-  gap,       // width [mm]:             free play: F = 0 for |e| < width/2, rigid at e = +-width/2
-  bouc_wen,  // k [N/mm], n [-], fy [N]: smooth friction, F = fy z,
-             //   dz/dt = (k/fy) de/dt (1 - |z|^n (1 + sgn(z de/dt)) / 2); n -> inf: friction(k, fy)
-  springpot, // k [N/mm], alpha [-], tau [s], f_low, f_high [Hz]: fractional derivative element,
-             //   K* = k (i w tau)^alpha, approximated over [f_low, f_high] by a Maxwell chain
-             //   (runtime/network/springpot.hpp)
-  parallel,  // children share the elongation; forces add
-  series,    // children share the force; elongations add
+  gap,                // width [mm]:             free play: F = 0 for |e| < width/2, rigid at e = +-width/2
+  bouc_wen,           // k [N/mm], n [-], fy [N]: smooth friction, F = fy z,
+                      //   dz/dt = (k/fy) de/dt (1 - |z|^n (1 + sgn(z de/dt)) / 2); n -> inf: friction(k, fy)
+  springpot,          // k [N/mm], alpha [-], tau [s], f_low, f_high [Hz]: fractional derivative element,
+                      //   K* = k (i w tau)^alpha, approximated over [f_low, f_high] by a Maxwell chain
+                      //   (runtime/network/springpot.hpp)
+  parallel,           // children share the elongation; forces add
+  series,             // children share the force; elongations add
 };
 
 // The keyword of a kind as written in source: "spring", ..., "parallel", "series".
@@ -83,9 +83,9 @@ const char* kind_word(ElementKind kind);
 //   bouc_wen: {k, n, fy}   springpot: {k, alpha, tau, f_low, f_high}   parallel/series: {}
 struct Element {
   ElementKind kind = ElementKind::parallel;
-  std::string name;            // explicit or generated ("maxwell2"); unique in its naming scope
-  std::string path;            // "fluid.cap" from the model root; empty for the root block
-  std::vector<int> parameters; // see the slot table above
+  std::string name;             // explicit or generated ("maxwell2"); unique in its naming scope
+  std::string path;             // "fluid.cap" from the model root; empty for the root block
+  std::vector<int> parameters;  // see the slot table above
   std::vector<Element> children;
   SourceLocation where;
 };
@@ -110,10 +110,10 @@ enum class ProtocolKind : std::uint8_t { harmonic, static_triangle, quasistatic,
 
 struct Protocol {
   ProtocolKind kind = ProtocolKind::harmonic;
-  ProtocolSettings settings;      // the alternative of `kind`, defaults filled in (protocol_settings.hpp)
-  std::vector<Setting> written;   // the settings as written, validated: what `settings` is decoded
-                                  // from, and what a command-line override replaces (protocol_schema.hpp)
-  std::string output;             // file named by the `output "..."` line after it; empty: stdout
+  ProtocolSettings settings;     // the alternative of `kind`, defaults filled in (protocol_settings.hpp)
+  std::vector<Setting> written;  // the settings as written, validated: what `settings` is decoded
+                                 // from, and what a command-line override replaces (protocol_schema.hpp)
+  std::string output;            // file named by the `output "..."` line after it; empty: stdout
   SourceLocation where;
 };
 
@@ -125,19 +125,19 @@ struct SimulateDirective {
 
 // A `data "FILE" [, weight = W]` line of a fit block.
 struct FitData {
-  std::string file;     // as written: relative to the .rheo file, resolved by the runtime
-  double weight = 1.0;  // >= 0
+  std::string file;      // as written: relative to the .rheo file, resolved by the runtime
+  double weight = 1.0;   // >= 0
   SourceLocation where;  // of the file name
 };
 
 // `fit [MODEL] { ... }`.
 struct FitDirective {
-  std::string model;               // resolved like SimulateDirective::model
-  std::vector<FitData> data;       // may be empty: the command line can supply the data
-  FitSettings settings;            // decoded from the block's settings lines, defaults filled in (fit_settings.hpp)
-  std::vector<int> free;           // indices into the model's parameters, sorted: the free set after free/fixed
-  std::string output;              // `output "..."`; empty when absent
-  SourceLocation where;            // of the `fit` keyword
+  std::string model;          // resolved like SimulateDirective::model
+  std::vector<FitData> data;  // may be empty: the command line can supply the data
+  FitSettings settings;       // decoded from the block's settings lines, defaults filled in (fit_settings.hpp)
+  std::vector<int> free;      // indices into the model's parameters, sorted: the free set after free/fixed
+  std::string output;         // `output "..."`; empty when absent
+  SourceLocation where;       // of the `fit` keyword
 };
 
 struct Program {

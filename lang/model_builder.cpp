@@ -80,8 +80,8 @@ class Builder {
   // --- declarations ---
   void add_model_parameter(const ast::Argument& a) {
     if (auto it = index_.find(a.name); it != index_.end()) {
-      error(a.where, fmt::format("duplicate parameter '{}' (first declared at line {}); rename one",
-                                 a.name, entries_[static_cast<std::size_t>(it->second)].parameter.where.line));
+      error(a.where, fmt::format("duplicate parameter '{}' (first declared at line {}); rename one", a.name,
+                                 entries_[static_cast<std::size_t>(it->second)].parameter.where.line));
       return;
     }
     if (a.name.find('.') != std::string::npos) {
@@ -102,8 +102,8 @@ class Builder {
       if (!e.name.empty()) {
         auto [it, fresh] = scope.names.emplace(e.name, e.name_where);
         if (!fresh)
-          error(e.name_where, fmt::format("duplicate name '{}' (first used at line {}); element names must be unique within their block",
-                                          e.name, it->second.line));
+          error(e.name_where, fmt::format("duplicate name '{}' (first used at line {}); element names must be unique within their block", e.name,
+                                          it->second.line));
       } else if (e.block) {
         collect_names(e.children, scope);
       }
@@ -171,8 +171,9 @@ class Builder {
         std::string alt(spec.alternative[0].name);
         const bool has_alt = given.count(alt) != 0;
         if (has_slot && has_alt) {
-          const auto* second = std::max(given[alt], given[std::string(spec.slots[i].name)],
-                                        [](auto* a, auto* b) { return a->where.line != b->where.line ? a->where.line < b->where.line : a->where.column < b->where.column; });
+          const auto* second = std::max(given[alt], given[std::string(spec.slots[i].name)], [](auto* a, auto* b) {
+            return a->where.line != b->where.line ? a->where.line < b->where.line : a->where.column < b->where.column;
+          });
           // Reported; checking goes on with the primary parameter so its other errors surface too.
           error(second->where, fmt::format("{} takes either {} or {}, not both; remove one", what, alt, spec.slots[i].name));
         } else if (!has_slot && !has_alt) {
@@ -237,8 +238,8 @@ class Builder {
   }
 
   struct Extent {
-    int levels = 0;          // blocks on the longest path down, the element itself included
-    std::size_t size = 0;    // elements
+    int levels = 0;        // blocks on the longest path down, the element itself included
+    std::size_t size = 0;  // elements
   };
   static Extent extent(const Element& e) {
     Extent out{e.kind == ElementKind::parallel || e.kind == ElementKind::series ? 1 : 0, 1};
@@ -296,12 +297,14 @@ class Builder {
     for (const auto& a : e.arguments) {
       auto it = index_.find(path + "." + a.name);
       if (it == index_.end() || it->second < base) {
-        error(a.where, fmt::format("model '{}' has no parameter '{}';{} it has {}", e.kind, a.name, did_you_mean(a.name, overridable), join(overridable)));
+        error(a.where,
+              fmt::format("model '{}' has no parameter '{}';{} it has {}", e.kind, a.name, did_you_mean(a.name, overridable), join(overridable)));
         continue;
       }
       Entry& target = entries_[static_cast<std::size_t>(it->second)];
       if (target.meta.derived) {
-        error(a.where, fmt::format("'{}' of model '{}' is computed from other parameters and cannot be overridden; override those instead", a.name, e.kind));
+        error(a.where,
+              fmt::format("'{}' of model '{}' is computed from other parameters and cannot be overridden; override those instead", a.name, e.kind));
       } else if (auto [first, fresh] = given.emplace(a.name, &a); !fresh) {
         error(a.where, fmt::format("duplicate override of '{}' (first given at line {}); give it once", a.name, first->second->where.line));
       } else {
@@ -406,14 +409,16 @@ class Builder {
 
   bool compile_source(int i) {
     const ast::Expr& source = *entries_[static_cast<std::size_t>(i)].source;
-    auto typed = compile_expression(source, [this](const ast::Expr& r) { return reference(r); }, errors_);
+    auto typed = compile_expression(
+        source, [this](const ast::Expr& r) { return reference(r); }, errors_);
     Entry& e = entries_[static_cast<std::size_t>(i)];
     if (!typed.ok || e.state == Entry::State::failed) return false;
     e.parameter.expression = std::move(typed.expression);
     if (!e.dimension_known) {
       e.parameter.dimension = typed.free ? dim::none : typed.dimension;
     } else if (!typed.free && typed.dimension != e.parameter.dimension) {
-      error(e.parameter.where, fmt::format("{} expects {}, got {}", describe_parameter(e.parameter, e.meta), with_article(e.parameter.dimension), with_article(typed.dimension)));
+      error(e.parameter.where, fmt::format("{} expects {}, got {}", describe_parameter(e.parameter, e.meta), with_article(e.parameter.dimension),
+                                           with_article(typed.dimension)));
       return false;
     }
     return true;

@@ -14,10 +14,10 @@ namespace rheo::lang {
 
 // What the checker knows about a parameter beyond model.hpp's Parameter.
 struct ParameterMeta {
-  bool positive = false;   // value must be > 0
-  bool derived = false;    // generated (maxwell c from tau, friction fy from uy): not overridable
-  std::string quantity;    // "stiffness"; empty for model-level `param`s
-  std::string owner_kind;  // "maxwell"; empty for model-level `param`s
+  bool positive = false;                                   // value must be > 0
+  bool derived = false;                                    // generated (maxwell c from tau, friction fy from uy): not overridable
+  std::string quantity;                                    // "stiffness"; empty for model-level `param`s
+  std::string owner_kind;                                  // "maxwell"; empty for model-level `param`s
   double below = std::numeric_limits<double>::infinity();  // value must be < below (springpot alpha < 1)
 };
 

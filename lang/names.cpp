@@ -77,8 +77,7 @@ std::string with_article(const Dimension& d) {
 }
 
 std::string show_value(double internal_value, const Dimension& d, const std::string& unit) {
-  if (auto u = parse_unit(unit); u && u->dimension == d)
-    return fmt::format("{:g} {}", internal_value / u->scale, unit);
+  if (auto u = parse_unit(unit); u && u->dimension == d) return fmt::format("{:g} {}", internal_value / u->scale, unit);
   std::string internal = internal_unit(d);
   return internal.empty() ? fmt::format("{:g}", internal_value) : fmt::format("{:g} {}", internal_value, internal);
 }

@@ -41,7 +41,8 @@ bool check_value(const Parameter& p, const ParameterMeta& meta, std::vector<Diag
 bool check_bounds(Parameter& p, const ParameterMeta& meta, const ast::Bounds& b, std::vector<Diagnostic>& errors) {
   const std::string what = describe_parameter(p, meta);
   if (!p.expression.is_constant()) {
-    errors.push_back({b.where, fmt::format("{} is computed from other parameters, so it cannot have bounds; put the bounds on those parameters", what)});
+    errors.push_back(
+        {b.where, fmt::format("{} is computed from other parameters, so it cannot have bounds; put the bounds on those parameters", what)});
     return false;
   }
   auto bound = [&](const ast::Expr& x) -> std::optional<double> {
@@ -70,11 +71,13 @@ bool check_bounds(Parameter& p, const ParameterMeta& meta, const ast::Bounds& b,
     return false;
   }
   if (meta.positive && !(*lower > 0)) {
-    errors.push_back({b.lower->where, fmt::format("{} {} must be positive, so its lower bound must be too, got {}", meta.quantity, what, show(p, *lower))});
+    errors.push_back(
+        {b.lower->where, fmt::format("{} {} must be positive, so its lower bound must be too, got {}", meta.quantity, what, show(p, *lower))});
     return false;
   }
   if (!(*upper < meta.below)) {
-    errors.push_back({b.upper->where, fmt::format("{} {} must be below {:g}, so its upper bound must be too, got {}", meta.quantity, what, meta.below, show(p, *upper))});
+    errors.push_back({b.upper->where, fmt::format("{} {} must be below {:g}, so its upper bound must be too, got {}", meta.quantity, what,
+                                                  meta.below, show(p, *upper))});
     return false;
   }
   if (p.value < *lower || p.value > *upper) {

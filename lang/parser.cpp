@@ -156,9 +156,12 @@ struct open_fit_line {
     s.settings = &line.settings;
   }
 };
-template <> struct action<g::fit_data_keyword> : open_fit_line<ast::FitLine::Kind::data> {};
-template <> struct action<g::fit_output_keyword> : open_fit_line<ast::FitLine::Kind::output> {};
-template <> struct action<g::fit_settings_begin> : open_fit_line<ast::FitLine::Kind::settings> {};
+template <>
+struct action<g::fit_data_keyword> : open_fit_line<ast::FitLine::Kind::data> {};
+template <>
+struct action<g::fit_output_keyword> : open_fit_line<ast::FitLine::Kind::output> {};
+template <>
+struct action<g::fit_settings_begin> : open_fit_line<ast::FitLine::Kind::settings> {};
 struct fit_line_file {
   template <typename ActionInput>
   static void apply(const ActionInput& in, State& s) {
@@ -166,8 +169,10 @@ struct fit_line_file {
     s.fit().lines.back().file_where = where(in);
   }
 };
-template <> struct action<g::fit_data_file> : fit_line_file {};
-template <> struct action<g::fit_output_file> : fit_line_file {};
+template <>
+struct action<g::fit_data_file> : fit_line_file {};
+template <>
+struct action<g::fit_output_file> : fit_line_file {};
 
 // --- error reporting ---
 namespace {
@@ -200,8 +205,7 @@ std::string unknown_unit_hint(std::string_view text, std::size_t offset) {
   if (before == 0 || !(std::isdigit(static_cast<unsigned char>(text[before - 1])) || text[before - 1] == '.')) return {};
   const std::string_view word = text.substr(offset, end - offset);
   if (unit_atom(word)) return {};
-  return fmt::format("; '{}' is not a unit rheo knows: use {}, combined with '*', '/' and '^' (e.g. N/mm, N*s/mm)", printable(word),
-                     unit_names());
+  return fmt::format("; '{}' is not a unit rheo knows: use {}, combined with '*', '/' and '^' (e.g. N/mm, N*s/mm)", printable(word), unit_names());
 }
 
 std::string describe_element(const State& s) {
@@ -212,8 +216,7 @@ std::string describe_element(const State& s) {
 }
 
 void replace_all(std::string& text, std::string_view key, const std::string& value) {
-  for (std::size_t at = text.find(key); at != std::string::npos; at = text.find(key, at + value.size()))
-    text.replace(at, key.size(), value);
+  for (std::size_t at = text.find(key); at != std::string::npos; at = text.find(key, at + value.size())) text.replace(at, key.size(), value);
 }
 
 template <typename Rule>

@@ -25,8 +25,8 @@ struct State {
   std::vector<ast::Argument> arguments;   // the argument being parsed
   std::vector<ast::Element> elements;     // open elements, innermost last
   double number = 0.0;
-  std::string unit;    // the last unit matched, consumed by the quantity or list it ends
-  std::string string;  // the last string literal's contents
+  std::string unit;                                   // the last unit matched, consumed by the quantity or list it ends
+  std::string string;                                 // the last string literal's contents
   std::vector<ast::SettingNode>* settings = nullptr;  // of the directive line being parsed
   // Expression levels open around the operand being parsed: parentheses, unary minus and
   // operators whose right operand it is (limits.hpp).
@@ -111,8 +111,10 @@ struct open_level {
     ++s.open_levels;
   }
 };
-template <> struct action<g::paren_open> : open_level {};
-template <> struct action<g::negative_sign> : open_level {};
+template <>
+struct action<g::paren_open> : open_level {};
+template <>
+struct action<g::negative_sign> : open_level {};
 template <>
 struct action<g::paren_close> {
   template <typename ActionInput>
@@ -143,10 +145,14 @@ struct operator_sign {
     ++s.open_levels;
   }
 };
-template <> struct action<g::times_sign> : operator_sign<g::times_sign> {};
-template <> struct action<g::divide_sign> : operator_sign<g::divide_sign> {};
-template <> struct action<g::plus_sign> : operator_sign<g::plus_sign> {};
-template <> struct action<g::minus_sign> : operator_sign<g::minus_sign> {};
+template <>
+struct action<g::times_sign> : operator_sign<g::times_sign> {};
+template <>
+struct action<g::divide_sign> : operator_sign<g::divide_sign> {};
+template <>
+struct action<g::plus_sign> : operator_sign<g::plus_sign> {};
+template <>
+struct action<g::minus_sign> : operator_sign<g::minus_sign> {};
 
 template <ast::Expr::Kind Kind>
 struct binary {
@@ -163,10 +169,14 @@ struct binary {
     --s.open_levels;
   }
 };
-template <> struct action<g::times> : binary<ast::Expr::Kind::multiply> {};
-template <> struct action<g::divided> : binary<ast::Expr::Kind::divide> {};
-template <> struct action<g::added> : binary<ast::Expr::Kind::add> {};
-template <> struct action<g::subtracted> : binary<ast::Expr::Kind::subtract> {};
+template <>
+struct action<g::times> : binary<ast::Expr::Kind::multiply> {};
+template <>
+struct action<g::divided> : binary<ast::Expr::Kind::divide> {};
+template <>
+struct action<g::added> : binary<ast::Expr::Kind::add> {};
+template <>
+struct action<g::subtracted> : binary<ast::Expr::Kind::subtract> {};
 
 // --- arguments ---
 template <>
@@ -214,8 +224,10 @@ struct close_argument {
     s.arguments.pop_back();
   }
 };
-template <> struct action<g::element_argument> : close_argument {};
-template <> struct action<g::next_argument> : close_argument {};
+template <>
+struct action<g::element_argument> : close_argument {};
+template <>
+struct action<g::next_argument> : close_argument {};
 template <>
 struct action<g::param_argument> {
   template <typename ActionInput>
@@ -263,8 +275,10 @@ struct close_element {
     siblings.push_back(std::move(e));
   }
 };
-template <> struct action<g::leaf> : close_element {};
-template <> struct action<g::block> : close_element {};
+template <>
+struct action<g::leaf> : close_element {};
+template <>
+struct action<g::block> : close_element {};
 
 // --- top level ---
 template <>

@@ -18,12 +18,22 @@ struct ProtocolSpec {
 
 // Drive and measurement quantities within the physical ranges of limits.hpp.
 SettingSpec amplitude(Shape shape, bool positive = true) {
-  return {.key = "amplitude", .shape = shape, .dimension = dim::length, .required = true, .positive = positive,
-          .lowest = positive ? min_amplitude : -max_amplitude, .highest = max_amplitude};
+  return {.key = "amplitude",
+          .shape = shape,
+          .dimension = dim::length,
+          .required = true,
+          .positive = positive,
+          .lowest = positive ? min_amplitude : -max_amplitude,
+          .highest = max_amplitude};
 }
 SettingSpec frequency(Shape shape) {
-  return {.key = "frequency", .shape = shape, .dimension = dim::frequency, .required = true, .positive = true,
-          .lowest = min_frequency, .highest = max_frequency};
+  return {.key = "frequency",
+          .shape = shape,
+          .dimension = dim::frequency,
+          .required = true,
+          .positive = true,
+          .lowest = min_frequency,
+          .highest = max_frequency};
 }
 SettingSpec whole(std::string_view key, int minimum, int maximum, int multiple_of = 0) {
   return {.key = key, .shape = Shape::integer, .dimension = dim::none, .minimum = minimum, .multiple_of = multiple_of, .maximum = maximum};
@@ -35,7 +45,8 @@ const std::vector<ProtocolSpec>& schema() {
   static const SettingSpec solver{"solver", Shape::identifier, dim::none, false, false, 0, 0, solver_choice_words()};
   static const SettingSpec steps_per_cycle = whole("steps_per_cycle", 16, max_steps_per_cycle, 4);
   static const std::vector<ProtocolSpec> protocols{
-      {ProtocolKind::harmonic, "harmonic",
+      {ProtocolKind::harmonic,
+       "harmonic",
        {frequency(Shape::list),
         amplitude(Shape::list),
         {"definition", Shape::identifier, dim::none, false, false, 0, 0, harmonic_definition_words()},
@@ -43,29 +54,31 @@ const std::vector<ProtocolSpec>& schema() {
         steps_per_cycle,
         whole("cycles_max", 1, max_cycles),
         {"tolerance", Shape::number, dim::none, false, true},
-        elements, format, solver}},
-      {ProtocolKind::static_triangle, "static",
+        elements,
+        format,
+        solver}},
+      {ProtocolKind::static_triangle,
+       "static",
        {{"velocity", Shape::single, dim::velocity, true, true},
         amplitude(Shape::list),
         whole("cycles", 1, max_cycles),
         {"dt", Shape::single, dim::time, false, true},
-        elements, format, solver}},
-      {ProtocolKind::quasistatic, "quasistatic",
-       {frequency(Shape::single),
-        amplitude(Shape::list),
-        whole("cycles", 1, max_cycles),
-        steps_per_cycle,
-        elements, format, solver}},
-      {ProtocolKind::history, "history",
-       {{"file", Shape::string, dim::none, true},
-        whole("substeps", 1, max_substeps),
-        elements, format, solver}},
-      {ProtocolKind::step, "step",
+        elements,
+        format,
+        solver}},
+      {ProtocolKind::quasistatic,
+       "quasistatic",
+       {frequency(Shape::single), amplitude(Shape::list), whole("cycles", 1, max_cycles), steps_per_cycle, elements, format, solver}},
+      {ProtocolKind::history, "history", {{"file", Shape::string, dim::none, true}, whole("substeps", 1, max_substeps), elements, format, solver}},
+      {ProtocolKind::step,
+       "step",
        {amplitude(Shape::single, false),
         {"duration", Shape::single, dim::time, true, true},
         {"dt", Shape::single, dim::time, false, true},
         {"rise", Shape::single, dim::time, false, true},
-        elements, format, solver}},
+        elements,
+        format,
+        solver}},
   };
   return protocols;
 }
@@ -226,10 +239,8 @@ ProtocolSettings decode_protocol_settings(ProtocolKind kind, const std::vector<S
 
 void override_setting(Protocol& protocol, Setting setting) {
   auto same_key = [&](const Setting& s) { return s.key == setting.key; };
-  if (auto it = std::find_if(protocol.written.begin(), protocol.written.end(), same_key); it != protocol.written.end())
-    *it = std::move(setting);
-  else
-    protocol.written.push_back(std::move(setting));
+  if (auto it = std::find_if(protocol.written.begin(), protocol.written.end(), same_key); it != protocol.written.end()) *it = std::move(setting);
+  else protocol.written.push_back(std::move(setting));
   protocol.settings = decode_protocol_settings(protocol.kind, protocol.written);
 }
 

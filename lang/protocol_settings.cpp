@@ -13,12 +13,10 @@ namespace {
 template <class E, std::size_t N>
 using Words = std::array<std::pair<E, std::string_view>, N>;
 
-constexpr Words<HarmonicDefinition, 2> definitions{{{HarmonicDefinition::thesis, "thesis"},
-                                                    {HarmonicDefinition::first_harmonic, "first_harmonic"}}};
+constexpr Words<HarmonicDefinition, 2> definitions{{{HarmonicDefinition::thesis, "thesis"}, {HarmonicDefinition::first_harmonic, "first_harmonic"}}};
 constexpr Words<SteadyState, 3> steady_states{
     {{SteadyState::automatic, "auto"}, {SteadyState::closed_form, "closed_form"}, {SteadyState::time_stepping, "time_stepping"}}};
-constexpr Words<SolverChoice, 3> solvers{
-    {{SolverChoice::automatic, "auto"}, {SolverChoice::fixed, "fixed"}, {SolverChoice::sundials, "sundials"}}};
+constexpr Words<SolverChoice, 3> solvers{{{SolverChoice::automatic, "auto"}, {SolverChoice::fixed, "fixed"}, {SolverChoice::sundials, "sundials"}}};
 constexpr Words<OutputFormat, 2> formats{{{OutputFormat::csv, "csv"}, {OutputFormat::json, "json"}}};
 constexpr Words<FitObjective, 2> objectives{{{FitObjective::phi, "phi"}, {FitObjective::least_squares, "least_squares"}}};
 constexpr Words<FitMethod, 3> methods{{{FitMethod::exact, "exact"}, {FitMethod::approximate, "approximate"}, {FitMethod::corrected, "corrected"}}};

@@ -18,7 +18,7 @@ namespace rheo::lang {
 
 // The vocabularies of the identifier settings, shared by protocols, fit blocks and the command
 // line (each has a word table in protocol_settings.cpp).
-enum class HarmonicDefinition { thesis, first_harmonic };   // `definition`: eqs. 5.26-5.27, or K' and K''
+enum class HarmonicDefinition { thesis, first_harmonic };          // `definition`: eqs. 5.26-5.27, or K' and K''
 enum class SteadyState { automatic, closed_form, time_stepping };  // `steady_state`
 enum class SolverChoice { automatic, fixed, sundials };            // `solver` (runtime/protocols/solver_choice.hpp)
 enum class OutputFormat { csv, json };                             // `format`
@@ -49,9 +49,9 @@ struct CommonSettings {
 struct HarmonicSettings : CommonSettings {
   static constexpr int default_steps_per_cycle = 2048;  // a multiple of 4: the turning points are samples
   static constexpr int default_cycles_max = 400;
-  static constexpr double default_tolerance = 1e-9;     // relative change of a cycle's measures
-  std::vector<double> frequencies;                      // Hz, each > 0 (required)
-  std::vector<double> amplitudes;                       // mm, each > 0 (required)
+  static constexpr double default_tolerance = 1e-9;  // relative change of a cycle's measures
+  std::vector<double> frequencies;                   // Hz, each > 0 (required)
+  std::vector<double> amplitudes;                    // mm, each > 0 (required)
   HarmonicDefinition definition = HarmonicDefinition::thesis;
   SteadyState steady_state = SteadyState::automatic;
   int steps_per_cycle = default_steps_per_cycle;
@@ -78,9 +78,9 @@ struct QuasistaticSettings : CommonSettings {
 
 // `history`: a displacement history read from a table.
 struct HistorySettings : CommonSettings {
-  std::string file;          // as written: relative to the .rheo file (required)
-  SourceLocation file_where; // of the file name, for the reader's errors
-  int substeps = 1;          // each sample interval cut into this many linear parts
+  std::string file;           // as written: relative to the .rheo file (required)
+  SourceLocation file_where;  // of the file name, for the reader's errors
+  int substeps = 1;           // each sample interval cut into this many linear parts
 };
 
 // `step`: a ramp to `amplitude` over `rise`, then held (relaxation).

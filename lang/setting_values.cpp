@@ -26,9 +26,9 @@ std::string allowed_range(const SettingSpec& s, const std::string& unit) {
 }
 
 // One number of the setting in internal units; a free number takes `fallback_unit` if given.
-std::optional<double> constant(const ast::Expr& e, const SettingSpec& s, const std::string& fallback_unit,
-                               std::vector<Diagnostic>& errors) {
-  auto typed = compile_expression(e, [&](const ast::Expr& r) { return no_references(r, errors); }, errors);
+std::optional<double> constant(const ast::Expr& e, const SettingSpec& s, const std::string& fallback_unit, std::vector<Diagnostic>& errors) {
+  auto typed = compile_expression(
+      e, [&](const ast::Expr& r) { return no_references(r, errors); }, errors);
   if (!typed.ok) return std::nullopt;
   double value = typed.expression.evaluate({});
   if (typed.free && !fallback_unit.empty()) {
@@ -48,7 +48,8 @@ std::optional<double> constant(const ast::Expr& e, const SettingSpec& s, const s
   const std::string unit = literal_unit(e).empty() ? fallback_unit : literal_unit(e);  // as written, for messages
   if (!std::isfinite(value)) {
     errors.push_back({e.where, fmt::format("{} must be a finite number, got {}; write a value that fits in a double (|x| < 1.8e308 in "
-                                           "internal units)", s.key, show_value(value, s.dimension, unit))});
+                                           "internal units)",
+                                           s.key, show_value(value, s.dimension, unit))});
     return std::nullopt;
   }
   if (s.positive && !(value > 0)) {
@@ -172,8 +173,7 @@ bool check_setting_value(const ast::SettingNode& n, const SettingSpec& s, Settin
       if (!single_value(n, "a whole number", errors)) return false;
       auto value = constant(*v.items[0], s, "", errors);
       if (!value) return false;
-      if (*value != std::floor(*value) || *value < s.minimum || *value > s.maximum ||
-          (s.multiple_of && std::fmod(*value, s.multiple_of) != 0)) {
+      if (*value != std::floor(*value) || *value < s.minimum || *value > s.maximum || (s.multiple_of && std::fmod(*value, s.multiple_of) != 0)) {
         errors.push_back({v.where, fmt::format("{} must be a whole number from {} to {}{}, got {:g}", n.key, s.minimum, s.maximum,
                                                s.multiple_of ? fmt::format(" and a multiple of {}", s.multiple_of) : "", *value)});
         return false;
@@ -200,8 +200,7 @@ bool check_setting_value(const ast::SettingNode& n, const SettingSpec& s, Settin
       }
       out.text = v.text;
       return check_file_name(v.text, v.where, errors);
-    case Shape::paths:
-      return check_paths(n, paths, errors);
+    case Shape::paths: return check_paths(n, paths, errors);
   }
   return false;
 }

@@ -29,13 +29,13 @@ struct SettingSpec {
   Shape shape;
   Dimension dimension;
   bool required = false;
-  bool positive = false;      // list/single/number: every value > 0
-  int minimum = 0;            // integer: value >= minimum
-  int multiple_of = 0;        // integer: value % multiple_of == 0 when non-zero
-  std::vector<std::string> choices = {};  // identifier
-  double lowest = -std::numeric_limits<double>::infinity();   // list/single/number: every value >= lowest
-  double highest = std::numeric_limits<double>::infinity();   // ... and <= highest
-  int maximum = std::numeric_limits<int>::max();              // integer: value <= maximum
+  bool positive = false;                                     // list/single/number: every value > 0
+  int minimum = 0;                                           // integer: value >= minimum
+  int multiple_of = 0;                                       // integer: value % multiple_of == 0 when non-zero
+  std::vector<std::string> choices = {};                     // identifier
+  double lowest = -std::numeric_limits<double>::infinity();  // list/single/number: every value >= lowest
+  double highest = std::numeric_limits<double>::infinity();  // ... and <= highest
+  int maximum = std::numeric_limits<int>::max();             // integer: value <= maximum
 };
 
 // A parameter path written in a Shape::paths setting.

@@ -85,8 +85,8 @@ std::string append_to_model(std::string_view text, const CheckedModel& model, co
   for (const auto& line : lines) block += indent + line + "\n";
   // The `}` on a line of its own: the new lines go before that line; else they get their own.
   const std::size_t line_start = close == 0 ? 0 : text.rfind('\n', close - 1);
-  const bool own_line = line_start != std::string_view::npos && text.substr(line_start + 1, close - line_start - 1).find_first_not_of(" \t") ==
-                                                                     std::string_view::npos;
+  const bool own_line = line_start != std::string_view::npos &&
+                        text.substr(line_start + 1, close - line_start - 1).find_first_not_of(" \t") == std::string_view::npos;
   if (own_line) return std::string(text.substr(0, line_start + 1)) + block + std::string(text.substr(line_start + 1));
   return std::string(text.substr(0, close)) + "\n" + block + std::string(text.substr(close));
 }

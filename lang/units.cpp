@@ -103,8 +103,7 @@ std::optional<Unit> parse_unit(std::string_view text) {
       result.scale *= scale;
     }
     const Dimension& r = result.dimension;
-    if (std::abs(r.force) > max_unit_power || std::abs(r.length) > max_unit_power || std::abs(r.time) > max_unit_power)
-      return std::nullopt;
+    if (std::abs(r.force) > max_unit_power || std::abs(r.length) > max_unit_power || std::abs(r.time) > max_unit_power) return std::nullopt;
     first = false;
   }
   if (first || !std::isfinite(result.scale) || result.scale == 0.0) return std::nullopt;

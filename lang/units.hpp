@@ -32,10 +32,10 @@ inline constexpr Dimension time{0, 0, 1};
 inline constexpr Dimension frequency{0, 0, -1};
 inline constexpr Dimension velocity{0, 1, -1};
 inline constexpr Dimension stiffness{1, -1, 0};
-inline constexpr Dimension damping{1, -1, 1};     // N*s/mm
-inline constexpr Dimension mass{1, -1, 2};        // N*s^2/mm (= 1000 kg)
+inline constexpr Dimension damping{1, -1, 1};            // N*s/mm
+inline constexpr Dimension mass{1, -1, 2};               // N*s^2/mm (= 1000 kg)
 inline constexpr Dimension quadratic_damping{1, -2, 2};  // N*s^2/mm^2
-inline constexpr Dimension energy{1, 1, 0};       // N*mm
+inline constexpr Dimension energy{1, 1, 0};              // N*mm
 }  // namespace dim
 
 // "stiffness (N/mm)", "length (mm)", or the internal unit for unnamed dimensions ("N/mm^3").

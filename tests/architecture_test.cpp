@@ -21,9 +21,9 @@ namespace {
 // and may not include each other.
 const std::map<std::string, int>& ranks() {
   static const std::map<std::string, int> r{
-      {"stdlib", 0},           {"lang", 1},          {"runtime/core", 2},      {"runtime/network", 3}, {"runtime/stepping", 4},
-      {"runtime/closed_form", 4}, {"runtime/dae", 4}, {"runtime/io", 4},        {"runtime/protocols", 5}, {"runtime/fit", 6},
-      {"runtime/report", 7},    {"runtime/diagnosis", 8}, {"cli", 9},
+      {"stdlib", 0},      {"lang", 1},       {"runtime/core", 2},      {"runtime/network", 3}, {"runtime/stepping", 4}, {"runtime/closed_form", 4},
+      {"runtime/dae", 4}, {"runtime/io", 4}, {"runtime/protocols", 5}, {"runtime/fit", 6},     {"runtime/report", 7},   {"runtime/diagnosis", 8},
+      {"cli", 9},
   };
   return r;
 }
@@ -74,8 +74,7 @@ TEST_CASE("architecture: every #include goes to the file's own room or a room be
     ++checked;
     if (*from == *to) continue;
     CHECK_MESSAGE(ranks().at(*to) < ranks().at(*from),
-                  fmt::format("{}:{} includes {}: room {} may not depend on {} (docs/architecture.md)", inc.file, inc.line, inc.target,
-                              *from, *to));
+                  fmt::format("{}:{} includes {}: room {} may not depend on {} (docs/architecture.md)", inc.file, inc.line, inc.target, *from, *to));
   }
   CHECK(checked > 300);
 }

@@ -19,10 +19,10 @@ constexpr int samples_per_half_cycle = 32;
 // they have grown).
 struct LoadingHalf {
   double u0 = 0.0;
-  double a = 0.0;         // N
-  double b = 0.0;         // N
-  double d10 = 0.0, d20 = 0.0, d30 = 0.0;  // summed Yeoh constants
-  double constant = 0.0;  // sliders, N
+  double a = 0.0;                                   // N
+  double b = 0.0;                                   // N
+  double d10 = 0.0, d20 = 0.0, d30 = 0.0;           // summed Yeoh constants
+  double constant = 0.0;                            // sliders, N
   std::vector<double> slip_k, slip_fy, slip_theta;  // frictions with u0 > uy; theta_q where they start to slip
   std::vector<double> ends;                         // piece ends
 
@@ -73,7 +73,8 @@ double stationary_point(const LoadingHalf& h, double lo, double hi, double k_ela
   for (int iteration = 0; iteration < 100 && hi - lo > 1e-15; ++iteration) {
     double first = 0.0, second = 0.0;
     h.derivatives(std::sin(x), std::cos(x), k_elastic, first, second);
-    if (first > 0.0) lo = x; else hi = x;
+    if (first > 0.0) lo = x;
+    else hi = x;
     const double newton = second < 0.0 ? x - first / second : lo - 1.0;
     const double next = (newton > lo && newton < hi) ? newton : 0.5 * (lo + hi);
     if (std::abs(next - x) <= 1e-16 * (1.0 + std::abs(x))) return next;
@@ -156,8 +157,7 @@ bool has_closed_form_periodic_state(const Network& network) {
   return std::all_of(t.subtrees.begin(), t.subtrees.end(), [&](int root) { return t.nodes[static_cast<std::size_t>(root)].linear; });
 }
 
-HarmonicPoint closed_form_harmonic_point(const Network& network, double amplitude, double frequency,
-                                         HarmonicDefinition definition) {
+HarmonicPoint closed_form_harmonic_point(const Network& network, double amplitude, double frequency, HarmonicDefinition definition) {
   const Coefficients& c = network.coefficients();
   const double u0 = amplitude;
   const double omega = 2.0 * std::numbers::pi * frequency;
@@ -166,8 +166,8 @@ HarmonicPoint closed_form_harmonic_point(const Network& network, double amplitud
   thread_local LoadingHalf h;
   h.clear();
   h.u0 = u0;
-  double storage = c.spring_k;         // K'_1 [N/mm]
-  double loss = c.dashpot_c * omega;   // K''_1 [N/mm]; U = pi u0^2 K''_1 for every branch
+  double storage = c.spring_k;        // K'_1 [N/mm]
+  double loss = c.dashpot_c * omega;  // K''_1 [N/mm]; U = pi u0^2 K''_1 for every branch
   for (std::size_t i = 0; i < c.maxwell_k.size(); ++i) {
     const double wt = omega * c.maxwell_c[i] / c.maxwell_k[i];
     const double scale = c.maxwell_k[i] / (1.0 + wt * wt);

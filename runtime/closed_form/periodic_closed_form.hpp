@@ -49,7 +49,6 @@ namespace rheo::runtime {
 bool has_closed_form_periodic_state(const Network& network);
 
 // Requires has_closed_form_periodic_state(network), amplitude > 0 [mm], frequency > 0 [Hz].
-HarmonicPoint closed_form_harmonic_point(const Network& network, double amplitude, double frequency,
-                                         HarmonicDefinition definition);
+HarmonicPoint closed_form_harmonic_point(const Network& network, double amplitude, double frequency, HarmonicDefinition definition);
 
 }  // namespace rheo::runtime

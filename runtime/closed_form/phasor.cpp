@@ -44,8 +44,7 @@ std::optional<Complex> compose(const lang::Element& e, const std::vector<double>
 
 }  // namespace
 
-std::optional<std::complex<double>> complex_stiffness(const lang::CheckedModel& model,
-                                                      const std::vector<double>& parameter_values, double frequency) {
+std::optional<std::complex<double>> complex_stiffness(const lang::CheckedModel& model, const std::vector<double>& parameter_values, double frequency) {
   return compose(model.root, parameter_values, 2.0 * std::numbers::pi * frequency);
 }
 

@@ -22,7 +22,6 @@ namespace rheo::runtime {
 
 // nullopt when the network holds a non-linear element (yeoh, friction, slider,
 // quadratic_dashpot, gap, bouc_wen).
-std::optional<std::complex<double>> complex_stiffness(const lang::CheckedModel& model,
-                                                      const std::vector<double>& parameter_values, double frequency);
+std::optional<std::complex<double>> complex_stiffness(const lang::CheckedModel& model, const std::vector<double>& parameter_values, double frequency);
 
 }  // namespace rheo::runtime

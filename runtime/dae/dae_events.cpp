@@ -73,12 +73,13 @@ void DaeIntegrator::restart(double t, bool modes_changed) {
     collect_statistics();  // IDAReInit zeroes IDA's counters
     sundials::check_ida(IDAReInit(mem, t, solver_->y.get(), solver_->yp.get()), "IDAReInit");
     const double horizon = drive_.kind == DriveSignal::Kind::sine ? 1e-3 / std::max(drive_.omega, 1e-12)
-                                                                   : 1e-3 * (drive_.samples->time.back() - drive_.samples->time.front());
+                                                                  : 1e-3 * (drive_.samples->time.back() - drive_.samples->time.front());
     const int flag = IDACalcIC(mem, IDA_YA_YDP_INIT, t + horizon);
     if (flag < 0) {
       if (error_) std::rethrow_exception(std::exchange(error_, nullptr));
-      sundials::check_ida(flag, "IDACalcIC", fmt::format("no consistent state of model '{}' at t = {:g} s after an element switched; {}",
-                                                         graph_.model, t, last_message_));
+      sundials::check_ida(
+          flag, "IDACalcIC",
+          fmt::format("no consistent state of model '{}' at t = {:g} s after an element switched; {}", graph_.model, t, last_message_));
     }
     sundials::check_ida(IDAGetConsistentIC(mem, solver_->y.get(), solver_->yp.get()), "IDAGetConsistentIC");
     copy_from_solver();

@@ -54,29 +54,21 @@ struct GraphBuilder {
     where = e.where;
     switch (e.kind) {
       case ElementKind::spring: probe.edges = {add_edge(EdgeKind::spring, a, b, {value(e, 0)}, e.path)}; break;
-      case ElementKind::yeoh:
-        probe.edges = {add_edge(EdgeKind::yeoh, a, b, {value(e, 0), value(e, 1), value(e, 2)}, e.path)};
-        break;
+      case ElementKind::yeoh: probe.edges = {add_edge(EdgeKind::yeoh, a, b, {value(e, 0), value(e, 1), value(e, 2)}, e.path)}; break;
       case ElementKind::dashpot: probe.edges = {add_edge(EdgeKind::dashpot, a, b, {value(e, 0)}, e.path)}; break;
-      case ElementKind::quadratic_dashpot:
-        probe.edges = {add_edge(EdgeKind::quadratic_dashpot, a, b, {value(e, 0)}, e.path)};
-        break;
+      case ElementKind::quadratic_dashpot: probe.edges = {add_edge(EdgeKind::quadratic_dashpot, a, b, {value(e, 0)}, e.path)}; break;
       case ElementKind::inerter: probe.edges = {add_edge(EdgeKind::inerter, a, b, {value(e, 0)}, e.path)}; break;
-      case ElementKind::bouc_wen:
-        probe.edges = {add_edge(EdgeKind::bouc_wen, a, b, {value(e, 0), value(e, 1), value(e, 2)}, e.path)};
-        break;
+      case ElementKind::bouc_wen: probe.edges = {add_edge(EdgeKind::bouc_wen, a, b, {value(e, 0), value(e, 1), value(e, 2)}, e.path)}; break;
       case ElementKind::slider: probe.edges = {add_edge(EdgeKind::slider, a, b, {value(e, 0)}, e.path)}; break;
       case ElementKind::gap: probe.edges = {add_edge(EdgeKind::gap, a, b, {0.5 * value(e, 0)}, e.path)}; break;
       case ElementKind::maxwell: {
         const int mid = new_node();
-        probe.edges = {add_edge(EdgeKind::spring, a, mid, {value(e, 0)}, e.path),
-                       add_edge(EdgeKind::dashpot, mid, b, {value(e, 1)}, e.path)};
+        probe.edges = {add_edge(EdgeKind::spring, a, mid, {value(e, 0)}, e.path), add_edge(EdgeKind::dashpot, mid, b, {value(e, 1)}, e.path)};
         break;
       }
       case ElementKind::friction: {
         const int mid = new_node();
-        probe.edges = {add_edge(EdgeKind::spring, a, mid, {value(e, 0)}, e.path),
-                       add_edge(EdgeKind::slider, mid, b, {value(e, 1)}, e.path)};
+        probe.edges = {add_edge(EdgeKind::spring, a, mid, {value(e, 0)}, e.path), add_edge(EdgeKind::slider, mid, b, {value(e, 1)}, e.path)};
         break;
       }
       case ElementKind::springpot: place_springpot(e, a, b, probe); break;
@@ -124,10 +116,10 @@ DaeGraph DaeGraph::build(const Network& network) {
       default: break;
     }
     if (edge.kind == EdgeKind::inerter && edge.a < 0 && edge.b < 0)
-      throw ModelError(fmt::format(
-          "{}inerter '{}' of model '{}' sits directly between the terminal and ground, so its force b d2u/dt2 needs the "
-          "drive's acceleration, which a sampled drive does not have; put it in series with a spring, or use solver = fixed",
-          error_at(edge.where), edge.path, graph.model));
+      throw ModelError(
+          fmt::format("{}inerter '{}' of model '{}' sits directly between the terminal and ground, so its force b d2u/dt2 needs the "
+                      "drive's acceleration, which a sampled drive does not have; put it in series with a spring, or use solver = fixed",
+                      error_at(edge.where), edge.path, graph.model));
     if (!is_switch(edge.kind))
       for (int node : {edge.a, edge.b})
         if (node >= 0) held[static_cast<std::size_t>(node)] = 1;
@@ -135,10 +127,10 @@ DaeGraph DaeGraph::build(const Network& network) {
   for (const Edge& edge : graph.edges)
     for (int node : {edge.a, edge.b})
       if (node >= 0 && !held[static_cast<std::size_t>(node)])
-        throw ModelError(fmt::format(
-            "{}element '{}' of model '{}' meets another slider or gap at a node that nothing else holds, so the node's "
-            "position is undetermined while they slip; merge the sliders or put a spring between them",
-            error_at(edge.where), edge.path, graph.model));
+        throw ModelError(
+            fmt::format("{}element '{}' of model '{}' meets another slider or gap at a node that nothing else holds, so the node's "
+                        "position is undetermined while they slip; merge the sliders or put a spring between them",
+                        error_at(edge.where), edge.path, graph.model));
   return graph;
 }
 

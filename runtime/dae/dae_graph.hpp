@@ -29,8 +29,8 @@ namespace rheo::runtime {
 
 enum class EdgeKind : std::uint8_t { spring, yeoh, dashpot, quadratic_dashpot, inerter, bouc_wen, slider, gap };
 
-inline constexpr int kTerminal = -1;  // node index of the driven terminal
-inline constexpr int kGround = -2;    // node index of ground
+inline constexpr int kTerminal = -1;                          // node index of the driven terminal
+inline constexpr int kGround = -2;                            // node index of ground
 inline constexpr double kQuadraticDashpotVelocityEps = 1e-3;  // v_eps [mm/s]
 
 struct Edge {
@@ -56,9 +56,9 @@ struct DaeGraph {
   int internal_nodes = 0;
   std::vector<Edge> edges;
   std::vector<EdgeProbe> probes;
-  std::vector<int> rate_edges;     // dashpot, quadratic dashpot, inerter: their rate is a coordinate
-  std::vector<int> switch_edges;   // sliders and gaps: their force is an unknown of the mode
-  std::vector<int> bouc_wen_edges; // each carries the state z
+  std::vector<int> rate_edges;      // dashpot, quadratic dashpot, inerter: their rate is a coordinate
+  std::vector<int> switch_edges;    // sliders and gaps: their force is an unknown of the mode
+  std::vector<int> bouc_wen_edges;  // each carries the state z
   std::string model;
 
   // Throws ModelError with advice when the network cannot be posed as an index-1

@@ -69,8 +69,7 @@ int Callbacks::roots(realtype t, N_Vector y, N_Vector yp, realtype* g, void* dat
   }
 }
 
-DaeIntegrator::DaeIntegrator(const DaeGraph& graph, const DaeOptions& options)
-    : graph_(graph), options_(options), layout_(DaeLayout::of(graph)) {
+DaeIntegrator::DaeIntegrator(const DaeGraph& graph, const DaeOptions& options) : graph_(graph), options_(options), layout_(DaeLayout::of(graph)) {
   const auto ne = graph.edges.size();
   auto index_of_edge = [ne](const std::vector<int>& list) {
     std::vector<int> index(ne, -1);

@@ -31,8 +31,8 @@ namespace rheo::runtime {
 
 struct DriveSignal {
   enum class Kind { sine, samples } kind = Kind::sine;
-  double amplitude = 0.0;        // sine: u = amplitude sin(omega t) [mm]
-  double omega = 0.0;            // rad/s
+  double amplitude = 0.0;          // sine: u = amplitude sin(omega t) [mm]
+  double omega = 0.0;              // rad/s
   const Drive* samples = nullptr;  // samples: linear between them; not owned
 };
 
@@ -44,7 +44,7 @@ struct DaeOptions {
   // IDA's Newton convergence coefficient (IDASetNonlinConvCoef; IDA's default 0.33): the
   // corrector stops when its estimated error is this fraction of the local error weights.
   double newton_tolerance = 0.33;
-  long max_steps = 500000;      // per advance()
+  long max_steps = 500000;  // per advance()
 };
 
 // Where each block of the unknowns lies in y (the layout above): positions x, then switch forces
@@ -131,8 +131,8 @@ class DaeIntegrator {
   ModeKinematics kinematics_;
   std::vector<double> y_, yp_;
   mutable std::vector<double> rate_, acceleration_, force_;  // scratch per residual call
-  std::vector<double> y_saved_, yp_saved_, root_values_;      // scratch of stick_reversed_sliders
-  std::vector<int> root_direction_, roots_found_;              // scratch of restart and solve_to
+  std::vector<double> y_saved_, yp_saved_, root_values_;     // scratch of stick_reversed_sliders
+  std::vector<int> root_direction_, roots_found_;            // scratch of restart and solve_to
   double time_ = 0.0;
   long events_ = 0;
   DaeStatistics totals_;  // steps and residual evaluations before the last re-initialisation

@@ -20,9 +20,7 @@ void edge_row(const Edge& edge, int nodes, Eigen::RowVectorXd& row, double& driv
 
 }  // namespace
 
-bool is_rigid(const Edge& edge, std::int8_t mode) {
-  return edge.kind == EdgeKind::slider ? mode == 0 : mode != 0;
-}
+bool is_rigid(const Edge& edge, std::int8_t mode) { return edge.kind == EdgeKind::slider ? mode == 0 : mode != 0; }
 
 ModeKinematics ModeKinematics::make(const DaeGraph& graph, const SwitchModes& modes) {
   const int m = graph.internal_nodes;
@@ -96,16 +94,17 @@ ModeKinematics ModeKinematics::make(const DaeGraph& graph, const SwitchModes& mo
       alpha = std::abs(a[j]) < 1e-12 ? 0.0 : a[j];
       beta -= alpha * particular[static_cast<std::size_t>(k.coordinate_rate[static_cast<std::size_t>(j)])];
       if (edge.kind == EdgeKind::inerter && alpha != 0.0 && k.velocity_slot[static_cast<std::size_t>(j)] < 0)
-        throw NumericalError(fmt::format("{}inerter '{}' of model '{}' moves with a dashpot coordinate in this state; "
-                                         "use solver = fixed",
-                                         error_at(edge.where), edge.path, graph.model));
+        throw NumericalError(
+            fmt::format("{}inerter '{}' of model '{}' moves with a dashpot coordinate in this state; "
+                        "use solver = fixed",
+                        error_at(edge.where), edge.path, graph.model));
     }
     k.beta[i] = std::abs(beta) < 1e-12 ? 0.0 : beta;
     if (edge.kind == EdgeKind::inerter && reduced[i].norm() <= 1e-12)
-      throw NumericalError(fmt::format(
-          "{}inerter '{}' of model '{}' is held rigidly to the drive by a stuck slider or closed gap, so its force would "
-          "need the drive's acceleration; put a spring in series with it, or use solver = fixed",
-          error_at(edge.where), edge.path, graph.model));
+      throw NumericalError(
+          fmt::format("{}inerter '{}' of model '{}' is held rigidly to the drive by a stuck slider or closed gap, so its force would "
+                      "need the drive's acceleration; put a spring in series with it, or use solver = fixed",
+                      error_at(edge.where), edge.path, graph.model));
   }
   return k;
 }

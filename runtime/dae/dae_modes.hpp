@@ -26,11 +26,11 @@ using SwitchModes = std::vector<std::int8_t>;
 bool is_rigid(const Edge& edge, std::int8_t mode);
 
 struct ModeKinematics {
-  int coordinates = 0;                  // q
-  std::vector<int> coordinate_rate;     // [q] index into DaeGraph::rate_edges of each coordinate
-  std::vector<int> velocity_slot;       // [q] slot of w_j for inerter coordinates, -1 otherwise
-  std::vector<double> alpha;            // [rate_edges x q], row-major
-  std::vector<double> beta;             // [rate_edges]
+  int coordinates = 0;               // q
+  std::vector<int> coordinate_rate;  // [q] index into DaeGraph::rate_edges of each coordinate
+  std::vector<int> velocity_slot;    // [q] slot of w_j for inerter coordinates, -1 otherwise
+  std::vector<double> alpha;         // [rate_edges x q], row-major
+  std::vector<double> beta;          // [rate_edges]
 
   // Throws NumericalError (naming the inerter) when an inerter is held rigidly to the drive in
   // this mode, which would need the drive's acceleration as an impulse.

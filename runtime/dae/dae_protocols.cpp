@@ -84,9 +84,10 @@ std::string softening_hint(const Network& network) {
     const YeohLaw law{network.parameter(n.param[0]), network.parameter(n.param[1]), network.parameter(n.param[2])};
     const double e = law.softening_elongation();
     if (std::isfinite(e))
-      hint += fmt::format("{} yeoh '{}' softens to zero tangent stiffness at |e| = {:.6g} mm (carrying {:.6g} N), where a spring "
-                          "in series snaps through: keep its elongation below that, or {}",
-                          hint.empty() ? " Likely cause:" : ";", probe.path, e, std::abs(law.force(e)), YeohLaw::monotone_advice);
+      hint += fmt::format(
+          "{} yeoh '{}' softens to zero tangent stiffness at |e| = {:.6g} mm (carrying {:.6g} N), where a spring "
+          "in series snaps through: keep its elongation below that, or {}",
+          hint.empty() ? " Likely cause:" : ";", probe.path, e, std::abs(law.force(e)), YeohLaw::monotone_advice);
   }
   return hint;
 }
@@ -100,8 +101,7 @@ auto with_softening_hint(const Network& network, Run run) {
   }
 }
 
-HarmonicPoint harmonic_point(const Network& network, double amplitude, double frequency, const HarmonicOptions& options,
-                             DaeStatistics* statistics) {
+HarmonicPoint harmonic_point(const Network& network, double amplitude, double frequency, const HarmonicOptions& options, DaeStatistics* statistics) {
   const DaeGraph graph = DaeGraph::build(network);
   const double omega = 2.0 * std::numbers::pi * frequency;
   DaeOptions dae;

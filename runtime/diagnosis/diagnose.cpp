@@ -97,9 +97,10 @@ std::string resolved_resonance(const Trial& trial, const lang::CheckedModel& mod
   const double resonance = std::sqrt(network.parameter(k) / network.parameter(b)) / (2.0 * std::numbers::pi);  // [Hz]
   constexpr double kMargin = 1.1;
   if (resonance >= kMargin * scales.frequency_low && resonance <= scales.frequency_high / kMargin) return {};
-  return fmt::format("its resonance, refitted to {:.3g} Hz, is not inside the measured {:.3g}-{:.3g} Hz with a measured frequency 10 % "
-                     "either side, so the data cannot tell it from a relaxation or a stiffness trend",
-                     resonance, scales.frequency_low, scales.frequency_high);
+  return fmt::format(
+      "its resonance, refitted to {:.3g} Hz, is not inside the measured {:.3g}-{:.3g} Hz with a measured frequency 10 % "
+      "either side, so the data cannot tell it from a relaxation or a stiffness trend",
+      resonance, scales.frequency_low, scales.frequency_high);
 }
 
 // The limit without inertia (b -> 0) of a refitted slider-capped fluid column ELEMENT: chamber
@@ -178,8 +179,7 @@ class Diagnoser {
     if (settings_.free.empty()) return lang::default_free_parameters(*base_.model);
     std::vector<int> free;
     for (const auto& path : settings_.free) free.push_back(index_of(*base_.model, path));
-    if (std::count(free.begin(), free.end(), -1))
-      throw std::logic_error(fmt::format("model '{}': a free parameter is not in it", source_.model));
+    if (std::count(free.begin(), free.end(), -1)) throw std::logic_error(fmt::format("model '{}': a free parameter is not in it", source_.model));
     return free;
   }
 
@@ -232,9 +232,10 @@ class Diagnoser {
       limit_outcome.screened = screened;
       limit_outcome.screened.trial = *limit;
       limit_outcome.element = outcome.element;
-      limit_outcome.limit_of = fmt::format("the limit without inertia of the fluid column before it (its chamber and channel as a Maxwell "
-                                           "element, tau = c/k = {:.4g} ms){}",
-                                           limit->time * 1e3, outcome.unresolved.empty() ? "" : ", whose resonance the data cannot place");
+      limit_outcome.limit_of = fmt::format(
+          "the limit without inertia of the fluid column before it (its chamber and channel as a Maxwell "
+          "element, tau = c/k = {:.4g} ms){}",
+          limit->time * 1e3, outcome.unresolved.empty() ? "" : ", whose resonance the data cannot place");
       refit_candidate(*limit, limit_outcome);
     }
   }
@@ -265,8 +266,8 @@ class Diagnoser {
     outcome.unresolved = resolved_resonance(trial, *candidate.model, result.network, outcome.element, scales_);
     std::optional<Trial> limit;
     if (trial.shape == Shape::capped_column) limit = resonance_free_limit(trial, *candidate.model, result.network, outcome.element);
-    const bool earns =
-        outcome.unresolved.empty() && outcome.criterion < d_.criterion_before && outcome.gap_after <= (1.0 - s_.min_improvement) * d_.gap_before;
+    const bool earns = outcome.unresolved.empty() && outcome.criterion < d_.criterion_before &&
+                       outcome.gap_after <= (1.0 - s_.min_improvement) * d_.gap_before;
     if (earns && (!chosen_ || preferred(outcome, d_.candidates[chosen_->candidate], s_.parsimony)))
       chosen_ = Chosen{d_.candidates.size(), trial, std::move(candidate), std::move(result)};
     d_.candidates.push_back(outcome);
@@ -308,14 +309,14 @@ class Diagnoser {
     d_.gap_after = fit_gap(chosen_->result);
     d_.added_element = winner.element;
     d_.reason = effect_reason(d_, winner);
-    const std::string comment =
-        fmt::format("added by rheo diagnose: {}; {} {:.4g} -> {:.4g}", effect_name(d_.effect), d_.gap_name, d_.gap_before, d_.gap_after);
+    const std::string comment = fmt::format("added by rheo diagnose: {}; {} {:.4g} -> {:.4g}", effect_name(d_.effect), d_.gap_name, d_.gap_before,
+                                            d_.gap_after);
     const std::string structure = with_trial(fitted_text_, *fitted_.model, chosen_->trial, winner.element, scales_.bounds, comment);
     const Compiled refined = compile(source_, structure);
     std::vector<std::string> header{fmt::format("Refined by `rheo diagnose`: effect {}; added '{}'; {} {:.4g} -> {:.4g}.", effect_name(d_.effect),
                                                 winner.element, d_.gap_name, d_.gap_before, d_.gap_after)};
-    d_.refined_text =
-        lang::write_fitted_source(structure, source_.file, *refined.model, chosen_->result.network.parameters(), chosen_->result.free, header);
+    d_.refined_text = lang::write_fitted_source(structure, source_.file, *refined.model, chosen_->result.network.parameters(), chosen_->result.free,
+                                                header);
     d_.added_summary = added_summary(chosen_->result, winner.element);
     d_.added_statement = statement_lines(d_.refined_text, source_, winner.element);
     d_.after = std::move(chosen_->result);

@@ -44,16 +44,16 @@ struct ModelSource {
 };
 
 struct DiagnoseSettings {
-  FitSettings fit;                 // every fit (the method is always exact)
-  std::vector<std::string> free;   // paths of the model's free parameters; empty: every one with bounds
-  int confirm = 3;                 // leading effects refitted
-  double min_screen_gain = 0.01;   // effects screened below this are not refitted,
+  FitSettings fit;                     // every fit (the method is always exact)
+  std::vector<std::string> free;       // paths of the model's free parameters; empty: every one with bounds
+  int confirm = 3;                     // leading effects refitted
+  double min_screen_gain = 0.01;       // effects screened below this are not refitted,
   double relative_screen_gain = 0.25;  // nor those below this share of the leading effect's gain
   // Relative drop of the gap a chosen candidate must bring. BIC alone takes residuals as iid,
   // but relative damping residuals at small phases are not: a narrow resonance (3 parameters)
   // fitted noise at one frequency for a 13 % drop on data the model explained.
   double min_improvement = 0.25;
-  double parsimony = 0.1;          // a candidate with fewer parameters wins if its gap is within this of another's
+  double parsimony = 0.1;  // a candidate with fewer parameters wins if its gap is within this of another's
   // Budgets. A refit may spend `refit_work` time steps (diagnose.cpp evaluation_work: counted on
   // the candidate's first prediction, not timed), at most `max_evaluations` per stage. Where
   // that affords `thorough_evaluations` per parameter of both stages, stage 1 is the default
@@ -73,10 +73,10 @@ struct DiagnoseSettings {
 struct CandidateOutcome {
   ScreenedEffect screened;
   bool refitted = false;
-  std::string element;        // name of the added (or replacing) element
-  double gap_after = 0.0;     // after the two-stage refit (before any polish)
-  double criterion = 0.0;     // BIC of the refitted model
-  int parameters = 0;         // its free parameters
+  std::string element;     // name of the added (or replacing) element
+  double gap_after = 0.0;  // after the two-stage refit (before any polish)
+  double criterion = 0.0;  // BIC of the refitted model
+  int parameters = 0;      // its free parameters
   double wall_seconds = 0.0;
   // Why the candidate cannot earn whatever it gains, or empty: a refitted resonance outside
   // the measured frequencies (diagnose.cpp resolved_resonance).
@@ -91,20 +91,20 @@ struct CandidateOutcome {
 
 struct Diagnosis {
   Effect effect = Effect::none;
-  std::string reason;               // why, with numbers
-  ResidualPatterns patterns;        // of the model as fitted
+  std::string reason;         // why, with numbers
+  ResidualPatterns patterns;  // of the model as fitted
   FitResult before;
-  std::optional<FitResult> after;   // the refined model refitted; empty for none
-  std::string gap_name;             // "err (6.1)" or "RMS force residual"
+  std::optional<FitResult> after;            // the refined model refitted; empty for none
+  std::string gap_name;                      // "err (6.1)" or "RMS force residual"
   double gap_before = 0.0, gap_after = 0.0;  // gap_after = gap_before for none
-  int residual_terms = 0;           // N of the criterion
+  int residual_terms = 0;                    // N of the criterion
   double criterion_before = 0.0;
   std::vector<CandidateOutcome> candidates;  // every screened effect, screening order
-  std::string added_element;        // name in the refined model; empty for none
-  std::string added_summary;        // what it is, with its fitted values
+  std::string added_element;                 // name in the refined model; empty for none
+  std::string added_summary;                 // what it is, with its fitted values
   std::vector<std::string> added_statement;  // its lines in the refined file
-  std::string refined_text;         // the whole file with fitted values (and the element, with a comment)
-  bool interrupted = false;         // a fit was stopped (Ctrl-C): the result so far
+  std::string refined_text;                  // the whole file with fitted values (and the element, with a comment)
+  bool interrupted = false;                  // a fit was stopped (Ctrl-C): the result so far
   // Own the models that before.network and after->network refer to.
   std::shared_ptr<const lang::Program> before_program, after_program;
 };

@@ -23,9 +23,10 @@ std::string gap_table(const std::vector<Diagnosis>& rounds) {
   const double start = rounds.front().gap_before;
   const auto row = [&](const std::string& stage, double gap) {
     const double share = start > 0.0 ? std::clamp(gap / start, 0.0, 1.0) : 0.0;
-    return fmt::format("<tr><td>{}</td><td class=\"num\">{:.4g}</td><td class=\"num\">{:.3g}</td>"
-                       "<td class=\"bar\"><div class=\"bar\" style=\"width: {:.1f}%\"></div></td></tr>\n",
-                       stage, gap, gap > 0.0 ? start / gap : 1.0, 100.0 * share);
+    return fmt::format(
+        "<tr><td>{}</td><td class=\"num\">{:.4g}</td><td class=\"num\">{:.3g}</td>"
+        "<td class=\"bar\"><div class=\"bar\" style=\"width: {:.1f}%\"></div></td></tr>\n",
+        stage, gap, gap > 0.0 ? start / gap : 1.0, 100.0 * share);
   };
   std::string out = fmt::format("<table class=\"gap\"><tr><th>model</th><th>{}</th><th>times lower</th><th></th></tr>\n",
                                 escape(rounds.front().gap_name));
@@ -40,22 +41,24 @@ std::string gap_table(const std::vector<Diagnosis>& rounds) {
 }
 
 std::string candidate_table(const Diagnosis& d) {
-  std::string out = fmt::format("<table class=\"candidates\"><tr><th>effect</th><th>screened</th><th>{} refitted</th><th>BIC</th>"
-                                "<th>parameters</th><th>element tried</th><th></th></tr>\n",
-                                escape(d.gap_name));
-  out += fmt::format("<tr><td>(model as given)</td><td></td><td class=\"num\">{:.4g}</td><td class=\"num\">{:.1f}</td><td class=\"num\">{}</td>"
-                     "<td></td><td></td></tr>\n",
-                     d.gap_before, d.criterion_before, d.before.free.size());
+  std::string out = fmt::format(
+      "<table class=\"candidates\"><tr><th>effect</th><th>screened</th><th>{} refitted</th><th>BIC</th>"
+      "<th>parameters</th><th>element tried</th><th></th></tr>\n",
+      escape(d.gap_name));
+  out += fmt::format(
+      "<tr><td>(model as given)</td><td></td><td class=\"num\">{:.4g}</td><td class=\"num\">{:.1f}</td><td class=\"num\">{}</td>"
+      "<td></td><td></td></tr>\n",
+      d.gap_before, d.criterion_before, d.before.free.size());
   for (const CandidateOutcome& c : d.candidates) {
     std::string note = c.chosen ? "chosen" : "";
     if (!c.limit_of.empty()) note += (note.empty() ? "" : "; ") + c.limit_of;
     if (!c.unresolved.empty()) note = "cannot earn: " + c.unresolved;
-    out += fmt::format("<tr{}><td>{}</td><td class=\"num\">{:.1f} %</td>", c.chosen ? " class=\"chosen\"" : "",
-                       effect_name(c.screened.effect), 100.0 * c.screened.gain);
+    out += fmt::format("<tr{}><td>{}</td><td class=\"num\">{:.1f} %</td>", c.chosen ? " class=\"chosen\"" : "", effect_name(c.screened.effect),
+                       100.0 * c.screened.gain);
     if (c.refitted)
-      out += fmt::format("<td class=\"num\">{:.4g}</td><td class=\"num\">{:.1f}</td><td class=\"num\">{}</td>", c.gap_after, c.criterion, c.parameters);
-    else
-      out += "<td>not refitted</td><td></td><td></td>";
+      out += fmt::format("<td class=\"num\">{:.4g}</td><td class=\"num\">{:.1f}</td><td class=\"num\">{}</td>", c.gap_after, c.criterion,
+                         c.parameters);
+    else out += "<td>not refitted</td><td></td><td></td>";
     out += fmt::format("<td>{}</td><td>{}</td></tr>\n", escape(trial_summary(c.screened.trial)), escape(note));
   }
   return out + "</table>\n";
@@ -66,8 +69,9 @@ std::string round_html(const Diagnosis& d, std::size_t index, bool several) {
                             : fmt::format("<h3>Effect: {}</h3>\n", effect_name(d.effect));
   out += fmt::format("<p>{}</p>\n<p>Where the model as fitted missed:</p>\n<ul>\n", escape(d.reason));
   for (const std::string& line : pattern_lines(d.patterns)) out += fmt::format("<li>{}</li>\n", escape(line));
-  out += "</ul>\n<p>Candidates: the share of the objective the element removes alone (screened), then the gap and BIC "
-         "after refitting it with every free parameter. A candidate earns when its BIC is lower and the gap drops enough.</p>\n";
+  out +=
+      "</ul>\n<p>Candidates: the share of the objective the element removes alone (screened), then the gap and BIC "
+      "after refitting it with every free parameter. A candidate earns when its BIC is lower and the gap drops enough.</p>\n";
   out += candidate_table(d);
   if (d.effect == Effect::none) return out + "<p>Nothing added.</p>\n";
   out += fmt::format("<p>Added to model <code>{}</code> ({}), then every free parameter polished: {} {:.4g} &rarr; {:.4g}.</p>\n",
@@ -91,13 +95,15 @@ report::ReportContent diagnosis_report_content(const std::vector<Diagnosis>& rou
   content.origin = fmt::format("{}: {} {:.4g} -> {:.4g} in {} round{}; fits: method {}, objective {}, seed {}", command, first.gap_name,
                                first.gap_before, last.gap_after, rounds.size(), rounds.size() == 1 ? "" : "s", description.method,
                                description.objective, description.seed);
-  if (added) report::add_baseline(content, first.before, fmt::format("model {} as given, fitted ({} {:.4g})", model, first.gap_name, first.gap_before));
+  if (added)
+    report::add_baseline(content, first.before, fmt::format("model {} as given, fitted ({} {:.4g})", model, first.gap_name, first.gap_before));
 
   const bool several = rounds.size() > 1;
   std::string html = gap_table(rounds);
   for (std::size_t k = 0; k < rounds.size(); ++k) html += round_html(rounds[k], k, several);
   if (added)
-    html += report::figure_html("network-before", report::network_diagram_svg(first.before.network.model().root, "Network of model " + model + " as given", false),
+    html += report::figure_html("network-before",
+                                report::network_diagram_svg(first.before.network.model().root, "Network of model " + model + " as given", false),
                                 "The network before the first round; the refined network is drawn above.");
   content.sections.push_back({"diagnosis", several ? "Refinement" : "Diagnosis", html});
   if (last.interrupted) content.notes.push_back("interrupted: the results so far");

@@ -26,8 +26,8 @@ std::string data_lines(const FitResult& r) {
 std::string diagnosis_report_text(const std::string& source_file, const Diagnosis& d) {
   std::string out = fmt::format("rheo diagnose: model {} from {}\n", d.before.network.model().name, source_file);
   out += data_lines(d.before);
-  out += fmt::format("  fitted {} parameters: {} = {:.4g}, BIC = {:.1f} over {} residual terms\n\n", d.before.free.size(), d.gap_name,
-                     d.gap_before, d.criterion_before, d.residual_terms);
+  out += fmt::format("  fitted {} parameters: {} = {:.4g}, BIC = {:.1f} over {} residual terms\n\n", d.before.free.size(), d.gap_name, d.gap_before,
+                     d.criterion_before, d.residual_terms);
   out += "where the model misses\n";
   for (const auto& line : pattern_lines(d.patterns)) out += "  " + line + "\n";
   out += "\ncandidates (screened: share of the objective the element removes alone; refitted: with every free parameter)\n";
@@ -39,7 +39,8 @@ std::string diagnosis_report_text(const std::string& source_file, const Diagnosi
   }
   for (const auto& c : d.candidates)
     if (!c.unresolved.empty()) out += fmt::format("  {} cannot earn: {}\n", effect_name(c.screened.effect), c.unresolved);
-    else if (!c.limit_of.empty()) out += fmt::format("  {} also tried as {}: {}\n", effect_name(c.screened.effect), trial_summary(c.screened.trial), c.limit_of);
+    else if (!c.limit_of.empty())
+      out += fmt::format("  {} also tried as {}: {}\n", effect_name(c.screened.effect), trial_summary(c.screened.trial), c.limit_of);
   out += fmt::format("\neffect: {}\n  why: {}\n", effect_name(d.effect), d.reason);
   if (d.effect != Effect::none) {
     out += fmt::format("  {}: {:.4g} -> {:.4g} after a final polish ({:.2f} times lower)\n", d.gap_name, d.gap_before, d.gap_after,
@@ -58,21 +59,18 @@ std::string diagnosis_report_json(const std::string& source_file, const Diagnosi
   json evidence{{"reason", d.reason}, {"patterns", pattern_lines(d.patterns)}};
   if (d.patterns.has_harmonic) {
     const HarmonicPatterns& h = d.patterns.harmonic;
-    evidence["harmonic"] = {{"points", h.points},
-                            {"stiffness_rms", h.stiffness_rms},
-                            {"phase_rms_deg", degrees(h.phase_rms)},
-                            {"amplitude_share", h.amplitude_share},
-                            {"frequency_share", h.frequency_share},
-                            {"interaction_share", h.interaction_share},
-                            {"worst_stiffness",
-                             {{"amplitude_mm", h.worst_stiffness.amplitude},
-                              {"frequency_hz", h.worst_stiffness.frequency},
-                              {"residual", h.worst_stiffness.residual}}},
-                            {"worst_phase",
-                             {{"amplitude_mm", h.worst_phase.amplitude},
-                              {"frequency_hz", h.worst_phase.frequency},
-                              {"residual_deg", degrees(h.worst_phase.residual)}}},
-                            {"phase_peak", {{"frequency_hz", h.phase_peak_frequency}, {"excess_deg", degrees(h.phase_peak)}}}};
+    evidence["harmonic"] = {
+        {"points", h.points},
+        {"stiffness_rms", h.stiffness_rms},
+        {"phase_rms_deg", degrees(h.phase_rms)},
+        {"amplitude_share", h.amplitude_share},
+        {"frequency_share", h.frequency_share},
+        {"interaction_share", h.interaction_share},
+        {"worst_stiffness",
+         {{"amplitude_mm", h.worst_stiffness.amplitude}, {"frequency_hz", h.worst_stiffness.frequency}, {"residual", h.worst_stiffness.residual}}},
+        {"worst_phase",
+         {{"amplitude_mm", h.worst_phase.amplitude}, {"frequency_hz", h.worst_phase.frequency}, {"residual_deg", degrees(h.worst_phase.residual)}}},
+        {"phase_peak", {{"frequency_hz", h.phase_peak_frequency}, {"excess_deg", degrees(h.phase_peak)}}}};
   }
   json histories = json::array();
   for (const auto& h : d.patterns.histories)
@@ -81,7 +79,7 @@ std::string diagnosis_report_json(const std::string& source_file, const Diagnosi
   json candidates = json::array();
   for (const auto& c : d.candidates) {
     json e{{"effect", effect_name(c.screened.effect)}, {"screened_gain", c.screened.gain}, {"element", c.element},
-           {"trial", trial_summary(c.screened.trial)}, {"refitted", c.refitted}, {"chosen", c.chosen}};
+           {"trial", trial_summary(c.screened.trial)}, {"refitted", c.refitted},           {"chosen", c.chosen}};
     if (!c.unresolved.empty()) e["unresolved"] = c.unresolved;
     if (!c.limit_of.empty()) e["limit_of"] = c.limit_of;
     if (c.refitted) e["gap_after"] = c.gap_after, e["criterion"] = c.criterion, e["parameters"] = c.parameters, e["wall_seconds"] = c.wall_seconds;
@@ -89,7 +87,10 @@ std::string diagnosis_report_json(const std::string& source_file, const Diagnosi
   }
   evidence["candidates"] = candidates;
 
-  json j{{"effect", effect_name(d.effect)}, {"evidence", evidence}, {"gap_measure", d.gap_name}, {"err_before", d.gap_before},
+  json j{{"effect", effect_name(d.effect)},
+         {"evidence", evidence},
+         {"gap_measure", d.gap_name},
+         {"err_before", d.gap_before},
          {"err_after", d.gap_after}};
   json criterion{{"name", "BIC"}, {"residual_terms", d.residual_terms}, {"before", d.criterion_before}};
   json added = json::array();
@@ -102,7 +103,8 @@ std::string diagnosis_report_json(const std::string& source_file, const Diagnosi
     for (std::size_t i = 0; i < model.parameters.size(); ++i) {
       const lang::Parameter& p = model.parameters[i];
       if (p.path.starts_with(d.added_element + ".") && p.value_begin >= 0)
-        parameters.push_back({{"path", p.path}, {"value", in_written_unit(p, d.after->network.parameter(static_cast<int>(i)))}, {"unit", written_unit(p)}});
+        parameters.push_back(
+            {{"path", p.path}, {"value", in_written_unit(p, d.after->network.parameter(static_cast<int>(i)))}, {"unit", written_unit(p)}});
     }
     added.push_back({{"element", d.added_element}, {"effect", effect_name(d.effect)}, {"statement", d.added_statement}, {"parameters", parameters}});
   }

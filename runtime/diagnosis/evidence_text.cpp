@@ -49,14 +49,16 @@ std::string pattern_sentence(Effect effect, const ResidualPatterns& p) {
 }
 
 std::string effect_reason(const Diagnosis& d, const CandidateOutcome& w) {
-  const std::string screened =
-      w.limit_of.empty() ? fmt::format("{} alone would remove {:.0f} % of the objective", trial_summary(w.screened.trial), percent(w.screened.gain))
-                         : fmt::format("a slider-capped fluid column alone would remove {:.0f} % of the objective, and {}, {}, earns it",
-                                       percent(w.screened.gain), trial_summary(w.screened.trial), w.limit_of);
-  return fmt::format("{}; {}; refitted with every parameter, {} fell from {:.4g} to {:.4g} ({:.2f} times lower) and BIC from {:.1f} to "
-                     "{:.1f} with {} more parameters",
-                     pattern_sentence(w.screened.effect, d.patterns), screened, d.gap_name, d.gap_before, w.gap_after,
-                     d.gap_before / w.gap_after, d.criterion_before, w.criterion, w.parameters - static_cast<int>(d.before.free.size()));
+  const std::string screened = w.limit_of.empty()
+                                   ? fmt::format("{} alone would remove {:.0f} % of the objective", trial_summary(w.screened.trial),
+                                                 percent(w.screened.gain))
+                                   : fmt::format("a slider-capped fluid column alone would remove {:.0f} % of the objective, and {}, {}, earns it",
+                                                 percent(w.screened.gain), trial_summary(w.screened.trial), w.limit_of);
+  return fmt::format(
+      "{}; {}; refitted with every parameter, {} fell from {:.4g} to {:.4g} ({:.2f} times lower) and BIC from {:.1f} to "
+      "{:.1f} with {} more parameters",
+      pattern_sentence(w.screened.effect, d.patterns), screened, d.gap_name, d.gap_before, w.gap_after, d.gap_before / w.gap_after,
+      d.criterion_before, w.criterion, w.parameters - static_cast<int>(d.before.free.size()));
 }
 
 std::string none_reason(const Diagnosis& d, const DiagnoseSettings& s) {
@@ -65,18 +67,20 @@ std::string none_reason(const Diagnosis& d, const DiagnoseSettings& s) {
     if (c.refitted && (!best || c.criterion < best->criterion)) best = &c;
   if (!best) {
     const double top = d.candidates.empty() ? 0.0 : d.candidates.front().screened.gain;
-    return fmt::format("no added element would remove more than {:.1f} % of the objective (threshold {:.0f} %): the residual is at the "
-                       "level the model's own parameters leave, {} = {:.4g}",
-                       percent(top), percent(s.min_screen_gain), d.gap_name, d.gap_before);
+    return fmt::format(
+        "no added element would remove more than {:.1f} % of the objective (threshold {:.0f} %): the residual is at the "
+        "level the model's own parameters leave, {} = {:.4g}",
+        percent(top), percent(s.min_screen_gain), d.gap_name, d.gap_before);
   }
   if (!best->unresolved.empty())
     return fmt::format("the best candidate, {} for {}, lowered {} from {:.4g} to {:.4g}, but {}; no other candidate earned its parameters",
                        trial_summary(best->screened.trial), effect_name(best->screened.effect), d.gap_name, d.gap_before, best->gap_after,
                        best->unresolved);
-  return fmt::format("the best candidate, {} for {}, lowered {} only from {:.4g} to {:.4g} and BIC from {:.1f} to {:.1f}; an element must "
-                     "lower BIC and the gap by {:.0f} % to earn its parameters, so the residual is taken as noise",
-                     trial_summary(best->screened.trial), effect_name(best->screened.effect), d.gap_name, d.gap_before, best->gap_after,
-                     d.criterion_before, best->criterion, percent(s.min_improvement));
+  return fmt::format(
+      "the best candidate, {} for {}, lowered {} only from {:.4g} to {:.4g} and BIC from {:.1f} to {:.1f}; an element must "
+      "lower BIC and the gap by {:.0f} % to earn its parameters, so the residual is taken as noise",
+      trial_summary(best->screened.trial), effect_name(best->screened.effect), d.gap_name, d.gap_before, best->gap_after, d.criterion_before,
+      best->criterion, percent(s.min_improvement));
 }
 
 std::string added_summary(const FitResult& refit, const std::string& element) {
@@ -117,13 +121,15 @@ std::vector<std::string> pattern_lines(const ResidualPatterns& p) {
     const HarmonicPatterns& h = p.harmonic;
     lines.push_back(fmt::format("harmonic: {} points; RMS stiffness residual {:.2f} %, RMS phase residual {:.3f} deg", h.points,
                                 100.0 * h.stiffness_rms, degrees(h.phase_rms)));
-    lines.push_back(fmt::format("largest stiffness residual {:+.2f} % at {:.4g} mm, {:.4g} Hz; largest phase residual {:+.3f} deg at {:.4g} mm, "
-                                "{:.4g} Hz (model - measured)",
-                                100.0 * h.worst_stiffness.residual, h.worst_stiffness.amplitude, h.worst_stiffness.frequency,
-                                degrees(h.worst_phase.residual), h.worst_phase.amplitude, h.worst_phase.frequency));
-    lines.push_back(fmt::format("share of the residual that varies with amplitude alone {:.0f} %, with frequency alone {:.0f} %, with both "
-                                "together (interaction) {:.0f} %",
-                                percent(h.amplitude_share), percent(h.frequency_share), percent(h.interaction_share)));
+    lines.push_back(
+        fmt::format("largest stiffness residual {:+.2f} % at {:.4g} mm, {:.4g} Hz; largest phase residual {:+.3f} deg at {:.4g} mm, "
+                    "{:.4g} Hz (model - measured)",
+                    100.0 * h.worst_stiffness.residual, h.worst_stiffness.amplitude, h.worst_stiffness.frequency, degrees(h.worst_phase.residual),
+                    h.worst_phase.amplitude, h.worst_phase.frequency));
+    lines.push_back(
+        fmt::format("share of the residual that varies with amplitude alone {:.0f} %, with frequency alone {:.0f} %, with both "
+                    "together (interaction) {:.0f} %",
+                    percent(h.amplitude_share), percent(h.frequency_share), percent(h.interaction_share)));
     if (h.phase_peak > 0.0)
       lines.push_back(fmt::format("the measured phase exceeds the model's most near {:.4g} Hz: {:.3f} deg on average over amplitudes",
                                   h.phase_peak_frequency, degrees(h.phase_peak)));

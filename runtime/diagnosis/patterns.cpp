@@ -68,7 +68,8 @@ ResidualPatterns residual_patterns(const FitResult& fit, const std::vector<FitDa
       HistoryPatterns p{d.path, set_fit.err, set_fit.worst};
       double largest = -1.0;
       for (std::size_t j = 0; j < d.force.size(); ++j)
-        if (const double e = std::abs(set_fit.prediction.force[j] - d.force[j]); e > largest) largest = e, p.worst_displacement = d.drive.displacement[j];
+        if (const double e = std::abs(set_fit.prediction.force[j] - d.force[j]); e > largest)
+          largest = e, p.worst_displacement = d.drive.displacement[j];
       out.histories.push_back(p);
       continue;
     }

@@ -17,9 +17,9 @@ namespace rheo::runtime::diagnosis {
 
 struct HarmonicPatterns {
   int points = 0;
-  double stiffness_rms = 0.0;   // RMS of r_K [-]
-  double phase_rms = 0.0;       // RMS of model - measured phase [rad]
-  double amplitude_share = 0.0; // share of sum(r_K^2 + r_d^2) in A, F, I (the mean takes the rest)
+  double stiffness_rms = 0.0;    // RMS of r_K [-]
+  double phase_rms = 0.0;        // RMS of model - measured phase [rad]
+  double amplitude_share = 0.0;  // share of sum(r_K^2 + r_d^2) in A, F, I (the mean takes the rest)
   double frequency_share = 0.0;
   double interaction_share = 0.0;
   struct Worst {
@@ -27,20 +27,20 @@ struct HarmonicPatterns {
     double residual = 0.0;                    // r_K [-], or model - measured phase [rad]
   };
   Worst worst_stiffness, worst_phase;  // the points of the largest |r_K| and phase residual
-  double phase_peak_frequency = 0.0;  // frequency where the measured phase most exceeds the model's, averaged over amplitudes [Hz]
-  double phase_peak = 0.0;            // that excess [rad]
+  double phase_peak_frequency = 0.0;   // frequency where the measured phase most exceeds the model's, averaged over amplitudes [Hz]
+  double phase_peak = 0.0;             // that excess [rad]
 };
 
 struct HistoryPatterns {
   std::string path;
-  double rms = 0.0;    // RMS (F - F_exp) / max|F_exp|
-  double worst = 0.0;  // max |F - F_exp| / max|F_exp|
+  double rms = 0.0;                 // RMS (F - F_exp) / max|F_exp|
+  double worst = 0.0;               // max |F - F_exp| / max|F_exp|
   double worst_displacement = 0.0;  // u there [mm]
 };
 
 struct ResidualPatterns {
   bool has_harmonic = false;
-  HarmonicPatterns harmonic;           // over every harmonic file
+  HarmonicPatterns harmonic;  // over every harmonic file
   std::vector<HistoryPatterns> histories;
 };
 

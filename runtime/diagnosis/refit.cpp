@@ -20,10 +20,7 @@ namespace {
 // results, do not depend on the machine.
 double evaluation_work(const Network& network, const std::vector<FitDataSet>& data, const HarmonicOptions& options) {
   const Topology& t = network.topology();
-  const double step_cost = uses_sundials(network, options.solver) ? 10.0
-                           : t.subtrees.empty()                   ? 0.05
-                           : steps_without_iteration(t)           ? 0.3
-                                                                  : 1.0;
+  const double step_cost = uses_sundials(network, options.solver) ? 10.0 : t.subtrees.empty() ? 0.05 : steps_without_iteration(t) ? 0.3 : 1.0;
   double work = 0.0;
   for (const auto& set : data) {
     if (!set.is_harmonic()) {

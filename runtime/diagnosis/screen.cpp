@@ -84,8 +84,8 @@ class AddedObjective {
 
  private:
   // F_m + sum a s, then beta u with beta the least-squares refit of the linear stiffness.
-  static void add_history(const HistoryData& h, const std::vector<const Signature*>& basis, const std::vector<double>& coefficient,
-                          std::size_t f, std::vector<double>& force) {
+  static void add_history(const HistoryData& h, const std::vector<const Signature*>& basis, const std::vector<double>& coefficient, std::size_t f,
+                          std::vector<double>& force) {
     const std::vector<double>& u = h.drive.displacement;
     double uu = 0.0, ur = 0.0;
     for (std::size_t j = 0; j < force.size(); ++j) {

@@ -16,15 +16,13 @@ std::string bounded(double value, double lo, double hi, double per_unit, const c
   return fmt::format("{:.6g} {} in [{:.3g}, {:.3g}]", value / per_unit, unit, lo / per_unit, hi / per_unit);
 }
 
-std::string around(double value, double per_unit, const char* unit) {
-  return bounded(value, value / kDecades, value * kDecades, per_unit, unit);
-}
+std::string around(double value, double per_unit, const char* unit) { return bounded(value, value / kDecades, value * kDecades, per_unit, unit); }
 
 std::string stiffness_argument(double k, const BoundScales& s) {
   return bounded(k, std::min(s.stiffness * 1e-4, k / 10.0), std::max(s.stiffness * 10.0, k * 10.0), 1.0, "N/mm");
 }
 
-double inertance(const Trial& t) { return t.stiffness / std::pow(2.0 * std::numbers::pi * t.frequency, 2); }  // N*s^2/mm
+double inertance(const Trial& t) { return t.stiffness / std::pow(2.0 * std::numbers::pi * t.frequency, 2); }     // N*s^2/mm
 double column_damping(const Trial& t) { return 2.0 * t.damping_ratio * std::sqrt(t.stiffness * inertance(t)); }  // N*s/mm
 
 // Lines of the fluid column: spring `chamber` onto `inerter` and `dashpot` in parallel.
@@ -42,12 +40,8 @@ std::vector<std::string> trial_statement(const Trial& t, const std::string& name
   std::vector<std::string> lines;
   const std::string k = stiffness_argument(t.stiffness, s);
   switch (t.shape) {
-    case Shape::maxwell:
-      lines.push_back(fmt::format("maxwell {} (k = {}, tau = {})", name, k, around(t.time, 1e-3, "ms")));
-      break;
-    case Shape::friction:
-      lines.push_back(fmt::format("friction {} (k = {}, uy = {})", name, k, around(t.slip, 1e-3, "um")));
-      break;
+    case Shape::maxwell: lines.push_back(fmt::format("maxwell {} (k = {}, tau = {})", name, k, around(t.time, 1e-3, "ms"))); break;
+    case Shape::friction: lines.push_back(fmt::format("friction {} (k = {}, uy = {})", name, k, around(t.slip, 1e-3, "um"))); break;
     case Shape::capped_maxwell:
       lines.push_back(fmt::format("series {} {{", name));
       lines.push_back(fmt::format("  slider  cap (fy = {})", around(t.stiffness * t.slip, 1.0, "N")));

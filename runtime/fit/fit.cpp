@@ -34,8 +34,7 @@ class Coordinates {
   }
   std::vector<double> values(const std::vector<double>& z) const {
     std::vector<double> v = start_.parameters();
-    for (std::size_t j = 0; j < free_.size(); ++j)
-      v[static_cast<std::size_t>(free_[j])] = logarithmic[j] ? std::exp(z[j]) : z[j];
+    for (std::size_t j = 0; j < free_.size(); ++j) v[static_cast<std::size_t>(free_[j])] = logarithmic[j] ? std::exp(z[j]) : z[j];
     return v;
   }
   Network network(const std::vector<double>& z) const { return start_.with_parameters(values(z)); }
@@ -49,13 +48,12 @@ class Coordinates {
 };
 
 // Residual vector of all files for one method (and, for `corrected`, its factors).
-std::vector<double> residuals(const Network& network, const std::vector<FitDataSet>& data, const ScoreSettings& score,
-                              FitMethod method, const std::vector<ThesisCorrection>& corrections) {
+std::vector<double> residuals(const Network& network, const std::vector<FitDataSet>& data, const ScoreSettings& score, FitMethod method,
+                              const std::vector<ThesisCorrection>& corrections) {
   std::vector<double> r;
   std::size_t harmonic_index = 0;
   for (const FitDataSet& set : data) {
-    const ThesisCorrection* correction =
-        set.is_harmonic() && method == FitMethod::corrected ? &corrections.at(harmonic_index) : nullptr;
+    const ThesisCorrection* correction = set.is_harmonic() && method == FitMethod::corrected ? &corrections.at(harmonic_index) : nullptr;
     if (set.is_harmonic()) ++harmonic_index;
     append_residuals(set, predict(network, set, method, score.harmonic, correction), score, r);
   }
@@ -139,9 +137,7 @@ class StagedSearch {
 
   // The residual vector of METHOD at z (for `corrected`, with the factors found so far).
   std::function<std::vector<double>(const std::vector<double>&)> residuals_for(FitMethod method) const {
-    return [this, method](const std::vector<double>& z) {
-      return residuals(coordinates_.network(z), data_, settings_.score, method, corrections_);
-    };
+    return [this, method](const std::vector<double>& z) { return residuals(coordinates_.network(z), data_, settings_.score, method, corrections_); };
   }
 
   // One search of METHOD from FROM with at most BUDGET evaluations (at least 1).
@@ -201,8 +197,8 @@ class StagedSearch {
 // Bugs of the caller: the front end and the CLI refuse these first, naming where.
 void require_fittable(const Network& start, const std::vector<int>& free, const std::vector<FitDataSet>& data, const FitSettings& settings) {
   if (free.empty())
-    throw std::logic_error(fmt::format("model '{}' has no free parameter; give bounds to the ones to fit, e.g. `k = 300 N/mm in [10, 5000]`",
-                                       start.model().name));
+    throw std::logic_error(
+        fmt::format("model '{}' has no free parameter; give bounds to the ones to fit, e.g. `k = 300 N/mm in [10, 5000]`", start.model().name));
   if (data.empty()) throw std::logic_error("a fit needs data: add `data \"FILE.csv\"` to the fit block or --data FILE.csv");
   if (settings.score.method != FitMethod::exact && std::any_of(data.begin(), data.end(), [](const FitDataSet& s) { return s.is_harmonic(); }))
     if (const std::string why = approximation_misfit(start); !why.empty())
@@ -255,20 +251,19 @@ FitResult fit(const Network& start, const std::vector<int>& free, const std::vec
   StagedSearch searches(coordinates, data, settings, result);
   std::vector<double> z;
   FitMethod final_method = score.method;
-  if (score.method == FitMethod::corrected)
-    z = searches.corrected(final_method);
+  if (score.method == FitMethod::corrected) z = searches.corrected(final_method);
   else if (score.method == FitMethod::exact && !settings.search.algorithm && approximation_applies(first, data))
     z = searches.exact_with_surrogate();
-  else
-    z = searches.run(score.method, coordinates.z0, settings.search.max_evaluations);
+  else z = searches.run(score.method, coordinates.z0, settings.search.max_evaluations);
 
   result.network = coordinates.network(z);
   if (!result.interrupted && settings.statistics) {
     result.statistics = parameter_statistics(searches.residuals_for(final_method), z, coordinates.logarithmic);
     if (!result.statistics.has_noise_estimate())
-      result.notes.push_back(fmt::format("no standard errors: {} residuals for {} identifiable directions leave no degree of freedom to "
-                                         "estimate the noise; add data points or fix parameters",
-                                         result.statistics.residuals, result.statistics.rank));
+      result.notes.push_back(
+          fmt::format("no standard errors: {} residuals for {} identifiable directions leave no degree of freedom to "
+                      "estimate the noise; add data points or fix parameters",
+                      result.statistics.residuals, result.statistics.rank));
   }
   std::size_t harmonic_points = 0;
   for (const FitDataSet& set : data) {

@@ -44,33 +44,33 @@ struct FitSettings {
   // parameter); off, FitResult::statistics stays empty.
   bool statistics = true;
   std::function<void(const SearchProgress&)> progress;  // called after every evaluation
-  const std::atomic<bool>* interrupt = nullptr;          // set (e.g. by SIGINT) to stop with the best so far
+  const std::atomic<bool>* interrupt = nullptr;         // set (e.g. by SIGINT) to stop with the best so far
 };
 
 struct DataSetFit {
   std::string path;
   double weight = 1.0;
   bool harmonic = true;
-  Prediction prediction;  // exact response at the fitted parameters
-  double phi = 0.0;       // harmonic: eq. 5.1
-  double err = 0.0;       // harmonic: eq. 6.1; history: RMS of (F - F_exp) / max|F_exp|
-  double worst = 0.0;     // history: max |F - F_exp| / max|F_exp|
+  Prediction prediction;                                   // exact response at the fitted parameters
+  double phi = 0.0;                                        // harmonic: eq. 5.1
+  double err = 0.0;                                        // harmonic: eq. 6.1; history: RMS of (F - F_exp) / max|F_exp|
+  double worst = 0.0;                                      // history: max |F - F_exp| / max|F_exp|
   std::vector<double> measured_stiffness, measured_phase;  // harmonic: the data [N/mm], [rad]
   RelativeResiduals residuals;                             // harmonic: K/K_exp - 1, d/d_exp - 1
 };
 
 struct FitResult {
-  Network network;                  // the model with the fitted values
+  Network network;  // the model with the fitted values
   std::vector<int> free{};
-  std::vector<double> start_values{}; // all parameters, before the fit
-  double objective = 0.0;           // the minimised sum of squares, with the method's response
-  double phi = 0.0;                 // eq. 5.1 over all harmonic points (exact response)
-  double err = 0.0;                 // eq. 6.1 over all harmonic points; 0 when there are none
+  std::vector<double> start_values{};  // all parameters, before the fit
+  double objective = 0.0;              // the minimised sum of squares, with the method's response
+  double phi = 0.0;                    // eq. 5.1 over all harmonic points (exact response)
+  double err = 0.0;                    // eq. 6.1 over all harmonic points; 0 when there are none
   std::vector<DataSetFit> datasets{};
-  ParameterStatistics statistics{}; // per free parameter, in parameter units
+  ParameterStatistics statistics{};  // per free parameter, in parameter units
   int evaluations = 0;
-  int non_finite = 0;                // rejected evaluations: NaN, inf, or not simulable
-  std::string first_failure{};       // why the first evaluation that could not be simulated failed
+  int non_finite = 0;           // rejected evaluations: NaN, inf, or not simulable
+  std::string first_failure{};  // why the first evaluation that could not be simulated failed
   double wall_seconds = 0.0;
   std::string status{};
   bool interrupted = false;
@@ -84,7 +84,6 @@ std::vector<int> bounded_parameters(const Network& network);
 // `free` is non-empty and names parameters with bounds, `data` is non-empty. Throws UsageError
 // when the approximate or corrected method meets harmonic data and a structure the
 // approximation cannot take (approximation_misfit), and what simulating the model throws.
-FitResult fit(const Network& start, const std::vector<int>& free, const std::vector<FitDataSet>& data,
-              const FitSettings& settings);
+FitResult fit(const Network& start, const std::vector<int>& free, const std::vector<FitDataSet>& data, const FitSettings& settings);
 
 }  // namespace rheo::runtime

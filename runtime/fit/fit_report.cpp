@@ -13,9 +13,7 @@ namespace {
 
 double degrees(double radians) { return radians * 180.0 / std::numbers::pi; }
 
-const lang::Parameter& parameter_of(const FitResult& r, int index) {
-  return r.network.model().parameters.at(static_cast<std::size_t>(index));
-}
+const lang::Parameter& parameter_of(const FitResult& r, int index) { return r.network.model().parameters.at(static_cast<std::size_t>(index)); }
 
 std::string data_kind(const DataSetFit& d) { return d.harmonic ? "harmonic" : "history"; }
 
@@ -44,7 +42,8 @@ double in_written_unit(const lang::Parameter& p, double internal_value) {
 std::string fit_report_text(const FitDescription& d, const FitResult& r) {
   std::string out = fmt::format("rheo fit: model {} from {}\n", r.network.model().name, d.source);
   for (const DataSetFit& set : r.datasets)
-    out += fmt::format("  data {} ({}, {} {}, weight {:g})\n", set.path, data_kind(set), data_points(set), set.harmonic ? "points" : "samples", set.weight);
+    out += fmt::format("  data {} ({}, {} {}, weight {:g})\n", set.path, data_kind(set), data_points(set), set.harmonic ? "points" : "samples",
+                       set.weight);
   out += fmt::format("  method {}, objective {}, optimizer {}, seed {}\n", d.method, d.objective, d.optimizer, d.seed);
   for (const std::string& note : r.notes) out += fmt::format("  {}\n", note);
   out += "\n";
@@ -58,8 +57,8 @@ std::string fit_report_text(const FitDescription& d, const FitResult& r) {
     const bool at_bound = std::abs(r.network.parameter(i) - p.lower) <= 1e-9 * std::max(1.0, std::abs(p.lower)) ||
                           std::abs(r.network.parameter(i) - p.upper) <= 1e-9 * std::max(1.0, std::abs(p.upper));
     out += fmt::format("  {:<{}}  {:>12.6g}  {:>12.6g}  {:<22}  {:<8}  [{:g}, {:g}]{}\n", p.path, width, in_written_unit(p, start),
-                       in_written_unit(p, r.network.parameter(i)), standard_error_text(r, j, i), written_unit(p),
-                       in_written_unit(p, p.lower), in_written_unit(p, p.upper), at_bound ? "  at a bound: widen it?" : "");
+                       in_written_unit(p, r.network.parameter(i)), standard_error_text(r, j, i), written_unit(p), in_written_unit(p, p.lower),
+                       in_written_unit(p, p.upper), at_bound ? "  at a bound: widen it?" : "");
   }
   out += "\n";
   for (const DataSetFit& set : r.datasets) {
@@ -114,7 +113,9 @@ std::string fit_report_json(const FitDescription& d, const FitResult& r) {
   const auto& all = r.network.model().parameters;
   for (std::size_t i = 0; i < all.size(); ++i) {
     const lang::Parameter& p = all[i];
-    json e{{"path", p.path}, {"unit", written_unit(p)}, {"start", in_written_unit(p, r.start_values[i])},
+    json e{{"path", p.path},
+           {"unit", written_unit(p)},
+           {"start", in_written_unit(p, r.start_values[i])},
            {"value", in_written_unit(p, r.network.parameter(static_cast<int>(i)))}};
     const auto it = std::find(r.free.begin(), r.free.end(), static_cast<int>(i));
     e["free"] = it != r.free.end();
@@ -139,10 +140,14 @@ std::string fit_report_json(const FitDescription& d, const FitResult& r) {
       json residuals = json::array();
       for (std::size_t k = 0; k < set.prediction.points.size(); ++k) {
         const HarmonicPoint& p = set.prediction.points[k];
-        residuals.push_back({{"amplitude_mm", p.amplitude}, {"frequency_hz", p.frequency},
-                             {"stiffness_measured", set.measured_stiffness[k]}, {"stiffness_model", p.measures.stiffness},
-                             {"phase_measured_deg", degrees(set.measured_phase[k])}, {"phase_model_deg", degrees(p.measures.phase)},
-                             {"stiffness_residual", set.residuals.stiffness[k]}, {"damping_residual", set.residuals.damping[k]}});
+        residuals.push_back({{"amplitude_mm", p.amplitude},
+                             {"frequency_hz", p.frequency},
+                             {"stiffness_measured", set.measured_stiffness[k]},
+                             {"stiffness_model", p.measures.stiffness},
+                             {"phase_measured_deg", degrees(set.measured_phase[k])},
+                             {"phase_model_deg", degrees(p.measures.phase)},
+                             {"stiffness_residual", set.residuals.stiffness[k]},
+                             {"damping_residual", set.residuals.damping[k]}});
       }
       s["residuals"] = residuals;
     } else {

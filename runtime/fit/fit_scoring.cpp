@@ -29,8 +29,7 @@ Prediction predict(const Network& network, const FitDataSet& set, FitMethod meth
   return p;
 }
 
-void append_residuals(const FitDataSet& set, const Prediction& prediction, const ScoreSettings& settings,
-                      std::vector<double>& out) {
+void append_residuals(const FitDataSet& set, const Prediction& prediction, const ScoreSettings& settings, std::vector<double>& out) {
   if (!set.is_harmonic()) {
     const HistoryData& h = set.history();
     const double scale = std::sqrt(set.weight / static_cast<double>(h.force.size())) / h.force_scale;

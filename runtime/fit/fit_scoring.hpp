@@ -50,7 +50,6 @@ Prediction predict(const Network& network, const FitDataSet& set, FitMethod meth
                    const ThesisCorrection* correction);
 
 // Appends the weighted residual terms of one file (see above) to `out`.
-void append_residuals(const FitDataSet& set, const Prediction& prediction, const ScoreSettings& settings,
-                      std::vector<double>& out);
+void append_residuals(const FitDataSet& set, const Prediction& prediction, const ScoreSettings& settings, std::vector<double>& out);
 
 }  // namespace rheo::runtime

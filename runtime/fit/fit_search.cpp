@@ -20,8 +20,7 @@ struct Exhausted {};
 // the budget is spent (some NLopt algorithms, e.g. DIRECT-L, overrun their own maxeval).
 class Tracker {
  public:
-  Tracker(const Objective& objective, const std::function<void(const SearchProgress&)>& progress, const std::atomic<bool>* interrupt,
-          int limit)
+  Tracker(const Objective& objective, const std::function<void(const SearchProgress&)>& progress, const std::atomic<bool>* interrupt, int limit)
       : objective_(objective), progress_(progress), interrupt_(interrupt), limit_(std::max(1, limit)) {}
 
   // The first call (the start) is always evaluated, so that the best point has a value.
@@ -63,9 +62,7 @@ class Tracker {
   const char* stage_ = "";
 };
 
-bool is_global(Algorithm a) {
-  return a == Algorithm::direct_l || a == Algorithm::crs2 || a == Algorithm::isres || a == Algorithm::mlsl;
-}
+bool is_global(Algorithm a) { return a == Algorithm::direct_l || a == Algorithm::crs2 || a == Algorithm::isres || a == Algorithm::mlsl; }
 
 // Radical inverse of `index` in base `base`: the Halton coordinate.
 double radical_inverse(unsigned long index, unsigned base) {
@@ -132,8 +129,7 @@ SearchResult search(const Objective& objective, const std::vector<double>& start
     o.seed = settings.seed;
     result.status = minimize(tracked, from, lower, upper, o).status;
   };
-  const Algorithm local_algorithm =
-      settings.algorithm && !is_global(*settings.algorithm) ? *settings.algorithm : Algorithm::bobyqa;
+  const Algorithm local_algorithm = settings.algorithm && !is_global(*settings.algorithm) ? *settings.algorithm : Algorithm::bobyqa;
   result.status = "MAXEVAL_REACHED";  // when the budget leaves no local stage to run
   try {
     tracker.stage("start");
@@ -173,10 +169,10 @@ SearchResult search(const Objective& objective, const std::vector<double>& start
     result.status = "interrupted";
   }
   if (tracker.best_z().empty() && !result.interrupted)
-    throw NumericalError(fmt::format("none of the {} trial points of the search gave a finite objective{}; check that the data and the "
-                                     "parameters' bounds describe something this model can simulate",
-                                     tracker.evaluations(),
-                                     tracker.first_failure().empty() ? "" : fmt::format(" (first failure: {})", tracker.first_failure())));
+    throw NumericalError(
+        fmt::format("none of the {} trial points of the search gave a finite objective{}; check that the data and the "
+                    "parameters' bounds describe something this model can simulate",
+                    tracker.evaluations(), tracker.first_failure().empty() ? "" : fmt::format(" (first failure: {})", tracker.first_failure())));
   result.z = tracker.best_z().empty() ? start : tracker.best_z();
   result.value = tracker.best_value();
   result.evaluations = tracker.evaluations();

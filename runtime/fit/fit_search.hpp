@@ -35,15 +35,15 @@ struct SearchSettings {
   std::optional<Algorithm> algorithm;  // nullopt: the default strategy above
   int max_evaluations = 20000;         // over all stages
   int starts = 3;
-  int samples = -1;                    // default strategy's sample count; -1: max(10 n, 40)
+  int samples = -1;  // default strategy's sample count; -1: max(10 n, 40)
   unsigned long seed = 1;
-  double tolerance = 1e-10;            // relative, on z (local stages)
+  double tolerance = 1e-10;                       // relative, on z (local stages)
   std::vector<std::vector<double>> extra_starts;  // default strategy: local searches from these too
 };
 
 struct SearchProgress {
   int evaluations = 0;
-  double best = 0.0;  // best objective so far
+  double best = 0.0;       // best objective so far
   const char* stage = "";  // "start", "sample", "local", "global" or "polish"
 };
 
@@ -51,10 +51,10 @@ struct SearchResult {
   std::vector<double> z;  // the best point evaluated (the start when interrupted before a finite one)
   double value = 0.0;     // the objective at z; +inf when interrupted before a finite evaluation
   int evaluations = 0;
-  int non_finite = 0;     // evaluations that returned NaN or inf, or threw NumericalError (any stage)
+  int non_finite = 0;         // evaluations that returned NaN or inf, or threw NumericalError (any stage)
   std::string first_failure;  // the message of the first NumericalError, if any
-  std::string status;  // the last local stage's NLopt result, "MAXEVAL_REACHED" when the budget
-                       // ran out before or during a stage, or "interrupted"
+  std::string status;         // the last local stage's NLopt result, "MAXEVAL_REACHED" when the budget
+                              // ran out before or during a stage, or "interrupted"
   bool interrupted = false;
 };
 
@@ -63,7 +63,6 @@ struct SearchResult {
 // search is finite: there is no point to report.
 SearchResult search(const Objective& objective, const std::vector<double>& start, const std::vector<double>& lower,
                     const std::vector<double>& upper, const std::vector<bool>& logarithmic, const SearchSettings& settings,
-                    const std::function<void(const SearchProgress&)>& progress = {},
-                    const std::atomic<bool>* interrupt = nullptr);
+                    const std::function<void(const SearchProgress&)>& progress = {}, const std::atomic<bool>* interrupt = nullptr);
 
 }  // namespace rheo::runtime

@@ -17,15 +17,16 @@ constexpr double kRelativeStep = 1e-6;
 constexpr double kSingularTolerance = 1e-8;  // of the largest singular value
 constexpr double kNullComponent = 1e-6;
 
-Eigen::VectorXd evaluate(const std::function<std::vector<double>(const std::vector<double>&)>& residuals,
-                         const std::vector<double>& z, std::size_t expected_size) {
+Eigen::VectorXd evaluate(const std::function<std::vector<double>(const std::vector<double>&)>& residuals, const std::vector<double>& z,
+                         std::size_t expected_size) {
   const std::vector<double> r = residuals(z);
   if (expected_size != 0 && r.size() != expected_size)
     throw std::logic_error(fmt::format("parameter_statistics: the residual vector changed size ({} -> {})", expected_size, r.size()));
   for (double v : r)
     if (!std::isfinite(v))
-      throw NumericalError("parameter_statistics: a residual is not finite near the optimum, so no standard errors can be computed; a "
-                           "parameter is likely at the edge of the range the model can be simulated in: fix it or narrow its bounds");
+      throw NumericalError(
+          "parameter_statistics: a residual is not finite near the optimum, so no standard errors can be computed; a "
+          "parameter is likely at the edge of the range the model can be simulated in: fix it or narrow its bounds");
   return Eigen::Map<const Eigen::VectorXd>(r.data(), static_cast<Eigen::Index>(r.size()));
 }
 
@@ -56,7 +57,7 @@ ParameterStatistics parameter_statistics(const std::function<std::vector<double>
 
   const Eigen::JacobiSVD<Eigen::MatrixXd> svd(jacobian, Eigen::ComputeFullV);
   const Eigen::VectorXd& s = svd.singularValues();  // min(m, n) of them, decreasing
-  const Eigen::MatrixXd& v = svd.matrixV();          // n x n; columns beyond min(m, n) span null directions
+  const Eigen::MatrixXd& v = svd.matrixV();         // n x n; columns beyond min(m, n) span null directions
   const auto nn = static_cast<Eigen::Index>(n);
   const double cutoff = kSingularTolerance * s(0);
   ParameterStatistics out;
@@ -67,9 +68,8 @@ ParameterStatistics parameter_statistics(const std::function<std::vector<double>
       ++out.rank;
     }
   out.residuals = static_cast<int>(m);
-  const double s2 = m > static_cast<std::size_t>(out.rank)
-                        ? r0.squaredNorm() / static_cast<double>(m - static_cast<std::size_t>(out.rank))
-                        : std::numeric_limits<double>::quiet_NaN();
+  const double s2 = m > static_cast<std::size_t>(out.rank) ? r0.squaredNorm() / static_cast<double>(m - static_cast<std::size_t>(out.rank))
+                                                           : std::numeric_limits<double>::quiet_NaN();
   const Eigen::MatrixXd covariance = v * inverse_square.asDiagonal() * v.transpose();  // Cov_z / s^2
 
   for (Eigen::Index j = 0; j < nn; ++j) {
@@ -83,8 +83,7 @@ ParameterStatistics parameter_statistics(const std::function<std::vector<double>
   for (std::size_t i = 0; i < n; ++i) {
     const auto ii = static_cast<Eigen::Index>(i);
     const double dp_dz = logarithmic[i] ? std::exp(z[i]) : 1.0;
-    out.standard_error.push_back(out.identifiable[i] ? dp_dz * std::sqrt(s2 * covariance(ii, ii))
-                                                     : std::numeric_limits<double>::infinity());
+    out.standard_error.push_back(out.identifiable[i] ? dp_dz * std::sqrt(s2 * covariance(ii, ii)) : std::numeric_limits<double>::infinity());
     out.correlation[i][i] = 1.0;
     for (std::size_t j = 0; j < n; ++j) {
       const auto jj = static_cast<Eigen::Index>(j);

@@ -33,8 +33,8 @@ struct ParameterStatistics {
                                                  // rows and columns of non-identifiable parameters
                                                  // (and where a variance is 0: a perfect fit)
   std::vector<bool> identifiable;
-  int rank = 0;                                  // numerical rank of J
-  int residuals = 0;                             // m
+  int rank = 0;       // numerical rank of J
+  int residuals = 0;  // m
   bool has_noise_estimate() const { return residuals > rank; }
 };
 

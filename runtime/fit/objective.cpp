@@ -19,9 +19,10 @@ std::vector<std::string> damping_left_out(const HarmonicData& data) {
   std::vector<std::string> notes;
   for (std::size_t i = 0; i < data.size(); ++i)
     if (!(data.phase[i] > 0.0))
-      notes.push_back(fmt::format("{}:{}: phase {:g} deg <= 0 (noise on a nearly elastic point): its damping term is left out of "
-                                  "eq. 5.1, which divides by sin(phase)",
-                                  data.path, data.rows[i], data.phase[i] * 180.0 / std::numbers::pi));
+      notes.push_back(
+          fmt::format("{}:{}: phase {:g} deg <= 0 (noise on a nearly elastic point): its damping term is left out of "
+                      "eq. 5.1, which divides by sin(phase)",
+                      data.path, data.rows[i], data.phase[i] * 180.0 / std::numbers::pi));
   return notes;
 }
 
@@ -42,9 +43,7 @@ double phi(const RelativeResiduals& r, double stiffness_weight, double damping_w
   return sum;
 }
 
-double thesis_err(const RelativeResiduals& r) {
-  return std::sqrt(phi(r, 1.0, 1.0)) / static_cast<double>(r.stiffness.size());
-}
+double thesis_err(const RelativeResiduals& r) { return std::sqrt(phi(r, 1.0, 1.0)) / static_cast<double>(r.stiffness.size()); }
 
 std::vector<HarmonicPoint> simulate_at(const Network& network, const HarmonicData& data, const HarmonicOptions& options) {
   std::vector<HarmonicPoint> points(data.size());

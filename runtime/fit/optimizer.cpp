@@ -56,9 +56,7 @@ struct Context {
 
   // What NLopt sees for a non-finite value: worse than anything finite seen so far by a margin,
   // but not so huge that it wrecks the quadratic model of BOBYQA near the point.
-  double penalty() const {
-    return std::isfinite(worst_finite) ? worst_finite + 10.0 * std::max(std::abs(worst_finite), 1.0) : 1e300;
-  }
+  double penalty() const { return std::isfinite(worst_finite) ? worst_finite + 10.0 * std::max(std::abs(worst_finite), 1.0) : 1e300; }
 };
 
 double trampoline(unsigned n, const double* x, double* gradient, void* data) noexcept {

@@ -28,8 +28,8 @@ struct OptimizationResult {
   std::vector<double> x;
   double value = 0.0;
   int evaluations = 0;
-  int non_finite = 0;      // evaluations that returned NaN or inf
-  std::string status;      // NLopt's result code, e.g. "NLOPT_XTOL_REACHED"
+  int non_finite = 0;  // evaluations that returned NaN or inf
+  std::string status;  // NLopt's result code, e.g. "NLOPT_XTOL_REACHED"
 };
 
 using Objective = std::function<double(const std::vector<double>&)>;

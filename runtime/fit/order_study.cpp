@@ -14,8 +14,7 @@ namespace {
 
 std::vector<double> log_spread(double lo, double hi, int count) {
   std::vector<double> v;
-  for (int i = 0; i < count; ++i)
-    v.push_back(count == 1 ? std::sqrt(lo * hi) : lo * std::pow(hi / lo, static_cast<double>(i) / (count - 1)));
+  for (int i = 0; i < count; ++i) v.push_back(count == 1 ? std::sqrt(lo * hi) : lo * std::pow(hi / lo, static_cast<double>(i) / (count - 1)));
   return v;
 }
 
@@ -86,8 +85,8 @@ OrderStudy::OrderStudy(const lang::CheckedModel& model, const OrderSpec& spec, c
     : model_(model), spec_(spec), spreads_(spreads_of(data)) {
   for (const auto& e : model.root.children) {
     if (e.kind == lang::ElementKind::parallel || e.kind == lang::ElementKind::series)
-      throw UsageError(fmt::format("--orders needs a model whose elements all act in parallel; '{}' in model '{}' is a {} block",
-                                   e.path, model.name, e.kind == lang::ElementKind::series ? "series" : "parallel"));
+      throw UsageError(fmt::format("--orders needs a model whose elements all act in parallel; '{}' in model '{}' is a {} block", e.path,
+                                   model.name, e.kind == lang::ElementKind::series ? "series" : "parallel"));
     if (e.kind == lang::ElementKind::maxwell && spec.maxwell) {
       if (!maxwell_template_) maxwell_template_ = &e;
     } else if (e.kind == lang::ElementKind::friction && spec.friction) {

@@ -12,20 +12,19 @@ namespace {
 
 // The elements of Figs. 5.1/5.3 as the approximation needs them, read once per network.
 struct ThesisElements {
-  double elastic = 0.0;                     // K_e [N/mm]
+  double elastic = 0.0;                         // K_e [N/mm]
   std::vector<double> maxwell_k, maxwell_tau;   // K_v [N/mm], t_r [s]
   std::vector<double> friction_k, friction_fy;  // K_p [N/mm], F_y = K_p u_s [N]
 };
 
 std::string reject(const ElementProbe& probe, const char* why) {
-  return fmt::format("{} '{}' {}; the thesis approximation (eqs. 5.12-5.21) covers springs, yeoh springs, Maxwell and "
-                     "friction elements in parallel only (Figs. 5.1, 5.3); use method = exact",
-                     lang::kind_word(probe.kind), probe.path, why);
+  return fmt::format(
+      "{} '{}' {}; the thesis approximation (eqs. 5.12-5.21) covers springs, yeoh springs, Maxwell and "
+      "friction elements in parallel only (Figs. 5.1, 5.3); use method = exact",
+      lang::kind_word(probe.kind), probe.path, why);
 }
 
-bool is_subtree_root(const Topology& t, int node) {
-  return std::find(t.subtrees.begin(), t.subtrees.end(), node) != t.subtrees.end();
-}
+bool is_subtree_root(const Topology& t, int node) { return std::find(t.subtrees.begin(), t.subtrees.end(), node) != t.subtrees.end(); }
 
 ThesisElements thesis_elements(const Network& network) {
   if (const std::string why = approximation_misfit(network); !why.empty())
@@ -69,24 +68,24 @@ HarmonicPoint approximate_point(const ThesisElements& e, double u0, double frequ
   for (std::size_t j = 0; j < e.maxwell_k.size(); ++j) {
     const double x = w * e.maxwell_tau[j];
     const double modulus = e.maxwell_k[j] * x / std::hypot(1.0, x);  // |K*_j|, see the header on 5.12
-    const double sin_delta = 1.0 / std::hypot(1.0, x);                // (5.13)
+    const double sin_delta = 1.0 / std::hypot(1.0, x);               // (5.13)
     const double cos_delta = x / std::hypot(1.0, x);
     storage += modulus * cos_delta;
     loss += modulus * sin_delta;
   }
-  const double k_visco = std::hypot(storage, loss);          // (5.14)
+  const double k_visco = std::hypot(storage, loss);             // (5.14)
   const double d_visco = k_visco > 0.0 ? loss / k_visco : 0.0;  // (5.15)
 
   double k_friction = 0.0, work = 0.0;
   for (std::size_t q = 0; q < e.friction_k.size(); ++q) {
     const double kp = e.friction_k[q], fy = e.friction_fy[q], us = fy / kp;
     const bool slips = us < u0;
-    k_friction += slips ? fy / u0 : kp;        // (5.16), (5.18)
+    k_friction += slips ? fy / u0 : kp;       // (5.16), (5.18)
     if (slips) work += 4.0 * fy * (u0 - us);  // (5.17)
   }
   const double d_friction = work > 0.0 ? work / (std::numbers::pi * u0 * u0 * k_friction) : 0.0;  // (5.19)
 
-  const double stiffness = k_visco + k_friction;                                   // (5.20)
+  const double stiffness = k_visco + k_friction;                                     // (5.20)
   const double damping = (k_visco * d_visco + k_friction * d_friction) / stiffness;  // (5.21)
   HarmonicPoint p;
   p.amplitude = u0;
@@ -126,25 +125,23 @@ std::string approximation_misfit(const Network& network) {
 std::vector<HarmonicPoint> approximate_harmonic(const Network& network, const std::vector<double>& amplitudes,
                                                 const std::vector<double>& frequencies) {
   if (amplitudes.size() != frequencies.size())
-    throw std::logic_error(fmt::format("approximate_harmonic: {} amplitudes but {} frequencies (pointwise pairs)",
-                                       amplitudes.size(), frequencies.size()));
+    throw std::logic_error(
+        fmt::format("approximate_harmonic: {} amplitudes but {} frequencies (pointwise pairs)", amplitudes.size(), frequencies.size()));
   const ThesisElements elements = thesis_elements(network);
   std::vector<HarmonicPoint> points;
   points.reserve(amplitudes.size());
   for (std::size_t i = 0; i < amplitudes.size(); ++i) {
     if (!(amplitudes[i] > 0.0) || !(frequencies[i] > 0.0))
-      throw std::logic_error(fmt::format("approximate_harmonic: point {} has amplitude {} mm, frequency {} Hz; both must be > 0",
-                                         i + 1, amplitudes[i], frequencies[i]));
+      throw std::logic_error(fmt::format("approximate_harmonic: point {} has amplitude {} mm, frequency {} Hz; both must be > 0", i + 1,
+                                         amplitudes[i], frequencies[i]));
     points.push_back(approximate_point(elements, amplitudes[i], frequencies[i]));
   }
   return points;
 }
 
-ThesisCorrection thesis_correction(const std::vector<HarmonicPoint>& approximate,
-                                   const std::vector<HarmonicPoint>& numerical) {
+ThesisCorrection thesis_correction(const std::vector<HarmonicPoint>& approximate, const std::vector<HarmonicPoint>& numerical) {
   if (approximate.size() != numerical.size())
-    throw std::logic_error(fmt::format("thesis_correction: {} approximate but {} numerical points",
-                                       approximate.size(), numerical.size()));
+    throw std::logic_error(fmt::format("thesis_correction: {} approximate but {} numerical points", approximate.size(), numerical.size()));
   ThesisCorrection c;
   c.stiffness.reserve(approximate.size());
   c.damping.reserve(approximate.size());
@@ -152,10 +149,9 @@ ThesisCorrection thesis_correction(const std::vector<HarmonicPoint>& approximate
     const HarmonicPoint& a = approximate[i];
     const HarmonicPoint& n = numerical[i];
     if (!same(a.amplitude, n.amplitude) || !same(a.frequency, n.frequency))
-      throw std::logic_error(fmt::format(
-          "thesis_correction: point {} differs (approximate {} mm, {} Hz; numerical {} mm, {} Hz)", i + 1, a.amplitude,
-          a.frequency, n.amplitude, n.frequency));
-    c.stiffness.push_back(n.measures.stiffness / a.measures.stiffness);                            // (5.2)
+      throw std::logic_error(fmt::format("thesis_correction: point {} differs (approximate {} mm, {} Hz; numerical {} mm, {} Hz)", i + 1,
+                                         a.amplitude, a.frequency, n.amplitude, n.frequency));
+    c.stiffness.push_back(n.measures.stiffness / a.measures.stiffness);                              // (5.2)
     c.damping.push_back(a.measures.damping != 0.0 ? n.measures.damping / a.measures.damping : 1.0);  // (5.3)
   }
   return c;
@@ -163,8 +159,7 @@ ThesisCorrection thesis_correction(const std::vector<HarmonicPoint>& approximate
 
 void apply_correction(const ThesisCorrection& correction, std::vector<HarmonicPoint>& approximate) {
   if (correction.stiffness.size() != approximate.size() || correction.damping.size() != approximate.size())
-    throw std::logic_error(fmt::format("apply_correction: {} correction factors for {} points",
-                                       correction.stiffness.size(), approximate.size()));
+    throw std::logic_error(fmt::format("apply_correction: {} correction factors for {} points", correction.stiffness.size(), approximate.size()));
   for (std::size_t i = 0; i < approximate.size(); ++i) {
     HarmonicPoint& p = approximate[i];
     set_measures(p, p.measures.stiffness * correction.stiffness[i], p.measures.damping * correction.damping[i]);  // (5.4)

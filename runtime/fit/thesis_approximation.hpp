@@ -68,8 +68,7 @@ struct ThesisCorrection {
   std::vector<double> stiffness;  // corr_K (5.2)
   std::vector<double> damping;    // corr_d (5.3)
 };
-ThesisCorrection thesis_correction(const std::vector<HarmonicPoint>& approximate,
-                                   const std::vector<HarmonicPoint>& numerical);
+ThesisCorrection thesis_correction(const std::vector<HarmonicPoint>& approximate, const std::vector<HarmonicPoint>& numerical);
 
 // In place (5.4): K *= corr_K, d *= corr_d, phase = asin(min(d, 1)); storage, loss, F^ and U
 // follow. Throws std::logic_error when the sizes differ.

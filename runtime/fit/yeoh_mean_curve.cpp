@@ -14,8 +14,8 @@
 namespace rheo::runtime {
 namespace {
 
-constexpr double kReachTolerance = 1e-3;  // of the range: a run "reaches" an extreme
-constexpr double kMergeTolerance = 1e-12; // of the range: displacements that coincide
+constexpr double kReachTolerance = 1e-3;   // of the range: a run "reaches" an extreme
+constexpr double kMergeTolerance = 1e-12;  // of the range: displacements that coincide
 
 struct Run {
   std::size_t first, last;  // inclusive sample indices
@@ -61,8 +61,7 @@ Branch sorted_single_valued(Branch branch) {
 }
 
 // The branch of the given direction per step 2 of the header, or nullopt.
-std::optional<Branch> full_branch(const LoopSamples& loop, const std::vector<Run>& runs, int direction, double u_min,
-                                  double u_max) {
+std::optional<Branch> full_branch(const LoopSamples& loop, const std::vector<Run>& runs, int direction, double u_min, double u_max) {
   const double reach = kReachTolerance * (u_max - u_min);
   auto covers = [&](double lo, double hi) { return lo <= u_min + reach && hi >= u_max - reach; };
   auto extent = [&](const Run& r) {
@@ -110,9 +109,10 @@ void check_sizes(const LoopSamples& s, const char* what) {
 LoopSamples loop_samples_from_table(const Table& table) {
   const int u = table.column("displacement"), f = table.column("force");
   if (u < 0 || f < 0)
-    throw DataError(fmt::format("{}a loop needs the columns 'displacement' and 'force' (with units, e.g. "
-                                "'displacement [mm]'); the table has no '{}' column ({})",
-                                header_error(table), u < 0 ? "displacement" : "force", header_columns(table)));
+    throw DataError(
+        fmt::format("{}a loop needs the columns 'displacement' and 'force' (with units, e.g. "
+                    "'displacement [mm]'); the table has no '{}' column ({})",
+                    header_error(table), u < 0 ? "displacement" : "force", header_columns(table)));
   return {table.columns[static_cast<std::size_t>(u)], table.columns[static_cast<std::size_t>(f)]};
 }
 
@@ -175,35 +175,36 @@ MeanCurve mean_curve(const LoopSamples& loop, double turning_margin) {
     curve.force.push_back(0.5 * (interpolate(*loading, x) + interpolate(*unloading, x)));
   }
   if (curve.displacement.size() < 3)
-    throw DataError(fmt::format("mean_curve: only {} common displacements remain between {} mm and {} mm after excluding "
-                                "the turning regions; sample the loop more densely or reduce the margin",
-                                curve.displacement.size(), lo, hi));
+    throw DataError(
+        fmt::format("mean_curve: only {} common displacements remain between {} mm and {} mm after excluding "
+                    "the turning regions; sample the loop more densely or reduce the margin",
+                    curve.displacement.size(), lo, hi));
   return curve;
 }
 
 YeohConstants fit_yeoh_least_squares(const MeanCurve& curve) {
   const std::size_t m = curve.displacement.size();
   if (m < 3 || curve.force.size() != m)
-    throw std::logic_error(fmt::format("fit_yeoh_least_squares: need at least 3 (u, F) pairs of equal count, got {} and {}",
-                                       m, curve.force.size()));
+    throw std::logic_error(fmt::format("fit_yeoh_least_squares: need at least 3 (u, F) pairs of equal count, got {} and {}", m, curve.force.size()));
   Eigen::MatrixXd a(static_cast<Eigen::Index>(m), 3);
   Eigen::VectorXd f(static_cast<Eigen::Index>(m));
   for (std::size_t i = 0; i < m; ++i) {
     const double u = curve.displacement[i], u2 = u * u;
     const auto r = static_cast<Eigen::Index>(i);
-    a(r, 0) = 2.0 * u;             // (5.28)
+    a(r, 0) = 2.0 * u;  // (5.28)
     a(r, 1) = 4.0 * u * u2;
     a(r, 2) = 6.0 * u * u2 * u2;
     f(r) = curve.force[i];
   }
   const Eigen::Vector3d scale = a.colwise().norm().transpose();
-  if ((scale.array() == 0.0).any())
-    throw NumericalError("fit_yeoh_least_squares: every displacement of the mean curve is 0");
+  if ((scale.array() == 0.0).any()) throw NumericalError("fit_yeoh_least_squares: every displacement of the mean curve is 0");
   for (Eigen::Index j = 0; j < 3; ++j) a.col(j) /= scale(j);
   const Eigen::ColPivHouseholderQR<Eigen::MatrixXd> qr(a);
   if (qr.rank() < 3)
-    throw NumericalError(fmt::format("fit_yeoh_least_squares: the {} displacements of the mean curve do not determine "
-                                     "three constants (rank {})", m, qr.rank()));
+    throw NumericalError(
+        fmt::format("fit_yeoh_least_squares: the {} displacements of the mean curve do not determine "
+                    "three constants (rank {})",
+                    m, qr.rank()));
   const Eigen::Vector3d d = qr.solve(f).cwiseQuotient(scale);  // (5.32) without forming A^T A
   return {d(0), d(1), d(2)};
 }
@@ -213,8 +214,8 @@ YeohConstants yeoh_from_shape(const YeohConstants& least_squares, double elastic
   if (least_squares.d10 == 0.0)
     throw NumericalError("yeoh_from_shape: the least-squares D10 is 0, so the shape ratios D20/D10 and D30/D10 (eq. 5.33) are undefined");
   const double a = least_squares.d20 / least_squares.d10, b = least_squares.d30 / least_squares.d10;  // (5.33)
-  const double d10 = 0.5 * elastic_stiffness;                                                          // (5.35)
-  return {d10, a * d10, b * d10};                                                                      // (5.36)
+  const double d10 = 0.5 * elastic_stiffness;                                                         // (5.35)
+  return {d10, a * d10, b * d10};                                                                     // (5.36)
 }
 
 std::array<YeohStartValue, 3> yeoh_start_values(const lang::CheckedModel& model, const std::array<int, 3>& yeoh, const std::vector<int>& free,

@@ -35,10 +35,10 @@ FitDataSet read_fit_data(const std::string& path, double weight, const lang::Sou
   } else if (table.column("time") >= 0) {
     set.data = history_data_from_table(table);
   } else {
-    throw DataError(fmt::format(
-        "{}cannot tell what this data is; a harmonic table needs 'amplitude', 'frequency' and 'stiffness'+'phase' or "
-        "'storage'+'loss' columns, a history needs 'time', 'displacement' and 'force'; {}",
-        header_error(table), header_columns(table)));
+    throw DataError(
+        fmt::format("{}cannot tell what this data is; a harmonic table needs 'amplitude', 'frequency' and 'stiffness'+'phase' or "
+                    "'storage'+'loss' columns, a history needs 'time', 'displacement' and 'force'; {}",
+                    header_error(table), header_columns(table)));
   }
   return set;
 }

@@ -15,10 +15,10 @@ namespace rheo::runtime {
 
 struct HistoryData {
   std::string path;
-  Drive drive;                 // the measured displacement, from rest
-  std::vector<double> force;   // measured force at each drive sample [N]
-  std::vector<int> rows;       // 1-based file line of each sample
-  double force_scale = 1.0;    // max |F| [N]: residuals are relative to it
+  Drive drive;                // the measured displacement, from rest
+  std::vector<double> force;  // measured force at each drive sample [N]
+  std::vector<int> rows;      // 1-based file line of each sample
+  double force_scale = 1.0;   // max |F| [N]: residuals are relative to it
 };
 
 struct FitDataSet {

@@ -51,13 +51,12 @@ HarmonicData harmonic_data_from_table(const Table& t) {
     auto physical = [&](const char* column, const char* quantity, double value, double lowest, double highest, const char* unit) {
       if (!(value > 0.0)) fail(column, fmt::format("{} must be positive, got {:g} {}", quantity, value, unit));
       if (!(value >= lowest && value <= highest))
-        fail(column, fmt::format("{} must lie between {:g} and {:g} {}, got {:g} {}; check the column's unit", quantity, lowest, highest,
-                                 unit, value, unit));
+        fail(column, fmt::format("{} must lie between {:g} and {:g} {}, got {:g} {}; check the column's unit", quantity, lowest, highest, unit,
+                                 value, unit));
     };
     physical("amplitude", "amplitude", d.amplitude[i], lang::min_amplitude, lang::max_amplitude, "mm");
     physical("frequency", "frequency", d.frequency[i], lang::min_frequency, lang::max_frequency, "Hz");
-    physical(t.column("stiffness") >= 0 ? "stiffness" : "storage", "stiffness", d.stiffness[i], lang::min_stiffness, lang::max_stiffness,
-             "N/mm");
+    physical(t.column("stiffness") >= 0 ? "stiffness" : "storage", "stiffness", d.stiffness[i], lang::min_stiffness, lang::max_stiffness, "N/mm");
     if (!(d.phase[i] > -std::numbers::pi / 2 && d.phase[i] <= std::numbers::pi / 2))
       fail(t.column("phase") >= 0 ? "phase" : "loss",
            fmt::format("phase must lie in (-90, 90] deg, got {:g} deg; check the column's unit (deg or rad) and sign convention",

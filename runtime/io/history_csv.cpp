@@ -71,20 +71,22 @@ void read_header(Table& table, std::vector<double>& scales, const std::vector<Ce
   for (const auto& cell : cells) {
     const auto open = cell.text.find('['), close = cell.text.rfind(']');
     if (open == std::string::npos || close == std::string::npos || close < open)
-      fail(path, row, cell.column, fmt::format("header column '{}' has no unit; write it as 'name [unit]', e.g. 'time [s]'", lang::printable(cell.text)));
+      fail(path, row, cell.column,
+           fmt::format("header column '{}' has no unit; write it as 'name [unit]', e.g. 'time [s]'", lang::printable(cell.text)));
     const std::string name = trim(std::string_view(cell.text).substr(0, open));
     const std::string unit = trim(std::string_view(cell.text).substr(open + 1, close - open - 1));
     auto parsed = unit.empty() || unit == "-" ? std::optional<lang::Unit>{lang::Unit{}} : lang::parse_unit(unit);
     if (!parsed)
       fail(path, row, cell.column + static_cast<int>(open) + 1,
-           fmt::format("unknown unit '{}' in column '{}'; use units such as s, ms, mm, um, m, N, kN, N/mm, Hz, deg",
-                       lang::printable(unit), lang::printable(name)));
+           fmt::format("unknown unit '{}' in column '{}'; use units such as s, ms, mm, um, m, N, kN, N/mm, Hz, deg", lang::printable(unit),
+                       lang::printable(name)));
     if (const auto known = known_column(name); known && parsed->dimension != known->dimension)
       fail(path, row, cell.column + static_cast<int>(open) + 1,
            fmt::format("column '{}' has unit '{}', {}; {} needs a unit of {}, e.g. '{} [{}]'", name, lang::printable(unit),
                        parsed->dimension.dimensionless() ? std::string("a plain number") : "a " + lang::describe(parsed->dimension), name,
                        known->kind, name, known->example));
-    if (table.column(name) >= 0) fail(path, row, cell.column, fmt::format("column '{}' appears twice in the header; rename or remove one", lang::printable(name)));
+    if (table.column(name) >= 0)
+      fail(path, row, cell.column, fmt::format("column '{}' appears twice in the header; rename or remove one", lang::printable(name)));
     table.names.push_back(name);
     table.units.push_back(unit);
     scales.push_back(parsed->scale);
@@ -103,12 +105,14 @@ void read_row(Table& table, const std::vector<double>& scales, const std::vector
     double value = 0.0;
     const auto [ptr, ec] = std::from_chars(s.data(), s.data() + s.size(), value);
     if (s.empty() || (ec != std::errc{} && ec != std::errc::result_out_of_range) || ptr != s.data() + s.size())
-      fail(path, row, cells[c].column, fmt::format("'{}' is not a number (column '{}'); write a number such as 0.25 or 1e-3", lang::printable(s), table.names[c]));
+      fail(path, row, cells[c].column,
+           fmt::format("'{}' is not a number (column '{}'); write a number such as 0.25 or 1e-3", lang::printable(s), table.names[c]));
     if (ec == std::errc::result_out_of_range || !std::isfinite(value))
-      fail(path, row, cells[c].column, fmt::format("'{}' is not a finite number (column '{}'); remove or repair the row", lang::printable(s), table.names[c]));
+      fail(path, row, cells[c].column,
+           fmt::format("'{}' is not a finite number (column '{}'); remove or repair the row", lang::printable(s), table.names[c]));
     if (!std::isfinite(value * scales[c]))
-      fail(path, row, cells[c].column, fmt::format("'{}' {} overflows a double (column '{}'); remove or repair the row", lang::printable(s),
-                                                   table.units[c], table.names[c]));
+      fail(path, row, cells[c].column,
+           fmt::format("'{}' {} overflows a double (column '{}'); remove or repair the row", lang::printable(s), table.units[c], table.names[c]));
     table.columns[c].push_back(value * scales[c]);
     table.cell_columns.push_back(cells[c].column);
   }
@@ -164,10 +168,8 @@ Table parse_table(const std::string& path, const std::string& raw) {
     const std::string stripped = trim(line);
     if (stripped.empty() || stripped.front() == '#') continue;
     const auto cells = split(line);
-    if (table.names.empty())
-      read_header(table, scales, cells, row);
-    else
-      read_row(table, scales, cells, row);
+    if (table.names.empty()) read_header(table, scales, cells, row);
+    else read_row(table, scales, cells, row);
   }
   if (table.names.empty())
     fail(path, 1, 1, "no header found: the file is empty or holds only comments; start it with a header line such as 'time [s],displacement [mm]'");
@@ -182,8 +184,7 @@ Drive drive_from_table(const Table& table) {
                                 header_error(table), header_columns(table)));
   const auto& time = table.columns[static_cast<std::size_t>(t)];
   const auto& disp = table.columns[static_cast<std::size_t>(u)];
-  if (time.size() < 2)
-    fail(table.path, table.rows[0], 1, "a history needs at least two rows (a start from rest and where it goes); add rows");
+  if (time.size() < 2) fail(table.path, table.rows[0], 1, "a history needs at least two rows (a start from rest and where it goes); add rows");
   if (std::abs(disp[0]) > 1e-9)
     fail(table.path, table.rows[0], table.cell_column(0, u),
          fmt::format("the history must start from rest (displacement 0 in its first row, found {} mm); add a first row with displacement 0", disp[0]));

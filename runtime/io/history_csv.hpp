@@ -16,14 +16,14 @@ namespace rheo::runtime {
 
 struct Table {
   std::string path;
-  int header_row = 0;                           // 1-based file line of the header
-  std::vector<std::string> names;               // "time", "displacement", ...
-  std::vector<std::string> units;               // as written: "s", "mm"
-  std::vector<std::vector<double>> columns;     // internal units, column-major
-  std::vector<int> rows;                        // 1-based file line of each data row
-  std::vector<int> cell_columns;                // 1-based byte column of each cell, row-major
+  int header_row = 0;                        // 1-based file line of the header
+  std::vector<std::string> names;            // "time", "displacement", ...
+  std::vector<std::string> units;            // as written: "s", "mm"
+  std::vector<std::vector<double>> columns;  // internal units, column-major
+  std::vector<int> rows;                     // 1-based file line of each data row
+  std::vector<int> cell_columns;             // 1-based byte column of each cell, row-major
 
-  int column(const std::string& name) const;    // -1 when absent
+  int column(const std::string& name) const;  // -1 when absent
   // Byte column (1-based) of field `field` in data row `row_index` (0-based), for file:row:col.
   int cell_column(std::size_t row_index, int field) const;
 };

@@ -19,13 +19,9 @@ namespace {
 
 constexpr double kDegree = 180.0 / std::numbers::pi;
 
-std::string comment_lines(const ResultHeader& h) {
-  return fmt::format("# rheo {}: model {} from {}\n", h.protocol, h.model, h.source);
-}
+std::string comment_lines(const ResultHeader& h) { return fmt::format("# rheo {}: model {} from {}\n", h.protocol, h.model, h.source); }
 
-const char* definition_name(HarmonicDefinition d) {
-  return d == HarmonicDefinition::thesis ? "thesis" : "first_harmonic";
-}
+const char* definition_name(HarmonicDefinition d) { return d == HarmonicDefinition::thesis ? "thesis" : "first_harmonic"; }
 
 }  // namespace
 
@@ -34,13 +30,13 @@ std::string harmonic_csv(const ResultHeader& header, const std::vector<HarmonicP
   out += definition == HarmonicDefinition::thesis
              ? "# definition thesis: stiffness = (max F - min F)/(2 u0), phase = asin(U/(pi F^ u0)) (eqs. 1.2, 5.26, 5.27)\n"
              : "# definition first_harmonic: stiffness = |F1|/u0, phase = arg F1 of the first harmonic of the force\n";
-  out += "amplitude [mm],frequency [Hz],stiffness [N/mm],phase [deg],damping [-],storage [N/mm],loss [N/mm],"
-         "force_amplitude [N],energy [N*mm],cycles [-],converged [-]\n";
+  out +=
+      "amplitude [mm],frequency [Hz],stiffness [N/mm],phase [deg],damping [-],storage [N/mm],loss [N/mm],"
+      "force_amplitude [N],energy [N*mm],cycles [-],converged [-]\n";
   for (const auto& p : points) {
     const auto& m = p.measures;
-    out += fmt::format("{},{},{:.10g},{:.8g},{:.8g},{:.10g},{:.10g},{:.10g},{:.10g},{},{}\n", p.amplitude,
-                       p.frequency, m.stiffness, m.phase * kDegree, m.damping, m.storage, m.loss, m.force_amplitude,
-                       m.energy, p.cycles, p.converged ? 1 : 0);
+    out += fmt::format("{},{},{:.10g},{:.8g},{:.8g},{:.10g},{:.10g},{:.10g},{:.10g},{},{}\n", p.amplitude, p.frequency, m.stiffness,
+                       m.phase * kDegree, m.damping, m.storage, m.loss, m.force_amplitude, m.energy, p.cycles, p.converged ? 1 : 0);
   }
   return out;
 }
@@ -51,14 +47,21 @@ std::string harmonic_json(const ResultHeader& header, const std::vector<Harmonic
   j["source"] = header.source;
   j["protocol"] = "harmonic";
   j["definition"] = definition_name(definition);
-  j["units"] = {{"amplitude", "mm"}, {"frequency", "Hz"}, {"stiffness", "N/mm"}, {"phase", "deg"},
-                {"storage", "N/mm"}, {"loss", "N/mm"}, {"force_amplitude", "N"}, {"energy", "N*mm"}};
+  j["units"] = {{"amplitude", "mm"}, {"frequency", "Hz"}, {"stiffness", "N/mm"},    {"phase", "deg"},
+                {"storage", "N/mm"}, {"loss", "N/mm"},    {"force_amplitude", "N"}, {"energy", "N*mm"}};
   auto& list = j["points"] = nlohmann::ordered_json::array();
   for (const auto& p : points) {
     const auto& m = p.measures;
-    list.push_back({{"amplitude", p.amplitude}, {"frequency", p.frequency}, {"stiffness", m.stiffness},
-                    {"phase", m.phase * kDegree}, {"damping", m.damping}, {"storage", m.storage}, {"loss", m.loss},
-                    {"force_amplitude", m.force_amplitude}, {"energy", m.energy}, {"cycles", p.cycles},
+    list.push_back({{"amplitude", p.amplitude},
+                    {"frequency", p.frequency},
+                    {"stiffness", m.stiffness},
+                    {"phase", m.phase * kDegree},
+                    {"damping", m.damping},
+                    {"storage", m.storage},
+                    {"loss", m.loss},
+                    {"force_amplitude", m.force_amplitude},
+                    {"energy", m.energy},
+                    {"cycles", p.cycles},
                     {"converged", p.converged}});
   }
   return j.dump(2) + "\n";
@@ -143,7 +146,8 @@ void write_output(const std::string& path, const std::string& content) {
   }
   const fs::path temporary = target.parent_path() / fmt::format(".{}.rheo-tmp-{}", target.filename().string(), ::getpid());
   std::FILE* file = std::fopen(temporary.c_str(), "wb");
-  if (!file) throw DataError(fmt::format("{}: error: cannot write output ({}); check that the directory exists and is writable", path, std::strerror(errno)));
+  if (!file)
+    throw DataError(fmt::format("{}: error: cannot write output ({}); check that the directory exists and is writable", path, std::strerror(errno)));
   const bool written = std::fwrite(content.data(), 1, content.size(), file) == content.size();
   const bool closed = std::fclose(file) == 0;
   std::error_code ec;

@@ -93,9 +93,7 @@ struct PrescribedInerter {
             ((t - x) + (t - x0)) / ((x1 - x) * (x1 - x0))};
   }
   // Force of inertance b for an increment de over dt, after mean rates r0, r1.
-  ForceSlope operator()(double b, double dt, double r0, double r1, double de) const {
-    return {b * (w * de / dt + w0 * r0 + w1 * r1), b * w / dt};
-  }
+  ForceSlope operator()(double b, double dt, double r0, double r1, double de) const { return {b * (w * de / dt + w0 * r0 + w1 * r1), b * w / dt}; }
 };
 
 // Elastoplastic friction element (spring k in series with a slider slipping at |F| = fy),

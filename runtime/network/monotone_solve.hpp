@@ -17,8 +17,7 @@
 namespace rheo::runtime {
 
 template <class F>
-double solve_monotone(F&& f, double x0, double step_hint, double domain_lo, double domain_hi, double value_tolerance,
-                      bool leftmost = true) {
+double solve_monotone(F&& f, double x0, double step_hint, double domain_lo, double domain_hi, double value_tolerance, bool leftmost = true) {
   auto below = [&](double v) { return leftmost ? v < 0.0 : v <= 0.0; };
   ForceSlope at = f(x0);
   if (std::abs(at.force) <= value_tolerance) return x0;

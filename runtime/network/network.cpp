@@ -18,7 +18,7 @@ using lang::ElementKind;
 struct Proto {
   NodeKind kind = NodeKind::parallel;
   int param[3] = {-1, -1, -1};
-  int probe = -1;           // user element this leaf stands for
+  int probe = -1;                // user element this leaf stands for
   int fused_dashpot_probe = -1;  // a fused spring+dashpot pair: the dashpot's probe
   lang::SourceLocation where;    // of the element, for messages
   bool opaque = false;           // a block standing for one user element (a springpot chain)
@@ -70,9 +70,10 @@ struct Converter {
     for (int i = 0; i < 5; ++i) chain.param[i] = element.parameters[static_cast<std::size_t>(i)];
     auto value = [&](int slot) { return model.parameters[static_cast<std::size_t>(chain.param[slot])].value; };
     if (!(value(3) < value(4)))
-      throw ModelError(fmt::format("{}model '{}': springpot '{}' has f_low = {:g} Hz not below f_high = {:g} Hz; give a band "
-                                   "f_low < f_high covering the frequencies you simulate",
-                                   error_at(element.where), model.name, element.path, value(3), value(4)));
+      throw ModelError(
+          fmt::format("{}model '{}': springpot '{}' has f_low = {:g} Hz not below f_high = {:g} Hz; give a band "
+                      "f_low < f_high covering the frequencies you simulate",
+                      error_at(element.where), model.name, element.path, value(3), value(4)));
     chain.path = element.path;
     chain.modes = springpot_mode_count(value(3), value(4));
     chain.first_derived = static_cast<int>(model.parameters.size()) + topology.derived_parameters;
@@ -93,8 +94,14 @@ struct Converter {
 void fuse_spring_dashpot(Proto& series) {
   int spring = -1, dashpot = -1, springs = 0, dashpots = 0;
   for (std::size_t i = 0; i < series.children.size(); ++i) {
-    if (series.children[i].kind == NodeKind::spring) { spring = static_cast<int>(i); ++springs; }
-    if (series.children[i].kind == NodeKind::dashpot) { dashpot = static_cast<int>(i); ++dashpots; }
+    if (series.children[i].kind == NodeKind::spring) {
+      spring = static_cast<int>(i);
+      ++springs;
+    }
+    if (series.children[i].kind == NodeKind::dashpot) {
+      dashpot = static_cast<int>(i);
+      ++dashpots;
+    }
   }
   if (springs != 1 || dashpots != 1) return;
   Proto pair;
@@ -149,8 +156,7 @@ struct TreeBuilder {
     if (proto.probe >= 0) {
       auto& probe = topology.probes[static_cast<std::size_t>(proto.probe)];
       probe.index = index;
-      probe.source = proto.fused_dashpot_probe >= 0 ? ElementProbe::Source::tree_maxwell_spring
-                                                    : ElementProbe::Source::tree_node;
+      probe.source = proto.fused_dashpot_probe >= 0 ? ElementProbe::Source::tree_maxwell_spring : ElementProbe::Source::tree_node;
       if (proto.fused_dashpot_probe >= 0) {
         auto& dashpot = topology.probes[static_cast<std::size_t>(proto.fused_dashpot_probe)];
         dashpot.index = index;
@@ -240,18 +246,18 @@ struct PlacementCheck {
   double value(const Proto& p) const { return model.parameters[static_cast<std::size_t>(p.param[0])].value; }
 
   [[noreturn]] void gap_error(const Proto& p, const char* where) const {
-    throw ModelError(fmt::format(
-        "{}model '{}': gap '{}' {}; a gap must be in series with a compliant element (a spring, yeoh, dashpot, maxwell, "
-        "friction, bouc_wen or quadratic_dashpot): write series {{ gap {} (width = {:g} mm); spring (k = ...) }}",
-        error_at(p.where), model.name, path(p), where, path(p), value(p)));
+    throw ModelError(
+        fmt::format("{}model '{}': gap '{}' {}; a gap must be in series with a compliant element (a spring, yeoh, dashpot, maxwell, "
+                    "friction, bouc_wen or quadratic_dashpot): write series {{ gap {} (width = {:g} mm); spring (k = ...) }}",
+                    error_at(p.where), model.name, path(p), where, path(p), value(p)));
   }
   [[noreturn]] void inerter_error(const Proto& p) const {
-    throw ModelError(fmt::format(
-        "{}model '{}': inerter '{}' is connected to the drive through sliders, gaps or inerters only (or parallel "
-        "blocks holding one), so a change of the drive velocity while they hold would be an impact (an unbounded "
-        "force); put a compliant element (a spring, dashpot, maxwell, ...) in series with it, e.g. "
-        "series {{ spring (k = ...); inerter {} (b = {:g} N*s^2/mm) }}, or place it directly in the model's parallel block",
-        error_at(p.where), model.name, path(p), path(p), value(p)));
+    throw ModelError(
+        fmt::format("{}model '{}': inerter '{}' is connected to the drive through sliders, gaps or inerters only (or parallel "
+                    "blocks holding one), so a change of the drive velocity while they hold would be an impact (an unbounded "
+                    "force); put a compliant element (a spring, dashpot, maxwell, ...) in series with it, e.g. "
+                    "series {{ spring (k = ...); inerter {} (b = {:g} N*s^2/mm) }}, or place it directly in the model's parallel block",
+                    error_at(p.where), model.name, path(p), path(p), value(p)));
   }
 
   void visit(const Proto& p, bool driven, bool root_level) const {
@@ -341,7 +347,10 @@ Network Network::compile(const lang::CheckedModel& model) {
         topology->dashpots.push_back(b.param[0]);
         break;
       case NodeKind::maxwell:
-        if (b.fused_dashpot_probe >= 0) { trees.push_back(&b); break; }
+        if (b.fused_dashpot_probe >= 0) {
+          trees.push_back(&b);
+          break;
+        }
         group(ElementProbe::Source::root_maxwell, static_cast<int>(topology->maxwells.size()));
         topology->maxwells.push_back({b.param[0], b.param[1]});
         break;
@@ -354,7 +363,10 @@ Network Network::compile(const lang::CheckedModel& model) {
         topology->sliders.push_back(b.param[0]);
         break;
       case NodeKind::parallel:
-        if (!b.opaque) { trees.push_back(&b); break; }
+        if (!b.opaque) {
+          trees.push_back(&b);
+          break;
+        }
         group(ElementProbe::Source::root_springpot, static_cast<int>(topology->maxwells.size()));
         topology->probes[static_cast<std::size_t>(b.probe)].count = static_cast<int>(b.children.size());
         for (const auto& mode : b.children) topology->maxwells.push_back({mode.param[0], mode.param[1]});
@@ -386,10 +398,10 @@ void Network::derive() {
   for (const auto& chain : t.springpots) {
     auto at = [&](int slot) { return parameters_[static_cast<std::size_t>(chain.param[slot])]; };
     if (!(at(3) < at(4)))  // compile() checked the written values: these are a fit's, within the bounds
-      throw ModelError(fmt::format("{}model '{}': springpot '{}' would have f_low = {:g} Hz not below f_high = {:g} Hz; give f_low and "
-                                   "f_high bounds that do not overlap",
-                                   error_at(model_->parameters[static_cast<std::size_t>(chain.param[3])].where), model_->name,
-                                   chain.path, at(3), at(4)));
+      throw ModelError(
+          fmt::format("{}model '{}': springpot '{}' would have f_low = {:g} Hz not below f_high = {:g} Hz; give f_low and "
+                      "f_high bounds that do not overlap",
+                      error_at(model_->parameters[static_cast<std::size_t>(chain.param[3])].where), model_->name, chain.path, at(3), at(4)));
     const auto modes = static_cast<std::size_t>(chain.modes);
     const std::span<double> stiffness(derived_.data() + (chain.first_derived - own), modes);
     springpot_modes({at(0), at(1), at(2), at(3), at(4)}, stiffness, {stiffness.data() + modes, modes});
@@ -399,8 +411,7 @@ void Network::derive() {
 
 Network Network::with_parameters(const std::vector<double>& values) const {
   if (values.size() != parameters_.size())
-    throw std::logic_error(fmt::format("model '{}' has {} parameters, {} values given", model_->name,
-                                       parameters_.size(), values.size()));
+    throw std::logic_error(fmt::format("model '{}' has {} parameters, {} values given", model_->name, parameters_.size(), values.size()));
   Network copy = *this;
   // Parameters are stored in dependency order by the checker only for literals; evaluate
   // derived ones repeatedly until stable (chains are short and acyclic).
@@ -424,23 +435,22 @@ Network Network::with_parameters(const std::vector<double>& values) const {
 
 std::string Network::describe() const {
   const Topology& t = *topology_;
-  std::string out = fmt::format("model {}: {} parameters ({} free), {} elements\n", model_->name, parameters_.size(),
-                                [&] {
-                                  int n = 0;
-                                  for (const auto& p : model_->parameters) n += p.free ? 1 : 0;
-                                  return n;
-                                }(),
-                                t.probes.size());
+  std::string out = fmt::format(
+      "model {}: {} parameters ({} free), {} elements\n", model_->name, parameters_.size(),
+      [&] {
+        int n = 0;
+        for (const auto& p : model_->parameters) n += p.free ? 1 : 0;
+        return n;
+      }(),
+      t.probes.size());
   out += fmt::format("  nodes: driven terminal, ground, {} internal\n", t.internal_nodes);
-  out += fmt::format("  root branches: {} spring, {} yeoh, {} dashpot, {} maxwell, {} friction, {} slider, {} subtree\n",
-                     t.springs.size(), t.yeohs.size(), t.dashpots.size(), t.maxwells.size(), t.frictions.size(),
-                     t.sliders.size(), t.subtrees.size());
+  out += fmt::format("  root branches: {} spring, {} yeoh, {} dashpot, {} maxwell, {} friction, {} slider, {} subtree\n", t.springs.size(),
+                     t.yeohs.size(), t.dashpots.size(), t.maxwells.size(), t.frictions.size(), t.sliders.size(), t.subtrees.size());
   for (const auto& chain : t.springpots)
-    out += fmt::format("  springpot {}: {} Maxwell modes over {:g} .. {:g} Hz\n", chain.path, chain.modes,
-                       parameter(chain.param[3]), parameter(chain.param[4]));
+    out += fmt::format("  springpot {}: {} Maxwell modes over {:g} .. {:g} Hz\n", chain.path, chain.modes, parameter(chain.param[3]),
+                       parameter(chain.param[4]));
   out += fmt::format("  state variables: {}\n", t.state_size);
-  out += fmt::format("  linear: {}, force jumps with rate: {}\n", t.is_linear ? "yes" : "no",
-                     t.has_rate_jump ? "yes" : "no");
+  out += fmt::format("  linear: {}, force jumps with rate: {}\n", t.is_linear ? "yes" : "no", t.has_rate_jump ? "yes" : "no");
   return out;
 }
 

@@ -40,7 +40,18 @@
 namespace rheo::runtime {
 
 enum class NodeKind : std::uint8_t {
-  spring, yeoh, dashpot, maxwell, friction, slider, inerter, quadratic_dashpot, gap, bouc_wen, parallel, series
+  spring,
+  yeoh,
+  dashpot,
+  maxwell,
+  friction,
+  slider,
+  inerter,
+  quadratic_dashpot,
+  gap,
+  bouc_wen,
+  parallel,
+  series
 };
 
 // A node of a subtree below the root. Leaves carry parameter indices; blocks carry children.
@@ -54,7 +65,7 @@ struct TreeNode {
   int first_child = 0;  // into Topology::children
   int child_count = 0;
   int param[3] = {-1, -1, -1};
-  int state = -1;             // offset of (e, F, ...) in State::values
+  int state = -1;  // offset of (e, F, ...) in State::values
   int slots = 2;
   bool rigid_when_stuck = false;  // force is set-valued at zero elongation rate (sliders)
   bool drive_prescribed = false;  // an inerter in the root block: its elongation is the drive
@@ -72,11 +83,16 @@ struct ElementProbe {
   std::string path;
   lang::ElementKind kind;
   enum class Source : std::uint8_t {
-    root_spring, root_yeoh, root_dashpot, root_maxwell, root_friction, root_slider,
-    root_springpot,       // `count` consecutive root Maxwell elements from `index`
-    tree_node,            // a subtree node: its (e, F) slots
-    tree_maxwell_spring,  // the spring of a fused spring+dashpot pair: e = F/k
-    tree_maxwell_dashpot, // the dashpot of a fused pair: e = e_pair - F/k
+    root_spring,
+    root_yeoh,
+    root_dashpot,
+    root_maxwell,
+    root_friction,
+    root_slider,
+    root_springpot,        // `count` consecutive root Maxwell elements from `index`
+    tree_node,             // a subtree node: its (e, F) slots
+    tree_maxwell_spring,   // the spring of a fused spring+dashpot pair: e = F/k
+    tree_maxwell_dashpot,  // the dashpot of a fused pair: e = e_pair - F/k
   } source;
   int index = 0;  // into the root group or Topology::nodes
   int count = 1;
@@ -94,22 +110,22 @@ struct SpringpotChain {
 
 struct Topology {
   // Root parallel block, grouped by kind; entries are parameter indices.
-  std::vector<int> springs;              // k
-  std::vector<std::array<int, 3>> yeohs; // D10, D20, D30
-  std::vector<int> dashpots;             // c
+  std::vector<int> springs;                   // k
+  std::vector<std::array<int, 3>> yeohs;      // D10, D20, D30
+  std::vector<int> dashpots;                  // c
   std::vector<std::array<int, 2>> maxwells;   // k, c
   std::vector<std::array<int, 2>> frictions;  // k, fy
-  std::vector<int> sliders;              // fy
-  std::vector<int> subtrees;             // node indices of subtree roots
+  std::vector<int> sliders;                   // fy
+  std::vector<int> subtrees;                  // node indices of subtree roots
 
   std::vector<TreeNode> nodes;
   std::vector<int> children;
   std::vector<ElementProbe> probes;  // one per element the user wrote, in source order
   std::vector<SpringpotChain> springpots;
-  int derived_parameters = 0;        // springpot modes, indexed after the model's parameters
+  int derived_parameters = 0;  // springpot modes, indexed after the model's parameters
 
-  int internal_nodes = 0;  // junctions inside series chains
-  int state_size = 0;      // maxwell F, friction F, slider F, then TreeNode::slots per tree node
+  int internal_nodes = 0;                // junctions inside series chains
+  int state_size = 0;                    // maxwell F, friction F, slider F, then TreeNode::slots per tree node
   std::vector<StateScale> state_scales;  // one per slot
   int maxwell_state() const { return 0; }
   int friction_state() const { return static_cast<int>(maxwells.size()); }
@@ -118,13 +134,13 @@ struct Topology {
   // The force can jump with the drive rate: a dashpot or quadratic_dashpot with nothing in
   // series but members rigid to a rate jump (sliders, gaps, inerters).
   bool has_rate_jump = false;
-  bool is_linear = false;      // only springs, dashpots, Maxwell elements and inerters
+  bool is_linear = false;  // only springs, dashpots, Maxwell elements and inerters
 };
 
 // Numbers derived from parameter values, laid out per root group (flat arrays for the kernels).
 struct Coefficients {
-  double spring_k = 0.0;                    // sum of root spring stiffnesses [N/mm]
-  double dashpot_c = 0.0;                   // sum of root dashpot coefficients [N*s/mm]
+  double spring_k = 0.0;   // sum of root spring stiffnesses [N/mm]
+  double dashpot_c = 0.0;  // sum of root dashpot coefficients [N*s/mm]
   std::vector<double> yeoh_d10, yeoh_d20, yeoh_d30;
   std::vector<double> maxwell_k, maxwell_c;
   std::vector<double> friction_k, friction_fy;

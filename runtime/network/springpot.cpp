@@ -15,9 +15,7 @@ RelaxationRange relaxation_range(double f_low, double f_high) {
   return {1.0 / (2.0 * std::numbers::pi * f_high) / widen, widen / (2.0 * std::numbers::pi * f_low)};
 }
 
-int interior_modes(const RelaxationRange& r) {
-  return static_cast<int>(std::ceil(kSpringpotModesPerDecade * std::log10(r.hi / r.lo) - 1e-9));
-}
+int interior_modes(const RelaxationRange& r) { return static_cast<int>(std::ceil(kSpringpotModesPerDecade * std::log10(r.hi / r.lo) - 1e-9)); }
 
 }  // namespace
 

@@ -35,8 +35,8 @@ inline constexpr double kSpringpotModesPerDecade = 4.0;
 inline constexpr double kSpringpotMarginDecades = 1.5;
 
 struct SpringpotParameters {
-  double k, alpha, tau;    // N/mm, -, s
-  double f_low, f_high;    // Hz, the band where the approximation holds
+  double k, alpha, tau;  // N/mm, -, s
+  double f_low, f_high;  // Hz, the band where the approximation holds
 };
 
 // Number of Maxwell elements of the chain for a band (interior modes + the two tails).

@@ -33,20 +33,16 @@ struct CycleScales {
 };
 
 // Largest change of any state variable over a cycle, relative to its scale.
-double cycle_change(const Topology& t, const std::vector<double>& start, const std::vector<double>& end,
-                    const CycleScales& scales) {
+double cycle_change(const Topology& t, const std::vector<double>& start, const std::vector<double>& end, const CycleScales& scales) {
   double change = 0.0;
-  for (std::size_t i = 0; i < start.size(); ++i)
-    change = std::max(change, std::abs(end[i] - start[i]) / scales.of(t.state_scales[i]));
+  for (std::size_t i = 0; i < start.size(); ++i) change = std::max(change, std::abs(end[i] - start[i]) / scales.of(t.state_scales[i]));
   return change;
 }
 
 // Whether the cycle-to-cycle change contracts at a steady geometric rate: the last two rates
 // agree within 5 % and lie in [0.3, 0.999] (slower than that a skip would be too far to trust;
 // faster, a few cycles finish anyway).
-bool steady_contraction(double rate, double previous_rate) {
-  return rate >= 0.3 && rate <= 0.999 && std::abs(rate - previous_rate) <= 0.05 * rate;
-}
+bool steady_contraction(double rate, double previous_rate) { return rate >= 0.3 && rate <= 0.999 && std::abs(rate - previous_rate) <= 0.05 * rate; }
 
 // A slow mode (a Maxwell element with tau >> period in a subtree that starts at rest) moves the
 // end-of-cycle state by d_n = s_n - s_{n-1} with d_{n+1} = rho d_n, so the periodic state is
@@ -60,12 +56,10 @@ void skip_geometric_tail(const std::vector<double>& cycle_start, double rho, std
 }  // namespace
 
 bool uses_closed_form(const Network& network, const HarmonicOptions& options) {
-  return options.steady_state != SteadyState::time_stepping && options.solver != SolverChoice::sundials &&
-         has_closed_form_periodic_state(network);
+  return options.steady_state != SteadyState::time_stepping && options.solver != SolverChoice::sundials && has_closed_form_periodic_state(network);
 }
 
-HarmonicPoint simulate_harmonic_point(const Network& network, double amplitude, double frequency,
-                                      const HarmonicOptions& options) {
+HarmonicPoint simulate_harmonic_point(const Network& network, double amplitude, double frequency, const HarmonicOptions& options) {
   // The measures divide by u0 and the cycle by f: a zero would be NaN in every column.
   if (!(amplitude > 0.0 && std::isfinite(amplitude) && frequency > 0.0 && std::isfinite(frequency)))
     throw std::logic_error(fmt::format("model '{}': a harmonic point needs a positive, finite amplitude and frequency, got {} mm and {} Hz",
@@ -73,10 +67,10 @@ HarmonicPoint simulate_harmonic_point(const Network& network, double amplitude, 
   if (uses_closed_form(network, options)) return closed_form_harmonic_point(network, amplitude, frequency, options.definition);
   if (uses_sundials(network, options.solver)) return dae_harmonic_point(network, amplitude, frequency, options);
   if (options.steady_state == SteadyState::closed_form)
-    throw std::logic_error(fmt::format(
-        "model '{}' has non-linear elements inside nested series/parallel blocks, or quadratic_dashpot, gap or bouc_wen elements, "
-        "which have no closed-form periodic state; use steady_state = time_stepping (or auto)",
-        network.model().name));
+    throw std::logic_error(
+        fmt::format("model '{}' has non-linear elements inside nested series/parallel blocks, or quadratic_dashpot, gap or bouc_wen elements, "
+                    "which have no closed-form periodic state; use steady_state = time_stepping (or auto)",
+                    network.model().name));
   const int n = options.steps_per_cycle;
   const double period = 1.0 / frequency;
   const double dt = period / n;
@@ -145,8 +139,7 @@ HarmonicPoint simulate_harmonic_point(const Network& network, double amplitude, 
 }
 
 std::vector<HarmonicPoint> simulate_harmonic_grid(const Network& network, const std::vector<double>& amplitudes,
-                                                  const std::vector<double>& frequencies,
-                                                  const HarmonicOptions& options) {
+                                                  const std::vector<double>& frequencies, const HarmonicOptions& options) {
   std::vector<HarmonicPoint> points(amplitudes.size() * frequencies.size());
   parallel_for(points.size(), options.threads, [&](std::size_t i) {
     points[i] = simulate_harmonic_point(network, amplitudes[i / frequencies.size()], frequencies[i % frequencies.size()], options);

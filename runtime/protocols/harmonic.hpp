@@ -33,12 +33,10 @@ bool uses_closed_form(const Network& network, const HarmonicOptions& options);
 
 // Throws std::logic_error unless amplitude and frequency are positive and finite (the
 // language and data readers refuse others at their file:line:col first).
-HarmonicPoint simulate_harmonic_point(const Network& network, double amplitude, double frequency,
-                                      const HarmonicOptions& options);
+HarmonicPoint simulate_harmonic_point(const Network& network, double amplitude, double frequency, const HarmonicOptions& options);
 
 // Amplitude-major order (all frequencies of the first amplitude first), as in the data files.
 std::vector<HarmonicPoint> simulate_harmonic_grid(const Network& network, const std::vector<double>& amplitudes,
-                                                  const std::vector<double>& frequencies,
-                                                  const HarmonicOptions& options);
+                                                  const std::vector<double>& frequencies, const HarmonicOptions& options);
 
 }  // namespace rheo::runtime

@@ -10,7 +10,6 @@ namespace rheo::runtime {
 
 // Simulates the drive from rest; sample 0 is the rest state. With `elements`, records every
 // element's force and elongation.
-History run_history(const Network& network, const Drive& drive, bool elements,
-                    SolverChoice solver = SolverChoice::automatic);
+History run_history(const Network& network, const Drive& drive, bool elements, SolverChoice solver = SolverChoice::automatic);
 
 }  // namespace rheo::runtime

@@ -31,9 +31,10 @@ std::string yeoh_softening_note(const Network& network, double reach) {
     const YeohLaw law{network.parameter(y[0]), network.parameter(y[1]), network.parameter(y[2])};
     const double e = law.softening_elongation();
     if (e < reach)
-      note += fmt::format("warning: yeoh '{}' softens to zero tangent stiffness at |e| = {:.6g} mm (eq. 3.3) and the drive reaches "
-                          "{:g} mm: its force falls beyond that; {}\n",
-                          probe.path, e, reach, YeohLaw::monotone_advice);
+      note += fmt::format(
+          "warning: yeoh '{}' softens to zero tangent stiffness at |e| = {:.6g} mm (eq. 3.3) and the drive reaches "
+          "{:g} mm: its force falls beyond that; {}\n",
+          probe.path, e, reach, YeohLaw::monotone_advice);
   }
   return note;
 }
@@ -83,13 +84,15 @@ HarmonicOptions harmonic_options(const lang::HarmonicSettings& s, int threads) {
 void require_consistent(const RunContext& c, const HarmonicOptions& options) {
   const lang::SourceLocation& where = c.protocol.where;
   if (options.steady_state == SteadyState::closed_form && options.solver == SolverChoice::sundials)
-    throw UsageError(fmt::format("{}:{}:{}: steady_state = closed_form and the SUNDIALS solver exclude each other; "
-                                 "drop one (solver = fixed with closed_form, or steady_state = auto)",
-                                 where.file, where.line, where.column));
+    throw UsageError(
+        fmt::format("{}:{}:{}: steady_state = closed_form and the SUNDIALS solver exclude each other; "
+                    "drop one (solver = fixed with closed_form, or steady_state = auto)",
+                    where.file, where.line, where.column));
   if (options.steady_state == SteadyState::closed_form && !has_closed_form_periodic_state(c.network))
-    throw UsageError(fmt::format("{}:{}:{}: steady_state = closed_form needs every non-linear element of model '{}' in its "
-                                 "parallel body, and no quadratic_dashpot, gap or bouc_wen: use steady_state = auto or time_stepping",
-                                 where.file, where.line, where.column, c.network.model().name));
+    throw UsageError(
+        fmt::format("{}:{}:{}: steady_state = closed_form needs every non-linear element of model '{}' in its "
+                    "parallel body, and no quadratic_dashpot, gap or bouc_wen: use steady_state = auto or time_stepping",
+                    where.file, where.line, where.column, c.network.model().name));
 }
 
 // The header line's description of how the grid's periodic states were found.
@@ -121,8 +124,8 @@ std::string harmonic_notes(const Network& network, const std::vector<HarmonicPoi
 ProtocolResult run(RunContext& c, const lang::HarmonicSettings& s) {
   const HarmonicOptions options = harmonic_options(s, c.threads);
   require_consistent(c, options);
-  require_within(static_cast<double>(s.amplitudes.size()) * static_cast<double>(s.frequencies.size()), lang::max_harmonic_points,
-                 c.protocol, "points (amplitudes x frequencies)", "split the grid over several protocols");
+  require_within(static_cast<double>(s.amplitudes.size()) * static_cast<double>(s.frequencies.size()), lang::max_harmonic_points, c.protocol,
+                 "points (amplitudes x frequencies)", "split the grid over several protocols");
   require_within(static_cast<double>(options.steps_per_cycle) * options.max_cycles, lang::max_steps_per_point, c.protocol,
                  "time steps per point (steps_per_cycle x cycles_max)", "lower steps_per_cycle or cycles_max");
   HarmonicGrid grid{simulate_harmonic_grid(c.network, s.amplitudes, s.frequencies, options), options.definition};
@@ -178,8 +181,7 @@ ProtocolResult run(RunContext& c, const lang::HistorySettings& s) {
 }
 
 ProtocolResult run(RunContext& c, const lang::StepSettings& s) {
-  require_within(std::ceil(s.duration / s.dt), lang::max_drive_samples, c.protocol, "samples (duration / dt)",
-                 "raise dt or shorten duration");
+  require_within(std::ceil(s.duration / s.dt), lang::max_drive_samples, c.protocol, "samples (duration / dt)", "raise dt or shorten duration");
   return history_run(c, s, step_relaxation(s.amplitude, s.rise, s.duration, s.dt),
                      fmt::format("step amplitude={:g} mm duration={:g} s", s.amplitude, s.duration));
 }

@@ -14,7 +14,6 @@ namespace rheo::runtime {
 
 // `source_file` is the .rheo path (history files are relative to its directory).
 // `threads`: harmonic grid points simulated at once (HarmonicOptions::threads).
-ProtocolResult run_protocol(const Network& network, const lang::Protocol& protocol, const std::string& source_file,
-                            int threads = 1);
+ProtocolResult run_protocol(const Network& network, const lang::Protocol& protocol, const std::string& source_file, int threads = 1);
 
 }  // namespace rheo::runtime

@@ -32,8 +32,8 @@ std::string dashpot(double x, double cy, bool quadratic) {
 
 std::string slider(double x, double cy, bool smooth) {
   std::string out = line(x, cy, x + 8, cy);
-  out += fmt::format("<rect x=\"{}\" y=\"{}\" width=\"16\" height=\"13\" rx=\"{}\" fill=\"#e6e6e6\"/>", coordinate(x + 8),
-                     coordinate(cy - 6.5), smooth ? 5 : 0);
+  out += fmt::format("<rect x=\"{}\" y=\"{}\" width=\"16\" height=\"13\" rx=\"{}\" fill=\"#e6e6e6\"/>", coordinate(x + 8), coordinate(cy - 6.5),
+                     smooth ? 5 : 0);
   out += line(x + 4, cy + 8.5, x + 30, cy + 8.5) + line(x + 30, cy + 8.5, x + 30, cy) + line(x + 30, cy, x + kSlider, cy);
   for (int i = 0; i < 4; ++i) out += line(x + 7 + 6 * i, cy + 8.5, x + 4 + 6 * i, cy + 12);
   return out;
@@ -41,8 +41,7 @@ std::string slider(double x, double cy, bool smooth) {
 
 std::string gap(double x, double cy) {
   return line(x, cy, x + 8, cy) + fmt::format("<path d=\"M{0} {1}h4v16h-4\" fill=\"none\"/>", coordinate(x + 4), coordinate(cy - 8)) +
-         fmt::format("<path d=\"M{0} {1}h-4v16h4\" fill=\"none\"/>", coordinate(x + 20), coordinate(cy - 8)) +
-         line(x + 16, cy, x + kGap, cy);
+         fmt::format("<path d=\"M{0} {1}h-4v16h4\" fill=\"none\"/>", coordinate(x + 20), coordinate(cy - 8)) + line(x + 16, cy, x + kGap, cy);
 }
 
 std::string inerter(double x, double cy) {
@@ -53,8 +52,7 @@ std::string inerter(double x, double cy) {
 }
 
 std::string springpot(double x, double cy) {
-  return line(x, cy, x + 5, cy) +
-         fmt::format("<path d=\"M{} {}l10 -8l10 8l-10 8z\" fill=\"#e6e6e6\"/>", coordinate(x + 5), coordinate(cy)) +
+  return line(x, cy, x + 5, cy) + fmt::format("<path d=\"M{} {}l10 -8l10 8l-10 8z\" fill=\"#e6e6e6\"/>", coordinate(x + 5), coordinate(cy)) +
          line(x + 25, cy, x + kSpringpot, cy);
 }
 
@@ -62,15 +60,19 @@ std::string springpot(double x, double cy) {
 
 double symbol_length(ElementKind kind) {
   switch (kind) {
-    case ElementKind::spring: case ElementKind::yeoh: return kSpring;
-    case ElementKind::dashpot: case ElementKind::quadratic_dashpot: return kDashpot;
+    case ElementKind::spring:
+    case ElementKind::yeoh: return kSpring;
+    case ElementKind::dashpot:
+    case ElementKind::quadratic_dashpot: return kDashpot;
     case ElementKind::maxwell: return kSpring + kJoin + kDashpot;
-    case ElementKind::friction: case ElementKind::bouc_wen: return kSpring + kJoin + kSlider;
+    case ElementKind::friction:
+    case ElementKind::bouc_wen: return kSpring + kJoin + kSlider;
     case ElementKind::slider: return kSlider;
     case ElementKind::inerter: return kInerter;
     case ElementKind::gap: return kGap;
     case ElementKind::springpot: return kSpringpot;
-    case ElementKind::parallel: case ElementKind::series: return 0;
+    case ElementKind::parallel:
+    case ElementKind::series: return 0;
   }
   return 0;
 }
@@ -90,7 +92,8 @@ std::string symbol_svg(ElementKind kind, double x, double cy) {
     case ElementKind::inerter: return inerter(x, cy);
     case ElementKind::gap: return gap(x, cy);
     case ElementKind::springpot: return springpot(x, cy);
-    case ElementKind::parallel: case ElementKind::series: return "";
+    case ElementKind::parallel:
+    case ElementKind::series: return "";
   }
   return "";
 }

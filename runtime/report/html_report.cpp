@@ -77,10 +77,9 @@ std::string parameter_table(const ReportContent& c) {
   for (const ParameterRow& r : c.parameters) {
     out += fmt::format("<tr{}><td><code>{}</code></td>", r.free ? " class=\"free\"" : "", escape(r.path));
     if (fitted)
-      out += fmt::format("<td class=\"num\">{}</td><td class=\"num\">{}</td><td>{}</td>", r.start ? number(*r.start) : "",
-                         number(r.value), r.free ? escape(r.standard_error) : "fixed");
-    else
-      out += fmt::format("<td class=\"num\">{}</td>", number(r.value));
+      out += fmt::format("<td class=\"num\">{}</td><td class=\"num\">{}</td><td>{}</td>", r.start ? number(*r.start) : "", number(r.value),
+                         r.free ? escape(r.standard_error) : "fixed");
+    else out += fmt::format("<td class=\"num\">{}</td>", number(r.value));
     out += fmt::format("<td>{}</td>{}</tr>\n", escape(r.unit), bounded ? fmt::format("<td>{}</td>", escape(r.bounds)) : "");
   }
   return out + "</table>\n";
@@ -93,14 +92,14 @@ std::string harmonic_section(const HarmonicComparison& h, std::size_t index) {
   const std::vector<Plot> plots = harmonic_plots(h, prefix);
   for (std::size_t k = 0; k < plots.size(); ++k)
     out += figure_html(kinds[k], render_svg(plots[k], false),
-                  h.measured() ? (h.has_baseline() ? "Markers: measured; lines: refined model; dashed: model before, at the measured points."
-                                                   : "Markers: measured; lines: model at the measured points.")
-                               : "Model at the simulated grid points.");
+                       h.measured() ? (h.has_baseline() ? "Markers: measured; lines: refined model; dashed: model before, at the measured points."
+                                                        : "Markers: measured; lines: model at the measured points.")
+                                    : "Model at the simulated grid points.");
   static const char* const map_kinds[] = {"residual-stiffness", "residual-phase", "residual-stiffness-before", "residual-phase-before"};
   const std::vector<ResidualMap> maps = residual_maps(h);
   for (std::size_t k = 0; k < maps.size(); ++k)
     out += figure_html(map_kinds[k], render_residual_map(maps[k], false),
-                  k % 2 == 0 ? "Red: model stiffer than measured; blue: softer." : "Red: model phase above measured; blue: below.");
+                       k % 2 == 0 ? "Red: model stiffer than measured; blue: softer." : "Red: model phase above measured; blue: below.");
   return out + "</div>\n";
 }
 
@@ -108,25 +107,26 @@ std::string history_section(const HistoryComparison& h, std::size_t index) {
   const std::string id = fmt::format("t{}", index + 1);
   return fmt::format("<h2 id=\"{}\">History: <code>{}</code></h2>\n<div class=\"figures\">\n{}</div>\n", id, escape(h.label),
                      figure_html("hysteresis", render_svg(hysteresis_plot(h, id + "-hysteresis"), false),
-                            h.measured() ? (h.has_baseline() ? "Markers: measured; line: refined model; dashed: model before; "
-                                                               "both driven by the measured displacement."
-                                                             : "Markers: measured; line: model driven by the measured displacement.")
-                                         : "Model response."));
+                                 h.measured() ? (h.has_baseline() ? "Markers: measured; line: refined model; dashed: model before; "
+                                                                    "both driven by the measured displacement."
+                                                                  : "Markers: measured; line: model driven by the measured displacement.")
+                                              : "Model response."));
 }
 
 }  // namespace
 
 std::string html_report(const ReportContent& c) {
-  std::string out = fmt::format("<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n"
-                                "<meta name=\"viewport\" content=\"width=device-width, initial-scale=1\">\n<title>{}</title>\n<style>{}</style>\n</head>\n"
-                                "<body>\n<h1>{}</h1>\n",
-                                escape(c.title), kStyle, escape(c.title));
+  std::string out = fmt::format(
+      "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n"
+      "<meta name=\"viewport\" content=\"width=device-width, initial-scale=1\">\n<title>{}</title>\n<style>{}</style>\n</head>\n"
+      "<body>\n<h1>{}</h1>\n",
+      escape(c.title), kStyle, escape(c.title));
   out += fmt::format("<p class=\"meta\">Model <code>{}</code> from <code>{}</code></p>\n<p class=\"meta\">{}</p>\n", escape(c.model),
                      escape(c.source), escape(c.origin));
   out += summary(c);
   out += "<h2 id=\"network\">Network</h2>\n" +
          figure_html("network", network_diagram_svg(c.network, "Network of model " + c.model, false),
-                "Series chains run left to right, parallel branches are stacked; ground on the left, the drive u(t) on the right.");
+                     "Series chains run left to right, parallel branches are stacked; ground on the left, the drive u(t) on the right.");
   out += parameter_table(c);
   for (std::size_t k = 0; k < c.harmonic.size(); ++k) out += harmonic_section(c.harmonic[k], k);
   for (std::size_t k = 0; k < c.histories.size(); ++k) out += history_section(c.histories[k], k);

@@ -107,8 +107,8 @@ std::string draw_block(const Element& e, const Box& box, double x, double y, boo
     }
     out += fmt::format("<line x1=\"{0}\" y1=\"{1}\" x2=\"{0}\" y2=\"{2}\" stroke-width=\"2.5\"/>", coordinate(inner_x), coordinate(first),
                        coordinate(last));
-    out += fmt::format("<line x1=\"{0}\" y1=\"{1}\" x2=\"{0}\" y2=\"{2}\" stroke-width=\"2.5\"/>", coordinate(inner_x + inner_w),
-                       coordinate(first), coordinate(last));
+    out += fmt::format("<line x1=\"{0}\" y1=\"{1}\" x2=\"{0}\" y2=\"{2}\" stroke-width=\"2.5\"/>", coordinate(inner_x + inner_w), coordinate(first),
+                       coordinate(last));
     out += wire(x, inner_x, cy) + wire(inner_x + inner_w, x + box.width, cy);
   }
   if (!root) out += "</g>\n";
@@ -140,8 +140,8 @@ std::string network_diagram_svg(const Element& root, const std::string& title, b
   const double right = x + box.width;
   out += wire(right, right + kTerminal - 14, cy);
   out += fmt::format("<path d=\"M{} {}l-8 -4v8z\" fill=\"#111\"/>", coordinate(right + kTerminal - 10), coordinate(cy));
-  out += fmt::format("<text x=\"{}\" y=\"{}\" text-anchor=\"end\" stroke=\"none\" fill=\"#111\">u(t)</text>\n",
-                     coordinate(right + kTerminal - 8), coordinate(cy - 10));
+  out += fmt::format("<text x=\"{}\" y=\"{}\" text-anchor=\"end\" stroke=\"none\" fill=\"#111\">u(t)</text>\n", coordinate(right + kTerminal - 8),
+                     coordinate(cy - 10));
   return out + "</g>\n</svg>\n";
 }
 

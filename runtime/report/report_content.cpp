@@ -54,10 +54,8 @@ ReportContent report_from_fit(const FitResult& r, const std::vector<FitDataSet>&
     row.standard_error = standard_error_of(r, j, parameters[i], r.network.parameter(r.free[j]));
   }
   for (std::size_t k = 0; k < data.size() && k < r.datasets.size(); ++k) {
-    if (data[k].is_harmonic())
-      content.harmonic.push_back(compare_harmonic(data[k].harmonic(), r.datasets[k].prediction.points));
-    else
-      content.histories.push_back(compare_history(data[k].history(), r.datasets[k].prediction.force));
+    if (data[k].is_harmonic()) content.harmonic.push_back(compare_harmonic(data[k].harmonic(), r.datasets[k].prediction.points));
+    else content.histories.push_back(compare_history(data[k].history(), r.datasets[k].prediction.force));
   }
   if (content.harmonic.size() > 1) content.notes.push_back(fmt::format("all harmonic data: phi (5.1) = {:.6g}, err (6.1) = {:.4e}", r.phi, r.err));
   content.notes.push_back(fmt::format("{} evaluations in {:.2f} s; {}", r.evaluations, r.wall_seconds,

@@ -57,7 +57,7 @@ struct ReportSection {
 };
 
 struct ReportContent {
-  std::string title;   // "rheo fit: specimen_d"
+  std::string title;  // "rheo fit: specimen_d"
   std::string model, source;
   std::string origin;  // what produced the results: "rheo fit, method exact, objective phi"
   lang::Element network;

@@ -31,8 +31,11 @@ Plot curves(const HarmonicComparison& g, const std::string& id, const std::strin
   const std::vector<double>& along = along_frequency ? g.frequency : g.amplitude;
   const std::vector<double>& keys = along_frequency ? g.amplitude : g.frequency;
   const double scale = stiffness ? 1.0 : kDegree;
-  Plot plot{id, title, {along_frequency ? "frequency [Hz]" : "amplitude [mm]", scale_for(along)},
-            {stiffness ? "dynamic stiffness [N/mm]" : "phase [deg]", Scale::linear}, {}};
+  Plot plot{id,
+            title,
+            {along_frequency ? "frequency [Hz]" : "amplitude [mm]", scale_for(along)},
+            {stiffness ? "dynamic stiffness [N/mm]" : "phase [deg]", Scale::linear},
+            {}};
   const std::vector<double> picked = curve_keys(keys);
   for (std::size_t c = 0; c < picked.size(); ++c) {
     std::vector<std::size_t> members;
@@ -109,8 +112,10 @@ Plot hysteresis_plot(const HistoryComparison& h, const std::string& id) {
   if (h.measured())
     plot.series.push_back({"measured", "measured", 0, SeriesStyle::markers, every(h.displacement, kMarkers), every(h.measured_force, kMarkers)});
   if (h.has_baseline())
-    plot.series.push_back({"model before", "model before", 2, SeriesStyle::dashed, every(h.displacement, kLinePoints), every(h.baseline_force, kLinePoints)});
-  plot.series.push_back({model, alone ? "history" : model, 1, SeriesStyle::line, every(h.displacement, kLinePoints), every(h.model_force, kLinePoints)});
+    plot.series.push_back(
+        {"model before", "model before", 2, SeriesStyle::dashed, every(h.displacement, kLinePoints), every(h.baseline_force, kLinePoints)});
+  plot.series.push_back(
+      {model, alone ? "history" : model, 1, SeriesStyle::line, every(h.displacement, kLinePoints), every(h.model_force, kLinePoints)});
   return plot;
 }
 

@@ -18,8 +18,7 @@ constexpr double kGridWidth = kWidth - kLeft - kRight, kGridHeight = kHeight - k
 // Distinct values in increasing order (equal within 1e-9 relative).
 std::vector<double> distinct(std::vector<double> v) {
   std::sort(v.begin(), v.end());
-  v.erase(std::unique(v.begin(), v.end(), [](double a, double b) { return std::abs(a - b) <= 1e-9 * std::max(std::abs(a), std::abs(b)); }),
-          v.end());
+  v.erase(std::unique(v.begin(), v.end(), [](double a, double b) { return std::abs(a - b) <= 1e-9 * std::max(std::abs(a), std::abs(b)); }), v.end());
   return v;
 }
 
@@ -88,10 +87,11 @@ std::string render_residual_map(const ResidualMap& map, bool standalone) {
   for (std::size_t i = 0; i < map.value.size() && i < map.amplitude.size() && i < map.frequency.size(); ++i) {
     const double x = kLeft + cw * static_cast<double>(index_of(frequencies, map.frequency[i]));
     const double y = kTop + kGridHeight - ch * static_cast<double>(index_of(amplitudes, map.amplitude[i]) + 1);
-    out += fmt::format("<rect class=\"cell\" x=\"{}\" y=\"{}\" width=\"{}\" height=\"{}\" fill=\"{}\" data-amplitude=\"{:g}\" "
-                       "data-frequency=\"{:g}\" data-value=\"{:.4g}\"><title>{:g} mm, {:g} Hz: {:+.3g} {}</title></rect>",
-                       coordinate(x), coordinate(y), coordinate(cw), coordinate(ch), diverging_color(map.value[i], limit), map.amplitude[i],
-                       map.frequency[i], map.value[i], map.amplitude[i], map.frequency[i], map.value[i], escape(map.unit));
+    out += fmt::format(
+        "<rect class=\"cell\" x=\"{}\" y=\"{}\" width=\"{}\" height=\"{}\" fill=\"{}\" data-amplitude=\"{:g}\" "
+        "data-frequency=\"{:g}\" data-value=\"{:.4g}\"><title>{:g} mm, {:g} Hz: {:+.3g} {}</title></rect>",
+        coordinate(x), coordinate(y), coordinate(cw), coordinate(ch), diverging_color(map.value[i], limit), map.amplitude[i], map.frequency[i],
+        map.value[i], map.amplitude[i], map.frequency[i], map.value[i], escape(map.unit));
   }
   out += "</g>\n<g class=\"tick-labels\" fill=\"#222\">";
   for (std::size_t j = 0; j < frequencies.size(); j += label_stride(frequencies.size(), kGridWidth, 36))

@@ -12,10 +12,10 @@
 namespace rheo::runtime::report {
 
 struct ResidualMap {
-  std::string title;  // "Stiffness residual"
-  std::string unit;   // of the values: "%", "deg"
+  std::string title;                                // "Stiffness residual"
+  std::string unit;                                 // of the values: "%", "deg"
   std::vector<double> amplitude, frequency, value;  // mm, Hz, in `unit`; one per point
-  double limit = 0.0;  // end of the colour scale; 0: color_scale_limit(value). Maps to compare share one.
+  double limit = 0.0;                               // end of the colour scale; 0: color_scale_limit(value). Maps to compare share one.
 };
 
 std::string render_residual_map(const ResidualMap& map, bool standalone);

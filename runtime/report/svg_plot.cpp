@@ -22,9 +22,7 @@ bool usable(double v, Scale scale) { return std::isfinite(v) && (scale == Scale:
 struct Range {
   double lo = 0.0, hi = 1.0;
   Scale scale = Scale::linear;
-  double fraction(double v) const {
-    return scale == Scale::log ? std::log(v / lo) / std::log(hi / lo) : (v - lo) / (hi - lo);
-  }
+  double fraction(double v) const { return scale == Scale::log ? std::log(v / lo) / std::log(hi / lo) : (v - lo) / (hi - lo); }
 };
 
 Range range_of(const Plot& plot, bool x_axis) {
@@ -47,9 +45,7 @@ Range range_of(const Plot& plot, bool x_axis) {
   return {lo - pad, hi + pad, scale};
 }
 
-std::vector<Tick> ticks_of(const Range& r) {
-  return r.scale == Scale::log ? log_ticks(r.lo, r.hi) : linear_ticks(r.lo, r.hi, 6);
-}
+std::vector<Tick> ticks_of(const Range& r) { return r.scale == Scale::log ? log_ticks(r.lo, r.hi) : linear_ticks(r.lo, r.hi, 6); }
 
 // The marker of palette index `color` centred on (x, y): circle, square, triangle or diamond
 // (index mod 4), so that groups stay apart in black-and-white print.
@@ -59,8 +55,9 @@ std::string marker(int color, double x, double y) {
     case 0: return fmt::format("M{} {}a{} {} 0 1 0 {} 0a{} {} 0 1 0 {} 0", coordinate(x - r), coordinate(y), r, r, 2 * r, r, r, -2 * r);
     case 1: return fmt::format("M{} {}h{}v{}h{}z", coordinate(x - r), coordinate(y - r), 2 * r, 2 * r, -2 * r);
     case 2: return fmt::format("M{} {}l{} {}h{}z", coordinate(x), coordinate(y - 1.2 * r), 1.2 * r, 2.1 * r, -2.4 * r);
-    default: return fmt::format("M{} {}l{} {}l{} {}l{} {}z", coordinate(x), coordinate(y - 1.3 * r), 1.3 * r, 1.3 * r, -1.3 * r,
-                                1.3 * r, -1.3 * r, -1.3 * r);
+    default:
+      return fmt::format("M{} {}l{} {}l{} {}l{} {}z", coordinate(x), coordinate(y - 1.3 * r), 1.3 * r, 1.3 * r, -1.3 * r, 1.3 * r, -1.3 * r,
+                         -1.3 * r);
   }
 }
 
@@ -178,8 +175,8 @@ Scale scale_for(const std::vector<double>& values) {
 std::string render_svg(const Plot& plot, bool standalone) {
   const Range xr = range_of(plot, true), yr = range_of(plot, false);
   std::string out = svg_open(kWidth, kHeight, standalone, plot.title);
-  out += fmt::format("<defs><clipPath id=\"clip-{}\"><rect x=\"{}\" y=\"{}\" width=\"{}\" height=\"{}\"/></clipPath></defs>\n",
-                     escape(plot.id), kLeft, kTop, kPlotWidth, kPlotHeight);
+  out += fmt::format("<defs><clipPath id=\"clip-{}\"><rect x=\"{}\" y=\"{}\" width=\"{}\" height=\"{}\"/></clipPath></defs>\n", escape(plot.id),
+                     kLeft, kTop, kPlotWidth, kPlotHeight);
   out += fmt::format("<rect width=\"{}\" height=\"{}\" fill=\"#fff\"/>\n", kWidth, kHeight);
   out += fmt::format("<text class=\"title\" x=\"{}\" y=\"21\" font-size=\"15\" font-weight=\"bold\">{}</text>\n", kLeft, escape(plot.title));
   out += axes_svg(plot, xr, yr);

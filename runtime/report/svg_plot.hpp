@@ -32,7 +32,7 @@ struct Series {
 };
 
 struct Plot {
-  std::string id;     // unique in the page: [A-Za-z0-9_-]
+  std::string id;  // unique in the page: [A-Za-z0-9_-]
   std::string title;
   Axis x, y;
   std::vector<Series> series;

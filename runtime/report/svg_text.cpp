@@ -29,11 +29,11 @@ std::string coordinate(double value) {
 
 std::string svg_open(double width, double height, bool standalone, std::string_view title) {
   // Inline SVG in HTML needs no namespace: the page then names no URL at all.
-  return fmt::format("{}<svg{} viewBox=\"0 0 {} {}\" width=\"{}\" height=\"{}\" "
-                     "role=\"img\" aria-label=\"{}\" font-family=\"Helvetica, Arial, sans-serif\" font-size=\"13\">\n",
-                     standalone ? "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n" : "",
-                     standalone ? " xmlns=\"http://www.w3.org/2000/svg\"" : "", coordinate(width), coordinate(height),
-                     coordinate(width), coordinate(height), escape(title));
+  return fmt::format(
+      "{}<svg{} viewBox=\"0 0 {} {}\" width=\"{}\" height=\"{}\" "
+      "role=\"img\" aria-label=\"{}\" font-family=\"Helvetica, Arial, sans-serif\" font-size=\"13\">\n",
+      standalone ? "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n" : "", standalone ? " xmlns=\"http://www.w3.org/2000/svg\"" : "",
+      coordinate(width), coordinate(height), coordinate(width), coordinate(height), escape(title));
 }
 
 const char* palette_color(int index) {

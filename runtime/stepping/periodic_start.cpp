@@ -120,8 +120,7 @@ void set_periodic_start(const Network& network, const StepPlan& plan, double amp
     const double k = c.friction_k[i], fy = c.friction_fy[i];
     state.values[static_cast<std::size_t>(t.friction_state()) + i] = amplitude > fy / k ? std::min(fy, k * amplitude - fy) : 0.0;
   }
-  for (std::size_t i = 0; i < c.slider_fy.size(); ++i)
-    state.values[static_cast<std::size_t>(t.slider_state()) + i] = -c.slider_fy[i];
+  for (std::size_t i = 0; i < c.slider_fy.size(); ++i) state.values[static_cast<std::size_t>(t.slider_state()) + i] = -c.slider_fy[i];
   const LinearisedSubtree subtree(network, plan.tree, z);
   for (int root : t.subtrees) {
     if (!subtree.supported(root)) continue;

@@ -32,8 +32,7 @@ double Simulator::step(const StepPlan& plan, const State& before, double u_next,
   double* y = after.values.data();
 
   double force = c.spring_k * u_next + plan.dashpot_c_over_dt * du;
-  for (std::size_t i = 0; i < c.yeoh_d10.size(); ++i)
-    force += YeohLaw{c.yeoh_d10[i], c.yeoh_d20[i], c.yeoh_d30[i]}.force(u_next);
+  for (std::size_t i = 0; i < c.yeoh_d10.size(); ++i) force += YeohLaw{c.yeoh_d10[i], c.yeoh_d20[i], c.yeoh_d30[i]}.force(u_next);
 
   const std::size_t nm = c.maxwell_k.size();
   const double* xm = x + t.maxwell_state();
@@ -71,8 +70,8 @@ double Simulator::step(const StepPlan& plan, const State& before, double u_next,
   return force;
 }
 
-void Simulator::element_outputs(const StepPlan& plan, const State& before, const State& after,
-                                std::vector<double>& force, std::vector<double>& elongation) const {
+void Simulator::element_outputs(const StepPlan& plan, const State& before, const State& after, std::vector<double>& force,
+                                std::vector<double>& elongation) const {
   const Topology& t = network_.topology();
   const Coefficients& c = network_.coefficients();
   force.resize(t.probes.size());

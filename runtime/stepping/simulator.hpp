@@ -30,7 +30,7 @@ struct State {
 
 // Constants of one step length.
 struct StepPlan {
-  double dt = 0.0;  // s
+  double dt = 0.0;                           // s
   std::vector<double> maxwell_a, maxwell_b;  // root Maxwell elements: F <- a F + b du
   double dashpot_c_over_dt = 0.0;            // N/mm
   TreeStepPlan tree;

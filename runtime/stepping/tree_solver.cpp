@@ -99,17 +99,16 @@ void TreeSolver::throw_softened(int node, double force) const {
   std::string path = "?";
   for (const ElementProbe& probe : topology_.probes)
     if (probe.source == ElementProbe::Source::tree_node && probe.index == node) path = probe.path;
-  throw NumericalError(fmt::format(
-      "model '{}': yeoh '{}' is asked to carry {:.6g} N, but its tangent stiffness 2 D10 + 12 D20 e^2 + 30 D30 e^4 reaches "
-      "zero at |e| = {:.6g} mm, where it carries its most, {:.6g} N (eq. 3.3); a softening spring in series cannot hold "
-      "a larger force (it would snap through). Keep the drive small enough that its elongation stays below that, or {}",
-      network_.model().name, path, force, law.softening_elongation(), coefficient(node), YeohLaw::monotone_advice));
+  throw NumericalError(
+      fmt::format("model '{}': yeoh '{}' is asked to carry {:.6g} N, but its tangent stiffness 2 D10 + 12 D20 e^2 + 30 D30 e^4 reaches "
+                  "zero at |e| = {:.6g} mm, where it carries its most, {:.6g} N (eq. 3.3); a softening spring in series cannot hold "
+                  "a larger force (it would snap through). Keep the drive small enough that its elongation stays below that, or {}",
+                  network_.model().name, path, force, law.softening_elongation(), coefficient(node), YeohLaw::monotone_advice));
 }
 
 bool steps_without_iteration(const Topology& topology) {
-  return std::all_of(topology.nodes.begin(), topology.nodes.end(), [](const TreeNode& n) {
-    return n.kind != NodeKind::series || n.linear || n.capped_linear || n.rigid_when_stuck;
-  });
+  return std::all_of(topology.nodes.begin(), topology.nodes.end(),
+                     [](const TreeNode& n) { return n.kind != NodeKind::series || n.linear || n.capped_linear || n.rigid_when_stuck; });
 }
 
 ForceSlope TreeSolver::inerter(int node, double de) const {
@@ -218,8 +217,7 @@ ForceSlope TreeSolver::inverse(int node, double force) const {
     }
     case NodeKind::quadratic_dashpot: return quadratic_dashpot_inverse(coefficient(node), force);
     case NodeKind::inerter: {
-      if (!n.drive_prescribed)
-        return InerterStep{coefficient(node), plan_.dt}.inverse(f_before(n), slot_before(n, 2), force);
+      if (!n.drive_prescribed) return InerterStep{coefficient(node), plan_.dt}.inverse(f_before(n), slot_before(n, 2), force);
       const ForceSlope at_rest = inerter(node, 0.0);  // linear in de
       return {(force - at_rest.force) / at_rest.slope, 1.0 / at_rest.slope};
     }

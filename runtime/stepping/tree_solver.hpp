@@ -40,7 +40,7 @@ struct Interval {
 
 // Per-step constants of subtree leaves (depend on dt).
 struct TreeStepPlan {
-  double dt = 0.0;                   // s
+  double dt = 0.0;  // s
   // Length [s] of the linear piece of the drive that the step begins (>= dt): dt except for the
   // harmonic protocol's midpoint probes (half a step along a piece of 2 dt).
   double piece = 0.0;

@@ -56,8 +56,8 @@ fs::path write(const std::string& name, const std::string& text) {
 rheo::test::BinaryRun read_csv(const std::string& command, const fs::path& csv) {
   if (command == "fit") {
     const auto model = write("fit.rheo", "model m { spring s (k = 100 N/mm in [1, 1000]) }\n");
-    return run_rheo(fmt::format("fit {} --data '{}' -o {} --max-evaluations 5 --starts 1", model.string(), csv.string(),
-                                (scratch() / "fitted.rheo").string()));
+    return run_rheo(
+        fmt::format("fit {} --data '{}' -o {} --max-evaluations 5 --starts 1", model.string(), csv.string(), (scratch() / "fitted.rheo").string()));
   }
   REQUIRE(command == "simulate");
   const auto model = write("history.rheo", "model m { spring s (k = 100 N/mm) }\nsimulate { history file = \"none.csv\" }\n");
@@ -89,7 +89,10 @@ TEST_CASE("csv: bytes that are not UTF-8 text and NUL bytes fail at their row:co
   const Case cases[] = {
       {"latin1_header.csv", "amplitude [mm],frequency [Hz],stiffness [N/mm],phase [\xb0]\n0.5,10,120,8\n", "fit",
        ":1:55: error: found byte 0xB0, which is not UTF-8; the file must be UTF-8 text"},
-      {"latin1_cell.csv", "time [s],displacement [mm]\n0,0\n0.1,0\xb7" "5\n", "simulate", ":3:6: error: found byte 0xB7, which is not UTF-8"},
+      {"latin1_cell.csv",
+       "time [s],displacement [mm]\n0,0\n0.1,0\xb7"
+       "5\n",
+       "simulate", ":3:6: error: found byte 0xB7, which is not UTF-8"},
       {"nul_cell.csv", "time [s],displacement [mm]\n0,0\n0.1,\0\n"s, "simulate", ":3:5: error: found a NUL byte"},
       {"utf16.csv", "\xff\xfet\0i\0m\0e\0"s, "fit", ":1:1: error: found byte 0xFF, which is not UTF-8"},
       {"control_cell.csv", "time [s],displacement [mm]\n0,0\n0.1,\x1b[2J\n", "simulate", ":3:5: error: '\xEF\xBF\xBD[2J' is not a number"},
@@ -188,8 +191,9 @@ TEST_CASE("hostile files through the binary: 10 MB of errors, invalid UTF-8, NUL
 
 TEST_CASE("a UTF-8 byte-order mark opening a .rheo file is ignored, by check, simulate and the fitted copy fit writes") {
   const std::string bom = "\xEF\xBB\xBF";
-  const auto file = write("bom.rheo", bom + "model m { spring s (k = 100 N/mm in [1, 1000]) }\n"
-                                            "simulate { harmonic frequency = 1 Hz, amplitude = 1 mm }\n");
+  const auto file = write("bom.rheo", bom +
+                                          "model m { spring s (k = 100 N/mm in [1, 1000]) }\n"
+                                          "simulate { harmonic frequency = 1 Hz, amplitude = 1 mm }\n");
   CHECK(run_rheo("check " + file.string()).code == 0);
   const auto simulated = run_rheo("simulate " + file.string() + " -o -");
   CHECK(simulated.code == 0);

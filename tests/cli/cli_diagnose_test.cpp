@@ -35,7 +35,8 @@ fs::path linear_model(const fs::path& dir) {
 TEST_CASE("rheo diagnose: names the stiffening, writes the refined model, the JSON summary, the report and the plot") {
   const fs::path dir = rheo::test::scratch_directory("diagnose");
   const fs::path model = linear_model(dir), refined = dir / "refined.rheo", html = dir / "diagnose.html", svg = dir / "loop.svg";
-  const auto r = run_rheo(fmt::format("diagnose {} --json -o {} --report {} --plot {}", model.string(), refined.string(), html.string(), svg.string()));
+  const auto r = run_rheo(
+      fmt::format("diagnose {} --json -o {} --report {} --plot {}", model.string(), refined.string(), html.string(), svg.string()));
   CAPTURE(r.err);
   REQUIRE(r.code == 0);
   const auto j = nlohmann::json::parse(r.out);

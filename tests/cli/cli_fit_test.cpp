@@ -85,9 +85,10 @@ fs::path truth_data() {
   const fs::path csv = scratch() / "truth.csv";
   if (fs::exists(csv)) return csv;
   const fs::path model = scratch() / "truth.rheo";
-  write_text(model, "model t {\n  spring e (k = 100 N/mm)\n  maxwell m (k = 50 N/mm, tau = 10 ms)\n  friction f (k = 200 N/mm, uy = 50 um)\n}\n"
-                    "simulate {\n  harmonic frequency = [1, 5, 20, 50] Hz, amplitude = [0.02, 0.05, 0.1, 0.3, 1.0] mm\n"
-                    "  output \"truth.csv\"\n}\n");
+  write_text(model,
+             "model t {\n  spring e (k = 100 N/mm)\n  maxwell m (k = 50 N/mm, tau = 10 ms)\n  friction f (k = 200 N/mm, uy = 50 um)\n}\n"
+             "simulate {\n  harmonic frequency = [1, 5, 20, 50] Hz, amplitude = [0.02, 0.05, 0.1, 0.3, 1.0] mm\n"
+             "  output \"truth.csv\"\n}\n");
   REQUIRE(run("simulate " + model.string()).code == 0);
   return csv;
 }
@@ -95,9 +96,10 @@ fs::path truth_data() {
 // The truth's structure with generic start values and bounds; no fit block.
 fs::path start_model() {
   const fs::path file = scratch() / "start.rheo";
-  write_text(file, "# generic start\nmodel t {\n  spring e (k = 300 N/mm in [1, 10000])\n"
-                   "  maxwell m (k = 100 N/mm in [1, 10000], tau = 3 ms in [0.01, 10000])\n"
-                   "  friction f (k = 100 N/mm in [1, 10000], uy = 20 um in [0.1, 10000])\n}\n");
+  write_text(file,
+             "# generic start\nmodel t {\n  spring e (k = 300 N/mm in [1, 10000])\n"
+             "  maxwell m (k = 100 N/mm in [1, 10000], tau = 3 ms in [0.01, 10000])\n"
+             "  friction f (k = 100 N/mm in [1, 10000], uy = 20 um in [0.1, 10000])\n}\n");
   return file;
 }
 
@@ -159,8 +161,8 @@ TEST_CASE("a model the fit's solver cannot simulate exits 3 naming the element, 
 }
 
 TEST_CASE("an output that cannot be written exits 4 before the search, with advice") {
-  const Run missing_dir = run(fmt::format("fit {} --data {} -o {} --json", start_model().string(), truth_data().string(),
-                                          (scratch() / "no_such_dir" / "x.rheo").string()));
+  const Run missing_dir = run(
+      fmt::format("fit {} --data {} -o {} --json", start_model().string(), truth_data().string(), (scratch() / "no_such_dir" / "x.rheo").string()));
   CHECK(missing_dir.code == 4);
   CHECK(contains(missing_dir.err, "no_such_dir does not exist; create it or choose another path"));
   CHECK(missing_dir.out.empty());  // no report: the fit never ran
@@ -233,8 +235,8 @@ TEST_CASE("Ctrl-C stops the fit with exit code 130, writes the best result so fa
   const fs::path out = scratch() / "interrupted.rheo", report = scratch() / "interrupted.json", messages = scratch() / "interrupted.err";
   fs::remove(out);
   // Many local searches: the run takes far longer than the wait below, whatever the machine.
-  const std::vector<std::string> arguments{RHEO_BINARY, "fit", example("specimen_d_fit.rheo"), "-o", out.string(),
-                                           "--max-evaluations", "1000000", "--starts", "100", "--json"};
+  const std::vector<std::string> arguments{
+      RHEO_BINARY, "fit", example("specimen_d_fit.rheo"), "-o", out.string(), "--max-evaluations", "1000000", "--starts", "100", "--json"};
   std::vector<char*> argv;
   for (const auto& a : arguments) argv.push_back(const_cast<char*>(a.c_str()));
   argv.push_back(nullptr);
@@ -289,12 +291,12 @@ TEST_CASE("Ctrl-C stops the fit with exit code 130, writes the best result so fa
 
 TEST_CASE("--yeoh-start writes the least-squares constants of the static loop's mean curve (eqs. 5.28-5.32)") {
   const fs::path out = scratch() / "yeoh_started.rheo";
-  const Run r = run(fmt::format("fit {} --yeoh-start {} --max-evaluations 1 -o {}", example("specimen_d_fit.rheo"),
-                                data("specimen_D_static.csv"), out.string()));
+  const Run r = run(
+      fmt::format("fit {} --yeoh-start {} --max-evaluations 1 -o {}", example("specimen_d_fit.rheo"), data("specimen_D_static.csv"), out.string()));
   REQUIRE(r.code == 0);
   CHECK(contains(r.err, "rubber.D10 = "));
-  const runtime::YeohConstants want = runtime::fit_yeoh_least_squares(runtime::mean_curve(
-      runtime::largest_loop(runtime::loop_samples_from_table(runtime::read_table(data("specimen_D_static.csv"))))));
+  const runtime::YeohConstants want = runtime::fit_yeoh_least_squares(
+      runtime::mean_curve(runtime::largest_loop(runtime::loop_samples_from_table(runtime::read_table(data("specimen_D_static.csv"))))));
   const lang::Program program = lang::load_program(out.string());
   const lang::CheckedModel* model = program.find_model("specimen_d");
   REQUIRE(model != nullptr);
@@ -323,8 +325,8 @@ TEST_CASE("--yeoh-start leaves fixed yeoh constants as written, so the fitted fi
   const std::string source = read_text(example("specimen_d_methods.rheo"));
   const fs::path file = scratch() / "fixed_shape.rheo", out = scratch() / "fixed_shape_fitted.rheo";
   write_text(file, source.substr(0, source.find("fit {")) + fmt::format("fit {{\n  data \"{}\"\n}}\n", data("specimen_D_harmonic.csv")));
-  const Run r = run(fmt::format("fit {} --yeoh-start {} --max-evaluations 1 -o {} --json", file.string(), data("specimen_D_static.csv"),
-                                out.string()));
+  const Run r = run(
+      fmt::format("fit {} --yeoh-start {} --max-evaluations 1 -o {} --json", file.string(), data("specimen_D_static.csv"), out.string()));
   REQUIRE(r.code == 0);
   CHECK(contains(r.err, "rubber.D20 is not free and keeps its value"));
   CHECK(contains(read_text(out), "D20 = -2.1094 N/mm^3, D30 = 0.0786 N/mm^5)"));
@@ -373,8 +375,9 @@ TEST_CASE("specimen D by the three methods: the exact method's err is the lowest
 TEST_CASE("the approximate and corrected methods on a nested model exit 2 naming the element and the method to use") {
   // A spring and a dashpot alone in series would be a Maxwell element; the slider makes it a subtree.
   const fs::path nested = scratch() / "nested.rheo";
-  write_text(nested, "model n {\n  spring e (k = 100 N/mm in [1, 1000])\n  series arm {\n    spring s (k = 50 N/mm in [1, 1000])\n"
-                     "    dashpot d (c = 0.5 N*s/mm in [0.01, 10])\n    slider cap (fy = 10 N)\n  }\n}\n");
+  write_text(nested,
+             "model n {\n  spring e (k = 100 N/mm in [1, 1000])\n  series arm {\n    spring s (k = 50 N/mm in [1, 1000])\n"
+             "    dashpot d (c = 0.5 N*s/mm in [0.01, 10])\n    slider cap (fy = 10 N)\n  }\n}\n");
   for (const std::string method : {"approximate", "corrected"}) {
     CAPTURE(method);
     const Run r = run(fmt::format("fit {} --data {} --method {}", nested.string(), truth_data().string(), method));

@@ -48,8 +48,9 @@ TEST_CASE("check: a valid file exits 0, an invalid one 3 with file:line:col and 
 }
 
 TEST_CASE("a network that cannot be simulated exits 3 from check and simulate, naming the element, and check prints no ok") {
-  const auto bad = write("gap.rheo", "model m {\n  spring s (k = 5 N/mm)\n  gap play (width = 0.2 mm)\n}\n"
-                                     "simulate { harmonic frequency = 1 Hz, amplitude = 0.1 mm }\n");
+  const auto bad = write("gap.rheo",
+                         "model m {\n  spring s (k = 5 N/mm)\n  gap play (width = 0.2 mm)\n}\n"
+                         "simulate { harmonic frequency = 1 Hz, amplitude = 0.1 mm }\n");
   const Result check = run("check " + bad.string());
   CHECK(check.code == 3);
   CHECK(check.output.find("gap.rheo:3:3: error: model 'm': gap 'play'") != std::string::npos);
@@ -76,8 +77,7 @@ TEST_CASE("check raises the integrator's errors exactly where a run of the file 
     CHECK(check.code == (fails ? 3 : 0));
     CHECK(simulate.code == check.code);
     if (fails)
-      CHECK(check.output.find("inerter.rheo:3:3: error: inerter 'i' of model 'm' sits directly between the terminal and ground") !=
-            std::string::npos);
+      CHECK(check.output.find("inerter.rheo:3:3: error: inerter 'i' of model 'm' sits directly between the terminal and ground") != std::string::npos);
   }
 }
 
@@ -102,7 +102,8 @@ TEST_CASE("simulate with overrides writes to standard output") {
 
 TEST_CASE("data errors exit 4 and leave no output") {
   const auto history = write("h.csv", "time [s],displacement [mm]\n0,0\n0.1,oops\n");
-  const auto model = write("h.rheo", fmt::format("model m {{ spring s (k = 5) }}\nsimulate {{ history file = \"{}\"\n output \"h_out.csv\" }}\n", history.string()));
+  const auto model = write(
+      "h.rheo", fmt::format("model m {{ spring s (k = 5) }}\nsimulate {{ history file = \"{}\"\n output \"h_out.csv\" }}\n", history.string()));
   const Result r = run("simulate " + model.string());
   CHECK(r.code == 4);
   CHECK(r.output.find("h.csv:3:5: error:") != std::string::npos);
@@ -110,19 +111,22 @@ TEST_CASE("data errors exit 4 and leave no output") {
   // A later protocol's bad data leaves the earlier protocol's existing output as it was.
   const auto earlier = write("first_out.csv", "earlier result\n");
   const auto two = write("two.rheo", fmt::format("model m {{ spring s (k = 5) }}\nsimulate {{\n harmonic frequency = 1 Hz, amplitude = 1 mm\n"
-                                                 " output \"first_out.csv\"\n history file = \"{}\"\n output \"h_out.csv\" }}\n", history.string()));
+                                                 " output \"first_out.csv\"\n history file = \"{}\"\n output \"h_out.csv\" }}\n",
+                                                 history.string()));
   CHECK(run("simulate " + two.string()).code == 4);
   std::ifstream kept(earlier);
   std::string line;
   std::getline(kept, line);
   CHECK(line == "earlier result");
   // So does a later protocol's, or the report's, unwritable destination: found before anything runs.
-  const auto bad_path = write("bad_path.rheo", "model m { spring s (k = 5) }\nsimulate {\n harmonic frequency = 1 Hz, amplitude = 1 mm\n"
-                                               " output \"first_out.csv\"\n step amplitude = 1 mm, duration = 1 s\n output \"no_dir/x.csv\" }\n");
+  const auto bad_path = write("bad_path.rheo",
+                              "model m { spring s (k = 5) }\nsimulate {\n harmonic frequency = 1 Hz, amplitude = 1 mm\n"
+                              " output \"first_out.csv\"\n step amplitude = 1 mm, duration = 1 s\n output \"no_dir/x.csv\" }\n");
   const Result path_run = run("simulate " + bad_path.string());
   CHECK(path_run.code == 4);
   CHECK(path_run.output.find("no_dir does not exist; create it or choose another path") != std::string::npos);
-  const Result report_run = run("simulate " + two.string() + " --protocol harmonic --report " + (earlier.parent_path() / "no_dir" / "r.html").string());
+  const Result report_run = run("simulate " + two.string() + " --protocol harmonic --report " +
+                                (earlier.parent_path() / "no_dir" / "r.html").string());
   CHECK(report_run.code == 4);
   CHECK(report_run.output.find("r.html: error: the output's directory") != std::string::npos);
   std::ifstream still(earlier);

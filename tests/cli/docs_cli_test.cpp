@@ -86,8 +86,9 @@ std::vector<std::string> commands() {
 }  // namespace
 
 TEST_CASE("docs/cli.md: the parsing helpers read CLI11 help and the synopsis") {
-  const std::string help = "Options:\n  -h,--help                   Print\n  --solver TEXT:{a,b}\n"
-                           "                              wrapped -description\n  -o,--output TEXT  Write\n\nFooter\n";
+  const std::string help =
+      "Options:\n  -h,--help                   Print\n  --solver TEXT:{a,b}\n"
+      "                              wrapped -description\n  -o,--output TEXT  Write\n\nFooter\n";
   CHECK(section_entries(help, "Options:") == std::vector<std::string>{"-h,--help", "--solver", "-o,--output"});
   const std::string doc = "# x\n\n```\nrheo a FILE [--b]\n       [--c N]\nrheo ab FILE [--d]\n```\n";
   CHECK(synopsis(doc, "a") == "rheo a FILE [--b]\n       [--c N]\n");

@@ -18,8 +18,8 @@ std::string data(const std::string& name) { return fmt::format("{}/{}", RHEO_DAT
 TEST_CASE("rheo report: specimen D against its harmonic and static data") {
   const auto dir = rheo::test::scratch_directory("report");
   const auto html = dir / "specimen_d.html", svg = dir / "specimen_d.svg";
-  const auto r = run_rheo(fmt::format("report {} --data {} --data {} -o {} --plot {}", example("specimen_d.rheo"),
-                                      data("specimen_D_harmonic.csv"), data("specimen_D_static.csv"), html.string(), svg.string()));
+  const auto r = run_rheo(fmt::format("report {} --data {} --data {} -o {} --plot {}", example("specimen_d.rheo"), data("specimen_D_harmonic.csv"),
+                                      data("specimen_D_static.csv"), html.string(), svg.string()));
   CAPTURE(r.err);
   REQUIRE(r.code == 0);
   CHECK(r.err.find("report written to") != std::string::npos);
@@ -57,8 +57,8 @@ TEST_CASE("rheo report: without data, the simulate protocols; errors exit 2 and 
 TEST_CASE("rheo simulate --report and rheo fit --report") {
   const auto dir = rheo::test::scratch_directory("report");
   const auto sim = dir / "sim.html";
-  const auto s = run_rheo(fmt::format("simulate {} --protocol harmonic -o {} --report {}", example("bushing_d.rheo"),
-                                      (dir / "grid.csv").string(), sim.string()));
+  const auto s = run_rheo(
+      fmt::format("simulate {} --protocol harmonic -o {} --report {}", example("bushing_d.rheo"), (dir / "grid.csv").string(), sim.string()));
   CAPTURE(s.err);
   REQUIRE(s.code == 0);
   CHECK(count(rheo::test::read_file(sim.string()), "data-figure=\"stiffness-frequency\"") == 1);
@@ -79,7 +79,8 @@ TEST_CASE("rheo simulate --report and rheo fit --report") {
 TEST_CASE("rheo report --plot FILE.png: converted by rsvg-convert, a usage error naming it where it is not on PATH") {
   const auto dir = rheo::test::scratch_directory("report");
   const auto png = dir / "plot.png";
-  const std::string arguments = fmt::format("report {} --data {} --plot {}", example("specimen_c.rheo"), data("specimen_C_harmonic.csv"), png.string());
+  const std::string arguments = fmt::format("report {} --data {} --plot {}", example("specimen_c.rheo"), data("specimen_C_harmonic.csv"),
+                                            png.string());
   // Without the converter on PATH (rheo needs nothing else from it): refused, naming the package.
   const auto without = run_rheo(arguments, "PATH=/nonexistent");
   CAPTURE(without.err);

@@ -9,7 +9,6 @@
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   const std::string text(reinterpret_cast<const char*>(data), size);
-  rheo::fuzz::expect_only_documented_errors(
-      [&] { (void)rheo::runtime::harmonic_data_from_table(rheo::runtime::parse_table("fuzz.csv", text)); });
+  rheo::fuzz::expect_only_documented_errors([&] { (void)rheo::runtime::harmonic_data_from_table(rheo::runtime::parse_table("fuzz.csv", text)); });
   return 0;
 }

@@ -89,21 +89,24 @@ std::vector<Generated> generated_corpus() {
   const std::string too_deep = fmt::format("nested deeper than {} levels", levels);
   std::vector<Generated> out;
   // Blocks one per line: the first past the limit is on line blocks + 1 (line 1 opens the model).
-  out.push_back({"series_nesting", "model m {\n" + repeat("series {\n", blocks) + "spring s (k = 1 N/mm) spring t (k = 1 N/mm)\n" + repeat("}\n", blocks) + "}\n",
+  out.push_back({"series_nesting",
+                 "model m {\n" + repeat("series {\n", blocks) + "spring s (k = 1 N/mm) spring t (k = 1 N/mm)\n" + repeat("}\n", blocks) + "}\n",
                  {blocks + 1, 1, fmt::format("blocks nested deeper than {} levels", rheo::lang::max_block_depth)}});
-  out.push_back({"parallel_nesting", "model m {\n" + repeat("parallel {\n", blocks) + "spring s (k = 1 N/mm)\n" + repeat("}\n", blocks) + "}\n",
+  out.push_back({"parallel_nesting",
+                 "model m {\n" + repeat("parallel {\n", blocks) + "spring s (k = 1 N/mm)\n" + repeat("}\n", blocks) + "}\n",
                  {blocks + 1, 1, "blocks nested deeper than"}});
   std::string alternating = "model m {\n";
   for (int i = 0; i < blocks; ++i) alternating += fmt::format("{} {{ spring a{} (k = 1 N/mm)\n", i % 2 ? "series" : "parallel", i);
   out.push_back({"alternating_nesting", alternating + repeat("}\n", blocks + 1), {blocks + 1, 1, "blocks nested deeper than"}});
   // "  spring s (k = " is 16 columns: the LEVELS-th '(' or '-' would open level LEVELS + 1.
-  out.push_back({"parentheses", "model m {\n  spring s (k = " + repeat("(", levels) + "1" + repeat(")", levels) + " N/mm)\n}\n",
-                 {2, 16 + levels, too_deep}});
+  out.push_back(
+      {"parentheses", "model m {\n  spring s (k = " + repeat("(", levels) + "1" + repeat(")", levels) + " N/mm)\n}\n", {2, 16 + levels, too_deep}});
   out.push_back({"unary_minus", "model m {\n  spring s (k = " + repeat("-", levels) + "1 N/mm)\n}\n", {2, 16 + levels, too_deep}});
   // A chain of N operators nests N + 1 levels: the LEVELS-th '+' stands at column 4 * LEVELS + 15.
   out.push_back({"operator_chain", "model m {\n  spring s (k = 1" + repeat(" + 1", levels) + " N/mm)\n}\n", {2, 4 * levels + 15, too_deep}});
   out.push_back({"byte_ff", "model m {\n  spring s (k = 1 N/mm)\n  # caf\xff\n}\n", {3, 8, "found byte 0xFF, which is not UTF-8"}});
-  out.push_back({"latin1_string", "model m { spring s (k = 1 N/mm) }\nsimulate {\n  history file = \"r\xe9sum\xe9.csv\"\n}\n",
+  out.push_back({"latin1_string",
+                 "model m { spring s (k = 1 N/mm) }\nsimulate {\n  history file = \"r\xe9sum\xe9.csv\"\n}\n",
                  {3, 20, "found byte 0xE9, which is not UTF-8"}});
   out.push_back({"truncated_sequence", "model m { spring s (k = 1 N/mm) } # \xe2\x82", {1, 37, "found byte 0xE2"}});
   out.push_back({"overlong_slash", "# \xc0\xaf\nmodel m { spring s (k = 1 N/mm) }\n", {1, 3, "found byte 0xC0"}});

@@ -54,7 +54,9 @@ TEST_CASE("format: bytes that are not text are shown as U+FFFD, never raw") {
   SourceSet sources;
   sources.add("b.rheo", std::string("ab\xff\x1b[2J\0c\n", 10));
   const std::string text = format({{"b.rheo", 1, 3}, "bad byte"}, sources);
-  CHECK(text == "b.rheo:1:3: error: bad byte\n  ab\xEF\xBF\xBD\xEF\xBF\xBD[2J\xEF\xBF\xBD" "c\n    ^\n");
+  CHECK(text ==
+        "b.rheo:1:3: error: bad byte\n  ab\xEF\xBF\xBD\xEF\xBF\xBD[2J\xEF\xBF\xBD"
+        "c\n    ^\n");
 }
 
 TEST_CASE("format: a long line is shown around the column; diagnostics on a 10 MB line stay cheap") {
@@ -68,7 +70,7 @@ TEST_CASE("format: a long line is shown around the column; diagnostics on a 10 M
   const std::size_t caret_line = text.find('\n', quoted) + 3;  // the caret line, after its indent
   CHECK(text.compare(quoted, 3, "...") == 0);
   CHECK(text.compare(caret_line - 6, 6, "...\n  ") == 0);
-  CHECK(text[quoted + (text.find('^', caret_line) - caret_line)] == 'X');  // the caret stands under 'X'
+  CHECK(text[quoted + (text.find('^', caret_line) - caret_line)] == 'X');        // the caret stands under 'X'
   for (int i = 0; i < 100000; ++i) format({{"long.rheo", 2, 1}, "x"}, sources);  // the line index makes this instant
   CHECK(format({{"long.rheo", 2, 1}, "x"}, sources) == "long.rheo:2:1: error: x\n  second\n  ^\n");
 }

@@ -54,7 +54,7 @@ TEST_CASE("check_fit: settings in internal units, data lines with weights, outpu
   CHECK(f.settings.tolerance == 1e-6);
   CHECK(f.settings.definition == HarmonicDefinition::thesis);
   CHECK(f.settings.steps_per_cycle == 512);
-  CHECK(f.settings.solver == SolverChoice::automatic);  // not given: the default
+  CHECK(f.settings.solver == SolverChoice::automatic);                  // not given: the default
   CHECK(free_paths(p, f) == std::vector<std::string>{"k0", "m1.tau"});  // sorted by parameter index
 }
 

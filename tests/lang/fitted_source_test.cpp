@@ -54,8 +54,8 @@ TEST_CASE("write_fitted_source: changed values round-trip to 1e-12; everything e
   const Program before = compile_source("f.rheo", source);
   const CheckedModel& m = model_of(before);
   const std::vector<int> changed = written(m);
-  std::vector<std::string> expected_changed{"k0", "w", "phase", "k2", "rubber.D10", "rubber.D20", "rubber.D30", "m1.k", "m1.tau",
-                                            "f1.k", "f1.uy", "z.k_inf", "z.tau", "d.c"};
+  std::vector<std::string> expected_changed{"k0",   "w",      "phase", "k2",    "rubber.D10", "rubber.D20", "rubber.D30",
+                                            "m1.k", "m1.tau", "f1.k",  "f1.uy", "z.k_inf",    "z.tau",      "d.c"};
   std::vector<std::string> names;
   for (int i : changed) names.push_back(m.parameters[static_cast<std::size_t>(i)].path);
   CHECK(names == expected_changed);

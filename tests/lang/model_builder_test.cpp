@@ -64,19 +64,21 @@ TEST_CASE("build_model: values are checked after overrides") {
 }
 
 TEST_CASE("build_model: a parameter's value range is its own text, an override's, or none") {
-  const std::string text = "import zener\nmodel o { inner x (k0 = 7 N/mm)  zener z (tau = 5 ms) }\nmodel inner { param k0 = 5 N/mm  maxwell m (k = k0, tau = 1 ms) }";
+  const std::string text =
+      "import zener\nmodel o { inner x (k0 = 7 N/mm)  zener z (tau = 5 ms) }\nmodel inner { param k0 = 5 N/mm  maxwell m (k = k0, tau = 1 ms) }";
   Program p = compile_source("r.rheo", text);
   auto range = [&](const CheckedModel& m, const std::string& path) {
     const Parameter& q = *find(m, path);
-    return q.value_begin < 0 ? std::string("none") : text.substr(static_cast<std::size_t>(q.value_begin), static_cast<std::size_t>(q.value_end - q.value_begin));
+    return q.value_begin < 0 ? std::string("none")
+                             : text.substr(static_cast<std::size_t>(q.value_begin), static_cast<std::size_t>(q.value_end - q.value_begin));
   };
   const CheckedModel& o = *p.find_model("o");
-  CHECK(range(o, "x.k0") == "7 N/mm");    // the override, in the user's model
+  CHECK(range(o, "x.k0") == "7 N/mm");  // the override, in the user's model
   CHECK(find(o, "x.k0")->where.line == 2);
-  CHECK(range(o, "x.m.tau") == "none");   // the instantiated model's default: shared by every instance
-  CHECK(range(o, "x.m.c") == "none");     // generated
+  CHECK(range(o, "x.m.tau") == "none");  // the instantiated model's default: shared by every instance
+  CHECK(range(o, "x.m.c") == "none");    // generated
   CHECK(range(o, "z.tau") == "5 ms");
-  CHECK(range(o, "z.k1") == "none");      // a stdlib default
+  CHECK(range(o, "z.k1") == "none");  // a stdlib default
   CHECK(range(*p.find_model("inner"), "m.tau") == "1 ms");
 }
 
@@ -98,13 +100,13 @@ model t { s inner (sp.f_high = 2 kHz) springpot own (k = 1, alpha = 0.5, tau = 1
 
 TEST_CASE("build_model: a springpot's alpha lies strictly between 0 and 1, its bounds too") {
   CHECK_THROWS_WITH_AS(compile_source("a.rheo", "model a { springpot sp (k = 1, alpha = 1, tau = 1 s) }"),
-                       doctest::Contains("a.rheo:1:40: error: fractional order alpha of springpot 'sp' must be below 1, got 1"),
+                       doctest::Contains("a.rheo:1:40: error: fractional order alpha of springpot 'sp' must be below 1, got 1"), CompileError);
+  CHECK_THROWS_WITH_AS(
+      compile_source("a.rheo", "model a { springpot sp (k = 1, alpha = 0.5 in [0.1, 1.2], tau = 1 s) }"),
+      doctest::Contains("a.rheo:1:53: error: fractional order alpha of springpot 'sp' must be below 1, so its upper bound must be too, got 1.2"),
+      CompileError);
+  CHECK_THROWS_WITH_AS(compile_source("a.rheo", "model a { springpot sp (k = 1, alpha = 0, tau = 1 s) }"), doctest::Contains("must be positive"),
                        CompileError);
-  CHECK_THROWS_WITH_AS(compile_source("a.rheo", "model a { springpot sp (k = 1, alpha = 0.5 in [0.1, 1.2], tau = 1 s) }"),
-                       doctest::Contains("a.rheo:1:53: error: fractional order alpha of springpot 'sp' must be below 1, so its upper bound must be too, got 1.2"),
-                       CompileError);
-  CHECK_THROWS_WITH_AS(compile_source("a.rheo", "model a { springpot sp (k = 1, alpha = 0, tau = 1 s) }"),
-                       doctest::Contains("must be positive"), CompileError);
   CHECK_THROWS_WITH_AS(compile_source("a.rheo", "model a { springpot sp (k = 1, tau = 1 s) }"),
                        doctest::Contains("springpot 'sp' is missing its fractional order alpha"), CompileError);
 }

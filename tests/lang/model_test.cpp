@@ -9,8 +9,8 @@ using Op = Expression::Op;
 
 TEST_CASE("Expression::evaluate runs postfix code over parameter values") {
   // (p0 - 2) * -p1 / 4
-  Expression e{{{Op::parameter, 0, 0}, {Op::constant, 2.0}, {Op::subtract}, {Op::parameter, 0, 1}, {Op::negate},
-                {Op::multiply}, {Op::constant, 4.0}, {Op::divide}}};
+  Expression e{
+      {{Op::parameter, 0, 0}, {Op::constant, 2.0}, {Op::subtract}, {Op::parameter, 0, 1}, {Op::negate}, {Op::multiply}, {Op::constant, 4.0}, {Op::divide}}};
   CHECK(e.evaluate({10.0, 3.0}) == doctest::Approx(-6.0));
   CHECK_FALSE(e.is_constant());
   Expression c{{{Op::constant, 1.0}, {Op::constant, 0.0}, {Op::divide}}};

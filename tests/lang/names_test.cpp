@@ -15,12 +15,14 @@ TEST_CASE("closest suggests only plausible names") {
 TEST_CASE("lists and chains in messages are cut past 30 names; suggestions only among a bounded set") {
   std::vector<std::string> many;
   for (int i = 0; i < 1000000; ++i) many.push_back(fmt::format("p{}", i));
-  CHECK(join(many) == "p0, p1, p2, p3, p4, p5, p6, p7, p8, p9, p10, p11, p12, p13, p14, p15, p16, p17, p18, p19, p20, p21, p22, "
-                      "p23, p24, p25, p26, p27, p28, p29, ... (999970 more)");
+  CHECK(join(many) ==
+        "p0, p1, p2, p3, p4, p5, p6, p7, p8, p9, p10, p11, p12, p13, p14, p15, p16, p17, p18, p19, p20, p21, p22, "
+        "p23, p24, p25, p26, p27, p28, p29, ... (999970 more)");
   CHECK(join_chain({"a", "b", "a"}) == "a -> b -> a");
   const std::vector<std::string> chain(many.begin(), many.begin() + 40);
-  CHECK(join_chain(chain) == "p0 -> p1 -> p2 -> p3 -> p4 -> p5 -> p6 -> p7 -> p8 -> p9 -> p10 -> p11 -> p12 -> p13 -> p14 -> ... (10 more) "
-                             "-> p25 -> p26 -> p27 -> p28 -> p29 -> p30 -> p31 -> p32 -> p33 -> p34 -> p35 -> p36 -> p37 -> p38 -> p39");
+  CHECK(join_chain(chain) ==
+        "p0 -> p1 -> p2 -> p3 -> p4 -> p5 -> p6 -> p7 -> p8 -> p9 -> p10 -> p11 -> p12 -> p13 -> p14 -> ... (10 more) "
+        "-> p25 -> p26 -> p27 -> p28 -> p29 -> p30 -> p31 -> p32 -> p33 -> p34 -> p35 -> p36 -> p37 -> p38 -> p39");
   const std::vector<std::string> bounded(many.begin(), many.begin() + static_cast<std::ptrdiff_t>(kMaxSuggestionCandidates));
   CHECK(closest("p99x", bounded) == "p99");
   CHECK(closest("p99x", many).empty());  // too many to search for every misspelt name

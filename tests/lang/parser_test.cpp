@@ -20,8 +20,9 @@ std::string parse_error(std::string_view text) {
 }  // namespace
 
 TEST_CASE("parse: statements are free-form; units bind to the number before them") {
-  ast::File f = parse("p.rheo", "import zener model m { param k0 = 300 N/mm in [10, 5000] maxwell m1 (k = 2 * k0, tau = 4.335ms)\n"
-                                 "series s { spring (k=.5) } } simulate m { step amplitude = 1 in, duration = 4. s output \"o.csv\" }");
+  ast::File f = parse("p.rheo",
+                      "import zener model m { param k0 = 300 N/mm in [10, 5000] maxwell m1 (k = 2 * k0, tau = 4.335ms)\n"
+                      "series s { spring (k=.5) } } simulate m { step amplitude = 1 in, duration = 4. s output \"o.csv\" }");
   REQUIRE(f.imports.size() == 1);
   REQUIRE(f.models.size() == 1);
   const auto& m = f.models[0];
@@ -65,8 +66,8 @@ TEST_CASE("parse: precedence, unary minus, ranges and lists") {
 }
 
 TEST_CASE("parse: errors name the rule that failed, with position and caret") {
-  CHECK(parse_error("model m {\n  maxwell m1 (k = 1 N/mm, tau = 2 ms\n}\n").find(
-            "p.rheo:3:1: error: expected ')' to close the argument list of 'maxwell m1', found '}'\n  }\n  ^\n") != std::string::npos);
+  CHECK(parse_error("model m {\n  maxwell m1 (k = 1 N/mm, tau = 2 ms\n}\n")
+            .find("p.rheo:3:1: error: expected ')' to close the argument list of 'maxwell m1', found '}'\n  }\n  ^\n") != std::string::npos);
   CHECK(parse_error("model m { spring s k = 1 }").find("1:20: error: expected '(' to open the argument list of 'spring s'") != std::string::npos);
   CHECK(parse_error("model { }").find("expected a model name after 'model'") != std::string::npos);
   CHECK(parse_error("model m { spring (k = 1 in [1 2]) }").find("expected ',' between the lower and upper bound") != std::string::npos);
@@ -117,7 +118,8 @@ fit {})");
 
 TEST_CASE("parse: fit block errors") {
   CHECK(parse_error("fit { data = 1 }").find("1:12: error: expected the data file name in double quotes after 'data'") != std::string::npos);
-  CHECK(parse_error("fit { output fitted.rheo }").find("expected a file name in double quotes after 'output' for the fitted model") != std::string::npos);
+  CHECK(parse_error("fit { output fitted.rheo }").find("expected a file name in double quotes after 'output' for the fitted model") !=
+        std::string::npos);
   CHECK(parse_error("fit m ]").find("expected '{' to open the fit block, found ']'") != std::string::npos);
   CHECK(parse_error("fit { method = exact, }").find("expected a setting `KEY = VALUE`, found '}'") != std::string::npos);
   CHECK(parse_error("fit { 2 }").find("or '}' to close the fit block, found '2'") != std::string::npos);
@@ -169,8 +171,8 @@ TEST_CASE("parse: hostile nesting 10,000 deep is a parse error at the first leve
   CHECK(error.find(fmt::format("error: blocks nested deeper than {} levels", max_block_depth)) != std::string::npos);
   // The 201st block keyword: 100 `parallel { spring aN (...) series { ` groups stand before it.
   CHECK(error.find(fmt::format("p.rheo:2:{}:", alternating.find("parallel { spring a100 ") - alternating.find('\n'))) == 0);
-  for (const std::string& expression : {repeat("(", d) + "1" + repeat(")", d), repeat("-", d) + "1", repeat("1 + ", d) + "1",
-                                        repeat("(1 + ", d) + "1" + repeat(")", d)}) {
+  for (const std::string& expression :
+       {repeat("(", d) + "1" + repeat(")", d), repeat("-", d) + "1", repeat("1 + ", d) + "1", repeat("(1 + ", d) + "1" + repeat(")", d)}) {
     const std::string message = parse_error("model m { spring s (k = " + expression + ") }");
     CHECK(message.find(fmt::format("expression nested deeper than {} levels", max_expression_depth)) != std::string::npos);
   }
@@ -186,7 +188,8 @@ TEST_CASE("parse: a file that is not UTF-8 text is an error at its first such by
   CHECK(parse_error("model m {\n  spring s (k = 1 N/mm) \xff\n}\n").find("p.rheo:2:25: error: found byte 0xFF, which is not UTF-8") == 0);
   CHECK(parse_error(std::string("model m {\0}", 11)).find("p.rheo:1:10: error: found a NUL byte") == 0);
   // Non-ASCII UTF-8 in comments and strings is text; columns count bytes.
-  const ast::File f = parse("p.rheo", "# Prüfstand µ — 試験\nmodel m { spring s (k = 1 N/mm) }\nsimulate {\n  history file = \"straße.csv\" # ü\n}\n");
+  const ast::File f = parse("p.rheo",
+                            "# Prüfstand µ — 試験\nmodel m { spring s (k = 1 N/mm) }\nsimulate {\n  history file = \"straße.csv\" # ü\n}\n");
   CHECK(f.simulations.at(0).lines.at(0).settings.at(0).value.text == "straße.csv");
   // Outside them a non-ASCII character is reported whole.
   CHECK(parse_error("model m {\n  spring s (k = 1 µm)\n}\n").find("found 'µ'") != std::string::npos);

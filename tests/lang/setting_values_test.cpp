@@ -7,8 +7,7 @@
 using namespace rheo::lang;
 
 namespace {
-bool check(const SettingSpec& spec, const std::string& text, Setting& out, std::vector<Diagnostic>& errors,
-           std::vector<PathItem>* paths = nullptr) {
+bool check(const SettingSpec& spec, const std::string& text, Setting& out, std::vector<Diagnostic>& errors, std::vector<PathItem>* paths = nullptr) {
   return check_setting_value(parse_setting_text("s", text), spec, out, errors, paths);
 }
 }  // namespace

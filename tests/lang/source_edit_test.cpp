@@ -70,8 +70,8 @@ TEST_CASE("source_edit: appended lines join the model body with its indent and c
 TEST_CASE("source_edit: replacing a statement keeps every other byte") {
   const Program p = compile_source("a.rheo", kSource);
   const CheckedModel& a = *p.find_model("a");
-  const std::string edited =
-      replace_span(kSource, element_statement(kSource, child(a, "s")), "yeoh     s (D10 = 50 N/mm, D20 = 0 N/mm^3, D30 = 0 N/mm^5)");
+  const std::string edited = replace_span(kSource, element_statement(kSource, child(a, "s")),
+                                          "yeoh     s (D10 = 50 N/mm, D20 = 0 N/mm^3, D30 = 0 N/mm^5)");
   CHECK(edited.find("    yeoh     s (D10 = 50 N/mm, D20 = 0 N/mm^3, D30 = 0 N/mm^5)   # ) } a comment closing nothing\n") != std::string::npos);
   CHECK(compile_source("a.rheo", edited).find_model("a")->root.children.front().kind == ElementKind::yeoh);
   CHECK_THROWS_AS(replace_span("abc", {2, 5}, "x"), std::logic_error);

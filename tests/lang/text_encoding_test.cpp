@@ -36,9 +36,14 @@ TEST_CASE("find_encoding_problem: the first byte that is not UTF-8 text, or the 
 
 TEST_CASE("printable: no byte that garbles a terminal; long text is cut") {
   CHECK(printable("µm") == "µm");
-  CHECK(printable("a\xff" "b") == "a\xEF\xBF\xBD" "b");
+  CHECK(printable("a\xff"
+                  "b") ==
+        "a\xEF\xBF\xBD"
+        "b");
   CHECK(printable("\x1b[31mred\tx"s) == "\xEF\xBF\xBD[31mred\tx");
-  CHECK(printable("a\0b"s) == "a\xEF\xBF\xBD" "b");
+  CHECK(printable("a\0b"s) ==
+        "a\xEF\xBF\xBD"
+        "b");
   CHECK(printable(std::string(100, 'x'), 10) == std::string(10, 'x') + "...");
   CHECK(printable("ééééé", 3) == "ééé...");  // cut at characters, not bytes
 }

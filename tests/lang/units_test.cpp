@@ -20,12 +20,12 @@ TEST_CASE("parse_unit: compound units and scales") {
 TEST_CASE("parse_unit: exponents past max_unit_power and scales out of range are not units") {
   CHECK(parse_unit("N/mm^99")->dimension == Dimension{1, -99, 0});
   CHECK_FALSE(parse_unit("N^100"));
-  CHECK_FALSE(parse_unit("N^2147483647"));          // was a 2^31-step loop
-  CHECK_FALSE(parse_unit("kg^-2147483648"));        // was a signed overflow
+  CHECK_FALSE(parse_unit("N^2147483647"));            // was a 2^31-step loop
+  CHECK_FALSE(parse_unit("kg^-2147483648"));          // was a signed overflow
   CHECK_FALSE(parse_unit("N^99999999999999999999"));  // does not fit an int
-  CHECK_FALSE(parse_unit("N^60*N^60"));             // each factor in range, the product not
-  CHECK_FALSE(parse_unit("m^99/um^99"));            // dimensionless, but the scale 1e594 overflows
-  CHECK_FALSE(parse_unit("um^99*us^99"));           // the scale 1e-891 underflows to 0
+  CHECK_FALSE(parse_unit("N^60*N^60"));               // each factor in range, the product not
+  CHECK_FALSE(parse_unit("m^99/um^99"));              // dimensionless, but the scale 1e594 overflows
+  CHECK_FALSE(parse_unit("um^99*us^99"));             // the scale 1e-891 underflows to 0
 }
 
 TEST_CASE("describe and internal_unit") {

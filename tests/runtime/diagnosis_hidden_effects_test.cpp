@@ -36,7 +36,7 @@ std::string candidates(const dx::Diagnosis& d) {
 
 void require_effect(const dx::Diagnosis& d, dx::Effect effect) {
   MESSAGE("named " << dx::effect_name(d.effect) << ", gap " << d.gap_before << " -> " << d.gap_after << "; candidates (BIC before "
-                    << d.criterion_before << "):" << candidates(d));
+                   << d.criterion_before << "):" << candidates(d));
   INFO("named " << dx::effect_name(d.effect) << ": " << d.reason);
   INFO("gap " << d.gap_before << " -> " << d.gap_after);
   CHECK(dx::effect_name(d.effect) == dx::effect_name(effect));
@@ -51,7 +51,7 @@ void require_noise_floor(const dx::Diagnosis& d) { CHECK(d.gap_after <= 1.2 * 0.
 
 void require_none(const dx::Diagnosis& d) {
   MESSAGE("named " << dx::effect_name(d.effect) << ", gap " << d.gap_before << " -> " << d.gap_after << "; candidates (BIC before "
-                    << d.criterion_before << "):" << candidates(d));
+                   << d.criterion_before << "):" << candidates(d));
   INFO("named " << dx::effect_name(d.effect) << ": " << d.reason);
   CHECK(d.effect == dx::Effect::none);
   CHECK(d.added_element.empty());

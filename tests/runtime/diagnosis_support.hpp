@@ -18,7 +18,7 @@
 namespace rheo::test {
 
 inline const std::vector<double> kAmplitudes{0.05, 0.1, 0.2, 0.5, 1.0, 2.0};  // mm
-inline const std::vector<double> kFrequencies{1, 2, 5, 10, 20, 40};            // Hz
+inline const std::vector<double> kFrequencies{1, 2, 5, 10, 20, 40};           // Hz
 
 inline rheo::runtime::HarmonicOptions simulation_options() {
   rheo::runtime::HarmonicOptions o;

@@ -168,8 +168,8 @@ TEST_CASE("hydrobushing: rheo diagnose names the uncoupled model's missing coupl
   std::ifstream in(summary);
   const auto j = nlohmann::json::parse(in);
   const double before = j["err_before"].get<double>(), after = j["err_after"].get<double>();
-  MESSAGE(fmt::format("hydrobushing diagnose: {}, err (6.1) {:.4e} -> {:.4e} ({:.2f} times lower)", j["effect"].get<std::string>(), before,
-                      after, before / after));
+  MESSAGE(fmt::format("hydrobushing diagnose: {}, err (6.1) {:.4e} -> {:.4e} ({:.2f} times lower)", j["effect"].get<std::string>(), before, after,
+                      before / after));
   CHECK(j["effect"] == "coupled-amplitude-frequency");
   CHECK(before == doctest::Approx(2.3752e-2).epsilon(0.01));  // the uncoupled fit of block 1
   CHECK(after <= before / 3.0);
@@ -269,6 +269,6 @@ TEST_CASE("every example is run by a test: a new one fails here until it is") {
       names.push_back(name);  // *_fitted.rheo: written by the example fits, not in the repository (examples/.gitignore)
   std::sort(names.begin(), names.end());
   CHECK(names == std::vector<std::string>{"bushing_d.rheo", "hydrobushing.rheo", "hydrobushing_fit.rheo", "hydromount.rheo", "specimen_a.rheo",
-                                          "specimen_a_fit.rheo", "specimen_b.rheo", "specimen_b_fit.rheo", "specimen_c.rheo", "specimen_c_fit.rheo", "specimen_d.rheo", "specimen_d_fit.rheo",
-                                          "specimen_d_fit_all.rheo", "specimen_d_methods.rheo"});
+                                          "specimen_a_fit.rheo", "specimen_b.rheo", "specimen_b_fit.rheo", "specimen_c.rheo", "specimen_c_fit.rheo",
+                                          "specimen_d.rheo", "specimen_d_fit.rheo", "specimen_d_fit_all.rheo", "specimen_d_methods.rheo"});
 }

@@ -35,8 +35,8 @@ void check_close(const runtime::HarmonicPoint& p, std::complex<double> k_star, d
   CHECK(std::abs(p.measures.phase - std::arg(k_star)) < phase_tolerance);
 }
 
-runtime::FitDataSet harmonic_data_of(const runtime::Network& truth, const std::vector<double>& amplitudes,
-                                     const std::vector<double>& frequencies, const runtime::HarmonicOptions& options) {
+runtime::FitDataSet harmonic_data_of(const runtime::Network& truth, const std::vector<double>& amplitudes, const std::vector<double>& frequencies,
+                                     const runtime::HarmonicOptions& options) {
   runtime::HarmonicData data;
   data.path = "generated";
   for (double u0 : amplitudes)
@@ -93,7 +93,8 @@ TEST_CASE("stiffness ratios of 1e9 in one network: a soft arm behind a stiff one
       spring soft (k = 1)
       series { spring stiff (k = 1e9) maxwell m (k = 1, tau = 10 ms) }
       series { spring stiff2 (k = 1e9) parallel { spring s (k = 2) dashpot d (c = 0.01 N*s/mm) } }
-    })", "r");
+    })",
+                                      "r");
   for (double f : {0.5, 16.0}) {
     const auto k_star = runtime::complex_stiffness(net.model(), net.parameters(), f);
     REQUIRE(k_star);
@@ -113,14 +114,16 @@ TEST_CASE("a zero-amplitude point: refused, not NaN; amplitudes tending to zero 
       maxwell m (k = 15, tau = 4 ms)
       friction f (k = 50, uy = 2 um)
       series { spring s (k = 30) friction g (k = 40, uy = 3 um) }
-    })", "z");
+    })",
+                                      "z");
   const auto linear = test::network_from(R"(
     model l {
       spring rubber (k = 40)
       maxwell m (k = 15, tau = 4 ms)
       spring f (k = 50)
       series { spring s (k = 30) spring g (k = 40) }
-    })", "l");
+    })",
+                                         "l");
   CHECK_THROWS_WITH_AS(stepped(net, 0.0, 5.0, runtime::SolverChoice::fixed),
                        doctest::Contains("positive, finite amplitude and frequency, got 0 mm and 5 Hz"), std::logic_error);
   CHECK_THROWS_AS(runtime::simulate_harmonic_point(net, std::nan(""), 5.0, {}), std::logic_error);
@@ -140,7 +143,8 @@ TEST_CASE("a parameter whose best value lies beyond its bound ends on the bound,
   const auto truth = test::network_from("model t { spring e (k = 100) maxwell m (k = 60, tau = 5 ms) }", "t");
   const auto data = harmonic_data_of(truth, {0.5}, {1, 5, 10, 20, 40, 80}, {});
   // The Maxwell stiffness may not exceed 40 (truth 60).
-  const auto start = test::network_from("model t { spring e (k = 150 in [10, 1000]) maxwell m (k = 20 in [1, 40], tau = 2 ms in [0.1 ms, 100 ms]) }", "t");
+  const auto start = test::network_from(
+      "model t { spring e (k = 150 in [10, 1000]) maxwell m (k = 20 in [1, 40], tau = 2 ms in [0.1 ms, 100 ms]) }", "t");
   const auto result = runtime::fit(start, runtime::bounded_parameters(start), {data}, {});
   CHECK(result.network.parameter(1) == doctest::Approx(40.0).epsilon(1e-9));
   CHECK(std::isfinite(result.err));
@@ -150,7 +154,8 @@ TEST_CASE("a parameter whose best value lies beyond its bound ends on the bound,
 TEST_CASE("a fit that starts with every parameter on a bound still finds the truth inside") {
   const auto truth = test::network_from("model t { spring e (k = 100) maxwell m (k = 60, tau = 5 ms) }", "t");
   const auto data = harmonic_data_of(truth, {0.5}, {1, 5, 10, 20, 40, 80}, {});
-  const auto start = test::network_from("model t { spring e (k = 10 in [10, 1000]) maxwell m (k = 1000 in [1, 1000], tau = 0.1 ms in [0.1 ms, 100 ms]) }", "t");
+  const auto start = test::network_from(
+      "model t { spring e (k = 10 in [10, 1000]) maxwell m (k = 1000 in [1, 1000], tau = 0.1 ms in [0.1 ms, 100 ms]) }", "t");
   const auto result = runtime::fit(start, runtime::bounded_parameters(start), {data}, {});
   CHECK(result.network.parameter(0) == doctest::Approx(100.0).epsilon(1e-4));
   CHECK(result.network.parameter(1) == doctest::Approx(60.0).epsilon(1e-4));
@@ -161,14 +166,16 @@ TEST_CASE("a fit that starts with every parameter on a bound still finds the tru
 TEST_CASE("a fit with more free parameters than residuals matches the data and says why it has no standard errors") {
   const auto truth = test::network_from("model t { spring e (k = 100) maxwell m (k = 60, tau = 5 ms) }", "t");
   const auto data = harmonic_data_of(truth, {0.5}, {10}, {});  // 2 residuals, 3 free parameters
-  const auto start = test::network_from("model t { spring e (k = 50 in [10, 1000]) maxwell m (k = 20 in [1, 1000], tau = 2 ms in [0.1 ms, 100 ms]) }", "t");
+  const auto start = test::network_from(
+      "model t { spring e (k = 50 in [10, 1000]) maxwell m (k = 20 in [1, 1000], tau = 2 ms in [0.1 ms, 100 ms]) }", "t");
   const auto result = runtime::fit(start, runtime::bounded_parameters(start), {data}, {});
   CHECK(result.err < 1e-8);
   CHECK(result.statistics.rank == 2);
   CHECK(std::count(result.statistics.identifiable.begin(), result.statistics.identifiable.end(), true) == 0);
   REQUIRE(!result.notes.empty());
-  CHECK(result.notes.back() == "no standard errors: 2 residuals for 2 identifiable directions leave no degree of freedom to estimate "
-                               "the noise; add data points or fix parameters");
+  CHECK(result.notes.back() ==
+        "no standard errors: 2 residuals for 2 identifiable directions leave no degree of freedom to estimate "
+        "the noise; add data points or fix parameters");
 }
 
 TEST_CASE("a fit with a fixed seed repeats bit for bit, on one thread or two") {
@@ -176,7 +183,8 @@ TEST_CASE("a fit with a fixed seed repeats bit for bit, on one thread or two") {
   const auto data = harmonic_data_of(truth, {0.1, 1.0}, {1, 10, 40}, {});
   const auto start = test::network_from(
       "model t { spring e (k = 30 in [1, 1000]) maxwell m (k = 20 in [1, 1000], tau = 1 ms in [0.1 ms, 100 ms]) "
-      "friction f (k = 30 in [1, 1000], uy = 0.2 mm in [1 um, 1 mm]) }", "t");
+      "friction f (k = 30 in [1, 1000], uy = 0.2 mm in [1 um, 1 mm]) }",
+      "t");
   runtime::FitSettings settings;
   settings.search.max_evaluations = 600;
   settings.search.seed = 7;

@@ -52,8 +52,7 @@ std::vector<std::string> page_problems(const std::string& log) {
   while (start < log.size()) {
     const std::size_t end = std::min(log.find('\n', start), log.size());
     const std::string line = log.substr(start, end - start);
-    if (line.find(":CONSOLE") != std::string::npos || line.find("Failed to load resource") != std::string::npos)
-      problems.push_back(line);
+    if (line.find(":CONSOLE") != std::string::npos || line.find("Failed to load resource") != std::string::npos) problems.push_back(line);
     start = end + 1;
   }
   return problems;
@@ -159,8 +158,8 @@ TEST_CASE("report in a browser: a diagnosis report draws the model before dashed
   const fs::path model = dir / "diagnose_linear.rheo", html = dir / "diagnose_report.html";
   std::ofstream(model) << "model linear {\n  spring k0 (k = 300 N/mm in [10, 10000])\n"
                           "  friction f1 (k = 200 N/mm in [1, 10000], uy = 100 um in [0.1, 10000])\n}\n";
-  const auto made = rheo::test::run_rheo(fmt::format("diagnose {} --data {}/specimen_D_static.csv --report {}", model.string(), RHEO_DATA_DIR,
-                                                     html.string()));
+  const auto made = rheo::test::run_rheo(
+      fmt::format("diagnose {} --data {}/specimen_D_static.csv --report {}", model.string(), RHEO_DATA_DIR, html.string()));
   CAPTURE(made.err);
   REQUIRE(made.code == 0);
   if (!rheo::test::tool_installed(kChromium, "chromium")) return;

@@ -24,9 +24,8 @@ void check(const runtime::HarmonicPoint& p, std::complex<double> k_star) {
   CHECK(p.converged);
   CHECK(test::relative_error(p.measures.stiffness, std::abs(k_star)) < 1e-5);
   CHECK(std::abs(test::degrees(p.measures.phase - std::arg(k_star))) < 1e-3);
-  MESSAGE("u0 " << p.amplitude << " mm, f " << p.frequency << " Hz: stiffness error "
-                << test::relative_error(p.measures.stiffness, std::abs(k_star)) << ", phase error "
-                << std::abs(test::degrees(p.measures.phase - std::arg(k_star))) << " deg");
+  MESSAGE("u0 " << p.amplitude << " mm, f " << p.frequency << " Hz: stiffness error " << test::relative_error(p.measures.stiffness, std::abs(k_star))
+                << ", phase error " << std::abs(test::degrees(p.measures.phase - std::arg(k_star))) << " deg");
 }
 std::complex<double> maxwell(double k, double tau, double f) {
   const std::complex<double> iwt{0.0, 2 * std::numbers::pi * f * tau};
@@ -49,8 +48,8 @@ struct Slip {
 struct Measures {
   double stiffness, phase;  // N/mm, rad
 };
-Measures parallel_closed_form(const std::function<double(double)>& elastic, const std::vector<Arm>& arms,
-                              const std::vector<Slip>& frictions, double u0, double f) {
+Measures parallel_closed_form(const std::function<double(double)>& elastic, const std::vector<Arm>& arms, const std::vector<Slip>& frictions,
+                              double u0, double f) {
   double k1 = 0.0, k2 = 0.0;  // K', K'' of the Maxwell arms
   for (const auto& a : arms) {
     const std::complex<double> k = maxwell(a.k, a.tau, f);
@@ -60,8 +59,7 @@ Measures parallel_closed_form(const std::function<double(double)>& elastic, cons
   const auto force = [&](double theta) {
     const double u = u0 * std::sin(theta);
     double F = elastic(u) + u0 * (k1 * std::sin(theta) + k2 * std::cos(theta));
-    for (const auto& s : frictions)
-      F += u0 <= s.uy ? s.k * u : std::min(s.k * s.uy, -s.k * s.uy + s.k * (u + u0));
+    for (const auto& s : frictions) F += u0 <= s.uy ? s.k * u : std::min(s.k * s.uy, -s.k * s.uy + s.k * (u + u0));
     return std::abs(F);
   };
   const int n = 20000;
@@ -85,9 +83,8 @@ void check(const runtime::HarmonicPoint& p, const Measures& m, double stiffness_
   CHECK(p.converged);
   CHECK(test::relative_error(p.measures.stiffness, m.stiffness) < stiffness_tolerance);
   CHECK(std::abs(test::degrees(p.measures.phase - m.phase)) < phase_tolerance_deg);
-  MESSAGE("u0 " << p.amplitude << " mm, f " << p.frequency << " Hz: stiffness error "
-                << test::relative_error(p.measures.stiffness, m.stiffness) << ", phase error "
-                << std::abs(test::degrees(p.measures.phase - m.phase)) << " deg");
+  MESSAGE("u0 " << p.amplitude << " mm, f " << p.frequency << " Hz: stiffness error " << test::relative_error(p.measures.stiffness, m.stiffness)
+                << ", phase error " << std::abs(test::degrees(p.measures.phase - m.phase)) << " deg");
 }
 double yeoh(double d10, double d20, double d30, double u) { return 2 * (d10 + 2 * d20 * u * u + 3 * d30 * u * u * u * u) * u; }
 
@@ -108,15 +105,13 @@ runtime::HarmonicPoint hydro_point(const std::string& model, double u0, double f
   const auto network = test::network_from("import " + model + "\nmodel m { " + model + " h () }", "m");
   return runtime::simulate_harmonic_point(network, u0, f, inerter_options());
 }
-void check_within(const runtime::HarmonicPoint& p, std::complex<double> k_star, double stiffness_tolerance,
-                  double phase_tolerance_deg) {
+void check_within(const runtime::HarmonicPoint& p, std::complex<double> k_star, double stiffness_tolerance, double phase_tolerance_deg) {
   CHECK(p.converged);
   const double e_k = test::relative_error(p.measures.stiffness, std::abs(k_star));
   const double e_p = std::abs(test::degrees(p.measures.phase - std::arg(k_star)));
   CHECK(e_k < stiffness_tolerance);
   CHECK(e_p < phase_tolerance_deg);
-  MESSAGE("u0 " << p.amplitude << " mm, f " << p.frequency << " Hz: stiffness error " << e_k << ", phase error " << e_p
-                << " deg");
+  MESSAGE("u0 " << p.amplitude << " mm, f " << p.frequency << " Hz: stiffness error " << e_k << ", phase error " << e_p << " deg");
 }
 }  // namespace
 
@@ -172,7 +167,7 @@ TEST_CASE("stdlib series_friction_maxwell slipping: a Jenkins element when the a
     CHECK(fixed.converged);
     CHECK(variable.converged);
     CHECK(test::relative_error(fixed.measures.stiffness, variable.measures.stiffness) < 1e-5);  // seen: 4e-7
-    CHECK(std::abs(test::degrees(fixed.measures.phase - variable.measures.phase)) < 1e-3);     // seen: 1.4e-5 deg
+    CHECK(std::abs(test::degrees(fixed.measures.phase - variable.measures.phase)) < 1e-3);      // seen: 1.4e-5 deg
     // It does slip: the branch carries at most fy = 20 N above the spring's 100 u0.
     CHECK(fixed.measures.force_amplitude <= 100 * 0.5 + 20.0 * (1 + 1e-9));
     CHECK(fixed.measures.force_amplitude > 100 * 0.5 + 19.0);  // seen: 69.58 N at 20 Hz, 69.93 N at 50 Hz
@@ -185,8 +180,7 @@ TEST_CASE("stdlib maxwell2: K* = k_inf + sum of two Maxwell arms (C.9)") {
     check(point("import maxwell2\nmodel m { maxwell2 g () }", "m", 0.5, f), 100.0 + maxwell(60, 2e-3, f) + maxwell(30, 2e-2, f));
   }
   // Overrides reach the arms: the second arm moved to 1 ms.
-  check(point("import maxwell2\nmodel m { maxwell2 g (tau2 = 1 ms) }", "m", 0.5, 30.0),
-        100.0 + maxwell(60, 2e-3, 30.0) + maxwell(30, 1e-3, 30.0));
+  check(point("import maxwell2\nmodel m { maxwell2 g (tau2 = 1 ms) }", "m", 0.5, 30.0), 100.0 + maxwell(60, 2e-3, 30.0) + maxwell(30, 1e-3, 30.0));
 }
 
 TEST_CASE("stdlib frictional_solid3: the generalized frictional solid (C.17-C.20) between and beyond its break points") {
@@ -196,8 +190,8 @@ TEST_CASE("stdlib frictional_solid3: the generalized frictional solid (C.17-C.20
     CAPTURE(u0);
     double stiffness = 100, energy = 0;
     for (const auto& s : f) {
-      stiffness += u0 > s.uy ? s.k * s.uy / u0 : s.k;              // C.17, C.18
-      if (u0 > s.uy) energy += 4 * s.k * s.uy * (u0 - s.uy);      // C.20
+      stiffness += u0 > s.uy ? s.k * s.uy / u0 : s.k;         // C.17, C.18
+      if (u0 > s.uy) energy += 4 * s.k * s.uy * (u0 - s.uy);  // C.20
     }
     const Measures want{stiffness, std::asin(energy / (std::numbers::pi * stiffness * u0 * u0))};  // C.12
     check(point("import frictional_solid3\nmodel m { frictional_solid3 s () }", "m", u0, 3.0), want, 1e-9, 1e-7);
@@ -219,8 +213,8 @@ TEST_CASE("stdlib viscoplastic (Fig. 2.5) and nonlinear_viscoplastic (Fig. 2.6) 
       const Measures nonlinear = parallel_closed_form([](double u) { return yeoh(50, -0.25, 0.01, u); }, arm, slip, u0, f);
       check(point("import nonlinear_viscoplastic\nmodel m { nonlinear_viscoplastic v () }", "m", u0, f), nonlinear, 1e-9, 1e-7);
       // The Yeoh spring matters at 2.5 mm: the linear-spring value would miss by percent.
-      if (u0 > 2) CHECK(test::relative_error(parallel_closed_form([](double u) { return 100 * u; }, arm, slip, u0, f).stiffness,
-                                             nonlinear.stiffness) > 0.01);
+      if (u0 > 2)
+        CHECK(test::relative_error(parallel_closed_form([](double u) { return 100 * u; }, arm, slip, u0, f).stiffness, nonlinear.stiffness) > 0.01);
     }
 }
 
@@ -229,8 +223,7 @@ TEST_CASE("stdlib nonlinear_series_friction_maxwell (Fig. 9.1): a Yeoh spring be
   // response is the exact Yeoh + Maxwell waveform, non-linear at 2 mm.
   for (double f : {3.0, 20.0}) {
     CAPTURE(f);
-    const auto p = point("import nonlinear_series_friction_maxwell\nmodel m { nonlinear_series_friction_maxwell s (fy = 2000 N) }",
-                         "m", 2.0, f);
+    const auto p = point("import nonlinear_series_friction_maxwell\nmodel m { nonlinear_series_friction_maxwell s (fy = 2000 N) }", "m", 2.0, f);
     check(p, parallel_closed_form([](double u) { return yeoh(50, -0.25, 0.01, u); }, {{200, 0.01}}, {}, 2.0, f), 1e-5, 1e-3);
   }
   // Default fy = 20 N at 2 mm: the slider slips, the branch carries at most fy, so
@@ -271,9 +264,8 @@ TEST_CASE("stdlib hydromount: the uncapped closed form while the cap sticks, at 
     CHECK(p.measures.force_amplitude <= k_rubber * u0 + cap * (1 + 1e-6));
     CHECK(p.measures.force_amplitude >= k_rubber * u0 - cap * (1 + 1e-6));
     CHECK(p.measures.phase < std::arg(hydromount_uncapped(f)));
-    MESSAGE("capped at 1 mm, " << f << " Hz: F^ = " << p.measures.force_amplitude << " N (bound " << k_rubber * u0 + cap
-                               << "), phase " << test::degrees(p.measures.phase) << " deg vs uncapped "
-                               << test::degrees(std::arg(hydromount_uncapped(f))));
+    MESSAGE("capped at 1 mm, " << f << " Hz: F^ = " << p.measures.force_amplitude << " N (bound " << k_rubber * u0 + cap << "), phase "
+                               << test::degrees(p.measures.phase) << " deg vs uncapped " << test::degrees(std::arg(hydromount_uncapped(f))));
   }
 }
 
@@ -291,6 +283,6 @@ TEST_CASE("every stdlib model is covered above") {
   auto names = lang::stdlib_names();
   std::sort(names.begin(), names.end());
   CHECK(names == std::vector<std::string>{"fractional_zener", "frictional_solid3", "frictional_zener", "hydromount", "hydromount_uncapped",
-                                          "kelvin_voigt", "maxwell2", "maxwell3", "nonlinear_series_friction_maxwell",
-                                          "nonlinear_viscoplastic", "series_friction_maxwell", "viscoplastic", "zener"});
+                                          "kelvin_voigt", "maxwell2", "maxwell3", "nonlinear_series_friction_maxwell", "nonlinear_viscoplastic",
+                                          "series_friction_maxwell", "viscoplastic", "zener"});
 }

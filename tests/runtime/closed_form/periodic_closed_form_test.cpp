@@ -86,7 +86,8 @@ TEST_CASE("dashpot, bare slider, never-slipping friction and two yeoh springs to
       yeoh     y1 (D10 = 20, D20 = 1.5, D30 = 0.01)
       yeoh     y2 (D10 = 10, D20 = -0.5, D30 = 0.02)
       maxwell  m  (k = 80, tau = 2 ms)
-    })", "mix");
+    })",
+                                      "mix");
   for (auto definition : {HarmonicDefinition::thesis, HarmonicDefinition::first_harmonic})
     for (double u0 : {0.1, 1.0, 2.5})
       for (double f : {0.5, 10.0, 40.0}) check_against_time_stepping(net, u0, f, definition);
@@ -132,7 +133,8 @@ TEST_CASE("linear subtrees beside non-linear root elements: the closed form agre
       friction f (k = 120, uy = 0.05 mm)
       series { spring a (k = 300) parallel { dashpot d (c = 0.5 N*s/mm) spring b (k = 40) } }
       series { spring s (k = 500) parallel { inerter i (b = 10 kg) dashpot c (c = 0.3 N*s/mm) } }
-    })", "lin");
+    })",
+                                      "lin");
   REQUIRE(runtime::has_closed_form_periodic_state(net));
   HarmonicOptions ida;
   ida.solver = runtime::SolverChoice::sundials;

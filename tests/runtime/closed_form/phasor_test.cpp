@@ -34,7 +34,8 @@ TEST_CASE("time stepping agrees with the phasor path on nested linear networks")
       spring e (k = 90)
       series a { spring s (k = 40) dashpot d (c = 0.8) }
       parallel p { maxwell m (k = 25, tau = 5 ms) series { spring s2 (k = 10) dashpot d2 (c = 0.05) } }
-    })", "m");
+    })",
+                                      "m");
   const auto implicit = test::model_from("model z { series { spring a (k = 300) parallel { spring b (k = 100) dashpot c (c = 2) } } }", "z");
   for (double f : {2.0, 17.0}) {
     std::vector<double> values;

@@ -84,9 +84,10 @@ TEST_CASE("a broken precondition (mismatched sizes) is a std::logic_error and ex
 }
 
 TEST_CASE("the approximate method on a nested model is a usage error raised by fit(), naming the element") {
-  const auto net = test::network_from("model n {\n  spring e (k = 100 in [1, 1000])\n  series arm {\n    spring s (k = 50 in [1, 1000])\n"
-                                      "    dashpot d (c = 0.5)\n    slider cap (fy = 10)\n  }\n}\n",
-                                      "n");
+  const auto net = test::network_from(
+      "model n {\n  spring e (k = 100 in [1, 1000])\n  series arm {\n    spring s (k = 50 in [1, 1000])\n"
+      "    dashpot d (c = 0.5)\n    slider cap (fy = 10)\n  }\n}\n",
+      "n");
   runtime::HarmonicData data;
   data.path = "sweep.csv";
   data.amplitude = {1.0}, data.frequency = {1.0}, data.stiffness = {100.0}, data.phase = {0.1}, data.rows = {2};
@@ -99,7 +100,8 @@ TEST_CASE("the approximate method on a nested model is a usage error raised by f
 }
 
 TEST_CASE("fitted values that put a springpot's f_low above its f_high are a model error at the parameter") {
-  const auto net = test::network_from("model b {\n  springpot sp (k = 10, alpha = 0.5, tau = 0.01 s, f_low = 1 Hz in [0.1, 100], f_high = 10 Hz)\n}\n", "b");
+  const auto net = test::network_from(
+      "model b {\n  springpot sp (k = 10, alpha = 0.5, tau = 0.01 s, f_low = 1 Hz in [0.1, 100], f_high = 10 Hz)\n}\n", "b");
   std::vector<double> values = net.parameters();
   values[static_cast<std::size_t>(index_of(net, "sp.f_low"))] = 20.0;
   CHECK_THROWS_WITH_AS(net.with_parameters(values), doctest::Contains("give f_low and f_high bounds that do not overlap"), ModelError);

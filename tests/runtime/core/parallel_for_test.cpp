@@ -53,8 +53,7 @@ TEST_CASE("parallel_for rethrows an item's exception on the caller after every t
 }
 
 TEST_CASE("a harmonic grid is the same bit for bit on one thread and on several") {
-  const auto net = test::network_from(
-      "model n { spring e (k = 100) series { friction f (k = 50, fy = 2) maxwell m (k = 80, tau = 1 ms) } }", "n");
+  const auto net = test::network_from("model n { spring e (k = 100) series { friction f (k = 50, fy = 2) maxwell m (k = 80, tau = 1 ms) } }", "n");
   runtime::HarmonicOptions one;
   one.steps_per_cycle = 256;
   runtime::HarmonicOptions several = one;

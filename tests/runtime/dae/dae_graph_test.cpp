@@ -30,18 +30,15 @@ TEST_CASE("maxwell and friction expand into spring + dashpot / slider through a 
 }
 
 TEST_CASE("a gap stores its half width") {
-  const auto graph = runtime::DaeGraph::build(
-      test::network_from("model m { series s { gap g (width = 0.4 mm)\n spring k (k = 3 N/mm) } }", "m"));
+  const auto graph = runtime::DaeGraph::build(test::network_from("model m { series s { gap g (width = 0.4 mm)\n spring k (k = 3 N/mm) } }", "m"));
   CHECK(graph.edges[0].kind == EdgeKind::gap);
   CHECK(graph.edges[0].p[0] == doctest::Approx(0.2));
 }
 
 TEST_CASE("refused: an inerter between terminal and ground, and sliders meeting at a free node") {
   CHECK_THROWS_WITH_AS(runtime::DaeGraph::build(test::network_from("model m { inerter b (b = 1 kg)\n spring k (k = 1 N/mm) }", "m")),
-                       doctest::Contains("inerter 'b' of model 'm' sits directly between the terminal and ground"),
-                       runtime::ModelError);
+                       doctest::Contains("inerter 'b' of model 'm' sits directly between the terminal and ground"), runtime::ModelError);
   CHECK_THROWS_WITH_AS(
-      runtime::DaeGraph::build(test::network_from(
-          "model m { spring k (k = 1 N/mm)\n series s { slider a (fy = 1 N)\n slider b (fy = 2 N) } }", "m")),
+      runtime::DaeGraph::build(test::network_from("model m { spring k (k = 1 N/mm)\n series s { slider a (fy = 1 N)\n slider b (fy = 2 N) } }", "m")),
       doctest::Contains("merge the sliders or put a spring between them"), runtime::ModelError);
 }

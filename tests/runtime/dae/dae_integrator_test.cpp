@@ -84,7 +84,8 @@ TEST_CASE("a gap in series with a spring: no force inside the play, k (|u| - w/2
 }
 
 TEST_CASE("quadratic dashpot: energy per cycle U = (8/3) cq w^2 u0^3 (v_eps correction below 1e-6)") {
-  const auto network = test::network_from("model m { spring k (k = 50 N/mm)\n series s { spring k1 (k = 1e5 N/mm)\n quadratic_dashpot q (cq = 0.02 N*s^2/mm^2) } }", "m");
+  const auto network = test::network_from(
+      "model m { spring k (k = 50 N/mm)\n series s { spring k1 (k = 1e5 N/mm)\n quadratic_dashpot q (cq = 0.02 N*s^2/mm^2) } }", "m");
   runtime::HarmonicOptions options;
   options.steps_per_cycle = 2048;
   const double u0 = 0.5, f = 10.0, w = 2 * std::numbers::pi * f;
@@ -129,7 +130,7 @@ TEST_CASE("DaeLayout: the blocks of y follow each other in the order x, lambda, 
   const B order[] = {B::position, B::switch_force, B::rate_coordinate, B::inerter_velocity, B::bouc_wen_state};
   int i = 0;
   for (const auto& [block, count] : {std::pair{order[0], l.positions}, std::pair{order[1], l.switch_forces}, std::pair{order[2], l.rate_coordinates},
-                                    std::pair{order[3], l.inerter_velocities}, std::pair{order[4], l.bouc_wen_states}})
+                                     std::pair{order[3], l.inerter_velocities}, std::pair{order[4], l.bouc_wen_states}})
     for (int k = 0; k < count; ++k, ++i) {
       CHECK(l.block_of(i) == block);
       CHECK(l.differential(i) == (block != B::position && block != B::switch_force));

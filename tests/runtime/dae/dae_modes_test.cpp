@@ -19,8 +19,8 @@ TEST_CASE("two dashpots in parallel share one coordinate") {
 }
 
 TEST_CASE("an inerter is chosen before a dashpot on the same node and gets a velocity slot") {
-  const auto graph = runtime::DaeGraph::build(test::network_from(
-      "model m { series s { spring k (k = 1 N/mm)\n parallel p { dashpot d (c = 1 N*s/mm)\n inerter b (b = 1 kg) } } }", "m"));
+  const auto graph = runtime::DaeGraph::build(
+      test::network_from("model m { series s { spring k (k = 1 N/mm)\n parallel p { dashpot d (c = 1 N*s/mm)\n inerter b (b = 1 kg) } } }", "m"));
   const auto k = runtime::ModeKinematics::make(graph, {});
   REQUIRE(k.coordinates == 1);
   CHECK(k.coordinate_rate[0] == 1);  // the inerter, second rate edge

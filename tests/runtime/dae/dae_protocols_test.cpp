@@ -94,8 +94,7 @@ TEST_CASE("IDA failing on a yeoh that softens in series names the yeoh and its l
   runtime::HarmonicOptions options;
   options.solver = runtime::SolverChoice::sundials;
   CHECK_THROWS_WITH_AS(runtime::dae_harmonic_point(network, 2.0, 1.0, options),
-                       doctest::Contains("Likely cause: yeoh 'r' softens to zero tangent stiffness at |e| = 0.408248 mm"),
-                       runtime::NumericalError);
+                       doctest::Contains("Likely cause: yeoh 'r' softens to zero tangent stiffness at |e| = 0.408248 mm"), runtime::NumericalError);
   const auto dae = runtime::dae_harmonic_point(network, 0.5, 1.0, options);
   options.solver = runtime::SolverChoice::fixed;
   const auto fixed = runtime::simulate_harmonic_point(network, 0.5, 1.0, options);

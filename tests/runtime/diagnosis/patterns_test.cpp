@@ -10,7 +10,7 @@ using namespace rheo;
 
 namespace {
 
-const std::vector<double> kA{0.1, 0.5, 2.0};      // mm
+const std::vector<double> kA{0.1, 0.5, 2.0};         // mm
 const std::vector<double> kF{1.0, 5.0, 10.0, 40.0};  // Hz
 
 // A fit whose stiffness residual on the kA x kF grid is r(i, j) (damping residual 0) and whose

@@ -30,8 +30,8 @@ dx::Trial trial_of(dx::Shape shape) {
 }  // namespace
 
 TEST_CASE("diagnosis trial: every shape writes a statement that compiles, with bounds around its values") {
-  for (dx::Shape shape : {dx::Shape::maxwell, dx::Shape::friction, dx::Shape::capped_maxwell, dx::Shape::capped_column, dx::Shape::tuned_column,
-                          dx::Shape::yeoh}) {
+  for (dx::Shape shape :
+       {dx::Shape::maxwell, dx::Shape::friction, dx::Shape::capped_maxwell, dx::Shape::capped_column, dx::Shape::tuned_column, dx::Shape::yeoh}) {
     const dx::Trial trial = trial_of(shape);
     const lang::Program program = compiled(trial);
     const lang::CheckedModel& m = program.models.front();

@@ -54,8 +54,7 @@ struct Fitted {
 };
 
 Fitted fitted(bool interrupt_first) {
-  const auto truth = test::network_from(
-      "model r { spring e (k = 300) maxwell m (k = 60, tau = 5 ms) friction f (k = 200, uy = 40 um) }", "r");
+  const auto truth = test::network_from("model r { spring e (k = 300) maxwell m (k = 60, tau = 5 ms) friction f (k = 200, uy = 40 um) }", "r");
   const auto start = test::network_from(start_source, "r");
   runtime::FitSettings settings;
   settings.search.max_evaluations = 400;
@@ -164,8 +163,8 @@ TEST_CASE("the JSON summary has the documented fields, parameters in the units t
   CHECK(grid.contains("phi"));
   REQUIRE(grid["residuals"].size() == 12);
   const json& point = grid["residuals"][11];
-  for (const char* key : {"amplitude_mm", "frequency_hz", "stiffness_measured", "stiffness_model", "phase_measured_deg",
-                          "phase_model_deg", "stiffness_residual", "damping_residual"})
+  for (const char* key : {"amplitude_mm", "frequency_hz", "stiffness_measured", "stiffness_model", "phase_measured_deg", "phase_model_deg",
+                          "stiffness_residual", "damping_residual"})
     CHECK_MESSAGE(point.contains(key), key);
   CHECK(point["amplitude_mm"] == 1.0);
   CHECK(point["frequency_hz"] == 40.0);

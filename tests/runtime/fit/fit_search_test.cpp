@@ -119,9 +119,8 @@ TEST_CASE("the default strategy samples max(10 n, 40) points a decade either sid
 }
 
 TEST_CASE("the evaluation budget holds for every strategy and budget, with no slack") {
-  const std::optional<Algorithm> strategies[] = {std::nullopt,        Algorithm::bobyqa, Algorithm::sbplx,
-                                                 Algorithm::neldermead, Algorithm::direct_l, Algorithm::crs2,
-                                                 Algorithm::isres,     Algorithm::mlsl};
+  const std::optional<Algorithm> strategies[] = {std::nullopt,        Algorithm::bobyqa, Algorithm::sbplx, Algorithm::neldermead,
+                                                 Algorithm::direct_l, Algorithm::crs2,   Algorithm::isres, Algorithm::mlsl};
   for (const auto& algorithm : strategies)
     for (const int budget : {1, 2, 3, 7, 40, 101, 600}) {
       CAPTURE(algorithm ? static_cast<int>(*algorithm) : -1);

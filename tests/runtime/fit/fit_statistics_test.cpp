@@ -25,9 +25,15 @@ struct Line {
       y.push_back(1.5 + 0.3 * x.back() + 0.1 * std::sin(7.3 * i));
     }
     double xbar = 0, ybar = 0;
-    for (std::size_t i = 0; i < x.size(); ++i) { xbar += x[i] / m; ybar += y[i] / m; }
+    for (std::size_t i = 0; i < x.size(); ++i) {
+      xbar += x[i] / m;
+      ybar += y[i] / m;
+    }
     double sxx = 0, sxy = 0;
-    for (std::size_t i = 0; i < x.size(); ++i) { sxx += (x[i] - xbar) * (x[i] - xbar); sxy += (x[i] - xbar) * (y[i] - ybar); }
+    for (std::size_t i = 0; i < x.size(); ++i) {
+      sxx += (x[i] - xbar) * (x[i] - xbar);
+      sxy += (x[i] - xbar) * (y[i] - ybar);
+    }
     b = sxy / sxx;
     a = ybar - b * xbar;
     double rss = 0;
@@ -48,8 +54,7 @@ struct Line {
 
 TEST_CASE("straight line: standard errors and correlation of the closed form") {
   const Line line;
-  const auto st = parameter_statistics([&](const std::vector<double>& z) { return line.residuals(z[0], z[1]); },
-                                       {line.a, line.b}, {false, false});
+  const auto st = parameter_statistics([&](const std::vector<double>& z) { return line.residuals(z[0], z[1]); }, {line.a, line.b}, {false, false});
   CHECK(st.rank == 2);
   CHECK(st.identifiable == std::vector<bool>{true, true});
   CHECK(st.standard_error[0] == doctest::Approx(line.se_a).epsilon(1e-7));
@@ -98,8 +103,8 @@ TEST_CASE("rank deficiency: only the estimable parameters get finite statistics"
   CHECK(sum.correlation[2][2] == 1.0);
 
   // A parameter that does not enter at all leaves the others' statistics untouched.
-  const auto unused = parameter_statistics([&](const std::vector<double>& z) { return line.residuals(z[0], z[1]); },
-                                           {line.a, line.b, 7.0}, {false, false, true});
+  const auto unused = parameter_statistics([&](const std::vector<double>& z) { return line.residuals(z[0], z[1]); }, {line.a, line.b, 7.0},
+                                           {false, false, true});
   CHECK(unused.rank == 2);
   CHECK(unused.identifiable == std::vector<bool>{true, true, false});
   CHECK(unused.standard_error[0] == doctest::Approx(line.se_a).epsilon(1e-7));
@@ -118,8 +123,8 @@ TEST_CASE("without a degree of freedom: identifiability and correlation, but no 
   // (J^T J)^-1 = [[5, -3], [-3, 2]]: correlation -3 / sqrt(10).
   CHECK(exact.correlation[0][1] == doctest::Approx(-3.0 / std::sqrt(10.0)).epsilon(1e-7));
   // One residual for two coordinates: rank 1, neither identifiable alone.
-  const auto one = parameter_statistics([](const std::vector<double>& z) { return std::vector<double>{1.0 - z[0] - z[1]}; },
-                                        {0.3, 0.7}, {false, false});
+  const auto one = parameter_statistics([](const std::vector<double>& z) { return std::vector<double>{1.0 - z[0] - z[1]}; }, {0.3, 0.7},
+                                        {false, false});
   CHECK(one.rank == 1);
   CHECK(one.identifiable == std::vector<bool>{false, false});
   CHECK_THROWS_AS(parameter_statistics(two, {0.0, 1.0}, {false}), std::logic_error);

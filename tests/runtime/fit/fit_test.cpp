@@ -19,8 +19,7 @@ using namespace rheo;
 
 namespace {
 
-runtime::FitDataSet harmonic_set_from(const runtime::Network& truth, const std::vector<double>& amplitudes,
-                                      const std::vector<double>& frequencies) {
+runtime::FitDataSet harmonic_set_from(const runtime::Network& truth, const std::vector<double>& amplitudes, const std::vector<double>& frequencies) {
   runtime::HarmonicData data;
   data.path = "generated";
   for (double u0 : amplitudes)
@@ -84,7 +83,8 @@ TEST_CASE("linear viscoelastic: a two-Maxwell solid is recovered from 3x off") {
   const auto start = test::network_from(R"(model g {
       spring e (k = 300 in [1, 10000])
       maxwell m1 (k = 150 in [1, 10000], tau = 30 ms in [0.01, 100000])
-      maxwell m2 (k = 26.6667 in [1, 10000], tau = 66.6667 ms in [0.01, 100000]) })", "g");
+      maxwell m2 (k = 26.6667 in [1, 10000], tau = 66.6667 ms in [0.01, 100000]) })",
+                                        "g");
   const auto data = harmonic_set_from(truth, {0.5}, {0.1, 0.3, 1.0, 3.0, 10.0, 30.0, 50.0});
   const auto result = runtime::fit(start, runtime::bounded_parameters(start), {data}, {});
   check_recovered(in_truth_order(result, "maxwell"), truth);
@@ -99,7 +99,8 @@ TEST_CASE("with friction elements: spring + Maxwell + 2 friction recovered from 
       spring e (k = 1200 in [1, 10000])
       maxwell m (k = 20 in [1, 10000], tau = 15 ms in [0.01, 100000])
       friction f1 (k = 100 in [1, 10000], uy = 120 um in [0.1, 10000])
-      friction f2 (k = 240 in [1, 10000], uy = 50 um in [0.1, 10000]) })", "f");
+      friction f2 (k = 240 in [1, 10000], uy = 50 um in [0.1, 10000]) })",
+                                        "f");
   const auto data = harmonic_set_from(truth, {0.01, 0.03, 0.06, 0.1, 0.2, 0.5, 1.0}, {1.0, 10.0, 30.0, 50.0});
   const auto result = runtime::fit(start, runtime::bounded_parameters(start), {data}, {});
   CHECK(result.err < 1e-6);
@@ -114,7 +115,8 @@ TEST_CASE("yeoh spring from a static loop (time-domain residual), from 3x off") 
   const auto start = test::network_from(R"(model y {
       yeoh r (D10 = 129.8 in [1, 10000], D20 = -6.3282 in [-100, 100], D30 = 0.0262 in [-10, 10])
       friction f1 (k = 900 in [1, 10000], uy = 13.3333 um in [0.1, 10000])
-      friction f2 (k = 26.6667 in [1, 10000], uy = 450 um in [0.1, 10000]) })", "y");
+      friction f2 (k = 26.6667 in [1, 10000], uy = 450 um in [0.1, 10000]) })",
+                                        "y");
   const auto data = history_set_from(truth, runtime::static_triangle({6.25, 3.0, 1.2, 0.6, 0.3, 0.12}, 0.05, 2, 400));
   const auto result = runtime::fit(start, runtime::bounded_parameters(start), {data}, {});
   CHECK(result.datasets.at(0).err < 1e-7);
@@ -125,8 +127,10 @@ TEST_CASE("specimens C and D: the default strategy from a generic start matches 
   for (const char* specimen : {"c", "d"}) {
     CAPTURE(specimen);
     const std::string dir = RHEO_EXAMPLES_DIR;
-    const auto appendix = test::network_from(test::read_file(fmt::format("{}/specimen_{}.rheo", dir, specimen)), fmt::format("specimen_{}", specimen));
-    const auto start = test::network_from(test::read_file(fmt::format("{}/specimen_{}_fit.rheo", dir, specimen)), fmt::format("specimen_{}", specimen));
+    const auto appendix = test::network_from(test::read_file(fmt::format("{}/specimen_{}.rheo", dir, specimen)),
+                                             fmt::format("specimen_{}", specimen));
+    const auto start = test::network_from(test::read_file(fmt::format("{}/specimen_{}_fit.rheo", dir, specimen)),
+                                          fmt::format("specimen_{}", specimen));
     const auto data = runtime::read_fit_data(fmt::format("{}/data/specimen_{}_harmonic.csv", dir, static_cast<char>(std::toupper(specimen[0]))), 1.0);
     const auto appendix_points = runtime::predict(appendix, data, runtime::FitMethod::exact, {}, nullptr).points;
     const double appendix_err = runtime::thesis_err(runtime::relative_residuals(data.harmonic(), appendix_points));

@@ -46,7 +46,8 @@ TEST_CASE("linear network: the approximation is |K*| and sin(arg K*) of the phas
       maxwell m2 (k = 309.3259, tau = 0.5845 s)
       maxwell m3 (k = 143.1166, tau = 0.0157 s)
       series pair { spring s (k = 40) dashpot d (c = 0.8) }
-    })", "gm");
+    })",
+                                      "gm");
   const auto net = runtime::Network::compile(model);
   const std::vector<double> frequencies{0.01, 0.1, 1.0, 3.0, 17.0, 41.0, 300.0};
   const std::vector<double> amplitudes(frequencies.size(), 0.7);
@@ -106,7 +107,8 @@ TEST_CASE("spring + friction elements: the approximation equals the exact steady
       friction f1 (k = 1016.6, uy = 101.58 um)
       friction f2 (k = 301.04, uy = 42.256 um)
       friction f3 (k = 25.516, uy = 12.695 um)
-    })", "gfs");
+    })",
+                                      "gfs");
   const std::vector<double> amplitudes{0.01, 0.03, 0.07, 0.2, 1.5};
   const auto approx = runtime::approximate_harmonic(net, amplitudes, std::vector<double>(amplitudes.size(), 11.0));
   for (std::size_t i = 0; i < amplitudes.size(); ++i) {
@@ -149,8 +151,7 @@ TEST_CASE("specimen D: the approximation deviates from the exact steady state by
     }
   auto approx = runtime::approximate_harmonic(net, amplitudes, frequencies);
   std::vector<runtime::HarmonicPoint> exact;
-  for (std::size_t i = 0; i < amplitudes.size(); ++i)
-    exact.push_back(runtime::simulate_harmonic_point(net, amplitudes[i], frequencies[i], {}));
+  for (std::size_t i = 0; i < amplitudes.size(); ++i) exact.push_back(runtime::simulate_harmonic_point(net, amplitudes[i], frequencies[i], {}));
   double worst_k = 0.0, worst_phase = 0.0, worst_d = 0.0, mean_k = 0.0;
   std::size_t worst_k_at = 0, worst_phase_at = 0;
   for (std::size_t i = 0; i < exact.size(); ++i) {
@@ -159,14 +160,21 @@ TEST_CASE("specimen D: the approximation deviates from the exact steady state by
     const double ep = test::degrees(approx[i].measures.phase - exact[i].measures.phase);
     const double ed = approx[i].measures.damping / exact[i].measures.damping - 1.0;
     mean_k += ek / static_cast<double>(exact.size());
-    if (std::abs(ek) > std::abs(worst_k)) { worst_k = ek; worst_k_at = i; }
-    if (std::abs(ep) > std::abs(worst_phase)) { worst_phase = ep; worst_phase_at = i; }
+    if (std::abs(ek) > std::abs(worst_k)) {
+      worst_k = ek;
+      worst_k_at = i;
+    }
+    if (std::abs(ep) > std::abs(worst_phase)) {
+      worst_phase = ep;
+      worst_phase_at = i;
+    }
     worst_d = std::max(worst_d, std::abs(ed));
   }
-  MESSAGE(fmt::format("specimen D, approximation - exact: stiffness worst {:+.3f} % at ({} mm, {} Hz), mean {:+.3f} %; "
-                      "phase worst {:+.3f} deg at ({} mm, {} Hz); damping worst |rel| {:.3f} %",
-                      100 * worst_k, amplitudes[worst_k_at], frequencies[worst_k_at], 100 * mean_k, worst_phase,
-                      amplitudes[worst_phase_at], frequencies[worst_phase_at], 100 * worst_d));
+  MESSAGE(
+      fmt::format("specimen D, approximation - exact: stiffness worst {:+.3f} % at ({} mm, {} Hz), mean {:+.3f} %; "
+                  "phase worst {:+.3f} deg at ({} mm, {} Hz); damping worst |rel| {:.3f} %",
+                  100 * worst_k, amplitudes[worst_k_at], frequencies[worst_k_at], 100 * mean_k, worst_phase, amplitudes[worst_phase_at],
+                  frequencies[worst_phase_at], 100 * worst_d));
   // Observed: stiffness +4.81 % at (3 mm, 1 Hz), mean +1.62 %; phase -0.263 deg at (3 mm, 31 Hz);
   // damping 4.6 %. The stiffness error is the linearised yeoh spring: at 3 mm its F^ is
   // 2223 N, not 2 D10 u0 = 2337 N, i.e. 38 N/mm on an exact K of 784 N/mm. Bounds: about 1.25x the observed

@@ -35,7 +35,8 @@ std::string specimen_d_source(const std::string& extra) {
       friction f4 (k = 33.918 N/mm, uy = 17.763 um)
       friction f5 (k = 54.962 N/mm, uy = 35.116 um)
       friction f6 (k = 84.955 N/mm, uy = 110.68 um)
-      )" + extra + "\n    }";
+      )" +
+         extra + "\n    }";
 }
 
 }  // namespace
@@ -65,7 +66,10 @@ TEST_CASE("mean curve: branches sampled differently are interpolated; a closed c
   // jump at the tips (each run shares its turning sample with the next), which the default
   // margin (0.1 mm here) removes.
   runtime::LoopSamples loop;
-  auto add = [&](double u, double f) { loop.displacement.push_back(u); loop.force.push_back(f); };
+  auto add = [&](double u, double f) {
+    loop.displacement.push_back(u);
+    loop.force.push_back(f);
+  };
   for (int k = 0; k <= 10; ++k) add(0.1 * k, 2 * 0.1 * k + 10);
   for (double u = 1.0 - 0.07; u > -1.0; u -= 0.07) add(u, 2 * u - 10);
   for (int k = -10; k <= 0; ++k) add(0.1 * k, 2 * 0.1 * k + 10);
@@ -119,8 +123,8 @@ TEST_CASE("yeoh + friction + Maxwell: the mean curve is the elastic law plus the
   // With the default margin (0.625 mm = 6.25 v t_r of the slow element; the friction zone is
   // 0.22 mm) what remains is the viscous tail 2 N e^{-6.25} = 4e-3 N at the edge, decaying inward.
   const auto d = runtime::fit_yeoh_least_squares(runtime::mean_curve(loop));
-  MESSAGE(fmt::format("constants, tips kept: {:.4f} {:.5f} {:.6f}; default margin: {:.6f} {:.7f} {:.8f} (true 389.4253 -2.1094 0.0786)",
-                      biased.d10, biased.d20, biased.d30, d.d10, d.d20, d.d30));
+  MESSAGE(fmt::format("constants, tips kept: {:.4f} {:.5f} {:.6f}; default margin: {:.6f} {:.7f} {:.8f} (true 389.4253 -2.1094 0.0786)", biased.d10,
+                      biased.d20, biased.d30, d.d10, d.d20, d.d30));
   CHECK(relative_error(biased.d30, kTableD4.d30) > 1e-3);
   CHECK(relative_error(d.d10, kTableD4.d10) < 1e-5);
   CHECK(relative_error(d.d20, kTableD4.d20) < 1e-4);
@@ -151,11 +155,11 @@ TEST_CASE("specimen D static test: the constants of Table D.4 within the data's 
   const double s = std::sqrt(rss / static_cast<double>(curve.displacement.size() - 3));
   const double sigma = 0.003 * largest / std::sqrt(2.0);
   const double fitted[] = {d.d10, d.d20, d.d30}, truth[] = {kTableD4.d10, kTableD4.d20, kTableD4.d30};
-  MESSAGE(fmt::format("specimen_D_static.csv (last 6.25 mm cycle, {} mean points): D10 = {:.4f} ({:+.3f} %, {:+.2f} SE), "
-                      "D20 = {:.5f} ({:+.3f} %, {:+.2f} SE), D30 = {:.6f} ({:+.3f} %, {:+.2f} SE); residual {:.2f} N = {:.3f} x noise",
-                      curve.displacement.size(), d.d10, 100 * (d.d10 / truth[0] - 1), (d.d10 - truth[0]) / st.standard_error[0],
-                      d.d20, 100 * (d.d20 / truth[1] - 1), (d.d20 - truth[1]) / st.standard_error[1], d.d30,
-                      100 * (d.d30 / truth[2] - 1), (d.d30 - truth[2]) / st.standard_error[2], s, s / sigma));
+  MESSAGE(fmt::format(
+      "specimen_D_static.csv (last 6.25 mm cycle, {} mean points): D10 = {:.4f} ({:+.3f} %, {:+.2f} SE), "
+      "D20 = {:.5f} ({:+.3f} %, {:+.2f} SE), D30 = {:.6f} ({:+.3f} %, {:+.2f} SE); residual {:.2f} N = {:.3f} x noise",
+      curve.displacement.size(), d.d10, 100 * (d.d10 / truth[0] - 1), (d.d10 - truth[0]) / st.standard_error[0], d.d20, 100 * (d.d20 / truth[1] - 1),
+      (d.d20 - truth[1]) / st.standard_error[1], d.d30, 100 * (d.d30 / truth[2] - 1), (d.d30 - truth[2]) / st.standard_error[2], s, s / sigma));
   CHECK(s / sigma > 0.85);
   CHECK(s / sigma < 1.15);
   for (int j = 0; j < 3; ++j) {
@@ -191,8 +195,7 @@ TEST_CASE("loops without both branches, tables without the columns and degenerat
 
 TEST_CASE("yeoh start values: the loop's constants, free ones clamped into their bounds, fixed ones marked") {
   // A pure yeoh spring's loop holds its constants exactly; D10's bounds exclude the true value.
-  const std::string source =
-      "model y { yeoh r (D10 = 100 N/mm in [10, 300], D20 = -1 N/mm^3 in [-10, 10], D30 = 0.05 N/mm^5) }";
+  const std::string source = "model y { yeoh r (D10 = 100 N/mm in [10, 300], D20 = -1 N/mm^3 in [-10, 10], D30 = 0.05 N/mm^5) }";
   const lang::CheckedModel model = test::model_from(source, "y");
   const auto truth = test::network_from("model t { yeoh r (D10 = 389.4253 N/mm, D20 = -2.1094 N/mm^3, D30 = 0.0786 N/mm^5) }", "t");
   const auto loop = loop_of(runtime::run_history(truth, runtime::static_triangle({3.0}, 0.05, 2, 400), false));

@@ -39,7 +39,8 @@ bool contains(const std::string& text, const std::string& part) { return text.fi
 }  // namespace
 
 TEST_CASE("a table with amplitude and frequency is harmonic, in internal units, with its weight") {
-  const auto path = write("harmonic.csv", "# measured\namplitude [um],frequency [Hz],stiffness [kN/mm],phase [deg]\n200,1,1.4,17.5\n3000,51,0.7,12\n");
+  const auto path = write("harmonic.csv",
+                          "# measured\namplitude [um],frequency [Hz],stiffness [kN/mm],phase [deg]\n200,1,1.4,17.5\n3000,51,0.7,12\n");
   const runtime::FitDataSet set = runtime::read_fit_data(path, 0.25);
   REQUIRE(set.is_harmonic());
   CHECK(set.path == path);

@@ -42,8 +42,8 @@ TEST_CASE("malformed tables are errors that name file:row:column") {
   CHECK(error_of("time [s],displacement [furlong]\n0,0\n").find("unknown unit 'furlong'") != std::string::npos);
   CHECK(error_of("time [s],displacement\n0,0\n").find("has no unit") != std::string::npos);
   // A unit of the wrong dimension for a column the readers know, at the unit's column.
-  CHECK(error_of("time [mm],displacement [mm]\n0,0\n").find(
-            "t.csv:1:7: error: column 'time' has unit 'mm', a length (mm); time needs a unit of time (s), e.g. 'time [s]'") == 0);
+  CHECK(error_of("time [mm],displacement [mm]\n0,0\n")
+            .find("t.csv:1:7: error: column 'time' has unit 'mm', a length (mm); time needs a unit of time (s), e.g. 'time [s]'") == 0);
   CHECK(error_of("time [s],force [N/mm]\n0,0\n").find("column 'force' has unit 'N/mm', a stiffness (N/mm)") != std::string::npos);
   CHECK(error_of("time [s],phase [N]\n0,0\n").find("phase needs a unit of none (a plain number, or deg for a phase), e.g. 'phase [deg]'") !=
         std::string::npos);
@@ -66,7 +66,9 @@ TEST_CASE("a drive needs time and displacement, increasing time, and a start fro
 }
 
 TEST_CASE("text that is not UTF-8, NUL bytes and control characters: errors at row:col that quote nothing raw") {
-  CHECK(error_of("time [s],displacement [mm]\n0,0\n0.1,0\xb7" "5\n").find("t.csv:3:6: error: found byte 0xB7, which is not UTF-8") == 0);
+  CHECK(error_of("time [s],displacement [mm]\n0,0\n0.1,0\xb7"
+                 "5\n")
+            .find("t.csv:3:6: error: found byte 0xB7, which is not UTF-8") == 0);
   CHECK(error_of(std::string("time [s],displacement [mm]\n0,0\n0.1,\0\n", 36)).find("t.csv:3:5: error: found a NUL byte") == 0);
   const std::string control = error_of("time [s],displacement [mm]\n0,0\n0.1,\x1b[2J\n");
   CHECK(control.find("t.csv:3:5: error: '\xEF\xBF\xBD[2J' is not a number") == 0);
@@ -85,7 +87,8 @@ TEST_CASE("an empty table, a header alone and a missing column are errors at a r
 
 TEST_CASE("a history's rows: at least two, time strictly increasing (no repeated row)") {
   CHECK(drive_error("time [s],displacement [mm]\n0,0\n").find("h.csv:2:1: error: a history needs at least two rows") == 0);
-  CHECK(drive_error("time [s],displacement [mm]\n0,0\n0.1,0.5\n0.1,0.5\n").find("h.csv:4:1: error: time must increase strictly (row 4 has 0.1 s after 0.1 s at row 3)") == 0);
+  CHECK(drive_error("time [s],displacement [mm]\n0,0\n0.1,0.5\n0.1,0.5\n")
+            .find("h.csv:4:1: error: time must increase strictly (row 4 has 0.1 s after 0.1 s at row 3)") == 0);
   CHECK(drive_error("time [s],displacement [mm]\n0,0\n0.2,0.5\n0.1,0\n").find("h.csv:4:1: error: time must increase strictly") == 0);
 }
 

@@ -75,9 +75,8 @@ TEST_CASE("bouc_wen in the root block under a triangle drive: the closed-form lo
   const double k = 100, fy = 5;
   const auto drive = runtime::static_triangle({0.3, 0.12}, 1.0, 2, 400);
   for (double n : {1.0, 2.0}) {
-    const auto net = test::network_from(n == 1.0 ? "model b { bouc_wen w (k = 100, n = 1, fy = 5) }"
-                                                 : "model b { bouc_wen w (k = 100, n = 2, uy = 0.05 mm) }",
-                                        "b");
+    const auto net = test::network_from(
+        n == 1.0 ? "model b { bouc_wen w (k = 100, n = 1, fy = 5) }" : "model b { bouc_wen w (k = 100, n = 2, uy = 0.05 mm) }", "b");
     const auto hist = runtime::run_history(net, drive, true);
     double z = 0.0, worst = 0.0;
     for (std::size_t i = 1; i < hist.time.size(); ++i) {

@@ -15,7 +15,8 @@ using namespace rheo;
 TEST_CASE("root leaves are grouped by kind into flat arrays") {
   const auto net = test::network_from(R"(
     model d { parallel { yeoh r (D10 = 389.43, D20 = -2.1094, D30 = 0.0786) maxwell m1 (k = 61.476, tau = 4.335 ms)
-              friction f1 (k = 1016.6, uy = 101.58 um) friction f2 (k = 301.04, uy = 42.256 um) } })", "d");
+              friction f1 (k = 1016.6, uy = 101.58 um) friction f2 (k = 301.04, uy = 42.256 um) } })",
+                                      "d");
   const auto& t = net.topology();
   CHECK(t.yeohs.size() == 1);
   CHECK(t.maxwells.size() == 1);
@@ -30,7 +31,8 @@ TEST_CASE("root leaves are grouped by kind into flat arrays") {
 }
 
 TEST_CASE("nested blocks: single-child blocks vanish, same-kind nesting is spliced") {
-  const auto net = test::network_from("model n { parallel { parallel { spring a (k = 1) } series { series { spring b (k = 2) slider s (fy = 1) } dashpot d (c = 1) } } }", "n");
+  const auto net = test::network_from(
+      "model n { parallel { parallel { spring a (k = 1) } series { series { spring b (k = 2) slider s (fy = 1) } dashpot d (c = 1) } } }", "n");
   const auto& t = net.topology();
   CHECK(t.springs.size() == 1);
   REQUIRE(t.subtrees.size() == 1);
@@ -62,7 +64,8 @@ TEST_CASE("with_parameters re-evaluates derived parameters") {
 TEST_CASE("inerter, quadratic_dashpot, gap and bouc_wen leaves are subtrees, also in the root block") {
   const auto net = test::network_from(R"(
     model n { spring k (k = 10) inerter m (b = 1 kg) quadratic_dashpot q (cq = 1 N*s^2/mm^2)
-              bouc_wen w (k = 10, n = 2, fy = 1) series { gap g (width = 0.1 mm) spring s (k = 5) } })", "n");
+              bouc_wen w (k = 10, n = 2, fy = 1) series { gap g (width = 0.1 mm) spring s (k = 5) } })",
+                                      "n");
   const auto& t = net.topology();
   CHECK(t.springs.size() == 1);
   REQUIRE(t.subtrees.size() == 4);
@@ -116,8 +119,8 @@ TEST_CASE("placement: gaps only in series with a compliant member, inerters neve
   CHECK(error_of("model p { series { spring s (k = 1) parallel { gap g (width = 1 mm) spring t (k = 1) } } }")
             .find("gap 'g' is inside a parallel block") != std::string::npos);
   CHECK(error_of("model p { series { gap g (width = 1 mm) slider f (fy = 1) } }").find("no compliant member") != std::string::npos);
-  CHECK(error_of("model p { series { gap g (width = 1 mm) parallel { inerter m (b = 1 kg) spring s (k = 1) } } }")
-            .find("no compliant member") != std::string::npos);
+  CHECK(error_of("model p { series { gap g (width = 1 mm) parallel { inerter m (b = 1 kg) spring s (k = 1) } } }").find("no compliant member") !=
+        std::string::npos);
   const std::string inerter = error_of("model p { series { slider f (fy = 1) inerter m (b = 1 kg) } }");
   CHECK(inerter.find("inerter 'm' is connected to the drive through sliders, gaps or inerters only") != std::string::npos);
   CHECK(error_of("model p { series { inerter a (b = 1 kg) inerter b (b = 2 kg) } }").find("inerter 'a'") != std::string::npos);
@@ -130,7 +133,8 @@ TEST_CASE("placement: gaps only in series with a compliant member, inerters neve
 
 TEST_CASE("a springpot is a Maxwell chain: spliced into the root group, kept whole when nested, rederived on new parameters") {
   const auto root = test::network_from(R"(
-    model r { spring e (k = 10) parallel { springpot sp (k = 50, alpha = 0.3, tau = 10 ms) maxwell m (k = 5, tau = 1 ms) } })", "r");
+    model r { spring e (k = 10) parallel { springpot sp (k = 50, alpha = 0.3, tau = 10 ms) maxwell m (k = 5, tau = 1 ms) } })",
+                                       "r");
   const auto& t = root.topology();
   const int modes = runtime::springpot_mode_count(0.01, 1000.0);
   REQUIRE(t.springpots.size() == 1);

@@ -112,7 +112,8 @@ TEST_CASE("a springpot beside a yeoh spring and friction: the closed form is the
       yeoh      y  (D10 = 40, D20 = -0.3, D30 = 0.01)
       friction  f  (k = 120, uy = 0.05 mm)
       springpot sp (k = 60, alpha = 0.25, tau = 20 ms, f_low = 0.1 Hz, f_high = 200 Hz)
-    })", "fy");
+    })",
+                                      "fy");
   REQUIRE(runtime::has_closed_form_periodic_state(net));
   runtime::HarmonicOptions fixed;
   fixed.steady_state = runtime::SteadyState::time_stepping;
@@ -146,7 +147,8 @@ TEST_CASE("a spring in series with a springpot: the chain's closed form is the e
 TEST_CASE("fixed steps and IDA agree on a springpot history: a spring, a springpot and friction in series") {
   const auto network = test::network_from(R"(
     model h { series { spring e (k = 400) springpot sp (k = 60, alpha = 0.4, tau = 5 ms, f_low = 1 Hz, f_high = 100 Hz)
-                       friction f (k = 500, fy = 20 N) } })", "h");
+                       friction f (k = 500, fy = 20 N) } })",
+                                          "h");
   const auto drive = runtime::quasistatic_sine({0.5}, 10.0, 2, 2000);
   const auto fixed = runtime::run_history(network, drive, true, runtime::SolverChoice::fixed);
   const auto dae = runtime::run_history(network, drive, true, runtime::SolverChoice::sundials);

@@ -69,7 +69,8 @@ TEST_CASE("generalized Maxwell (C.9), cylindrical bushing C of Table D.3") {
       maxwell m1 (k = 111.5544, tau = 0.0013 s)
       maxwell m2 (k = 309.3259, tau = 0.5845 s)
       maxwell m3 (k = 143.1166, tau = 0.0157 s)
-    })", "gm");
+    })",
+                                      "gm");
   const double kv[] = {111.5544, 309.3259, 143.1166}, tr[] = {0.0013, 0.5845, 0.0157};
   for (double f : {0.1, 3.0, 41.0}) {
     std::complex<double> k_star = 490.629;
@@ -98,7 +99,7 @@ TEST_CASE("C.16 is the frictional part's damping: it matches the definition when
   // Beyond u0 = u_s / (1 - pi/4) a bare friction loop has d > 1; stay below.
   const double kp = 300, us = 0.05, u0 = 0.15;
   const double d = 4 * kp * us * (u0 - us) / (std::numbers::pi * u0 * kp * us);  // C.16 with C.13
-  check_point(net, u0, 2.0, kp * us / u0, std::asin(d));                        // C.10
+  check_point(net, u0, 2.0, kp * us / u0, std::asin(d));                         // C.10
 }
 
 TEST_CASE("generalized frictional solid (C.17-C.20): elements yield one by one") {
@@ -108,13 +109,14 @@ TEST_CASE("generalized frictional solid (C.17-C.20): elements yield one by one")
       friction f1 (k = 1016.6, uy = 101.58 um)
       friction f2 (k = 301.04, uy = 42.256 um)
       friction f3 (k = 25.516, uy = 12.695 um)
-    })", "gfs");
+    })",
+                                      "gfs");
   const double kp[] = {1016.6, 301.04, 25.516}, us[] = {0.10158, 0.042256, 0.012695};
   for (double u0 : {0.01, 0.03, 0.07, 0.2, 1.5}) {
     double stiffness = 80.0, energy = 0.0;
     for (int j = 0; j < 3; ++j) {
-      stiffness += u0 > us[j] ? kp[j] * us[j] / u0 : kp[j];             // C.17, C.18
-      if (u0 > us[j]) energy += 4 * kp[j] * us[j] * (u0 - us[j]);      // C.20
+      stiffness += u0 > us[j] ? kp[j] * us[j] / u0 : kp[j];        // C.17, C.18
+      if (u0 > us[j]) energy += 4 * kp[j] * us[j] * (u0 - us[j]);  // C.20
     }
     const double d = energy / (std::numbers::pi * stiffness * u0 * u0);  // exact d = U / (pi F^ u0)
     check_point(net, u0, 11.0, stiffness, std::asin(d));
@@ -180,8 +182,8 @@ std::pair<Errors, Errors> errors_at_2048_and_4096(const runtime::Network& net, d
   CHECK(coarse.converged);
   CHECK(fine.converged);
   const Errors e1 = errors_of(coarse, k_star), e2 = errors_of(fine, k_star);
-  MESSAGE("f = " << f << " Hz: |K*| error " << e1.stiffness << " -> " << e2.stiffness << ", phase error " << e1.phase
-                 << " -> " << e2.phase << " deg (N = 2048 -> 4096)");
+  MESSAGE("f = " << f << " Hz: |K*| error " << e1.stiffness << " -> " << e2.stiffness << ", phase error " << e1.phase << " -> " << e2.phase
+                 << " deg (N = 2048 -> 4096)");
   return {e1, e2};
 }
 
@@ -242,7 +244,8 @@ TEST_CASE("the Newmark inerter under midpoint sampling (a dashpot in the root bl
   const double c = 0.3, k = 200, b = 5e-4, km = 300, tau = 2e-3, k2 = 100, f = 20.0;
   const auto net = test::network_from(R"(
     model h { dashpot d (c = 0.3)
-              series { spring k (k = 200) parallel { inerter m (b = 0.5 kg) maxwell v (k = 300, tau = 2 ms) spring k2 (k = 100) } } })", "h");
+              series { spring k (k = 200) parallel { inerter m (b = 0.5 kg) maxwell v (k = 300, tau = 2 ms) spring k2 (k = 100) } } })",
+                                      "h");
   REQUIRE(net.topology().has_rate_jump);
   const double w = 2 * std::numbers::pi * f;
   const std::complex<double> iwt{0.0, w * tau};
@@ -282,8 +285,8 @@ TEST_CASE("inerter in the root block with a spring: K* = k - b w^2; with a dashp
     const auto q = fixed_step_point(damped, u0, f, 2048, HarmonicDefinition::first_harmonic);
     CHECK(q.converged);
     const Errors e = errors_of(q, k_star);
-    MESSAGE("f = " << f << " Hz: F^ error " << error << " (predicted " << predicted << "); with the dashpot |K*| error "
-                   << e.stiffness << ", phase error " << e.phase << " deg");
+    MESSAGE("f = " << f << " Hz: F^ error " << error << " (predicted " << predicted << "); with the dashpot |K*| error " << e.stiffness
+                   << ", phase error " << e.phase << " deg");
     CHECK(e.stiffness < 1.5e-5);
     CHECK(e.phase < 4.5e-4);
   }

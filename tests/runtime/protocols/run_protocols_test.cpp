@@ -40,9 +40,8 @@ model d {
 TEST_CASE("a history read from CSV reproduces the static protocol on the same programme") {
   const std::string data_file = std::string(RHEO_DATA_DIR) + "/specimen_D_static.csv";
   const auto from_csv = run_first(std::string(kSpecimenD) + "simulate { history file = \"" + data_file + "\" }", "d.rheo");
-  const auto generated = run_first(std::string(kSpecimenD) +
-                                       "simulate { static velocity = 0.05 mm/s, amplitude = [6.25, 3.0, 1.2, 0.6, 0.3, 0.12] mm }",
-                                   "d.rheo");
+  const auto generated = run_first(
+      std::string(kSpecimenD) + "simulate { static velocity = 0.05 mm/s, amplitude = [6.25, 3.0, 1.2, 0.6, 0.3, 0.12] mm }", "d.rheo");
   const auto a = runtime::parse_table("csv", from_csv.content), b = runtime::parse_table("gen", generated.content);
   REQUIRE(a.rows.size() == b.rows.size());
   double worst = 0.0;
@@ -59,7 +58,9 @@ TEST_CASE("json output carries units and every point") {
 }
 
 TEST_CASE("step protocol with element outputs: the Maxwell arm relaxes, the spring holds") {
-  const auto run = run_first("model z { spring e (k = 10) maxwell m (k = 5, tau = 0.1 s) }\nsimulate { step amplitude = 2 mm, duration = 1 s, dt = 1 ms, elements = all }", "z.rheo");
+  const auto run = run_first(
+      "model z { spring e (k = 10) maxwell m (k = 5, tau = 0.1 s) }\nsimulate { step amplitude = 2 mm, duration = 1 s, dt = 1 ms, elements = all }",
+      "z.rheo");
   const auto t = runtime::parse_table("z", run.content);
   CHECK(t.column("e.force") >= 0);
   const auto& spring = t.columns[static_cast<std::size_t>(t.column("e.force"))];
@@ -80,8 +81,9 @@ TEST_CASE("solver = sundials names itself in the header; with steady_state = clo
 TEST_CASE("a yeoh driven past where it softens: a warning in the root block (once per protocol), an error in series") {
   const std::string soft = "model y { yeoh r (D10 = 1, D20 = -1, D30 = 0) spring k (k = 1) }\n";  // e* = 1/sqrt(6) mm
   const auto past = run_first(soft + "simulate { harmonic frequency = 1 Hz, amplitude = [0.1, 2] mm }", "y.rheo");
-  CHECK(past.notes() == "warning: yeoh 'r' softens to zero tangent stiffness at |e| = 0.408248 mm (eq. 3.3) and the drive reaches "
-                      "2 mm: its force falls beyond that; bound D20 so that D20^2 < (5/3) D10 D30 (a Yeoh law that stiffens again)\n");
+  CHECK(past.notes() ==
+        "warning: yeoh 'r' softens to zero tangent stiffness at |e| = 0.408248 mm (eq. 3.3) and the drive reaches "
+        "2 mm: its force falls beyond that; bound D20 so that D20^2 < (5/3) D10 D30 (a Yeoh law that stiffens again)\n");
   CHECK(run_first(soft + "simulate { harmonic frequency = 1 Hz, amplitude = [0.1, 0.4] mm }", "y.rheo").notes().empty());
   const auto history = run_first(soft + "simulate { static velocity = 1 mm/s, amplitude = 0.5 mm }", "y.rheo");
   CHECK(history.notes().find("the drive reaches 0.5 mm") != std::string::npos);

@@ -42,7 +42,7 @@ TEST_CASE("report html: self-contained, no script, every figure and section pres
   CHECK(html.find("src=") == std::string::npos);
   CHECK(html.find("@import") == std::string::npos);
   CHECK(count(html, "url(") == count(html, "url(#clip-"));  // only in-page clip paths
-  CHECK(count(html, "<figure") == 8);  // network, 4 curves, 2 residual maps, 1 loop
+  CHECK(count(html, "<figure") == 8);                       // network, 4 curves, 2 residual maps, 1 loop
   for (const char* kind : {"network", "stiffness-frequency", "phase-frequency", "stiffness-amplitude", "phase-amplitude", "residual-stiffness",
                            "residual-phase", "hysteresis"})
     CHECK(count(html, fmt::format("data-figure=\"{}\"", kind)) == 1);

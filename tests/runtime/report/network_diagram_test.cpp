@@ -24,7 +24,7 @@ model nested {
   }
 }
 )",
-                                                   "nested");
+                                                    "nested");
   const std::string svg = runtime::report::network_diagram_svg(model.root, "Network of nested", true);
   CHECK(test::xml_problem(svg) == "");
   CHECK(count(svg, "class=\"element\"") == 8);
@@ -38,13 +38,15 @@ model nested {
 }
 
 TEST_CASE("report network diagram: a long series chain is wider than a parallel block of the same leaves") {
-  const lang::CheckedModel chain = test::model_from("model m { series s { spring a (k = 1 N/mm)\n spring b (k = 1 N/mm)\n spring c (k = 1 N/mm) } }", "m");
+  const lang::CheckedModel chain = test::model_from(
+      "model m { series s { spring a (k = 1 N/mm)\n spring b (k = 1 N/mm)\n spring c (k = 1 N/mm) } }", "m");
   const lang::CheckedModel stack = test::model_from("model m { spring a (k = 1 N/mm)\n spring b (k = 1 N/mm)\n spring c (k = 1 N/mm) }", "m");
   const auto width = [](const std::string& svg) {
     const auto at = svg.find("viewBox=\"0 0 ") + 13;
     return std::stod(svg.substr(at, svg.find(' ', at) - at));
   };
-  const std::string a = runtime::report::network_diagram_svg(chain.root, "chain", false), b = runtime::report::network_diagram_svg(stack.root, "stack", false);
+  const std::string a = runtime::report::network_diagram_svg(chain.root, "chain", false),
+                    b = runtime::report::network_diagram_svg(stack.root, "stack", false);
   CHECK(width(a) > width(b) + 150);  // three leaf widths against one, less the bus bars
   CHECK(count(a, "class=\"element\"") == 3);
   CHECK(count(b, "class=\"element\"") == 3);

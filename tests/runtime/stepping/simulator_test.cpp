@@ -20,8 +20,7 @@ TEST_CASE("a Maxwell element relaxes as exp(-t/tau) after a step (eq. B.53)") {
   const double f1 = h.force[1];
   // Force after a ramp over one step: k tau (1 - exp(-dt/tau)) / dt * u0  (exact for a linear ramp).
   CHECK(test::relative_error(f1, 61.476 * tau * (1 - std::exp(-dt / tau)) / dt * u0) < 1e-12);
-  for (std::size_t k = 2; k < h.time.size(); k += 37)
-    CHECK(test::relative_error(h.force[k], f1 * std::exp(-(h.time[k] - dt) / tau)) < 1e-10);
+  for (std::size_t k = 2; k < h.time.size(); k += 37) CHECK(test::relative_error(h.force[k], f1 * std::exp(-(h.time[k] - dt) / tau)) < 1e-10);
 }
 
 TEST_CASE("relaxation times far below the step stay stable and relax within the step") {
@@ -100,7 +99,8 @@ TEST_CASE("element outputs of inerter, quadratic_dashpot, bouc_wen and gap") {
   // their elongations add up to the drive; the branch forces add up to the total.
   const auto net = test::network_from(R"(
     model e { inerter m (b = 1 kg) quadratic_dashpot q (cq = 0.01 N*s^2/mm^2) bouc_wen w (k = 100, n = 2, fy = 3)
-              series { gap g (width = 0.1 mm) spring s (k = 40) } })", "e");
+              series { gap g (width = 0.1 mm) spring s (k = 40) } })",
+                                      "e");
   const auto h = runtime::run_history(net, runtime::quasistatic_sine({0.3}, 2.0, 1, 200), true, runtime::SolverChoice::fixed);
   REQUIRE(h.element_paths == std::vector<std::string>{"m", "q", "w", "g", "s"});
   for (std::size_t i = 1; i < h.time.size(); ++i) {

@@ -97,7 +97,7 @@ TEST_CASE("spring in series with a gap over full cycles: F = 0 within the play, 
       CHECK(hist.force[i] == 0.0);
       ++inside;
     }
-    CHECK(std::abs(hist.force[i] - k * (u - gap)) < 1e-11);  // of F^ = 20 N
+    CHECK(std::abs(hist.force[i] - k * (u - gap)) < 1e-11);        // of F^ = 20 N
     CHECK(std::abs(hist.element_elongation[0][i] - gap) < 1e-13);  // the gap
     CHECK(std::abs(hist.element_force[0][i] - hist.force[i]) < 1e-13);
     CHECK(std::abs(hist.element_elongation[1][i] - hist.force[i] / k) < 1e-13);  // the spring
@@ -196,8 +196,7 @@ std::vector<double> spring_quadratic_dashpot_reference(const runtime::Drive& d, 
     };
     for (int s = 0; s < substeps; ++s) {
       const double t = t0 + s * h;
-      const double r1 = rate(t, x), r2 = rate(t + h / 2, x + h / 2 * r1), r3 = rate(t + h / 2, x + h / 2 * r2),
-                   r4 = rate(t + h, x + h * r3);
+      const double r1 = rate(t, x), r2 = rate(t + h / 2, x + h / 2 * r1), r3 = rate(t + h / 2, x + h / 2 * r2), r4 = rate(t + h, x + h * r3);
       x += h / 6 * (r1 + 2 * r2 + 2 * r3 + r4);
     }
     out.push_back(k * (d.displacement[i] - x));
@@ -348,8 +347,8 @@ TEST_CASE("a softening yeoh: the tangent's zero in closed form, and in series a 
   CHECK(quintic.slope(0.99 * e) > 0.0);
   CHECK(quintic.slope(1.01 * e) < 0.0);
   CHECK(std::isinf(runtime::YeohLaw{53.4938, -0.1648, 0.0015}.softening_elongation()));  // specimen A stiffens again
-  CHECK(std::isinf(runtime::YeohLaw{10.0, -1.0, 0.1}.softening_elongation()));  // D20^2 = 1 < 5/3
-  CHECK(std::isfinite(runtime::YeohLaw{10.0, 1.0, -0.1}.softening_elongation()));  // D30 < 0 always turns over
+  CHECK(std::isinf(runtime::YeohLaw{10.0, -1.0, 0.1}.softening_elongation()));           // D20^2 = 1 < 5/3
+  CHECK(std::isfinite(runtime::YeohLaw{10.0, 1.0, -0.1}.softening_elongation()));        // D30 < 0 always turns over
 
   // Peak force of the cubic: F(e*) = 2 e* - 4 e*^3 = 0.5443 N. A 1 N/mm spring in series.
   const auto net = test::network_from("model y { series { yeoh r (D10 = 1, D20 = -1, D30 = 0) spring s (k = 1) } }", "y");
