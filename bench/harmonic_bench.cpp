@@ -1,7 +1,12 @@
 // The specimen-D harmonic grid of the data (182 points, 0.2-3 mm x 1-51 Hz), evaluated by the
-// closed-form periodic state (the default) and by time stepping to steady state.
+// closed-form periodic state (the default) and by time stepping to steady state; and the
+// hydrobushing grid (147 points) of the coupled model of examples/hydrobushing_fit.rheo at its
+// start values (a slider-capped fluid column beside the rubber), by the exact event-driven
+// periodic state (solver = auto) and time-stepped as that fit block asks (fixed, 128 steps per
+// cycle, periodicity 1e-6; an approximation).
 #include "bench_support.hpp"
 #include "runtime/fit/fit_scoring.hpp"
+#include "runtime/fit/objective.hpp"
 
 #include <benchmark/benchmark.h>
 
@@ -24,7 +29,25 @@ void grid(benchmark::State& state, runtime::SteadyState steady_state) {
 void BM_SpecimenD_Grid_ClosedForm(benchmark::State& state) { grid(state, runtime::SteadyState::closed_form); }
 void BM_SpecimenD_Grid_TimeStepping2048(benchmark::State& state) { grid(state, runtime::SteadyState::time_stepping); }
 
+void hydrobushing(benchmark::State& state, runtime::SolverChoice solver) {
+  const runtime::Network network = runtime::Network::compile(bench::example_model("hydrobushing_fit.rheo", "coupled"));
+  const auto data = bench::example_data("hydrobushing_harmonic.csv");
+  runtime::HarmonicOptions options;
+  options.solver = solver;
+  if (solver == runtime::SolverChoice::fixed) options.steps_per_cycle = 128, options.tolerance = 1e-6;
+  std::vector<runtime::HarmonicPoint> points;
+  for (auto _ : state) benchmark::DoNotOptimize(points = runtime::simulate_at(network, data.harmonic(), options));
+  double cycles = 0.0;
+  for (const auto& p : points) cycles += p.cycles;
+  state.counters["cycles_per_point"] = cycles / static_cast<double>(points.size());
+}
+
+void BM_Hydrobushing_CoupledGrid_EventDriven(benchmark::State& state) { hydrobushing(state, runtime::SolverChoice::automatic); }
+void BM_Hydrobushing_CoupledGrid_Fixed128(benchmark::State& state) { hydrobushing(state, runtime::SolverChoice::fixed); }
+
 }  // namespace
 
+BENCHMARK(BM_Hydrobushing_CoupledGrid_EventDriven)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_Hydrobushing_CoupledGrid_Fixed128)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_SpecimenD_Grid_ClosedForm)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_SpecimenD_Grid_TimeStepping2048)->Unit(benchmark::kMillisecond);

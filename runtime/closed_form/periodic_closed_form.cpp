@@ -1,5 +1,10 @@
 #include "runtime/closed_form/periodic_closed_form.hpp"
 
+#include "runtime/closed_form/pwl_periodic.hpp"
+#include "runtime/core/errors.hpp"
+
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <cmath>
 #include <complex>
@@ -25,10 +30,11 @@ struct LoadingHalf {
   double constant = 0.0;                            // sliders, N
   std::vector<double> slip_k, slip_fy, slip_theta;  // frictions with u0 > uy; theta_q where they start to slip
   std::vector<double> ends;                         // piece ends
+  std::vector<const PwlPeriodicState*> branches;    // piecewise-linear subtrees, by events
 
   void clear() {
     a = b = d10 = d20 = d30 = constant = 0.0;
-    slip_k.clear(), slip_fy.clear(), slip_theta.clear(), ends.clear();
+    slip_k.clear(), slip_fy.clear(), slip_theta.clear(), ends.clear(), branches.clear();
   }
   double force(double theta) const {
     const double s = std::sin(theta);
@@ -36,6 +42,7 @@ struct LoadingHalf {
     const double u2 = u * u;
     double f = a * s + b * std::cos(theta) + u * (2.0 * d10 + u2 * (4.0 * d20 + 6.0 * d30 * u2)) + constant;
     for (std::size_t q = 0; q < slip_k.size(); ++q) f += std::min(slip_fy[q], -slip_fy[q] + slip_k[q] * u0 * (1.0 + s));
+    for (const PwlPeriodicState* branch : branches) f += branch->force(theta);
     return f;
   }
   // Stiffness (dF/du) of the slipping frictions still elastic on the piece holding `piece_mid`.
@@ -45,14 +52,19 @@ struct LoadingHalf {
       if (piece_mid < slip_theta[q]) k += slip_k[q];
     return k;
   }
-  // dF/dtheta and d2F/dtheta2 at (sin, cos) of theta inside a piece whose elastic frictions add `k_elastic` [N/mm].
-  void derivatives(double s, double c, double k_elastic, double& first, double& second) const {
+  // dF/dtheta and d2F/dtheta2 at theta (with its sin and cos) inside a piece whose elastic frictions add `k_elastic` [N/mm].
+  void derivatives(double theta, double s, double c, double k_elastic, double& first, double& second) const {
     const double u = u0 * s, u2 = u * u;
     const double dy = 2.0 * d10 + u2 * (12.0 * d20 + 30.0 * d30 * u2);
     const double d2y = u * (24.0 * d20 + 120.0 * d30 * u2);
     const double in_phase = a + u0 * (dy + k_elastic);
     first = c * in_phase - b * s;
     second = -s * in_phase + c * c * u0 * u0 * d2y - b * c;
+    for (const PwlPeriodicState* branch : branches) {
+      double f1 = 0.0, f2 = 0.0;
+      branch->derivatives(theta, f1, f2);
+      first += f1, second += f2;
+    }
   }
   // A lower bound of dF/du over |u| <= u0 without the frictions' share (>= 0).
   double least_in_phase() const {
@@ -72,7 +84,7 @@ double stationary_point(const LoadingHalf& h, double lo, double hi, double k_ela
   double x = 0.5 * (lo + hi);
   for (int iteration = 0; iteration < 100 && hi - lo > 1e-15; ++iteration) {
     double first = 0.0, second = 0.0;
-    h.derivatives(std::sin(x), std::cos(x), k_elastic, first, second);
+    h.derivatives(x, std::sin(x), std::cos(x), k_elastic, first, second);
     if (first > 0.0) lo = x;
     else hi = x;
     const double newton = second < 0.0 ? x - first / second : lo - 1.0;
@@ -86,10 +98,15 @@ double stationary_point(const LoadingHalf& h, double lo, double hi, double k_ela
 // max F over the loading half. When dF/dtheta >= 0 on [-pi/2, 0] is guaranteed (every branch's
 // in-phase stiffness non-negative, b >= 0), only [0, pi/2] is searched.
 double loading_half_maximum(LoadingHalf& h) {
-  const double from = h.b >= 0.0 && h.least_in_phase() >= 0.0 ? 0.0 : -half_pi;
+  const double from = h.branches.empty() && h.b >= 0.0 && h.least_in_phase() >= 0.0 ? 0.0 : -half_pi;
   h.ends.assign({from, half_pi});
   for (double t : h.slip_theta)
     if (t > from) h.ends.push_back(t);
+  for (const PwlPeriodicState* branch : h.branches)
+    for (double t : branch->switch_phases()) {
+      const double theta = t > 3.0 * half_pi ? t - 4.0 * half_pi : t;
+      if (theta > from && theta < half_pi) h.ends.push_back(theta);
+    }
   std::sort(h.ends.begin(), h.ends.end());
   double best = h.force(from);
   for (std::size_t p = 0; p + 1 < h.ends.size(); ++p) {
@@ -102,13 +119,13 @@ double loading_half_maximum(LoadingHalf& h) {
     const double step = (hi - lo) / samples, cos_step = std::cos(step), sin_step = std::sin(step);
     double s = std::sin(lo), c = std::cos(lo);
     double previous_slope = 0.0, unused = 0.0;
-    h.derivatives(s, c, k_elastic, previous_slope, unused);
+    h.derivatives(lo, s, c, k_elastic, previous_slope, unused);
     for (int j = 1; j <= samples; ++j) {
       const double next_s = s * cos_step + c * sin_step;
       c = c * cos_step - s * sin_step;
       s = next_s;
       double slope = 0.0;
-      h.derivatives(s, c, k_elastic, slope, unused);
+      h.derivatives(lo + j * step, s, c, k_elastic, slope, unused);
       if (previous_slope > 0.0 && slope <= 0.0) {
         const double left = lo + (j - 1) * step, right = j == samples ? hi : lo + j * step;
         best = std::max(best, h.force(stationary_point(h, left, right, k_elastic)));
@@ -152,12 +169,24 @@ Complex subtree_stiffness(const Network& network, int index, double omega) {
 
 }  // namespace
 
-bool has_closed_form_periodic_state(const Network& network) {
+bool has_closed_form_periodic_state(const Network& network, bool event_driven) {
   const Topology& t = network.topology();
-  return std::all_of(t.subtrees.begin(), t.subtrees.end(), [&](int root) { return t.nodes[static_cast<std::size_t>(root)].linear; });
+  thread_local PwlBranch branch;
+  return std::all_of(t.subtrees.begin(), t.subtrees.end(), [&](int root) {
+    return t.nodes[static_cast<std::size_t>(root)].linear || (event_driven && PwlBranch::build(network, root, branch));
+  });
 }
 
 HarmonicPoint closed_form_harmonic_point(const Network& network, double amplitude, double frequency, HarmonicDefinition definition) {
+  if (auto point = try_closed_form_harmonic_point(network, amplitude, frequency, definition)) return *point;
+  throw NumericalError(
+      fmt::format("model '{}': the event-driven periodic state at {:g} mm and {:g} Hz did not settle (a slider or gap "
+                  "switching without end, or no periodic state within 60 cycles); use steady_state = time_stepping",
+                  network.model().name, amplitude, frequency));
+}
+
+std::optional<HarmonicPoint> try_closed_form_harmonic_point(const Network& network, double amplitude, double frequency,
+                                                            HarmonicDefinition definition) {
   const Coefficients& c = network.coefficients();
   const double u0 = amplitude;
   const double omega = 2.0 * std::numbers::pi * frequency;
@@ -174,13 +203,31 @@ HarmonicPoint closed_form_harmonic_point(const Network& network, double amplitud
     storage += scale * wt * wt;
     loss += scale * wt;
   }
+  thread_local std::vector<PwlPeriodicState> event_branches;
+  thread_local PwlBranch branch;
+  std::size_t events_used = 0;
+  int cycles = 0;                                // followed by the event-driven branches
+  double event_storage = 0.0, event_loss = 0.0;  // their force is summed by LoadingHalf::force, not by a and b
   for (int root : network.topology().subtrees) {
+    if (!network.topology().nodes[static_cast<std::size_t>(root)].linear) {
+      if (!PwlBranch::build(network, root, branch)) throw std::logic_error("closed_form_harmonic_point: a subtree has no closed form");
+      if (event_branches.size() <= events_used) event_branches.emplace_back();
+      PwlPeriodicState& state = event_branches[events_used++];
+      if (!state.solve(branch, u0, omega)) return std::nullopt;
+      cycles = std::max(cycles, state.cycles());
+      event_storage += state.storage();
+      event_loss += state.loss();
+      continue;
+    }
     const Complex k = subtree_stiffness(network, root, omega);
     storage += k.real();
     loss += k.imag();
   }
+  for (std::size_t i = 0; i < events_used; ++i) h.branches.push_back(&event_branches[i]);
   h.a = u0 * storage;
   h.b = u0 * loss;
+  storage += event_storage;
+  loss += event_loss;
   for (std::size_t i = 0; i < c.yeoh_d10.size(); ++i) {
     h.d10 += c.yeoh_d10[i];
     h.d20 += c.yeoh_d20[i];
@@ -211,6 +258,7 @@ HarmonicPoint closed_form_harmonic_point(const Network& network, double amplitud
   point.amplitude = amplitude;
   point.frequency = frequency;
   point.converged = true;
+  point.cycles = cycles;
   point.measures = measures_from(loading_half_maximum(h), storage, loss, u0, definition);
   return point;
 }

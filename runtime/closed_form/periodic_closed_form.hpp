@@ -42,13 +42,22 @@
 #include "runtime/core/harmonic_point.hpp"
 #include "runtime/network/network.hpp"
 
+#include <optional>
+
 namespace rheo::runtime {
 
-// True when every subtree (nested block, or inerter leaf) is linear: springs, dashpots,
-// Maxwell elements (springpot chains included) and inerters only.
-bool has_closed_form_periodic_state(const Network& network);
+// True when every subtree (nested block, or inerter leaf) is linear (springs, dashpots, Maxwell
+// elements, springpot chains and inerters only), or piecewise linear with an event-driven
+// periodic state (pwl_branch.hpp: those and friction elements, sliders and gaps) unless
+// `event_driven` is false.
+bool has_closed_form_periodic_state(const Network& network, bool event_driven = true);
 
 // Requires has_closed_form_periodic_state(network), amplitude > 0 [mm], frequency > 0 [Hz].
+// Nothing when a piecewise-linear subtree's periodic state does not settle
+// (PwlPeriodicState::solve): the caller time-steps the point.
+std::optional<HarmonicPoint> try_closed_form_harmonic_point(const Network& network, double amplitude, double frequency,
+                                                            HarmonicDefinition definition);
+// The same, with a NumericalError where that returns nothing.
 HarmonicPoint closed_form_harmonic_point(const Network& network, double amplitude, double frequency, HarmonicDefinition definition);
 
 }  // namespace rheo::runtime

@@ -32,7 +32,7 @@ struct HarmonicPoint {
   double amplitude = 0.0;  // u0 [mm]
   double frequency = 0.0;  // f [Hz]
   CycleMeasures measures;
-  int cycles = 0;  // simulated cycles (0: closed form)
+  int cycles = 0;  // simulated cycles (0: closed form; event-driven branches: the cycles their shooting followed)
   bool converged = false;
   double residual = 0.0;  // estimated relative distance from the periodic state
 };

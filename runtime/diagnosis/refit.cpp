@@ -1,6 +1,7 @@
 #include "runtime/diagnosis/refit.hpp"
 
 #include "runtime/fit/fit_scoring.hpp"
+#include "runtime/protocols/harmonic.hpp"
 #include "runtime/protocols/solver_choice.hpp"
 #include "runtime/stepping/tree_solver.hpp"
 
@@ -16,8 +17,13 @@ namespace {
 // whose elements all sit in the root parallel block counts 0.05 (its kernel is one update per
 // element, ~20 ns a step), of one whose subtrees step without iteration (linear and
 // capped-linear chains, tree_solver.hpp) 0.3 (~0.13 us), of others 1 (the nested Newton
-// iterations, 0.3-3 us; docs/performance.md). Counted, not timed, so that budgets, and
+// iterations, 0.3-3 us; docs/performance.md), and a point stepped event to event 300 per
+// cycle its shooting followed. Counted, not timed, so that budgets, and
 // results, do not depend on the machine.
+// A cycle followed event to event (closed_form/pwl_periodic.hpp: 64 grid steps of a small
+// matrix, the located switches and, once, the first harmonic) costs about 100 us, 300 units.
+constexpr double kEventCycleWork = 300.0;
+
 double evaluation_work(const Network& network, const std::vector<FitDataSet>& data, const HarmonicOptions& options) {
   const Topology& t = network.topology();
   const double step_cost = uses_sundials(network, options.solver) ? 10.0 : t.subtrees.empty() ? 0.05 : steps_without_iteration(t) ? 0.3 : 1.0;
@@ -27,8 +33,9 @@ double evaluation_work(const Network& network, const std::vector<FitDataSet>& da
       work += step_cost * static_cast<double>(set.history().force.size());
       continue;
     }
+    const bool exact = uses_closed_form(network, options);
     for (const HarmonicPoint& point : predict(network, set, FitMethod::exact, options, nullptr).points)
-      work += point.cycles == 0 ? 10.0 : step_cost * point.cycles * options.steps_per_cycle;
+      work += point.cycles == 0 ? 10.0 : exact ? kEventCycleWork * point.cycles : step_cost * point.cycles * options.steps_per_cycle;
   }
   return work;
 }

@@ -56,7 +56,9 @@ void skip_geometric_tail(const std::vector<double>& cycle_start, double rho, std
 }  // namespace
 
 bool uses_closed_form(const Network& network, const HarmonicOptions& options) {
-  return options.steady_state != SteadyState::time_stepping && options.solver != SolverChoice::sundials && has_closed_form_periodic_state(network);
+  if (options.steady_state == SteadyState::time_stepping || options.solver == SolverChoice::sundials) return false;
+  const bool events = options.solver == SolverChoice::automatic || options.steady_state == SteadyState::closed_form;
+  return has_closed_form_periodic_state(network, events);
 }
 
 HarmonicPoint simulate_harmonic_point(const Network& network, double amplitude, double frequency, const HarmonicOptions& options) {
@@ -64,7 +66,10 @@ HarmonicPoint simulate_harmonic_point(const Network& network, double amplitude, 
   if (!(amplitude > 0.0 && std::isfinite(amplitude) && frequency > 0.0 && std::isfinite(frequency)))
     throw std::logic_error(fmt::format("model '{}': a harmonic point needs a positive, finite amplitude and frequency, got {} mm and {} Hz",
                                        network.model().name, amplitude, frequency));
-  if (uses_closed_form(network, options)) return closed_form_harmonic_point(network, amplitude, frequency, options.definition);
+  if (uses_closed_form(network, options)) {
+    if (options.steady_state == SteadyState::closed_form) return closed_form_harmonic_point(network, amplitude, frequency, options.definition);
+    if (auto point = try_closed_form_harmonic_point(network, amplitude, frequency, options.definition)) return *point;
+  }
   if (uses_sundials(network, options.solver)) return dae_harmonic_point(network, amplitude, frequency, options);
   if (options.steady_state == SteadyState::closed_form)
     throw std::logic_error(

@@ -28,7 +28,10 @@
 
 namespace rheo::runtime {
 
-// Whether simulate_harmonic_point takes the closed form for this network and these options.
+// Whether simulate_harmonic_point takes the closed form for this network and these options:
+// not with steady_state = time_stepping or solver = sundials; piecewise-linear subtrees
+// (event-driven, pwl_periodic.hpp) with solver = auto or steady_state = closed_form, while an
+// explicit solver = fixed keeps their time stepping (a budget the user chose).
 bool uses_closed_form(const Network& network, const HarmonicOptions& options);
 
 // Throws std::logic_error unless amplitude and frequency are positive and finite (the

@@ -115,8 +115,9 @@ TEST_CASE("a bare slider: F^ = fy and d = 4/pi > 1 is clamped to 90 deg and flag
   CHECK(p.measures.phase == doctest::Approx(std::numbers::pi / 2));
 }
 
-TEST_CASE("nested networks have no closed form: automatic falls back to time stepping, closed_form refuses") {
-  const auto net = test::network_from("model n { spring e (k = 100) series { friction f (k = 50, fy = 2) maxwell m (k = 80, tau = 1 ms) } }", "n");
+TEST_CASE("nested non-linear springs have no closed form: automatic falls back to time stepping, closed_form refuses") {
+  const auto net = test::network_from(
+      "model n { spring e (k = 100) series { yeoh y (D10 = 50, D20 = 1, D30 = 0) maxwell m (k = 80, tau = 1 ms) } }", "n");
   CHECK_FALSE(runtime::has_closed_form_periodic_state(net));
   HarmonicOptions automatic;
   const auto p = runtime::simulate_harmonic_point(net, 0.5, 5.0, automatic);

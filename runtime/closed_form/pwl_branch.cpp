@@ -1,0 +1,93 @@
+#include "runtime/closed_form/pwl_branch.hpp"
+
+#include <numeric>
+
+namespace rheo::runtime {
+namespace {
+
+struct BranchBuilder {
+  const Network& network;
+  PwlBranch& branch;
+
+  double parameter(const TreeNode& node, int slot) const { return network.parameter(node.param[slot]); }
+  int new_node() { return branch.internal_nodes++; }
+  void add(PwlEdgeKind kind, int a, int b, double value) {
+    if (kind == PwlEdgeKind::slider || kind == PwlEdgeKind::gap) branch.switches.push_back(static_cast<int>(branch.edges.size()));
+    branch.edges.push_back({kind, a, b, value});
+  }
+
+  // False when the subtree holds an element that is not piecewise linear.
+  bool place(int index, int a, int b) {
+    const Topology& t = network.topology();
+    const TreeNode& node = t.nodes[static_cast<std::size_t>(index)];
+    switch (node.kind) {
+      case NodeKind::spring: add(PwlEdgeKind::spring, a, b, parameter(node, 0)); return true;
+      case NodeKind::dashpot: add(PwlEdgeKind::dashpot, a, b, parameter(node, 0)); return true;
+      case NodeKind::inerter: add(PwlEdgeKind::inerter, a, b, parameter(node, 0)); return true;
+      case NodeKind::slider: add(PwlEdgeKind::slider, a, b, parameter(node, 0)); return true;
+      case NodeKind::gap: add(PwlEdgeKind::gap, a, b, 0.5 * parameter(node, 0)); return true;
+      case NodeKind::maxwell: {
+        const int mid = new_node();
+        add(PwlEdgeKind::spring, a, mid, parameter(node, 0));
+        add(PwlEdgeKind::dashpot, mid, b, parameter(node, 1));
+        return true;
+      }
+      case NodeKind::friction: {
+        const int mid = new_node();
+        add(PwlEdgeKind::spring, a, mid, parameter(node, 0));
+        add(PwlEdgeKind::slider, mid, b, parameter(node, 1));
+        return true;
+      }
+      case NodeKind::parallel:
+        for (int c = 0; c < node.child_count; ++c)
+          if (!place(t.children[static_cast<std::size_t>(node.first_child + c)], a, b)) return false;
+        return true;
+      case NodeKind::series: {
+        int from = a;
+        for (int c = 0; c < node.child_count; ++c) {
+          const int to = c + 1 == node.child_count ? b : new_node();
+          if (!place(t.children[static_cast<std::size_t>(node.first_child + c)], from, to)) return false;
+          from = to;
+        }
+        return true;
+      }
+      case NodeKind::yeoh:
+      case NodeKind::quadratic_dashpot:
+      case NodeKind::bouc_wen: return false;
+    }
+    return false;
+  }
+};
+
+// Whether the sliders and gaps, all rigid at once, form a forest on the graph in which the
+// terminal and ground are one node (both have prescribed positions): then in every mode the
+// rigid edges' constraints are independent and their forces determined.
+bool switches_form_forest(const PwlBranch& branch) {
+  const int known = branch.internal_nodes;  // terminal and ground
+  std::vector<int> parent(static_cast<std::size_t>(known + 1));
+  std::iota(parent.begin(), parent.end(), 0);
+  auto find = [&](int x) {
+    while (parent[static_cast<std::size_t>(x)] != x)
+      x = parent[static_cast<std::size_t>(x)] = parent[static_cast<std::size_t>(parent[static_cast<std::size_t>(x)])];
+    return x;
+  };
+  auto slot = [&](int node) { return node < 0 ? known : node; };
+  for (int s : branch.switches) {
+    const PwlEdge& e = branch.edges[static_cast<std::size_t>(s)];
+    const int ra = find(slot(e.a)), rb = find(slot(e.b));
+    if (ra == rb) return false;
+    parent[static_cast<std::size_t>(ra)] = rb;
+  }
+  return true;
+}
+
+}  // namespace
+
+bool PwlBranch::build(const Network& network, int root, PwlBranch& out) {
+  out = PwlBranch{};
+  BranchBuilder builder{network, out};
+  if (!builder.place(root, kPwlTerminal, kPwlGround)) return false;
+  return !out.switches.empty() && switches_form_forest(out);
+}
+
+}  // namespace rheo::runtime

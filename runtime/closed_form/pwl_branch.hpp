@@ -1,0 +1,48 @@
+// A branch of the model's parallel body (a subtree) as a piecewise-linear graph, for the
+// event-driven periodic state (pwl_periodic.hpp).
+//
+// The branch is driven by the terminal, x_T = u(t), and held by ground, x_G = 0; every
+// junction of a series chain is an internal node j with position x_j [mm]. Each leaf becomes
+// one or two edges from node a to node b with elongation e = x_a - x_b [mm] and tension F [N]:
+//   spring k [N/mm]          F = k e
+//   dashpot c [N*s/mm]       F = c de/dt
+//   inerter b [N*s^2/mm]     F = b d2e/dt2
+//   slider fy [N]            |F| <= fy; rigid (de/dt = 0) while |F| < fy, F = fy sgn(de/dt) while it slips
+//   gap w [mm]               F = 0 while |e| < w/2; rigid at e = +-w/2 while it pushes back (F e >= 0)
+//   maxwell (k, c)           spring k + dashpot c through a new node (eq. 2.3)
+//   friction (k, fy)         spring k + slider fy through a new node (eq. 2.9)
+// Between switches of its sliders and gaps every such branch is linear (docs/numerics.md).
+#pragma once
+
+#include "runtime/network/network.hpp"
+
+#include <cstdint>
+#include <vector>
+
+namespace rheo::runtime {
+
+enum class PwlEdgeKind : std::uint8_t { spring, dashpot, inerter, slider, gap };
+
+inline constexpr int kPwlTerminal = -1;  // node index of the driven terminal
+inline constexpr int kPwlGround = -2;    // node index of ground
+
+struct PwlEdge {
+  PwlEdgeKind kind = PwlEdgeKind::spring;
+  int a = kPwlTerminal, b = kPwlGround;
+  double value = 0.0;  // k, c, b, fy, or the gap's half width w/2
+};
+
+struct PwlBranch {
+  int internal_nodes = 0;
+  std::vector<PwlEdge> edges;
+  std::vector<int> switches;  // indices of slider and gap edges
+
+  // The graph of subtree `root` of `network` (a node index of Topology::subtrees), or nothing
+  // when the subtree is not piecewise linear (a yeoh, quadratic_dashpot or bouc_wen below it),
+  // is linear (no slider, friction or gap: the phasor path serves it), or could lose its
+  // determinacy in some mode: sliders and gaps that close a loop, or a path from the terminal
+  // to ground, when rigid (their forces would not be fixed by the network).
+  static bool build(const Network& network, int root, PwlBranch& out);
+};
+
+}  // namespace rheo::runtime

@@ -1,0 +1,241 @@
+#include "runtime/closed_form/pwl_mode.hpp"
+
+#include <Eigen/Eigenvalues>
+
+#include <algorithm>
+#include <cmath>
+
+namespace rheo::runtime {
+namespace {
+
+using Eigen::MatrixXd;
+using Eigen::RowVectorXd;
+using Eigen::VectorXd;
+
+// Incidence of an edge over the internal nodes (d) and the terminal (d_T): e = d.x + d_T u.
+struct Incidence {
+  VectorXd d;
+  double terminal = 0.0;
+};
+
+Incidence incidence(const PwlEdge& e, int nodes) {
+  Incidence in{VectorXd::Zero(nodes), 0.0};
+  if (e.a >= 0) in.d[e.a] += 1.0;
+  if (e.b >= 0) in.d[e.b] -= 1.0;
+  if (e.a == kPwlTerminal) in.terminal += 1.0;
+  if (e.b == kPwlTerminal) in.terminal -= 1.0;
+  return in;
+}
+
+// Orthonormal eigenvectors of a symmetric positive semi-definite matrix split at a relative
+// threshold: columns with eigenvalue above it (`range`) and the others (`null`).
+void split_by_eigenvalue(const MatrixXd& S, double reference, MatrixXd& range, MatrixXd& null) {
+  const int n = static_cast<int>(S.rows());
+  if (n == 0) {
+    range.resize(0, 0), null.resize(0, 0);
+    return;
+  }
+  Eigen::SelfAdjointEigenSolver<MatrixXd> eig(S);
+  const double threshold = 1e-11 * std::max(reference, eig.eigenvalues().cwiseAbs().maxCoeff());
+  std::vector<int> big, small;
+  for (int i = 0; i < n; ++i) (eig.eigenvalues()[i] > threshold ? big : small).push_back(i);
+  range.resize(n, static_cast<Eigen::Index>(big.size()));
+  null.resize(n, static_cast<Eigen::Index>(small.size()));
+  for (std::size_t i = 0; i < big.size(); ++i) range.col(static_cast<Eigen::Index>(i)) = eig.eigenvectors().col(big[i]);
+  for (std::size_t i = 0; i < small.size(); ++i) null.col(static_cast<Eigen::Index>(i)) = eig.eigenvectors().col(small[i]);
+}
+
+}  // namespace
+
+VectorXd PwlModeSystem::state_at(const VectorXd& X, double t, double u0, double omega) const {
+  VectorXd w = from_X * X;
+  const double s = std::sin(omega * t), c = std::cos(omega * t);
+  w.segment(nz, nh) += held_drive * (u0 * s);
+  w[one()] = 1.0;
+  w[sine()] = s;
+  w[cosine()] = c;
+  return w;
+}
+
+bool build_pwl_mode(const PwlBranch& branch, const PwlModeCode& code, double u0, double omega, PwlModeSystem& out) {
+  const int n = branch.internal_nodes;
+  MatrixXd K = MatrixXd::Zero(n, n), C = K, M = K;
+  VectorXd kT = VectorXd::Zero(n), cT = kT, mT = kT, f_slip = kT;
+  std::vector<int> rigid;  // edge indices of stuck sliders and closed gaps, in switch order
+  double largest_k = 0.0;
+  for (std::size_t s = 0; s < branch.switches.size(); ++s) {
+    const PwlEdge& e = branch.edges[static_cast<std::size_t>(branch.switches[s])];
+    if (code[s] == 0 && e.kind == PwlEdgeKind::gap) continue;  // open: no force
+    if (code[s] != 0 && e.kind == PwlEdgeKind::slider) {
+      f_slip += incidence(e, n).d * (code[s] * e.value);
+      continue;
+    }
+    rigid.push_back(branch.switches[s]);
+  }
+  for (const PwlEdge& e : branch.edges) {
+    const Incidence in = incidence(e, n);
+    switch (e.kind) {
+      case PwlEdgeKind::spring:
+        K += e.value * in.d * in.d.transpose(), kT += e.value * in.terminal * in.d;
+        largest_k = std::max(largest_k, e.value);
+        break;
+      case PwlEdgeKind::dashpot: C += e.value * in.d * in.d.transpose(), cT += e.value * in.terminal * in.d; break;
+      case PwlEdgeKind::inerter: M += e.value * in.d * in.d.transpose(), mT += e.value * in.terminal * in.d; break;
+      default: break;
+    }
+  }
+
+  // Rigid constraints R x + rho u = h and the split x = P (h - rho u) + N y.
+  const int r = static_cast<int>(rigid.size());
+  MatrixXd R(r, n);
+  VectorXd rho(r);
+  for (int i = 0; i < r; ++i) {
+    const Incidence in = incidence(branch.edges[static_cast<std::size_t>(rigid[static_cast<std::size_t>(i)])], n);
+    R.row(i) = in.d.transpose();
+    rho[i] = in.terminal;
+  }
+  MatrixXd P = MatrixXd::Zero(n, r), N = MatrixXd::Identity(n, n);
+  if (r > 0) {
+    P = R.transpose() * (R * R.transpose()).inverse();
+    MatrixXd range, null;
+    split_by_eigenvalue(R.transpose() * R, 1.0, range, null);
+    N = null;
+  }
+  const int nq = static_cast<int>(N.cols());
+  const MatrixXd Kq = N.transpose() * K * N, Cq = N.transpose() * C * N, Mq = N.transpose() * M * N;
+
+  // Directions: massive (m), massless damped (d), massless undamped (a).
+  MatrixXd Vm, V0, Vd, Va;
+  split_by_eigenvalue(Mq, 0.0, Vm, V0);
+  split_by_eigenvalue(V0.transpose() * Cq * V0, 0.0, Vd, Va);
+  Vd = V0 * Vd, Va = V0 * Va;
+  const int nm = static_cast<int>(Vm.cols()), nd = static_cast<int>(Vd.cols()), na = static_cast<int>(Va.cols());
+
+  // Layout of w.
+  out.code = code;
+  out.nz = nd + 2 * nm;
+  out.nh = r;
+  out.dim = out.nz + r + 3;
+  const int dim = out.dim, iz_m = nd, iz_v = nd + nm, ih = out.nz, i1 = out.one(), is = out.sine(), ic = out.cosine();
+
+  // Generalised force on y as a functional of w: N^T [ (K P rho - k_T) u + (C P rho - c_T) u'
+  // + (M P rho - m_T) u'' - f_slip - K P h ], with u = u0 s, u' = u0 w c, u'' = -u0 w^2 s.
+  MatrixXd Fy = MatrixXd::Zero(nq, dim);
+  Fy.middleCols(ih, r) = -N.transpose() * K * P;
+  Fy.col(i1) = -N.transpose() * f_slip;
+  Fy.col(is) = u0 * N.transpose() * ((K * P * rho - kT) - omega * omega * (M * P * rho - mT));
+  Fy.col(ic) = u0 * omega * N.transpose() * (C * P * rho - cT);
+
+  // Selections of eta_d, eta_m, v_m from w.
+  MatrixXd Sd = MatrixXd::Zero(nd, dim), Sm = MatrixXd::Zero(nm, dim), Sv = MatrixXd::Zero(nm, dim);
+  for (int i = 0; i < nd; ++i) Sd(i, i) = 1.0;
+  for (int i = 0; i < nm; ++i) Sm(i, iz_m + i) = 1.0, Sv(i, iz_v + i) = 1.0;
+
+  // Static condensation of the undamped massless directions: K_aa eta_a = Va^T Fy w - K_ad eta_d - K_am eta_m.
+  MatrixXd Ea = MatrixXd::Zero(na, dim);
+  if (na > 0) {
+    const MatrixXd Kaa = Va.transpose() * Kq * Va;
+    Eigen::SelfAdjointEigenSolver<MatrixXd> eig(Kaa);
+    if (!(eig.eigenvalues().minCoeff() > 1e-11 * std::max(largest_k, 1e-300))) return false;
+    Ea = eig.eigenvectors() * eig.eigenvalues().cwiseInverse().asDiagonal() * eig.eigenvectors().transpose() *
+         (Va.transpose() * Fy - Va.transpose() * Kq * (Vd * Sd + Vm * Sm));
+  }
+  // y = Va eta_a + Vd eta_d + Vm eta_m as a functional of w.
+  const MatrixXd Y = Va * Ea + Vd * Sd + Vm * Sm;
+  const MatrixXd elastic = Fy - Kq * Y;  // generalised force less the stiffness term
+
+  out.A = MatrixXd::Zero(dim, dim);
+  MatrixXd Ad = MatrixXd::Zero(nd, dim);
+  if (nd > 0) Ad = (Vd.transpose() * Cq * Vd).inverse() * (Vd.transpose() * elastic - Vd.transpose() * Cq * Vm * Sv);
+  out.A.middleRows(0, nd) = Ad;
+  out.A.middleRows(iz_m, nm) = Sv;
+  if (nm > 0)
+    out.A.middleRows(iz_v, nm) = (Vm.transpose() * Mq * Vm).inverse() * (Vm.transpose() * elastic - Vm.transpose() * Cq * (Vd * Ad + Vm * Sv));
+  out.drive_omega = omega;
+  out.A(is, ic) = omega;
+  out.A(ic, is) = -omega;
+  out.norm1 = out.A.cwiseAbs().colwise().sum().maxCoeff();
+
+  // Positions and velocities.
+  MatrixXd Lx = N * Y;
+  Lx.middleCols(ih, r) += P;
+  Lx.col(is) -= u0 * P * rho;
+  const MatrixXd Lv = Lx * out.A, La = Lv * out.A;
+  out.to_X.resize(2 * n, dim);
+  out.to_X << Lx, Lv;
+  out.from_X = MatrixXd::Zero(dim, 2 * n);
+  const MatrixXd toq = N.transpose();
+  out.from_X.block(0, 0, nd, n) = Vd.transpose() * toq;
+  out.from_X.block(iz_m, 0, nm, n) = Vm.transpose() * toq;
+  out.from_X.block(iz_v, n, nm, n) = Vm.transpose() * toq;
+  out.from_X.block(ih, 0, r, n) = R;
+  out.held_drive = rho;
+
+  // Tensions of the rigid edges from the full equilibrium.
+  MatrixXd lambda = MatrixXd::Zero(r, dim);
+  if (r > 0) {
+    MatrixXd residual = M * La + C * Lv + K * Lx;
+    residual.col(is) += u0 * kT - u0 * omega * omega * mT;
+    residual.col(ic) += u0 * omega * cT;
+    residual.col(i1) += f_slip;
+    lambda = -(R * R.transpose()).inverse() * R * residual;
+  }
+
+  // Edge forces, the terminal force and the guards.
+  out.force = RowVectorXd::Zero(dim);
+  out.guards.resize(0, dim);
+  out.transitions.clear();
+  std::vector<RowVectorXd> guard_rows;
+  auto guard = [&](const RowVectorXd& row, int which, std::int8_t to, double scale) {
+    guard_rows.push_back(row);
+    out.transitions.push_back({which, to, scale});
+  };
+  const double rate_scale = u0 * omega, force_scale = std::max(largest_k * u0, 1e-300);
+  int rigid_index = 0;
+  std::size_t switch_index = 0;
+  for (std::size_t i = 0; i < branch.edges.size(); ++i) {
+    const PwlEdge& e = branch.edges[i];
+    const Incidence in = incidence(e, n);
+    RowVectorXd elongation = in.d.transpose() * Lx;
+    elongation[is] += in.terminal * u0;
+    RowVectorXd force = RowVectorXd::Zero(dim);
+    const bool is_switch = switch_index < branch.switches.size() && branch.switches[switch_index] == static_cast<int>(i);
+    const int which = static_cast<int>(switch_index);
+    const std::int8_t state = is_switch ? code[switch_index++] : 0;
+    switch (e.kind) {
+      case PwlEdgeKind::spring: force = e.value * elongation; break;
+      case PwlEdgeKind::dashpot: force = e.value * elongation * out.A; break;
+      case PwlEdgeKind::inerter: force = e.value * elongation * out.A * out.A; break;
+      case PwlEdgeKind::slider:
+        if (state == 0) {
+          force = lambda.row(rigid_index++);
+          RowVectorXd upper = -force, lower = force;
+          upper[i1] += e.value, lower[i1] += e.value;
+          guard(upper, which, 1, e.value);
+          guard(lower, which, -1, e.value);
+        } else {
+          force[i1] = state * e.value;
+          guard(state * elongation * out.A, which, 0, rate_scale);
+        }
+        break;
+      case PwlEdgeKind::gap:
+        if (state == 0) {
+          RowVectorXd upper = -elongation, lower = elongation;
+          upper[i1] += e.value, lower[i1] += e.value;
+          guard(upper, which, 1, std::max(e.value, 1e-9 * u0));
+          guard(lower, which, -1, std::max(e.value, 1e-9 * u0));
+        } else {
+          force = lambda.row(rigid_index++);
+          guard(state * force, which, 0, force_scale);
+        }
+        break;
+    }
+    out.force += in.terminal * force;
+  }
+  out.guards.resize(static_cast<Eigen::Index>(guard_rows.size()), dim);
+  for (std::size_t g = 0; g < guard_rows.size(); ++g) out.guards.row(static_cast<Eigen::Index>(g)) = guard_rows[g];
+  out.decompose();
+  return true;
+}
+
+}  // namespace rheo::runtime

@@ -1,0 +1,98 @@
+// One mode of a piecewise-linear branch (pwl_branch.hpp) under the drive u = u0 sin(w t): every
+// slider stuck or slipping, every gap open or closed. In a mode the branch is a linear system
+// with constant coefficients, written as the augmented linear ODE
+//   w' = A w,   w = (z, h, 1, s, c),   s = sin(w t), c = cos(w t)   (s' = w c, c' = -w s),
+// which its matrix exponential solves exactly: w(t + tau) = e^{A tau} w(t).
+//
+// Derivation (node positions x [mm] of the internal nodes, N of them): edge laws in node
+// equilibrium give the second-order system
+//   M x'' + C x' + K x = -(k_T u + c_T u' + m_T u'') - f_slip - R^T lambda,
+// M, C, K the inerter, dashpot and spring Laplacians over the internal nodes (symmetric,
+// positive semi-definite), k_T, c_T, m_T their couplings to the terminal, f_slip the +-fy of
+// slipping sliders, and for the rigid edges (stuck sliders, closed gaps) the constraints
+// R x + rho u = h with their held elongations h and unknown tensions lambda. With
+// x = R^+ (h - rho u) + N y (N an orthonormal basis of ker R) and the projection onto N the
+// tensions drop out. In y the mass matrix splits the space into massive directions
+// (coordinates eta_m and their rates v_m), massless damped ones (eta_d, first order) and
+// massless undamped ones (eta_a, algebraic: solved by static condensation, which needs their
+// stiffness to be positive definite: otherwise the mode is indeterminate and refused). The
+// state is z = (eta_d, eta_m, v_m); h is constant within the mode.
+//
+// Every quantity the branch needs is then a linear functional of w: node positions and
+// velocities X = (x, x') = to_X w, the tensions lambda (from the full equilibrium with
+// x'' = to_X-part A^2 w), the terminal force F = force w, and the guards: rows of
+// `guards` w that stay >= 0 while the mode holds (a stuck slider's fy -+ lambda, a slipping
+// slider's sgn * rate, an open gap's w/2 -+ e, a closed gap's sgn * lambda).
+#pragma once
+
+#include "runtime/closed_form/pwl_branch.hpp"
+
+#include <Eigen/Dense>
+
+#include <complex>
+#include <cstdint>
+#include <vector>
+
+namespace rheo::runtime {
+
+// One entry per PwlBranch::switches: slider 0 stuck, +1 / -1 slipping with F = +-fy (de/dt of
+// that sign); gap 0 open, +1 / -1 closed at e = +-w/2.
+using PwlModeCode = std::vector<std::int8_t>;
+
+// What a guard row leads to when it reaches zero: switch `which` (an index into
+// PwlBranch::switches) takes state `to`.
+struct PwlTransition {
+  int which = 0;
+  std::int8_t to = 0;
+  double scale = 1.0;  // the size of the guarded quantity (N, mm or mm/s), for tolerances
+};
+
+struct PwlModeSystem {
+  PwlModeCode code;
+  int nz = 0, nh = 0, dim = 0;  // dim = nz + nh + 3
+  int one() const { return nz + nh; }
+  int sine() const { return nz + nh + 1; }
+  int cosine() const { return nz + nh + 2; }
+
+  Eigen::MatrixXd A;                       // dim x dim
+  double norm1 = 0.0;                      // ||A||_1
+  Eigen::MatrixXd to_X;                    // 2N x dim: X = (x, x') = to_X w
+  Eigen::MatrixXd from_X;                  // dim x 2N: w = from_X X + drive terms (rows one, s, c: 0)
+  Eigen::VectorXd held_drive;              // nh: h = R x + rho u, the rho of each rigid edge
+  Eigen::RowVectorXd force;                // terminal force [N]
+  Eigen::MatrixXd guards;                  // rows >= 0 while the mode holds
+  std::vector<PwlTransition> transitions;  // one per guard row
+
+  // The augmented state at time t [s] of node positions and velocities X.
+  Eigen::VectorXd state_at(const Eigen::VectorXd& X, double t, double u0, double omega) const;
+
+  // The exact flow of the mode (pwl_flow.cpp): e^{A tau}, its action on a state, and
+  // int_0^h F(w(tau)) e^{i omega tau} dtau. Where the state block A_zz is diagonalisable with
+  // well-conditioned eigenvectors (reciprocal condition above 1e-8), in its modal coordinates
+  // q = V^-1 z each q_j obeys q_j' = lambda_j q_j + phi_j + G+_j E e^{i w tau} + G-_j conj(E) e^{-i w tau}
+  // (the constant forcing of h and 1, and the drive, E = c(0) + i s(0)), solved in closed form:
+  //   q_j(tau) = e^{lambda tau} q_j(0) + sum_mu beta_mu e^{lambda tau} (e^{(mu - lambda) tau} - 1)/(mu - lambda),
+  // mu in {0, i w, -i w}, which stays exact where mu = lambda (a slipping dashpot's drift at
+  // lambda = 0, an undamped mass driven at resonance). Otherwise (a defective A_zz) the
+  // exponential by Pade approximation with scaling and squaring.
+  Eigen::MatrixXd propagator(double tau) const;
+  Eigen::VectorXd advance(double tau, const Eigen::VectorXd& w) const;
+  std::complex<double> phased_force_integral(double h, const Eigen::VectorXd& w0) const;
+  void decompose();  // sets the modal data below; called by build_pwl_mode
+
+  bool modal = false;
+  double drive_omega = 0.0;          // w [rad/s]
+  Eigen::MatrixXcd V, V_inverse;     // nz x nz
+  Eigen::VectorXcd lambda;           // nz
+  Eigen::MatrixXcd phi;              // nz x (nh + 1): V^-1 [A_zh, a_1]
+  Eigen::VectorXcd g_plus, g_minus;  // (1/2) V^-1 (a_c -+ i a_s) and its conjugate counterpart
+  Eigen::RowVectorXcd force_V;       // force_z V
+};
+
+// Builds the mode `code` of `branch` for amplitude u0 [mm] and angular frequency omega
+// [rad/s]. False when the mode is indeterminate (a node or direction that nothing but
+// slipping sliders and open gaps holds): such a mode cannot be physical, and the caller
+// treats reaching it as a failure of the event-driven path.
+bool build_pwl_mode(const PwlBranch& branch, const PwlModeCode& code, double u0, double omega, PwlModeSystem& out);
+
+}  // namespace rheo::runtime

@@ -1,0 +1,69 @@
+// The periodic steady state of a piecewise-linear branch (pwl_branch.hpp) under the drive
+// u = u0 sin(w t), found exactly: no time step and no cycles run until they repeat.
+//
+// Within a mode the branch state moves by the matrix exponential of its augmented linear ODE
+// (pwl_mode.hpp), applied by its Taylor series with scaling (||A tau|| <= 1/2 per factor:
+// machine precision). A cycle is followed event to event: the guards are checked at 64 points
+// per cycle, where a guard changes sign (or a cubic through its values and slopes at both ends
+// dips below zero) the crossing is located by safeguarded Newton on the exact trajectory, and
+// the branch switches mode there, settling any guard the new mode violates at once.
+//
+// The one-cycle map X(0) -> X(T) of node positions and velocities is affine for a fixed
+// sequence of events. The periodic state is its fixed point, found by Newton's method
+// (shooting): the Jacobian is propagated with the state, through each event by its saltation
+// matrix, J_new = dw_new/dX (dw/dX_old + A_old w dt) - A_new w_new dt with
+// dt = -g.dw/(g.A_old w) (g the guard that fired). Directions the map leaves unchanged (a
+// slider that never slips keeps any offset) keep the start's value: the branch starts at rest,
+// as time stepping does, and (J - I) is solved in the least-squares sense.
+//
+// The cycle then yields the first harmonic exactly, K'_1 + i K''_1 = (w/(pi u0)) int_0^T
+// F(t) e^{i w t} dt, each piece's integral by the series of int e^{(A + i w) tau} dtau, and
+// F, dF/dtheta and d2F/dtheta2 at any phase theta = w t for the extrema (eqs. 1.2, 5.26).
+#pragma once
+
+#include "runtime/closed_form/pwl_mode.hpp"
+
+#include <vector>
+
+namespace rheo::runtime {
+
+class PwlPeriodicState {
+ public:
+  // False when the event-driven path cannot settle this branch: a mode that would be
+  // indeterminate, more than 10000 switches in a cycle, no fixed point after 60 cycles, or a
+  // periodic force that is not half-wave symmetric (F(theta + pi) = -F(theta) within 1e-8 of
+  // max |F|: a slider holding an offset; the extrema are taken as max F = -min F). The caller
+  // then time-steps the point.
+  bool solve(const PwlBranch& branch, double u0, double omega);
+
+  double storage() const { return storage_; }  // K'_1 [N/mm]
+  double loss() const { return loss_; }        // K''_1 [N/mm]
+  int cycles() const { return cycles_; }       // cycles followed (the shooting iterations and the last)
+
+  // At phase theta = w t [rad] of the steady cycle (any real theta): F [N], dF/dtheta, d2F/dtheta2.
+  double force(double theta) const;
+  void derivatives(double theta, double& first, double& second) const;
+  // Phases in [0, 2 pi) at which a slider or gap switches in the steady cycle (kinks of F).
+  const std::vector<double>& switch_phases() const { return switch_phases_; }
+
+ private:
+  struct Piece {
+    double t = 0.0;  // start [s]
+    int mode = 0;
+    Eigen::VectorXd w;
+  };
+  struct Run;
+
+  double u0_ = 0.0, omega_ = 0.0, period_ = 0.0;
+  double storage_ = 0.0, loss_ = 0.0;
+  int cycles_ = 0;
+  std::vector<PwlModeSystem> modes_;
+  std::vector<Eigen::MatrixXd> grid_step_;          // e^{A T/64} per mode, built when first needed
+  std::vector<Eigen::RowVectorXcd> grid_integral_;  // int_0^{T/64} F e^{i w tau} dtau per mode, as a row on w
+  std::vector<Piece> pieces_;
+  std::vector<double> switch_phases_;
+
+  Eigen::VectorXd state_at_phase(double theta, int& mode) const;
+};
+
+}  // namespace rheo::runtime

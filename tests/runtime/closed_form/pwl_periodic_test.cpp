@@ -1,0 +1,155 @@
+// The event-driven periodic state of piecewise-linear subtrees (pwl_periodic.hpp) against
+// independent paths: the phasor K* of the same network when no slider ever slips, the
+// fixed-step kernels Richardson-extrapolated to N -> infinity, and IDA.
+#include "runtime/closed_form/pwl_periodic.hpp"
+#include "runtime/closed_form/periodic_closed_form.hpp"
+#include "runtime/protocols/harmonic.hpp"
+
+#include "support.hpp"
+
+#include <doctest/doctest.h>
+
+#include <cmath>
+#include <algorithm>
+#include <numbers>
+
+using namespace rheo;
+using runtime::HarmonicDefinition;
+
+namespace {
+
+// The hydrobushing's fluid branch (examples/hydrobushing.rheo) with a cap of `fy` N.
+std::string fluid_branch(double fy) {
+  return "model fluid { series f { slider cap (fy = " + std::to_string(fy) +
+         " N)\n spring k1 (k = 600 N/mm)\n parallel y { inerter column (b = 40 kg)\n dashpot channel (c = 3.0 N*s/mm)\n"
+         " spring bulge (k = 150 N/mm) } } }";
+}
+
+const char* kLinearFluid = R"(
+  model fluid { series f { spring k1 (k = 600 N/mm)
+    parallel y { inerter column (b = 40 kg)
+                 dashpot channel (c = 3.0 N*s/mm)
+                 spring bulge (k = 150 N/mm) } } })";
+
+}  // namespace
+
+TEST_CASE("a slider that never slips leaves the branch's linear K*") {
+  const auto capped = test::network_from(fluid_branch(1e7), "fluid");
+  const auto linear = test::network_from(kLinearFluid, "fluid");
+  REQUIRE(runtime::has_closed_form_periodic_state(capped));
+  for (double f : {1.0, 11.0, 21.0, 40.0}) {
+    for (auto definition : {HarmonicDefinition::thesis, HarmonicDefinition::first_harmonic}) {
+      const auto a = runtime::closed_form_harmonic_point(capped, 0.1, f, definition);
+      const auto b = runtime::closed_form_harmonic_point(linear, 0.1, f, definition);
+      CAPTURE(f);
+      CHECK(test::relative_error(a.measures.stiffness, b.measures.stiffness) < 1e-10);
+      CHECK(std::abs(a.measures.phase - b.measures.phase) < 1e-10);
+    }
+  }
+}
+
+namespace {
+
+runtime::HarmonicPoint stepped(const runtime::Network& net, double u0, double f, int steps) {
+  runtime::HarmonicOptions options;
+  options.steady_state = runtime::SteadyState::time_stepping;
+  options.solver = runtime::SolverChoice::fixed;
+  options.steps_per_cycle = steps;
+  options.tolerance = 1e-10;
+  options.max_cycles = 20000;
+  return runtime::simulate_harmonic_point(net, u0, f, options);
+}
+
+// The fixed-step result at N = 1024 and 4096 steps per cycle extrapolated to N -> infinity
+// (Richardson, for a path of the given order in the step: first where a dashpot sits behind an
+// internal node, second otherwise; docs/numerics.md), against the event-driven state:
+// stiffness relative and phase [rad] within `tolerance`, which is well below the error at 1024.
+void check_against_time_stepping(const runtime::Network& net, double u0, double f, int order, double tolerance) {
+  const auto exact = runtime::closed_form_harmonic_point(net, u0, f, HarmonicDefinition::thesis);
+  const auto coarse = stepped(net, u0, f, 1024), fine = stepped(net, u0, f, 4096);
+  CAPTURE(u0);
+  CAPTURE(f);
+  REQUIRE(coarse.converged);
+  REQUIRE(fine.converged);
+  const double gain = std::pow(4.0, order);
+  const double k = (gain * fine.measures.stiffness - coarse.measures.stiffness) / (gain - 1.0);
+  const double phase = (gain * fine.measures.phase - coarse.measures.phase) / (gain - 1.0);
+  CAPTURE(exact.measures.stiffness);
+  CAPTURE(coarse.measures.stiffness);
+  CAPTURE(k);
+  CHECK(test::relative_error(exact.measures.stiffness, k) < tolerance);
+  CHECK(std::abs(exact.measures.phase - phase) < tolerance);
+}
+
+}  // namespace
+
+TEST_CASE("the hydrobushing's slider-capped fluid column against time stepping, stuck, slipping and at resonance") {
+  const auto net = test::network_from(fluid_branch(60.0), "fluid");
+  REQUIRE(runtime::has_closed_form_periodic_state(net));
+  for (double u0 : {0.1, 0.5, 2.0})
+    for (double f : {1.0, 5.0, 23.0}) check_against_time_stepping(net, u0, f, 1, 1e-5);
+}
+
+TEST_CASE("a slider in series with a Maxwell arm: the slipping mode drifts (a zero eigenvalue), in closed form") {
+  const auto net = test::network_from(R"(
+    model coupled {
+      spring k0 (k = 200 N/mm)
+      series arm { slider s (fy = 45 N)
+                   maxwell m (k = 300 N/mm, tau = 20 ms) }
+    })",
+                                      "coupled");
+  runtime::PwlBranch branch;
+  REQUIRE(runtime::PwlBranch::build(net, net.topology().subtrees[0], branch));
+  runtime::PwlModeSystem slipping;
+  REQUIRE(runtime::build_pwl_mode(branch, runtime::PwlModeCode{1}, 1.0, 10.0, slipping));
+  CHECK(slipping.modal);  // the drift is the modal closed form at lambda = 0
+  for (double u0 : {0.05, 0.3, 1.5})
+    for (double f : {0.5, 5.0, 40.0}) check_against_time_stepping(net, u0, f, 2, 1e-6);
+}
+
+TEST_CASE("a spring behind a gap: F = k (|u| - w/2) sgn u beyond contact") {
+  const double k = 400.0, width = 0.3;
+  const auto net = test::network_from("model g { series c { gap play (width = 0.3 mm)\n spring k (k = 400 N/mm) } }", "g");
+  REQUIRE(runtime::has_closed_form_periodic_state(net));
+  for (double u0 : {0.2, 0.5, 2.0}) {
+    const auto thesis = runtime::closed_form_harmonic_point(net, u0, 3.0, HarmonicDefinition::thesis);
+    CAPTURE(u0);
+    CHECK(std::abs(thesis.measures.stiffness - k * std::max(0.0, 1.0 - 0.5 * width / u0)) < 1e-9 * k);
+    CHECK(std::abs(thesis.measures.phase) < 1e-9);
+    // First harmonic by the midpoint rule over 20000 phases (the loop has two kinks per half).
+    const auto first = runtime::closed_form_harmonic_point(net, u0, 3.0, HarmonicDefinition::first_harmonic);
+    const int n = 20000;
+    double storage = 0.0;
+    for (int j = 0; j < n; ++j) {
+      const double theta = 2.0 * std::numbers::pi * (j + 0.5) / n, u = u0 * std::sin(theta);
+      storage += k * std::copysign(std::max(0.0, std::abs(u) - 0.5 * width), u) * std::sin(theta);
+    }
+    storage *= 2.0 / (n * u0);
+    CHECK(std::abs(first.measures.storage - storage) < 1e-7 * k);
+  }
+}
+
+TEST_CASE("a friction element behind a spring is the root friction element of the series stiffness") {
+  const auto nested = test::network_from("model n { series c { spring k1 (k = 300 N/mm)\n friction f (k = 600 N/mm, uy = 0.1 mm) } }", "n");
+  const auto root = test::network_from("model r { friction f (k = 200 N/mm, uy = 0.3 mm) }", "r");
+  REQUIRE(runtime::has_closed_form_periodic_state(nested));
+  for (double u0 : {0.2, 0.31, 1.0, 5.0})
+    for (auto definition : {HarmonicDefinition::thesis, HarmonicDefinition::first_harmonic}) {
+      const auto a = runtime::closed_form_harmonic_point(nested, u0, 2.0, definition);
+      const auto b = runtime::closed_form_harmonic_point(root, u0, 2.0, definition);
+      CAPTURE(u0);
+      CHECK(test::relative_error(a.measures.stiffness, b.measures.stiffness) < 1e-9);
+      CHECK(std::abs(a.measures.phase - b.measures.phase) < 1e-9);
+    }
+}
+
+TEST_CASE("branches the event path does not take") {
+  runtime::PwlBranch branch;
+  const auto bouc = test::network_from("model b { series c { spring k (k = 1 N/mm)\n bouc_wen w (k = 1 N/mm, fy = 1 N, n = 2) } }", "b");
+  CHECK_FALSE(runtime::PwlBranch::build(bouc, bouc.topology().subtrees[0], branch));
+  CHECK_FALSE(runtime::has_closed_form_periodic_state(bouc));
+  // Two sliders side by side close a loop of rigid edges: their forces would be indeterminate.
+  const auto loop = test::network_from("model l { series c { spring k (k = 1 N/mm)\n parallel p { slider a (fy = 1 N)\n slider b (fy = 2 N) } } }",
+                                       "l");
+  CHECK_FALSE(runtime::PwlBranch::build(loop, loop.topology().subtrees[0], branch));
+}
