@@ -153,3 +153,17 @@ TEST_CASE("branches the event path does not take") {
                                        "l");
   CHECK_FALSE(runtime::PwlBranch::build(loop, loop.topology().subtrees[0], branch));
 }
+
+TEST_CASE("gaps, nested frictions and a gap behind a slider against time stepping") {
+  const char* models[] = {
+      "model a { spring k0 (k = 100 N/mm)\n series s { gap g (width = 0.4 mm)\n maxwell m (k = 300 N/mm, tau = 10 ms) } }",
+      "model a { spring k0 (k = 50 N/mm)\n series s { friction f1 (k = 400 N/mm, uy = 0.1 mm)\n"
+      " parallel p { friction f2 (k = 100 N/mm, uy = 0.2 mm)\n maxwell m (k = 80 N/mm, tau = 5 ms) } } }",
+      "model a { spring k0 (k = 10 N/mm)\n series s { gap g (width = 0.2 mm)\n slider s (fy = 20 N)\n spring k (k = 300 N/mm) } }"};
+  for (const char* model : models) {
+    const auto net = test::network_from(model, "a");
+    REQUIRE(runtime::has_closed_form_periodic_state(net));
+    for (double u0 : {0.05, 0.3, 2.0})
+      for (double f : {0.5, 17.0}) check_against_time_stepping(net, u0, f, 2, 1e-5);
+  }
+}
