@@ -322,13 +322,13 @@ bool PwlPeriodicState::solve(const PwlBranch& branch, double u0, double omega) {
       // The extrema are taken as max F = -min F (periodic_closed_form.hpp): the force must be
       // half-wave symmetric, F(theta + pi) = -F(theta), as it is wherever the periodic state is
       // unique up to offsets that carry no force; checked at 16 phases.
-      double asymmetry = 0.0, size = 0.0;
+      double asymmetry = 0.0, largest = 0.0;
       for (int k = 0; k < 16; ++k) {
         const double theta = (k + 0.5) * std::numbers::pi / 16.0, f = force(theta);
         asymmetry = std::max(asymmetry, std::abs(f + force(theta + std::numbers::pi)));
-        size = std::max(size, std::abs(f));
+        largest = std::max(largest, std::abs(f));
       }
-      return asymmetry <= 1e-8 * size;
+      return asymmetry <= 1e-8 * largest;
     }
     // Newton on X_T(X0) - X0 = 0 in scaled coordinates; a plain cycle when the last step did not help.
     newton = size < previous || !newton;
