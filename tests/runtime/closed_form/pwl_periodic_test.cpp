@@ -143,17 +143,6 @@ TEST_CASE("a friction element behind a spring is the root friction element of th
     }
 }
 
-TEST_CASE("branches the event path does not take") {
-  runtime::PwlBranch branch;
-  const auto bouc = test::network_from("model b { series c { spring k (k = 1 N/mm)\n bouc_wen w (k = 1 N/mm, fy = 1 N, n = 2) } }", "b");
-  CHECK_FALSE(runtime::PwlBranch::build(bouc, bouc.topology().subtrees[0], branch));
-  CHECK_FALSE(runtime::has_closed_form_periodic_state(bouc));
-  // Two sliders side by side close a loop of rigid edges: their forces would be indeterminate.
-  const auto loop = test::network_from("model l { series c { spring k (k = 1 N/mm)\n parallel p { slider a (fy = 1 N)\n slider b (fy = 2 N) } } }",
-                                       "l");
-  CHECK_FALSE(runtime::PwlBranch::build(loop, loop.topology().subtrees[0], branch));
-}
-
 TEST_CASE("gaps, nested frictions and a gap behind a slider against time stepping") {
   const char* models[] = {
       "model a { spring k0 (k = 100 N/mm)\n series s { gap g (width = 0.4 mm)\n maxwell m (k = 300 N/mm, tau = 10 ms) } }",
