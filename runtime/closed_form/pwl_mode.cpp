@@ -154,7 +154,6 @@ bool build_pwl_mode(const PwlBranch& branch, const PwlModeCode& code, double u0,
   out.drive_omega = omega;
   out.A(is, ic) = omega;
   out.A(ic, is) = -omega;
-  out.norm1 = out.A.cwiseAbs().colwise().sum().maxCoeff();
 
   // Positions and velocities.
   MatrixXd Lx = N * Y;

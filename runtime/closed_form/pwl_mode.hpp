@@ -55,7 +55,6 @@ struct PwlModeSystem {
   int cosine() const { return nz + nh + 2; }
 
   Eigen::MatrixXd A;                       // dim x dim
-  double norm1 = 0.0;                      // ||A||_1
   Eigen::MatrixXd to_X;                    // 2N x dim: X = (x, x') = to_X w
   Eigen::MatrixXd from_X;                  // dim x 2N: w = from_X X + drive terms (rows one, s, c: 0)
   Eigen::VectorXd held_drive;              // nh: h = R x + rho u, the rho of each rigid edge

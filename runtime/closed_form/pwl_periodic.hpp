@@ -23,6 +23,7 @@
 
 #include "runtime/closed_form/pwl_mode.hpp"
 
+#include <deque>
 #include <vector>
 
 namespace rheo::runtime {
@@ -57,7 +58,7 @@ class PwlPeriodicState {
   double u0_ = 0.0, omega_ = 0.0, period_ = 0.0;
   double storage_ = 0.0, loss_ = 0.0;
   int cycles_ = 0;
-  std::vector<PwlModeSystem> modes_;
+  std::deque<PwlModeSystem> modes_;                 // visited; a deque, so references stay valid as modes are added
   std::vector<Eigen::MatrixXd> grid_step_;          // e^{A T/64} per mode, built when first needed
   std::vector<Eigen::RowVectorXcd> grid_integral_;  // int_0^{T/64} F e^{i w tau} dtau per mode, as a row on w
   std::vector<Piece> pieces_;
