@@ -2,7 +2,8 @@
 //  - the hydrobushing harmonic grid (147 points) of the coupled model of
 //    examples/hydrobushing_fit.rheo at its start values, as its fit block evaluates it
 //    (solver = fixed, 128 steps per cycle, periodicity tolerance 1e-6): time stepped;
-//  - the specimen-D fit of examples/specimen_d_fit.rheo (closed-form points, microseconds each).
+//  - one evaluation of the specimen-D grid (182 closed-form points, about a microsecond each) and
+//    the whole specimen-D fit of examples/specimen_d_fit.rheo.
 #include "bench_support.hpp"
 #include "runtime/fit/fit.hpp"
 #include "runtime/fit/objective.hpp"
@@ -30,6 +31,16 @@ void BM_Hydrobushing_CoupledGrid_Threads(benchmark::State& state) {
                                                        benchmark::Counter::kIsIterationInvariantRate | benchmark::Counter::kInvert);
 }
 
+// One evaluation of the specimen-D fit: its 182 closed-form points at the start values.
+void BM_SpecimenD_Grid_Threads(benchmark::State& state) {
+  const runtime::Network network = runtime::Network::compile(bench::example_model("specimen_d_fit.rheo", "specimen_d"));
+  const auto data = bench::example_data("specimen_D_harmonic.csv");
+  runtime::HarmonicOptions options;
+  options.threads = static_cast<int>(state.range(0));
+  std::vector<runtime::HarmonicPoint> points;
+  for (auto _ : state) benchmark::DoNotOptimize(points = runtime::simulate_at(network, data.harmonic(), options));
+}
+
 void BM_SpecimenD_Fit_Threads(benchmark::State& state) {
   const runtime::Network start = runtime::Network::compile(bench::example_model("specimen_d_fit.rheo", "specimen_d"));
   const std::vector<runtime::FitDataSet> data{bench::example_data("specimen_D_harmonic.csv")};
@@ -43,4 +54,5 @@ void BM_SpecimenD_Fit_Threads(benchmark::State& state) {
 }  // namespace
 
 BENCHMARK(BM_Hydrobushing_CoupledGrid_Threads)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->Iterations(3);
+BENCHMARK(BM_SpecimenD_Grid_Threads)->Arg(1)->Arg(2)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_SpecimenD_Fit_Threads)->Arg(1)->Arg(2)->Unit(benchmark::kSecond)->Iterations(3);

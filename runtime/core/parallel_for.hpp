@@ -1,12 +1,19 @@
 // Independent work items on several threads: harmonic grid points, fit data points.
 //
 // Contract: body(i) is called exactly once for every i in [0, count), from the calling thread
-// and up to threads - 1 others; items are handed out one at a time (points differ widely in
-// cost: a closed-form point takes microseconds, a resonant time-stepped one milliseconds).
+// and up to threads - 1 others. Items are handed out in shrinking runs of consecutive items
+// (remaining / (4 threads), at least 1), so that cheap items (a closed-form point takes a
+// microsecond) do not pay a hand-out each while dear ones (a resonant time-stepped point takes
+// milliseconds) still balance at the end.
 // body must only write to item i's own output, so results do not depend on the thread count.
 // The first exception thrown by any item is rethrown on the calling thread once every thread
 // has stopped; items not yet started are then skipped.
+// The other threads are the process's persistent helpers (worker_pool.hpp): nothing is
+// started per call. A parallel_for inside an item, or one called while another runs, runs on
+// its calling thread alone.
 #pragma once
+
+#include "runtime/core/worker_pool.hpp"
 
 #include <algorithm>
 #include <atomic>
@@ -14,7 +21,6 @@
 #include <exception>
 #include <mutex>
 #include <thread>
-#include <vector>
 
 namespace rheo::runtime {
 
@@ -36,22 +42,25 @@ void parallel_for(std::size_t count, int threads, Body&& body) {
   std::exception_ptr first_error;
   std::mutex error_mutex;
   auto work = [&]() noexcept {
-    for (std::size_t i = next.fetch_add(1); i < count && !failed.load(); i = next.fetch_add(1)) {
-      try {
-        body(i);
-      } catch (...) {
-        const std::lock_guard lock(error_mutex);
-        if (!first_error) first_error = std::current_exception();
-        failed.store(true);
+    for (;;) {
+      const std::size_t seen = next.load(std::memory_order_relaxed);
+      const std::size_t chunk = std::max<std::size_t>(1, (count - std::min(seen, count)) / (4 * workers));
+      const std::size_t begin = next.fetch_add(chunk);
+      if (begin >= count) return;
+      const std::size_t end = std::min(count, begin + chunk);
+      for (std::size_t i = begin; i < end && !failed.load(std::memory_order_relaxed); ++i) {
+        try {
+          body(i);
+        } catch (...) {
+          const std::lock_guard lock(error_mutex);
+          if (!first_error) first_error = std::current_exception();
+          failed.store(true);
+        }
       }
+      if (failed.load()) return;
     }
   };
-  {
-    std::vector<std::jthread> pool;
-    pool.reserve(workers - 1);
-    for (std::size_t t = 1; t < workers; ++t) pool.emplace_back(work);
-    work();
-  }
+  WorkerPool::instance().run(static_cast<int>(workers) - 1, work);
   if (first_error) std::rethrow_exception(first_error);
 }
 
