@@ -259,7 +259,11 @@ std::optional<HarmonicPoint> try_closed_form_harmonic_point(const Network& netwo
   point.frequency = frequency;
   point.converged = true;
   point.cycles = cycles;
-  point.measures = measures_from(loading_half_maximum(h), storage, loss, u0, definition);
+  // A sinusoidal force a sin + b cos (linear branches only) peaks at sqrt(a^2 + b^2) within the
+  // loading half when b >= 0 (the loss of a passive network).
+  const bool sinusoidal = h.slip_k.empty() && h.branches.empty() && h.constant == 0.0 && h.d10 == 0.0 && h.d20 == 0.0 && h.d30 == 0.0;
+  const double force_amplitude = sinusoidal && h.b >= 0.0 ? std::hypot(h.a, h.b) : loading_half_maximum(h);
+  point.measures = measures_from(force_amplitude, storage, loss, u0, definition);
   return point;
 }
 

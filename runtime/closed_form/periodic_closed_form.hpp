@@ -27,6 +27,7 @@
 //             K'' = 4 fy (u0 - uy) / (pi u0^2)            (u0 > uy; else K' = k)
 //   slider    K'' = 4 fy / (pi u0)
 //
+// F^ = u0 |K*| where every branch is linear (the force is a u0-scaled sinusoid, K'' >= 0); else
 // F^ = max of the loading-half force: the force is smooth between the friction slip points
 // theta_q = asin(2 uy_q/u0 - 1), so each piece is searched for the sign changes of dF/dtheta
 // on a sampling of at least 32 points per half cycle, each root polished by safeguarded

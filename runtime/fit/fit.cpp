@@ -2,6 +2,8 @@
 
 #include "runtime/core/errors.hpp"
 #include "runtime/fit/fit_report.hpp"
+#include "runtime/fit/force_scales.hpp"
+#include "runtime/fit/separable_fit.hpp"
 #include "runtime/fit/yeoh_mean_curve.hpp"
 
 #include <fmt/format.h>
@@ -38,6 +40,17 @@ class Coordinates {
     return v;
   }
   Network network(const std::vector<double>& z) const { return start_.with_parameters(values(z)); }
+  // The coordinates of the free parameters' values in `values` (every model parameter).
+  std::vector<double> z_of(const std::vector<double>& values) const {
+    std::vector<double> z(free_.size());
+    for (std::size_t j = 0; j < free_.size(); ++j) {
+      const double v = values[static_cast<std::size_t>(free_[j])];
+      z[j] = logarithmic[j] ? std::log(v) : v;
+    }
+    return z;
+  }
+  const std::vector<int>& free() const { return free_; }
+  const lang::CheckedModel& model() const { return start_.model(); }
 
   std::vector<double> z0, lower, upper;
   std::vector<bool> logarithmic;
@@ -158,6 +171,63 @@ class StagedSearch {
     return found.z;
   }
 
+  // Variable projection (separable_fit.hpp): the force scales at positions SCALES of the free
+  // parameters are solved exactly for every shape the search visits; the search runs over the
+  // shape parameters only (none: one solve is the fit). Its budget is in model evaluations.
+  std::vector<double> separable(const std::vector<int>& scales) {
+    std::vector<int> scale_parameters, shape;
+    std::vector<double> lower, upper;
+    const auto& parameters = coordinates_.free();
+    for (std::size_t j = 0; j < parameters.size(); ++j) {
+      if (std::find(scales.begin(), scales.end(), static_cast<int>(j)) == scales.end()) {
+        shape.push_back(static_cast<int>(j));
+        continue;
+      }
+      const lang::Parameter& p = coordinates_.model().parameters[static_cast<std::size_t>(parameters[j])];
+      scale_parameters.push_back(parameters[j]);
+      lower.push_back(p.lower);
+      upper.push_back(p.upper);
+    }
+    auto solved_at = [&](const std::vector<double>& z) {
+      const ScaleSolution s = solve_scales(coordinates_.network(z), scale_parameters, lower, upper, data_, settings_.score);
+      result_.evaluations += s.evaluations;
+      return s;
+    };
+    if (shape.empty()) {
+      const ScaleSolution s = solved_at(coordinates_.z0);
+      result_.objective = s.objective;
+      result_.status = "SCALES_SOLVED";
+      return coordinates_.z_of(s.values);
+    }
+    auto full = [&](const std::vector<double>& shape_z) {
+      std::vector<double> z = coordinates_.z0;
+      for (std::size_t i = 0; i < shape.size(); ++i) z[static_cast<std::size_t>(shape[i])] = shape_z[i];
+      return z;
+    };
+    std::vector<double> start, shape_lower, shape_upper;
+    std::vector<bool> shape_log;
+    for (int j : shape) {
+      const auto u = static_cast<std::size_t>(j);
+      start.push_back(coordinates_.z0[u]);
+      shape_lower.push_back(coordinates_.lower[u]);
+      shape_upper.push_back(coordinates_.upper[u]);
+      shape_log.push_back(coordinates_.logarithmic[u]);
+    }
+    const Objective objective = [&](const std::vector<double>& shape_z) { return solved_at(full(shape_z)).objective; };
+    SearchSettings search = settings_.search;
+    search.max_evaluations = std::max(1, total() / static_cast<int>(scales.size() + 1));
+    search.extra_starts.clear();
+    const SearchResult found = runtime::search(objective, start, shape_lower, shape_upper, shape_log, search, settings_.progress,
+                                               settings_.interrupt);
+    result_.non_finite += found.non_finite;
+    if (result_.first_failure.empty()) result_.first_failure = found.first_failure;
+    result_.status = found.status;
+    result_.interrupted = found.interrupted;
+    const ScaleSolution best = solved_at(full(found.z));
+    result_.objective = best.objective;
+    return coordinates_.z_of(best.values);
+  }
+
   // Table 5.1: analytical part, numerical part (5.2, 5.3), calibrated analytical part (5.4).
   // Sets FINAL_METHOD to the method the returned z was fitted with.
   std::vector<double> corrected(FitMethod& final_method) {
@@ -251,7 +321,16 @@ FitResult fit(const Network& start, const std::vector<int>& free, const std::vec
   StagedSearch searches(coordinates, data, settings, result);
   std::vector<double> z;
   FitMethod final_method = score.method;
-  if (score.method == FitMethod::corrected) z = searches.corrected(final_method);
+  const std::vector<int> scales = score.method == FitMethod::exact && settings.separable && predictions_affine(first, data, score)
+                                      ? force_scales(first, free)
+                                      : std::vector<int>{};
+  if (!scales.empty()) {
+    z = searches.separable(scales);
+    result.notes.push_back(
+        fmt::format("{} of the {} free parameters solved exactly for every shape the search tried (force scales: the "
+                    "model's force is linear in them)",
+                    scales.size(), free.size()));
+  } else if (score.method == FitMethod::corrected) z = searches.corrected(final_method);
   else if (score.method == FitMethod::exact && !settings.search.algorithm && approximation_applies(first, data))
     z = searches.exact_with_surrogate();
   else z = searches.run(score.method, coordinates.z0, settings.search.max_evaluations);

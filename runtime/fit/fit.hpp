@@ -40,6 +40,9 @@ struct FitSettings {
   // are free: start them at the least-squares fit to the mean curve of the history's largest
   // loop (eqs. 5.28-5.32), as the thesis identifies them, before searching.
   bool yeoh_start_from_history = true;
+  // Exact method, where every prediction is affine in some free parameters (force_scales.hpp,
+  // separable_fit.hpp): solve those exactly inside the search over the others.
+  bool separable = true;
   // Standard errors and correlations at the optimum (a Jacobian: about 2 evaluations per free
   // parameter); off, FitResult::statistics stays empty.
   bool statistics = true;

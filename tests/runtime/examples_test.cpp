@@ -246,6 +246,30 @@ TEST_CASE("the example fits of specimens A-D reach their documented err; the fit
   }
 }
 
+TEST_CASE("examples/prony_fit.rheo: the 21 stiffnesses of the generating Prony series, to 1e-6, in one solve") {
+  // examples/data/README.md: k_inf = 50 N/mm; arm i (tau = 10^(i - 9) s) has
+  // k_i = 20 + 180 exp(-((i - 10.5)/5)^2) N/mm rounded to 4 digits.
+  const std::vector<double> arms{24.87, 30.0,  38.97, 53.21, 73.68, 100.1, 130.3, 160.2, 184.5, 198.2,
+                                 198.2, 184.5, 160.2, 130.3, 100.1, 73.68, 53.21, 38.97, 30.0,  24.87};
+  const fs::path json = scratch() / "prony.json", fitted = scratch() / "prony_fitted.rheo";
+  REQUIRE(rheo_run(fmt::format("fit {} --json -o {} > {}", example("prony_fit.rheo"), fitted.string(), json.string())) == 0);
+  std::ifstream in(json);
+  const auto summary = nlohmann::json::parse(in);
+  CHECK(summary.at("evaluations").get<int>() <= 22);  // the basis of 21 scales and the start: no search
+  CHECK(summary.at("err").get<double>() < 1e-10);
+  int checked = 0;
+  for (const auto& p : summary.at("parameters")) {
+    if (!p.at("free").get<bool>()) continue;  // the taus, held
+    ++checked;
+    const std::string name = p.at("path").get<std::string>();
+    const double value = p.at("value").get<double>();
+    CAPTURE(name);
+    if (name == "equilibrium.k") CHECK(value == doctest::Approx(50.0).epsilon(1e-6));
+    else CHECK(value == doctest::Approx(arms.at(std::stoul(name.substr(1, name.find('.') - 1)) - 1)).epsilon(1e-6));
+  }
+  CHECK(checked == 21);
+}
+
 TEST_CASE("the README's 30-second example prints the first row the README shows") {
   const fs::path dir = scratch() / "readme";
   fs::create_directories(dir);
@@ -268,7 +292,8 @@ TEST_CASE("every example is run by a test: a new one fails here until it is") {
     if (const std::string name = entry.path().filename().string(); entry.path().extension() == ".rheo" && !name.ends_with("_fitted.rheo"))
       names.push_back(name);  // *_fitted.rheo: written by the example fits, not in the repository (examples/.gitignore)
   std::sort(names.begin(), names.end());
-  CHECK(names == std::vector<std::string>{"bushing_d.rheo", "hydrobushing.rheo", "hydrobushing_fit.rheo", "hydromount.rheo", "specimen_a.rheo",
-                                          "specimen_a_fit.rheo", "specimen_b.rheo", "specimen_b_fit.rheo", "specimen_c.rheo", "specimen_c_fit.rheo",
-                                          "specimen_d.rheo", "specimen_d_fit.rheo", "specimen_d_fit_all.rheo", "specimen_d_methods.rheo"});
+  CHECK(names == std::vector<std::string>{"bushing_d.rheo", "hydrobushing.rheo", "hydrobushing_fit.rheo", "hydromount.rheo", "prony_fit.rheo",
+                                          "specimen_a.rheo", "specimen_a_fit.rheo", "specimen_b.rheo", "specimen_b_fit.rheo", "specimen_c.rheo",
+                                          "specimen_c_fit.rheo", "specimen_d.rheo", "specimen_d_fit.rheo", "specimen_d_fit_all.rheo",
+                                          "specimen_d_methods.rheo"});
 }

@@ -7,6 +7,7 @@
 #include <cmath>
 #include <fstream>
 #include <sstream>
+#include <stdexcept>
 #include <numbers>
 #include <string>
 
@@ -21,6 +22,14 @@ inline lang::CheckedModel model_from(const std::string& source, const std::strin
 
 inline runtime::Network network_from(const std::string& source, const std::string& name) {
   return runtime::Network::compile(model_from(source, name));
+}
+
+// The index of the model parameter at `path` ("m1.tau"), in Network::parameters() order.
+inline int parameter_index(const runtime::Network& network, const std::string& path) {
+  const auto& parameters = network.model().parameters;
+  for (std::size_t i = 0; i < parameters.size(); ++i)
+    if (parameters[i].path == path) return static_cast<int>(i);
+  throw std::runtime_error("test model has no parameter " + path);
 }
 
 // The whole content of a text file ("" when it cannot be read).

@@ -38,14 +38,6 @@ void check_user_error(const Error& e, int code) {
   CHECK(dynamic_cast<const std::logic_error*>(&e) == nullptr);  // so never std::invalid_argument either
 }
 
-int index_of(const runtime::Network& network, const std::string& path) {
-  const auto& parameters = network.model().parameters;
-  for (std::size_t i = 0; i < parameters.size(); ++i)
-    if (parameters[i].path == path) return static_cast<int>(i);
-  FAIL("no parameter " << path);
-  return -1;
-}
-
 }  // namespace
 
 TEST_CASE("each user error has its documented exit code and is not a std::logic_error") {
@@ -103,7 +95,7 @@ TEST_CASE("fitted values that put a springpot's f_low above its f_high are a mod
   const auto net = test::network_from(
       "model b {\n  springpot sp (k = 10, alpha = 0.5, tau = 0.01 s, f_low = 1 Hz in [0.1, 100], f_high = 10 Hz)\n}\n", "b");
   std::vector<double> values = net.parameters();
-  values[static_cast<std::size_t>(index_of(net, "sp.f_low"))] = 20.0;
+  values[static_cast<std::size_t>(test::parameter_index(net, "sp.f_low"))] = 20.0;
   CHECK_THROWS_WITH_AS(net.with_parameters(values), doctest::Contains("give f_low and f_high bounds that do not overlap"), ModelError);
   CHECK_THROWS_WITH_AS(net.with_parameters(values), doctest::Contains("test.rheo:2:"), ModelError);
 }

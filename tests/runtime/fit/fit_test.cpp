@@ -42,21 +42,15 @@ runtime::FitDataSet history_set_from(const runtime::Network& truth, const runtim
   return {"generated", 1.0, h};
 }
 
-int index_of(const runtime::Network& network, const std::string& path) {
-  const auto& parameters = network.model().parameters;
-  for (std::size_t i = 0; i < parameters.size(); ++i)
-    if (parameters[i].path == path) return static_cast<int>(i);
-  throw std::runtime_error("no parameter " + path);
-}
-
 // Elements of a kind are interchangeable: order the pair (a, b) by `key` ("uy", "tau") as in
 // the truth (a's key below b's), swapping every parameter named in `names`.
 runtime::Network ordered(const runtime::Network& n, const std::string& a, const std::string& b, const std::string& key,
                          const std::vector<std::string>& names) {
-  if (n.parameter(index_of(n, a + "." + key)) <= n.parameter(index_of(n, b + "." + key))) return n;
+  if (n.parameter(test::parameter_index(n, a + "." + key)) <= n.parameter(test::parameter_index(n, b + "." + key))) return n;
   std::vector<double> swapped = n.parameters();
   for (const auto& name : names)
-    std::swap(swapped[static_cast<std::size_t>(index_of(n, a + "." + name))], swapped[static_cast<std::size_t>(index_of(n, b + "." + name))]);
+    std::swap(swapped[static_cast<std::size_t>(test::parameter_index(n, a + "." + name))],
+              swapped[static_cast<std::size_t>(test::parameter_index(n, b + "." + name))]);
   return n.with_parameters(swapped);
 }
 
