@@ -12,6 +12,7 @@
 #include <chrono>
 #include <cmath>
 #include <functional>
+#include <limits>
 #include <stdexcept>
 
 namespace rheo::runtime {
@@ -213,7 +214,14 @@ class StagedSearch {
       shape_upper.push_back(coordinates_.upper[u]);
       shape_log.push_back(coordinates_.logarithmic[u]);
     }
-    const Objective objective = [&](const std::vector<double>& shape_z) { return solved_at(full(shape_z)).objective; };
+    // The best solve is kept, so the search's best point needs no second solve.
+    ScaleSolution best{.values = {}, .objective = std::numeric_limits<double>::infinity()};
+    const Objective objective = [&](const std::vector<double>& shape_z) {
+      ScaleSolution s = solved_at(full(shape_z));
+      const double value = s.objective;
+      if (value < best.objective) best = std::move(s);
+      return value;
+    };
     SearchSettings search = settings_.search;
     search.max_evaluations = std::max(1, total() / static_cast<int>(scales.size() + 1));
     search.extra_starts.clear();
@@ -223,9 +231,8 @@ class StagedSearch {
     if (result_.first_failure.empty()) result_.first_failure = found.first_failure;
     result_.status = found.status;
     result_.interrupted = found.interrupted;
-    const ScaleSolution best = solved_at(full(found.z));
     result_.objective = best.objective;
-    return coordinates_.z_of(best.values);
+    return best.values.empty() ? coordinates_.z0 : coordinates_.z_of(best.values);
   }
 
   // Table 5.1: analytical part, numerical part (5.2, 5.3), calibrated analytical part (5.4).

@@ -2,8 +2,11 @@
 #pragma once
 
 #include "lang/frontend.hpp"
+#include "runtime/io/fit_data.hpp"
 #include "runtime/network/network.hpp"
+#include "runtime/protocols/run_history.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <fstream>
 #include <sstream>
@@ -30,6 +33,18 @@ inline int parameter_index(const runtime::Network& network, const std::string& p
   for (std::size_t i = 0; i < parameters.size(); ++i)
     if (parameters[i].path == path) return static_cast<int>(i);
   throw std::runtime_error("test model has no parameter " + path);
+}
+
+// A history data set whose force is the model's own response to `drive` (noise-free).
+inline runtime::FitDataSet history_data_of(const runtime::Network& truth, const runtime::Drive& drive, const std::string& path = "generated",
+                                           double weight = 1.0) {
+  runtime::HistoryData h;
+  h.path = path;
+  h.drive = drive;
+  h.force = runtime::run_history(truth, drive, false).force;
+  for (double f : h.force) h.force_scale = std::max(h.force_scale, std::abs(f));
+  h.rows.assign(h.force.size(), 0);
+  return {path, weight, h};
 }
 
 // The whole content of a text file ("" when it cannot be read).

@@ -38,16 +38,6 @@ runtime::FitDataSet harmonic_from(const runtime::Network& truth) {
   return {"grid.csv", 1.0, d};
 }
 
-runtime::FitDataSet history_from(const runtime::Network& truth) {
-  runtime::HistoryData h;
-  h.path = "loop.csv";
-  h.drive = runtime::static_triangle({0.5, 0.1}, 0.5, 1, 100);
-  h.force = runtime::run_history(truth, h.drive, false).force;
-  for (double f : h.force) h.force_scale = std::max(h.force_scale, std::abs(f));
-  h.rows.assign(h.force.size(), 0);
-  return {"loop.csv", 0.5, h};
-}
-
 struct Fitted {
   runtime::FitDescription description{"r.rheo", "exact", "phi", "default", 3};
   runtime::FitResult result;
@@ -62,7 +52,9 @@ Fitted fitted(bool interrupt_first) {
   const std::atomic<bool> stop{interrupt_first};
   settings.interrupt = &stop;
   Fitted f;
-  f.result = runtime::fit(start, runtime::bounded_parameters(start), {harmonic_from(truth), history_from(truth)}, settings);
+  f.result = runtime::fit(start, runtime::bounded_parameters(start),
+                          {harmonic_from(truth), test::history_data_of(truth, runtime::static_triangle({0.5, 0.1}, 0.5, 1, 100), "loop.csv", 0.5)},
+                          settings);
   return f;
 }
 

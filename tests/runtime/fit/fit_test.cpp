@@ -32,16 +32,6 @@ runtime::FitDataSet harmonic_set_from(const runtime::Network& truth, const std::
   return {"generated", 1.0, data};
 }
 
-runtime::FitDataSet history_set_from(const runtime::Network& truth, const runtime::Drive& drive) {
-  runtime::HistoryData h;
-  h.path = "generated";
-  h.drive = drive;
-  h.force = runtime::run_history(truth, drive, false).force;
-  for (double f : h.force) h.force_scale = std::max(h.force_scale, std::abs(f));
-  h.rows.assign(h.force.size(), 0);
-  return {"generated", 1.0, h};
-}
-
 // Elements of a kind are interchangeable: order the pair (a, b) by `key` ("uy", "tau") as in
 // the truth (a's key below b's), swapping every parameter named in `names`.
 runtime::Network ordered(const runtime::Network& n, const std::string& a, const std::string& b, const std::string& key,
@@ -111,7 +101,7 @@ TEST_CASE("yeoh spring from a static loop (time-domain residual), from 3x off") 
       friction f1 (k = 900 in [1, 10000], uy = 13.3333 um in [0.1, 10000])
       friction f2 (k = 26.6667 in [1, 10000], uy = 450 um in [0.1, 10000]) })",
                                         "y");
-  const auto data = history_set_from(truth, runtime::static_triangle({6.25, 3.0, 1.2, 0.6, 0.3, 0.12}, 0.05, 2, 400));
+  const auto data = test::history_data_of(truth, runtime::static_triangle({6.25, 3.0, 1.2, 0.6, 0.3, 0.12}, 0.05, 2, 400));
   const auto result = runtime::fit(start, runtime::bounded_parameters(start), {data}, {});
   CHECK(result.datasets.at(0).err < 1e-7);
   check_recovered(in_truth_order(result, "friction"), truth);

@@ -34,16 +34,6 @@ runtime::FitDataSet harmonic_of(const runtime::Network& truth, runtime::Harmonic
   return {"generated", 1.0, data};
 }
 
-runtime::FitDataSet history_of(const runtime::Network& truth) {
-  runtime::HistoryData h;
-  h.path = "generated";
-  h.drive = runtime::quasistatic_sine({1.0, 0.3}, 2.0, 2, 400);
-  h.force = runtime::run_history(truth, h.drive, false).force;
-  for (double f : h.force) h.force_scale = std::max(h.force_scale, std::abs(f));
-  h.rows.assign(h.force.size(), 0);
-  return {"generated", 1.0, h};
-}
-
 struct Scales {
   std::vector<int> index;
   std::vector<double> lower, upper;
@@ -71,7 +61,8 @@ TEST_CASE("predictions are affine in the scales for histories, the first harmoni
   const auto friction = test::network_from(coupled_truth, "m");
   runtime::ScoreSettings thesis, first;
   first.harmonic.definition = runtime::HarmonicDefinition::first_harmonic;
-  const std::vector<runtime::FitDataSet> harmonic{harmonic_of(friction, runtime::HarmonicDefinition::thesis)}, history{history_of(friction)};
+  const std::vector<runtime::FitDataSet> harmonic{harmonic_of(friction, runtime::HarmonicDefinition::thesis)},
+      history{test::history_data_of(friction, runtime::quasistatic_sine({1.0, 0.3}, 2.0, 2, 400))};
   CHECK(runtime::predictions_affine(linear, harmonic, thesis));
   CHECK_FALSE(runtime::predictions_affine(friction, harmonic, thesis));  // F^ is a maximum over the cycle
   CHECK(runtime::predictions_affine(friction, harmonic, first));
@@ -90,7 +81,8 @@ TEST_CASE("the scales of a friction model come back from its first-harmonic grid
     runtime::ScoreSettings score;
     score.objective = objective;
     score.harmonic.definition = runtime::HarmonicDefinition::first_harmonic;
-    for (const runtime::FitDataSet& set : {harmonic_of(truth, score.harmonic.definition), history_of(truth)}) {
+    for (const runtime::FitDataSet& set :
+         {harmonic_of(truth, score.harmonic.definition), test::history_data_of(truth, runtime::quasistatic_sine({1.0, 0.3}, 2.0, 2, 400))}) {
       const auto solved = runtime::solve_scales(start, s.index, s.lower, s.upper, {set}, score);
       CAPTURE(set.is_harmonic());
       CHECK(solved.evaluations == 4);
