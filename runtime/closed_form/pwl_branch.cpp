@@ -87,7 +87,9 @@ bool PwlBranch::build(const Network& network, int root, PwlBranch& out) {
   out = PwlBranch{};
   BranchBuilder builder{network, out};
   if (!builder.place(root, kPwlTerminal, kPwlGround)) return false;
-  return !out.switches.empty() && switches_form_forest(out);
+  const int switches = static_cast<int>(out.switches.size());
+  if (2 * out.internal_nodes + switches + 3 > kPwlMaxDim || 2 * switches > kPwlMaxDim) return false;
+  return switches > 0 && switches_form_forest(out);
 }
 
 }  // namespace rheo::runtime

@@ -23,6 +23,11 @@ namespace rheo::runtime {
 
 enum class PwlEdgeKind : std::uint8_t { spring, dashpot, inerter, slider, gap };
 
+// The capacity of the event path's fixed-size storage (pwl_mode.hpp): the augmented state of a
+// mode, 2 N + (rigid edges) + 3 entries for N internal nodes, and its guard rows, two per
+// slider or gap, stay within it.
+inline constexpr int kPwlMaxDim = 24;
+
 inline constexpr int kPwlTerminal = -1;  // node index of the driven terminal
 inline constexpr int kPwlGround = -2;    // node index of ground
 
@@ -41,7 +46,8 @@ struct PwlBranch {
   // when the subtree is not piecewise linear (a yeoh, quadratic_dashpot or bouc_wen below it),
   // is linear (no slider, friction or gap: the phasor path serves it), or could lose its
   // determinacy in some mode: sliders and gaps that close a loop, or a path from the terminal
-  // to ground, when rigid (their forces would not be fixed by the network).
+  // to ground, when rigid (their forces would not be fixed by the network), or is too large
+  // for kPwlMaxDim (more than about ten internal nodes: it time-steps).
   static bool build(const Network& network, int root, PwlBranch& out);
 };
 

@@ -12,8 +12,6 @@ namespace rheo::runtime {
 namespace {
 
 using Eigen::MatrixXd;
-using Eigen::VectorXcd;
-using Eigen::VectorXd;
 using Complex = std::complex<double>;
 
 // M_k(z, h) = int_0^h tau^k e^{z tau} dtau: by its power series where |z h| <= 4, otherwise by
@@ -37,13 +35,28 @@ Complex moment(int k, Complex z, double h) {
   return m;
 }
 
+// M_0(z, h) = (e^{zh} - 1)/z with no cancellation for small |zh|: e^{x + iy} - 1 =
+// expm1(x) cos y - 2 sin^2(y/2) + i e^x sin y; h at z = 0.
+Complex first_moment(Complex z, double h) {
+  if (z == 0.0) return h;
+  const double x = z.real() * h, y = z.imag() * h, half_sine = std::sin(0.5 * y);
+  const Complex numerator(std::expm1(x) * std::cos(y) - 2.0 * half_sine * half_sine, std::exp(x) * std::sin(y));
+  return numerator / z;
+}
+
+// e^z without the special-value handling of std::exp(complex) (z is finite here).
+[[gnu::always_inline]] inline Complex exponential(Complex z) {
+  const double magnitude = std::exp(z.real());
+  if (z.imag() == 0.0) return {magnitude, 0.0};
+  return {magnitude * std::cos(z.imag()), magnitude * std::sin(z.imag())};
+}
+
 // P(lambda, mu, tau) = int_0^tau e^{lambda (tau - s)} e^{mu s} ds = (e^{mu tau} - e^{lambda tau})/(mu - lambda),
-// tau e^{lambda tau} at mu = lambda.
-Complex response(Complex lambda, Complex mu, double tau) {
-  const Complex d = mu - lambda;
-  if (std::norm(d) * tau * tau >= 1e-6) return (std::exp(mu * tau) - std::exp(lambda * tau)) / d;
+// tau e^{lambda tau} at mu = lambda; from e^{lambda tau}, e^{mu tau}, d = mu - lambda and 1/d.
+[[gnu::always_inline]] inline Complex response(Complex e_lambda, Complex e_mu, Complex d, Complex inverse_d, double tau) {
+  if (std::norm(d) * tau * tau >= 1e-6) return (e_mu - e_lambda) * inverse_d;
   const Complex dt = d * tau;
-  return std::exp(lambda * tau) * tau * (1.0 + dt * (0.5 + dt * (1.0 / 6.0 + dt * (1.0 / 24.0 + dt / 120.0))));
+  return e_lambda * tau * (1.0 + dt * (0.5 + dt * (1.0 / 6.0 + dt * (1.0 / 24.0 + dt / 120.0))));
 }
 
 // int_0^h P(lambda, mu, tau) e^{i w tau} dtau.
@@ -80,68 +93,100 @@ void PwlModeSystem::decompose() {
     V.resize(0, 0), V_inverse.resize(0, 0), lambda.resize(0);
   }
   phi = V_inverse * A.block(0, nz, nz, nh + 1).cast<Complex>();
-  const Eigen::VectorXcd a_c = A.col(cosine()).head(nz).cast<Complex>(), a_s = A.col(sine()).head(nz).cast<Complex>();
+  const PwlComplexVector a_c = A.col(cosine()).head(nz).cast<Complex>(), a_s = A.col(sine()).head(nz).cast<Complex>();
   g_plus = 0.5 * (V_inverse * (a_c - Complex(0.0, 1.0) * a_s));
   g_minus = 0.5 * (V_inverse * (a_c + Complex(0.0, 1.0) * a_s));
   force_V = force.head(nz).cast<Complex>() * V;
+  auto reciprocal = [](Complex d) { return d == 0.0 ? Complex(0.0) : 1.0 / d; };
+  gap_zero.resize(nz), gap_plus.resize(nz), gap_minus.resize(nz);
+  for (int j = 0; j < nz; ++j) {
+    gap_zero[j] = reciprocal(-lambda[j]);
+    gap_plus[j] = reciprocal(Complex(0.0, drive_omega) - lambda[j]);
+    gap_minus[j] = reciprocal(Complex(0.0, -drive_omega) - lambda[j]);
+  }
   modal = true;
 }
 
-// The modal factors of a flow over tau: e^{lambda tau} and P(lambda, mu, tau) for mu = 0, i w, -i w.
+namespace {
+
+// The modal factors of a flow over tau: e^{lambda tau} and P(lambda, mu, tau) for mu = 0, i w,
+// -i w (the last two times g+-), one exponential per mode and one sine and cosine in all.
 struct ModalFactors {
-  VectorXcd decay, constant, plus, minus;
+  PwlComplexVector decay, constant, plus, minus;
   double cos_step = 1.0, sin_step = 0.0;
 };
 
-ModalFactors modal_factors(const PwlModeSystem& s, double tau) {
-  ModalFactors f;
+void modal_factors(const PwlModeSystem& s, double tau, ModalFactors& f) {
   const Complex i_omega(0.0, s.drive_omega);
+  f.cos_step = std::cos(s.drive_omega * tau), f.sin_step = std::sin(s.drive_omega * tau);
+  const Complex e_plus(f.cos_step, f.sin_step), e_minus = std::conj(e_plus);
   f.decay.resize(s.nz), f.constant.resize(s.nz), f.plus.resize(s.nz), f.minus.resize(s.nz);
   for (int j = 0; j < s.nz; ++j) {
-    const Complex l = s.lambda[j];
-    f.decay[j] = std::exp(l * tau);
-    f.constant[j] = response(l, 0.0, tau);
-    f.plus[j] = s.g_plus[j] * response(l, i_omega, tau);
-    f.minus[j] = s.g_minus[j] * response(l, -i_omega, tau);
+    const Complex l = s.lambda[j], e = exponential(l * tau);
+    f.decay[j] = e;
+    f.constant[j] = response(e, 1.0, -l, s.gap_zero[j], tau);
+    f.plus[j] = s.g_plus[j] * response(e, e_plus, i_omega - l, s.gap_plus[j], tau);
+    f.minus[j] = s.g_minus[j] * response(e, e_minus, -i_omega - l, s.gap_minus[j], tau);
   }
-  f.cos_step = std::cos(s.drive_omega * tau), f.sin_step = std::sin(s.drive_omega * tau);
-  return f;
 }
 
-VectorXd PwlModeSystem::advance(double tau, const VectorXd& w) const {
+}  // namespace
+
+PwlVector PwlModeSystem::advance(double tau, const PwlVector& w) const {
   if (tau == 0.0) return w;
   if (!modal) return (A * tau).exp() * w;
-  const ModalFactors f = modal_factors(*this, tau);
-  VectorXd out = w;
+  ModalFactors f;
+  modal_factors(*this, tau, f);
+  PwlVector out = w;
   const double s0 = w[sine()], c0 = w[cosine()];
   const Complex E(c0, s0);
-  if (nz > 0) {
-    const VectorXcd q = f.decay.cwiseProduct(V_inverse * w.head(nz).cast<Complex>()) +
-                        f.constant.cwiseProduct(phi * w.segment(nz, nh + 1).cast<Complex>()) + E * f.plus + std::conj(E) * f.minus;
-    out.head(nz) = (V * q).real();
+  PwlComplexVector q(nz);
+  for (int j = 0; j < nz; ++j) {
+    Complex free{0.0, 0.0}, held{0.0, 0.0};
+    for (int k = 0; k < nz; ++k) free += V_inverse(j, k) * w[k];
+    for (int k = 0; k <= nh; ++k) held += phi(j, k) * w[nz + k];
+    q[j] = f.decay[j] * free + f.constant[j] * held + E * f.plus[j] + std::conj(E) * f.minus[j];
+  }
+  for (int i = 0; i < nz; ++i) {
+    double sum = 0.0;
+    for (int j = 0; j < nz; ++j) sum += (V(i, j) * q[j]).real();
+    out[i] = sum;
   }
   out[sine()] = s0 * f.cos_step + c0 * f.sin_step;
   out[cosine()] = c0 * f.cos_step - s0 * f.sin_step;
   return out;
 }
 
-MatrixXd PwlModeSystem::propagator(double tau) const {
+PwlMatrix PwlModeSystem::propagator(double tau) const {
   if (!modal) return (A * tau).exp();
-  const ModalFactors f = modal_factors(*this, tau);
-  MatrixXd P = MatrixXd::Identity(dim, dim);
-  if (nz > 0) {
-    P.topLeftCorner(nz, nz) = (V * f.decay.asDiagonal() * V_inverse).real();
-    P.block(0, nz, nz, nh + 1) = (V * f.constant.asDiagonal() * phi).real();
-    const Complex i(0.0, 1.0);
-    P.col(sine()).head(nz) = (V * (i * f.plus - i * f.minus)).real();  // E = i
-    P.col(cosine()).head(nz) = (V * (f.plus + f.minus)).real();        // E = 1
+  ModalFactors f;
+  modal_factors(*this, tau, f);
+  PwlMatrix P = PwlMatrix::Identity(dim, dim);
+  // Column k of the z rows: Re V diag(factor) (row k of the modal map), for the free block
+  // (V^-1), the held block (phi) and the drive (E = i for the sine column, 1 for the cosine).
+  const Complex i(0.0, 1.0);
+  for (int r = 0; r < nz; ++r) {
+    for (int k = 0; k < nz; ++k) {
+      Complex sum{0.0, 0.0};
+      for (int j = 0; j < nz; ++j) sum += V(r, j) * f.decay[j] * V_inverse(j, k);
+      P(r, k) = sum.real();
+    }
+    for (int k = 0; k <= nh; ++k) {
+      Complex sum{0.0, 0.0};
+      for (int j = 0; j < nz; ++j) sum += V(r, j) * f.constant[j] * phi(j, k);
+      P(r, nz + k) = sum.real();
+    }
+    Complex sine{0.0, 0.0}, cosine{0.0, 0.0};
+    for (int j = 0; j < nz; ++j) sine += V(r, j) * (i * (f.plus[j] - f.minus[j])), cosine += V(r, j) * (f.plus[j] + f.minus[j]);
+    P(r, this->sine()) = sine.real();
+    P(r, this->cosine()) = cosine.real();
   }
   P(sine(), sine()) = f.cos_step, P(sine(), cosine()) = f.sin_step;
   P(cosine(), sine()) = -f.sin_step, P(cosine(), cosine()) = f.cos_step;
   return P;
 }
 
-Complex PwlModeSystem::phased_force_integral(double h, const VectorXd& w0) const {
+Complex PwlModeSystem::phased_force_integral(double h, const PwlVector& w0) const {
   if (h == 0.0) return 0.0;
   const double omega = drive_omega;
   if (!modal) {
@@ -154,19 +199,27 @@ Complex PwlModeSystem::phased_force_integral(double h, const VectorXd& w0) const
   }
   const Complex i_omega(0.0, omega);
   const Complex E(w0[cosine()], w0[sine()]);
+  // int_0^h e^{mu tau} e^{i w tau} dtau for the drive's mu = 0, i w, -i w, shared by every mode.
+  const Complex at_zero = first_moment(i_omega, h), at_plus = first_moment(2.0 * i_omega, h);
+  const double at_minus = h;
   // Constants (held elongations, slip forces) and the drive's own terms.
   const double constant = force.segment(nz, nh + 1).dot(w0.segment(nz, nh + 1));
   const Complex kappa(force[cosine()], -force[sine()]);
-  Complex sum = constant * moment(0, i_omega, h) + 0.5 * kappa * E * moment(0, 2.0 * i_omega, h) + 0.5 * std::conj(kappa) * std::conj(E) * h;
-  if (nz > 0) {
-    const VectorXcd q0 = V_inverse * w0.head(nz).cast<Complex>();
-    const VectorXcd forcing = phi * w0.segment(nz, nh + 1).cast<Complex>();
-    for (int j = 0; j < nz; ++j) {
-      const Complex l = lambda[j];
-      sum += force_V[j] *
-             (q0[j] * moment(0, l + i_omega, h) + forcing[j] * phased_response(l, 0.0, omega, h) +
-              g_plus[j] * E * phased_response(l, i_omega, omega, h) + g_minus[j] * std::conj(E) * phased_response(l, -i_omega, omega, h));
-    }
+  Complex sum = constant * at_zero + 0.5 * kappa * E * at_plus + 0.5 * std::conj(kappa) * std::conj(E) * at_minus;
+  // Mode j: q_j(0) e^{lambda tau} and the responses P(lambda, mu, tau) to the constant forcing
+  // and the drive; int P e^{i w tau} = (M_0(mu + i w) - M_0(lambda + i w))/(mu - lambda) away
+  // from mu = lambda, by its series near it.
+  for (int j = 0; j < nz; ++j) {
+    Complex free{0.0, 0.0}, held{0.0, 0.0};
+    for (int k = 0; k < nz; ++k) free += V_inverse(j, k) * w0[k];
+    for (int k = 0; k <= nh; ++k) held += phi(j, k) * w0[nz + k];
+    const Complex l = lambda[j], own = first_moment(l + i_omega, h);
+    auto phased = [&](Complex mu, Complex shared, Complex gap) {
+      const Complex d = mu - l;
+      return std::norm(d) * h * h >= 1e-6 ? (shared - own) * gap : phased_response(l, mu, omega, h);
+    };
+    sum += force_V[j] * (free * own + held * phased(0.0, at_zero, gap_zero[j]) + g_plus[j] * E * phased(i_omega, at_plus, gap_plus[j]) +
+                         g_minus[j] * std::conj(E) * phased(-i_omega, at_minus, gap_minus[j]));
   }
   return sum;
 }

@@ -47,8 +47,8 @@ void split_by_eigenvalue(const MatrixXd& S, double reference, MatrixXd& range, M
 
 }  // namespace
 
-VectorXd PwlModeSystem::state_at(const VectorXd& X, double t, double u0, double omega) const {
-  VectorXd w = from_X * X;
+PwlVector PwlModeSystem::state_at(const PwlVector& X, double t, double u0, double omega) const {
+  PwlVector w = from_X * X;
   const double s = std::sin(omega * t), c = std::cos(omega * t);
   w.segment(nz, nh) += held_drive * (u0 * s);
   w[one()] = 1.0;
@@ -233,6 +233,7 @@ bool build_pwl_mode(const PwlBranch& branch, const PwlModeCode& code, double u0,
   }
   out.guards.resize(static_cast<Eigen::Index>(guard_rows.size()), dim);
   for (std::size_t g = 0; g < guard_rows.size(); ++g) out.guards.row(static_cast<Eigen::Index>(g)) = guard_rows[g];
+  out.guard_rates = out.guards * out.A;
   out.decompose();
   return true;
 }

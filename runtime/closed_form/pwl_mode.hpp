@@ -35,6 +35,15 @@
 
 namespace rheo::runtime {
 
+// The event path's storage has a fixed capacity (kPwlMaxDim, pwl_branch.hpp), so following a
+// cycle never touches the heap.
+using PwlVector = Eigen::Matrix<double, Eigen::Dynamic, 1, 0, kPwlMaxDim, 1>;
+using PwlRow = Eigen::Matrix<double, 1, Eigen::Dynamic, Eigen::RowMajor, 1, kPwlMaxDim>;
+using PwlMatrix = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, kPwlMaxDim, kPwlMaxDim>;
+using PwlComplexVector = Eigen::Matrix<std::complex<double>, Eigen::Dynamic, 1, 0, kPwlMaxDim, 1>;
+using PwlComplexRow = Eigen::Matrix<std::complex<double>, 1, Eigen::Dynamic, Eigen::RowMajor, 1, kPwlMaxDim>;
+using PwlComplexMatrix = Eigen::Matrix<std::complex<double>, Eigen::Dynamic, Eigen::Dynamic, 0, kPwlMaxDim, kPwlMaxDim>;
+
 // One entry per PwlBranch::switches: slider 0 stuck, +1 / -1 slipping with F = +-fy (de/dt of
 // that sign); gap 0 open, +1 / -1 closed at e = +-w/2.
 using PwlModeCode = std::vector<std::int8_t>;
@@ -54,16 +63,17 @@ struct PwlModeSystem {
   int sine() const { return nz + nh + 1; }
   int cosine() const { return nz + nh + 2; }
 
-  Eigen::MatrixXd A;                       // dim x dim
-  Eigen::MatrixXd to_X;                    // 2N x dim: X = (x, x') = to_X w
-  Eigen::MatrixXd from_X;                  // dim x 2N: w = from_X X + drive terms (rows one, s, c: 0)
-  Eigen::VectorXd held_drive;              // nh: h = R x + rho u, the rho of each rigid edge
-  Eigen::RowVectorXd force;                // terminal force [N]
-  Eigen::MatrixXd guards;                  // rows >= 0 while the mode holds
+  PwlMatrix A;                             // dim x dim
+  PwlMatrix to_X;                          // 2N x dim: X = (x, x') = to_X w
+  PwlMatrix from_X;                        // dim x 2N: w = from_X X + drive terms (rows one, s, c: 0)
+  PwlVector held_drive;                    // nh: h = R x + rho u, the rho of each rigid edge
+  PwlRow force;                            // terminal force [N]
+  PwlMatrix guards;                        // rows >= 0 while the mode holds
+  PwlMatrix guard_rates;                   // guards A: their time derivatives
   std::vector<PwlTransition> transitions;  // one per guard row
 
   // The augmented state at time t [s] of node positions and velocities X.
-  Eigen::VectorXd state_at(const Eigen::VectorXd& X, double t, double u0, double omega) const;
+  PwlVector state_at(const PwlVector& X, double t, double u0, double omega) const;
 
   // The exact flow of the mode (pwl_flow.cpp): e^{A tau}, its action on a state, and
   // int_0^h F(w(tau)) e^{i omega tau} dtau. Where the state block A_zz is diagonalisable with
@@ -74,18 +84,19 @@ struct PwlModeSystem {
   // mu in {0, i w, -i w}, which stays exact where mu = lambda (a slipping dashpot's drift at
   // lambda = 0, an undamped mass driven at resonance). Otherwise (a defective A_zz) the
   // exponential by Pade approximation with scaling and squaring.
-  Eigen::MatrixXd propagator(double tau) const;
-  Eigen::VectorXd advance(double tau, const Eigen::VectorXd& w) const;
-  std::complex<double> phased_force_integral(double h, const Eigen::VectorXd& w0) const;
+  PwlMatrix propagator(double tau) const;
+  PwlVector advance(double tau, const PwlVector& w) const;
+  std::complex<double> phased_force_integral(double h, const PwlVector& w0) const;
   void decompose();  // sets the modal data below; called by build_pwl_mode
 
   bool modal = false;
-  double drive_omega = 0.0;          // w [rad/s]
-  Eigen::MatrixXcd V, V_inverse;     // nz x nz
-  Eigen::VectorXcd lambda;           // nz
-  Eigen::MatrixXcd phi;              // nz x (nh + 1): V^-1 [A_zh, a_1]
-  Eigen::VectorXcd g_plus, g_minus;  // (1/2) V^-1 (a_c -+ i a_s) and its conjugate counterpart
-  Eigen::RowVectorXcd force_V;       // force_z V
+  double drive_omega = 0.0;                        // w [rad/s]
+  PwlComplexMatrix V, V_inverse;                   // nz x nz
+  PwlComplexVector lambda;                         // nz
+  PwlComplexMatrix phi;                            // nz x (nh + 1): V^-1 [A_zh, a_1]
+  PwlComplexVector g_plus, g_minus;                // (1/2) V^-1 (a_c -+ i a_s) and its conjugate counterpart
+  PwlComplexRow force_V;                           // force_z V
+  PwlComplexVector gap_zero, gap_plus, gap_minus;  // 1/(mu - lambda_j) for mu = 0, i w, -i w (0 where mu = lambda_j)
 };
 
 // Builds the mode `code` of `branch` for amplitude u0 [mm] and angular frequency omega

@@ -14,7 +14,6 @@ namespace rheo::runtime {
 namespace {
 
 using Eigen::MatrixXd;
-using Eigen::VectorXd;
 using Complex = std::complex<double>;
 
 constexpr int kGridPerCycle = 64;
@@ -28,8 +27,8 @@ constexpr double kPeriodicTolerance = 1e-11;
 // xi_i = b_i / (1 - lambda_i), except along eigenvalues 1 (directions the map leaves where
 // they are, such as the offset of a slider that never slips), where X0's component is kept.
 // A least-squares solve of (J - I) X = -b where J's eigenvectors are too ill-conditioned.
-VectorXd affine_fixed_point(const MatrixXd& J, const VectorXd& X0, const VectorXd& Y) {
-  const VectorXd b = Y - J * X0;
+PwlVector affine_fixed_point(const MatrixXd& J, const PwlVector& X0, const PwlVector& Y) {
+  const Eigen::VectorXd b = Y - J * X0;
   Eigen::EigenSolver<MatrixXd> eig(J);
   if (eig.info() == Eigen::Success) {
     const Eigen::MatrixXcd V = eig.eigenvectors();
@@ -75,40 +74,45 @@ struct PwlPeriodicState::Run {
     self.grid_integral_.emplace_back();
     return static_cast<int>(self.modes_.size()) - 1;
   }
-  const MatrixXd& grid_step(int m) {
-    MatrixXd& E = self.grid_step_[static_cast<std::size_t>(m)];
+  const PwlMatrix& grid_step(int m) {
+    PwlMatrix& E = self.grid_step_[static_cast<std::size_t>(m)];
     if (E.size() == 0) E = self.modes_[static_cast<std::size_t>(m)].propagator(step);
     return E;
   }
   // int_0^step F e^{i w tau} dtau as a functional of the state at the start (it is linear in it).
-  const Eigen::RowVectorXcd& grid_integral(int m) {
-    Eigen::RowVectorXcd& row = self.grid_integral_[static_cast<std::size_t>(m)];
+  const PwlComplexRow& grid_integral(int m) {
+    PwlComplexRow& row = self.grid_integral_[static_cast<std::size_t>(m)];
     const PwlModeSystem& s = self.modes_[static_cast<std::size_t>(m)];
     if (row.size() == 0) {
       row.resize(s.dim);
-      for (int j = 0; j < s.dim; ++j) row[j] = s.phased_force_integral(step, VectorXd::Unit(s.dim, j));
+      for (int j = 0; j < s.dim; ++j) row[j] = s.phased_force_integral(step, PwlVector::Unit(s.dim, j));
     }
     return row;
   }
-  VectorXd advance(int m, double tau, const VectorXd& w) { return self.modes_[static_cast<std::size_t>(m)].advance(tau, w); }
+  PwlVector advance(int m, double tau, const PwlVector& w) { return self.modes_[static_cast<std::size_t>(m)].advance(tau, w); }
 
   // Whether guard i of mode m is being left at state w: by its value, slope and curvature
-  // (leaving()), and where those leave it level, by its value a probe of 1e-7 T ahead.
-  bool leaves(int m, int i, const VectorXd& w) {
+  // (leaving()), and by its value a probe of 1e-7 T ahead where those leave it level or where
+  // the curvature turns a slightly falling guard back up within the probe (a slider at the
+  // drive's turning point, its slope there rounding noise of forces rates far larger).
+  bool leaves(int m, int i, const PwlVector& w) {
     const PwlModeSystem& s = self.modes_[static_cast<std::size_t>(m)];
     const double tol = kGuardTolerance * s.transitions[static_cast<std::size_t>(i)].scale;
-    const Eigen::RowVectorXd G = s.guards.row(i);
+    const PwlRow G = s.guards.row(i);
     const double g = G.dot(w);
     if (g > tol) return false;
-    const VectorXd rate = s.A * w;
-    if (leaving(g, G.dot(rate), G.dot(s.A * rate), tol, tol * self.omega_)) return true;
-    return G.dot(s.advance(1e-7 * self.period_, w)) < -tol;
+    const double probe = 1e-7 * self.period_;
+    const PwlVector rate = s.A * w;
+    const double slope = G.dot(rate), curvature = G.dot(s.A * rate);
+    const bool turning = g >= -tol && slope < 0.0 && slope + curvature * probe > 0.0;
+    if (!turning && leaving(g, slope, curvature, tol, tol * self.omega_)) return true;
+    return G.dot(s.advance(probe, w)) < -tol;
   }
 
   // The mode reached from `m` at time t with positions and velocities X once every guard the
   // state violates has switched (a stuck slider above fy slips, a slipping one whose rate
   // points against its force sticks, ...); -1 when it does not settle.
-  int settle(int m, const VectorXd& X, double t, VectorXd& w) {
+  int settle(int m, const PwlVector& X, double t, PwlVector& w) {
     for (int attempt = 0; attempt <= 2 * static_cast<int>(branch.switches.size()) + 2; ++attempt) {
       if (m < 0) return -1;
       const PwlModeSystem& s = self.modes_[static_cast<std::size_t>(m)];
@@ -127,50 +131,68 @@ struct PwlPeriodicState::Run {
 
   // The first time in (0, h] at which guard row i of mode m crosses from positive to
   // negative along w(tau) = e^{A tau} w0, or infinity.
-  double first_crossing(int m, int i, const VectorXd& w0, const VectorXd& w1, double h, double g0, double g1) {
+  double first_crossing(int m, int i, const PwlVector& w0, const PwlVector& w1, double h, double g0, double g1) {
     const PwlModeSystem& s = self.modes_[static_cast<std::size_t>(m)];
-    const Eigen::RowVectorXd G = s.guards.row(i), dG = G * s.A;
+    const PwlRow G = s.guards.row(i), dG = s.guard_rates.row(i);
     const double tol = kGuardTolerance * s.transitions[static_cast<std::size_t>(i)].scale;
     auto value = [&](double tau) { return G.dot(advance(m, tau, w0)); };
+    // The cubic through the values and slopes at both ends, c(x) = ((a3 x + a2) x + a1) x + g0
+    // for tau = x h: within O(h^4) of the guard over a step of T/64, so it bounds a dip closely
+    // and its root starts Newton's method a few digits from the crossing.
+    const double slope0 = dG.dot(w0), slope1 = dG.dot(w1);
+    const double a3 = 2.0 * (g0 - g1) + h * (slope0 + slope1), a2 = 3.0 * (g1 - g0) - h * (2.0 * slope0 + slope1), a1 = h * slope0;
+    auto cubic = [&](double x) { return ((a3 * x + a2) * x + a1) * x + g0; };
     double lo = 0.0, hi = h;
     if (g1 >= 0.0) {
-      // Both ends non-negative: a dip below zero needs the slope negative at 0 and positive at h.
-      const double slope0 = dG.dot(w0), slope1 = dG.dot(w1);
+      // Both ends non-negative: a dip below zero needs the slope negative at 0 and positive at h;
+      // only a dip the cubic brings within a tenth of the smaller end value is located.
       if (!(slope0 < 0.0 && slope1 > 0.0)) return std::numeric_limits<double>::infinity();
-      // The cubic through the values and slopes at both ends bounds the dip closely over a
-      // step of T/64; only a dip it brings within a tenth of the smaller end value is located.
-      const double a3 = 2.0 * (g0 - g1) + h * (slope0 + slope1), a2 = 3.0 * (g1 - g0) - h * (2.0 * slope0 + slope1), a1 = h * slope0;
-      double lowest = std::min(g0, g1);
+      double lowest = std::min(g0, g1), x_lowest = 0.5;
       const double disc = a2 * a2 - 3.0 * a3 * a1;
       if (disc >= 0.0 && a3 != 0.0)
         for (double x : {(-a2 + std::sqrt(disc)) / (3.0 * a3), (-a2 - std::sqrt(disc)) / (3.0 * a3)})
-          if (x > 0.0 && x < 1.0) lowest = std::min(lowest, ((a3 * x + a2) * x + a1) * x + g0);
+          if (x > 0.0 && x < 1.0 && cubic(x) < lowest) lowest = cubic(x), x_lowest = x;
       if (lowest > 0.1 * std::min(g0, g1)) return std::numeric_limits<double>::infinity();
-      double a = 0.0, b = h;  // the minimum: the slope's root, by bisection
+      // The minimum: the slope's root, by safeguarded Newton (curvature ddG w) from the cubic's.
+      const PwlRow ddG = dG * s.A;
+      double a = 0.0, b = h, tau = x_lowest * h;
       for (int it = 0; it < 60 && b - a > 1e-14 * h; ++it) {
-        const double mid = 0.5 * (a + b);
-        (dG.dot(advance(m, mid, w0)) < 0.0 ? a : b) = mid;
+        const PwlVector w = advance(m, tau, w0);
+        const double slope = dG.dot(w), curvature = ddG.dot(w);
+        (slope < 0.0 ? a : b) = tau;
+        double next = curvature > 0.0 ? tau - slope / curvature : 0.5 * (a + b);
+        if (!(next > a && next < b)) next = 0.5 * (a + b);
+        if (std::abs(next - tau) <= 1e-14 * h) break;
+        tau = next;
       }
       if (value(b) >= 0.0) return std::numeric_limits<double>::infinity();
       hi = b;
     }
     if (g0 <= tol && leaves(m, i, w0)) return 0.0;  // the switch is now
+    double tau = std::numeric_limits<double>::quiet_NaN();
     if (g0 <= tol) {
       // On the guard and not leaving it (the mode was just entered): find a point where it is
       // positive before a crossing; a sample below zero first brackets the crossing itself.
       bool found = false;
       for (int j = 0; j < 16 && !found; ++j) {
-        const double tau = j == 0 ? std::min(hi, 1e-7 * self.period_) : hi * j / 16.0;
-        const double v = value(tau);
-        if (v > tol) lo = tau, found = true;
-        else if (v < -tol) hi = tau, found = true;
+        const double sample = j == 0 ? std::min(hi, 1e-7 * self.period_) : hi * j / 16.0;
+        const double v = value(sample);
+        if (v > tol) lo = sample, found = true;
+        else if (v < -tol) hi = sample, found = true;
       }
       if (!found) return std::numeric_limits<double>::infinity();
+    } else {
+      // The cubic's root in the bracket, by bisection (it is positive at lo, negative at hi).
+      double a = lo / h, b = hi / h;
+      if (cubic(a) > 0.0 && cubic(b) < 0.0) {
+        for (int it = 0; it < 50 && b - a > 1e-13; ++it) (cubic(0.5 * (a + b)) > 0.0 ? a : b) = 0.5 * (a + b);
+        tau = 0.5 * (a + b) * h;
+      }
     }
     // Safeguarded Newton on the bracket [lo, hi] with g(lo) > 0 > g(hi).
-    double tau = 0.5 * (lo + hi);
+    if (!(tau > lo && tau < hi)) tau = 0.5 * (lo + hi);
     for (int it = 0; it < 100; ++it) {
-      const VectorXd w = advance(m, tau, w0);
+      const PwlVector w = advance(m, tau, w0);
       const double g = G.dot(w), dg = dG.dot(w);
       (g > 0.0 ? lo : hi) = tau;
       double next = dg != 0.0 ? tau - g / dg : 0.5 * (lo + hi);
@@ -184,25 +206,25 @@ struct PwlPeriodicState::Run {
 
   // Switches at time t from mode m (state w) through guard i; with sensitivities S (dw/dX0)
   // applies the saltation matrix. Returns the new mode or -1.
-  int switch_at(int m, int i, double t, VectorXd& w, MatrixXd* S) {
+  int switch_at(int m, int i, double t, PwlVector& w, PwlMatrix* S) {
     const PwlModeSystem& old = self.modes_[static_cast<std::size_t>(m)];
-    const VectorXd X = old.to_X * w;
+    const PwlVector X = old.to_X * w;
     PwlModeCode code = old.code;
     const PwlTransition& tr = old.transitions[static_cast<std::size_t>(i)];
     code[static_cast<std::size_t>(tr.which)] = tr.to;
-    VectorXd w_new;
+    PwlVector w_new;
     const int next = settle(mode_index(code), X, t, w_new);
     if (next < 0) return -1;
     if (S != nullptr) {
       const PwlModeSystem& o = self.modes_[static_cast<std::size_t>(m)];
       const PwlModeSystem& n = self.modes_[static_cast<std::size_t>(next)];
-      const VectorXd rate_old = o.A * w;
+      const PwlVector rate_old = o.A * w;
       const double slope = o.guards.row(i).dot(rate_old);
-      Eigen::RowVectorXd dt = Eigen::RowVectorXd::Zero(S->cols());
+      PwlRow dt = PwlRow::Zero(S->cols());
       if (std::abs(slope) > 1e-300) dt = -(o.guards.row(i) * *S) / slope;
-      VectorXd drift = -(n.A * w_new);
+      PwlVector drift = -(n.A * w_new);
       drift.segment(n.nz, n.nh) += n.held_drive * (self.u0_ * self.omega_ * std::cos(self.omega_ * t));
-      MatrixXd S_new = n.from_X * (o.to_X * (*S + rate_old * dt)) + drift * dt;
+      PwlMatrix S_new = n.from_X * (o.to_X * (*S + rate_old * dt)) + drift * dt;
       S_new.bottomRows(3).setZero();
       *S = std::move(S_new);
     }
@@ -210,34 +232,38 @@ struct PwlPeriodicState::Run {
     return next;
   }
 
-  // Follows one cycle from X0 in (or settled from) mode m. X_T and, with `J`, dX_T/dX0; with
-  // `record`, the pieces, switch phases and first harmonic of the cycle. False on failure.
-  bool cycle(int& m, const VectorXd& X0, VectorXd& X_T, MatrixXd* J, bool record, bool guarded = true) {
-    VectorXd w;
-    m = guarded ? settle(m, X0, 0.0, w) : m;
-    if (!guarded) w = self.modes_[static_cast<std::size_t>(m)].state_at(X0, 0.0, self.u0_, self.omega_);
+  // Follows one cycle from X0, settled from mode m: X_T and, with `J`, dX_T/dX0; with `record`,
+  // the pieces, switch phases and first harmonic of the cycle. False on failure.
+  bool cycle(int& m, const PwlVector& X0, PwlVector& X_T, PwlMatrix* J, bool record) {
+    PwlVector w;
+    m = settle(m, X0, 0.0, w);
     if (m < 0) return false;
-    MatrixXd S;
-    MatrixXd* Sp = nullptr;
+    PwlMatrix S;
+    PwlMatrix* Sp = nullptr;
     if (J != nullptr) {
       S = self.modes_[static_cast<std::size_t>(m)].from_X;
       S.bottomRows(3).setZero();
       Sp = &S;
     }
+    if (record) self.pieces_.clear(), self.switch_phases_.clear();
     Complex integral{0.0, 0.0};
     int switches = 0;
     double t = 0.0;
+    PwlVector g0, g1;  // the guards at the start and the end of the step
+    bool g0_known = false;
     for (int k = 0; k < kGridPerCycle; ++k) {
       const double t_end = k + 1 == kGridPerCycle ? self.period_ : (k + 1) * step;
       while (t < t_end) {
         const PwlModeSystem& s = self.modes_[static_cast<std::size_t>(m)];
         const double h = t_end - t;
         const bool full = std::abs(h - step) <= 1e-12 * step;
-        const VectorXd w1 = full ? VectorXd(grid_step(m) * w) : advance(m, h, w);
-        const VectorXd g0 = s.guards * w, g1 = s.guards * w1, dg0 = s.guards * (s.A * w);
+        const PwlVector w1 = full ? PwlVector(grid_step(m) * w) : advance(m, h, w);
+        if (!g0_known) g0.noalias() = s.guards * w;
+        g1.noalias() = s.guards * w1;
+        const PwlVector dg0 = s.guard_rates * w;
         double first = std::numeric_limits<double>::infinity();
         int fired = -1;
-        for (int i = 0; guarded && i < g0.size(); ++i) {
+        for (int i = 0; i < g0.size(); ++i) {
           const double tol = kGuardTolerance * s.transitions[static_cast<std::size_t>(i)].scale;
           if (g1[i] >= 0.0 && g0[i] > tol && dg0[i] >= 0.0) continue;  // no crossing and no dip
           const double tau = first_crossing(m, i, w, w1, h, g0[i], g1[i]);
@@ -246,18 +272,20 @@ struct PwlPeriodicState::Run {
         const double length = fired < 0 ? h : first;
         if (record) {
           self.pieces_.push_back({t, m, w});
-          const Complex piece = full && fired < 0 ? (grid_integral(m) * w).value() : s.phased_force_integral(length, w);
+          const Complex piece = full && fired < 0 ? (grid_integral(m) * w.cast<Complex>()).value() : s.phased_force_integral(length, w);
           integral += std::exp(Complex(0.0, self.omega_ * t)) * piece;
         }
         if (fired < 0) {
           if (Sp != nullptr) *Sp = (full ? grid_step(m) : s.propagator(h)) * *Sp;
           w = w1;
+          g0 = g1, g0_known = true;
           t = t_end;
           break;
         }
         if (Sp != nullptr) *Sp = s.propagator(first) * *Sp;
         w = advance(m, first, w);
         t += first;
+        g0_known = false;
         if (++switches > kMaxSwitchesPerCycle) return false;
         m = switch_at(m, fired, t, w, Sp);
         if (m < 0) return false;
@@ -274,6 +302,20 @@ struct PwlPeriodicState::Run {
     }
     return true;
   }
+
+  // The periodic state of mode m followed without its guards (the linear state every point
+  // starts from): the fixed point of X -> to_X e^{A T} w(X), by one propagator over the period.
+  PwlVector linear_periodic_state(int m, const PwlVector& scale) {
+    const PwlModeSystem& s = self.modes_[static_cast<std::size_t>(m)];
+    const PwlVector X0 = PwlVector::Zero(scale.size());
+    PwlMatrix from = s.from_X;
+    from.bottomRows(3).setZero();
+    const PwlMatrix P = s.propagator(self.period_);
+    const PwlMatrix J = s.to_X * (P * from);
+    const PwlVector X_T = s.to_X * (P * s.state_at(X0, 0.0, self.u0_, self.omega_));
+    const MatrixXd Js = scale.cwiseInverse().asDiagonal() * J * scale.asDiagonal();
+    return scale.cwiseProduct(affine_fixed_point(Js, X0.cwiseQuotient(scale), X_T.cwiseQuotient(scale)));
+  }
 };
 
 bool PwlPeriodicState::solve(const PwlBranch& branch, double u0, double omega) {
@@ -284,41 +326,38 @@ bool PwlPeriodicState::solve(const PwlBranch& branch, double u0, double omega) {
   Run run{*this, branch, period_ / kGridPerCycle};
 
   const int n = branch.internal_nodes;
-  VectorXd scale(2 * n);  // positions by u0, velocities by w u0
-  scale << VectorXd::Constant(n, u0), VectorXd::Constant(n, u0 * omega);
+  PwlVector scale(2 * n);  // positions by u0, velocities by w u0
+  scale << PwlVector::Constant(n, u0), PwlVector::Constant(n, u0 * omega);
   // The start: the periodic state of the mode with every slider stuck and every gap open (its
   // offsets those of rest), which is the answer where no guard is reached, as the time-stepping
   // path starts from the same linear periodic state.
-  VectorXd X0 = VectorXd::Zero(2 * n), X_T;
   int start_mode = run.mode_index(PwlModeCode(branch.switches.size(), 0));
   if (start_mode < 0) return false;
-  {
-    int m = start_mode;
-    MatrixXd J;
-    if (!run.cycle(m, X0, X_T, &J, false, false)) return false;
-    X0 = scale.cwiseProduct(
-        affine_fixed_point(scale.cwiseInverse().asDiagonal() * J * scale.asDiagonal(), X0.cwiseQuotient(scale), X_T.cwiseQuotient(scale)));
-  }
-  double previous = std::numeric_limits<double>::infinity();
-  bool newton = true;
+  PwlVector X0 = run.linear_periodic_state(start_mode, scale), X_T, last_end;
+  // Newton's method on X_T(X0) - X0 = 0 in scaled coordinates, globalised: a step that does not
+  // lower the residual (the events moved under it) is halved once, and if that does not help
+  // either, one plain cycle is taken from where the last one ended (a lightly damped fluid
+  // column can otherwise trap the alternation of Newton steps and plain cycles in a loop).
+  PwlVector base, step;  // the last accepted start and its Newton step
+  double base_size = std::numeric_limits<double>::infinity(), fraction = 1.0;
+  // Every cycle is recorded (pieces, switches, first harmonic): the one that closes on itself
+  // is the periodic cycle.
   for (cycles_ = 1; cycles_ <= kMaxCycles; ++cycles_) {
     int m = start_mode;
-    MatrixXd J;
-    if (!run.cycle(m, X0, X_T, &J, false)) {
-      // The linear state may hold a slider beyond its cap where the cycle starts, which no
-      // mode can settle: start from rest instead (the periodic state slips then anyway).
-      if (cycles_ > 1 || X0.isZero()) return false;
-      X0.setZero();
+    PwlMatrix J;
+    if (!run.cycle(m, X0, X_T, &J, true)) {
+      // A start no mode can settle (the linear state, or a Newton step, may hold a slider
+      // beyond its cap): start the first cycle from rest instead (the periodic state slips then
+      // anyway), a later one from where the last cycle ended, a state the branch reached.
+      if (cycles_ == 1 ? X0.isZero() : X0 == last_end) return false;
+      X0 = cycles_ == 1 ? PwlVector(PwlVector::Zero(2 * n)) : last_end;
       m = start_mode;
-      if (!run.cycle(m, X0, X_T, &J, false)) return false;
+      if (!run.cycle(m, X0, X_T, &J, true)) return false;
     }
-    const VectorXd residual = (X_T - X0).cwiseQuotient(scale);
+    last_end = X_T;
+    const PwlVector residual = (X_T - X0).cwiseQuotient(scale);
     const double size = residual.cwiseAbs().maxCoeff();
     if (size <= kPeriodicTolerance) {
-      ++cycles_;
-      int last = m;
-      pieces_.clear(), switch_phases_.clear();
-      if (!run.cycle(last, X0, X_T, nullptr, true)) return false;
       // The extrema are taken as max F = -min F (periodic_closed_form.hpp): the force must be
       // half-wave symmetric, F(theta + pi) = -F(theta), as it is wherever the periodic state is
       // unique up to offsets that carry no force; checked at 16 phases.
@@ -330,21 +369,24 @@ bool PwlPeriodicState::solve(const PwlBranch& branch, double u0, double omega) {
       }
       return asymmetry <= 1e-8 * largest;
     }
-    // Newton on X_T(X0) - X0 = 0 in scaled coordinates; a plain cycle when the last step did not help.
-    newton = size < previous || !newton;
-    previous = size;
     start_mode = m;
-    if (!newton) {
+    if (size < base_size) {
+      base_size = size, base = X0, fraction = 1.0;
+      const MatrixXd Js = scale.cwiseInverse().asDiagonal() * J * scale.asDiagonal();
+      step = scale.cwiseProduct(affine_fixed_point(Js, X0.cwiseQuotient(scale), X_T.cwiseQuotient(scale))) - X0;
+      X0 = base + step;
+    } else if (fraction == 1.0) {
+      fraction *= 0.5;
+      X0 = base + fraction * step;
+    } else {
+      base_size = std::numeric_limits<double>::infinity();
       X0 = X_T;
-      continue;
     }
-    const MatrixXd Js = scale.cwiseInverse().asDiagonal() * J * scale.asDiagonal();
-    X0 = scale.cwiseProduct(affine_fixed_point(Js, X0.cwiseQuotient(scale), X_T.cwiseQuotient(scale)));
   }
   return false;
 }
 
-VectorXd PwlPeriodicState::state_at_phase(double theta, int& mode) const {
+PwlVector PwlPeriodicState::state_at_phase(double theta, int& mode) const {
   double t = std::fmod(theta / omega_, period_);
   if (t < 0.0) t += period_;
   auto it = std::upper_bound(pieces_.begin(), pieces_.end(), t, [](double value, const Piece& p) { return value < p.t; });
@@ -355,15 +397,15 @@ VectorXd PwlPeriodicState::state_at_phase(double theta, int& mode) const {
 
 double PwlPeriodicState::force(double theta) const {
   int m = 0;
-  const VectorXd w = state_at_phase(theta, m);
+  const PwlVector w = state_at_phase(theta, m);
   return modes_[static_cast<std::size_t>(m)].force.dot(w);
 }
 
 void PwlPeriodicState::derivatives(double theta, double& first, double& second) const {
   int m = 0;
-  const VectorXd w = state_at_phase(theta, m);
+  const PwlVector w = state_at_phase(theta, m);
   const PwlModeSystem& s = modes_[static_cast<std::size_t>(m)];
-  const VectorXd rate = s.A * w;
+  const PwlVector rate = s.A * w;
   first = s.force.dot(rate) / omega_;
   second = s.force.dot(s.A * rate) / (omega_ * omega_);
 }

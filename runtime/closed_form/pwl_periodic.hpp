@@ -2,8 +2,7 @@
 // u = u0 sin(w t), found exactly: no time step and no cycles run until they repeat.
 //
 // Within a mode the branch state moves by the matrix exponential of its augmented linear ODE
-// (pwl_mode.hpp), applied by its Taylor series with scaling (||A tau|| <= 1/2 per factor:
-// machine precision). A cycle is followed event to event: the guards are checked at 64 points
+// (pwl_mode.hpp), applied in modal closed form (pwl_flow.cpp). A cycle is followed event to event: the guards are checked at 64 points
 // per cycle, where a guard changes sign (or a cubic through its values and slopes at both ends
 // dips below zero) the crossing is located by safeguarded Newton on the exact trajectory, and
 // the branch switches mode there, settling any guard the new mode violates at once.
@@ -14,10 +13,11 @@
 // matrix, J_new = dw_new/dX (dw/dX_old + A_old w dt) - A_new w_new dt with
 // dt = -g.dw/(g.A_old w) (g the guard that fired). Directions the map leaves unchanged (a
 // slider that never slips keeps any offset) keep the start's value: the branch starts at rest,
-// as time stepping does, and (J - I) is solved in the least-squares sense.
+// as time stepping does, and (J - I) is solved in the least-squares sense. A Newton step that
+// does not lower the residual is halved once, then a plain cycle is taken (numerics.md).
 //
 // The cycle then yields the first harmonic exactly, K'_1 + i K''_1 = (w/(pi u0)) int_0^T
-// F(t) e^{i w t} dt, each piece's integral by the series of int e^{(A + i w) tau} dtau, and
+// F(t) e^{i w t} dt, each piece's integral in modal closed form, and
 // F, dF/dtheta and d2F/dtheta2 at any phase theta = w t for the extrema (eqs. 1.2, 5.26).
 #pragma once
 
@@ -51,20 +51,20 @@ class PwlPeriodicState {
   struct Piece {
     double t = 0.0;  // start [s]
     int mode = 0;
-    Eigen::VectorXd w;
+    PwlVector w;
   };
   struct Run;
 
   double u0_ = 0.0, omega_ = 0.0, period_ = 0.0;
   double storage_ = 0.0, loss_ = 0.0;
   int cycles_ = 0;
-  std::deque<PwlModeSystem> modes_;                 // visited; a deque, so references stay valid as modes are added
-  std::vector<Eigen::MatrixXd> grid_step_;          // e^{A T/64} per mode, built when first needed
-  std::vector<Eigen::RowVectorXcd> grid_integral_;  // int_0^{T/64} F e^{i w tau} dtau per mode, as a row on w
+  std::deque<PwlModeSystem> modes_;           // visited; a deque, so references stay valid as modes are added
+  std::vector<PwlMatrix> grid_step_;          // e^{A T/64} per mode, built when first needed
+  std::vector<PwlComplexRow> grid_integral_;  // int_0^{T/64} F e^{i w tau} dtau per mode, as a row on w
   std::vector<Piece> pieces_;
   std::vector<double> switch_phases_;
 
-  Eigen::VectorXd state_at_phase(double theta, int& mode) const;
+  PwlVector state_at_phase(double theta, int& mode) const;
 };
 
 }  // namespace rheo::runtime

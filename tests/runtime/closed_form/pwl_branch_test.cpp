@@ -6,6 +6,8 @@
 
 #include <doctest/doctest.h>
 
+#include <string>
+
 using namespace rheo;
 
 TEST_CASE("a friction element behind a spring: three nodes' worth of edges, one switch") {
@@ -31,4 +33,12 @@ TEST_CASE("branches the event path does not take") {
   const auto loop = test::network_from("model l { series c { spring k (k = 1 N/mm)\n parallel p { slider a (fy = 1 N)\n slider b (fy = 2 N) } } }",
                                        "l");
   CHECK_FALSE(runtime::PwlBranch::build(loop, loop.topology().subtrees[0], branch));
+  // A chain of twelve Maxwell arms behind a slider: 24 internal nodes, more state than the event
+  // path's fixed-size storage holds (kPwlMaxDim); it time-steps.
+  std::string chain = "model big { series c { slider s (fy = 1 N)\n";
+  for (int i = 0; i < 12; ++i) chain += "maxwell m" + std::to_string(i) + " (k = 10 N/mm, tau = 1 ms)\n";
+  chain += "} }";
+  const auto big = test::network_from(chain, "big");
+  CHECK_FALSE(runtime::PwlBranch::build(big, big.topology().subtrees[0], branch));
+  CHECK_FALSE(runtime::has_closed_form_periodic_state(big));
 }

@@ -156,3 +156,28 @@ TEST_CASE("gaps, nested frictions and a gap behind a slider against time steppin
       for (double f : {0.5, 17.0}) check_against_time_stepping(net, u0, f, 2, 1e-5);
   }
 }
+
+TEST_CASE("fluid columns a fit visits: a slider that sticks at the drive's turning point, a heavy column Newton must globalise") {
+  // Found by the default-settings fit of examples/hydrobushing_fit.rheo block 2; both used to
+  // give up (the first switched stuck <-> slipping without end at t = T/4, the second trapped
+  // Newton steps and plain cycles in a loop for 60 cycles) and fall back to IDA.
+  struct Case {
+    const char* model;
+    double u0, f;
+  };
+  const Case cases[] = {{"model c { series f { slider cap (fy = 10.892557677656269 N)\n spring k1 (k = 1235.1602091455047 N/mm)\n"
+                         " parallel y { inerter column (b = 6.6682120427872631 kg)\n dashpot channel (c = 0.76464491253602807 N*s/mm)\n"
+                         " spring bulge (k = 90.224264508261996 N/mm) } } }",
+                         1.5, 1.0},
+                        {"model c { series f { slider cap (fy = 18.558156250335621 N)\n spring k1 (k = 4197.3317102966812 N/mm)\n"
+                         " parallel y { inerter column (b = 91.161585658256314 kg)\n dashpot channel (c = 0.45651999449082065 N*s/mm)\n"
+                         " spring bulge (k = 74.763684720900741 N/mm) } } }",
+                         0.1, 9.0}};
+  for (const Case& c : cases) {
+    const auto net = test::network_from(c.model, "c");
+    const auto point = runtime::try_closed_form_harmonic_point(net, c.u0, c.f, HarmonicDefinition::thesis);
+    REQUIRE(point.has_value());
+    CHECK(point->cycles <= 12);
+    check_against_time_stepping(net, c.u0, c.f, 1, 1e-5);
+  }
+}
