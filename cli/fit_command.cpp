@@ -60,6 +60,9 @@ Command add_fit_command(CLI::App& app) {
   app.add_option("--seed", o->seed,
                  fmt::format("Seed of the sampling and stochastic optimizers; the same seed gives the same result; default {}", defaults.seed))
       ->check(CLI::Range(0LL, std::numeric_limits<long long>::max()));
+  app.add_option("--time-limit", o->time_limit,
+                 "Wall-clock bound of each fit, e.g. 60s or 5min: the search stops in time for the standard errors and reports the best "
+                 "values found (status TIME_LIMIT_REACHED); default: the fit block's time_limit, else none");
   app.add_option("--threads", o->threads, "Harmonic points evaluated at once (0: every hardware thread); results do not depend on it; default 1")
       ->check(CLI::Range(0, 1024));
   app.add_option("--yeoh-start", o->yeoh_start,

@@ -1,6 +1,7 @@
 #include "cli/fit_job.hpp"
 
 #include "cli/program_lookup.hpp"
+#include "lang/units.hpp"
 #include "runtime/core/errors.hpp"
 #include "runtime/io/output.hpp"
 #include "runtime/fit/yeoh_mean_curve.hpp"
@@ -11,7 +12,9 @@
 
 #include <algorithm>
 #include <atomic>
+#include <charconv>
 #include <chrono>
+#include <cmath>
 #include <csignal>
 #include <filesystem>
 #include <iostream>
@@ -67,6 +70,23 @@ E named_on_command_line(const std::string& word, std::optional<E> (*named)(std::
   throw runtime::UsageError(fmt::format("unknown {} '{}'; use {} or {}", what, word, fmt::join(all_but_last, ", "), words.back()));
 }
 
+// A duration written on the command line, "60", "60s", "2 min", "500 ms" (a number and a time
+// unit; seconds without one), in seconds; or the usage error.
+double duration_in_seconds(const std::string& text, const char* option) {
+  const std::size_t begin = text.find_first_not_of(' ');
+  double value = 0.0;
+  const char* first = text.data() + (begin == std::string::npos ? text.size() : begin);
+  const char* last = text.data() + text.size();
+  const auto [end, error] = std::from_chars(first, last, value);
+  std::string_view unit(end, static_cast<std::size_t>(last - end));
+  while (!unit.empty() && unit.front() == ' ') unit.remove_prefix(1);
+  while (!unit.empty() && unit.back() == ' ') unit.remove_suffix(1);
+  const std::optional<lang::Unit> parsed = unit.empty() ? lang::Unit{lang::dim::time, 1.0} : lang::parse_unit(unit);
+  if (error != std::errc{} || !parsed || parsed->dimension != lang::dim::time || !(value > 0.0) || !std::isfinite(value * parsed->scale))
+    throw runtime::UsageError(fmt::format("{} '{}': give a positive duration, e.g. 60s, 90 s or 5 min", option, text));
+  return value * parsed->scale;
+}
+
 // Block settings first, then the command line over them.
 void configure(FitJob& job, const lang::FitDirective* block, const FitOptions& o) {
   const lang::FitSettings given = block ? block->settings : lang::FitSettings{};
@@ -88,6 +108,7 @@ void configure(FitJob& job, const lang::FitDirective* block, const FitOptions& o
   s.search.starts = o.starts > 0 ? o.starts : given.starts.value_or(s.search.starts);
   s.search.seed = o.seed >= 0 ? static_cast<unsigned long>(o.seed) : static_cast<unsigned long>(given.seed);
   s.search.tolerance = given.tolerance.value_or(s.search.tolerance);
+  s.time_limit = o.time_limit.empty() ? given.time_limit : duration_in_seconds(o.time_limit, "--time-limit");
   job.description.seed = s.search.seed;
   s.score.harmonic.definition = given.definition;
   s.score.harmonic.steps_per_cycle = given.steps_per_cycle.value_or(s.score.harmonic.steps_per_cycle);
@@ -187,13 +208,17 @@ std::vector<FitJob> fit_jobs(const lang::Program& program, const FitOptions& o) 
 runtime::FitResult run_fit_job(const FitJob& job) {
   runtime::FitSettings settings = job.settings;
   const bool show_progress = ::isatty(STDERR_FILENO) != 0;
-  auto last = std::chrono::steady_clock::now();
+  const auto started = std::chrono::steady_clock::now();
+  auto last = started;
   if (show_progress)
     settings.progress = [&](const runtime::SearchProgress& p) {
       const auto now = std::chrono::steady_clock::now();
       if (now - last < std::chrono::milliseconds(200)) return;
       last = now;
-      std::cerr << fmt::format("\r  fit {}: {} evaluations, best objective {:.6g} ({})   ", job.model->name, p.evaluations, p.best, p.stage)
+      const double elapsed = std::chrono::duration<double>(now - started).count();
+      const std::string clock = settings.time_limit ? fmt::format("{:.0f} s of {:g} s", elapsed, *settings.time_limit)
+                                                    : fmt::format("{:.0f} s", elapsed);
+      std::cerr << fmt::format("\r  fit {}: {} evaluations, best objective {:.6g} ({}), {}   ", job.model->name, p.evaluations, p.best, p.stage, clock)
                 << std::flush;
     };
   InterruptScope interrupt_scope;

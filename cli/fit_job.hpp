@@ -29,7 +29,8 @@ struct FitOptions {
   long long seed = -1;  // -1: the block's or the default
   std::string yeoh_start;
   std::string orders;
-  int threads = 1;  // data points evaluated at once; 0: every hardware thread
+  int threads = 1;         // data points evaluated at once; 0: every hardware thread
+  std::string time_limit;  // --time-limit as written ("60s", "2 min"); empty: the block's or none
 };
 
 struct FitJob {

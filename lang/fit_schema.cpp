@@ -23,6 +23,7 @@ const std::vector<SettingSpec>& fit_schema() {
       {.key = "starts", .shape = Shape::integer, .dimension = dim::none, .minimum = 1},
       {.key = "seed", .shape = Shape::integer, .dimension = dim::none, .minimum = 0},
       {.key = "tolerance", .shape = Shape::number, .dimension = dim::none, .positive = true},
+      {.key = "time_limit", .shape = Shape::single, .dimension = dim::time, .positive = true},
       {.key = "definition", .shape = Shape::identifier, .dimension = dim::none, .choices = harmonic_definition_words()},
       {.key = "steps_per_cycle", .shape = Shape::integer, .dimension = dim::none, .minimum = 16, .multiple_of = 4, .maximum = max_steps_per_cycle},
       {.key = "solver", .shape = Shape::identifier, .dimension = dim::none, .choices = solver_choice_words()},
@@ -164,6 +165,7 @@ FitSettings decode_fit_settings(const std::vector<Setting>& written) {
     else if (s.key == "starts") out.starts = whole;
     else if (s.key == "seed") out.seed = whole;
     else if (s.key == "tolerance") out.tolerance = number;
+    else if (s.key == "time_limit") out.time_limit = number;
     else if (s.key == "definition") out.definition = harmonic_definition_named(s.text).value_or(out.definition);
     else if (s.key == "steps_per_cycle") out.steps_per_cycle = whole;
     else if (s.key == "solver") out.solver = solver_choice_named(s.text).value_or(out.solver);

@@ -34,7 +34,8 @@ struct FitSettings {
   // Absent: the search's own defaults (runtime/fit/fit_search.hpp, SearchSettings).
   std::optional<int> max_evaluations;
   std::optional<int> starts;
-  std::optional<double> tolerance;  // relative, on the scaled parameters
+  std::optional<double> tolerance;   // relative, on the scaled parameters
+  std::optional<double> time_limit;  // [s] wall clock of the whole fit (runtime FitSettings::time_limit)
   int seed = 1;
   HarmonicDefinition definition = HarmonicDefinition::thesis;
   std::optional<int> steps_per_cycle;  // absent: HarmonicSettings::default_steps_per_cycle (rheo diagnose takes 128)

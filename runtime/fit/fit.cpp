@@ -168,6 +168,7 @@ class StagedSearch {
     if (result_.first_failure.empty()) result_.first_failure = found.first_failure;
     result_.status = found.status;
     result_.interrupted = result_.interrupted || found.interrupted;
+    result_.time_limited = result_.time_limited || found.out_of_time;
     result_.objective = found.value;
     return found.z;
   }
@@ -231,6 +232,7 @@ class StagedSearch {
     if (result_.first_failure.empty()) result_.first_failure = found.first_failure;
     result_.status = found.status;
     result_.interrupted = found.interrupted;
+    result_.time_limited = found.out_of_time;
     result_.objective = best.objective;
     return best.values.empty() ? coordinates_.z0 : coordinates_.z_of(best.values);
   }
@@ -258,6 +260,12 @@ class StagedSearch {
       surrogate = {run(FitMethod::corrected, approximate, total() - result_.evaluations)};
     }
     if (result_.interrupted) return surrogate.front();
+    // Out of time in the surrogate's stages: one exact evaluation of its optimum.
+    if (result_.time_limited) {
+      std::vector<double> z = run(FitMethod::exact, surrogate.front(), 1);
+      result_.status = "TIME_LIMIT_REACHED";
+      return z;
+    }
     return run(FitMethod::exact, coordinates_.z0, total(), surrogate);
   }
 
@@ -311,9 +319,19 @@ DataSetFit data_set_fit(const Network& network, const FitDataSet& set, const Har
 
 }  // namespace
 
-FitResult fit(const Network& start, const std::vector<int>& free, const std::vector<FitDataSet>& data, const FitSettings& settings) {
+FitResult fit(const Network& start, const std::vector<int>& free, const std::vector<FitDataSet>& data, const FitSettings& given) {
   const auto clock_start = std::chrono::steady_clock::now();
-  require_fittable(start, free, data, settings);
+  require_fittable(start, free, data, given);
+  FitSettings settings = given;
+  if (given.time_limit) {
+    settings.search.deadline = clock_start + std::chrono::duration_cast<std::chrono::steady_clock::duration>(
+                                                 std::chrono::duration<double>(std::max(0.0, *given.time_limit)));
+    // After the search: the standard errors' central differences (2 n + 1 evaluations) and the
+    // final prediction of each data set, with half as much again for evaluations dearer than
+    // the search's mean.
+    const int after = (given.statistics ? 2 * static_cast<int>(free.size()) + 1 : 0) + static_cast<int>(data.size());
+    settings.search.reserve_evaluations = (3 * after + 1) / 2;
+  }
   std::vector<std::string> notes;
   const Network first = settings.yeoh_start_from_history ? start.with_parameters(yeoh_start(start, free, data, notes)) : start;
   const Coordinates coordinates(first, free);
@@ -343,6 +361,9 @@ FitResult fit(const Network& start, const std::vector<int>& free, const std::vec
   else z = searches.run(score.method, coordinates.z0, settings.search.max_evaluations);
 
   result.network = coordinates.network(z);
+  if (result.time_limited)
+    result.notes.push_back(fmt::format("stopped at the time limit of {:g} s after {} evaluations: these are the best values found by then",
+                                       *settings.time_limit, result.evaluations));
   if (!result.interrupted && settings.statistics) {
     result.statistics = parameter_statistics(searches.residuals_for(final_method), z, coordinates.logarithmic);
     if (!result.statistics.has_noise_estimate())

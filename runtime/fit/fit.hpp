@@ -28,6 +28,7 @@
 
 #include <atomic>
 #include <functional>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -46,6 +47,10 @@ struct FitSettings {
   // Standard errors and correlations at the optimum (a Jacobian: about 2 evaluations per free
   // parameter); off, FitResult::statistics stays empty.
   bool statistics = true;
+  // Wall-clock bound of the whole fit [s]: the searches stop in time to leave the standard
+  // errors room at the cost per evaluation measured so far, and the fit returns the best point
+  // found (FitResult::time_limited). Absent: none.
+  std::optional<double> time_limit;
   std::function<void(const SearchProgress&)> progress;  // called after every evaluation
   const std::atomic<bool>* interrupt = nullptr;         // set (e.g. by SIGINT) to stop with the best so far
 };
@@ -77,6 +82,7 @@ struct FitResult {
   double wall_seconds = 0.0;
   std::string status{};
   bool interrupted = false;
+  bool time_limited = false;         // a search stopped at FitSettings::time_limit
   std::vector<std::string> notes{};  // what the fit did beyond the search (e.g. the yeoh start)
 };
 

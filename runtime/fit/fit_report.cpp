@@ -102,6 +102,7 @@ std::string fit_report_json(const FitDescription& d, const FitResult& r) {
   j["seed"] = d.seed;
   j["status"] = r.status;
   j["interrupted"] = r.interrupted;
+  j["time_limited"] = r.time_limited;
   j["evaluations"] = r.evaluations;
   j["non_finite_evaluations"] = r.non_finite;
   j["first_failure"] = r.first_failure;

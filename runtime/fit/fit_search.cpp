@@ -15,18 +15,31 @@ namespace {
 
 struct Interrupted {};
 struct Exhausted {};
+struct OutOfTime {};
 
-// Counts evaluations, keeps the best point, reports progress, and stops on interrupt or when
-// the budget is spent (some NLopt algorithms, e.g. DIRECT-L, overrun their own maxeval).
+// Counts evaluations, keeps the best point, reports progress, and stops on interrupt, when the
+// budget is spent (some NLopt algorithms, e.g. DIRECT-L, overrun their own maxeval) or when the
+// deadline would be passed (fit_search.hpp).
 class Tracker {
  public:
-  Tracker(const Objective& objective, const std::function<void(const SearchProgress&)>& progress, const std::atomic<bool>* interrupt, int limit)
-      : objective_(objective), progress_(progress), interrupt_(interrupt), limit_(std::max(1, limit)) {}
+  Tracker(const Objective& objective, const std::function<void(const SearchProgress&)>& progress, const std::atomic<bool>* interrupt,
+          const SearchSettings& settings)
+      : objective_(objective),
+        progress_(progress),
+        interrupt_(interrupt),
+        budget_(std::max(1, settings.max_evaluations)),
+        limit_(budget_),
+        deadline_(settings.deadline),
+        reserve_(std::max(0, settings.reserve_evaluations)) {}
 
   // The first call (the start) is always evaluated, so that the best point has a value.
   double operator()(const std::vector<double>& z) {
     if (evaluations_ > 0 && interrupt_ && interrupt_->load(std::memory_order_relaxed)) throw Interrupted{};
     if (evaluations_ >= limit_) throw Exhausted{};
+    if (evaluations_ > 0 && deadline_) {
+      const auto now = std::chrono::steady_clock::now();
+      if (now + (now - started_) / evaluations_ * (1 + reserve_) > *deadline_) throw OutOfTime{};
+    }
     double value = std::numeric_limits<double>::quiet_NaN();
     try {
       value = objective_(z);
@@ -42,6 +55,19 @@ class Tracker {
     if (progress_) progress_({evaluations_, best_value_, stage_});
     return value;
   }
+  // With a deadline: caps the budget at the evaluations the time left affords at the mean cost
+  // so far, less the reserve, so that the stages share what can actually run. True when that cap
+  // is below the budget given.
+  bool cap_to_deadline() {
+    if (!deadline_ || evaluations_ == 0) return false;
+    const auto now = std::chrono::steady_clock::now();
+    const double mean = std::chrono::duration<double>(now - started_).count() / evaluations_;
+    const double left = std::chrono::duration<double>(*deadline_ - now).count();
+    const double affordable = mean > 0.0 ? std::floor(left / mean) - reserve_ : budget_;
+    limit_ = affordable < budget_ - evaluations_ ? evaluations_ + std::max(0, static_cast<int>(affordable)) : budget_;
+    return limit_ < budget_;
+  }
+  int limit() const { return limit_; }
   void stage(const char* name) { stage_ = name; }
   int evaluations() const { return evaluations_; }
   int non_finite() const { return non_finite_; }
@@ -53,7 +79,11 @@ class Tracker {
   const Objective& objective_;
   const std::function<void(const SearchProgress&)>& progress_;
   const std::atomic<bool>* interrupt_;
-  int limit_;
+  int budget_;  // max_evaluations
+  int limit_;   // the budget, or less where the deadline affords less
+  std::optional<std::chrono::steady_clock::time_point> deadline_;
+  int reserve_;
+  std::chrono::steady_clock::time_point started_ = std::chrono::steady_clock::now();
   int evaluations_ = 0;
   int non_finite_ = 0;
   double best_value_ = std::numeric_limits<double>::infinity();
@@ -116,10 +146,11 @@ SearchResult search(const Objective& objective, const std::vector<double>& start
                     const std::vector<double>& upper, const std::vector<bool>& logarithmic, const SearchSettings& settings,
                     const std::function<void(const SearchProgress&)>& progress, const std::atomic<bool>* interrupt) {
   const std::size_t n = start.size();
-  Tracker tracker(objective, progress, interrupt, settings.max_evaluations);
+  Tracker tracker(objective, progress, interrupt, settings);
   const Objective tracked = [&](const std::vector<double>& z) { return tracker(z); };
   SearchResult result;
-  auto remaining = [&] { return settings.max_evaluations - tracker.evaluations(); };
+  auto remaining = [&] { return tracker.limit() - tracker.evaluations(); };
+  bool capped = false;  // the budget was cut to what the time limit affords
   auto local = [&](const std::vector<double>& from, int budget, Algorithm algorithm) {
     OptimizerSettings o;
     o.algorithm = algorithm;
@@ -134,6 +165,7 @@ SearchResult search(const Objective& objective, const std::vector<double>& start
   try {
     tracker.stage("start");
     tracked(start);
+    capped = tracker.cap_to_deadline();
     if (settings.algorithm && is_global(*settings.algorithm)) {
       if (remaining() > 0) {
         tracker.stage("global");
@@ -157,17 +189,26 @@ SearchResult search(const Objective& objective, const std::vector<double>& start
         if (std::isfinite(value)) starts.push_back(point);
       }
       tracker.stage("local");
-      for (std::size_t k = 0; k < starts.size() && remaining() > 0; ++k)
+      for (std::size_t k = 0; k < starts.size(); ++k) {
+        capped = tracker.cap_to_deadline() || capped;
+        if (remaining() <= 0) break;
         local(starts[k], remaining() / static_cast<int>(starts.size() - k + 1), local_algorithm);
+      }
     }
     tracker.stage("polish");
+    capped = tracker.cap_to_deadline() || capped;
     if (remaining() > 0 && !tracker.best_z().empty()) local(tracker.best_z(), remaining(), local_algorithm);
   } catch (const Exhausted&) {
-    result.status = "MAXEVAL_REACHED";
+    result.status = capped ? "TIME_LIMIT_REACHED" : "MAXEVAL_REACHED";
+    result.out_of_time = capped;
+  } catch (const OutOfTime&) {
+    result.status = "TIME_LIMIT_REACHED";
+    result.out_of_time = true;
   } catch (const Interrupted&) {
     result.interrupted = true;
     result.status = "interrupted";
   }
+  if (capped && result.status == "MAXEVAL_REACHED") result.status = "TIME_LIMIT_REACHED", result.out_of_time = true;
   if (tracker.best_z().empty() && !result.interrupted)
     throw NumericalError(
         fmt::format("none of the {} trial points of the search gave a finite objective{}; check that the data and the "

@@ -19,11 +19,17 @@
 // 1 <= evaluations <= max(1, max_evaluations).
 // The best point seen is kept: when `interrupt` becomes true (Ctrl-C) the search stops at the
 // next evaluation (never before the start's) and returns it, with interrupted = true.
+// With a `deadline`, the budget after the start is cut to the evaluations the time left affords
+// at the start's cost, less `reserve_evaluations` (the work the caller still has to do after the
+// search, such as standard errors), so the stages share what can run; and no evaluation begins
+// unless the time left covers it and the reserve at the mean cost so far. The search then
+// returns its best point with out_of_time = true and status "TIME_LIMIT_REACHED".
 #pragma once
 
 #include "runtime/fit/optimizer.hpp"
 
 #include <atomic>
+#include <chrono>
 #include <functional>
 #include <optional>
 #include <string>
@@ -39,6 +45,8 @@ struct SearchSettings {
   unsigned long seed = 1;
   double tolerance = 1e-10;                       // relative, on z (local stages)
   std::vector<std::vector<double>> extra_starts;  // default strategy: local searches from these too
+  std::optional<std::chrono::steady_clock::time_point> deadline;
+  int reserve_evaluations = 0;
 };
 
 struct SearchProgress {
@@ -54,8 +62,9 @@ struct SearchResult {
   int non_finite = 0;         // evaluations that returned NaN or inf, or threw NumericalError (any stage)
   std::string first_failure;  // the message of the first NumericalError, if any
   std::string status;         // the last local stage's NLopt result, "MAXEVAL_REACHED" when the budget
-                              // ran out before or during a stage, or "interrupted"
+                              // ran out before or during a stage, "TIME_LIMIT_REACHED", or "interrupted"
   bool interrupted = false;
+  bool out_of_time = false;
 };
 
 // `logarithmic[j]`: coordinate j is ln p (sampled a decade either side of the start).

@@ -406,6 +406,38 @@ TEST_CASE("command-line mistakes exit 2 and name the option") {
   CHECK(beyond.code == 2);
   CHECK(contains(beyond.err, "--block 4: "));
   CHECK(contains(beyond.err, "has 3 fit block(s)"));
+  for (const std::string duration : {"soon", "5 parsecs", "-3s", "0", "10 mm"}) {
+    CAPTURE(duration);
+    const Run limit = run(base + " --time-limit '" + duration + "'");
+    CHECK(limit.code == 2);
+    CHECK(contains(limit.err, "--time-limit '" + duration + "': give a positive duration, e.g. 60s, 90 s or 5 min"));
+  }
+}
+
+TEST_CASE("--time-limit (or the block's time_limit) stops the search in time and reports the best values found so far") {
+  // The specimen-D fit from its generic start takes about 15 000 evaluations (2 s) unbounded.
+  std::string model = read_text(example("specimen_d_fit.rheo"));
+  model = model.substr(0, model.find("fit {"));
+  const fs::path file = scratch() / "time_limit.rheo", bounded = scratch() / "time_limit_block.rheo";
+  write_text(file, model + fmt::format("fit {{\n  data \"{}\"\n}}\n", data("specimen_D_harmonic.csv")));
+  write_text(bounded, model + fmt::format("fit {{\n  data \"{}\"\n  time_limit = 300 ms\n}}\n", data("specimen_D_harmonic.csv")));
+  for (const std::string& command :
+       {fmt::format("fit {} --time-limit 0.3s --json", file.string()), fmt::format("fit {} --time-limit '0.005 min' --json", file.string()),
+        fmt::format("fit {} --json", bounded.string())}) {
+    CAPTURE(command);
+    const Run r = run(command);
+    REQUIRE(r.code == 0);
+    const json report = json::parse(r.out);
+    CHECK(report["time_limited"] == true);
+    CHECK(report["interrupted"] == false);
+    CHECK(report["status"] == "TIME_LIMIT_REACHED");
+    CHECK(report["evaluations"].get<int>() < 15000);
+    CHECK(report["err"].get<double>() > 0.0);
+    CHECK(contains(report["notes"].dump(), "stopped at the time limit of 0.3 s after"));
+  }
+  const Run unbounded = run(fmt::format("fit {} --max-evaluations 30 --json", file.string()));
+  REQUIRE(unbounded.code == 0);
+  CHECK(json::parse(unbounded.out)["time_limited"] == false);
 }
 
 TEST_CASE("--block N runs only the N-th fit block, so -o can name its output") {

@@ -29,7 +29,7 @@ TEST_CASE("check_fit: settings in internal units, data lines with weights, outpu
   data "b.csv", weight = 0.5
   objective = least_squares, stiffness_weight = 0.25
   method = approximate, optimizer = sbplx, max_evaluations = 100, starts = 3, seed = 0, tolerance = 1e-6
-  definition = thesis, steps_per_cycle = 512
+  definition = thesis, steps_per_cycle = 512, time_limit = 2 min
   free = [m1.tau, k0]
   output "fitted.rheo"
 })");
@@ -54,6 +54,7 @@ TEST_CASE("check_fit: settings in internal units, data lines with weights, outpu
   CHECK(f.settings.tolerance == 1e-6);
   CHECK(f.settings.definition == HarmonicDefinition::thesis);
   CHECK(f.settings.steps_per_cycle == 512);
+  CHECK(f.settings.time_limit == 120.0);                                // seconds
   CHECK(f.settings.solver == SolverChoice::automatic);                  // not given: the default
   CHECK(free_paths(p, f) == std::vector<std::string>{"k0", "m1.tau"});  // sorted by parameter index
 }
@@ -107,5 +108,7 @@ TEST_CASE("check_fit_setting and parse_fit_setting: the fit schema for one setti
   CHECK(parse_fit_setting("max_evaluations = 500").values == std::vector<double>{500.0});
   CHECK_THROWS_WITH_AS(parse_fit_setting("stiffness_weight = 2"), doctest::Contains("stiffness_weight must be between 0 and 1, got 2"), CompileError);
   CHECK(fit_setting_keys().front() == "objective");
-  CHECK(fit_setting_keys().size() == 13);
+  CHECK(fit_setting_keys().size() == 14);
+  CHECK_THROWS_WITH_AS(parse_fit_setting("time_limit = 60 N"), doctest::Contains("time_limit"), CompileError);
+  CHECK_THROWS_WITH_AS(parse_fit_setting("time_limit = -1 s"), doctest::Contains("time_limit"), CompileError);
 }

@@ -1,6 +1,6 @@
 // The search strategy of `rheo fit` (runtime/fit/fit_search.hpp) on objectives whose minimum is
 // known in closed form: reproducibility per seed, the evaluation budget, the sampling box,
-// Ctrl-C (the interrupt flag) and the named global algorithms followed by the polish.
+// Ctrl-C (the interrupt flag), the deadline and the named global algorithms followed by the polish.
 #include "runtime/fit/fit_search.hpp"
 
 #include "runtime/core/errors.hpp"
@@ -8,10 +8,12 @@
 #include <doctest/doctest.h>
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <limits>
 #include <optional>
 #include <string>
+#include <thread>
 
 using namespace rheo::runtime;
 
@@ -256,4 +258,49 @@ TEST_CASE("extra starts are searched from, and a start that is already optimal i
   CHECK(std::find(r.points.begin(), r.points.end(), s.extra_starts.front()) != r.points.end());
   CHECK(result.value == 0.5);
   CHECK(result.z == s.extra_starts.front());
+}
+
+TEST_CASE("a deadline stops the search with the best point so far, leaving room for the reserved evaluations") {
+  using Clock = std::chrono::steady_clock;
+  Recorder r;
+  const Objective base = r.objective();
+  const Objective slow = [&](const std::vector<double>& z) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(2));
+    return base(z);
+  };
+  SUBCASE("a deadline already passed: the start only") {
+    SearchSettings s;
+    s.deadline = Clock::now() - std::chrono::seconds(1);
+    const SearchResult result = search(slow, bowl_start, bowl_lower, bowl_upper, linear3, s);
+    CHECK(result.out_of_time);
+    CHECK(result.status == "TIME_LIMIT_REACHED");
+    CHECK(result.evaluations == 1);
+    CHECK(result.z == bowl_start);
+  }
+  SUBCASE("room for some evaluations, none started that the time left cannot cover") {
+    SearchSettings s;
+    const auto deadline = Clock::now() + std::chrono::milliseconds(60);
+    s.deadline = deadline;
+    const SearchResult result = search(slow, bowl_start, bowl_lower, bowl_upper, linear3, s);
+    const auto finished = Clock::now();
+    CHECK(result.out_of_time);
+    CHECK(result.evaluations > 1);
+    CHECK(result.evaluations < 40);  // 2 ms each at least
+    CHECK(finished < deadline + std::chrono::milliseconds(200));
+    const auto best = std::min_element(r.values.begin(), r.values.end());
+    CHECK(result.value == *best);
+  }
+  SUBCASE("a reserve the time left cannot cover: the start only") {
+    SearchSettings s;
+    s.deadline = Clock::now() + std::chrono::milliseconds(60);
+    s.reserve_evaluations = 1000;  // 2 s at 2 ms each
+    const SearchResult result = search(slow, bowl_start, bowl_lower, bowl_upper, linear3, s);
+    CHECK(result.out_of_time);
+    CHECK(result.evaluations == 1);
+  }
+  SUBCASE("no deadline: the search runs to its own end") {
+    const SearchResult result = search(r.objective(), bowl_start, bowl_lower, bowl_upper, linear3, {});
+    CHECK_FALSE(result.out_of_time);
+    check_at_bowl_minimum(result, 1e-4);
+  }
 }
