@@ -115,4 +115,74 @@ std::vector<OrderStudy::Variant> OrderStudy::variants() const {
   return out;
 }
 
+namespace {
+
+// The shape of a copy, tau [s] or uy [mm], from its parameters' values.
+double shape_of(const lang::CheckedModel& model, const std::vector<double>& values, const lang::Element& e) {
+  const bool is_maxwell = e.kind == lang::ElementKind::maxwell;
+  double k = 0.0, direct = 0.0;
+  for (std::size_t i = 0; i < model.parameters.size(); ++i) {
+    const std::string& path = model.parameters[i].path;
+    if (path == e.path + ".k") k = values[i];
+    if (path == e.path + (is_maxwell ? ".c" : ".fy")) direct = values[i];
+  }
+  return k > 0.0 ? direct / k : 0.0;
+}
+
+// The geometric middle of the widest log gap between LO, the positive SHAPES and HI.
+double widest_gap(double lo, double hi, std::vector<double> shapes) {
+  shapes.erase(std::remove_if(shapes.begin(), shapes.end(), [](double v) { return !(v > 0.0); }), shapes.end());
+  shapes.push_back(lo), shapes.push_back(hi);
+  std::sort(shapes.begin(), shapes.end());
+  double best = std::sqrt(lo * hi), widest = -1.0;
+  for (std::size_t i = 0; i + 1 < shapes.size(); ++i)
+    if (const double gap = std::log(shapes[i + 1] / shapes[i]); gap > widest) widest = gap, best = std::sqrt(shapes[i] * shapes[i + 1]);
+  return best;
+}
+
+}  // namespace
+
+std::vector<double> OrderStudy::warm_start(const lang::CheckedModel& variant, const lang::CheckedModel& previous,
+                                           const std::vector<double>& fitted) const {
+  std::vector<double> start;
+  for (const auto& p : variant.parameters) start.push_back(p.value);
+  auto previous_index = [&](const std::string& path) {
+    for (std::size_t j = 0; j < previous.parameters.size(); ++j)
+      if (previous.parameters[j].path == path) return static_cast<int>(j);
+    return -1;
+  };
+  for (std::size_t i = 0; i < variant.parameters.size(); ++i) {
+    const lang::Parameter& p = variant.parameters[i];
+    if (const int j = previous_index(p.path); j >= 0 && p.expression.is_constant())
+      start[i] = p.free ? std::clamp(fitted[static_cast<std::size_t>(j)], p.lower, p.upper) : fitted[static_cast<std::size_t>(j)];
+  }
+  for (const auto& e : variant.root.children) {
+    if (previous_index(e.path + ".k") >= 0 || (e.kind != lang::ElementKind::maxwell && e.kind != lang::ElementKind::friction)) continue;
+    const bool is_maxwell = e.kind == lang::ElementKind::maxwell;
+    std::vector<double> shapes;
+    for (const auto& other : previous.root.children)
+      if (other.kind == e.kind) shapes.push_back(shape_of(previous, fitted, other));
+    const auto& range = is_maxwell ? spreads_.tau : spreads_.uy;
+    const double shape = widest_gap(range.front(), range.back(), shapes);
+    double k = 0.0;
+    for (std::size_t i = 0; i < variant.parameters.size(); ++i) {
+      const lang::Parameter& p = variant.parameters[i];
+      if (p.path == e.path + ".k") {
+        if (p.free) start[i] = p.lower;
+        k = start[i];
+      }
+    }
+    for (std::size_t i = 0; i < variant.parameters.size(); ++i) {
+      const lang::Parameter& p = variant.parameters[i];
+      if (!p.expression.is_constant()) continue;
+      double value = start[i];
+      if (p.path == e.path + (is_maxwell ? ".tau" : ".uy")) value = shape;
+      else if (p.path == e.path + (is_maxwell ? ".c" : ".fy")) value = k * shape;
+      else continue;
+      start[i] = p.free ? std::clamp(value, p.lower, p.upper) : value;
+    }
+  }
+  return start;
+}
+
 }  // namespace rheo::runtime

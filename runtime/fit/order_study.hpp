@@ -6,6 +6,8 @@
 // 1/(2 pi f) for the measured frequencies, slip displacements over the measured amplitudes. The
 // other elements keep their values and bounds. Each structure is written as .rheo source,
 // compiled and fitted like the original; the table gives err (6.1) against the element counts.
+// A structure with one element more than one already fitted starts from that fit (warm_start),
+// so err falls as elements are added.
 #pragma once
 
 #include "lang/model.hpp"
@@ -42,6 +44,14 @@ class OrderStudy {
   };
   // Every combination of counts, Maxwell counts outer.
   std::vector<Variant> variants() const;
+
+  // Start values (internal units, one per parameter of VARIANT) from the fit of PREVIOUS, a
+  // structure of this study with one copy fewer (FITTED: its fitted parameters). Parameters both
+  // have take the fitted value (clamped into VARIANT's bounds); the added copy starts with k at
+  // its lower bound, about no force, so the start is about as good as PREVIOUS's fit, and with
+  // its tau or uy in the widest gap (in log) between the fitted copies' and the ends of the
+  // data's spread. UsageError-free: parameters it cannot match keep VARIANT's values.
+  std::vector<double> warm_start(const lang::CheckedModel& variant, const lang::CheckedModel& previous, const std::vector<double>& fitted) const;
 
  private:
   const lang::CheckedModel& model_;

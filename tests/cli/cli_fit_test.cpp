@@ -357,6 +357,30 @@ TEST_CASE("--orders fits every structure and tables err; the true structure fits
   }
 }
 
+TEST_CASE("--orders warm-starts each structure from the one with an element fewer (err falls) and -o writes the chosen one") {
+  const fs::path out = scratch() / "orders_chosen.rheo";
+  const Run r = run(fmt::format("fit {} --data {} --orders maxwell=1..2,friction=1..3 --max-evaluations 400 --json -o {}", start_model().string(),
+                                data("specimen_D_harmonic.csv"), out.string()));
+  REQUIRE(r.code == 0);
+  const json table = json::parse(r.out);
+  REQUIRE(table.size() == 6);
+  std::map<std::pair<int, int>, double> err;
+  for (const json& row : table) err[{row["maxwell"].get<int>(), row["friction"].get<int>()}] = row["err"].get<double>();
+  for (int m = 1; m <= 2; ++m)
+    for (int f = 1; f <= 3; ++f) {
+      CAPTURE(m);
+      CAPTURE(f);
+      if (f > 1) CHECK(err[{m, f}] <= err[{m, f - 1}] * (1.0 + 1e-6));
+      if (m > 1 && f == 1) CHECK(err[{m, f}] <= err[{m - 1, f}] * (1.0 + 1e-6));  // a row starts from the row above
+    }
+  REQUIRE(contains(r.err, "written to " + out.string()));
+  const std::string written = read_text(out);
+  CHECK(contains(written, "Chosen by `rheo fit --orders` among 6 structures"));
+  // The file is the chosen structure with its fitted values: compiled anew, its err is a row's.
+  const double recomputed = err_of_file(out, "t", data("specimen_D_harmonic.csv"));
+  CHECK(std::any_of(err.begin(), err.end(), [&](const auto& e) { return std::abs(recomputed / e.second - 1.0) < 1e-6; }));
+}
+
 TEST_CASE("specimen D by the three methods: the exact method's err is the lowest (issue #3 acceptance)") {
   const Run r = run(fmt::format("fit {} --json", example("specimen_d_methods.rheo")));
   REQUIRE(r.code == 0);

@@ -66,3 +66,35 @@ TEST_CASE("order study: a model with a block, or without the element to copy, is
   CHECK_THROWS_WITH_AS(runtime::OrderStudy(plain, {std::nullopt, runtime::CountRange{1, 2}}, grid(1.0, 10.0)),
                        doctest::Contains("has no friction element to copy bounds from"), runtime::UsageError);
 }
+
+TEST_CASE("order study: a structure with one copy more starts from the fit of the one before, the new copy at no force in the widest gap") {
+  const lang::CheckedModel model = test::model_from(kModel, "b");
+  const runtime::OrderStudy study(model, {std::nullopt, runtime::CountRange{2, 3}}, grid(1.0, 100.0));
+  const auto variants = study.variants();
+  REQUIRE(variants.size() == 2);
+  const lang::Program two = lang::compile_source("two.rheo", variants[0].source), three = lang::compile_source("three.rheo", variants[1].source);
+  const lang::CheckedModel &before = *two.find_model("b"), &after = *three.find_model("b");
+  auto index = [](const lang::CheckedModel& m, const std::string& path) {
+    for (std::size_t i = 0; i < m.parameters.size(); ++i)
+      if (m.parameters[i].path == path) return i;
+    FAIL("no parameter " << path);
+    return std::size_t{0};
+  };
+  // "Fitted" values of the two-copy structure: uy of 0.01 mm and 0.1 mm (fy = k uy derived).
+  std::vector<double> fitted;
+  for (const auto& p : before.parameters) fitted.push_back(p.value);
+  fitted[index(before, "k0.k")] = 420.0;
+  fitted[index(before, "m1.k")] = 77.0;
+  fitted[index(before, "order_f1.k")] = 200.0, fitted[index(before, "order_f1.uy")] = 0.01, fitted[index(before, "order_f1.fy")] = 2.0;
+  fitted[index(before, "order_f2.k")] = 50.0, fitted[index(before, "order_f2.uy")] = 0.1, fitted[index(before, "order_f2.fy")] = 5.0;
+  const std::vector<double> start = study.warm_start(after, before, fitted);
+  REQUIRE(start.size() == after.parameters.size());
+  CHECK(start[index(after, "k0.k")] == 420.0);
+  CHECK(start[index(after, "m1.k")] == 77.0);
+  CHECK(start[index(after, "order_f1.k")] == 200.0);
+  CHECK(start[index(after, "order_f2.uy")] == doctest::Approx(0.1));
+  // The new copy: k at its lower bound (1 N/mm); uy in the widest log gap of {0.05 (= 0.2/4),
+  // 0.01, 0.1, 1 (= 2.0/2)} mm, which is 0.1..1 mm: sqrt(0.1 * 1).
+  CHECK(start[index(after, "order_f3.k")] == doctest::Approx(1.0));
+  CHECK(start[index(after, "order_f3.uy")] == doctest::Approx(std::sqrt(0.1)));
+}
