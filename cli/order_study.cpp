@@ -120,6 +120,9 @@ int run_order_study(const std::vector<FitJob>& jobs, const FitOptions& options) 
     const FittedStructure* previous = fitted_at(m, f - 1);
     if (previous == nullptr) previous = fitted_at(m - 1, f);
     v.start_values = previous ? study.warm_start(*v.model, *previous->model, previous->values) : values_by_path(*v.model, model, job.start_values);
+    // The spread start too: the warm start's halves stay alike under a local search, where a
+    // cold one may find a better use for the new element.
+    if (previous) v.settings.extra_starts = {runtime::Network::compile(*v.model).parameters()};
     const runtime::FitResult r = run_fit_job(v);
     structure.free = r.free;
     structure.values = r.network.parameters();
@@ -142,7 +145,8 @@ int run_order_study(const std::vector<FitJob>& jobs, const FitOptions& options) 
       return exit_code_interrupted;
     }
   }
-  if (!job.output.empty()) write_chosen(fitted, job, job.output);
+  // Only an explicit -o: the block's `output` names the file of the block's own fit.
+  if (!options.output.empty()) write_chosen(fitted, job, options.output);
   if (options.json) std::cout << rows.dump(2) << "\n";
   return runtime::exit_code::ok;
 }

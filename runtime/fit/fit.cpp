@@ -160,7 +160,7 @@ class StagedSearch {
     const Objective objective = [&](const std::vector<double>& z) { return sum_of_squares(r(z)); };
     SearchSettings search = settings_.search;
     search.max_evaluations = std::max(1, budget);
-    search.extra_starts = std::move(extra_starts);
+    search.extra_starts.insert(search.extra_starts.end(), extra_starts.begin(), extra_starts.end());
     const SearchResult found = runtime::search(objective, from, coordinates_.lower, coordinates_.upper, coordinates_.logarithmic, search,
                                                settings_.progress, settings_.interrupt);
     result_.evaluations += found.evaluations;
@@ -336,6 +336,15 @@ FitResult fit(const Network& start, const std::vector<int>& free, const std::vec
   const Network first = settings.yeoh_start_from_history ? start.with_parameters(yeoh_start(start, free, data, notes)) : start;
   const Coordinates coordinates(first, free);
   const ScoreSettings& score = settings.score;
+  settings.search.extra_starts.clear();
+  for (const std::vector<double>& values : given.extra_starts) {
+    if (values.size() != first.parameters().size())
+      throw std::logic_error(fmt::format("fit: an extra start has {} values for {} parameters", values.size(), first.parameters().size()));
+    std::vector<double> z = coordinates.z_of(values);
+    for (std::size_t j = 0; j < z.size(); ++j)
+      z[j] = std::isnan(z[j]) ? coordinates.z0[j] : std::clamp(z[j], coordinates.lower[j], coordinates.upper[j]);
+    settings.search.extra_starts.push_back(std::move(z));
+  }
 
   FitResult result{.network = start, .free = free, .start_values = start.parameters()};
   result.notes = std::move(notes);

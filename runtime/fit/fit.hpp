@@ -51,6 +51,9 @@ struct FitSettings {
   // errors room at the cost per evaluation measured so far, and the fit returns the best point
   // found (FitResult::time_limited). Absent: none.
   std::optional<double> time_limit;
+  // More starting points (each every model parameter, internal units; clamped into the bounds):
+  // the default strategy runs a local search from each too (fit_search.hpp), as from the start.
+  std::vector<std::vector<double>> extra_starts;
   std::function<void(const SearchProgress&)> progress;  // called after every evaluation
   const std::atomic<bool>* interrupt = nullptr;         // set (e.g. by SIGINT) to stop with the best so far
 };

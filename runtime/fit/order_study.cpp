@@ -117,16 +117,16 @@ std::vector<OrderStudy::Variant> OrderStudy::variants() const {
 
 namespace {
 
+double value_at(const lang::CheckedModel& model, const std::vector<double>& values, const std::string& path) {
+  for (std::size_t i = 0; i < model.parameters.size(); ++i)
+    if (model.parameters[i].path == path) return values[i];
+  return 0.0;
+}
+
 // The shape of a copy, tau [s] or uy [mm], from its parameters' values.
 double shape_of(const lang::CheckedModel& model, const std::vector<double>& values, const lang::Element& e) {
-  const bool is_maxwell = e.kind == lang::ElementKind::maxwell;
-  double k = 0.0, direct = 0.0;
-  for (std::size_t i = 0; i < model.parameters.size(); ++i) {
-    const std::string& path = model.parameters[i].path;
-    if (path == e.path + ".k") k = values[i];
-    if (path == e.path + (is_maxwell ? ".c" : ".fy")) direct = values[i];
-  }
-  return k > 0.0 ? direct / k : 0.0;
+  const double k = value_at(model, values, e.path + ".k");
+  return k > 0.0 ? value_at(model, values, e.path + (e.kind == lang::ElementKind::maxwell ? ".c" : ".fy")) / k : 0.0;
 }
 
 // The geometric middle of the widest log gap between LO, the positive SHAPES and HI.
@@ -140,47 +140,54 @@ double widest_gap(double lo, double hi, std::vector<double> shapes) {
   return best;
 }
 
+// Sets the written parameter PATH of VARIANT in START (clamped into its bounds when free).
+void set_written(const lang::CheckedModel& variant, std::vector<double>& start, const std::string& path, double value) {
+  for (std::size_t i = 0; i < variant.parameters.size(); ++i) {
+    const lang::Parameter& p = variant.parameters[i];
+    if (p.path == path && p.expression.is_constant()) start[i] = p.free ? std::clamp(value, p.lower, p.upper) : value;
+  }
+}
+
 }  // namespace
 
 std::vector<double> OrderStudy::warm_start(const lang::CheckedModel& variant, const lang::CheckedModel& previous,
                                            const std::vector<double>& fitted) const {
   std::vector<double> start;
   for (const auto& p : variant.parameters) start.push_back(p.value);
-  auto previous_index = [&](const std::string& path) {
-    for (std::size_t j = 0; j < previous.parameters.size(); ++j)
-      if (previous.parameters[j].path == path) return static_cast<int>(j);
-    return -1;
+  auto in_previous = [&](const std::string& path) {
+    return std::any_of(previous.parameters.begin(), previous.parameters.end(), [&](const lang::Parameter& p) { return p.path == path; });
   };
-  for (std::size_t i = 0; i < variant.parameters.size(); ++i) {
-    const lang::Parameter& p = variant.parameters[i];
-    if (const int j = previous_index(p.path); j >= 0 && p.expression.is_constant())
-      start[i] = p.free ? std::clamp(fitted[static_cast<std::size_t>(j)], p.lower, p.upper) : fitted[static_cast<std::size_t>(j)];
-  }
+  for (const auto& p : previous.parameters) set_written(variant, start, p.path, value_at(previous, fitted, p.path));
   for (const auto& e : variant.root.children) {
-    if (previous_index(e.path + ".k") >= 0 || (e.kind != lang::ElementKind::maxwell && e.kind != lang::ElementKind::friction)) continue;
+    if (in_previous(e.path + ".k") || (e.kind != lang::ElementKind::maxwell && e.kind != lang::ElementKind::friction)) continue;
     const bool is_maxwell = e.kind == lang::ElementKind::maxwell;
+    const std::string shape_name = is_maxwell ? ".tau" : ".uy", force_name = is_maxwell ? ".c" : ".fy";
+    // The previous structure's stiffest copy of the family, split in two equal halves.
+    const lang::Element* stiffest = nullptr;
     std::vector<double> shapes;
-    for (const auto& other : previous.root.children)
-      if (other.kind == e.kind) shapes.push_back(shape_of(previous, fitted, other));
+    for (const auto& other : previous.root.children) {
+      if (other.kind != e.kind) continue;
+      shapes.push_back(shape_of(previous, fitted, other));
+      if (!stiffest || value_at(previous, fitted, other.path + ".k") > value_at(previous, fitted, stiffest->path + ".k")) stiffest = &other;
+    }
+    if (stiffest) {
+      const double k = value_at(previous, fitted, stiffest->path + ".k"), shape = shape_of(previous, fitted, *stiffest);
+      for (const std::string& path : {stiffest->path, e.path}) {
+        set_written(variant, start, path + ".k", 0.5 * k);
+        set_written(variant, start, path + shape_name, shape);
+        set_written(variant, start, path + force_name, 0.5 * k * shape);
+      }
+      continue;
+    }
+    // None to split: k at its lower bound, the shape in the widest gap of the data's spread.
     const auto& range = is_maxwell ? spreads_.tau : spreads_.uy;
     const double shape = widest_gap(range.front(), range.back(), shapes);
     double k = 0.0;
-    for (std::size_t i = 0; i < variant.parameters.size(); ++i) {
-      const lang::Parameter& p = variant.parameters[i];
-      if (p.path == e.path + ".k") {
-        if (p.free) start[i] = p.lower;
-        k = start[i];
-      }
-    }
-    for (std::size_t i = 0; i < variant.parameters.size(); ++i) {
-      const lang::Parameter& p = variant.parameters[i];
-      if (!p.expression.is_constant()) continue;
-      double value = start[i];
-      if (p.path == e.path + (is_maxwell ? ".tau" : ".uy")) value = shape;
-      else if (p.path == e.path + (is_maxwell ? ".c" : ".fy")) value = k * shape;
-      else continue;
-      start[i] = p.free ? std::clamp(value, p.lower, p.upper) : value;
-    }
+    for (std::size_t i = 0; i < variant.parameters.size(); ++i)
+      if (variant.parameters[i].path == e.path + ".k") k = variant.parameters[i].free ? variant.parameters[i].lower : start[i];
+    set_written(variant, start, e.path + ".k", k);
+    set_written(variant, start, e.path + shape_name, shape);
+    set_written(variant, start, e.path + force_name, k * shape);
   }
   return start;
 }

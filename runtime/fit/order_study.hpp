@@ -47,10 +47,11 @@ class OrderStudy {
 
   // Start values (internal units, one per parameter of VARIANT) from the fit of PREVIOUS, a
   // structure of this study with one copy fewer (FITTED: its fitted parameters). Parameters both
-  // have take the fitted value (clamped into VARIANT's bounds); the added copy starts with k at
-  // its lower bound, about no force, so the start is about as good as PREVIOUS's fit, and with
-  // its tau or uy in the widest gap (in log) between the fitted copies' and the ends of the
-  // data's spread. UsageError-free: parameters it cannot match keep VARIANT's values.
+  // have take the fitted value (clamped into VARIANT's bounds). The added copy and PREVIOUS's
+  // stiffest copy of the same family share that copy's fit: each half its k (and c or fy), both
+  // its tau or uy, so VARIANT starts with PREVIOUS's response exactly (where the bounds allow)
+  // and its fit can only lower err. With no copy to split, the new one starts at its lower k,
+  // its tau or uy in the widest gap (in log) of the data's spread.
   std::vector<double> warm_start(const lang::CheckedModel& variant, const lang::CheckedModel& previous, const std::vector<double>& fitted) const;
 
  private:

@@ -91,6 +91,28 @@ TEST_CASE("with friction elements: spring + Maxwell + 2 friction recovered from 
   check_recovered(in_truth_order(result, "friction"), truth);
 }
 
+TEST_CASE("an extra start is searched from too: with a budget too small to get there from the start, the fit finds the truth it names") {
+  const auto truth = test::network_from("model g { spring e (k = 100) maxwell m1 (k = 50, tau = 10 ms) }", "g");
+  const auto start = test::network_from(
+      "model g { spring e (k = 300 in [1, 10000])\n maxwell m1 (k = 5 in [1, 10000], tau = 1 s in [0.01, 100000]) }", "g");
+  const auto data = harmonic_set_from(truth, {0.5}, {0.1, 1.0, 10.0, 50.0});
+  runtime::FitSettings settings;
+  settings.separable = false;  // the search itself, not the solve of the scales
+  settings.search.max_evaluations = 60;
+  settings.search.samples = 0;
+  const auto alone = runtime::fit(start, runtime::bounded_parameters(start), {data}, settings);
+  std::vector<double> near = truth.parameters();
+  for (double& v : near) v *= 1.01;
+  near[static_cast<std::size_t>(test::parameter_index(start, "e.k"))] = 1e9;  // clamped into the bounds
+  settings.extra_starts = {truth.parameters(), near};
+  const auto helped = runtime::fit(start, runtime::bounded_parameters(start), {data}, settings);
+  CAPTURE(alone.err);
+  CHECK(helped.err < 1e-9);
+  CHECK(helped.err < alone.err);
+  settings.extra_starts = {{1.0, 2.0}};
+  CHECK_THROWS_AS(runtime::fit(start, runtime::bounded_parameters(start), {data}, settings), std::logic_error);
+}
+
 // The fit starts the yeoh constants from the mean curve of the loop (eqs. 5.28-5.32) by
 // default, then searches all parameters against the time-domain residual.
 TEST_CASE("yeoh spring from a static loop (time-domain residual), from 3x off") {

@@ -3,6 +3,7 @@
 #include "runtime/fit/order_study.hpp"
 
 #include "lang/frontend.hpp"
+#include "runtime/closed_form/periodic_closed_form.hpp"
 #include "runtime/core/errors.hpp"
 #include "support.hpp"
 
@@ -67,34 +68,54 @@ TEST_CASE("order study: a model with a block, or without the element to copy, is
                        doctest::Contains("has no friction element to copy bounds from"), runtime::UsageError);
 }
 
-TEST_CASE("order study: a structure with one copy more starts from the fit of the one before, the new copy at no force in the widest gap") {
+TEST_CASE("order study: a structure with one copy more starts from the fit of the one before, with the same response") {
   const lang::CheckedModel model = test::model_from(kModel, "b");
-  const runtime::OrderStudy study(model, {std::nullopt, runtime::CountRange{2, 3}}, grid(1.0, 100.0));
+  const runtime::OrderStudy study(model, {runtime::CountRange{1, 2}, runtime::CountRange{2, 3}}, grid(1.0, 100.0));
   const auto variants = study.variants();
-  REQUIRE(variants.size() == 2);
-  const lang::Program two = lang::compile_source("two.rheo", variants[0].source), three = lang::compile_source("three.rheo", variants[1].source);
-  const lang::CheckedModel &before = *two.find_model("b"), &after = *three.find_model("b");
+  REQUIRE(variants.size() == 4);  // (1, 2), (1, 3), (2, 2), (2, 3)
   auto index = [](const lang::CheckedModel& m, const std::string& path) {
     for (std::size_t i = 0; i < m.parameters.size(); ++i)
       if (m.parameters[i].path == path) return i;
     FAIL("no parameter " << path);
     return std::size_t{0};
   };
-  // "Fitted" values of the two-copy structure: uy of 0.01 mm and 0.1 mm (fy = k uy derived).
+  const lang::Program two = lang::compile_source("two.rheo", variants[0].source);
+  const lang::CheckedModel& before = *two.find_model("b");
+  // "Fitted" values of the (1, 2) structure (fy = k uy and c = k tau derived by the network).
   std::vector<double> fitted;
   for (const auto& p : before.parameters) fitted.push_back(p.value);
   fitted[index(before, "k0.k")] = 420.0;
-  fitted[index(before, "m1.k")] = 77.0;
-  fitted[index(before, "order_f1.k")] = 200.0, fitted[index(before, "order_f1.uy")] = 0.01, fitted[index(before, "order_f1.fy")] = 2.0;
-  fitted[index(before, "order_f2.k")] = 50.0, fitted[index(before, "order_f2.uy")] = 0.1, fitted[index(before, "order_f2.fy")] = 5.0;
-  const std::vector<double> start = study.warm_start(after, before, fitted);
-  REQUIRE(start.size() == after.parameters.size());
-  CHECK(start[index(after, "k0.k")] == 420.0);
-  CHECK(start[index(after, "m1.k")] == 77.0);
-  CHECK(start[index(after, "order_f1.k")] == 200.0);
-  CHECK(start[index(after, "order_f2.uy")] == doctest::Approx(0.1));
-  // The new copy: k at its lower bound (1 N/mm); uy in the widest log gap of {0.05 (= 0.2/4),
-  // 0.01, 0.1, 1 (= 2.0/2)} mm, which is 0.1..1 mm: sqrt(0.1 * 1).
-  CHECK(start[index(after, "order_f3.k")] == doctest::Approx(1.0));
-  CHECK(start[index(after, "order_f3.uy")] == doctest::Approx(std::sqrt(0.1)));
+  fitted[index(before, "order_m1.k")] = 77.0, fitted[index(before, "order_m1.tau")] = 0.02;
+  fitted[index(before, "order_f1.k")] = 200.0, fitted[index(before, "order_f1.uy")] = 0.01;
+  fitted[index(before, "order_f2.k")] = 50.0, fitted[index(before, "order_f2.uy")] = 0.1;
+  const runtime::Network fitted_network = runtime::Network::compile(before).with_parameters(fitted);
+  fitted = fitted_network.parameters();
+  for (std::size_t next : {1u, 2u}) {  // one friction element more; one Maxwell element more
+    CAPTURE(next);
+    const lang::Program program = lang::compile_source("next.rheo", variants[next].source);
+    const lang::CheckedModel& after = *program.find_model("b");
+    const std::vector<double> start = study.warm_start(after, before, fitted);
+    REQUIRE(start.size() == after.parameters.size());
+    CHECK(start[index(after, "k0.k")] == 420.0);
+    if (next == 1) {
+      // The stiffest friction copy (f1) and the new one share f1's fit: half its k each, its uy.
+      CHECK(start[index(after, "order_f1.k")] == doctest::Approx(100.0));
+      CHECK(start[index(after, "order_f3.k")] == doctest::Approx(100.0));
+      CHECK(start[index(after, "order_f3.uy")] == doctest::Approx(0.01));
+      CHECK(start[index(after, "order_f2.k")] == 50.0);
+    } else {
+      CHECK(start[index(after, "order_m1.k")] == doctest::Approx(38.5));
+      CHECK(start[index(after, "order_m2.k")] == doctest::Approx(38.5));
+      CHECK(start[index(after, "order_m2.tau")] == doctest::Approx(0.02));
+    }
+    // The same response as the fitted structure, at every amplitude and frequency.
+    const runtime::Network warm = runtime::Network::compile(after).with_parameters(start);
+    for (double u0 : {0.005, 0.05, 1.0})
+      for (double f : {0.5, 20.0}) {
+        const auto a = runtime::closed_form_harmonic_point(fitted_network, u0, f, runtime::HarmonicDefinition::thesis);
+        const auto b = runtime::closed_form_harmonic_point(warm, u0, f, runtime::HarmonicDefinition::thesis);
+        CHECK(b.measures.stiffness == doctest::Approx(a.measures.stiffness).epsilon(1e-12));
+        CHECK(b.measures.phase == doctest::Approx(a.measures.phase).epsilon(1e-12));
+      }
+  }
 }
