@@ -165,8 +165,11 @@ struct PwlPeriodicState::Run {
         if (std::abs(next - tau) <= 1e-14 * h) break;
         tau = next;
       }
-      if (value(b) >= 0.0) return std::numeric_limits<double>::infinity();
-      hi = b;
+      // The last iterate is the minimum where Newton converged from one side; b where the
+      // bracket closed from both.
+      if (const double at_tau = value(tau); at_tau < 0.0) hi = tau;
+      else if (value(b) < 0.0) hi = b;
+      else return std::numeric_limits<double>::infinity();
     }
     if (g0 <= tol && leaves(m, i, w0)) return 0.0;  // the switch is now
     double tau = std::numeric_limits<double>::quiet_NaN();
@@ -357,6 +360,7 @@ bool PwlPeriodicState::solve(const PwlBranch& branch, double u0, double omega) {
     last_end = X_T;
     const PwlVector residual = (X_T - X0).cwiseQuotient(scale);
     const double size = residual.cwiseAbs().maxCoeff();
+    if (!std::isfinite(size)) return false;
     if (size <= kPeriodicTolerance) {
       // The extrema are taken as max F = -min F (periodic_closed_form.hpp): the force must be
       // half-wave symmetric, F(theta + pi) = -F(theta), as it is wherever the periodic state is

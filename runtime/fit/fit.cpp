@@ -154,12 +154,19 @@ class StagedSearch {
     return [this, method](const std::vector<double>& z) { return residuals(coordinates_.network(z), data_, settings_.score, method, corrections_); };
   }
 
-  // One search of METHOD from FROM with at most BUDGET evaluations (at least 1).
-  std::vector<double> run(FitMethod method, const std::vector<double>& from, int budget, std::vector<std::vector<double>> extra_starts = {}) {
+  // One search of METHOD from FROM with at most BUDGET evaluations (at least 1) and, under a
+  // time limit, at most TIME_SHARE of the time left.
+  std::vector<double> run(FitMethod method, const std::vector<double>& from, int budget, std::vector<std::vector<double>> extra_starts = {},
+                          double time_share = 1.0) {
     const auto r = residuals_for(method);
     const Objective objective = [&](const std::vector<double>& z) { return sum_of_squares(r(z)); };
     SearchSettings search = settings_.search;
     search.max_evaluations = std::max(1, budget);
+    if (search.deadline && time_share < 1.0) {
+      const auto now = std::chrono::steady_clock::now();
+      if (*search.deadline > now)
+        search.deadline = now + std::chrono::duration_cast<std::chrono::steady_clock::duration>((*search.deadline - now) * time_share);
+    }
     search.extra_starts.insert(search.extra_starts.end(), extra_starts.begin(), extra_starts.end());
     const SearchResult found = runtime::search(objective, from, coordinates_.lower, coordinates_.upper, coordinates_.logarithmic, search,
                                                settings_.progress, settings_.interrupt);
@@ -240,11 +247,12 @@ class StagedSearch {
   // Table 5.1: analytical part, numerical part (5.2, 5.3), calibrated analytical part (5.4).
   // Sets FINAL_METHOD to the method the returned z was fitted with.
   std::vector<double> corrected(FitMethod& final_method) {
-    std::vector<double> z = run(FitMethod::approximate, coordinates_.z0, total() / 2);
+    std::vector<double> z = run(FitMethod::approximate, coordinates_.z0, total() / 2, {}, 0.3);
     if (result_.interrupted) {
       final_method = FitMethod::approximate;
       return z;
     }
+    result_.time_limited = false;  // its share ran out, not the fit's time
     corrections_ = corrections_at(coordinates_.network(z), data_, settings_.score.harmonic);
     return run(FitMethod::corrected, z, total() - result_.evaluations);
   }
@@ -252,20 +260,20 @@ class StagedSearch {
   // The corrected approximation is a cheap surrogate (~30 times faster per evaluation): the
   // Table 5.1 fit, with its own budget, gives one more start of the exact search, which
   // therefore ends no worse than the corrected method.
+  // Under a time limit the surrogate's stages take at most a tenth of the time left each, and
+  // the exact search starts from the surrogate's optimum (evaluated first) with the start as
+  // the extra one.
   std::vector<double> exact_with_surrogate() {
-    const std::vector<double> approximate = run(FitMethod::approximate, coordinates_.z0, total() / 2);
+    const bool timed = settings_.search.deadline.has_value();
+    const std::vector<double> approximate = run(FitMethod::approximate, coordinates_.z0, total() / 2, {}, 0.1);
     std::vector<std::vector<double>> surrogate{approximate};
     if (!result_.interrupted) {
       corrections_ = corrections_at(coordinates_.network(approximate), data_, settings_.score.harmonic);
-      surrogate = {run(FitMethod::corrected, approximate, total() - result_.evaluations)};
+      surrogate = {run(FitMethod::corrected, approximate, total() - result_.evaluations, {}, 0.1)};
     }
     if (result_.interrupted) return surrogate.front();
-    // Out of time in the surrogate's stages: one exact evaluation of its optimum.
-    if (result_.time_limited) {
-      std::vector<double> z = run(FitMethod::exact, surrogate.front(), 1);
-      result_.status = "TIME_LIMIT_REACHED";
-      return z;
-    }
+    result_.time_limited = false;  // the surrogate's share ran out, not the fit's time
+    if (timed) return run(FitMethod::exact, surrogate.front(), total(), {coordinates_.z0});
     return run(FitMethod::exact, coordinates_.z0, total(), surrogate);
   }
 
@@ -323,7 +331,7 @@ FitResult fit(const Network& start, const std::vector<int>& free, const std::vec
   const auto clock_start = std::chrono::steady_clock::now();
   require_fittable(start, free, data, given);
   FitSettings settings = given;
-  if (given.time_limit) {
+  if (given.time_limit && *given.time_limit <= 1e8) {
     settings.search.deadline = clock_start + std::chrono::duration_cast<std::chrono::steady_clock::duration>(
                                                  std::chrono::duration<double>(std::max(0.0, *given.time_limit)));
     // After the search: the standard errors' central differences (2 n + 1 evaluations) and the

@@ -49,10 +49,11 @@ struct FitSettings {
   bool statistics = true;
   // Wall-clock bound of the whole fit [s]: the searches stop in time to leave the standard
   // errors room at the cost per evaluation measured so far, and the fit returns the best point
-  // found (FitResult::time_limited). Absent: none.
+  // found (FitResult::time_limited). Absent, or above 1e8 s (three years): none.
   std::optional<double> time_limit;
   // More starting points (each every model parameter, internal units; clamped into the bounds):
-  // the default strategy runs a local search from each too (fit_search.hpp), as from the start.
+  // the default strategy runs a local search from each too (fit_search.hpp), as from the start;
+  // not on the separable path, whose search is over the shape parameters only.
   std::vector<std::vector<double>> extra_starts;
   std::function<void(const SearchProgress&)> progress;  // called after every evaluation
   const std::atomic<bool>* interrupt = nullptr;         // set (e.g. by SIGINT) to stop with the best so far

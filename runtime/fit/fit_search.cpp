@@ -56,18 +56,19 @@ class Tracker {
     return value;
   }
   // With a deadline: caps the budget at the evaluations the time left affords at the mean cost
-  // so far, less the reserve, so that the stages share what can actually run. True when that cap
-  // is below the budget given.
+  // so far, less the reserve, so that the stages share what can actually run (or restores it
+  // when the time left affords it all). True when that cap is below the budget given.
   bool cap_to_deadline() {
     if (!deadline_ || evaluations_ == 0) return false;
     const auto now = std::chrono::steady_clock::now();
     const double mean = std::chrono::duration<double>(now - started_).count() / evaluations_;
     const double left = std::chrono::duration<double>(*deadline_ - now).count();
     const double affordable = mean > 0.0 ? std::floor(left / mean) - reserve_ : budget_;
-    limit_ = affordable < budget_ - evaluations_ ? evaluations_ + std::max(0, static_cast<int>(affordable)) : budget_;
+    limit_ = affordable < budget_ - evaluations_ ? evaluations_ + static_cast<int>(std::max(0.0, affordable)) : budget_;
     return limit_ < budget_;
   }
   int limit() const { return limit_; }
+  bool capped() const { return limit_ < budget_; }
   void stage(const char* name) { stage_ = name; }
   int evaluations() const { return evaluations_; }
   int non_finite() const { return non_finite_; }
@@ -150,7 +151,6 @@ SearchResult search(const Objective& objective, const std::vector<double>& start
   const Objective tracked = [&](const std::vector<double>& z) { return tracker(z); };
   SearchResult result;
   auto remaining = [&] { return tracker.limit() - tracker.evaluations(); };
-  bool capped = false;  // the budget was cut to what the time limit affords
   auto local = [&](const std::vector<double>& from, int budget, Algorithm algorithm) {
     OptimizerSettings o;
     o.algorithm = algorithm;
@@ -165,7 +165,7 @@ SearchResult search(const Objective& objective, const std::vector<double>& start
   try {
     tracker.stage("start");
     tracked(start);
-    capped = tracker.cap_to_deadline();
+    tracker.cap_to_deadline();
     if (settings.algorithm && is_global(*settings.algorithm)) {
       if (remaining() > 0) {
         tracker.stage("global");
@@ -190,17 +190,17 @@ SearchResult search(const Objective& objective, const std::vector<double>& start
       }
       tracker.stage("local");
       for (std::size_t k = 0; k < starts.size(); ++k) {
-        capped = tracker.cap_to_deadline() || capped;
+        tracker.cap_to_deadline();
         if (remaining() <= 0) break;
         local(starts[k], remaining() / static_cast<int>(starts.size() - k + 1), local_algorithm);
       }
     }
     tracker.stage("polish");
-    capped = tracker.cap_to_deadline() || capped;
+    tracker.cap_to_deadline();
     if (remaining() > 0 && !tracker.best_z().empty()) local(tracker.best_z(), remaining(), local_algorithm);
   } catch (const Exhausted&) {
-    result.status = capped ? "TIME_LIMIT_REACHED" : "MAXEVAL_REACHED";
-    result.out_of_time = capped;
+    result.status = tracker.capped() ? "TIME_LIMIT_REACHED" : "MAXEVAL_REACHED";
+    result.out_of_time = tracker.capped();
   } catch (const OutOfTime&) {
     result.status = "TIME_LIMIT_REACHED";
     result.out_of_time = true;
@@ -208,7 +208,8 @@ SearchResult search(const Objective& objective, const std::vector<double>& start
     result.interrupted = true;
     result.status = "interrupted";
   }
-  if (capped && result.status == "MAXEVAL_REACHED") result.status = "TIME_LIMIT_REACHED", result.out_of_time = true;
+  // A stage that ran out of a budget the time limit had cut.
+  if (tracker.capped() && result.status == "MAXEVAL_REACHED") result.status = "TIME_LIMIT_REACHED", result.out_of_time = true;
   if (tracker.best_z().empty() && !result.interrupted)
     throw NumericalError(
         fmt::format("none of the {} trial points of the search gave a finite objective{}; check that the data and the "

@@ -19,8 +19,9 @@
 // 1 <= evaluations <= max(1, max_evaluations).
 // The best point seen is kept: when `interrupt` becomes true (Ctrl-C) the search stops at the
 // next evaluation (never before the start's) and returns it, with interrupted = true.
-// With a `deadline`, the budget after the start is cut to the evaluations the time left affords
-// at the start's cost, less `reserve_evaluations` (the work the caller still has to do after the
+// With a `deadline`, the budget is cut to the evaluations the time left affords at the mean cost
+// so far (measured after the start and again before each local search and the polish), less
+// `reserve_evaluations` (the work the caller still has to do after the
 // search, such as standard errors), so the stages share what can run; and no evaluation begins
 // unless the time left covers it and the reserve at the mean cost so far. The search then
 // returns its best point with out_of_time = true and status "TIME_LIMIT_REACHED".
