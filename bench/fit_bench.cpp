@@ -35,8 +35,15 @@ void BM_SpecimenC_Fit(benchmark::State& state) {
   fit(state, "specimen_c_fit.rheo", "specimen_c", "specimen_C_harmonic.csv", runtime::FitMethod::exact);
 }
 
+// #23's coupled bushing: 14 free parameters, a nested slider + Maxwell arm (event-driven
+// periodic states), 147 points, default settings from the example's generic start.
+void BM_CoupledBushing_Fit(benchmark::State& state) {
+  fit(state, "coupled_bushing_fit.rheo", "coupled", "coupled_bushing_harmonic.csv", runtime::FitMethod::exact);
+}
+
 }  // namespace
 
 BENCHMARK(BM_Prony20_FixedTau_Fit)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_SpecimenD_Fit)->Unit(benchmark::kSecond)->Iterations(3);
 BENCHMARK(BM_SpecimenC_Fit)->Unit(benchmark::kSecond)->Iterations(3);
+BENCHMARK(BM_CoupledBushing_Fit)->Unit(benchmark::kSecond)->Iterations(1);

@@ -41,7 +41,8 @@ Command add_fit_command(CLI::App& app) {
   auto report = std::make_shared<ReportTargets>();
   app.add_option("file", o->file, "The .rheo file: a model with bounds on the parameters to fit, and optionally fit blocks")->required();
   app.add_option("--data", o->data, "Measured data (harmonic table or time history); replaces the fit block's data lines. Repeatable");
-  app.add_option("-o,--output", o->output, "Write the fitted model (.rheo, comments kept) here; needs exactly one fit to run");
+  app.add_option("-o,--output", o->output,
+                 "Write the fitted model (.rheo, comments kept) here; needs exactly one fit to run (with --orders: the structure of lowest AIC)");
   app.add_flag("--json", o->json, "Print the JSON summary instead of the text report");
   app.add_option("--model", o->model, "Fit only this model's fit blocks (or this model, when the file has none)");
   app.add_option("--block", o->block, "Run only the N-th fit block of the file (1-based)")->check(CLI::Range(1, std::numeric_limits<int>::max()));
@@ -67,8 +68,9 @@ Command add_fit_command(CLI::App& app) {
       ->check(CLI::Range(0, 1024));
   app.add_option("--yeoh-start", o->yeoh_start,
                  "Static or quasi-static loop (CSV) whose mean curve gives the yeoh spring's start values by least squares (eqs. 5.28-5.32)");
-  app.add_option("--orders", o->orders,
-                 "Model-order study (thesis Fig. 6.2), e.g. maxwell=1..4,friction=1..6: fits each structure, tables err (6.1)");
+  app.add_option(
+      "--orders", o->orders,
+      "Model-order study (thesis Fig. 6.2), e.g. maxwell=1..4,friction=1..6: fits each structure, tables err (6.1); -o writes the chosen one");
   add_report_options(app, *report, true);
   app.footer(
       "Settings given here override the fit block's. Data lines and `output` in a fit block are relative to the\n"

@@ -74,12 +74,6 @@ std::vector<double> residuals(const Network& network, const std::vector<FitDataS
   return r;
 }
 
-double sum_of_squares(const std::vector<double>& r) {
-  double s = 0.0;
-  for (double v : r) s += v * v;
-  return s;
-}
-
 std::vector<ThesisCorrection> corrections_at(const Network& network, const std::vector<FitDataSet>& data, const HarmonicOptions& harmonic) {
   std::vector<ThesisCorrection> result;
   for (const FitDataSet& set : data)
@@ -158,8 +152,7 @@ class StagedSearch {
   // time limit, at most TIME_SHARE of the time left.
   std::vector<double> run(FitMethod method, const std::vector<double>& from, int budget, std::vector<std::vector<double>> extra_starts = {},
                           double time_share = 1.0) {
-    const auto r = residuals_for(method);
-    const Objective objective = [&](const std::vector<double>& z) { return sum_of_squares(r(z)); };
+    const Residuals r = residuals_for(method);
     SearchSettings search = settings_.search;
     search.max_evaluations = std::max(1, budget);
     if (search.deadline && time_share < 1.0) {
@@ -168,8 +161,8 @@ class StagedSearch {
         search.deadline = now + std::chrono::duration_cast<std::chrono::steady_clock::duration>((*search.deadline - now) * time_share);
     }
     search.extra_starts.insert(search.extra_starts.end(), extra_starts.begin(), extra_starts.end());
-    const SearchResult found = runtime::search(objective, from, coordinates_.lower, coordinates_.upper, coordinates_.logarithmic, search,
-                                               settings_.progress, settings_.interrupt);
+    const SearchResult found = search_least_squares(r, from, coordinates_.lower, coordinates_.upper, coordinates_.logarithmic, search,
+                                                    settings_.progress, settings_.interrupt);
     result_.evaluations += found.evaluations;
     result_.non_finite += found.non_finite;
     if (result_.first_failure.empty()) result_.first_failure = found.first_failure;

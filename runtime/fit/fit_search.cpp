@@ -1,6 +1,7 @@
 #include "runtime/fit/fit_search.hpp"
 
 #include "runtime/core/errors.hpp"
+#include "runtime/fit/levenberg_marquardt.hpp"
 
 #include <fmt/format.h>
 
@@ -16,15 +17,22 @@ namespace {
 struct Interrupted {};
 struct Exhausted {};
 struct OutOfTime {};
+struct LocalBudgetSpent {};
+
+// A Levenberg-Marquardt local search that has not converged after this many Jacobians is
+// crawling along a curved valley; its budget serves the next start better.
+constexpr int kMaxLocalIterations = 50;
 
 // Counts evaluations, keeps the best point, reports progress, and stops on interrupt, when the
 // budget is spent (some NLopt algorithms, e.g. DIRECT-L, overrun their own maxeval) or when the
 // deadline would be passed (fit_search.hpp).
 class Tracker {
  public:
-  Tracker(const Objective& objective, const std::function<void(const SearchProgress&)>& progress, const std::atomic<bool>* interrupt,
-          const SearchSettings& settings)
+  // With RESIDUALS the objective is their sum of squares and the last residuals are kept.
+  Tracker(const Objective& objective, const Residuals* residuals, const std::function<void(const SearchProgress&)>& progress,
+          const std::atomic<bool>* interrupt, const SearchSettings& settings)
       : objective_(objective),
+        residuals_(residuals),
         progress_(progress),
         interrupt_(interrupt),
         budget_(std::max(1, settings.max_evaluations)),
@@ -41,8 +49,14 @@ class Tracker {
       if (now + (now - started_) / evaluations_ * (1 + reserve_) > *deadline_) throw OutOfTime{};
     }
     double value = std::numeric_limits<double>::quiet_NaN();
+    last_residuals_.clear();
     try {
-      value = objective_(z);
+      if (residuals_ != nullptr) {
+        last_residuals_ = (*residuals_)(z);
+        value = std::accumulate(last_residuals_.begin(), last_residuals_.end(), 0.0, [](double sum, double r) { return sum + r * r; });
+      } else {
+        value = objective_(z);
+      }
     } catch (const NumericalError& e) {  // this point cannot be simulated: rejected like NaN
       if (first_failure_.empty()) first_failure_ = e.what();
     }
@@ -55,6 +69,12 @@ class Tracker {
     if (progress_) progress_({evaluations_, best_value_, stage_});
     return value;
   }
+  // The residuals at z (empty where they could not be evaluated), counted like the objective.
+  const std::vector<double>& residuals(const std::vector<double>& z) {
+    (*this)(z);
+    return last_residuals_;
+  }
+  bool has_residuals() const { return residuals_ != nullptr; }
   // With a deadline: caps the budget at the evaluations the time left affords at the mean cost
   // so far, less the reserve, so that the stages share what can actually run (or restores it
   // when the time left affords it all). True when that cap is below the budget given.
@@ -78,6 +98,8 @@ class Tracker {
 
  private:
   const Objective& objective_;
+  const Residuals* residuals_;
+  std::vector<double> last_residuals_;
   const std::function<void(const SearchProgress&)>& progress_;
   const std::atomic<bool>* interrupt_;
   int budget_;  // max_evaluations
@@ -141,17 +163,48 @@ std::vector<std::pair<double, std::vector<double>>> sample_box(const Objective& 
   return sampled;
 }
 
-}  // namespace
 
-SearchResult search(const Objective& objective, const std::vector<double>& start, const std::vector<double>& lower,
-                    const std::vector<double>& upper, const std::vector<bool>& logarithmic, const SearchSettings& settings,
-                    const std::function<void(const SearchProgress&)>& progress, const std::atomic<bool>* interrupt) {
+// Levenberg-Marquardt from FROM on the tracker's residuals, within BUDGET evaluations; the
+// NLopt-style status. A start whose residuals are not finite ends it at once.
+std::string least_squares_local(Tracker& tracker, const std::vector<double>& from, int budget, const std::vector<double>& lower,
+                                const std::vector<double>& upper, double tolerance) {
+  const int first = tracker.evaluations();
+  LeastSquaresProblem problem;
+  problem.residuals = [&](const Eigen::VectorXd& x) {
+    if (tracker.evaluations() - first >= budget) throw LocalBudgetSpent{};
+    const std::vector<double>& r = tracker.residuals(std::vector<double>(x.data(), x.data() + x.size()));
+    return Eigen::VectorXd(Eigen::Map<const Eigen::VectorXd>(r.data(), static_cast<Eigen::Index>(r.size())));
+  };
+  LevenbergMarquardtSettings lm;
+  lm.max_iterations = std::min(budget, kMaxLocalIterations);
+  lm.step_tolerance = tolerance;
+  lm.decrease_tolerance = 1e-9;  // as the NLopt local stages' relative f tolerance
+  // In z = ln p a step of 1e-6 is a relative change of the parameter: above the event-driven and
+  // time-stepped paths' convergence noise, below the scale of the response's curvature.
+  lm.difference_step = 1e-6;
+  auto to_eigen = [](const std::vector<double>& v) { return Eigen::Map<const Eigen::VectorXd>(v.data(), static_cast<Eigen::Index>(v.size())); };
+  try {
+    return levenberg_marquardt(problem, to_eigen(from), to_eigen(lower), to_eigen(upper), lm).status;
+  } catch (const LocalBudgetSpent&) {
+    return "MAXEVAL_REACHED";
+  } catch (const NumericalError&) {
+    return "NO_FINITE_START";
+  }
+}
+
+SearchResult search_with(const Objective& objective, const Residuals* residuals, const std::vector<double>& start, const std::vector<double>& lower,
+                         const std::vector<double>& upper, const std::vector<bool>& logarithmic, const SearchSettings& settings,
+                         const std::function<void(const SearchProgress&)>& progress, const std::atomic<bool>* interrupt) {
   const std::size_t n = start.size();
-  Tracker tracker(objective, progress, interrupt, settings);
+  Tracker tracker(objective, residuals, progress, interrupt, settings);
   const Objective tracked = [&](const std::vector<double>& z) { return tracker(z); };
   SearchResult result;
   auto remaining = [&] { return tracker.limit() - tracker.evaluations(); };
   auto local = [&](const std::vector<double>& from, int budget, Algorithm algorithm) {
+    if (tracker.has_residuals() && !settings.algorithm) {
+      result.status = least_squares_local(tracker, from, std::max(1, budget), lower, upper, settings.tolerance);
+      return;
+    }
     OptimizerSettings o;
     o.algorithm = algorithm;
     o.max_evaluations = std::max(1, budget);
@@ -188,6 +241,10 @@ SearchResult search(const Objective& objective, const std::vector<double>& start
         if (starts.size() >= wanted) break;
         if (std::isfinite(value)) starts.push_back(point);
       }
+      // A start given twice (an extra start at the start) is searched from once.
+      for (std::size_t k = starts.size(); k-- > 1;)
+        if (std::find(starts.begin(), starts.begin() + static_cast<std::ptrdiff_t>(k), starts[k]) != starts.begin() + static_cast<std::ptrdiff_t>(k))
+          starts.erase(starts.begin() + static_cast<std::ptrdiff_t>(k));
       tracker.stage("local");
       for (std::size_t k = 0; k < starts.size(); ++k) {
         tracker.cap_to_deadline();
@@ -221,6 +278,21 @@ SearchResult search(const Objective& objective, const std::vector<double>& start
   result.non_finite = tracker.non_finite();
   result.first_failure = tracker.first_failure();
   return result;
+}
+
+}  // namespace
+
+SearchResult search(const Objective& objective, const std::vector<double>& start, const std::vector<double>& lower,
+                    const std::vector<double>& upper, const std::vector<bool>& logarithmic, const SearchSettings& settings,
+                    const std::function<void(const SearchProgress&)>& progress, const std::atomic<bool>* interrupt) {
+  return search_with(objective, nullptr, start, lower, upper, logarithmic, settings, progress, interrupt);
+}
+
+SearchResult search_least_squares(const Residuals& residuals, const std::vector<double>& start, const std::vector<double>& lower,
+                                  const std::vector<double>& upper, const std::vector<bool>& logarithmic, const SearchSettings& settings,
+                                  const std::function<void(const SearchProgress&)>& progress, const std::atomic<bool>* interrupt) {
+  const Objective unused = [](const std::vector<double>&) { return 0.0; };
+  return search_with(unused, &residuals, start, lower, upper, logarithmic, settings, progress, interrupt);
 }
 
 }  // namespace rheo::runtime

@@ -5,11 +5,12 @@
 //   1. sample: max(10 n, 40) points (or `samples`) of a Halton sequence (randomly shifted by the seed) over
 //      the box z0 -+ ln 10 (a decade either side of the start; a quarter of the bounds for
 //      linear coordinates), clipped to the bounds;
-//   2. local: BOBYQA from the start, from any extra starts given (e.g. a surrogate's optimum)
+//   2. local: BOBYQA (Levenberg-Marquardt for a least-squares objective given by its residuals,
+//      levenberg_marquardt.hpp) from the start, from any extra starts given (e.g. a surrogate's optimum)
 //      and from the best samples, `starts` searches in all (at least the start and the extra
 //      ones), sharing the evaluation budget;
-//   3. polish: BOBYQA again from the best point found, with a fresh trust region.
-// A local algorithm named (bobyqa, sbplx, neldermead) takes BOBYQA's place; a global one
+//   3. polish: the local method again from the best point found, with a fresh trust region.
+// A local algorithm named (bobyqa, sbplx, neldermead) takes the local method's place; a global one
 // (direct_l, crs2, isres, mlsl) searches the whole box with half the budget, then BOBYQA polishes.
 // The same seed gives the same result, evaluation for evaluation.
 //
@@ -68,11 +69,20 @@ struct SearchResult {
   bool out_of_time = false;
 };
 
+// The residuals whose sum of squares is the objective of search_least_squares.
+using Residuals = std::function<std::vector<double>(const std::vector<double>&)>;
+
 // `logarithmic[j]`: coordinate j is ln p (sampled a decade either side of the start).
 // Throws NumericalError, naming the first failure, when no evaluation of an uninterrupted
 // search is finite: there is no point to report.
 SearchResult search(const Objective& objective, const std::vector<double>& start, const std::vector<double>& lower,
                     const std::vector<double>& upper, const std::vector<bool>& logarithmic, const SearchSettings& settings,
                     const std::function<void(const SearchProgress&)>& progress = {}, const std::atomic<bool>* interrupt = nullptr);
+
+// The same search of the objective sum_i r_i(z)^2; with no algorithm named its local stages
+// are Levenberg-Marquardt on the residuals (a Jacobian costs n evaluations, each counted).
+SearchResult search_least_squares(const Residuals& residuals, const std::vector<double>& start, const std::vector<double>& lower,
+                                  const std::vector<double>& upper, const std::vector<bool>& logarithmic, const SearchSettings& settings,
+                                  const std::function<void(const SearchProgress&)>& progress = {}, const std::atomic<bool>* interrupt = nullptr);
 
 }  // namespace rheo::runtime

@@ -2,6 +2,7 @@
 
 #include "runtime/core/errors.hpp"
 #include "runtime/fit/bounded_least_squares.hpp"
+#include "runtime/fit/levenberg_marquardt.hpp"
 
 #include <Eigen/Dense>
 
@@ -101,67 +102,11 @@ class ScaleProblem {
     return Eigen::Map<const Eigen::VectorXd>(r.data(), static_cast<Eigen::Index>(r.size()));
   }
 
-  // Forward differences of the residuals at s, stepping into the box.
-  Eigen::MatrixXd jacobian(const Eigen::VectorXd& s, const Eigen::VectorXd& r, FitObjective objective, const Eigen::VectorXd& upper,
-                           double relative_step) const {
-    Eigen::MatrixXd j(r.size(), s.size());
-    for (Eigen::Index c = 0; c < s.size(); ++c) {
-      Eigen::VectorXd moved = s;
-      const double step = relative_step * std::max(std::abs(s(c)), 1e-6);
-      const double h = s(c) + step <= upper(c) ? step : -step;
-      moved(c) += h;
-      j.col(c) = (residuals(moved, objective) - r) / h;
-    }
-    return j;
-  }
-
  private:
   const AffineResponse& response_;
   const std::vector<FitDataSet>& data_;
   const ScoreSettings& score_;
 };
-
-// Levenberg-Marquardt with bounded steps (Marquardt's diagonal scaling) from s.
-Eigen::VectorXd levenberg_marquardt(const ScaleProblem& problem, Eigen::VectorXd s, const Eigen::VectorXd& lower, const Eigen::VectorXd& upper,
-                                    FitObjective objective) {
-  Eigen::VectorXd r = problem.residuals(s, objective);
-  double value = r.squaredNorm();
-  // Residuals at rounding level (relative 1e-14 each): nothing left to fit.
-  const double floor = 1e-28 * static_cast<double>(r.size());
-  if (value <= floor) return s;
-  double lambda = 1e-3;
-  for (int iteration = 0; iteration < 200 && std::isfinite(value); ++iteration) {
-    const Eigen::MatrixXd j = problem.jacobian(s, r, objective, upper, 1e-7);
-    if (!j.allFinite()) break;
-    const Eigen::VectorXd scale = j.colwise().norm().transpose().cwiseMax(1e-300);
-    const Eigen::Index m = j.rows(), n = j.cols();
-    bool improved = false;
-    while (!improved && lambda < 1e16) {
-      Eigen::MatrixXd a(m + n, n);
-      a.topRows(m) = j;
-      a.bottomRows(n) = (std::sqrt(lambda) * scale).asDiagonal();
-      Eigen::VectorXd b = Eigen::VectorXd::Zero(m + n);
-      b.head(m) = -r;
-      const Eigen::VectorXd step = bounded_least_squares(a, b, lower - s, upper - s).x;
-      const Eigen::VectorXd trial = (s + step).cwiseMax(lower).cwiseMin(upper);
-      const Eigen::VectorXd trial_r = problem.residuals(trial, objective);
-      const double trial_value = trial_r.squaredNorm();
-      if (std::isfinite(trial_value) && trial_value < value) {
-        improved = true;
-        const double decrease = value - trial_value;
-        const double moved = ((trial - s).array() / s.cwiseAbs().cwiseMax(1e-300).array()).abs().maxCoeff();
-        s = trial, r = trial_r, value = trial_value;
-        if (moved <= 1e-9) return s;
-        lambda = std::max(lambda * 0.3, 1e-12);
-        if (decrease <= 1e-10 * value || value <= floor) return s;
-      } else {
-        lambda *= 4.0;
-      }
-    }
-    if (!improved) break;
-  }
-  return s;
-}
 
 }  // namespace
 
@@ -184,11 +129,27 @@ ScaleSolution solve_scales(const Network& network, const std::vector<int>& scale
   // The least-squares residuals are affine in s: r(s) = r(s0) + A (s - s0), A by unit differences.
   const Eigen::VectorXd s0 = response.start();
   const Eigen::VectorXd r0 = problem.residuals(s0, FitObjective::least_squares);
-  const Eigen::MatrixXd a = problem.jacobian(s0, r0, FitObjective::least_squares, hi, 1.0);
+  Eigen::MatrixXd a(r0.size(), n);
+  for (Eigen::Index c = 0; c < n; ++c) {
+    Eigen::VectorXd moved = s0;
+    const double step = std::max(std::abs(s0(c)), 1e-6);
+    const double h = s0(c) + step <= hi(c) ? step : -step;
+    moved(c) += h;
+    a.col(c) = (problem.residuals(moved, FitObjective::least_squares) - r0) / h;
+  }
   if (!a.allFinite() || !r0.allFinite()) throw NumericalError("the residuals of the model's response are not finite; its scales cannot be solved");
   Eigen::VectorXd s = s0 + bounded_least_squares(a, -r0, lo - s0, hi - s0).x;
   s = s.cwiseMax(lo).cwiseMin(hi);
-  s = levenberg_marquardt(problem, s, lo, hi, score.objective);
+  // The phi objective's residuals are not affine in s: Levenberg-Marquardt from the linear solve.
+  if (score.objective != FitObjective::least_squares) {
+    LeastSquaresProblem lm;
+    lm.residuals = [&](const Eigen::VectorXd& x) { return problem.residuals(x, score.objective); };
+    LevenbergMarquardtSettings settings;
+    settings.step_tolerance = 1e-9;
+    settings.decrease_tolerance = 1e-15;                    // the affine response is cheap: stop on the step, not on phi
+    settings.typical = Eigen::VectorXd::Constant(n, 1e-6);  // scales are N/mm, N*s/mm, N: 1e-6 is near zero for each
+    s = levenberg_marquardt(lm, s, lo, hi, settings).x;
+  }
 
   ScaleSolution out;
   out.values = network.parameters();

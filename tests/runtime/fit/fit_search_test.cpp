@@ -304,3 +304,58 @@ TEST_CASE("a deadline stops the search with the best point so far, leaving room 
     check_at_bowl_minimum(result, 1e-4);
   }
 }
+
+namespace {
+
+// The bowl as residuals: 0.5 + a^2 + 4 b^2 + 0.25 c^2 + 0.5 a b = sum r_i^2 (a Cholesky factor).
+std::vector<double> bowl_residuals(const std::vector<double>& z) {
+  const double a = z[0] - 1.2, b = z[1] + 0.7, c = z[2] - 2.5;
+  return {std::sqrt(0.5), a + 0.25 * b, std::sqrt(4.0 - 0.0625) * b, 0.5 * c};
+}
+
+}  // namespace
+
+TEST_CASE("the least-squares search: Levenberg-Marquardt reaches the bowl's minimum in fewer evaluations than BOBYQA") {
+  const SearchResult ls = search_least_squares(bowl_residuals, bowl_start, bowl_lower, bowl_upper, linear3, {});
+  check_at_bowl_minimum(ls, 1e-6);
+  CHECK(std::abs(bowl(ls.z) - ls.value) < 1e-14);  // the value is the sum of squares
+  const SearchResult plain = search(bowl, bowl_start, bowl_lower, bowl_upper, linear3, {});
+  CHECK(ls.evaluations < plain.evaluations);
+  SUBCASE("a named algorithm searches the sum of squares with NLopt instead") {
+    SearchSettings s;
+    s.algorithm = Algorithm::bobyqa;
+    const SearchResult named = search_least_squares(bowl_residuals, bowl_start, bowl_lower, bowl_upper, linear3, s);
+    check_at_bowl_minimum(named, 1e-4);
+    CHECK(named.evaluations == plain.evaluations);  // the same search as search() of the sum
+  }
+}
+
+TEST_CASE("the least-squares search keeps the budget, the best point and the interrupt as the plain one does") {
+  for (const int budget : {1, 2, 3, 7, 40, 101, 600}) {
+    CAPTURE(budget);
+    SearchSettings s;
+    s.max_evaluations = budget;
+    std::vector<std::vector<double>> points;
+    std::vector<double> values;
+    const Residuals recorded = [&](const std::vector<double>& z) {
+      points.push_back(z);
+      values.push_back(bowl(z));
+      return bowl_residuals(z);
+    };
+    const SearchResult result = search_least_squares(recorded, bowl_start, bowl_lower, bowl_upper, linear3, s);
+    CHECK(result.evaluations == static_cast<int>(points.size()));
+    CHECK(result.evaluations <= budget);
+    const auto best = std::min_element(values.begin(), values.end());
+    CHECK(std::abs(result.value - *best) < 1e-14);
+    CHECK(result.z == points[static_cast<std::size_t>(best - values.begin())]);
+  }
+  std::atomic<bool> interrupt{false};
+  int calls = 0;
+  const Residuals stopping = [&](const std::vector<double>& z) {
+    if (++calls == 9) interrupt.store(true);
+    return bowl_residuals(z);
+  };
+  const SearchResult stopped = search_least_squares(stopping, bowl_start, bowl_lower, bowl_upper, linear3, {}, {}, &interrupt);
+  CHECK(stopped.interrupted);
+  CHECK(stopped.evaluations == 9);
+}

@@ -98,7 +98,7 @@ TEST_CASE("an extra start is searched from too: with a budget too small to get t
   const auto data = harmonic_set_from(truth, {0.5}, {0.1, 1.0, 10.0, 50.0});
   runtime::FitSettings settings;
   settings.separable = false;  // the search itself, not the solve of the scales
-  settings.search.max_evaluations = 60;
+  settings.search.max_evaluations = 12;
   settings.search.samples = 0;
   const auto alone = runtime::fit(start, runtime::bounded_parameters(start), {data}, settings);
   std::vector<double> near = truth.parameters();

@@ -1,0 +1,141 @@
+#include "runtime/fit/levenberg_marquardt.hpp"
+
+#include "runtime/core/errors.hpp"
+#include "runtime/fit/bounded_least_squares.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <vector>
+
+namespace rheo::runtime {
+namespace {
+
+// Stagnation (levenberg_marquardt.hpp): phi lowered by less than this factor times the
+// decrease tolerance over this many iterations.
+constexpr std::size_t kStagnationWindow = 5;
+constexpr double kStagnationFactor = 100.0;
+
+// r(x), or an empty vector where it is not finite or cannot be evaluated.
+Eigen::VectorXd try_residuals(const LeastSquaresProblem& problem, const Eigen::VectorXd& x) {
+  try {
+    Eigen::VectorXd r = problem.residuals(x);
+    return r.allFinite() ? r : Eigen::VectorXd();
+  } catch (const NumericalError&) {
+    return {};
+  }
+}
+
+// Forward differences, each step into the box (backwards where the upper bound is too near).
+Eigen::MatrixXd difference_jacobian(const LeastSquaresProblem& problem, const Eigen::VectorXd& x, const Eigen::VectorXd& r,
+                                    const Eigen::VectorXd& upper, const Eigen::VectorXd& typical, double relative_step) {
+  Eigen::MatrixXd j(r.size(), x.size());
+  for (Eigen::Index c = 0; c < x.size(); ++c) {
+    Eigen::VectorXd moved = x;
+    const double step = relative_step * std::max(std::abs(x(c)), typical(c));
+    const double h = x(c) + step <= upper(c) ? step : -step;
+    moved(c) += h;
+    const Eigen::VectorXd r_moved = try_residuals(problem, moved);
+    j.col(c) = r_moved.size() == r.size() ? Eigen::VectorXd((r_moved - r) / h) : Eigen::VectorXd::Zero(r.size());
+  }
+  return j;
+}
+
+// The step minimising || J d + r ||^2 + lambda || D d ||^2 within the box, and the decrease of
+// phi the linear model predicts for it, phi - || J d + r ||^2.
+struct Step {
+  Eigen::VectorXd d;
+  double predicted = 0.0;
+};
+
+Step damped_step(const Eigen::MatrixXd& j, const Eigen::VectorXd& r, const Eigen::VectorXd& scale, double lambda, const Eigen::VectorXd& x,
+                 const Eigen::VectorXd& lower, const Eigen::VectorXd& upper) {
+  const Eigen::Index m = j.rows(), n = j.cols();
+  Eigen::MatrixXd a(m + n, n);
+  a.topRows(m) = j;
+  a.bottomRows(n) = (std::sqrt(lambda) * scale).asDiagonal();
+  Eigen::VectorXd b = Eigen::VectorXd::Zero(m + n);
+  b.head(m) = -r;
+  Step step;
+  step.d = bounded_least_squares(a, b, lower - x, upper - x).x;
+  step.predicted = r.squaredNorm() - (j * step.d + r).squaredNorm();
+  return step;
+}
+
+}  // namespace
+
+LevenbergMarquardtResult levenberg_marquardt(const LeastSquaresProblem& problem, const Eigen::VectorXd& start, const Eigen::VectorXd& lower,
+                                             const Eigen::VectorXd& upper, const LevenbergMarquardtSettings& settings) {
+  const Eigen::Index n = start.size();
+  const Eigen::VectorXd typical = settings.typical.size() == n ? settings.typical : Eigen::VectorXd::Ones(n);
+  LevenbergMarquardtResult out;
+  out.x = start.cwiseMax(lower).cwiseMin(upper);
+  out.residuals = try_residuals(problem, out.x);
+  if (out.residuals.size() == 0) throw NumericalError("the residuals at the start of the least-squares search are not finite");
+  out.value = out.residuals.squaredNorm();
+  const double floor = 1e-28 * static_cast<double>(out.residuals.size());
+  double lambda = 1e-3, nu = 2.0;
+  out.status = "MAXITER_REACHED";
+  std::vector<double> history;  // phi at each Jacobian
+  for (out.iterations = 0; out.iterations < settings.max_iterations;) {
+    history.push_back(out.value);
+    if (history.size() > kStagnationWindow &&
+        history[history.size() - 1 - kStagnationWindow] - out.value <= kStagnationFactor * settings.decrease_tolerance * out.value) {
+      out.status = "FTOL_REACHED";
+      return out;
+    }
+    if (out.value <= floor) {
+      out.status = "STOPVAL_REACHED";
+      return out;
+    }
+    const Eigen::MatrixXd j = problem.jacobian ? problem.jacobian(out.x, out.residuals)
+                                               : difference_jacobian(problem, out.x, out.residuals, upper, typical, settings.difference_step);
+    ++out.iterations;
+    if (!j.allFinite()) {
+      out.status = "NO_DESCENT";
+      return out;
+    }
+    const Eigen::VectorXd scale = j.colwise().norm().transpose().cwiseMax(1e-300);
+    // First-order test: what the undamped step could still gain, by the linear model.
+    if (damped_step(j, out.residuals, scale, 0.0, out.x, lower, upper).predicted <= settings.decrease_tolerance * out.value) {
+      out.status = "FTOL_REACHED";
+      return out;
+    }
+    bool taken = false;
+    while (!taken) {
+      if (lambda > 1e16) {
+        out.status = "NO_DESCENT";
+        return out;
+      }
+      const Step step = damped_step(j, out.residuals, scale, lambda, out.x, lower, upper);
+      const Eigen::VectorXd trial = (out.x + step.d).cwiseMax(lower).cwiseMin(upper);
+      const Eigen::VectorXd trial_r = try_residuals(problem, trial);
+      const double trial_value = trial_r.size() == out.residuals.size() ? trial_r.squaredNorm() : std::numeric_limits<double>::infinity();
+      if (!(trial_value < out.value)) {
+        lambda *= nu;
+        nu *= 2.0;
+        continue;
+      }
+      taken = true;
+      const double decrease = out.value - trial_value;
+      const double rho = step.predicted > 0.0 ? decrease / step.predicted : 1.0;
+      lambda *= std::max(1.0 / 3.0, 1.0 - std::pow(2.0 * rho - 1.0, 3));
+      lambda = std::max(lambda, 1e-12);
+      nu = 2.0;
+      const double moved = ((trial - out.x).cwiseAbs().array() / out.x.cwiseAbs().cwiseMax(typical).array()).maxCoeff();
+      out.x = trial, out.residuals = trial_r, out.value = trial_value;
+      // MINPACK's test: the step and the model both say phi has stopped falling.
+      if (decrease <= settings.decrease_tolerance * out.value && step.predicted <= settings.decrease_tolerance * out.value) {
+        out.status = "FTOL_REACHED";
+        return out;
+      }
+      if (moved <= settings.step_tolerance) {
+        out.status = "XTOL_REACHED";
+        return out;
+      }
+    }
+  }
+  return out;
+}
+
+}  // namespace rheo::runtime
