@@ -234,17 +234,17 @@ SearchResult search_with(const Objective& objective, const Residuals* residuals,
       const int wanted_samples = settings.samples >= 0 ? settings.samples : std::max(10 * static_cast<int>(n), 40);
       const auto sampled = sample_box(tracked, start, lower, upper, logarithmic, std::max(0, std::min(wanted_samples, remaining() / 4)),
                                       settings.seed);
+      // Each distinct point once (an extra start may be the start itself).
       std::vector<std::vector<double>> starts{start};
-      starts.insert(starts.end(), settings.extra_starts.begin(), settings.extra_starts.end());
+      auto add = [&](const std::vector<double>& point) {
+        if (std::find(starts.begin(), starts.end(), point) == starts.end()) starts.push_back(point);
+      };
+      for (const auto& extra : settings.extra_starts) add(extra);
       const std::size_t wanted = static_cast<std::size_t>(std::max(settings.starts, 1));
       for (const auto& [value, point] : sampled) {
         if (starts.size() >= wanted) break;
-        if (std::isfinite(value)) starts.push_back(point);
+        if (std::isfinite(value)) add(point);
       }
-      // A start given twice (an extra start at the start) is searched from once.
-      for (std::size_t k = starts.size(); k-- > 1;)
-        if (std::find(starts.begin(), starts.begin() + static_cast<std::ptrdiff_t>(k), starts[k]) != starts.begin() + static_cast<std::ptrdiff_t>(k))
-          starts.erase(starts.begin() + static_cast<std::ptrdiff_t>(k));
       tracker.stage("local");
       for (std::size_t k = 0; k < starts.size(); ++k) {
         tracker.cap_to_deadline();

@@ -26,17 +26,29 @@ Eigen::VectorXd try_residuals(const LeastSquaresProblem& problem, const Eigen::V
   }
 }
 
-// Forward differences, each step into the box (backwards where the upper bound is too near).
+// Forward differences, each step into the box: forwards, else backwards, else (a box narrower
+// than the step) to the farther bound. A column whose moved point cannot be evaluated is tried
+// the other way; where neither can, it is zero and `complete` is false.
 Eigen::MatrixXd difference_jacobian(const LeastSquaresProblem& problem, const Eigen::VectorXd& x, const Eigen::VectorXd& r,
-                                    const Eigen::VectorXd& upper, const Eigen::VectorXd& typical, double relative_step) {
-  Eigen::MatrixXd j(r.size(), x.size());
+                                    const Eigen::VectorXd& lower, const Eigen::VectorXd& upper, const Eigen::VectorXd& typical,
+                                    double relative_step, bool& complete) {
+  Eigen::MatrixXd j = Eigen::MatrixXd::Zero(r.size(), x.size());
+  complete = true;
   for (Eigen::Index c = 0; c < x.size(); ++c) {
-    Eigen::VectorXd moved = x;
     const double step = relative_step * std::max(std::abs(x(c)), typical(c));
-    const double h = x(c) + step <= upper(c) ? step : -step;
-    moved(c) += h;
-    const Eigen::VectorXd r_moved = try_residuals(problem, moved);
-    j.col(c) = r_moved.size() == r.size() ? Eigen::VectorXd((r_moved - r) / h) : Eigen::VectorXd::Zero(r.size());
+    const double room_up = upper(c) - x(c), room_down = x(c) - lower(c);
+    double h = room_up >= step ? step : room_down >= step ? -step : room_up >= room_down ? room_up : -room_down;
+    bool done = h == 0.0;  // a box of zero width: the coordinate cannot move
+    for (int attempt = 0; attempt < 2 && !done; ++attempt, h = -h) {
+      if (x(c) + h > upper(c) || x(c) + h < lower(c)) continue;
+      Eigen::VectorXd moved = x;
+      moved(c) += h;
+      const Eigen::VectorXd r_moved = try_residuals(problem, moved);
+      if (r_moved.size() != r.size()) continue;
+      j.col(c) = (r_moved - r) / h;
+      done = true;
+    }
+    complete = complete && done;
   }
   return j;
 }
@@ -77,6 +89,7 @@ LevenbergMarquardtResult levenberg_marquardt(const LeastSquaresProblem& problem,
   double lambda = 1e-3, nu = 2.0;
   out.status = "MAXITER_REACHED";
   std::vector<double> history;  // phi at each Jacobian
+  Eigen::VectorXd scale;
   for (out.iterations = 0; out.iterations < settings.max_iterations;) {
     history.push_back(out.value);
     if (history.size() > kStagnationWindow &&
@@ -88,19 +101,28 @@ LevenbergMarquardtResult levenberg_marquardt(const LeastSquaresProblem& problem,
       out.status = "STOPVAL_REACHED";
       return out;
     }
-    const Eigen::MatrixXd j = problem.jacobian ? problem.jacobian(out.x, out.residuals)
-                                               : difference_jacobian(problem, out.x, out.residuals, upper, typical, settings.difference_step);
+    bool complete = true;
+    const Eigen::MatrixXd j = problem.jacobian
+                                  ? problem.jacobian(out.x, out.residuals)
+                                  : difference_jacobian(problem, out.x, out.residuals, lower, upper, typical, settings.difference_step, complete);
     ++out.iterations;
     if (!j.allFinite()) {
       out.status = "NO_DESCENT";
       return out;
     }
-    const Eigen::VectorXd scale = j.colwise().norm().transpose().cwiseMax(1e-300);
-    // First-order test: what the undamped step could still gain, by the linear model.
-    if (damped_step(j, out.residuals, scale, 0.0, out.x, lower, upper).predicted <= settings.decrease_tolerance * out.value) {
+    // Marquardt's scaling, as MINPACK keeps it: the largest column norm seen so far.
+    const Eigen::VectorXd norms = j.colwise().norm().transpose().cwiseMax(1e-300);
+    scale = scale.size() == norms.size() ? Eigen::VectorXd(scale.cwiseMax(norms)) : norms;
+    // First-order test: what the undamped step could still gain, by the linear model (not where
+    // a column could not be differenced: it would look insensitive).
+    const double undamped = damped_step(j, out.residuals, scale, 0.0, out.x, lower, upper).predicted;
+    if (complete && undamped <= settings.decrease_tolerance * out.value) {
       out.status = "FTOL_REACHED";
       return out;
     }
+    // The tests on a step below hold only where the undamped step has little left to gain: a
+    // step heavy damping made tiny says nothing about a minimum.
+    const bool near_minimum = complete && undamped <= kStagnationFactor * settings.decrease_tolerance * out.value;
     bool taken = false;
     while (!taken) {
       if (lambda > 1e16) {
@@ -125,11 +147,11 @@ LevenbergMarquardtResult levenberg_marquardt(const LeastSquaresProblem& problem,
       const double moved = ((trial - out.x).cwiseAbs().array() / out.x.cwiseAbs().cwiseMax(typical).array()).maxCoeff();
       out.x = trial, out.residuals = trial_r, out.value = trial_value;
       // MINPACK's test: the step and the model both say phi has stopped falling.
-      if (decrease <= settings.decrease_tolerance * out.value && step.predicted <= settings.decrease_tolerance * out.value) {
+      if (near_minimum && decrease <= settings.decrease_tolerance * out.value && step.predicted <= settings.decrease_tolerance * out.value) {
         out.status = "FTOL_REACHED";
         return out;
       }
-      if (moved <= settings.step_tolerance) {
+      if (near_minimum && moved <= settings.step_tolerance) {
         out.status = "XTOL_REACHED";
         return out;
       }

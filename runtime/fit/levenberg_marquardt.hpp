@@ -2,31 +2,37 @@
 // lower <= x <= upper.
 //
 // Each iteration linearises the residuals at x, r(x + d) ~ r + J d, with J by forward
-// differences (stepping into the box) unless the problem gives it, and takes the damped step
+// differences (stepping into the box; a point that cannot be evaluated is differenced the other
+// way) unless the problem gives it, and takes the damped step
 //   d = argmin || J d + r ||^2 + lambda || D d ||^2   subject to   lower <= x + d <= upper,
-// a bounded linear least-squares problem (bounded_least_squares.hpp), with D the column norms
-// of J (Marquardt's scaling: the step does not depend on the units of x). A step is taken when
-// phi falls; lambda follows the gain ratio rho = (actual decrease) / (decrease the linear model
-// predicts) as Nielsen (1999) does: lambda *= max(1/3, 1 - (2 rho - 1)^3) after a step, and
-// lambda *= nu, nu *= 2 after a rejected one.
+// a bounded linear least-squares problem (bounded_least_squares.hpp), with D the largest column
+// norms of J seen so far (Marquardt's scaling as MINPACK keeps it: the step does not depend on
+// the units of x). A step is taken when phi falls; lambda follows the gain ratio rho = (actual
+// decrease) / (decrease the linear model predicts) as Nielsen (1999) does:
+// lambda *= max(1/3, 1 - (2 rho - 1)^3) after a step, and lambda *= nu, nu *= 2 after a
+// rejected one.
 //
 // It stops (status):
 //   "FTOL_REACHED"  the undamped (Gauss-Newton) step within the box predicts a relative decrease
 //                   of phi below `decrease_tolerance` (the first-order conditions hold to that
-//                   tolerance: a local minimum), or a step lowered phi by less than that and the
-//                   linear model predicted no more (More's test in MINPACK: sloppy directions,
-//                   whose differenced Jacobian is noise, can keep the undamped prediction above
-//                   the tolerance), or five iterations together lowered it by less than 100
-//                   times the tolerance (a crawl along a valley of parameters the data do not
+//                   tolerance: a local minimum); or, where the undamped step predicts less than
+//                   100 times that, a step lowered phi by less than the tolerance and the linear
+//                   model predicted no more (More's test in MINPACK: sloppy directions, whose
+//                   differenced Jacobian is noise, can keep the undamped prediction above the
+//                   tolerance); or five iterations together lowered phi by less than 100 times
+//                   the tolerance (a crawl along a valley of parameters the data do not
 //                   determine, which would otherwise take hundreds of Jacobians);
 //   "XTOL_REACHED"  a step moved no coordinate by more than `step_tolerance` relative to
-//                   max(|x_j|, typical_j);
+//                   max(|x_j|, typical_j), where the undamped step predicts less than 100 times
+//                   the decrease tolerance (a step that heavy damping made short says nothing);
 //   "STOPVAL_REACHED" phi at rounding level (1e-28 per residual): nothing left to fit;
 //   "NO_DESCENT"    no damping up to lambda = 1e16 lowers phi (rounding-level noise in r);
 //   "MAXITER_REACHED" after `max_iterations` Jacobians.
 // A residual vector that is not finite, or a residuals call that throws NumericalError, counts
-// as a rejected step; the residuals at the start must be finite (NumericalError otherwise). Any
-// other exception from the callbacks passes through (a caller's budget or interrupt).
+// as a rejected step (a Jacobian column that cannot be differenced either way is zero, and then
+// the first-order tests do not stop the search); the residuals at the start must be finite
+// (NumericalError otherwise). Any other exception from the callbacks passes through (a
+// caller's budget or interrupt).
 #pragma once
 
 #include <Eigen/Dense>

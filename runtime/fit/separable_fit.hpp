@@ -10,7 +10,7 @@
 //     linear least-squares solve (bounded_least_squares.hpp) is their global minimum;
 //  2. for the phi objective (eq. 5.38: relative K and sin(phase), not affine in s) that solution
 //     starts a Levenberg-Marquardt search on the exact residuals, each step a bounded linear
-//     least-squares problem; it ends when the objective stops falling (relative 1e-13).
+//     least-squares problem (levenberg_marquardt.hpp, tolerances in docs/numerics.md).
 // The shape search above it (fit.cpp) therefore sees the objective minimised over the scales,
 // a function of fewer, and only the non-linear, parameters; with every shape parameter held a
 // fit is this one solve.

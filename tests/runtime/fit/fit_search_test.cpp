@@ -355,7 +355,30 @@ TEST_CASE("the least-squares search keeps the budget, the best point and the int
     if (++calls == 9) interrupt.store(true);
     return bowl_residuals(z);
   };
-  const SearchResult stopped = search_least_squares(stopping, bowl_start, bowl_lower, bowl_upper, linear3, {}, {}, &interrupt);
+  SearchSettings no_samples;
+  no_samples.samples = 0;  // the interrupt comes inside a Levenberg-Marquardt search
+  const SearchResult stopped = search_least_squares(stopping, bowl_start, bowl_lower, bowl_upper, linear3, no_samples, {}, &interrupt);
   CHECK(stopped.interrupted);
   CHECK(stopped.evaluations == 9);
+}
+
+TEST_CASE("an extra start equal to the start is searched from once, and a sample takes its place") {
+  for (const bool duplicate : {false, true}) {
+    CAPTURE(duplicate);
+    std::vector<std::vector<double>> points;
+    const Residuals recorded = [&](const std::vector<double>& z) {
+      points.push_back(z);
+      return bowl_residuals(z);
+    };
+    SearchSettings s;
+    s.samples = 10;
+    s.starts = 3;
+    s.extra_starts = {duplicate ? bowl_start : std::vector<double>{0.5, 0.5, 0.5}};
+    search_least_squares(recorded, bowl_start, bowl_lower, bowl_upper, linear3, s);
+    // Each local search evaluates its start first, right after the previous search (or the
+    // samples): the start itself appears once after sampling, the extra start once (when new).
+    const auto after_samples = points.begin() + 11;
+    CHECK(std::count(after_samples, points.end(), bowl_start) == 1);
+    if (!duplicate) CHECK(std::count(after_samples, points.end(), std::vector<double>{0.5, 0.5, 0.5}) == 1);
+  }
 }

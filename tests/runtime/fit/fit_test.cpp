@@ -91,24 +91,27 @@ TEST_CASE("with friction elements: spring + Maxwell + 2 friction recovered from 
   check_recovered(in_truth_order(result, "friction"), truth);
 }
 
-TEST_CASE("an extra start is searched from too: with a budget too small to get there from the start, the fit finds the truth it names") {
+TEST_CASE("an extra start is searched from too: with a budget too small to get there from the start, the fit finds the truth near it") {
   const auto truth = test::network_from("model g { spring e (k = 100) maxwell m1 (k = 50, tau = 10 ms) }", "g");
   const auto start = test::network_from(
       "model g { spring e (k = 300 in [1, 10000])\n maxwell m1 (k = 5 in [1, 10000], tau = 1 s in [0.01, 100000]) }", "g");
   const auto data = harmonic_set_from(truth, {0.5}, {0.1, 1.0, 10.0, 50.0});
   runtime::FitSettings settings;
   settings.separable = false;  // the search itself, not the solve of the scales
-  settings.search.max_evaluations = 12;
+  settings.search.max_evaluations = 30;
   settings.search.samples = 0;
   const auto alone = runtime::fit(start, runtime::bounded_parameters(start), {data}, settings);
   std::vector<double> near = truth.parameters();
-  for (double& v : near) v *= 1.01;
-  near[static_cast<std::size_t>(test::parameter_index(start, "e.k"))] = 1e9;  // clamped into the bounds
-  settings.extra_starts = {truth.parameters(), near};
+  for (double& v : near) v *= 1.05;  // 5 % off: not a point the search evaluates by chance
+  settings.extra_starts = {near};
   const auto helped = runtime::fit(start, runtime::bounded_parameters(start), {data}, settings);
   CAPTURE(alone.err);
   CHECK(helped.err < 1e-9);
-  CHECK(helped.err < alone.err);
+  CHECK(alone.err > 1e-3);
+  // A start outside the bounds is clamped into them; one of the wrong length is a caller's bug.
+  near[static_cast<std::size_t>(test::parameter_index(start, "e.k"))] = 1e9;
+  settings.extra_starts = {near};
+  CHECK_NOTHROW(runtime::fit(start, runtime::bounded_parameters(start), {data}, settings));
   settings.extra_starts = {{1.0, 2.0}};
   CHECK_THROWS_AS(runtime::fit(start, runtime::bounded_parameters(start), {data}, settings), std::logic_error);
 }

@@ -116,7 +116,7 @@ TEST_CASE("a given Jacobian is used instead of differences, and gives the same m
   };
   const auto r = levenberg_marquardt(p, vec({1.0, 2.0}), vec({0.0, 0.0}), vec({10.0, 5.0}), {});
   CHECK(jacobians == r.iterations);
-  CHECK(residual_calls < 3 * r.iterations + 2);  // no difference quotients
+  CHECK(residual_calls < 2 * r.iterations + 2);  // the start and about one trial per Jacobian: no difference quotients
   CHECK(std::abs(r.x(1) - d.best_b(r.x(0))) < 1e-8);
 }
 
