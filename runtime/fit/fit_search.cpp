@@ -163,7 +163,6 @@ std::vector<std::pair<double, std::vector<double>>> sample_box(const Objective& 
   return sampled;
 }
 
-
 // Levenberg-Marquardt from FROM on the tracker's residuals, within BUDGET evaluations; the
 // NLopt-style status. A start whose residuals are not finite ends it at once.
 std::string least_squares_local(Tracker& tracker, const std::vector<double>& from, int budget, const std::vector<double>& lower,
@@ -179,8 +178,8 @@ std::string least_squares_local(Tracker& tracker, const std::vector<double>& fro
   lm.max_iterations = std::min(budget, kMaxLocalIterations);
   lm.step_tolerance = tolerance;
   lm.decrease_tolerance = 1e-9;  // as the NLopt local stages' relative f tolerance
-  // In z = ln p a step of 1e-6 is a relative change of the parameter: above the event-driven and
-  // time-stepped paths' convergence noise, below the scale of the response's curvature.
+  // Steps of 1e-6 max(|z|, 1): for z = ln p a relative change of 1e-6 to ~1e-5 in the parameter,
+  // above the event-driven and time-stepped paths' convergence noise, below the response's curvature.
   lm.difference_step = 1e-6;
   auto to_eigen = [](const std::vector<double>& v) { return Eigen::Map<const Eigen::VectorXd>(v.data(), static_cast<Eigen::Index>(v.size())); };
   try {
