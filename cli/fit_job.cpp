@@ -179,7 +179,8 @@ std::vector<FitJob> fit_jobs(const lang::Program& program, const FitOptions& o) 
     if (!o.data.empty()) {
       for (const auto& path : o.data) job.data.push_back(runtime::read_fit_data(path, 1.0));
     } else if (block) {
-      for (const auto& d : block->data) job.data.push_back(runtime::read_fit_data(relative_to(o.file, d.file), d.weight, &d.where));
+      for (const auto& d : block->data)
+        job.data.push_back(runtime::read_fit_data(relative_to(o.file, d.file), d.weight, &d.where, runtime::reading_of(d)));
     }
     if (job.data.empty())
       throw runtime::UsageError(

@@ -58,7 +58,7 @@ std::vector<runtime::FitDataSet> fit_block_data(const lang::Program& program, co
   for (const auto& block : program.fits) {
     if (block.model != model) continue;
     for (const auto& d : block.data) {
-      data.push_back(runtime::read_fit_data(relative_to(file, d.file), d.weight, &d.where));
+      data.push_back(runtime::read_fit_data(relative_to(file, d.file), d.weight, &d.where, runtime::reading_of(d)));
     }
   }
   return data;

@@ -3,6 +3,7 @@
 #include "lang/limits.hpp"
 #include "lang/names.hpp"
 #include "lang/setting_values.hpp"
+#include "lang/text_encoding.hpp"
 
 #include <fmt/format.h>
 
@@ -34,7 +35,14 @@ const std::vector<SettingSpec>& fit_schema() {
 }
 
 const std::vector<SettingSpec>& data_schema() {
-  static const std::vector<SettingSpec> specs{{.key = "weight", .shape = Shape::number, .dimension = dim::none, .lowest = 0.0}};
+  static const std::vector<SettingSpec> specs{
+      {.key = "weight", .shape = Shape::number, .dimension = dim::none, .lowest = 0.0},
+      {.key = "columns", .shape = Shape::text, .dimension = dim::none},
+      {.key = "step", .shape = Shape::text, .dimension = dim::none},
+      {.key = "area", .shape = Shape::single, .dimension = dim::area, .positive = true},
+      {.key = "height", .shape = Shape::single, .dimension = dim::length, .positive = true},
+      {.key = "amplitude", .shape = Shape::single, .dimension = dim::length, .positive = true},
+  };
   return specs;
 }
 
@@ -44,16 +52,76 @@ std::string duplicate(const ast::SettingNode& node, const SourceLocation& first)
   return fmt::format("duplicate setting '{}' (first given at line {}); give it once", node.key, first.line);
 }
 
+std::string trimmed(std::string_view s) {
+  const auto begin = s.find_first_not_of(" \t");
+  if (begin == std::string_view::npos) return {};
+  return std::string(s.substr(begin, s.find_last_not_of(" \t") - begin + 1));
+}
+
+// `columns = "frequency = f, storage = E_stor"`: ROLE = NAME pairs, each role once.
+std::vector<ColumnName> check_columns(const Setting& s, std::vector<Diagnostic>& errors) {
+  std::vector<ColumnName> out;
+  const std::string example = "e.g. columns = \"frequency = f, storage = E_stor, loss = E_loss\"";
+  std::size_t start = 0;
+  while (start <= s.text.size()) {
+    auto comma = s.text.find(',', start);
+    if (comma == std::string::npos) comma = s.text.size();
+    const std::string pair = s.text.substr(start, comma - start);
+    start = comma + 1;
+    const auto equals = pair.find('=');
+    const std::string role = trimmed(pair.substr(0, equals)), name = equals == std::string::npos ? "" : trimmed(pair.substr(equals + 1));
+    if (equals == std::string::npos || role.empty() || name.empty()) {
+      errors.push_back({s.where, fmt::format("columns takes 'role = column name' pairs separated by commas, {}; '{}' is not one", example,
+                                             printable(trimmed(pair)))});
+      return {};
+    }
+    const auto& roles = data_column_roles();
+    if (std::find(roles.begin(), roles.end(), role) == roles.end()) {
+      errors.push_back({s.where, fmt::format("columns: '{}' is not a role rheo reads; use {}", printable(role), join(roles))});
+      return {};
+    }
+    for (const auto& earlier : out)
+      if (earlier.role == role) {
+        errors.push_back({s.where, fmt::format("columns names the '{}' column twice; name it once", role)});
+        return {};
+      }
+    out.push_back({role, name});
+  }
+  return out;
+}
+
 FitData check_data(const ast::FitLine& line, std::vector<Diagnostic>& errors) {
-  FitData out{line.file, 1.0, line.file_where};
+  FitData out{line.file, 1.0, line.file_where, {}, {}, {}, {}, {}, false};
   check_file_name(line.file, line.file_where, errors);
   std::map<std::string, SourceLocation> seen;
   for (const auto& node : line.settings) {
     if (auto [it, fresh] = seen.emplace(node.key, node.where); !fresh) {
       errors.push_back({node.where, duplicate(node, it->second)});
-    } else if (auto s = check_keyed_setting(data_schema(), "a data line", node, errors)) {
-      out.weight = s->values.at(0);
+      continue;
     }
+    if (node.key == "amplitude") {  // a length, or a plain strain (0.1 %)
+      std::vector<Diagnostic> as_length, as_strain;
+      const SettingSpec strain{.key = "amplitude", .shape = Shape::single, .dimension = dim::none, .positive = true};
+      if (auto length = check_keyed_setting(data_schema(), "a data line", node, as_length)) {
+        out.amplitude = length->values.at(0);
+      } else if (auto strain_value = check_keyed_setting({strain}, "a data line", node, as_strain)) {
+        out.amplitude = strain_value->values.at(0);
+        out.amplitude_is_strain = true;
+      } else {
+        for (auto& e : as_length) {
+          e.message += "; or a strain, e.g. amplitude = 0.1 %";
+          errors.push_back(std::move(e));
+        }
+      }
+      continue;
+    }
+    const auto s = check_keyed_setting(data_schema(), "a data line", node, errors);
+    if (!s) continue;
+    if (s->key == "weight") out.weight = s->values.at(0);
+    else if (s->key == "columns") out.columns = check_columns(*s, errors);
+    else if (s->key == "step") out.step = s->text;
+    else if (s->key == "area") out.area = s->values.at(0);
+    else if (s->key == "height") out.height = s->values.at(0);
   }
   return out;
 }
@@ -181,6 +249,12 @@ std::optional<Setting> check_fit_setting(const ast::SettingNode& node, std::vect
     return std::nullopt;
   }
   return check_keyed_setting(fit_schema(), "fit", node, errors);
+}
+
+const std::vector<std::string>& data_column_roles() {
+  static const std::vector<std::string> roles{"time",      "displacement", "force",   "amplitude", "frequency",
+                                              "stiffness", "phase",        "storage", "loss",      "weight"};
+  return roles;
 }
 
 std::vector<std::string> fit_setting_keys() {

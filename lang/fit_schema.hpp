@@ -20,6 +20,9 @@ FitDirective check_fit(const ast::Fit& fit, const std::string& model, const Chec
 // in internal units; nullopt when invalid.
 std::optional<Setting> check_fit_setting(const ast::SettingNode& node, std::vector<Diagnostic>& errors);
 
+// The roles a data line's `columns` setting may name a column for (runtime/io/column_roles.hpp).
+const std::vector<std::string>& data_column_roles();
+
 // Every key a fit settings line accepts, in schema order.
 std::vector<std::string> fit_setting_keys();
 

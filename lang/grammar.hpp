@@ -75,13 +75,17 @@ struct exponent : seq<one<'e', 'E'>, opt<one<'+', '-'>>, plus<digit>> {};
 struct fraction : seq<one<'.'>, not_at<one<'.'>>, star<digit>> {};
 struct number : seq<sor<seq<plus<digit>, opt<fraction>>, seq<one<'.'>, plus<digit>>>, opt<exponent>> {};
 
-// A word of the unit table (units.hpp). `in` (inch) is not a unit when it opens bounds `in [`.
+// A word of the unit table (units.hpp), or `%`. `in` (inch) is not a unit when it opens bounds `in [`.
 struct unit_word {
   using rule_t = unit_word;
   using subs_t = type_list<>;
   template <typename ParseInput>
   static bool match(ParseInput& in) {
     std::size_t n = 0;
+    if (in.size(1) >= 1 && in.peek_char(0) == '%') {
+      in.bump_in_this_line(1);
+      return true;
+    }
     while (n < in.size(n + 1) && is_word_char(in.peek_char(n))) ++n;
     if (n == 0) return false;
     std::string_view word(in.current(), n);
@@ -193,7 +197,8 @@ struct single_value : success {};
 struct scalar_value : seq<expression, sor<range_tail, single_value>> {};
 struct setting_string : string_literal {};
 struct setting_value : sor<setting_string, value_list, scalar_value> {};
-struct setting_key : name {};
+// `step` is a keyword (ranges, the step protocol) and also a data line's setting: a key where `=` follows.
+struct setting_key : sor<name, seq<kw_step, at<sep, one<'='>>>> {};
 struct setting_equals : one<'='> {};
 struct setting : seq<setting_key, sep, must<setting_equals>, sep, must<setting_value>> {};
 struct protocol_kind : identifier {};  // `step` is both a protocol and a keyword

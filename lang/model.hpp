@@ -123,11 +123,23 @@ struct SimulateDirective {
   SourceLocation where;
 };
 
-// A `data "FILE" [, weight = W]` line of a fit block.
+// A header column named for a role: `columns = "frequency = f"` (docs/data-formats.md).
+struct ColumnName {
+  std::string role;  // one of data_column_roles() (fit_schema.hpp)
+  std::string name;  // the header's name, as written
+};
+
+// A `data "FILE" [, setting]...` line of a fit block: how FILE is read.
 struct FitData {
-  std::string file;      // as written: relative to the .rheo file, resolved by the runtime
-  double weight = 1.0;   // >= 0
-  SourceLocation where;  // of the file name
+  std::string file;                 // as written: relative to the .rheo file, resolved by the runtime
+  double weight = 1.0;              // >= 0
+  SourceLocation where;             // of the file name
+  std::vector<ColumnName> columns;  // columns named for roles
+  std::string step;                 // a TRIOS export's step; empty: its only one
+  std::optional<double> area;       // mm^2, loaded area of a material specimen
+  std::optional<double> height;     // mm, its height (gap, thickness)
+  std::optional<double> amplitude;  // mm, or a plain strain when amplitude_is_strain
+  bool amplitude_is_strain = false;
 };
 
 // `fit [MODEL] { ... }`.

@@ -200,6 +200,13 @@ bool check_setting_value(const ast::SettingNode& n, const SettingSpec& s, Settin
       }
       out.text = v.text;
       return check_file_name(v.text, v.where, errors);
+    case Shape::text:
+      if (v.kind != Kind::string) {
+        errors.push_back({v.where, fmt::format("{} takes a text in double quotes", n.key)});
+        return false;
+      }
+      out.text = v.text;
+      return true;
     case Shape::paths: return check_paths(n, paths, errors);
   }
   return false;

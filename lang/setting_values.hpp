@@ -20,7 +20,8 @@ enum class Shape {
   integer,     // one whole plain number
   number,      // one plain number
   identifier,  // one of `choices`
-  string,      // "text"
+  string,      // "file.csv": a file name
+  text,        // "text": any text in double quotes
   paths,       // parameter paths: `m1.k` or [m1.k, m1.tau]; kept as text, resolved by the caller
 };
 

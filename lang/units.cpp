@@ -15,24 +15,13 @@ struct AtomEntry {
 };
 
 // Scale = internal value (N, mm, s) per one unit.
-constexpr std::array<AtomEntry, 17> kAtoms{{
-    {"N", {dim::force, 1.0}},
-    {"kN", {dim::force, 1e3}},
-    {"mN", {dim::force, 1e-3}},
-    {"mm", {dim::length, 1.0}},
-    {"m", {dim::length, 1e3}},
-    {"cm", {dim::length, 10.0}},
-    {"um", {dim::length, 1e-3}},
-    {"in", {dim::length, 25.4}},
-    {"s", {dim::time, 1.0}},
-    {"ms", {dim::time, 1e-3}},
-    {"us", {dim::time, 1e-6}},
-    {"min", {dim::time, 60.0}},
-    {"Hz", {dim::frequency, 1.0}},
-    {"kHz", {dim::frequency, 1e3}},
-    {"kg", {dim::mass, 1e-3}},  // 1 kg = 1 N*s^2/m = 1e-3 N*s^2/mm
-    {"g", {dim::mass, 1e-6}},
-    {"rad", {dim::none, 1.0}},
+constexpr std::array<AtomEntry, 21> kAtoms{{
+    {"N", {dim::force, 1.0}},       {"kN", {dim::force, 1e3}},      {"mN", {dim::force, 1e-3}},    {"mm", {dim::length, 1.0}},
+    {"m", {dim::length, 1e3}},      {"cm", {dim::length, 10.0}},    {"um", {dim::length, 1e-3}},   {"in", {dim::length, 25.4}},
+    {"s", {dim::time, 1.0}},        {"ms", {dim::time, 1e-3}},      {"us", {dim::time, 1e-6}},     {"min", {dim::time, 60.0}},
+    {"Hz", {dim::frequency, 1.0}},  {"kHz", {dim::frequency, 1e3}}, {"kg", {dim::mass, 1e-3}},      // 1 kg = 1 N*s^2/m = 1e-3 N*s^2/mm
+    {"g", {dim::mass, 1e-6}},       {"rad", {dim::none, 1.0}},      {"Pa", {dim::pressure, 1e-6}},  // 1 Pa = 1 N/m^2 = 1e-6 N/mm^2
+    {"kPa", {dim::pressure, 1e-3}}, {"MPa", {dim::pressure, 1.0}},  {"GPa", {dim::pressure, 1e3}},
 }};
 
 void append_power(std::string& out, std::string_view base, int power) {
@@ -50,6 +39,7 @@ std::optional<Unit> unit_atom(std::string_view name) {
   for (const auto& entry : kAtoms)
     if (entry.name == name) return entry.unit;
   if (name == "deg") return Unit{dim::none, 3.14159265358979323846 / 180.0};
+  if (name == "%") return Unit{dim::none, 0.01};
   return std::nullopt;
 }
 
@@ -59,7 +49,7 @@ std::string unit_names() {
     out += entry.name;
     out += ", ";
   }
-  return out + "deg";
+  return out + "deg, %";
 }
 
 std::optional<Unit> parse_unit(std::string_view text) {
@@ -78,7 +68,9 @@ std::optional<Unit> parse_unit(std::string_view text) {
       ++i;
     }
     std::size_t start = i;
-    while (i < text.size() && std::isalpha(static_cast<unsigned char>(text[i]))) ++i;
+    if (i < text.size() && text[i] == '%') ++i;
+    else
+      while (i < text.size() && std::isalpha(static_cast<unsigned char>(text[i]))) ++i;
     auto atom = unit_atom(text.substr(start, i - start));
     if (!atom) return std::nullopt;
     int power = 1;
@@ -135,7 +127,7 @@ std::string describe(const Dimension& d) {
     Dimension dimension;
     std::string_view name;
   };
-  static constexpr std::array<Named, 10> kNames{{
+  static constexpr std::array<Named, 12> kNames{{
       {dim::none, "a plain number"},
       {dim::force, "force"},
       {dim::length, "length"},
@@ -146,6 +138,8 @@ std::string describe(const Dimension& d) {
       {dim::damping, "damping"},
       {dim::mass, "mass"},
       {dim::energy, "energy"},
+      {dim::area, "area"},
+      {dim::pressure, "modulus"},
   }};
   for (const auto& n : kNames)
     if (n.dimension == d) return d.dimensionless() ? std::string(n.name) : std::string(n.name) + " (" + internal_unit(d) + ")";

@@ -36,6 +36,8 @@ inline constexpr Dimension damping{1, -1, 1};            // N*s/mm
 inline constexpr Dimension mass{1, -1, 2};               // N*s^2/mm (= 1000 kg)
 inline constexpr Dimension quadratic_damping{1, -2, 2};  // N*s^2/mm^2
 inline constexpr Dimension energy{1, 1, 0};              // N*mm
+inline constexpr Dimension area{0, 2, 0};                // mm^2
+inline constexpr Dimension pressure{1, -2, 0};           // N/mm^2 = MPa: a modulus or a stress
 }  // namespace dim
 
 // "stiffness (N/mm)", "length (mm)", or the internal unit for unnamed dimensions ("N/mm^3").
@@ -48,7 +50,8 @@ struct Unit {
   double scale = 1.0;  // internal value per unit value
 };
 
-// A single unit atom such as "kN", "um", "ms", "Hz", "kg", "deg", "rad". Unknown: nullopt.
+// A single unit atom such as "kN", "um", "ms", "Hz", "kg", "deg", "rad", "MPa", "%" (0.01).
+// Unknown: nullopt.
 std::optional<Unit> unit_atom(std::string_view name);
 // Every unit atom, for messages: "N, kN, mN, mm, ..., rad, deg".
 std::string unit_names();

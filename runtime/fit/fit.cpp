@@ -297,6 +297,7 @@ DataSetFit data_set_fit(const Network& network, const FitDataSet& set, const Har
   DataSetFit d;
   d.path = set.path;
   d.weight = set.weight;
+  d.source = set.source;
   d.harmonic = set.is_harmonic();
   d.prediction = predict(network, set, FitMethod::exact, harmonic, nullptr);
   if (d.harmonic) {

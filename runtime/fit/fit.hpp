@@ -62,6 +62,7 @@ struct FitSettings {
 struct DataSetFit {
   std::string path;
   double weight = 1.0;
+  DataSource source;
   bool harmonic = true;
   Prediction prediction;                                   // exact response at the fitted parameters
   double phi = 0.0;                                        // harmonic: eq. 5.1

@@ -31,6 +31,15 @@ std::string standard_error_text(const FitResult& r, std::size_t j, int index) {
 
 }  // namespace
 
+std::string source_text(const DataSource& s) {
+  std::string out;
+  if (!s.step.empty()) out += fmt::format("; TRIOS step \"{}\"", s.step);
+  if (s.material)
+    out += fmt::format("; material data: stiffness = modulus x {:g} mm^2 / {:g} mm, amplitude = strain x {:g} mm", s.area.value_or(0.0),
+                       s.height.value_or(0.0), s.height.value_or(0.0));
+  return out;
+}
+
 std::string written_unit(const lang::Parameter& p) { return p.unit.empty() ? lang::internal_unit(p.dimension) : p.unit; }
 
 double in_written_unit(const lang::Parameter& p, double internal_value) {
@@ -42,8 +51,8 @@ double in_written_unit(const lang::Parameter& p, double internal_value) {
 std::string fit_report_text(const FitDescription& d, const FitResult& r) {
   std::string out = fmt::format("rheo fit: model {} from {}\n", r.network.model().name, d.source);
   for (const DataSetFit& set : r.datasets)
-    out += fmt::format("  data {} ({}, {} {}, weight {:g})\n", set.path, data_kind(set), data_points(set), set.harmonic ? "points" : "samples",
-                       set.weight);
+    out += fmt::format("  data {} ({}, {} {}, weight {:g}{})\n", set.path, data_kind(set), data_points(set), set.harmonic ? "points" : "samples",
+                       set.weight, source_text(set.source));
   out += fmt::format("  method {}, objective {}, optimizer {}, seed {}\n", d.method, d.objective, d.optimizer, d.seed);
   for (const std::string& note : r.notes) out += fmt::format("  {}\n", note);
   out += "\n";
@@ -136,6 +145,11 @@ std::string fit_report_json(const FitDescription& d, const FitResult& r) {
   json data = json::array();
   for (const DataSetFit& set : r.datasets) {
     json s{{"file", set.path}, {"kind", data_kind(set)}, {"weight", set.weight}, {"points", data_points(set)}, {"err", set.err}};
+    if (!set.source.step.empty()) s["step"] = set.source.step;
+    if (set.source.material) {
+      s["area_mm2"] = set.source.area.value_or(0.0);
+      s["height_mm"] = set.source.height.value_or(0.0);
+    }
     if (set.harmonic) {
       s["phi"] = set.phi;
       json residuals = json::array();

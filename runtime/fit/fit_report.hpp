@@ -8,7 +8,8 @@
 //   failed; "" when none), wall_seconds, phi, err, notes: [text...] (FitResult::notes),
 //   parameters: [{path, unit, start, value, lower, upper, free, standard_error, identifiable}],
 //   correlation: {parameters: [path...], matrix: [[...]]}  (free parameters),
-//   data: [{file, kind, weight, points, err, phi?, residuals: [{amplitude_mm, frequency_hz,
+//   data: [{file, kind, weight, points, err, phi?, step?, area_mm2?, height_mm? (material data),
+//           residuals: [{amplitude_mm, frequency_hz,
 //           stiffness_measured, stiffness_model, phase_measured_deg, phase_model_deg,
 //           stiffness_residual, damping_residual}] | {rms, max}}]
 // Every parameter of the model is listed; lower/upper only for those with bounds,
@@ -22,6 +23,10 @@
 #include <string>
 
 namespace rheo::runtime {
+
+// "; TRIOS step "Amplitude sweep - 1"; material data: stiffness = modulus x 490.9 mm^2 / 1 mm,
+// ...": how a data set's values were read, "" for a plain table.
+std::string source_text(const DataSource& source);
 
 struct FitDescription {
   std::string source;     // the .rheo file

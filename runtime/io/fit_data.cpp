@@ -1,23 +1,27 @@
 #include "runtime/io/fit_data.hpp"
 
+#include "lang/text_encoding.hpp"
 #include "runtime/core/errors.hpp"
 
 #include <fmt/format.h>
 
 #include <algorithm>
 #include <cmath>
+#include <stdexcept>
 
 namespace rheo::runtime {
 
-HistoryData history_data_from_table(const Table& table) {
-  const int f = table.column("force");
+HistoryData history_data_from_table(const Table& table) { return history_data_from_table(table, DataReading{}); }
+
+HistoryData history_data_from_table(const Table& table, const DataReading& reading) {
+  const int f = find_role(table, Role::force, reading.columns);
   if (f < 0)
     throw DataError(fmt::format("{}a measured history needs a column 'force [N]' (any force unit) next to time and displacement; {}",
                                 header_error(table), header_columns(table)));
   HistoryData h;
   h.path = table.path;
-  h.drive = drive_from_table(table);
-  h.force = table.columns[static_cast<std::size_t>(f)];
+  h.drive = drive_from_table(table, reading.columns);
+  h.force = role_values(table, f, Role::force, reading.columns);
   h.rows = table.rows;
   h.force_scale = 0.0;
   for (double v : h.force) h.force_scale = std::max(h.force_scale, std::abs(v));
@@ -27,20 +31,38 @@ HistoryData history_data_from_table(const Table& table) {
   return h;
 }
 
-FitDataSet read_fit_data(const std::string& path, double weight, const lang::SourceLocation* named_at) {
-  const Table table = read_table(path, named_at);
-  FitDataSet set{path, weight, HarmonicData{}};
-  if (table.column("amplitude") >= 0 && table.column("frequency") >= 0) {
-    set.data = harmonic_data_from_table(table);
-  } else if (table.column("time") >= 0) {
-    set.data = history_data_from_table(table);
+FitDataSet read_fit_data(const std::string& path, double weight, const lang::SourceLocation* named_at, const DataReading& reading) {
+  const Table table = read_table(path, named_at, reading.step);
+  FitDataSet set{path, weight, HarmonicData{}, {table.step, false, {}, {}}};
+  const bool amplitude = find_role(table, Role::amplitude, reading.columns) >= 0 || reading.amplitude || reading.strain_amplitude;
+  if (amplitude && find_role(table, Role::frequency, reading.columns) >= 0) {
+    set.data = harmonic_data_from_table(table, reading);
+    if (set.harmonic().material) set.source = {table.step, true, reading.columns.area, reading.columns.height};
+  } else if (find_role(table, Role::time, reading.columns) >= 0) {
+    set.data = history_data_from_table(table, reading);
   } else {
-    throw DataError(
-        fmt::format("{}cannot tell what this data is; a harmonic table needs 'amplitude', 'frequency' and 'stiffness'+'phase' or "
-                    "'storage'+'loss' columns, a history needs 'time', 'displacement' and 'force'; {}",
-                    header_error(table), header_columns(table)));
+    throw DataError(fmt::format(
+        "{}cannot tell what this data is; a harmonic table needs 'amplitude', 'frequency' and 'stiffness'+'phase' or "
+        "'storage'+'loss' columns, a history needs 'time', 'displacement' and 'force' (name unusual columns on the data line: "
+        "columns = \"frequency = f, storage = E_stor\"); {}{}",
+        header_error(table), header_columns(table), table.step.empty() ? "" : fmt::format(" (TRIOS step \"{}\")", lang::printable(table.step))));
   }
   return set;
+}
+
+DataReading reading_of(const lang::FitData& line) {
+  DataReading reading;
+  for (const auto& named : line.columns) {
+    const auto role = role_named(named.role);
+    if (!role) throw std::logic_error("reading_of: the checker passed an unknown column role '" + named.role + "'");
+    reading.columns.columns.emplace_back(*role, named.name);
+  }
+  reading.columns.area = line.area;
+  reading.columns.height = line.height;
+  reading.step = line.step;
+  if (line.amplitude_is_strain) reading.strain_amplitude = line.amplitude;
+  else reading.amplitude = line.amplitude;
+  return reading;
 }
 
 }  // namespace rheo::runtime

@@ -7,6 +7,7 @@
 #include "runtime/core/drive.hpp"
 #include "runtime/io/harmonic_data.hpp"
 
+#include <optional>
 #include <string>
 #include <variant>
 #include <vector>
@@ -21,10 +22,18 @@ struct HistoryData {
   double force_scale = 1.0;   // max |F| [N]: residuals are relative to it
 };
 
+// Where a data set's values came from beyond its path, for reports.
+struct DataSource {
+  std::string step;                    // the TRIOS step read; empty for a plain table
+  bool material = false;               // moduli or strains turned into stiffness and displacement
+  std::optional<double> area, height;  // mm^2, mm: the geometry that did it
+};
+
 struct FitDataSet {
   std::string path;
   double weight = 1.0;  // multiplies this file's mean squared residual in the objective
   std::variant<HarmonicData, HistoryData> data;
+  DataSource source{};
 
   bool is_harmonic() const { return std::holds_alternative<HarmonicData>(data); }
   const HarmonicData& harmonic() const { return std::get<HarmonicData>(data); }
@@ -32,7 +41,11 @@ struct FitDataSet {
 };
 
 HistoryData history_data_from_table(const Table& table);
-// NAMED_AT: where a .rheo file's `data` line names PATH (read_table).
-FitDataSet read_fit_data(const std::string& path, double weight, const lang::SourceLocation* named_at = nullptr);
+HistoryData history_data_from_table(const Table& table, const DataReading& reading);
+// NAMED_AT: where a .rheo file's `data` line names PATH (read_table). READING: how the line
+// asks for it to be read.
+FitDataSet read_fit_data(const std::string& path, double weight, const lang::SourceLocation* named_at = nullptr, const DataReading& reading = {});
+// The reading a checked data line asks for.
+DataReading reading_of(const lang::FitData& line);
 
 }  // namespace rheo::runtime

@@ -7,14 +7,28 @@
 // phase <= 0 (noise on a nearly elastic point) is kept: fits leave its damping term out
 // (objective.hpp, damping_residual).
 // An optional `weight [-]` column weighs each point's residuals in a fit.
+// Columns are found by role (column_roles.hpp); moduli and strains of material data become
+// stiffness and displacement through the geometry a data line gives.
 #pragma once
 
+#include "runtime/io/column_roles.hpp"
 #include "runtime/io/history_csv.hpp"
 
+#include <optional>
 #include <string>
 #include <vector>
 
 namespace rheo::runtime {
+
+// How a data line asks for its file to be read (from lang::FitData, checked there): which
+// column is which and the specimen's geometry (column_roles.hpp), a TRIOS step
+// (table_layout.hpp), an amplitude for a table without one.
+struct DataReading {
+  ColumnReading columns;
+  std::string step;
+  std::optional<double> amplitude;         // mm
+  std::optional<double> strain_amplitude;  // a plain strain (0.001 for 0.1 %); needs columns.height
+};
 
 struct HarmonicData {
   std::string path;
@@ -24,10 +38,14 @@ struct HarmonicData {
   std::vector<double> phase;      // rad
   std::vector<double> weight;     // per-point weight (optional column `weight [-]`, default 1)
   std::vector<int> rows;          // 1-based file line of each point
+  // Where the values came from, for messages and reports: table columns (-1: from the data line).
+  int amplitude_column = -1, frequency_column = -1, stiffness_column = -1, phase_column = -1;
+  bool material = false;  // moduli or strains converted by the data line's geometry
   std::size_t size() const { return amplitude.size(); }
 };
 
 HarmonicData harmonic_data_from_table(const Table& table);
+HarmonicData harmonic_data_from_table(const Table& table, const DataReading& reading);
 HarmonicData read_harmonic_data(const std::string& path);
 
 }  // namespace rheo::runtime

@@ -112,3 +112,43 @@ TEST_CASE("check_fit_setting and parse_fit_setting: the fit schema for one setti
   CHECK_THROWS_WITH_AS(parse_fit_setting("time_limit = 60 N"), doctest::Contains("time_limit"), CompileError);
   CHECK_THROWS_WITH_AS(parse_fit_setting("time_limit = -1 s"), doctest::Contains("time_limit"), CompileError);
 }
+
+TEST_CASE("a data line says how its file is read: columns by role, a TRIOS step, geometry, an amplitude as a length or a strain") {
+  Program p = compile_source("f.rheo", std::string(kModel) + R"(fit m {
+  data "dma.csv", columns = "frequency = f, storage = E_stor, loss = E_loss", area = 314 mm^2, height = 10 mm, amplitude = 0.1 %
+  data "rig.txt", step = "Amplitude sweep", amplitude = 20 um
+})");
+  REQUIRE(p.fits.size() == 1);
+  const auto& d = p.fits[0].data;
+  REQUIRE(d.size() == 2);
+  REQUIRE(d[0].columns.size() == 3);
+  CHECK(d[0].columns[1].role == "storage");
+  CHECK(d[0].columns[1].name == "E_stor");
+  CHECK(d[0].area == 314.0);
+  CHECK(d[0].height == 10.0);
+  CHECK(d[0].amplitude == doctest::Approx(0.001));
+  CHECK(d[0].amplitude_is_strain);
+  CHECK(d[1].step == "Amplitude sweep");
+  CHECK(d[1].amplitude == doctest::Approx(0.02));
+  CHECK_FALSE(d[1].amplitude_is_strain);
+}
+
+TEST_CASE("data line settings that cannot be read are errors at the setting") {
+  auto error_of = [](const std::string& line) {
+    try {
+      compile_source("f.rheo", std::string(kModel) + "fit m {\n  data \"a.csv\", " + line + "\n}\n");
+    } catch (const CompileError& e) {
+      return std::string(e.what());
+    }
+    return std::string();
+  };
+  CHECK(error_of("columns = \"frequency f\"").find("columns takes 'role = column name' pairs separated by commas") != std::string::npos);
+  CHECK(error_of("columns = \"temperature = T\"").find("columns: 'temperature' is not a role rheo reads; use time, displacement") !=
+        std::string::npos);
+  CHECK(error_of("columns = \"loss = a, loss = b\"").find("columns names the 'loss' column twice") != std::string::npos);
+  CHECK(error_of("area = 10 mm").find("area") != std::string::npos);
+  CHECK(error_of("height = -1 mm").find("height") != std::string::npos);
+  CHECK(error_of("amplitude = 1 N").find("or a strain, e.g. amplitude = 0.1 %") != std::string::npos);
+  CHECK(error_of("step = 3").find("step takes a text in double quotes") != std::string::npos);
+  CHECK(error_of("colour = \"red\"").find("colour") != std::string::npos);
+}

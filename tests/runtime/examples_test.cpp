@@ -326,6 +326,27 @@ TEST_CASE("examples/coupled_bushing_fit.rheo: the README's generating model scor
   CHECK(rheo_run(fmt::format("check {}", fitted.string())) == 0);
 }
 
+// A real TRIOS export (#25) read from a data line alone: the step, the geometry, the moduli.
+TEST_CASE("examples/trios_amplitude_sweep_fit.rheo: the amplitude sweep read from the export as it is, fitted to a few per cent") {
+  const fs::path fitted = scratch() / "trios_fitted.rheo", json_path = scratch() / "trios.json";
+  REQUIRE(rheo_run(fmt::format("fit {} --json -o {} > {}", example("trios_amplitude_sweep_fit.rheo"), fitted.string(), json_path.string())) == 0);
+  std::ifstream in(json_path);
+  const auto summary = nlohmann::json::parse(in);
+  const auto& set = summary.at("data").at(0);
+  CHECK(set.at("step") == "Amplitude sweep - 1");
+  CHECK(set.at("area_mm2").get<double>() == 490.874);
+  CHECK(set.at("points").get<int>() == 29);
+  // The export's first row: |G*| 0.01838055859375 MPa (its 'Complex modulus' and 'Phase angle' are
+  // read before storage and loss), strain 0.00989877906867619 %; 490.874 mm^2 over a 1 mm gap.
+  const auto& first = set.at("residuals").at(0);
+  CHECK(first.at("stiffness_measured").get<double>() == doctest::Approx(0.01838055859375 * 490.874).epsilon(1e-9));
+  CHECK(first.at("phase_measured_deg").get<double>() == doctest::Approx(2.16277233398213).epsilon(1e-9));
+  CHECK(first.at("amplitude_mm").get<double>() == doctest::Approx(0.00989877906867619e-2).epsilon(1e-9));
+  MESSAGE(fmt::format("TRIOS amplitude sweep: err {:.4e}", summary.at("err").get<double>()));
+  CHECK(summary.at("err").get<double>() < 0.06);  // 4.9e-2 with three friction elements (README of examples/data/real)
+  CHECK(rheo_run(fmt::format("check {}", fitted.string())) == 0);
+}
+
 TEST_CASE("every example is run by a test: a new one fails here until it is") {
   // Examples checked elsewhere: cli_fit_test (specimen_d_methods.rheo), stdlib_test.
   std::vector<std::string> names;
@@ -336,5 +357,5 @@ TEST_CASE("every example is run by a test: a new one fails here until it is") {
   CHECK(names == std::vector<std::string>{"bushing_d.rheo", "coupled_bushing_fit.rheo", "hydrobushing.rheo", "hydrobushing_fit.rheo",
                                           "hydromount.rheo", "prony_fit.rheo", "specimen_a.rheo", "specimen_a_fit.rheo", "specimen_b.rheo",
                                           "specimen_b_fit.rheo", "specimen_c.rheo", "specimen_c_fit.rheo", "specimen_d.rheo", "specimen_d_fit.rheo",
-                                          "specimen_d_fit_all.rheo", "specimen_d_methods.rheo"});
+                                          "specimen_d_fit_all.rheo", "specimen_d_methods.rheo", "trios_amplitude_sweep_fit.rheo"});
 }

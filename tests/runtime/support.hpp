@@ -44,7 +44,7 @@ inline runtime::FitDataSet history_data_of(const runtime::Network& truth, const 
   h.force = runtime::run_history(truth, drive, false).force;
   for (double f : h.force) h.force_scale = std::max(h.force_scale, std::abs(f));
   h.rows.assign(h.force.size(), 0);
-  return {path, weight, h};
+  return {path, weight, h, {}};
 }
 
 // The whole content of a text file ("" when it cannot be read).

@@ -30,7 +30,7 @@ std::pair<runtime::FitResult, std::vector<runtime::FitDataSet>> fit_with(const R
     }
   runtime::FitResult fit{test::network_from("model m { spring s (k = 1 N/mm) }", "m")};
   fit.datasets.push_back(set);
-  return {std::move(fit), {runtime::FitDataSet{"grid.csv", 1.0, d}}};
+  return {std::move(fit), {runtime::FitDataSet{"grid.csv", 1.0, d, {}}}};
 }
 
 }  // namespace

@@ -31,7 +31,7 @@ TEST_CASE("diagnose refits: the evaluations afforded follow the work of one eval
     history.force.push_back(0.0);
   }
   history.force_scale = 1.0;
-  const std::vector<runtime::FitDataSet> data{runtime::FitDataSet{"h.csv", 1.0, history}};
+  const std::vector<runtime::FitDataSet> data{runtime::FitDataSet{"h.csv", 1.0, history, {}}};
   runtime::diagnosis::DiagnoseSettings s;
   s.refit_work = 1e4;
   s.max_evaluations = 1000;

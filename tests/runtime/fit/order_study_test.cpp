@@ -21,7 +21,7 @@ std::vector<runtime::FitDataSet> grid(double f_low, double f_high) {
   h.frequency = {f_low, f_high};
   h.stiffness = {100.0, 100.0};
   h.phase = {0.1, 0.1};
-  return {runtime::FitDataSet{"g.csv", 1.0, h}};
+  return {runtime::FitDataSet{"g.csv", 1.0, h, {}}};
 }
 const char* kModel =
     "model b {\n  spring k0 (k = 300 N/mm in [10, 3000])\n  maxwell m1 (k = 50 N/mm in [1, 1000], tau = 10 ms in [0.01, 1000])\n"

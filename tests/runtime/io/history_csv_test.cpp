@@ -38,22 +38,26 @@ TEST_CASE("units in the header convert to N, mm, s; comments, BOM and CRLF are a
 }
 
 TEST_CASE("malformed tables are errors that name file:row:column") {
-  CHECK(error_of("time [s],displacement [furlong]\n0,0\n").find("t.csv:1:") == 0);
-  CHECK(error_of("time [s],displacement [furlong]\n0,0\n").find("unknown unit 'furlong'") != std::string::npos);
-  CHECK(error_of("time [s],displacement\n0,0\n").find("has no unit") != std::string::npos);
-  // A unit of the wrong dimension for a column the readers know, at the unit's column.
-  CHECK(error_of("time [mm],displacement [mm]\n0,0\n")
-            .find("t.csv:1:7: error: column 'time' has unit 'mm', a length (mm); time needs a unit of time (s), e.g. 'time [s]'") == 0);
-  CHECK(error_of("time [s],force [N/mm]\n0,0\n").find("column 'force' has unit 'N/mm', a stiffness (N/mm)") != std::string::npos);
-  CHECK(error_of("time [s],phase [N]\n0,0\n").find("phase needs a unit of none (a plain number, or deg for a phase), e.g. 'phase [deg]'") !=
-        std::string::npos);
-  CHECK(error_of("time [s],strain [N]\n0,0\n").empty());  // columns no reader knows are not checked
-  CHECK(error_of("time [s],displacement [mm]\n0,0\n1,abc\n").find("t.csv:3:3: error: 'abc' is not a number") == 0);
-  CHECK(error_of("time [s],displacement [mm]\n0,0\n1,nan\n").find("t.csv:3:3: error: 'nan' is not a finite number") == 0);
-  CHECK(error_of("time [s],displacement [mm]\n0,0\n1\n").find("t.csv:3:1: error: this row has 1 values") == 0);
   CHECK(error_of("").find("no header") != std::string::npos);
   CHECK(error_of("time [s],displacement [mm]\n").find("no data rows") != std::string::npos);
   CHECK(error_of(std::string("time [s]\n0\0", 11)).find("NUL") != std::string::npos);
+  // More values than names cannot be told apart from a shifted row, whichever columns are read.
+  CHECK(error_of("time [s],displacement [mm]\n0,0\n1,2,3\n").find("t.csv:3:5: error: this row has 3 values, the header has 2 columns") == 0);
+}
+
+TEST_CASE("a column is checked when a reader uses it: its unit, its kind and every cell, at file:row:column") {
+  CHECK(drive_error("time [s],displacement [furlong]\n0,0\n").find("h.csv:1:24: error: unknown unit 'furlong'") == 0);
+  CHECK(drive_error("time [s],displacement\n0,0\n").find("h.csv:1:10: error: column 'displacement' has no unit; write it as") == 0);
+  // A unit of the wrong dimension for the column read, at the unit's column.
+  CHECK(drive_error("time [mm],displacement [mm]\n0,0\n")
+            .find("h.csv:1:7: error: column 'time' has unit 'mm', a length (mm); time needs a unit of time (s), e.g. 'time [s]'") == 0);
+  CHECK(drive_error("time [s],displacement [N/mm]\n0,0\n").find("column 'displacement' has unit 'N/mm', a stiffness (N/mm)") != std::string::npos);
+  CHECK(drive_error("time [s],displacement [mm]\n0,0\n1,abc\n").find("h.csv:3:3: error: 'abc' is not a number") == 0);
+  CHECK(drive_error("time [s],displacement [mm]\n0,0\n1,nan\n").find("h.csv:3:3: error: 'nan' is not a finite number") == 0);
+  CHECK(drive_error("time [s],displacement [mm]\n0,0\n1\n").find("h.csv:3:1: error: this row has 1 values, the header has 2 columns") == 0);
+  CHECK(drive_error("time [s],displacement [mm],x,y\n0,0,a,b\n1,0,,\n").empty());  // columns no reader uses are not checked
+  CHECK(drive_error("time [s],displacement [mm],displacement [mm]\n0,0,0\n1,1,1\n")
+            .find("h.csv:1:28: error: column 'displacement' appears twice in the header (columns 2 and 3)") == 0);
 }
 
 TEST_CASE("a drive needs time and displacement, increasing time, and a start from rest") {
@@ -70,10 +74,10 @@ TEST_CASE("text that is not UTF-8, NUL bytes and control characters: errors at r
                  "5\n")
             .find("t.csv:3:6: error: found byte 0xB7, which is not UTF-8") == 0);
   CHECK(error_of(std::string("time [s],displacement [mm]\n0,0\n0.1,\0\n", 36)).find("t.csv:3:5: error: found a NUL byte") == 0);
-  const std::string control = error_of("time [s],displacement [mm]\n0,0\n0.1,\x1b[2J\n");
-  CHECK(control.find("t.csv:3:5: error: '\xEF\xBF\xBD[2J' is not a number") == 0);
-  CHECK(error_of("time [s],displacement [mm]\n0,0\n0.1," + std::string(1000, '9') + "x\n").size() < 300);  // a long cell is cut
-  CHECK(error_of("time [s],displacement [mm]\n0,0\n0.1,1e999\n").find("t.csv:3:5: error: '1e999' is not a finite number") == 0);
+  const std::string control = drive_error("time [s],displacement [mm]\n0,0\n0.1,\x1b[2J\n");
+  CHECK(control.find("h.csv:3:5: error: '\xEF\xBF\xBD[2J' is not a number") == 0);
+  CHECK(drive_error("time [s],displacement [mm]\n0,0\n0.1," + std::string(1000, '9') + "x\n").size() < 300);  // a long cell is cut
+  CHECK(drive_error("time [s],displacement [mm]\n0,0\n0.1,1e999\n").find("h.csv:3:5: error: '1e999' is not a finite number") == 0);
 }
 
 TEST_CASE("an empty table, a header alone and a missing column are errors at a row and column") {

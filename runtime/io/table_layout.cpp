@@ -1,0 +1,243 @@
+#include "runtime/io/table_layout.hpp"
+
+#include "lang/text_encoding.hpp"
+#include "runtime/core/errors.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <array>
+#include <cctype>
+
+namespace rheo::runtime {
+namespace {
+
+[[noreturn]] void fail(const std::string& path, int row, int column, const std::string& message) {
+  throw DataError(fmt::format("{}:{}:{}: error: {}", path, row, column, message));
+}
+
+std::string_view trim(std::string_view s) {
+  const auto begin = s.find_first_not_of(" \t\r");
+  if (begin == std::string_view::npos) return {};
+  return s.substr(begin, s.find_last_not_of(" \t\r") - begin + 1);
+}
+
+std::string lower(std::string_view s) {
+  std::string out(s);
+  for (char& c : out) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  return out;
+}
+
+bool has_suffix(const std::string& path, std::string_view suffix) {
+  return path.size() >= suffix.size() && lower(std::string_view(path).substr(path.size() - suffix.size())) == suffix;
+}
+
+void append_utf8(std::string& out, char32_t c) {
+  if (c < 0x80) {
+    out += static_cast<char>(c);
+  } else if (c < 0x800) {
+    out += static_cast<char>(0xC0 | (c >> 6));
+    out += static_cast<char>(0x80 | (c & 0x3F));
+  } else if (c < 0x10000) {
+    out += static_cast<char>(0xE0 | (c >> 12));
+    out += static_cast<char>(0x80 | ((c >> 6) & 0x3F));
+    out += static_cast<char>(0x80 | (c & 0x3F));
+  } else {
+    out += static_cast<char>(0xF0 | (c >> 18));
+    out += static_cast<char>(0x80 | ((c >> 12) & 0x3F));
+    out += static_cast<char>(0x80 | ((c >> 6) & 0x3F));
+    out += static_cast<char>(0x80 | (c & 0x3F));
+  }
+}
+
+// UTF-16 after its byte-order mark, little- or big-endian; an unpaired surrogate is U+FFFD.
+std::string utf16_to_utf8(std::string_view bytes, bool little_endian) {
+  std::string out;
+  out.reserve(bytes.size() / 2);
+  auto unit = [&](std::size_t i) {
+    const auto lo = static_cast<unsigned char>(bytes[little_endian ? i : i + 1]);
+    const auto hi = static_cast<unsigned char>(bytes[little_endian ? i + 1 : i]);
+    return static_cast<char32_t>(lo | (hi << 8));
+  };
+  for (std::size_t i = 0; i + 1 < bytes.size(); i += 2) {
+    char32_t c = unit(i);
+    if (c >= 0xD800 && c < 0xDC00 && i + 3 < bytes.size() && unit(i + 2) >= 0xDC00 && unit(i + 2) < 0xE000) {
+      c = 0x10000 + ((c - 0xD800) << 10) + (unit(i + 2) - 0xDC00);
+      i += 2;
+    } else if (c >= 0xD800 && c < 0xE000) {
+      c = 0xFFFD;
+    }
+    append_utf8(out, c);
+  }
+  return out;
+}
+
+struct Line {
+  std::size_t begin, end;  // without the line end
+  int row;
+};
+
+std::vector<Line> lines_of(std::string_view text) {
+  std::vector<Line> lines;
+  std::size_t start = 0;
+  int row = 1;
+  while (start < text.size()) {
+    auto newline = text.find('\n', start);
+    if (newline == std::string_view::npos) newline = text.size();
+    lines.push_back({start, newline, row++});
+    start = newline + 1;
+  }
+  return lines;
+}
+
+// The step name without a trailing " - N" counter: "Amplitude sweep - 1" -> "Amplitude sweep".
+std::string without_counter(std::string_view name) {
+  std::string_view base = trim(name);
+  const auto dash = base.rfind(" - ");
+  if (dash != std::string_view::npos && dash + 3 < base.size() &&
+      std::all_of(base.begin() + static_cast<std::ptrdiff_t>(dash + 3), base.end(),
+                  [](char c) { return std::isdigit(static_cast<unsigned char>(c)); }))
+    base = base.substr(0, dash);
+  return std::string(base);
+}
+
+std::string quoted_list(const std::vector<std::string>& names) {
+  std::string out;
+  for (const auto& n : names) out += (out.empty() ? "\"" : ", \"") + lang::printable(n) + "\"";
+  return out;
+}
+
+TableLayout trios_layout(const std::string& path, std::string_view text, const std::vector<Line>& lines, const std::string& step) {
+  struct Step {
+    std::string name;
+    std::size_t line;  // index of the names row in LINES
+  };
+  std::vector<Step> steps;
+  for (std::size_t i = 0; i < lines.size(); ++i)
+    if (lower(trim(text.substr(lines[i].begin, lines[i].end - lines[i].begin))) == "[step]" && i + 1 < lines.size()) {
+      const std::string_view name_line = text.substr(lines[i + 1].begin, lines[i + 1].end - lines[i + 1].begin);
+      steps.push_back({std::string(trim(name_line.substr(0, name_line.find('\t')))), i + 2});
+    }
+  TableLayout layout;
+  for (const auto& s : steps) layout.steps.push_back(s.name);
+  const Step* chosen = nullptr;
+  if (step.empty() && steps.size() == 1) chosen = &steps.front();
+  for (const auto& s : steps)
+    if (!step.empty() && (lower(s.name) == lower(trim(step)) || lower(without_counter(s.name)) == lower(without_counter(step)))) {
+      chosen = &s;
+      break;
+    }
+  if (!chosen && step.empty())
+    fail(path, 1, 1,
+         fmt::format("this TRIOS export has {} steps ({}); pick the one to read on the data line, e.g. step = \"{}\"", steps.size(),
+                     quoted_list(layout.steps), lang::printable(without_counter(steps.front().name))));
+  if (!chosen)
+    fail(path, 1, 1, fmt::format("this TRIOS export has no step \"{}\"; its steps are {}", lang::printable(step), quoted_list(layout.steps)));
+  if (chosen->line + 1 >= lines.size())
+    fail(path, lines.back().row, 1,
+         fmt::format("the TRIOS step \"{}\" has no names and units rows; export the step again", lang::printable(chosen->name)));
+  std::size_t last = chosen->line + 1;
+  while (last + 1 < lines.size()) {
+    const std::string_view next = trim(text.substr(lines[last + 1].begin, lines[last + 1].end - lines[last + 1].begin));
+    if (next.empty() || next.front() == '[') break;
+    ++last;
+  }
+  const Line& names = lines[chosen->line];
+  layout.begin = names.begin;
+  layout.end = lines[last].end;
+  layout.first_row = names.row;
+  layout.delimiter = detect_delimiter(text.substr(names.begin, names.end - names.begin));
+  layout.decimal_comma = layout.delimiter != ',';
+  layout.units_row = true;
+  layout.step = chosen->name;
+  return layout;
+}
+
+}  // namespace
+
+std::string text_as_utf8(const std::string& path, std::string text) {
+  constexpr std::string_view zip = "PK\x03\x04", ole = "\xD0\xCF\x11\xE0";
+  const bool workbook = text.rfind(zip, 0) == 0 || text.rfind(ole, 0) == 0;
+  if (workbook || has_suffix(path, ".xlsx") || has_suffix(path, ".xls") || has_suffix(path, ".xlsm") || has_suffix(path, ".ods"))
+    fail(path, 1, 1,
+         "this is a spreadsheet workbook, not a text table; export the sheet as CSV or text (in Excel: File > Save As > CSV UTF-8) and "
+         "give that file");
+  if (text.rfind("\xFF\xFE", 0) == 0) return utf16_to_utf8(std::string_view(text).substr(2), true);
+  if (text.rfind("\xFE\xFF", 0) == 0) return utf16_to_utf8(std::string_view(text).substr(2), false);
+  if (text.rfind("\xEF\xBB\xBF", 0) == 0) text.erase(0, 3);
+  return text;
+}
+
+char detect_delimiter(std::string_view names_row) {
+  std::array<std::size_t, 3> counts{};  // tab, ';', ','
+  bool quoted = false;
+  for (char c : names_row) {
+    if (c == '"') quoted = !quoted;
+    if (quoted) continue;
+    if (c == '\t') ++counts[0];
+    else if (c == ';') ++counts[1];
+    else if (c == ',') ++counts[2];
+  }
+  constexpr std::array<char, 3> delimiters{'\t', ';', ','};
+  std::size_t best = 2;
+  for (std::size_t i = 0; i < 3; ++i)
+    if (counts[i] > counts[best] || (counts[i] == counts[best] && counts[i] > 0 && i < best)) best = i;
+  return delimiters[best];
+}
+
+std::vector<Cell> split_cells(std::string_view line, char delimiter) {
+  std::vector<Cell> cells;
+  std::size_t start = 0;
+  while (true) {
+    std::size_t i = start;
+    while (i < line.size() && (line[i] == ' ' || (line[i] == '\t' && delimiter != '\t'))) ++i;
+    std::string text;
+    std::size_t end = i;
+    if (i < line.size() && line[i] == '"') {  // a quoted cell: delimiters inside are text
+      std::size_t j = i + 1;
+      while (j < line.size()) {
+        if (line[j] == '"' && j + 1 < line.size() && line[j + 1] == '"') {
+          text += '"';
+          j += 2;
+        } else if (line[j] == '"') {
+          ++j;
+          break;
+        } else {
+          text += line[j++];
+        }
+      }
+      end = line.find(delimiter, j);
+      if (end == std::string_view::npos) end = line.size();
+    } else {
+      end = line.find(delimiter, start);
+      if (end == std::string_view::npos) end = line.size();
+      text = std::string(trim(line.substr(start, end - start)));
+    }
+    cells.push_back({text, static_cast<int>(start) + 1});
+    if (end >= line.size()) break;
+    start = end + 1;
+  }
+  return cells;
+}
+
+TableLayout find_layout(const std::string& path, std::string_view text, const std::string& step) {
+  const std::vector<Line> lines = lines_of(text);
+  for (const auto& line : lines)
+    if (lower(trim(text.substr(line.begin, line.end - line.begin))) == "[step]") return trios_layout(path, text, lines, step);
+  if (!step.empty())
+    fail(path, 1, 1,
+         fmt::format("step = \"{}\" picks a step of a TRIOS export, but this file has no [step] sections; remove step from the data line",
+                     lang::printable(step)));
+  TableLayout layout;
+  layout.end = text.size();
+  for (const auto& line : lines) {
+    const std::string_view content = trim(text.substr(line.begin, line.end - line.begin));
+    if (content.empty() || content.front() == '#') continue;
+    layout.delimiter = detect_delimiter(content);
+    break;
+  }
+  layout.decimal_comma = layout.delimiter != ',';
+  return layout;
+}
+
+}  // namespace rheo::runtime
