@@ -69,7 +69,14 @@ const std::vector<ProtocolSpec>& schema() {
       {ProtocolKind::quasistatic,
        "quasistatic",
        {frequency(Shape::single), amplitude(Shape::list), whole("cycles", 1, max_cycles), steps_per_cycle, elements, format, solver}},
-      {ProtocolKind::history, "history", {{"file", Shape::string, dim::none, true}, whole("substeps", 1, max_substeps), elements, format, solver}},
+      {ProtocolKind::history,
+       "history",
+       {{"file", Shape::string, dim::none, true},
+        whole("substeps", 1, max_substeps),
+        {"start", Shape::identifier, dim::none, false, false, 0, 0, history_start_words()},
+        elements,
+        format,
+        solver}},
       {ProtocolKind::step,
        "step",
        {amplitude(Shape::single, false),
@@ -220,6 +227,7 @@ ProtocolSettings decode_protocol_settings(ProtocolKind kind, const std::vector<S
       w.get_common(h);
       if (const Setting* file = w.find("file")) h.file = file->text, h.file_where = file->where;
       w.get("substeps", h.substeps);
+      w.get("start", h.start, history_start_named);
       return h;
     }
     case ProtocolKind::step: {

@@ -18,6 +18,7 @@ constexpr Words<SteadyState, 3> steady_states{
     {{SteadyState::automatic, "auto"}, {SteadyState::closed_form, "closed_form"}, {SteadyState::time_stepping, "time_stepping"}}};
 constexpr Words<SolverChoice, 3> solvers{{{SolverChoice::automatic, "auto"}, {SolverChoice::fixed, "fixed"}, {SolverChoice::sundials, "sundials"}}};
 constexpr Words<OutputFormat, 2> formats{{{OutputFormat::csv, "csv"}, {OutputFormat::json, "json"}}};
+constexpr Words<HistoryStart, 2> starts{{{HistoryStart::relaxed, "relaxed"}, {HistoryStart::rest, "rest"}}};
 constexpr Words<FitObjective, 2> objectives{{{FitObjective::phi, "phi"}, {FitObjective::least_squares, "least_squares"}}};
 constexpr Words<FitMethod, 3> methods{{{FitMethod::exact, "exact"}, {FitMethod::approximate, "approximate"}, {FitMethod::corrected, "corrected"}}};
 constexpr Words<Optimizer, 8> optimizers{{{Optimizer::automatic, "default"},
@@ -56,16 +57,19 @@ std::vector<std::string> harmonic_definition_words() { return all_words(definiti
 std::vector<std::string> steady_state_words() { return all_words(steady_states); }
 std::vector<std::string> solver_choice_words() { return all_words(solvers); }
 std::vector<std::string> output_format_words() { return all_words(formats); }
+std::vector<std::string> history_start_words() { return all_words(starts); }
 
 std::string_view word_of(HarmonicDefinition value) { return word_in(definitions, value); }
 std::string_view word_of(SteadyState value) { return word_in(steady_states, value); }
 std::string_view word_of(SolverChoice value) { return word_in(solvers, value); }
 std::string_view word_of(OutputFormat value) { return word_in(formats, value); }
+std::string_view word_of(HistoryStart value) { return word_in(starts, value); }
 
 std::optional<HarmonicDefinition> harmonic_definition_named(std::string_view word) { return named_in(definitions, word); }
 std::optional<SteadyState> steady_state_named(std::string_view word) { return named_in(steady_states, word); }
 std::optional<SolverChoice> solver_choice_named(std::string_view word) { return named_in(solvers, word); }
 std::optional<OutputFormat> output_format_named(std::string_view word) { return named_in(formats, word); }
+std::optional<HistoryStart> history_start_named(std::string_view word) { return named_in(starts, word); }
 
 std::string_view word_of(FitObjective value) { return word_in(objectives, value); }
 std::string_view word_of(FitMethod value) { return word_in(methods, value); }

@@ -22,21 +22,25 @@ enum class HarmonicDefinition { thesis, first_harmonic };          // `definitio
 enum class SteadyState { automatic, closed_form, time_stepping };  // `steady_state`
 enum class SolverChoice { automatic, fixed, sundials };            // `solver` (runtime/protocols/solver_choice.hpp)
 enum class OutputFormat { csv, json };                             // `format`
+enum class HistoryStart { relaxed, rest };                         // `start` of a history (runtime/stepping/relaxed_state.hpp)
 
 std::string_view word_of(HarmonicDefinition value);
 std::string_view word_of(SteadyState value);
 std::string_view word_of(SolverChoice value);
 std::string_view word_of(OutputFormat value);
+std::string_view word_of(HistoryStart value);
 // Every word of a vocabulary, in table order (schemas and command-line choices).
 std::vector<std::string> harmonic_definition_words();
 std::vector<std::string> steady_state_words();
 std::vector<std::string> solver_choice_words();
 std::vector<std::string> output_format_words();
+std::vector<std::string> history_start_words();
 // The value a word names; nullopt when it names none.
 std::optional<HarmonicDefinition> harmonic_definition_named(std::string_view word);
 std::optional<SteadyState> steady_state_named(std::string_view word);
 std::optional<SolverChoice> solver_choice_named(std::string_view word);
 std::optional<OutputFormat> output_format_named(std::string_view word);
+std::optional<HistoryStart> history_start_named(std::string_view word);
 
 // Settings every protocol accepts.
 struct CommonSettings {
@@ -81,6 +85,9 @@ struct HistorySettings : CommonSettings {
   std::string file;           // as written: relative to the .rheo file (required)
   SourceLocation file_where;  // of the file name, for the reader's errors
   int substeps = 1;           // each sample interval cut into this many linear parts
+  // relaxed: the network starts relaxed at the first sample's displacement; rest: from rest,
+  // which needs displacement 0 in the first row.
+  HistoryStart start = HistoryStart::relaxed;
 };
 
 // `step`: a ramp to `amplitude` over `rise`, then held (relaxation).

@@ -1,6 +1,7 @@
 // Displacement drives of the time-domain protocols (thesis section 4.3) and the histories
 // simulated from them (protocols/run_history.hpp). A drive is a sequence of samples (t_k, u_k),
-// linear between samples, starting from rest at t = 0, u = 0.
+// linear between samples, from t = 0; the network starts relaxed at u_0 (at rest where u_0 = 0,
+// as for every drive made here).
 #pragma once
 
 
@@ -11,7 +12,7 @@ namespace rheo::runtime {
 
 struct Drive {
   std::vector<double> time;          // s, strictly increasing, time[0] = 0
-  std::vector<double> displacement;  // mm, displacement[0] = 0 (from rest)
+  std::vector<double> displacement;  // mm; displacement[0]: where the network starts relaxed
 };
 
 // Triangle 0 -> +A -> 0 -> -A -> 0 at constant velocity v [mm/s], `cycles` per amplitude, the

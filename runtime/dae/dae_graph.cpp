@@ -5,6 +5,8 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <cmath>
+#include <limits>
 #include <stdexcept>
 
 namespace rheo::runtime {
@@ -132,6 +134,42 @@ DaeGraph DaeGraph::build(const Network& network) {
                         "position is undetermined while they slip; merge the sliders or put a spring between them",
                         error_at(edge.where), edge.path, graph.model));
   return graph;
+}
+
+std::vector<double> positions_at_rest(const DaeGraph& graph, double u0, const std::vector<double>& force, const std::vector<double>& elongation) {
+  if (force.size() != graph.probes.size() || elongation.size() != graph.probes.size())
+    throw std::logic_error("positions_at_rest: one force and elongation per element");
+  const double unknown = std::numeric_limits<double>::quiet_NaN();
+  std::vector<double> edge_elongation(graph.edges.size(), unknown);
+  for (std::size_t i = 0; i < graph.probes.size(); ++i) {
+    const EdgeProbe& probe = graph.probes[i];
+    const auto first = static_cast<std::size_t>(probe.edges.front());
+    if (probe.edges.size() == 1) {
+      edge_elongation[first] = elongation[i];
+      continue;
+    }
+    const double spring = probe.force_edges.size() == 1 ? force[i] / graph.edges[first].p[0] : 0.0;
+    edge_elongation[first] = spring;
+    edge_elongation[static_cast<std::size_t>(probe.edges[1])] = elongation[i] - spring;
+    for (std::size_t j = 1; j < probe.force_edges.size(); ++j) edge_elongation[static_cast<std::size_t>(probe.force_edges[j])] = 0.0;
+  }
+  // Walk the edges from the terminal and ground: e = x_a - x_b fixes one end from the other.
+  std::vector<double> x(static_cast<std::size_t>(graph.internal_nodes), unknown);
+  auto position = [&](int node) { return node == kTerminal ? u0 : node == kGround ? 0.0 : x[static_cast<std::size_t>(node)]; };
+  for (bool changed = true; changed;) {
+    changed = false;
+    for (std::size_t k = 0; k < graph.edges.size(); ++k) {
+      const Edge& edge = graph.edges[k];
+      const double e = edge_elongation[k], xa = position(edge.a), xb = position(edge.b);
+      if (std::isnan(e) || std::isnan(xa) == std::isnan(xb)) continue;
+      if (std::isnan(xa)) x[static_cast<std::size_t>(edge.a)] = xb + e;
+      else x[static_cast<std::size_t>(edge.b)] = xa - e;
+      changed = true;
+    }
+  }
+  if (std::any_of(x.begin(), x.end(), [](double v) { return std::isnan(v); }))
+    throw std::logic_error("positions_at_rest: a node no element's elongation reaches");
+  return x;
 }
 
 }  // namespace rheo::runtime

@@ -67,4 +67,10 @@ struct DaeGraph {
   static DaeGraph build(const Network& network);
 };
 
+// Internal node positions [mm] of a configuration at rest with the terminal at u0 [mm], from
+// the force [N] and elongation [mm] of every element the user wrote (probes order): the spring
+// of a Maxwell or friction element carries its force (e = F/k), its dashpot or slider the rest
+// of its elongation; a springpot's modes carry none (relaxed), their dashpots its elongation.
+std::vector<double> positions_at_rest(const DaeGraph& graph, double u0, const std::vector<double>& force, const std::vector<double>& elongation);
+
 }  // namespace rheo::runtime

@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <stdexcept>
 #include <utility>
 
 namespace rheo::runtime {
@@ -267,7 +268,7 @@ void DaeIntegrator::roots(double t, const double* y, const double* yp, double* g
   }
 }
 
-void DaeIntegrator::start(const DriveSignal& drive) {
+void DaeIntegrator::start(const DriveSignal& drive, const std::vector<double>* positions) {
   drive_ = drive;
   segment_ = 0;
   time_ = drive.kind == DriveSignal::Kind::samples ? drive.samples->time.front() : 0.0;
@@ -277,6 +278,22 @@ void DaeIntegrator::start(const DriveSignal& drive) {
   held_.assign(static_cast<std::size_t>(layout_.switch_forces), 0.0);
   std::fill(y_.begin(), y_.end(), 0.0);
   std::fill(yp_.begin(), yp_.end(), 0.0);
+  if (positions) {
+    if (positions->size() != static_cast<std::size_t>(layout_.positions))
+      throw std::logic_error("DaeIntegrator::start: one position per internal node");
+    std::copy(positions->begin(), positions->end(), y_.begin());
+    const DriveState at_start = drive_at(time_);
+    for (int l = 0; l < layout_.switch_forces; ++l) {
+      const Edge& edge = switch_edge(l);
+      const double e = elongation(y_.data(), at_start, edge);
+      if (edge.kind == EdgeKind::slider) {
+        at(held_, l) = e;
+      } else if (std::abs(e) >= edge.p[0] * (1.0 - 1e-12)) {  // a gap on its stop
+        at(modes_, l) = e > 0.0 ? 1 : -1;
+        at(held_, l) = at(modes_, l) * edge.p[0];
+      }
+    }
+  }
   kinematics_ = ModeKinematics::make(graph_, modes_);
   restart(time_, true);
 }

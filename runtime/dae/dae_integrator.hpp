@@ -78,8 +78,10 @@ class DaeIntegrator {
   DaeIntegrator(const DaeIntegrator&) = delete;
   DaeIntegrator& operator=(const DaeIntegrator&) = delete;
 
-  // Starts from rest (every position, force and rate zero) at t = 0 under `drive`.
-  void start(const DriveSignal& drive);
+  // Starts at the drive's first time under `drive`: from rest (every position, force and rate
+  // zero), or with POSITIONS (one per internal node, mm) from that configuration at rest (rates
+  // zero): sliders stuck where they are, gaps closed where an elongation is at a stop.
+  void start(const DriveSignal& drive, const std::vector<double>* positions = nullptr);
   // Integrates to time t [s] (> the current time); returns the terminal force [N] at t.
   double advance(double t);
 

@@ -150,7 +150,7 @@ HarmonicPoint harmonic_point(const Network& network, double amplitude, double fr
   return point;
 }
 
-History history(const Network& network, const Drive& drive, bool elements, DaeStatistics* statistics) {
+History history(const Network& network, const Drive& drive, bool elements, DaeStatistics* statistics, const StartAtRest* start) {
   const DaeGraph graph = DaeGraph::build(network);
   double length = 0.0;
   for (double u : drive.displacement) length = std::max(length, std::abs(u));
@@ -163,7 +163,12 @@ History history(const Network& network, const Drive& drive, bool elements, DaeSt
   dae.force_scale = dae_force_scale(network, length, dae.velocity_scale);
   dae.newton_tolerance = dae_newton_tolerance(graph, length, dae.force_scale);
   DaeIntegrator integrator(graph, dae);
-  integrator.start({DriveSignal::Kind::samples, 0.0, 0.0, &drive});
+  if (start) {
+    const std::vector<double> positions = positions_at_rest(graph, drive.displacement.front(), start->element_force, start->element_elongation);
+    integrator.start({DriveSignal::Kind::samples, 0.0, 0.0, &drive}, &positions);
+  } else {
+    integrator.start({DriveSignal::Kind::samples, 0.0, 0.0, &drive});
+  }
 
   History h;
   const std::size_t n = drive.time.size();
@@ -174,6 +179,13 @@ History history(const Network& network, const Drive& drive, bool elements, DaeSt
     for (const auto& probe : graph.probes) h.element_paths.push_back(probe.path);
     h.element_force.assign(graph.probes.size(), std::vector<double>(n, 0.0));
     h.element_elongation.assign(graph.probes.size(), std::vector<double>(n, 0.0));
+  }
+  if (start) {
+    h.force[0] = start->force;
+    for (std::size_t i = 0; elements && i < graph.probes.size(); ++i) {
+      h.element_force[i][0] = start->element_force[i];
+      h.element_elongation[i][0] = start->element_elongation[i];
+    }
   }
   std::vector<double> f, e;
   for (std::size_t k = 1; k < n; ++k) {
@@ -197,8 +209,8 @@ HarmonicPoint dae_harmonic_point(const Network& network, double amplitude, doubl
   return with_softening_hint(network, [&] { return harmonic_point(network, amplitude, frequency, options, statistics); });
 }
 
-History dae_history(const Network& network, const Drive& drive, bool elements, DaeStatistics* statistics) {
-  return with_softening_hint(network, [&] { return history(network, drive, elements, statistics); });
+History dae_history(const Network& network, const Drive& drive, bool elements, DaeStatistics* statistics, const StartAtRest* start) {
+  return with_softening_hint(network, [&] { return history(network, drive, elements, statistics, start); });
 }
 
 }  // namespace rheo::runtime

@@ -20,7 +20,17 @@ inline constexpr double kDaeRelativeTolerance = 1e-8;
 HarmonicPoint dae_harmonic_point(const Network& network, double amplitude, double frequency, const HarmonicOptions& options,
                                  DaeStatistics* statistics = nullptr);
 
-History dae_history(const Network& network, const Drive& drive, bool elements, DaeStatistics* statistics = nullptr);
+// A history's start away from rest: the terminal force [N] and the force [N] and elongation [mm]
+// of every element the user wrote (Topology::probes order) at the first sample, rates zero
+// (the relaxed start: stepping/relaxed_state.hpp).
+struct StartAtRest {
+  double force = 0.0;
+  std::vector<double> element_force, element_elongation;
+};
+
+// From rest, or from START where given.
+History dae_history(const Network& network, const Drive& drive, bool elements, DaeStatistics* statistics = nullptr,
+                    const StartAtRest* start = nullptr);
 
 // A force scale [N] for a length scale [mm] and a rate scale [mm/s]: what the network carries,
 // to set IDA's absolute force tolerance. Members in parallel add; a series chain carries what

@@ -1,5 +1,5 @@
 // Measurements a fit is scored against, one per file: a harmonic table (harmonic_data.hpp) or a
-// time history (`time`, `displacement`, `force` columns, from rest at t = 0, as in the static
+// time history (`time`, `displacement`, `force` columns, the network relaxed at the first sample, as in the static
 // and quasi-static tests of thesis section 4.3). The kind is read from the header; a file that
 // is neither is a DataError listing the columns each kind needs.
 #pragma once
@@ -16,7 +16,7 @@ namespace rheo::runtime {
 
 struct HistoryData {
   std::string path;
-  Drive drive;                // the measured displacement, from rest
+  Drive drive;                // the measured displacement; the network starts relaxed at its first sample
   std::vector<double> force;  // measured force at each drive sample [N]
   std::vector<int> rows;      // 1-based file line of each sample
   double force_scale = 1.0;   // max |F| [N]: residuals are relative to it

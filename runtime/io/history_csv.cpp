@@ -260,19 +260,21 @@ Table parse_table(const std::string& path, const std::string& raw, const std::st
   return table;
 }
 
-Drive drive_from_table(const Table& table) { return drive_from_table(table, ColumnReading{}); }
+Drive drive_from_table(const Table& table, bool from_rest) { return drive_from_table(table, ColumnReading{}, from_rest); }
 
-Drive drive_from_table(const Table& table, const ColumnReading& reading) {
+Drive drive_from_table(const Table& table, const ColumnReading& reading, bool from_rest) {
   const int t = find_role(table, Role::time, reading), u = find_role(table, Role::displacement, reading);
   if (t < 0 || u < 0)
     throw DataError(fmt::format("{}a displacement history needs columns 'time [s]' and 'displacement [mm]' (any time and length units); {}",
                                 header_error(table), header_columns(table)));
   const std::vector<double> time = role_values(table, t, Role::time, reading);
   const std::vector<double> disp = role_values(table, u, Role::displacement, reading);
-  if (time.size() < 2) fail(table.path, table.rows[0], 1, "a history needs at least two rows (a start from rest and where it goes); add rows");
-  if (std::abs(disp[0]) > 1e-9)
+  if (time.size() < 2) fail(table.path, table.rows[0], 1, "a history needs at least two rows (where it starts and where it goes); add rows");
+  if (from_rest && std::abs(disp[0]) > 1e-9)
     fail(table.path, table.rows[0], table.cell_column(0, u),
-         fmt::format("the history must start from rest (displacement 0 in its first row, found {} mm); add a first row with displacement 0", disp[0]));
+         fmt::format("with start = rest the history must start from rest (displacement 0 in its first row, found {} mm); add a first row "
+                     "with displacement 0, or start relaxed at the first displacement (start = relaxed, the default)",
+                     disp[0]));
   Drive d;
   for (std::size_t i = 0; i < time.size(); ++i) {
     if (i > 0 && !(time[i] > time[i - 1]))

@@ -58,11 +58,12 @@ Table read_table(const std::string& path, const lang::SourceLocation* named_at =
 Table parse_table(const std::string& path, const std::string& text, const std::string& step = "");
 
 // A displacement history from a table with "time" and "displacement" columns: strictly
-// increasing time, starting from rest (displacement 0 at the first row). Time is shifted so
-// that the drive starts at t = 0.
+// increasing time; its first displacement is where the network starts relaxed
+// (stepping/relaxed_state.hpp), or, with FROM_REST, must be 0 (within 1e-9 mm). Time is shifted
+// so that the drive starts at t = 0.
 // READING names the columns (column_roles.hpp).
 struct ColumnReading;
-Drive drive_from_table(const Table& table);
-Drive drive_from_table(const Table& table, const ColumnReading& reading);
+Drive drive_from_table(const Table& table, bool from_rest = false);
+Drive drive_from_table(const Table& table, const ColumnReading& reading, bool from_rest = false);
 
 }  // namespace rheo::runtime

@@ -1,6 +1,7 @@
 #include "runtime/protocols/run_history.hpp"
 
 #include "runtime/dae/dae_protocols.hpp"
+#include "runtime/stepping/relaxed_state.hpp"
 #include "runtime/stepping/simulator.hpp"
 
 #include <cmath>
@@ -8,8 +9,25 @@
 
 namespace rheo::runtime {
 
+namespace {
+
+// The relaxed start's terminal force and element forces and elongations (rates zero).
+StartAtRest relaxed_start(const Network& network, const State& relaxed) {
+  StartAtRest start;
+  start.force = relaxed.force;
+  Simulator(network).element_outputs(StepPlan::make(network, 1.0), relaxed, relaxed, start.element_force, start.element_elongation);
+  return start;
+}
+
+}  // namespace
+
 History run_history(const Network& network, const Drive& drive, bool elements, SolverChoice solver) {
-  if (uses_sundials(network, solver)) return dae_history(network, drive, elements);
+  const double u0 = drive.displacement.front();
+  if (uses_sundials(network, solver)) {
+    if (u0 == 0.0) return dae_history(network, drive, elements);
+    const StartAtRest start = relaxed_start(network, relaxed_state(network, u0));
+    return dae_history(network, drive, elements, nullptr, &start);
+  }
   const Simulator simulator(network);
   History h;
   const std::size_t n = drive.time.size();
@@ -22,7 +40,15 @@ History run_history(const Network& network, const Drive& drive, bool elements, S
     h.element_force.assign(probes.size(), std::vector<double>(n, 0.0));
     h.element_elongation.assign(probes.size(), std::vector<double>(n, 0.0));
   }
-  State state = simulator.rest_state(), next = state;
+  State state = relaxed_state(network, u0), next = state;
+  h.force[0] = state.force;
+  if (elements && u0 != 0.0) {
+    const StartAtRest start = relaxed_start(network, state);
+    for (std::size_t i = 0; i < probes.size(); ++i) {
+      h.element_force[i][0] = start.element_force[i];
+      h.element_elongation[i][0] = start.element_elongation[i];
+    }
+  }
   StepPlan plan;
   std::vector<double> f, e;
   for (std::size_t k = 1; k < n; ++k) {

@@ -8,7 +8,8 @@
 
 namespace rheo::runtime {
 
-// Simulates the drive from rest; sample 0 is the rest state. With `elements`, records every
+// Simulates the drive from the relaxed state at its first displacement (stepping/relaxed_state.hpp;
+// from 0 that is the rest state); sample 0 is that state. With `elements`, records every
 // element's force and elongation.
 History run_history(const Network& network, const Drive& drive, bool elements, SolverChoice solver = SolverChoice::automatic);
 

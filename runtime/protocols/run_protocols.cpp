@@ -174,7 +174,7 @@ ProtocolResult run(RunContext& c, const lang::QuasistaticSettings& s) {
 ProtocolResult run(RunContext& c, const lang::HistorySettings& s) {
   std::filesystem::path file = s.file;
   if (file.is_relative()) file = std::filesystem::path(c.source_file).parent_path() / file;
-  const Drive measured = drive_from_table(read_table(file.string(), &s.file_where));
+  const Drive measured = drive_from_table(read_table(file.string(), &s.file_where), s.start == lang::HistoryStart::rest);
   require_within((static_cast<double>(measured.time.size()) - 1.0) * s.substeps + 1.0, lang::max_drive_samples, c.protocol,
                  "samples (rows x substeps)", "lower substeps or split the file");
   return history_run(c, s, refine(measured, s.substeps), fmt::format("history file={}", file.string()));

@@ -134,6 +134,20 @@ TEST_CASE("data errors exit 4 and leave no output") {
   CHECK(line == "earlier result");
 }
 
+TEST_CASE("a history from a preloaded displacement starts relaxed there; start = rest refuses it at the cell") {
+  const auto history = write("preloaded.csv", "time [s],displacement [mm]\n0,2\n0.5,2.5\n");
+  const auto model = write("preloaded.rheo", fmt::format("model m {{ spring s (k = 5 N/mm)\n friction f (k = 10 N/mm, fy = 1 N) }}\n"
+                                                         "simulate {{ history file = \"{}\" }}\n",
+                                                         history.string()));
+  const Result relaxed = run("simulate " + model.string() + " -o -");
+  CHECK(relaxed.code == 0);
+  CHECK(relaxed.output.find("\n0,2,10\n") != std::string::npos);        // the spring's 5 N/mm x 2 mm; the friction element slid to 0
+  CHECK(relaxed.output.find("\n0.5,2.5,13.5\n") != std::string::npos);  // 12.5 N + the friction element's fy
+  const Result rest = run("simulate " + model.string() + " -o - --set 'start = rest'");
+  CHECK(rest.code == 4);
+  CHECK(rest.output.find("preloaded.csv:2:3: error: with start = rest the history must start from rest") != std::string::npos);
+}
+
 TEST_CASE("simulate --threads gives the same file as one thread; a negative count is a usage error") {
   const std::string base = fmt::format("simulate {}/hydromount.rheo -o - --set 'steps_per_cycle = 256' --protocol harmonic", RHEO_EXAMPLES_DIR);
   const Result one = run(base);

@@ -60,10 +60,17 @@ TEST_CASE("a column is checked when a reader uses it: its unit, its kind and eve
             .find("h.csv:1:28: error: column 'displacement' appears twice in the header (columns 2 and 3)") == 0);
 }
 
-TEST_CASE("a drive needs time and displacement, increasing time, and a start from rest") {
+TEST_CASE("a drive needs time and displacement and increasing time; it starts where its first row is, or from rest where asked") {
   CHECK(drive_error("time [s],force [N]\n0,0\n1,1\n").find("needs columns 'time [s]' and 'displacement [mm]'") != std::string::npos);
   CHECK(drive_error("time [s],displacement [mm]\n0,0\n1,1\n1,2\n").find("h.csv:4:1: error: time must increase strictly") == 0);
-  CHECK(drive_error("time [s],displacement [mm]\n0,0.5\n1,1\n").find("must start from rest") != std::string::npos);
+  const Table moving = parse_table("h.csv", "time [s],displacement [mm]\n0,0.5\n1,1\n");
+  CHECK(drive_from_table(moving).displacement.front() == 0.5);  // the relaxed start
+  try {
+    drive_from_table(moving, true);
+    FAIL("start = rest accepted a history from 0.5 mm");
+  } catch (const rheo::runtime::DataError& e) {
+    CHECK(std::string(e.what()).find("h.csv:2:3: error: with start = rest the history must start from rest") == 0);
+  }
   const Drive d = drive_from_table(parse_table("h.csv", "time [s],displacement [mm]\n2,0\n3,1\n"));
   CHECK(d.time[0] == 0.0);
   CHECK(d.time[1] == 1.0);

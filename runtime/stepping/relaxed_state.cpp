@@ -1,0 +1,207 @@
+#include "runtime/stepping/relaxed_state.hpp"
+
+#include "runtime/core/errors.hpp"
+#include "runtime/network/monotone_solve.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+
+namespace rheo::runtime {
+namespace {
+
+constexpr double kInf = std::numeric_limits<double>::infinity();
+constexpr double kRelTol = 1e-13;
+
+struct Play {
+  double lo, hi;  // mm: the elongations at which a node carries no force
+  bool contains(double e) const { return e >= lo && e <= hi; }
+};
+
+bool is_free(NodeKind kind) {
+  switch (kind) {
+    case NodeKind::dashpot:
+    case NodeKind::quadratic_dashpot:
+    case NodeKind::maxwell:
+    case NodeKind::inerter:
+    case NodeKind::friction:
+    case NodeKind::slider:
+    case NodeKind::bouc_wen: return true;
+    default: return false;
+  }
+}
+
+class Relaxer {
+ public:
+  explicit Relaxer(const Network& network) : t_(network.topology()), network_(network) {}
+
+  Play play(int node) const {
+    const TreeNode& n = at(node);
+    if (is_free(n.kind)) return {-kInf, kInf};
+    switch (n.kind) {
+      case NodeKind::gap: return {-0.5 * p(n, 0), 0.5 * p(n, 0)};
+      case NodeKind::parallel: {
+        Play out{-kInf, kInf};
+        for (int i = 0; i < n.child_count; ++i) {
+          const Play c = play(child(n, i));
+          out = {std::max(out.lo, c.lo), std::min(out.hi, c.hi)};
+        }
+        return out;
+      }
+      case NodeKind::series: {
+        Play out{0.0, 0.0};
+        for (int i = 0; i < n.child_count; ++i) {
+          const Play c = play(child(n, i));
+          out = {out.lo + c.lo, out.hi + c.hi};
+        }
+        return out;
+      }
+      default: return {0.0, 0.0};  // spring, yeoh
+    }
+  }
+
+  // Relaxed force [N] of NODE at elongation e [mm], and dF/de [N/mm].
+  ForceSlope force(int node, double e) const {
+    const TreeNode& n = at(node);
+    if (is_free(n.kind)) return {0.0, 0.0};
+    switch (n.kind) {
+      case NodeKind::spring: return {p(n, 0) * e, p(n, 0)};
+      case NodeKind::yeoh: {
+        const YeohLaw law = yeoh(n);
+        return {law.force(e), law.slope(e)};
+      }
+      case NodeKind::parallel: {
+        ForceSlope sum{0.0, 0.0};
+        for (int i = 0; i < n.child_count; ++i) {
+          const ForceSlope c = force(child(n, i), e);
+          sum = {sum.force + c.force, sum.slope + c.slope};
+        }
+        return sum;
+      }
+      case NodeKind::series: return series_force(node, e);
+      default: throw std::logic_error("relaxed_state: a gap outside a series chain");
+    }
+  }
+
+  // Relaxed elongation [mm] of NODE at force F != 0 [N] (0 at F = 0), and de/dF [mm/N].
+  ForceSlope elongation(int node, double f) const {
+    const TreeNode& n = at(node);
+    if (f == 0.0 || is_free(n.kind)) return {0.0, 0.0};
+    switch (n.kind) {
+      case NodeKind::spring: return {f / p(n, 0), 1.0 / p(n, 0)};
+      case NodeKind::gap: return {std::copysign(0.5 * p(n, 0), f), 0.0};
+      case NodeKind::yeoh: return yeoh_elongation(node, f);
+      case NodeKind::series: {
+        ForceSlope sum{0.0, 0.0};
+        for (int i = 0; i < n.child_count; ++i) {
+          const ForceSlope c = elongation(child(n, i), f);
+          sum = {sum.force + c.force, sum.slope + c.slope};
+        }
+        return sum;
+      }
+      case NodeKind::parallel: {
+        const Play reach = play(node);
+        auto residual = [&](double e) {
+          const ForceSlope c = force(node, e);
+          return ForceSlope{c.force - f, c.slope};
+        };
+        const double from = f > 0.0 ? reach.hi : reach.lo;
+        const double e = solve_monotone(residual, from, 1.0, f > 0.0 ? from : -kInf, f > 0.0 ? kInf : from, kRelTol * std::abs(f));
+        const double slope = force(node, e).slope;
+        return {e, slope > 0.0 ? 1.0 / slope : 0.0};
+      }
+      default: return {0.0, 0.0};
+    }
+  }
+
+  // Writes (e, F) of NODE and of everything below it into VALUES.
+  void assign(int node, double e, double f, double* values) const {
+    const TreeNode& n = at(node);
+    values[n.state] = e;
+    values[n.state + 1] = f;
+    if (n.kind == NodeKind::parallel) {
+      for (int i = 0; i < n.child_count; ++i) assign(child(n, i), e, force(child(n, i), e).force, values);
+    } else if (n.kind == NodeKind::series) {
+      if (f != 0.0) {
+        for (int i = 0; i < n.child_count; ++i) assign(child(n, i), elongation(child(n, i), f).force, f, values);
+        return;
+      }
+      // No force: the first free member takes everything; else the members' play, in order.
+      int taker = -1;
+      for (int i = 0; i < n.child_count && taker < 0; ++i)
+        if (std::isinf(play(child(n, i)).hi)) taker = i;
+      double rest = e;
+      for (int i = 0; i < n.child_count; ++i) {
+        const Play c = play(child(n, i));
+        const double take = taker >= 0 ? (i == taker ? e : 0.0) : std::clamp(rest, c.lo, c.hi);
+        rest -= take;
+        assign(child(n, i), take, 0.0, values);
+      }
+    }
+  }
+
+ private:
+  const TreeNode& at(int node) const { return t_.nodes[static_cast<std::size_t>(node)]; }
+  int child(const TreeNode& n, int i) const { return t_.children[static_cast<std::size_t>(n.first_child + i)]; }
+  double p(const TreeNode& n, int i) const { return network_.parameter(n.param[i]); }
+  YeohLaw yeoh(const TreeNode& n) const { return {p(n, 0), p(n, 1), p(n, 2)}; }
+
+  ForceSlope series_force(int node, double e) const {
+    const Play reach = play(node);
+    if (reach.contains(e) && reach.lo < reach.hi) return {0.0, 0.0};
+    auto residual = [&](double f) {
+      const ForceSlope c = elongation(node, f);
+      return ForceSlope{c.force - e, c.slope};
+    };
+    const bool pulled = e > reach.hi;
+    const double f = solve_monotone(residual, 0.0, 1.0, pulled ? 0.0 : -kInf, pulled ? kInf : 0.0, kRelTol * (std::abs(e) + 1e-12));
+    const double compliance = elongation(node, f).slope;
+    return {f, compliance > 0.0 ? 1.0 / compliance : 0.0};
+  }
+
+  ForceSlope yeoh_elongation(int node, double f) const {
+    const TreeNode& n = at(node);
+    const YeohLaw law = yeoh(n);
+    const double soft = law.softening_elongation();
+    if (std::isfinite(soft) && !(std::abs(f) < std::abs(law.force(soft)))) {
+      std::string path = "a yeoh spring";
+      for (const auto& probe : t_.probes)
+        if (probe.source == ElementProbe::Source::tree_node && probe.index == node) path = "yeoh spring '" + probe.path + "'";
+      throw ModelError(fmt::format("the relaxed start needs {} of model '{}' to carry {:g} N, more than its softening law can; {}", path,
+                                   network_.model().name, f, YeohLaw::monotone_advice));
+    }
+    auto residual = [&](double e) { return ForceSlope{law.force(e) - f, law.slope(e)}; };
+    const double e = solve_monotone(residual, 0.0, f / law.slope(0.0), std::isfinite(soft) ? -soft : -kInf, std::isfinite(soft) ? soft : kInf,
+                                    kRelTol * std::abs(f));
+    return {e, 1.0 / law.slope(e)};
+  }
+
+  const Topology& t_;
+  const Network& network_;
+};
+
+}  // namespace
+
+State relaxed_state(const Network& network, double u0) {
+  const Simulator simulator(network);
+  State s = simulator.rest_state();
+  if (u0 == 0.0) return s;
+  const Topology& t = network.topology();
+  const Coefficients& c = network.coefficients();
+  double force = c.spring_k * u0;
+  for (std::size_t i = 0; i < c.yeoh_d10.size(); ++i) force += YeohLaw{c.yeoh_d10[i], c.yeoh_d20[i], c.yeoh_d30[i]}.force(u0);
+  const Relaxer relaxer(network);
+  for (int root : t.subtrees) {
+    const double f = relaxer.force(root, u0).force;
+    relaxer.assign(root, u0, f, s.values.data());
+    force += f;
+  }
+  s.u = u0;
+  s.force = force;
+  return s;
+}
+
+}  // namespace rheo::runtime
