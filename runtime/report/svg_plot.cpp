@@ -101,18 +101,23 @@ std::string series_svg(const Series& s, const Range& xr, const Range& yr) {
   return out + "</g>\n";
 }
 
+// An unlabelled tick (a decade between labelled ones) is a fainter grid line.
+const char* grid_style(const Tick& t) { return t.label.empty() ? " stroke=\"#eeeeee\"" : ""; }
+
 std::string axes_svg(const Plot& plot, const Range& xr, const Range& yr) {
   std::string out = "<g class=\"axes\" stroke=\"#d9d9d9\" stroke-width=\"1\">";
   std::string labels = "<g class=\"tick-labels\" fill=\"#222\">";
   for (const Tick& t : ticks_of(xr)) {
     const double x = kLeft + kPlotWidth * xr.fraction(t.value);
-    out += fmt::format("<line x1=\"{0}\" y1=\"{1}\" x2=\"{0}\" y2=\"{2}\"/>", coordinate(x), kTop, kTop + kPlotHeight);
-    labels += fmt::format("<text x=\"{}\" y=\"{}\" text-anchor=\"middle\">{}</text>", coordinate(x), kTop + kPlotHeight + 17, escape(t.label));
+    out += fmt::format("<line x1=\"{0}\" y1=\"{1}\" x2=\"{0}\" y2=\"{2}\"{3}/>", coordinate(x), kTop, kTop + kPlotHeight, grid_style(t));
+    if (!t.label.empty())
+      labels += fmt::format("<text x=\"{}\" y=\"{}\" text-anchor=\"middle\">{}</text>", coordinate(x), kTop + kPlotHeight + 17, escape(t.label));
   }
   for (const Tick& t : ticks_of(yr)) {
     const double y = kTop + kPlotHeight * (1.0 - yr.fraction(t.value));
-    out += fmt::format("<line x1=\"{0}\" y1=\"{1}\" x2=\"{2}\" y2=\"{1}\"/>", kLeft, coordinate(y), kLeft + kPlotWidth);
-    labels += fmt::format("<text x=\"{}\" y=\"{}\" text-anchor=\"end\">{}</text>", kLeft - 6, coordinate(y + 4), escape(t.label));
+    out += fmt::format("<line x1=\"{0}\" y1=\"{1}\" x2=\"{2}\" y2=\"{1}\"{3}/>", kLeft, coordinate(y), kLeft + kPlotWidth, grid_style(t));
+    if (!t.label.empty())
+      labels += fmt::format("<text x=\"{}\" y=\"{}\" text-anchor=\"end\">{}</text>", kLeft - 6, coordinate(y + 4), escape(t.label));
   }
   out += "</g>\n" + labels + "</g>\n";
   out += fmt::format("<rect x=\"{}\" y=\"{}\" width=\"{}\" height=\"{}\" fill=\"none\" stroke=\"#444\"/>\n", kLeft, kTop, kPlotWidth, kPlotHeight);
