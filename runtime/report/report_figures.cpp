@@ -56,10 +56,10 @@ Measure measure_of(const HarmonicComparison& g, std::string label, F of) {
 Plot curves(const HarmonicComparison& g, const std::string& id, const std::string& title, const Variable& along, const Variable& key,
             const Measure& y) {
   Plot plot{id, title, {along.label, scale_for(along.values)}, {y.label, Scale::linear}, {}};
-  std::vector<double> all_y = y.model;
-  all_y.insert(all_y.end(), y.measured.begin(), y.measured.end());
-  all_y.insert(all_y.end(), y.baseline.begin(), y.baseline.end());
-  if (y.log_allowed) plot.y.scale = scale_for(all_y);
+  // Measured values decide the scale when there are some: a model far off them does not.
+  std::vector<double> shown = y.measured;
+  if (shown.empty()) shown = y.model, shown.insert(shown.end(), y.baseline.begin(), y.baseline.end());
+  if (y.log_allowed) plot.y.scale = scale_for(shown);
   const std::vector<double> picked = curve_keys(key.values);
   for (std::size_t c = 0; c < picked.size(); ++c) {
     std::vector<std::size_t> members;
@@ -126,12 +126,11 @@ std::vector<Plot> harmonic_plots(const HarmonicComparison& g, const std::string&
   // Storage and loss over the first variable drawn; material data as moduli (N/mm^2 = MPa) over strain.
   const bool material = g.material();
   const double to_modulus = material ? *g.source.height / *g.source.area : 1.0;
-  Variable along = axes.over_frequency ? frequency : amplitude, key = axes.over_frequency ? amplitude : frequency;
-  Variable& strain = axes.over_frequency ? key : along;
-  if (material) {
-    strain.label = "strain [%]", strain.unit = "%";
-    for (double& v : strain.values) v *= 100.0 / *g.source.height;
-  }
+  Variable strain{"strain [%]", "%", g.amplitude};
+  for (double& v : strain.values) v *= 100.0 / g.source.height.value_or(1.0);
+  const Variable& swept = material ? strain : amplitude;
+  const Variable& along = axes.over_frequency ? frequency : swept;
+  const Variable& key = axes.over_frequency ? swept : frequency;
   const Measure storage = measure_of(g, material ? "storage modulus E' = K'h/A [MPa]" : "storage stiffness K' [N/mm]",
                                      [&](double k, double p) { return to_modulus * k * std::cos(p); });
   const Measure loss = measure_of(g, material ? "loss modulus E'' = K''h/A [MPa]" : "loss stiffness K'' [N/mm]",

@@ -6,8 +6,8 @@
 //   storage K' = K cos(phase) and loss K'' = K sin(phase) over the first variable drawn; for
 //   material data with its geometry (HarmonicComparison::material) as moduli E' = K'h/A,
 //   E'' = K''h/A in MPa, amplitudes as strain = amplitude / h in %. Measured as markers, model
-//   as lines; log axes where the values span a factor of 20 or more (svg_plot.hpp, scale_for),
-//   never for the phase. With measurements, residual maps of stiffness (K/K_exp - 1, %) and
+//   as lines; log axes where the values (the measured ones when there are some) span a factor
+//   of 20 or more (svg_plot.hpp, scale_for), never for the phase. With measurements, residual maps of stiffness (K/K_exp - 1, %) and
 //   phase (phase - phase_exp, deg).
 //   per history: the hysteresis loop, force over displacement (at most 400 measured markers
 //   and 4000 model points, evenly subsampled).

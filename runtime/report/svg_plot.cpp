@@ -33,6 +33,13 @@ Range range_of(const Plot& plot, bool x_axis) {
       if (usable(v, scale)) lo = std::min(lo, v), hi = std::max(hi, v);
   if (!std::isfinite(lo)) return {scale == Scale::log ? 1.0 : 0.0, scale == Scale::log ? 10.0 : 1.0, scale};
   if (scale == Scale::log) {
+    // Measured markers set the range; a line reaches a decade beyond them at most, and is clipped there.
+    double marker_lo = std::numeric_limits<double>::infinity(), marker_hi = -marker_lo;
+    for (const Series& s : plot.series)
+      if (s.style == SeriesStyle::markers)
+        for (const double v : x_axis ? s.x : s.y)
+          if (usable(v, scale)) marker_lo = std::min(marker_lo, v), marker_hi = std::max(marker_hi, v);
+    if (std::isfinite(marker_lo)) lo = std::max(lo, marker_lo / 10.0), hi = std::min(hi, marker_hi * 10.0);
     if (hi <= lo) return {lo / 2.0, hi * 2.0, scale};
     const double pad = std::pow(hi / lo, 0.04);
     return {lo / pad, hi * pad, scale};

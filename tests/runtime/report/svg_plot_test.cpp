@@ -139,3 +139,21 @@ TEST_CASE("report svg plot: 28 decades of frequency and 16 of stiffness, labels 
   // Every decade has a grid line, labelled or not.
   CHECK(count(svg, "stroke=\"#eeeeee\"") + x.size() + y.size() >= 29 + 15);
 }
+
+TEST_CASE("report svg plot: on a log axis the markers set the range; a line far below them is clipped a decade beyond") {
+  Plot plot{"clip", "Storage", {"strain [%]", Scale::log}, {"storage modulus [MPa]", Scale::log}, {}};
+  plot.series.push_back({"measured", "1 Hz", 0, SeriesStyle::markers, {0.01, 1, 100}, {0.02, 0.01, 0.001}});
+  plot.series.push_back({"model", "1 Hz", 0, SeriesStyle::line, {0.01, 1, 100}, {0.02, 0.01, 1e-18}});
+  const std::vector<Label> y = tick_labels(render_svg(plot, true), "end");
+  REQUIRE(!y.empty());
+  for (const Label& l : y) {
+    CAPTURE(l.text);
+    CHECK(std::stod(l.text) >= 1e-4);  // 0.001 / 10
+    CHECK(std::stod(l.text) <= 0.2);   // 0.02 x 10
+  }
+  // Without markers the line's own range is drawn.
+  plot.series.erase(plot.series.begin());
+  bool deep = false;
+  for (const Label& l : tick_labels(render_svg(plot, true), "end")) deep = deep || std::stod(l.text) < 1e-10;
+  CHECK(deep);
+}
