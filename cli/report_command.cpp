@@ -34,9 +34,9 @@ void add_data(report::ReportContent& content, const runtime::Network& network, c
   for (const runtime::FitDataSet& set : data) {
     const runtime::Prediction p = runtime::predict(network, set, runtime::FitMethod::exact, options, nullptr);
     if (set.is_harmonic()) {
-      content.harmonic.push_back(report::compare_harmonic(set.harmonic(), p.points));
+      content.harmonic.push_back(report::compare_harmonic(set.harmonic(), p.points, set.source));
       for (std::string& note : runtime::damping_left_out(set.harmonic())) content.notes.push_back(std::move(note));
-    } else content.histories.push_back(report::compare_history(set.history(), p.force));
+    } else content.histories.push_back(report::compare_history(set.history(), p.force, set.source));
   }
 }
 

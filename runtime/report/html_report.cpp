@@ -85,16 +85,43 @@ std::string parameter_table(const ReportContent& c) {
   return out + "</table>\n";
 }
 
+// How the file was read: its TRIOS step, and for material data the geometry that turned moduli
+// and strains into stiffness and displacement; empty for a plain table.
+std::string source_note(const DataSource& source) {
+  std::vector<std::string> parts;
+  if (!source.step.empty()) parts.push_back(fmt::format("TRIOS step \"{}\"", source.step));
+  if (source.material) {
+    std::string geometry;
+    if (source.area) geometry += fmt::format("area A = {:g} mm^2", *source.area);
+    if (source.height) geometry += fmt::format("{}height h = {:g} mm", geometry.empty() ? "" : ", ", *source.height);
+    std::string rules = source.area && source.height ? ": stiffness = modulus x A / h" : "";
+    if (source.height) rules += fmt::format("{}amplitude = strain x h", rules.empty() ? ": " : ", ");
+    parts.push_back(fmt::format("material data, specimen geometry {}{}", geometry, rules));
+  }
+  std::string out;
+  for (const std::string& part : parts) out += (out.empty() ? "" : "; ") + part;
+  return out;
+}
+
+std::string curve_caption(const HarmonicComparison& h, const std::string& kind) {
+  std::string out = h.measured() ? (h.has_baseline() ? "Markers: measured; lines: refined model; dashed: model before, at the measured points."
+                                                     : "Markers: measured; lines: model at the measured points.")
+                                 : "Model at the simulated grid points.";
+  if (!kind.starts_with("storage") && !kind.starts_with("loss")) return out;
+  if (!h.material()) return out + " K' = K cos(phase), K'' = K sin(phase).";
+  return out + fmt::format(" E' = K cos(phase) h/A, E'' = K sin(phase) h/A, strain = amplitude/h; A = {:g} mm^2, h = {:g} mm.", *h.source.area,
+                           *h.source.height);
+}
+
 std::string harmonic_section(const HarmonicComparison& h, std::size_t index) {
   const std::string prefix = fmt::format("h{}", index + 1);
-  std::string out = fmt::format("<h2 id=\"{}\">Harmonic: <code>{}</code></h2>\n<div class=\"figures\">\n", prefix, escape(h.label));
-  static const char* const kinds[] = {"stiffness-frequency", "phase-frequency", "stiffness-amplitude", "phase-amplitude"};
-  const std::vector<Plot> plots = harmonic_plots(h, prefix);
-  for (std::size_t k = 0; k < plots.size(); ++k)
-    out += figure_html(kinds[k], render_svg(plots[k], false),
-                       h.measured() ? (h.has_baseline() ? "Markers: measured; lines: refined model; dashed: model before, at the measured points."
-                                                        : "Markers: measured; lines: model at the measured points.")
-                                    : "Model at the simulated grid points.");
+  std::string out = fmt::format("<h2 id=\"{}\">Harmonic: <code>{}</code></h2>\n", prefix, escape(h.label));
+  if (const std::string note = source_note(h.source); !note.empty()) out += fmt::format("<p class=\"meta source\">{}</p>\n", escape(note));
+  out += "<div class=\"figures\">\n";
+  for (const Plot& plot : harmonic_plots(h, prefix)) {
+    const std::string kind = plot.id.substr(prefix.size() + 1);
+    out += figure_html(kind, render_svg(plot, false), curve_caption(h, kind));
+  }
   static const char* const map_kinds[] = {"residual-stiffness", "residual-phase", "residual-stiffness-before", "residual-phase-before"};
   const std::vector<ResidualMap> maps = residual_maps(h);
   for (std::size_t k = 0; k < maps.size(); ++k)
@@ -105,7 +132,9 @@ std::string harmonic_section(const HarmonicComparison& h, std::size_t index) {
 
 std::string history_section(const HistoryComparison& h, std::size_t index) {
   const std::string id = fmt::format("t{}", index + 1);
-  return fmt::format("<h2 id=\"{}\">History: <code>{}</code></h2>\n<div class=\"figures\">\n{}</div>\n", id, escape(h.label),
+  const std::string note = source_note(h.source);
+  return fmt::format("<h2 id=\"{}\">History: <code>{}</code></h2>\n{}<div class=\"figures\">\n{}</div>\n", id, escape(h.label),
+                     note.empty() ? "" : fmt::format("<p class=\"meta source\">{}</p>\n", escape(note)),
                      figure_html("hysteresis", render_svg(hysteresis_plot(h, id + "-hysteresis"), false),
                                  h.measured() ? (h.has_baseline() ? "Markers: measured; line: refined model; dashed: model before; "
                                                                     "both driven by the measured displacement."

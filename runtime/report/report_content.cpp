@@ -54,8 +54,8 @@ ReportContent report_from_fit(const FitResult& r, const std::vector<FitDataSet>&
     row.standard_error = standard_error_of(r, j, parameters[i], r.network.parameter(r.free[j]));
   }
   for (std::size_t k = 0; k < data.size() && k < r.datasets.size(); ++k) {
-    if (data[k].is_harmonic()) content.harmonic.push_back(compare_harmonic(data[k].harmonic(), r.datasets[k].prediction.points));
-    else content.histories.push_back(compare_history(data[k].history(), r.datasets[k].prediction.force));
+    if (data[k].is_harmonic()) content.harmonic.push_back(compare_harmonic(data[k].harmonic(), r.datasets[k].prediction.points, data[k].source));
+    else content.histories.push_back(compare_history(data[k].history(), r.datasets[k].prediction.force, data[k].source));
   }
   if (content.harmonic.size() > 1) content.notes.push_back(fmt::format("all harmonic data: phi (5.1) = {:.6g}, err (6.1) = {:.4e}", r.phi, r.err));
   content.notes.push_back(fmt::format("{} evaluations in {:.2f} s; {}", r.evaluations, r.wall_seconds,
@@ -64,8 +64,8 @@ ReportContent report_from_fit(const FitResult& r, const std::vector<FitDataSet>&
   return content;
 }
 
-HarmonicComparison compare_harmonic(const HarmonicData& data, const std::vector<HarmonicPoint>& model) {
-  HarmonicComparison h{data.path, data.amplitude, data.frequency, {}, {}, data.stiffness, data.phase, 0.0, 0.0, {}, {}, 0.0};
+HarmonicComparison compare_harmonic(const HarmonicData& data, const std::vector<HarmonicPoint>& model, const DataSource& source) {
+  HarmonicComparison h{data.path, data.amplitude, data.frequency, {}, {}, data.stiffness, data.phase, 0.0, 0.0, {}, {}, 0.0, source};
   for (const HarmonicPoint& p : model) {
     h.model_stiffness.push_back(p.measures.stiffness);
     h.model_phase.push_back(p.measures.phase);
@@ -76,8 +76,8 @@ HarmonicComparison compare_harmonic(const HarmonicData& data, const std::vector<
   return h;
 }
 
-HistoryComparison compare_history(const HistoryData& data, const std::vector<double>& model_force) {
-  HistoryComparison h{data.path, data.drive.displacement, model_force, data.force, 0.0, 0.0, {}, 0.0};
+HistoryComparison compare_history(const HistoryData& data, const std::vector<double>& model_force, const DataSource& source) {
+  HistoryComparison h{data.path, data.drive.displacement, model_force, data.force, 0.0, 0.0, {}, 0.0, source};
   double sum = 0.0;
   for (std::size_t j = 0; j < data.force.size() && j < model_force.size(); ++j) {
     const double r = (model_force[j] - data.force[j]) / data.force_scale;

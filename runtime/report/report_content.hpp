@@ -25,8 +25,12 @@ struct HarmonicComparison {
   // An earlier model at the same points (the model before a diagnosis added an element); empty: none.
   std::vector<double> baseline_stiffness, baseline_phase;
   double baseline_err = 0.0;
+  DataSource source{};  // how the file was read: its TRIOS step, the geometry of material data
   bool measured() const { return !measured_stiffness.empty(); }
   bool has_baseline() const { return !baseline_stiffness.empty(); }
+  // The specimen's geometry when the data are material data with both area and height:
+  // modulus [MPa] = stiffness [N/mm] x height / area, strain = amplitude / height.
+  bool material() const { return source.material && source.area.value_or(0.0) > 0.0 && source.height.value_or(0.0) > 0.0; }
 };
 
 // A time history: force over displacement, model and (when given) measured.
@@ -37,6 +41,7 @@ struct HistoryComparison {
   double rms = 0.0, worst = 0.0;       // (F - F_exp) / max|F_exp|: RMS and largest, when measured
   std::vector<double> baseline_force;  // an earlier model's force; empty: none
   double baseline_rms = 0.0;
+  DataSource source{};
   bool measured() const { return !measured_force.empty(); }
   bool has_baseline() const { return !baseline_force.empty(); }
 };
@@ -76,8 +81,9 @@ ReportContent report_for_model(const Network& network, const std::string& source
 // parameters with start values, standard errors and bounds.
 ReportContent report_from_fit(const FitResult& result, const std::vector<FitDataSet>& data, const FitDescription& description);
 
-HarmonicComparison compare_harmonic(const HarmonicData& data, const std::vector<HarmonicPoint>& model);
-HistoryComparison compare_history(const HistoryData& data, const std::vector<double>& model_force);
+// SOURCE: how DATA was read (FitDataSet::source), shown in the report.
+HarmonicComparison compare_harmonic(const HarmonicData& data, const std::vector<HarmonicPoint>& model, const DataSource& source = {});
+HistoryComparison compare_history(const HistoryData& data, const std::vector<double>& model_force, const DataSource& source = {});
 
 // Adds `earlier`'s predictions as the baseline of every data set of `content` (which must come
 // from report_from_fit on the same data, in order), described as `what`.

@@ -26,36 +26,60 @@ std::vector<double> curve_keys(std::vector<double> keys) {
   return picked;
 }
 
-// Stiffness or phase over frequency (a curve per amplitude) or over amplitude (a curve per frequency).
-Plot curves(const HarmonicComparison& g, const std::string& id, const std::string& title, bool along_frequency, bool stiffness) {
-  const std::vector<double>& along = along_frequency ? g.frequency : g.amplitude;
-  const std::vector<double>& keys = along_frequency ? g.amplitude : g.frequency;
-  const double scale = stiffness ? 1.0 : kDegree;
-  Plot plot{id,
-            title,
-            {along_frequency ? "frequency [Hz]" : "amplitude [mm]", scale_for(along)},
-            {stiffness ? "dynamic stiffness [N/mm]" : "phase [deg]", Scale::linear},
-            {}};
-  const std::vector<double> picked = curve_keys(keys);
+// A variable of the horizontal axis, or of the curves' keys: "frequency [Hz]", unit "Hz".
+struct Variable {
+  std::string label, unit;
+  std::vector<double> values;
+};
+
+// One measure at every point: measured (empty without), model, baseline (empty without).
+struct Measure {
+  std::string label;  // of the vertical axis, with its unit
+  std::vector<double> measured, model, baseline;
+  bool log_allowed = true;  // false for the phase, which can be <= 0
+};
+
+// MEASURE at every point from stiffness K [N/mm] and phase [rad].
+template <typename F>
+Measure measure_of(const HarmonicComparison& g, std::string label, F of) {
+  Measure m{std::move(label), {}, {}, {}, true};
+  const auto fill = [&](const std::vector<double>& k, const std::vector<double>& phase, std::vector<double>& out) {
+    for (std::size_t i = 0; i < k.size() && i < phase.size(); ++i) out.push_back(of(k[i], phase[i]));
+  };
+  fill(g.measured_stiffness, g.measured_phase, m.measured);
+  fill(g.model_stiffness, g.model_phase, m.model);
+  fill(g.baseline_stiffness, g.baseline_phase, m.baseline);
+  return m;
+}
+
+// MEASURE over ALONG, a curve per value of KEY (at most kMaxCurves, curve_keys).
+Plot curves(const HarmonicComparison& g, const std::string& id, const std::string& title, const Variable& along, const Variable& key,
+            const Measure& y) {
+  Plot plot{id, title, {along.label, scale_for(along.values)}, {y.label, Scale::linear}, {}};
+  // Measured values decide the scale when there are some: a model far off them does not.
+  std::vector<double> shown = y.measured;
+  if (shown.empty()) shown = y.model, shown.insert(shown.end(), y.baseline.begin(), y.baseline.end());
+  if (y.log_allowed) plot.y.scale = scale_for(shown);
+  const std::vector<double> picked = curve_keys(key.values);
   for (std::size_t c = 0; c < picked.size(); ++c) {
     std::vector<std::size_t> members;
-    for (std::size_t i = 0; i < keys.size(); ++i)
-      if (same(keys[i], picked[c])) members.push_back(i);
-    std::sort(members.begin(), members.end(), [&](std::size_t a, std::size_t b) { return along[a] < along[b]; });
-    const std::string group = fmt::format("{:g} {}", picked[c], along_frequency ? "mm" : "Hz");
+    for (std::size_t i = 0; i < key.values.size(); ++i)
+      if (same(key.values[i], picked[c])) members.push_back(i);
+    std::sort(members.begin(), members.end(), [&](std::size_t a, std::size_t b) { return along.values[a] < along.values[b]; });
+    const std::string group = fmt::format("{:g} {}", picked[c], key.unit);
     Series model{group + " model", group, static_cast<int>(c), SeriesStyle::line, {}, {}};
     Series measured{group + " measured", group, static_cast<int>(c), SeriesStyle::markers, {}, {}};
     Series baseline{group + " model before", group, static_cast<int>(c), SeriesStyle::dashed, {}, {}};
     for (const std::size_t i : members) {
-      model.x.push_back(along[i]);
-      model.y.push_back(scale * (stiffness ? g.model_stiffness : g.model_phase).at(i));
+      model.x.push_back(along.values[i]);
+      model.y.push_back(y.model.at(i));
       if (g.has_baseline()) {
-        baseline.x.push_back(along[i]);
-        baseline.y.push_back(scale * (stiffness ? g.baseline_stiffness : g.baseline_phase).at(i));
+        baseline.x.push_back(along.values[i]);
+        baseline.y.push_back(y.baseline.at(i));
       }
       if (!g.measured()) continue;
-      measured.x.push_back(along[i]);
-      measured.y.push_back(scale * (stiffness ? g.measured_stiffness : g.measured_phase).at(i));
+      measured.x.push_back(along.values[i]);
+      measured.y.push_back(y.measured.at(i));
     }
     if (g.measured()) plot.series.push_back(std::move(measured));
     if (g.has_baseline()) plot.series.push_back(std::move(baseline));
@@ -63,6 +87,11 @@ Plot curves(const HarmonicComparison& g, const std::string& id, const std::strin
   }
   if (g.has_baseline()) plot.meaning[1] = "refined", plot.meaning[2] = "before";  // short: the legend column is 138 units wide
   return plot;
+}
+
+std::size_t distinct_count(std::vector<double> v) {
+  std::sort(v.begin(), v.end());
+  return static_cast<std::size_t>(std::unique(v.begin(), v.end(), same) - v.begin());
 }
 
 std::vector<double> every(const std::vector<double>& v, std::size_t limit) {
@@ -74,11 +103,45 @@ std::vector<double> every(const std::vector<double>& v, std::size_t limit) {
 
 }  // namespace
 
+HarmonicAxes harmonic_axes(const HarmonicComparison& g) {
+  const bool frequency_varies = distinct_count(g.frequency) > 1, amplitude_varies = distinct_count(g.amplitude) > 1;
+  return {frequency_varies || !amplitude_varies, amplitude_varies};
+}
+
 std::vector<Plot> harmonic_plots(const HarmonicComparison& g, const std::string& prefix) {
-  return {curves(g, prefix + "-stiffness-frequency", "Dynamic stiffness over frequency", true, true),
-          curves(g, prefix + "-phase-frequency", "Phase over frequency", true, false),
-          curves(g, prefix + "-stiffness-amplitude", "Dynamic stiffness over amplitude", false, true),
-          curves(g, prefix + "-phase-amplitude", "Phase over amplitude", false, false)};
+  const Variable frequency{"frequency [Hz]", "Hz", g.frequency}, amplitude{"amplitude [mm]", "mm", g.amplitude};
+  const Measure stiffness = measure_of(g, "dynamic stiffness [N/mm]", [](double k, double) { return k; });
+  Measure phase = measure_of(g, "phase [deg]", [](double, double p) { return kDegree * p; });
+  phase.log_allowed = false;
+  const HarmonicAxes axes = harmonic_axes(g);
+  std::vector<Plot> plots;
+  if (axes.over_frequency) {
+    plots.push_back(curves(g, prefix + "-stiffness-frequency", "Dynamic stiffness over frequency", frequency, amplitude, stiffness));
+    plots.push_back(curves(g, prefix + "-phase-frequency", "Phase over frequency", frequency, amplitude, phase));
+  }
+  if (axes.over_amplitude) {
+    plots.push_back(curves(g, prefix + "-stiffness-amplitude", "Dynamic stiffness over amplitude", amplitude, frequency, stiffness));
+    plots.push_back(curves(g, prefix + "-phase-amplitude", "Phase over amplitude", amplitude, frequency, phase));
+  }
+  // Storage and loss over the first variable drawn; material data as moduli (N/mm^2 = MPa) over strain.
+  const bool material = g.material();
+  const double to_modulus = material ? *g.source.height / *g.source.area : 1.0;
+  Variable strain{"strain [%]", "%", g.amplitude};
+  for (double& v : strain.values) v *= 100.0 / g.source.height.value_or(1.0);
+  const Variable& swept = material ? strain : amplitude;
+  const Variable& along = axes.over_frequency ? frequency : swept;
+  const Variable& key = axes.over_frequency ? swept : frequency;
+  const Measure storage = measure_of(g, material ? "storage modulus E' = K'h/A [MPa]" : "storage stiffness K' [N/mm]",
+                                     [&](double k, double p) { return to_modulus * k * std::cos(p); });
+  const Measure loss = measure_of(g, material ? "loss modulus E'' = K''h/A [MPa]" : "loss stiffness K'' [N/mm]",
+                                  [&](double k, double p) { return to_modulus * k * std::sin(p); });
+  const char* over = axes.over_frequency ? "frequency" : "amplitude";
+  const char* over_text = axes.over_frequency ? "frequency" : material ? "strain" : "amplitude";
+  plots.push_back(curves(g, fmt::format("{}-storage-{}", prefix, over),
+                         fmt::format("Storage {} over {}", material ? "modulus E'" : "stiffness K' = K cos(phase)", over_text), along, key, storage));
+  plots.push_back(curves(g, fmt::format("{}-loss-{}", prefix, over),
+                         fmt::format("Loss {} over {}", material ? "modulus E''" : "stiffness K'' = K sin(phase)", over_text), along, key, loss));
+  return plots;
 }
 
 std::vector<ResidualMap> residual_maps(const HarmonicComparison& g) {

@@ -1,5 +1,6 @@
 #include "runtime/report/residual_map.hpp"
 
+#include "runtime/report/axis_ticks.hpp"
 #include "runtime/report/svg_text.hpp"
 
 #include <fmt/format.h>
@@ -30,6 +31,19 @@ std::size_t index_of(const std::vector<double>& values, double v) {
 // Every k-th label, so that labels are at least `spacing` user units apart.
 std::size_t label_stride(std::size_t count, double extent, double spacing) {
   return std::max<std::size_t>(1, static_cast<std::size_t>(std::ceil(spacing * static_cast<double>(count) / extent)));
+}
+
+std::vector<std::string> labels_of(const std::vector<double>& values) {
+  std::vector<std::string> out;
+  for (const double v : values) out.push_back(compact_number(v, 3));
+  return out;
+}
+
+// Room a row of labels needs per label at font size 13: ~7.5 user units a character and a gap.
+double label_room(const std::vector<std::string>& labels) {
+  std::size_t longest = 0;
+  for (const std::string& l : labels) longest = std::max(longest, l.size());
+  return 7.5 * static_cast<double>(longest) + 10.0;
 }
 
 std::string color_bar(double limit, const std::string& unit) {
@@ -94,12 +108,13 @@ std::string render_residual_map(const ResidualMap& map, bool standalone) {
         map.value[i], map.amplitude[i], map.frequency[i], map.value[i], escape(map.unit));
   }
   out += "</g>\n<g class=\"tick-labels\" fill=\"#222\">";
-  for (std::size_t j = 0; j < frequencies.size(); j += label_stride(frequencies.size(), kGridWidth, 36))
-    out += fmt::format("<text x=\"{}\" y=\"{}\" text-anchor=\"middle\">{:g}</text>", coordinate(kLeft + cw * (static_cast<double>(j) + 0.5)),
-                       kTop + kGridHeight + 17, frequencies[j]);
+  const std::vector<std::string> frequency_labels = labels_of(frequencies), amplitude_labels = labels_of(amplitudes);
+  for (std::size_t j = 0; j < frequencies.size(); j += label_stride(frequencies.size(), kGridWidth, label_room(frequency_labels)))
+    out += fmt::format("<text x=\"{}\" y=\"{}\" text-anchor=\"middle\">{}</text>", coordinate(kLeft + cw * (static_cast<double>(j) + 0.5)),
+                       kTop + kGridHeight + 17, frequency_labels[j]);
   for (std::size_t j = 0; j < amplitudes.size(); j += label_stride(amplitudes.size(), kGridHeight, 16))
-    out += fmt::format("<text x=\"{}\" y=\"{}\" text-anchor=\"end\">{:g}</text>", kLeft - 6,
-                       coordinate(kTop + kGridHeight - ch * (static_cast<double>(j) + 0.5) + 4.5), amplitudes[j]);
+    out += fmt::format("<text x=\"{}\" y=\"{}\" text-anchor=\"end\">{}</text>", kLeft - 6,
+                       coordinate(kTop + kGridHeight - ch * (static_cast<double>(j) + 0.5) + 4.5), amplitude_labels[j]);
   out += "</g>\n";
   out += fmt::format("<text class=\"axis-label\" x=\"{}\" y=\"{}\" text-anchor=\"middle\">frequency [Hz]</text>\n",
                      coordinate(kLeft + kGridWidth / 2), kHeight - 12);

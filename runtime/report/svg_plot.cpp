@@ -33,6 +33,13 @@ Range range_of(const Plot& plot, bool x_axis) {
       if (usable(v, scale)) lo = std::min(lo, v), hi = std::max(hi, v);
   if (!std::isfinite(lo)) return {scale == Scale::log ? 1.0 : 0.0, scale == Scale::log ? 10.0 : 1.0, scale};
   if (scale == Scale::log) {
+    // Measured markers set the range; a line reaches a decade beyond them at most, and is clipped there.
+    double marker_lo = std::numeric_limits<double>::infinity(), marker_hi = -marker_lo;
+    for (const Series& s : plot.series)
+      if (s.style == SeriesStyle::markers)
+        for (const double v : x_axis ? s.x : s.y)
+          if (usable(v, scale)) marker_lo = std::min(marker_lo, v), marker_hi = std::max(marker_hi, v);
+    if (std::isfinite(marker_lo)) lo = std::max(lo, marker_lo / 10.0), hi = std::min(hi, marker_hi * 10.0);
     if (hi <= lo) return {lo / 2.0, hi * 2.0, scale};
     const double pad = std::pow(hi / lo, 0.04);
     return {lo / pad, hi * pad, scale};
@@ -101,18 +108,23 @@ std::string series_svg(const Series& s, const Range& xr, const Range& yr) {
   return out + "</g>\n";
 }
 
+// An unlabelled tick (a decade between labelled ones) is a fainter grid line.
+const char* grid_style(const Tick& t) { return t.label.empty() ? " stroke=\"#eeeeee\"" : ""; }
+
 std::string axes_svg(const Plot& plot, const Range& xr, const Range& yr) {
   std::string out = "<g class=\"axes\" stroke=\"#d9d9d9\" stroke-width=\"1\">";
   std::string labels = "<g class=\"tick-labels\" fill=\"#222\">";
   for (const Tick& t : ticks_of(xr)) {
     const double x = kLeft + kPlotWidth * xr.fraction(t.value);
-    out += fmt::format("<line x1=\"{0}\" y1=\"{1}\" x2=\"{0}\" y2=\"{2}\"/>", coordinate(x), kTop, kTop + kPlotHeight);
-    labels += fmt::format("<text x=\"{}\" y=\"{}\" text-anchor=\"middle\">{}</text>", coordinate(x), kTop + kPlotHeight + 17, escape(t.label));
+    out += fmt::format("<line x1=\"{0}\" y1=\"{1}\" x2=\"{0}\" y2=\"{2}\"{3}/>", coordinate(x), kTop, kTop + kPlotHeight, grid_style(t));
+    if (!t.label.empty())
+      labels += fmt::format("<text x=\"{}\" y=\"{}\" text-anchor=\"middle\">{}</text>", coordinate(x), kTop + kPlotHeight + 17, escape(t.label));
   }
   for (const Tick& t : ticks_of(yr)) {
     const double y = kTop + kPlotHeight * (1.0 - yr.fraction(t.value));
-    out += fmt::format("<line x1=\"{0}\" y1=\"{1}\" x2=\"{2}\" y2=\"{1}\"/>", kLeft, coordinate(y), kLeft + kPlotWidth);
-    labels += fmt::format("<text x=\"{}\" y=\"{}\" text-anchor=\"end\">{}</text>", kLeft - 6, coordinate(y + 4), escape(t.label));
+    out += fmt::format("<line x1=\"{0}\" y1=\"{1}\" x2=\"{2}\" y2=\"{1}\"{3}/>", kLeft, coordinate(y), kLeft + kPlotWidth, grid_style(t));
+    if (!t.label.empty())
+      labels += fmt::format("<text x=\"{}\" y=\"{}\" text-anchor=\"end\">{}</text>", kLeft - 6, coordinate(y + 4), escape(t.label));
   }
   out += "</g>\n" + labels + "</g>\n";
   out += fmt::format("<rect x=\"{}\" y=\"{}\" width=\"{}\" height=\"{}\" fill=\"none\" stroke=\"#444\"/>\n", kLeft, kTop, kPlotWidth, kPlotHeight);

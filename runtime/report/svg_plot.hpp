@@ -6,7 +6,9 @@
 // (Plot::meaning). Every series is one
 // <g class="series" data-name="..." data-style="markers|line|dashed">, so that tests and scripts
 // can count them. Non-finite points are skipped (a line breaks there); on a log axis so are
-// values <= 0. The plot is 640 x 400 user units and scales to its container's width.
+// values <= 0. A log axis with markers spans the markers and the lines at most a decade beyond
+// them (a model far off the data, e.g. K' -> 0 at a phase of 90 deg, is clipped at the frame
+// rather than squashing the data into a corner). The plot is 640 x 400 user units and scales to its container's width.
 #pragma once
 
 #include <string>

@@ -24,7 +24,7 @@ TEST_CASE("rheo report: specimen D against its harmonic and static data") {
   REQUIRE(r.code == 0);
   CHECK(r.err.find("report written to") != std::string::npos);
   const std::string page = rheo::test::read_file(html.string());
-  CHECK(count(page, "<figure") == 8);
+  CHECK(count(page, "<figure") == 10);
   CHECK(count(page, "data-figure=\"hysteresis\"") == 1);
   CHECK(count(page, "class=\"element\"") == 8);  // yeoh, maxwell, 6 friction
   CHECK(page.find("err (6.1) = ") != std::string::npos);
@@ -42,9 +42,9 @@ TEST_CASE("rheo report: without data, the simulate protocols; errors exit 2 and 
   CAPTURE(r.err);
   REQUIRE(r.code == 0);
   const std::string page = rheo::test::read_file(html.string());
-  CHECK(count(page, "<figure") == 5);  // network and 4 curve plots, no residual maps without data
+  CHECK(count(page, "<figure") == 7);  // network and 6 curve plots, no residual maps without data
   CHECK(page.find("model only (no measurements)") != std::string::npos);
-  CHECK(count(page, "class=\"series\"") == 4 * 2 + 2 * 8);  // 4 amplitudes; 8 of 26 frequencies
+  CHECK(count(page, "class=\"series\"") == 4 * 4 + 2 * 8);  // 4 amplitudes over frequency (4 plots); 8 of 26 frequencies (2)
 
   const auto nothing = run_rheo(fmt::format("report {}", example("bushing_d.rheo")));
   CHECK(nothing.code == 2);
@@ -92,4 +92,40 @@ TEST_CASE("rheo report --plot FILE.png: converted by rsvg-convert, a usage error
   CAPTURE(r.err);
   REQUIRE(r.code == 0);
   CHECK(rheo::test::read_file(png.string()).starts_with("\x89PNG"));
+}
+
+TEST_CASE("rheo report: a TRIOS amplitude sweep at one frequency is drawn over amplitude, as moduli over strain, geometry named") {
+  const auto dir = rheo::test::scratch_directory("report");
+  const auto html = dir / "trios.html", svg = dir / "trios.svg";
+  const auto r = run_rheo(fmt::format("report {} -o {} --plot {}", example("trios_amplitude_sweep_fit.rheo"), html.string(), svg.string()));
+  CAPTURE(r.err);
+  REQUIRE(r.code == 0);
+  const std::string page = rheo::test::read_file(html.string());
+  for (const char* kind : {"stiffness-amplitude", "phase-amplitude", "storage-amplitude", "loss-amplitude"})
+    CHECK(count(page, fmt::format("data-figure=\"{}\"", kind)) == 1);
+  CHECK(count(page, "data-figure=\"stiffness-frequency\"") == 0);  // no stack of points at 1 Hz
+  CHECK(page.find("TRIOS step &quot;Amplitude sweep") != std::string::npos);
+  CHECK(page.find("area A = 490.874 mm^2, height h = 1 mm") != std::string::npos);
+  CHECK(page.find("strain [%]") != std::string::npos);
+  CHECK(page.find("[MPa]") != std::string::npos);
+  const std::string figure = rheo::test::read_file(svg.string());
+  CHECK(figure.find("Dynamic stiffness over amplitude") != std::string::npos);
+  CHECK(figure.find("amplitude [mm] (log)") != std::string::npos);
+}
+
+TEST_CASE("rheo report: a Prony master curve over 18 decades, log axes with decade labels") {
+  const auto dir = rheo::test::scratch_directory("report");
+  const auto html = dir / "prony.html", svg = dir / "prony.svg";
+  const auto r = run_rheo(fmt::format("report {} -o {} --plot {}", example("prony_fit.rheo"), html.string(), svg.string()));
+  CAPTURE(r.err);
+  REQUIRE(r.code == 0);
+  const std::string page = rheo::test::read_file(html.string());
+  for (const char* kind : {"stiffness-frequency", "phase-frequency", "storage-frequency", "loss-frequency"})
+    CHECK(count(page, fmt::format("data-figure=\"{}\"", kind)) == 1);
+  CHECK(count(page, "data-figure=\"stiffness-amplitude\"") == 0);
+  CHECK(page.find("meta source") == std::string::npos);  // a plain table
+  const std::string figure = rheo::test::read_file(svg.string());
+  CHECK(figure.find("frequency [Hz] (log)") != std::string::npos);
+  CHECK(figure.find(">1e-9<") != std::string::npos);
+  CHECK(figure.find("e+") == std::string::npos);
 }

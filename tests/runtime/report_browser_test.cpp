@@ -117,6 +117,8 @@ TEST_CASE("report in a browser: headless chromium renders every figure with its 
                                                            {"phase-frequency", 2 * curves_over_frequency},
                                                            {"stiffness-amplitude", 2 * curves_over_amplitude},
                                                            {"phase-amplitude", 2 * curves_over_amplitude},
+                                                           {"storage-frequency", 2 * curves_over_frequency},
+                                                           {"loss-frequency", 2 * curves_over_frequency},
                                                            {"hysteresis", 2},
                                                            {"network", 0},
                                                            {"residual-stiffness", 0},

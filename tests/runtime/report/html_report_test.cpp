@@ -42,12 +42,14 @@ TEST_CASE("report html: self-contained, no script, every figure and section pres
   CHECK(html.find("src=") == std::string::npos);
   CHECK(html.find("@import") == std::string::npos);
   CHECK(count(html, "url(") == count(html, "url(#clip-"));  // only in-page clip paths
-  CHECK(count(html, "<figure") == 8);                       // network, 4 curves, 2 residual maps, 1 loop
-  for (const char* kind : {"network", "stiffness-frequency", "phase-frequency", "stiffness-amplitude", "phase-amplitude", "residual-stiffness",
-                           "residual-phase", "hysteresis"})
+  CHECK(count(html, "<figure") == 10);                      // network, 4 curves, storage and loss, 2 residual maps, 1 loop
+  for (const char* kind : {"network", "stiffness-frequency", "phase-frequency", "stiffness-amplitude", "phase-amplitude", "storage-frequency",
+                           "loss-frequency", "residual-stiffness", "residual-phase", "hysteresis"})
     CHECK(count(html, fmt::format("data-figure=\"{}\"", kind)) == 1);
-  // 3 amplitudes x (measured + model) over frequency, 4 frequencies x 2 over amplitude, 2 loops.
-  CHECK(count(html, "class=\"series\"") == 2 * (6 + 8) + 2);
+  // 3 amplitudes x (measured + model) over frequency in 4 plots (stiffness, phase, storage,
+  // loss), 4 frequencies x 2 over amplitude in 2, 2 loops.
+  CHECK(count(html, "class=\"series\"") == 4 * 6 + 2 * 8 + 2);
+  CHECK(html.find("class=\"meta source\"") == std::string::npos);  // a plain table: nothing to say about its reading
   CHECK(count(html, "class=\"cell\"") == 2 * 12);
   CHECK(html.find("<section id=\"gap\">") != std::string::npos);
   CHECK(html.find("@media print") != std::string::npos);
@@ -76,10 +78,10 @@ TEST_CASE("report html: a baseline (the model before a diagnosis) adds dashed cu
   content.histories.front().baseline_rms = 0.12;
   content.baseline = "model kv as given, fitted";
   const std::string html = runtime::report::html_report(content);
-  CHECK(count(html, "<figure") == 10);  // and the two maps of the baseline
+  CHECK(count(html, "<figure") == 12);  // and the two maps of the baseline
   for (const char* kind : {"residual-stiffness-before", "residual-phase-before"}) CHECK(count(html, fmt::format("data-figure=\"{}\"", kind)) == 1);
-  // Per curve a dashed twin: 3 amplitudes x 2 plots + 4 frequencies x 2 plots, and one loop.
-  CHECK(count(html, "data-style=\"dashed\"") == 2 * (3 + 4) + 1);
+  // Per curve a dashed twin: 3 amplitudes x 4 plots + 4 frequencies x 2 plots, and one loop.
+  CHECK(count(html, "data-style=\"dashed\"") == 4 * 3 + 2 * 4 + 1);
   CHECK(count(html, "class=\"cell\"") == 4 * 12);
   CHECK(html.find("Dashed curves: model kv as given, fitted.") != std::string::npos);
   CHECK(html.find("(model before: 7.0000e-02)") != std::string::npos);
@@ -95,25 +97,19 @@ TEST_CASE("report html: a baseline (the model before a diagnosis) adds dashed cu
   CHECK(test::xml_problem(html.substr(html.find("<body>"), html.find("</body>") + 7 - html.find("<body>"))) == "");
 }
 
-TEST_CASE("report figures: at most 8 curves, spread over the values; the primary figure is standalone") {
-  runtime::report::HarmonicComparison grid;
-  for (int a = 1; a <= 12; ++a)
-    for (const double f : {1.0, 10.0}) {
-      grid.amplitude.push_back(0.1 * a), grid.frequency.push_back(f);
-      grid.model_stiffness.push_back(100.0), grid.model_phase.push_back(0.1);
-    }
-  const auto plots = runtime::report::harmonic_plots(grid, "x");
-  REQUIRE(plots.size() == 4);
-  CHECK(plots[0].series.size() == 8);  // model only: one line per amplitude, 8 of 12
-  CHECK(plots[0].series.front().group == "0.1 mm");
-  CHECK(plots[0].series.back().group == "1.2 mm");
-  CHECK(plots[2].series.size() == 2);  // one per frequency
-  CHECK(runtime::report::residual_maps(grid).empty());
-  runtime::report::ReportContent content;
-  content.harmonic.push_back(grid);
-  const std::string svg = runtime::report::primary_figure_svg(content);
-  CHECK(svg.starts_with("<?xml"));
-  CHECK(test::xml_problem(svg) == "");
-  CHECK(svg.find("Dynamic stiffness over frequency") != std::string::npos);
-  CHECK_THROWS_AS(runtime::report::primary_figure_svg(runtime::report::ReportContent{}), runtime::UsageError);
+TEST_CASE("report html: material data name their geometry and are drawn as moduli over strain") {
+  runtime::report::ReportContent content = sample_content();
+  runtime::report::HarmonicComparison& grid = content.harmonic.front();
+  grid.source = {"Amplitude sweep", true, 490.874, 2.0};
+  const std::string html = runtime::report::html_report(content);
+  CHECK(html.find("TRIOS step &quot;Amplitude sweep&quot;") != std::string::npos);
+  CHECK(html.find("area A = 490.874 mm^2, height h = 2 mm") != std::string::npos);
+  CHECK(html.find("storage modulus E&#39; = K&#39;h/A [MPa]") != std::string::npos);
+  CHECK(count(html, "class=\"meta source\"") == 1);
+  // Strain only (a height, no area): no modulus, and the note says only what was converted.
+  grid.source = {"", true, std::nullopt, 2.0};
+  const std::string strain_only = runtime::report::html_report(content);
+  CHECK(strain_only.find("height h = 2 mm: amplitude = strain x h") != std::string::npos);
+  CHECK(strain_only.find("modulus x A") == std::string::npos);
+  CHECK(strain_only.find("[MPa]") == std::string::npos);
 }

@@ -5,6 +5,7 @@
 #include <doctest/doctest.h>
 
 #include <cmath>
+#include <cstring>
 #include <limits>
 
 using namespace rheo::runtime::report;
@@ -88,4 +89,71 @@ TEST_CASE("report residual map: a cell per point on a symmetric diverging scale"
   CHECK(diverging_color(-5.0, 1.0) == "#2166ac");  // clamped
   CHECK(svg.find("+2") != std::string::npos);      // the scale's ends are labelled
   CHECK(svg.find("amplitude [mm]") != std::string::npos);
+}
+
+namespace {
+struct Label {
+  double x = 0, y = 0;
+  std::string text;
+};
+
+// The tick labels of a rendered plot with the given text-anchor ("middle": the x axis, "end": the y axis).
+std::vector<Label> tick_labels(const std::string& svg, const std::string& anchor) {
+  std::vector<Label> out;
+  const std::size_t group = svg.find("<g class=\"tick-labels\"");
+  const std::size_t end = svg.find("</g>", group);
+  for (std::size_t at = svg.find("<text ", group); at < end; at = svg.find("<text ", at + 1)) {
+    const std::string tag = svg.substr(at, svg.find('>', at) - at);
+    if (tag.find("text-anchor=\"" + anchor + "\"") == std::string::npos) continue;
+    const auto attribute = [&](const char* name) { return std::stod(tag.substr(tag.find(name) + std::strlen(name))); };
+    const std::size_t text = svg.find('>', at) + 1;
+    out.push_back({attribute(" x=\""), attribute(" y=\""), svg.substr(text, svg.find('<', text) - text)});
+  }
+  return out;
+}
+}  // namespace
+
+TEST_CASE("report svg plot: 28 decades of frequency and 16 of stiffness, labels compact and apart") {
+  Plot plot{"wide", "Master curve", {"frequency [Hz]", Scale::log}, {"dynamic stiffness [N/mm]", Scale::log}, {}};
+  Series s{"model", "0.1 mm", 0, SeriesStyle::line, {}, {}};
+  for (int e = -14; e <= 14; ++e) s.x.push_back(std::pow(10.0, e)), s.y.push_back(50.0 * std::pow(10.0, 0.6 * (e + 14)));
+  plot.series.push_back(s);
+  const std::string svg = render_svg(plot, true);
+  CHECK(xml_problem(svg) == "");
+  const std::vector<Label> x = tick_labels(svg, "middle"), y = tick_labels(svg, "end");
+  CHECK(x.size() >= 4);
+  CHECK(x.size() <= 8);
+  CHECK(y.size() >= 3);
+  // 7.5 units a character at font size 13 is generous for digits: neighbours must not touch.
+  for (std::size_t i = 1; i < x.size(); ++i) {
+    CAPTURE(x[i].text);
+    CHECK(x[i].x - x[i - 1].x > 7.5 * static_cast<double>(x[i].text.size() + x[i - 1].text.size()) / 2 + 4);
+  }
+  for (std::size_t i = 1; i < y.size(); ++i) CHECK(std::abs(y[i].y - y[i - 1].y) > 16);
+  for (const auto& labels : {x, y})
+    for (const Label& l : labels) {
+      CAPTURE(l.text);
+      CHECK(l.text.size() <= 5);
+      CHECK(l.text.find('+') == std::string::npos);
+    }
+  // Every decade has a grid line, labelled or not.
+  CHECK(count(svg, "stroke=\"#eeeeee\"") + x.size() + y.size() >= 29 + 15);
+}
+
+TEST_CASE("report svg plot: on a log axis the markers set the range; a line far below them is clipped a decade beyond") {
+  Plot plot{"clip", "Storage", {"strain [%]", Scale::log}, {"storage modulus [MPa]", Scale::log}, {}};
+  plot.series.push_back({"measured", "1 Hz", 0, SeriesStyle::markers, {0.01, 1, 100}, {0.02, 0.01, 0.001}});
+  plot.series.push_back({"model", "1 Hz", 0, SeriesStyle::line, {0.01, 1, 100}, {0.02, 0.01, 1e-18}});
+  const std::vector<Label> y = tick_labels(render_svg(plot, true), "end");
+  REQUIRE(!y.empty());
+  for (const Label& l : y) {
+    CAPTURE(l.text);
+    CHECK(std::stod(l.text) >= 1e-4);  // 0.001 / 10
+    CHECK(std::stod(l.text) <= 0.2);   // 0.02 x 10
+  }
+  // Without markers the line's own range is drawn.
+  plot.series.erase(plot.series.begin());
+  bool deep = false;
+  for (const Label& l : tick_labels(render_svg(plot, true), "end")) deep = deep || std::stod(l.text) < 1e-10;
+  CHECK(deep);
 }
