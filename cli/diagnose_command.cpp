@@ -3,6 +3,7 @@
 // add the element that supplies it and refit (runtime/diagnosis/diagnose.hpp); see docs/cli.md.
 #include "lang/frontend.hpp"
 #include "lang/limits.hpp"
+#include "cli/data_option.hpp"
 #include "cli/commands.hpp"
 #include "cli/fit_job.hpp"
 #include "cli/program_lookup.hpp"
@@ -34,7 +35,9 @@ struct DiagnoseOptions {
 
 void add_common_options(CLI::App& app, DiagnoseOptions& o) {
   app.add_option("file", o.fit.file, "The .rheo file: the model, with bounds on the parameters to fit")->required();
-  app.add_option("--data", o.fit.data, "Measured data (harmonic table or time history); replaces the fit block's data lines. Repeatable");
+  app.add_option("--data", o.fit.data,
+                 std::string("Measured data (harmonic table or time history): ") + data_option_settings_help +
+                     "; replaces the fit block's data lines. Repeatable");
   app.add_option("--model", o.fit.model, "The model to diagnose (when the file has several)");
   app.add_option("--block", o.fit.block, "Take model, data and settings from the N-th fit block of the file (1-based)")
       ->check(CLI::Range(1, std::numeric_limits<int>::max()));

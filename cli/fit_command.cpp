@@ -2,6 +2,7 @@
 // (or a default fit of its model when it has none) and reports; see docs/cli.md.
 #include "lang/fitted_source.hpp"
 #include "lang/frontend.hpp"
+#include "cli/data_option.hpp"
 #include "cli/commands.hpp"
 #include "cli/fit_job.hpp"
 #include "cli/program_lookup.hpp"
@@ -40,7 +41,9 @@ Command add_fit_command(CLI::App& app) {
   auto o = std::make_shared<FitOptions>();
   auto report = std::make_shared<ReportTargets>();
   app.add_option("file", o->file, "The .rheo file: a model with bounds on the parameters to fit, and optionally fit blocks")->required();
-  app.add_option("--data", o->data, "Measured data (harmonic table or time history); replaces the fit block's data lines. Repeatable");
+  app.add_option("--data", o->data,
+                 std::string("Measured data (harmonic table or time history): ") + data_option_settings_help +
+                     "; replaces the fit block's data lines. Repeatable");
   app.add_option("-o,--output", o->output,
                  "Write the fitted model (.rheo, comments kept) here; needs exactly one fit to run (with --orders: the structure of lowest AIC)");
   app.add_flag("--json", o->json, "Print the JSON summary instead of the text report");

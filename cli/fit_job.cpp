@@ -1,5 +1,6 @@
 #include "cli/fit_job.hpp"
 
+#include "cli/data_option.hpp"
 #include "cli/program_lookup.hpp"
 #include "lang/units.hpp"
 #include "runtime/core/errors.hpp"
@@ -177,7 +178,7 @@ std::vector<FitJob> fit_jobs(const lang::Program& program, const FitOptions& o) 
     job.description.source = o.file;
     configure(job, block, o);
     if (!o.data.empty()) {
-      for (const auto& path : o.data) job.data.push_back(runtime::read_fit_data(path, 1.0));
+      for (const auto& text : o.data) job.data.push_back(read_data_option(text));
     } else if (block) {
       for (const auto& d : block->data)
         job.data.push_back(runtime::read_fit_data(relative_to(o.file, d.file), d.weight, &d.where, runtime::reading_of(d)));

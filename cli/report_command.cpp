@@ -4,6 +4,7 @@
 #include "lang/frontend.hpp"
 #include "lang/protocol_schema.hpp"
 #include "cli/commands.hpp"
+#include "cli/data_option.hpp"
 #include "cli/program_lookup.hpp"
 #include "cli/report_files.hpp"
 #include "runtime/core/errors.hpp"
@@ -35,6 +36,7 @@ void add_data(report::ReportContent& content, const runtime::Network& network, c
     const runtime::Prediction p = runtime::predict(network, set, runtime::FitMethod::exact, options, nullptr);
     if (set.is_harmonic()) {
       content.harmonic.push_back(report::compare_harmonic(set.harmonic(), p.points, set.source));
+      content.notes.insert(content.notes.end(), set.harmonic().notes.begin(), set.harmonic().notes.end());
       for (std::string& note : runtime::damping_left_out(set.harmonic())) content.notes.push_back(std::move(note));
     } else content.histories.push_back(report::compare_history(set.history(), p.force, set.source));
   }
@@ -69,7 +71,9 @@ std::vector<runtime::FitDataSet> fit_block_data(const lang::Program& program, co
 Command add_report_command(CLI::App& app) {
   auto o = std::make_shared<Options>();
   app.add_option("file", o->file, "The .rheo file")->required();
-  app.add_option("--data", o->data, "Measured data (harmonic table or time history) to compare the model with. Repeatable");
+  app.add_option(
+      "--data", o->data,
+      std::string("Measured data (harmonic table or time history) to compare the model with: ") + data_option_settings_help + ". Repeatable");
   app.add_option("--model", o->model, "The model to report on (needed when the file defines several)");
   app.add_option("-o,--output", o->targets.html, "Write the HTML report here");
   add_report_options(app, o->targets, false);
@@ -85,7 +89,7 @@ Command add_report_command(CLI::App& app) {
     report::ReportContent content = report::report_for_model(network, o->file, "rheo report");
     if (!o->data.empty()) {
       std::vector<runtime::FitDataSet> data;
-      for (const auto& path : o->data) data.push_back(runtime::read_fit_data(path, 1.0));
+      for (const auto& text : o->data) data.push_back(read_data_option(text));
       add_data(content, network, data, o->threads);
     } else {
       add_protocols(content, network, program, *o);

@@ -42,6 +42,7 @@ const std::vector<SettingSpec>& data_schema() {
       {.key = "area", .shape = Shape::single, .dimension = dim::area, .positive = true},
       {.key = "height", .shape = Shape::single, .dimension = dim::length, .positive = true},
       {.key = "amplitude", .shape = Shape::single, .dimension = dim::length, .positive = true},
+      {.key = "duplicates", .shape = Shape::identifier, .dimension = dim::none, .choices = duplicate_points_words()},
   };
   return specs;
 }
@@ -86,42 +87,6 @@ std::vector<ColumnName> check_columns(const Setting& s, std::vector<Diagnostic>&
         return {};
       }
     out.push_back({role, name});
-  }
-  return out;
-}
-
-FitData check_data(const ast::FitLine& line, std::vector<Diagnostic>& errors) {
-  FitData out{line.file, 1.0, line.file_where, {}, {}, {}, {}, {}, false};
-  check_file_name(line.file, line.file_where, errors);
-  std::map<std::string, SourceLocation> seen;
-  for (const auto& node : line.settings) {
-    if (auto [it, fresh] = seen.emplace(node.key, node.where); !fresh) {
-      errors.push_back({node.where, duplicate(node, it->second)});
-      continue;
-    }
-    if (node.key == "amplitude") {  // a length, or a plain strain (0.1 %)
-      std::vector<Diagnostic> as_length, as_strain;
-      const SettingSpec strain{.key = "amplitude", .shape = Shape::single, .dimension = dim::none, .positive = true};
-      if (auto length = check_keyed_setting(data_schema(), "a data line", node, as_length)) {
-        out.amplitude = length->values.at(0);
-      } else if (auto strain_value = check_keyed_setting({strain}, "a data line", node, as_strain)) {
-        out.amplitude = strain_value->values.at(0);
-        out.amplitude_is_strain = true;
-      } else {
-        for (auto& e : as_length) {
-          e.message += "; or a strain, e.g. amplitude = 0.1 %";
-          errors.push_back(std::move(e));
-        }
-      }
-      continue;
-    }
-    const auto s = check_keyed_setting(data_schema(), "a data line", node, errors);
-    if (!s) continue;
-    if (s->key == "weight") out.weight = s->values.at(0);
-    else if (s->key == "columns") out.columns = check_columns(*s, errors);
-    else if (s->key == "step") out.step = s->text;
-    else if (s->key == "area") out.area = s->values.at(0);
-    else if (s->key == "height") out.height = s->values.at(0);
   }
   return out;
 }
@@ -243,6 +208,43 @@ FitSettings decode_fit_settings(const std::vector<Setting>& written) {
 
 }  // namespace
 
+FitData check_data_line(const ast::FitLine& line, std::vector<Diagnostic>& errors) {
+  FitData out{line.file, 1.0, line.file_where, {}, {}, {}, {}, {}, false, DuplicatePoints::average};
+  check_file_name(line.file, line.file_where, errors);
+  std::map<std::string, SourceLocation> seen;
+  for (const auto& node : line.settings) {
+    if (auto [it, fresh] = seen.emplace(node.key, node.where); !fresh) {
+      errors.push_back({node.where, duplicate(node, it->second)});
+      continue;
+    }
+    if (node.key == "amplitude") {  // a length, or a plain strain (0.1 %)
+      std::vector<Diagnostic> as_length, as_strain;
+      const SettingSpec strain{.key = "amplitude", .shape = Shape::single, .dimension = dim::none, .positive = true};
+      if (auto length = check_keyed_setting(data_schema(), "a data line", node, as_length)) {
+        out.amplitude = length->values.at(0);
+      } else if (auto strain_value = check_keyed_setting({strain}, "a data line", node, as_strain)) {
+        out.amplitude = strain_value->values.at(0);
+        out.amplitude_is_strain = true;
+      } else {
+        for (auto& e : as_length) {
+          e.message += "; or a strain, e.g. amplitude = 0.1 %";
+          errors.push_back(std::move(e));
+        }
+      }
+      continue;
+    }
+    const auto s = check_keyed_setting(data_schema(), "a data line", node, errors);
+    if (!s) continue;
+    if (s->key == "weight") out.weight = s->values.at(0);
+    else if (s->key == "columns") out.columns = check_columns(*s, errors);
+    else if (s->key == "step") out.step = s->text;
+    else if (s->key == "area") out.area = s->values.at(0);
+    else if (s->key == "height") out.height = s->values.at(0);
+    else if (s->key == "duplicates") out.duplicates = duplicate_points_named(s->text).value_or(out.duplicates);
+  }
+  return out;
+}
+
 std::optional<Setting> check_fit_setting(const ast::SettingNode& node, std::vector<Diagnostic>& errors) {
   if (is_path_list(node.key)) {
     errors.push_back({node.where, fmt::format("'{}' names parameters of the fitted model; give it in the fit block", node.key)});
@@ -273,7 +275,7 @@ FitDirective check_fit(const ast::Fit& fit, const std::string& model, const Chec
   const ast::FitLine* output = nullptr;
   for (const auto& line : fit.lines) {
     if (line.kind == ast::FitLine::Kind::data) {
-      out.data.push_back(check_data(line, errors));
+      out.data.push_back(check_data_line(line, errors));
     } else if (line.kind == ast::FitLine::Kind::output) {
       if (output) {
         errors.push_back({line.where, fmt::format("a fit block has one 'output' (first given at line {}); remove this one", output->where.line)});

@@ -20,6 +20,10 @@ FitDirective check_fit(const ast::Fit& fit, const std::string& model, const Chec
 // in internal units; nullopt when invalid.
 std::optional<Setting> check_fit_setting(const ast::SettingNode& node, std::vector<Diagnostic>& errors);
 
+// A data line (`data "FILE", KEY = VALUE, ...`, from a fit block or --data), checked: the
+// file name and the data schema's settings, in internal units.
+FitData check_data_line(const ast::FitLine& line, std::vector<Diagnostic>& errors);
+
 // The roles a data line's `columns` setting may name a column for (runtime/io/column_roles.hpp).
 const std::vector<std::string>& data_column_roles();
 

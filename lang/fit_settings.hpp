@@ -15,16 +15,22 @@ namespace rheo::lang {
 enum class FitObjective { phi, least_squares };          // `objective`: eq. 5.38, or squared relative residuals
 enum class FitMethod { exact, approximate, corrected };  // `method`: time stepping, eq. 5.4's approximation, or both
 enum class Optimizer { automatic, bobyqa, sbplx, neldermead, direct_l, crs2, isres, mlsl };  // `optimizer` ("default": automatic)
+// A data line's `duplicates`: points of a harmonic table at the same (amplitude, frequency),
+// relative 1e-9, averaged into one, or an error.
+enum class DuplicatePoints { average, error };
 
 std::string_view word_of(FitObjective value);
 std::string_view word_of(FitMethod value);
 std::string_view word_of(Optimizer value);
+std::string_view word_of(DuplicatePoints value);
 std::vector<std::string> fit_objective_words();
 std::vector<std::string> fit_method_words();
 std::vector<std::string> optimizer_words();
+std::vector<std::string> duplicate_points_words();
 std::optional<FitObjective> fit_objective_named(std::string_view word);
 std::optional<FitMethod> fit_method_named(std::string_view word);
 std::optional<Optimizer> optimizer_named(std::string_view word);
+std::optional<DuplicatePoints> duplicate_points_named(std::string_view word);
 
 struct FitSettings {
   FitObjective objective = FitObjective::phi;

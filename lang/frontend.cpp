@@ -91,4 +91,21 @@ Setting parse_setting(ProtocolKind kind, std::string_view text) {
 
 Setting parse_fit_setting(std::string_view text) { return parse_command_line_setting(text, check_fit_setting); }
 
+FitData parse_data_option(std::string_view text) {
+  const std::string file_name = "<command line>";
+  if (text.find(',') == std::string_view::npos) {
+    FitData plain;
+    plain.file = std::string(text);
+    plain.where = {file_name, 1, 1};
+    return plain;
+  }
+  SourceSet sources;
+  sources.add(file_name, std::string(text));
+  const ast::FitLine line = parse_data_text(file_name, text);
+  std::vector<Diagnostic> errors;
+  FitData data = check_data_line(line, errors);
+  if (!errors.empty()) throw CompileError(std::move(errors), sources);
+  return data;
+}
+
 }  // namespace rheo::lang

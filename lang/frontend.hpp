@@ -34,4 +34,11 @@ Setting parse_setting(ProtocolKind kind, std::string_view text);
 // The same for a fit setting (`method = approximate`), with the fit schema; free/fixed excluded.
 Setting parse_fit_setting(std::string_view text);
 
+// A data file as `--data` gives it: TEXT without a comma is the file name, as it stands;
+// otherwise the name runs to the first comma (or is in double quotes, for a name holding one)
+// and a data line's settings follow, `sweep.txt, step = "Amplitude sweep", area = 314 mm^2`,
+// with the grammar and the checks of a `data` line. Throws CompileError (file name
+// "<command line>").
+FitData parse_data_option(std::string_view text);
+
 }  // namespace rheo::lang

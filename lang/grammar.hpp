@@ -15,6 +15,7 @@
 //   list      := '[' expression (',' expression)* ']' [UNIT]
 //   expression:= term (('+'|'-') term)*   term := factor (('*'|'/') factor)*
 //   factor    := '-' factor | '(' expression ')' | NUMBER [UNIT] | PATH
+//   command line (grammar of --set, --data): setting  |  (NAME-TO-FIRST-COMMA | STRING) (',' setting)*
 // Statements are not newline-terminated: every statement starts with a keyword or a name that
 // cannot continue the previous expression (expressions continue only with an operator).
 // Blocks and expressions nest at most as deep as limits.hpp allows (the *_room guards).
@@ -233,5 +234,13 @@ struct file : seq<sep, star<top_item, sep>, must<file_end>> {};
 // A protocol setting given on the command line: `frequency = 1 Hz .. 51 Hz step 2 Hz`.
 struct setting_end : eof {};
 struct command_line_setting : seq<sep, must<setting>, sep, must<setting_end>> {};
+
+// A data file given on the command line with a data line's settings:
+// `sweep.txt, step = "Amplitude sweep", area = 314 mm^2`. The name runs to the first comma, or
+// is in double quotes (a name holding a comma).
+struct command_line_data_name : plus<not_one<','>> {};
+struct command_line_data_file : sor<seq<at<string_open>, fit_data_file>, command_line_data_name> {};
+struct command_line_data_end : eof {};
+struct command_line_data : seq<star<ascii::blank>, must<command_line_data_file>, star<setting_next>, sep, must<command_line_data_end>> {};
 
 }  // namespace rheo::lang::grammar

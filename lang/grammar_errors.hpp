@@ -57,6 +57,8 @@ template <> inline constexpr const char* errors::message<fit_data_file> = "expec
 template <> inline constexpr const char* errors::message<fit_output_file> = "expected a file name in double quotes after 'output' for the fitted model, e.g. output \"fitted.rheo\", found {found}";
 template <> inline constexpr const char* errors::message<file_end> = "expected 'import', 'model', 'simulate' or 'fit' at the top level, found {found}";
 template <> inline constexpr const char* errors::message<setting_end> = "unexpected text after the setting value: {found}";
+template <> inline constexpr const char* errors::message<command_line_data_file> = "expected the data file name before the first ',' (or in double quotes), found {found}";
+template <> inline constexpr const char* errors::message<command_line_data_end> = "expected ', KEY = VALUE' (a data line's setting) or the end after the file name or a setting, found {found}";
 // clang-format on
 
 // must_if raises for a rule with a message wherever it fails, so messages go only to rules

@@ -140,6 +140,7 @@ struct FitData {
   std::optional<double> height;     // mm, its height (gap, thickness)
   std::optional<double> amplitude;  // mm, or a plain strain when amplitude_is_strain
   bool amplitude_is_strain = false;
+  DuplicatePoints duplicates = DuplicatePoints::average;  // repeated points of a harmonic table
 };
 
 // `fit [MODEL] { ... }`.

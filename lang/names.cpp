@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <string_view>
 
 namespace rheo::lang {
 
@@ -73,7 +74,7 @@ std::string join_chain(const std::vector<std::string>& names) {
 std::string with_article(const Dimension& d) {
   std::string text = describe(d);
   if (d.dimensionless() || text.find('(') == std::string::npos) return text;
-  return (text[0] == 'e' ? "an " : "a ") + text;
+  return (std::string_view("aeio").find(text[0]) != std::string_view::npos ? "an " : "a ") + text;
 }
 
 std::string show_value(double internal_value, const Dimension& d, const std::string& unit) {

@@ -173,6 +173,15 @@ template <>
 struct action<g::fit_data_file> : fit_line_file {};
 template <>
 struct action<g::fit_output_file> : fit_line_file {};
+template <>
+struct action<g::command_line_data_name> {
+  template <typename ActionInput>
+  static void apply(const ActionInput& in, State& s) {
+    s.string = in.string();
+    s.string.erase(s.string.find_last_not_of(" \t") + 1);  // the blanks before the comma
+    fit_line_file::apply(in, s);
+  }
+};
 
 // --- error reporting ---
 namespace {
@@ -260,6 +269,16 @@ ast::SettingNode parse_setting_text(const std::string& file_name, std::string_vi
   state.settings = &settings;
   parsing::run<grammar::command_line_setting>(file_name, text, state);
   return std::move(settings.back());
+}
+
+ast::FitLine parse_data_text(const std::string& file_name, std::string_view text) {
+  parsing::State state;
+  ast::FitLine& line = state.file.fits.emplace_back().lines.emplace_back();
+  line.kind = ast::FitLine::Kind::data;
+  line.where = {file_name, 1, 1};
+  state.settings = &line.settings;
+  parsing::run<grammar::command_line_data>(file_name, text, state);
+  return std::move(state.file.fits.back().lines.back());
 }
 
 }  // namespace rheo::lang

@@ -16,4 +16,8 @@ ast::File parse(const std::string& file_name, std::string_view text);
 // One `KEY = VALUE` setting as written on a command line (file name "<command line>").
 ast::SettingNode parse_setting_text(const std::string& file_name, std::string_view text);
 
+// A data file and a data line's settings as written on a command line,
+// `sweep.txt, step = "Amplitude sweep"` (grammar::command_line_data): a data FitLine.
+ast::FitLine parse_data_text(const std::string& file_name, std::string_view text);
+
 }  // namespace rheo::lang

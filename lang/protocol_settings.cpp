@@ -29,6 +29,7 @@ constexpr Words<Optimizer, 8> optimizers{{{Optimizer::automatic, "default"},
                                           {Optimizer::crs2, "crs2"},
                                           {Optimizer::isres, "isres"},
                                           {Optimizer::mlsl, "mlsl"}}};
+constexpr Words<DuplicatePoints, 2> duplicate_points{{{DuplicatePoints::average, "average"}, {DuplicatePoints::error, "error"}}};
 
 template <class E, std::size_t N>
 std::string_view word_in(const Words<E, N>& table, E value) {
@@ -80,5 +81,8 @@ std::vector<std::string> optimizer_words() { return all_words(optimizers); }
 std::optional<FitObjective> fit_objective_named(std::string_view word) { return named_in(objectives, word); }
 std::optional<FitMethod> fit_method_named(std::string_view word) { return named_in(methods, word); }
 std::optional<Optimizer> optimizer_named(std::string_view word) { return named_in(optimizers, word); }
+std::string_view word_of(DuplicatePoints value) { return word_in(duplicate_points, value); }
+std::vector<std::string> duplicate_points_words() { return all_words(duplicate_points); }
+std::optional<DuplicatePoints> duplicate_points_named(std::string_view word) { return named_in(duplicate_points, word); }
 
 }  // namespace rheo::lang

@@ -351,8 +351,10 @@ FitResult fit(const Network& start, const std::vector<int>& free, const std::vec
   FitResult result{.network = start, .free = free, .start_values = start.parameters()};
   result.notes = std::move(notes);
   for (const FitDataSet& set : data)
-    if (set.is_harmonic())
+    if (set.is_harmonic()) {
+      result.notes.insert(result.notes.end(), set.harmonic().notes.begin(), set.harmonic().notes.end());
       for (std::string& note : damping_left_out(set.harmonic())) result.notes.push_back(std::move(note));
+    }
 
   StagedSearch searches(coordinates, data, settings, result);
   std::vector<double> z;

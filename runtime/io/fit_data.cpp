@@ -60,6 +60,7 @@ DataReading reading_of(const lang::FitData& line) {
   reading.columns.area = line.area;
   reading.columns.height = line.height;
   reading.step = line.step;
+  reading.duplicates = line.duplicates;
   if (line.amplitude_is_strain) reading.strain_amplitude = line.amplitude;
   else reading.amplitude = line.amplitude;
   return reading;

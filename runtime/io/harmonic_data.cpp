@@ -6,12 +6,106 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cmath>
 #include <map>
 #include <numbers>
 #include <utility>
 
 namespace rheo::runtime {
+namespace {
+
+// Equal within the relative tolerance of repeated points.
+bool same_value(double a, double b) { return std::abs(a - b) <= 1e-9 * std::max(std::abs(a), std::abs(b)); }
+
+// Classes of VALUES[I] for I in INDICES: values within same_value of a class's smallest are one
+// class. Sets CLASS_OF[I], numbering the classes on from NEXT (which ends at the last one).
+void classify(const std::vector<double>& values, std::vector<std::size_t> indices, std::vector<std::size_t>& class_of, std::size_t& next) {
+  std::sort(indices.begin(), indices.end(), [&](std::size_t a, std::size_t b) { return values[a] < values[b]; });
+  double first = 0.0;
+  for (std::size_t k = 0; k < indices.size(); ++k) {
+    if (k == 0 || !same_value(first, values[indices[k]])) {
+      first = values[indices[k]];
+      ++next;
+    }
+    class_of[indices[k]] = next;
+  }
+}
+
+// "rows 4, 9 and 12".
+std::string row_list(const std::vector<int>& rows) {
+  std::string out = "rows ";
+  for (std::size_t k = 0; k < rows.size(); ++k) out += fmt::format("{}{}", k == 0 ? "" : k + 1 == rows.size() ? " and " : ", ", rows[k]);
+  return out;
+}
+
+// Groups D's points at the same (amplitude, frequency) within same_value. Each group of two or
+// more becomes one point at its first row: the mean complex stiffness (storage K cos(phase),
+// loss K sin(phase)) as K and phase, the mean weight, the first row's amplitude and frequency;
+// a note names the rows. With DuplicatePoints::error a group is a DataError at its second row.
+void merge_repeated_points(HarmonicData& d, lang::DuplicatePoints mode, const Table& t, int amplitude_column) {
+  const std::size_t n = d.size();
+  std::vector<std::size_t> all(n), amplitude_class(n), point_class(n);
+  for (std::size_t i = 0; i < n; ++i) all[i] = i;
+  std::size_t classes = 0;
+  classify(d.amplitude, all, amplitude_class, classes);
+  std::map<std::size_t, std::vector<std::size_t>> by_amplitude;
+  for (std::size_t i = 0; i < n; ++i) by_amplitude[amplitude_class[i]].push_back(i);
+  classes = 0;
+  for (const auto& [amplitude, members] : by_amplitude) classify(d.frequency, members, point_class, classes);
+  std::map<std::size_t, std::vector<std::size_t>> groups;  // members in row order
+  for (std::size_t i = 0; i < n; ++i) groups[point_class[i]].push_back(i);
+
+  std::vector<bool> keep(n, true);
+  for (const auto& [point, members] : groups) {
+    if (members.size() < 2) continue;
+    const std::size_t first = members.front();
+    std::vector<int> rows;
+    for (std::size_t i : members) rows.push_back(d.rows[i]);
+    const std::string where = fmt::format("({:g} mm, {:g} Hz)", d.amplitude[first], d.frequency[first]);
+    if (mode == lang::DuplicatePoints::error) {
+      const std::size_t second = members[1];
+      const std::string message = fmt::format("duplicate point {}, first at row {}; remove one, or average them with duplicates = average", where,
+                                              d.rows[first]);
+      if (amplitude_column < 0) throw DataError(fmt::format("{}:{}:1: error: {}", t.path, d.rows[second], message));
+      throw DataError(fmt::format("{}:{}:{}: error: {} (column '{}')", t.path, d.rows[second], t.cell_column(second, amplitude_column), message,
+                                  lang::printable(t.names[static_cast<std::size_t>(amplitude_column)])));
+    }
+    double storage = 0.0, loss = 0.0, weight = 0.0;
+    for (std::size_t i : members) {
+      storage += d.stiffness[i] * std::cos(d.phase[i]);
+      loss += d.stiffness[i] * std::sin(d.phase[i]);
+      weight += d.weight[i];
+      if (i != first) keep[i] = false;
+    }
+    const auto count = static_cast<double>(members.size());
+    const double stiffness = std::hypot(storage, loss) / count;
+    if (!(stiffness >= lang::min_stiffness))
+      throw DataError(fmt::format("{}:{}:1: error: {} repeat {} and their complex stiffnesses cancel (mean {:g} N/mm); check those rows", t.path,
+                                  d.rows[first], row_list(rows), where, stiffness));
+    d.stiffness[first] = stiffness;
+    d.phase[first] = std::atan2(loss, storage);
+    d.weight[first] = weight / count;
+    d.notes.push_back(fmt::format("{}:{}: {} repeat {}: averaged into one point (mean storage and loss stiffness)", t.path, d.rows[first],
+                                  row_list(rows), where));
+  }
+  if (d.notes.empty()) return;
+  std::size_t kept = 0;
+  for (std::size_t i = 0; i < n; ++i) {
+    if (!keep[i]) continue;
+    d.amplitude[kept] = d.amplitude[i];
+    d.frequency[kept] = d.frequency[i];
+    d.stiffness[kept] = d.stiffness[i];
+    d.phase[kept] = d.phase[i];
+    d.weight[kept] = d.weight[i];
+    d.rows[kept] = d.rows[i];
+    ++kept;
+  }
+  for (auto* column : {&d.amplitude, &d.frequency, &d.stiffness, &d.phase, &d.weight}) column->resize(kept);
+  d.rows.resize(kept);
+}
+
+}  // namespace
 
 HarmonicData harmonic_data_from_table(const Table& t) { return harmonic_data_from_table(t, DataReading{}); }
 
@@ -62,7 +156,6 @@ HarmonicData harmonic_data_from_table(const Table& t, const DataReading& reading
   d.rows = t.rows;
   const int weight_column = find_role(t, Role::weight, how);
   d.weight = weight_column >= 0 ? role_values(t, weight_column, Role::weight, how) : std::vector<double>(d.size(), 1.0);
-  std::map<std::pair<double, double>, int> seen;
   for (std::size_t i = 0; i < d.size(); ++i) {
     auto fail = [&](int column, const std::string& message) {
       if (column < 0) throw DataError(fmt::format("{}:{}:1: error: {}", t.path, t.rows[i], message));
@@ -83,11 +176,8 @@ HarmonicData harmonic_data_from_table(const Table& t, const DataReading& reading
     if (!(d.phase[i] > -std::numbers::pi / 2 && d.phase[i] <= std::numbers::pi / 2))
       fail(d.phase_column, fmt::format("phase must lie in (-90, 90] deg, got {:g} deg; check the column's unit (deg or rad) and sign convention",
                                        d.phase[i] * 180.0 / std::numbers::pi));
-    const auto [it, fresh] = seen.emplace(std::make_pair(d.amplitude[i], d.frequency[i]), t.rows[i]);
-    if (!fresh)
-      fail(amplitude_column,
-           fmt::format("duplicate point ({:g} mm, {:g} Hz), first at row {}; remove one", d.amplitude[i], d.frequency[i], it->second));
   }
+  merge_repeated_points(d, reading.duplicates, t, amplitude_column);
   return d;
 }
 

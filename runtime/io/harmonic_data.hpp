@@ -3,7 +3,9 @@
 // (`amplitude [mm],frequency [Hz],stiffness [N/mm],phase [deg]`). Converted to the internal
 // system: amplitude mm, frequency Hz, stiffness N/mm, phase rad. Malformed input (missing
 // column, negative or zero amplitude or frequency, non-positive stiffness, a phase outside
-// (-90, 90] deg, duplicate point, negative weight) is a DataError naming file:row:column. A
+// (-90, 90] deg, negative weight) is a DataError naming file:row:column. Points at the same
+// (amplitude, frequency), relative 1e-9 (overlapping segments of a master curve), are averaged
+// into one, with a note, or are an error under DataReading::duplicates = error. A
 // phase <= 0 (noise on a nearly elastic point) is kept: fits leave its damping term out
 // (objective.hpp, damping_residual).
 // An optional `weight [-]` column weighs each point's residuals in a fit.
@@ -11,6 +13,7 @@
 // stiffness and displacement through the geometry a data line gives.
 #pragma once
 
+#include "lang/fit_settings.hpp"
 #include "runtime/io/column_roles.hpp"
 #include "runtime/io/history_csv.hpp"
 
@@ -28,6 +31,7 @@ struct DataReading {
   std::string step;
   std::optional<double> amplitude;         // mm
   std::optional<double> strain_amplitude;  // a plain strain (0.001 for 0.1 %); needs columns.height
+  lang::DuplicatePoints duplicates = lang::DuplicatePoints::average;
 };
 
 struct HarmonicData {
@@ -40,7 +44,8 @@ struct HarmonicData {
   std::vector<int> rows;          // 1-based file line of each point
   // Where the values came from, for messages and reports: table columns (-1: from the data line).
   int amplitude_column = -1, frequency_column = -1, stiffness_column = -1, phase_column = -1;
-  bool material = false;  // moduli or strains converted by the data line's geometry
+  bool material = false;           // moduli or strains converted by the data line's geometry
+  std::vector<std::string> notes;  // what reading did beyond the rows, "FILE:ROW: ..." (points averaged)
   std::size_t size() const { return amplitude.size(); }
 };
 

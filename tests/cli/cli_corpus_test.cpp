@@ -4,6 +4,7 @@
 //                             table or a measured history) or a history protocol's `file`
 //   exit: CODE                rheo's exit code
 //   error: ROW:COL: error: M  the start of the first line of standard error after `NAME.csv:`
+//   output: TEXT              text standard output holds (a note of the fit report)
 // Hostile inputs too large or binary to keep as files are generated here.
 #include "cli_support.hpp"
 
@@ -79,6 +80,7 @@ TEST_CASE("csv corpus: each table works or fails at file:row:col with its messag
     CAPTURE(r.err);
     CHECK(r.code == std::stoi(expect["exit"]));
     if (expect.count("error")) CHECK(r.err.rfind(csv.string() + ":" + expect["error"], 0) == 0);
+    if (expect.count("output")) CHECK(r.out.find(expect["output"]) != std::string::npos);
   }
 }
 

@@ -151,4 +151,14 @@ TEST_CASE("data line settings that cannot be read are errors at the setting") {
   CHECK(error_of("amplitude = 1 N").find("or a strain, e.g. amplitude = 0.1 %") != std::string::npos);
   CHECK(error_of("step = 3").find("step takes a text in double quotes") != std::string::npos);
   CHECK(error_of("colour = \"red\"").find("colour") != std::string::npos);
+  CHECK(error_of("duplicates = sum").find("duplicates must be one of: average, error (got 'sum')") != std::string::npos);
+}
+
+TEST_CASE("a data line's duplicates: average by default, or error") {
+  Program p = compile_source("f.rheo", std::string(kModel) + "fit m {\n  data \"a.csv\"\n  data \"b.csv\", duplicates = error\n}\n");
+  REQUIRE(p.fits.at(0).data.size() == 2);
+  CHECK(p.fits[0].data[0].duplicates == DuplicatePoints::average);
+  CHECK(p.fits[0].data[1].duplicates == DuplicatePoints::error);
+  CHECK(word_of(DuplicatePoints::average) == "average");
+  CHECK(duplicate_points_named("error") == DuplicatePoints::error);
 }

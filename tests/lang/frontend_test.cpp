@@ -114,6 +114,33 @@ TEST_CASE("parse_setting: command-line settings use the value grammar and the pr
   CHECK_THROWS_WITH_AS(parse_setting(ProtocolKind::harmonic, "frequency = 2 Hz )"), doctest::Contains("unexpected text"), CompileError);
 }
 
+TEST_CASE("parse_data_option: --data takes a data line's settings, with its grammar and checks") {
+  const FitData plain = parse_data_option("dir/sweep 1.csv");  // no comma: the file as it stands
+  CHECK(plain.file == "dir/sweep 1.csv");
+  CHECK(plain.weight == 1.0);
+  CHECK(plain.columns.empty());
+  const FitData d = parse_data_option(
+      R"(sweep.txt, step = "Amplitude sweep", area = 314 mm^2, height = 1 mm, columns = "frequency = f", weight = 0.5)");
+  CHECK(d.file == "sweep.txt");
+  CHECK(d.step == "Amplitude sweep");
+  CHECK(d.area == 314.0);
+  CHECK(d.height == 1.0);
+  CHECK(d.weight == 0.5);
+  REQUIRE(d.columns.size() == 1);
+  CHECK(d.columns[0].role == "frequency");
+  CHECK(d.columns[0].name == "f");
+  CHECK(parse_data_option(R"("a, b.csv", amplitude = 0.1 %)").file == "a, b.csv");
+  CHECK(parse_data_option(R"("a, b.csv", amplitude = 0.1 %)").amplitude_is_strain);
+  CHECK(parse_data_option("a.csv, duplicates = error").duplicates == DuplicatePoints::error);
+  CHECK_THROWS_WITH_AS(parse_data_option("a.csv, colums = \"f = x\""),
+                       doctest::Contains("<command line>:1:8: error: unknown setting 'colums' for a data line"), CompileError);
+  CHECK_THROWS_WITH_AS(parse_data_option("a.csv, area = 3 mm"), doctest::Contains("<command line>:1:15: error: area expects an area"), CompileError);
+  CHECK_THROWS_WITH_AS(parse_data_option("a.csv, weight = 1, weight = 2"), doctest::Contains("duplicate setting 'weight'"), CompileError);
+  CHECK_THROWS_WITH_AS(parse_data_option("a.csv, columns = \"speed = v\""), doctest::Contains("'speed' is not a role rheo reads"), CompileError);
+  CHECK_THROWS_WITH_AS(parse_data_option(", weight = 1"), doctest::Contains("1:1: error: expected the data file name before the first ','"),
+                       CompileError);
+}
+
 namespace {
 // Seconds compile_source takes on TEXT; the errors it reports go to ERRORS.
 double seconds_to_compile(const std::string& text, std::vector<Diagnostic>& errors, std::size_t& formatted) {

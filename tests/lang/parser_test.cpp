@@ -84,6 +84,30 @@ TEST_CASE("parse_setting_text: one setting and nothing after it") {
   CHECK_THROWS_AS(parse_setting_text("<command line>", "amplitude = 1 mm, x = 2"), CompileError);
 }
 
+TEST_CASE("parse_data_text: a file name to the first comma or in double quotes, then a data line's settings") {
+  auto line = parse_data_text("<command line>", "  sweep data.txt , step = \"Amplitude sweep\", area = 314 mm^2");
+  CHECK(line.kind == ast::FitLine::Kind::data);
+  CHECK(line.file == "sweep data.txt");  // blanks around the name dropped, inside kept
+  CHECK(line.file_where.column == 3);
+  REQUIRE(line.settings.size() == 2);
+  CHECK(line.settings[0].key == "step");  // a keyword elsewhere, a key here
+  CHECK(line.settings[0].value.text == "Amplitude sweep");
+  CHECK(line.settings[1].key == "area");
+  CHECK(line.settings[1].where.column == 46);
+  auto quoted = parse_data_text("<command line>", R"("run 3, cured.csv", weight = 0.5)");
+  CHECK(quoted.file == "run 3, cured.csv");
+  REQUIRE(quoted.settings.size() == 1);
+  CHECK(quoted.settings[0].key == "weight");
+  CHECK(parse_data_text("<command line>", R"("a,b.csv")").settings.empty());
+  CHECK_THROWS_WITH_AS(parse_data_text("<command line>", "a.csv, weight"), doctest::Contains("1:14: error: expected '=' after the setting name"),
+                       CompileError);
+  CHECK_THROWS_WITH_AS(parse_data_text("<command line>", "a.csv,"), doctest::Contains("expected a setting `KEY = VALUE`, found end of file"),
+                       CompileError);
+  CHECK_THROWS_WITH_AS(parse_data_text("<command line>", R"("a,b.csv" x)"),
+                       doctest::Contains("1:11: error: expected ', KEY = VALUE' (a data line's setting) or the end"), CompileError);
+  CHECK_THROWS_WITH_AS(parse_data_text("<command line>", R"("a,b.csv)"), doctest::Contains("unterminated string literal"), CompileError);
+}
+
 TEST_CASE("parse: fit blocks are data lines, output lines and settings lines; `data` is reserved only there") {
   ast::File f = parse("p.rheo", R"(model data { spring data (k = 1) }
 fit data {

@@ -12,9 +12,9 @@
 using namespace rheo::runtime;
 
 namespace {
-std::string error_of(const std::string& text) {
+std::string error_of(const std::string& text, const DataReading& reading = {}) {
   try {
-    harmonic_data_from_table(parse_table("h.csv", text));
+    harmonic_data_from_table(parse_table("h.csv", text), reading);
   } catch (const DataError& e) {
     return e.what();
   }
@@ -42,8 +42,6 @@ TEST_CASE("malformed harmonic tables are located by file:row:column") {
   CHECK(error_of("amplitude [mm],stiffness [N/mm],phase [deg]\n1,2,3\n").find("need a column 'frequency'") != std::string::npos);
   CHECK(error_of("amplitude [mm],frequency [Hz],stiffness [N/mm],phase [deg]\n-1,2,3,4\n")
             .find("h.csv:2:1: error: amplitude must be positive, got -1 mm (column 'amplitude')") == 0);
-  CHECK(error_of("amplitude [mm],frequency [Hz],stiffness [N/mm],phase [deg]\n1,2,3,4\n1,2,5,6\n")
-            .find("h.csv:3:1: error: duplicate point (1 mm, 2 Hz), first at row 2") == 0);
   CHECK(error_of("amplitude [mm],frequency [Hz],stiffness [N/mm],phase [deg]\n1,0,3,4\n").find("frequency must be positive") != std::string::npos);
   CHECK(error_of("amplitude [mm],frequency [Hz],stiffness [N/mm],phase [deg]\n1,2,3,-90\n")
             .find("h.csv:2:7: error: phase must lie in (-90, 90] deg, got -90 deg; check the column's unit") == 0);
@@ -73,4 +71,66 @@ TEST_CASE("an optional weight column weighs points; a negative weight is located
         std::vector<double>{1.0});
   CHECK(error_of("amplitude [mm],frequency [Hz],stiffness [N/mm],phase [deg],weight [-]\n1,2,3,4,-1\n")
             .find("h.csv:2:9: error: a point's weight must be >= 0") == 0);
+}
+
+namespace {
+const char* kHeader = "amplitude [mm],frequency [Hz],stiffness [N/mm],phase [deg],weight [-]\n";
+}  // namespace
+
+TEST_CASE("repeated points: the mean complex stiffness, the mean weight, the first row; a note names the rows") {
+  // Rows 3 and 5 repeat (0.5 mm, 10 Hz): K* = 100 and 100 i N/mm, mean 50 + 50 i.
+  const auto d = harmonic_data_from_table(
+      parse_table("h.csv", std::string(kHeader) + "1,10,120,8,1\n0.5,10,100,0,1\n1,20,118,9,1\n0.5,10,100,90,3\n"));
+  REQUIRE(d.size() == 3);
+  CHECK(d.rows == std::vector<int>{2, 3, 4});
+  CHECK(d.amplitude[1] == 0.5);
+  CHECK(d.frequency[1] == 10.0);
+  CHECK(d.stiffness[1] == doctest::Approx(50.0 * std::sqrt(2.0)).epsilon(1e-14));
+  CHECK(d.phase[1] == doctest::Approx(std::numbers::pi / 4).epsilon(1e-14));
+  CHECK(d.weight[1] == 2.0);
+  CHECK(d.stiffness[2] == 118.0);  // the others as they were, in file order
+  REQUIRE(d.notes.size() == 1);
+  CHECK(d.notes[0] == "h.csv:3: rows 3 and 5 repeat (0.5 mm, 10 Hz): averaged into one point (mean storage and loss stiffness)");
+}
+
+TEST_CASE("repeated points: three repeats are one point; equal storage and loss average to themselves") {
+  const auto d = harmonic_data_from_table(
+      parse_table("h.csv", std::string(kHeader) + "0.2,1,200,10,1\n0.2,1,200,10,1\n0.1,1,50,5,1\n0.2,1,200,10,1\n"));
+  REQUIRE(d.size() == 2);
+  CHECK(d.rows == std::vector<int>{2, 4});
+  CHECK(d.stiffness[0] == doctest::Approx(200.0).epsilon(1e-14));
+  CHECK(d.phase[0] == doctest::Approx(10.0 * std::numbers::pi / 180.0).epsilon(1e-14));
+  REQUIRE(d.notes.size() == 1);
+  CHECK(d.notes[0].find("h.csv:2: rows 2, 3 and 5 repeat (0.2 mm, 1 Hz)") == 0);
+}
+
+TEST_CASE("repeated points: within a relative 1e-9 of amplitude and frequency, not beyond") {
+  // 1 + 5e-10 is within 1e-9 of 1; 1 + 2e-9 is not.
+  const auto near = harmonic_data_from_table(parse_table("h.csv", std::string(kHeader) + "1,10,100,5,1\n1.0000000005,10.000000005,100,5,1\n"));
+  CHECK(near.size() == 1);
+  CHECK(near.notes.size() == 1);
+  const auto amplitude_apart = harmonic_data_from_table(parse_table("h.csv", std::string(kHeader) + "1,10,100,5,1\n1.000000002,10,100,5,1\n"));
+  CHECK(amplitude_apart.size() == 2);
+  CHECK(amplitude_apart.notes.empty());
+  const auto frequency_apart = harmonic_data_from_table(parse_table("h.csv", std::string(kHeader) + "1,10,100,5,1\n1,10.00000002,100,5,1\n"));
+  CHECK(frequency_apart.size() == 2);
+  CHECK(frequency_apart.notes.empty());
+  // The same frequency at another amplitude is another point.
+  CHECK(harmonic_data_from_table(parse_table("h.csv", std::string(kHeader) + "1,10,100,5,1\n2,10,100,5,1\n")).size() == 2);
+}
+
+TEST_CASE("repeated points under duplicates = error: the second row is the error, naming the first") {
+  DataReading reading;
+  reading.duplicates = rheo::lang::DuplicatePoints::error;
+  CHECK(error_of("amplitude [mm],frequency [Hz],stiffness [N/mm],phase [deg]\n1,2,3,4\n1,2,5,6\n", reading)
+            .find("h.csv:3:1: error: duplicate point (1 mm, 2 Hz), first at row 2; remove one, or average them with duplicates = average "
+                  "(column 'amplitude')") == 0);
+  CHECK(error_of("amplitude [mm],frequency [Hz],stiffness [N/mm],phase [deg]\n1,2,3,4\n1,3,3,4\n1,2.000000001,5,6\n", reading)
+            .find("h.csv:4:1: error: duplicate point (1 mm, 2 Hz), first at row 2") == 0);
+  CHECK(error_of("amplitude [mm],frequency [Hz],stiffness [N/mm],phase [deg]\n1,2,3,4\n1,3,5,6\n", reading).empty());
+}
+
+TEST_CASE("repeated points whose complex stiffnesses cancel are an error naming the rows") {
+  CHECK(error_of("amplitude [mm],frequency [Hz],stiffness [N/mm],phase [deg]\n1,2,1,89.9999999999\n1,2,1,-89.9999999999\n")
+            .find("h.csv:2:1: error: rows 2 and 3 repeat (1 mm, 2 Hz) and their complex stiffnesses cancel") == 0);
 }
