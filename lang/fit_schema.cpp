@@ -254,8 +254,8 @@ std::optional<Setting> check_fit_setting(const ast::SettingNode& node, std::vect
 }
 
 const std::vector<std::string>& data_column_roles() {
-  static const std::vector<std::string> roles{"time",      "displacement", "force",   "amplitude", "frequency",
-                                              "stiffness", "phase",        "storage", "loss",      "weight"};
+  static const std::vector<std::string> roles{"time",  "displacement", "force", "amplitude", "frequency", "stiffness",
+                                              "phase", "storage",      "loss",  "weight",    "preload"};
   return roles;
 }
 

@@ -54,6 +54,7 @@ const std::vector<ProtocolSpec>& schema() {
         steps_per_cycle,
         whole("cycles_max", 1, max_cycles),
         {"tolerance", Shape::number, dim::none, false, true},
+        {"preload", Shape::single, dim::length, false, false},
         elements,
         format,
         solver}},
@@ -202,6 +203,7 @@ ProtocolSettings decode_protocol_settings(ProtocolKind kind, const std::vector<S
       w.get("steps_per_cycle", h.steps_per_cycle);
       w.get("cycles_max", h.cycles_max);
       w.get("tolerance", h.tolerance);
+      w.get("preload", h.preload);
       return h;
     }
     case ProtocolKind::static_triangle: {

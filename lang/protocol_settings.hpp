@@ -61,6 +61,7 @@ struct HarmonicSettings : CommonSettings {
   int steps_per_cycle = default_steps_per_cycle;
   int cycles_max = default_cycles_max;
   double tolerance = default_tolerance;
+  double preload = 0.0;  // mm, any sign: the mean displacement p, u = p + u0 sin(2 pi f t)
 };
 
 // `static`: a triangle of constant rate per amplitude (the thesis's static test).

@@ -18,29 +18,35 @@ constexpr double half_pi = 0.5 * std::numbers::pi;
 constexpr int samples_per_half_cycle = 32;
 
 // The loading half of the steady cycle, theta in [-pi/2, pi/2], as the sum of
-//   a sin(theta) + b cos(theta) + Y(u0 sin theta) + constant + sum over slipping frictions,
-// where a gathers every branch linear in u (springs, Maxwell K', frictions that never slip).
+//   a sin(theta) + b cos(theta) + Y_odd(u) + sign E(u) + constant + sum over slipping frictions,
+// u = u0 sin(theta), where a gathers every branch linear in u (springs, Maxwell K', frictions that
+// never slip), Y_odd(u) = y1 u + y3 u^3 + y5 u^5 and E(u) = y2 u^2 + y4 u^4 the odd and even parts
+// of the yeoh springs' Y(p + u) - Y(p) about the preload p. The unloading half is the loading
+// half's mirror with the even part's sign turned (sign = -1): F(theta + pi) = -[F(theta) with -E].
 // The per-friction arrays are scratch space reused from point to point (no allocation once
 // they have grown).
 struct LoadingHalf {
   double u0 = 0.0;
   double a = 0.0;                                   // N
   double b = 0.0;                                   // N
-  double d10 = 0.0, d20 = 0.0, d30 = 0.0;           // summed Yeoh constants
+  double y1 = 0.0, y3 = 0.0, y5 = 0.0;              // odd part of the yeoh springs about p [N/mm^n]
+  double y2 = 0.0, y4 = 0.0;                        // even part (0 without preload)
+  double sign = 1.0;                                // of the even part: +1 loading, -1 mirrored unloading
   double constant = 0.0;                            // sliders, N
   std::vector<double> slip_k, slip_fy, slip_theta;  // frictions with u0 > uy; theta_q where they start to slip
   std::vector<double> ends;                         // piece ends
   std::vector<const PwlPeriodicState*> branches;    // piecewise-linear subtrees, by events
 
   void clear() {
-    a = b = d10 = d20 = d30 = constant = 0.0;
+    a = b = y1 = y3 = y5 = y2 = y4 = constant = 0.0;
+    sign = 1.0;
     slip_k.clear(), slip_fy.clear(), slip_theta.clear(), ends.clear(), branches.clear();
   }
   double force(double theta) const {
     const double s = std::sin(theta);
     const double u = u0 * s;
     const double u2 = u * u;
-    double f = a * s + b * std::cos(theta) + u * (2.0 * d10 + u2 * (4.0 * d20 + 6.0 * d30 * u2)) + constant;
+    double f = a * s + b * std::cos(theta) + u * (y1 + u2 * (y3 + y5 * u2)) + sign * u2 * (y2 + y4 * u2) + constant;
     for (std::size_t q = 0; q < slip_k.size(); ++q) f += std::min(slip_fy[q], -slip_fy[q] + slip_k[q] * u0 * (1.0 + s));
     for (const PwlPeriodicState* branch : branches) f += branch->force(theta);
     return f;
@@ -55,8 +61,8 @@ struct LoadingHalf {
   // dF/dtheta and d2F/dtheta2 at theta (with its sin and cos) inside a piece whose elastic frictions add `k_elastic` [N/mm].
   void derivatives(double theta, double s, double c, double k_elastic, double& first, double& second) const {
     const double u = u0 * s, u2 = u * u;
-    const double dy = 2.0 * d10 + u2 * (12.0 * d20 + 30.0 * d30 * u2);
-    const double d2y = u * (24.0 * d20 + 120.0 * d30 * u2);
+    const double dy = y1 + u2 * (3.0 * y3 + 5.0 * y5 * u2) + sign * u * (2.0 * y2 + 4.0 * y4 * u2);
+    const double d2y = u * (6.0 * y3 + 20.0 * y5 * u2) + sign * (2.0 * y2 + 12.0 * y4 * u2);
     const double in_phase = a + u0 * (dy + k_elastic);
     first = c * in_phase - b * s;
     second = -s * in_phase + c * c * u0 * u0 * d2y - b * c;
@@ -66,13 +72,14 @@ struct LoadingHalf {
       first += f1, second += f2;
     }
   }
-  // A lower bound of dF/du over |u| <= u0 without the frictions' share (>= 0).
+  // A lower bound of dF/du over |u| <= u0 without the frictions' share (>= 0); only for a
+  // yeoh part without an even part (no preload).
   double least_in_phase() const {
     const double s_max = u0 * u0;
-    auto dy = [&](double s) { return 2.0 * d10 + s * (12.0 * d20 + 30.0 * d30 * s); };
+    auto dy = [&](double s) { return y1 + s * (3.0 * y3 + 5.0 * y5 * s); };
     double least = std::min(dy(0.0), dy(s_max));
-    if (d30 != 0.0) {
-      const double s_star = -d20 / (5.0 * d30);
+    if (y5 != 0.0) {
+      const double s_star = -3.0 * y3 / (10.0 * y5);
       if (s_star > 0.0 && s_star < s_max) least = std::min(least, dy(s_star));
     }
     return a + u0 * least;
@@ -98,7 +105,8 @@ double stationary_point(const LoadingHalf& h, double lo, double hi, double k_ela
 // max F over the loading half. When dF/dtheta >= 0 on [-pi/2, 0] is guaranteed (every branch's
 // in-phase stiffness non-negative, b >= 0), only [0, pi/2] is searched.
 double loading_half_maximum(LoadingHalf& h) {
-  const double from = h.branches.empty() && h.b >= 0.0 && h.least_in_phase() >= 0.0 ? 0.0 : -half_pi;
+  const bool odd = h.y2 == 0.0 && h.y4 == 0.0;
+  const double from = odd && h.branches.empty() && h.b >= 0.0 && h.least_in_phase() >= 0.0 ? 0.0 : -half_pi;
   h.ends.assign({from, half_pi});
   for (double t : h.slip_theta)
     if (t > from) h.ends.push_back(t);
@@ -167,6 +175,15 @@ Complex subtree_stiffness(const Network& network, int index, double omega) {
   }
 }
 
+// Whether the subtree below ROOT holds a gap (its play is fixed in space: not shift-invariant).
+bool has_gap(const Topology& t, int root) {
+  const TreeNode& node = t.nodes[static_cast<std::size_t>(root)];
+  if (node.kind == NodeKind::gap) return true;
+  for (int c = 0; c < node.child_count; ++c)
+    if (has_gap(t, t.children[static_cast<std::size_t>(node.first_child + c)])) return true;
+  return false;
+}
+
 }  // namespace
 
 bool has_closed_form_periodic_state(const Network& network, bool event_driven) {
@@ -177,16 +194,16 @@ bool has_closed_form_periodic_state(const Network& network, bool event_driven) {
   });
 }
 
-HarmonicPoint closed_form_harmonic_point(const Network& network, double amplitude, double frequency, HarmonicDefinition definition) {
-  if (auto point = try_closed_form_harmonic_point(network, amplitude, frequency, definition)) return *point;
-  throw NumericalError(
-      fmt::format("model '{}': the event-driven periodic state at {:g} mm and {:g} Hz did not settle (a slider or gap "
-                  "switching without end, or no periodic state within 60 cycles); use steady_state = time_stepping",
-                  network.model().name, amplitude, frequency));
+HarmonicPoint closed_form_harmonic_point(const Network& network, double amplitude, double frequency, HarmonicDefinition definition, double preload) {
+  if (auto point = try_closed_form_harmonic_point(network, amplitude, frequency, definition, preload)) return *point;
+  throw NumericalError(fmt::format(
+      "model '{}': the event-driven periodic state at {:g} mm and {:g} Hz did not settle (a slider or gap "
+      "switching without end, no periodic state within 60 cycles, or a preload on a gap, whose play is fixed in space); use steady_state = time_stepping",
+      network.model().name, amplitude, frequency));
 }
 
 std::optional<HarmonicPoint> try_closed_form_harmonic_point(const Network& network, double amplitude, double frequency,
-                                                            HarmonicDefinition definition) {
+                                                            HarmonicDefinition definition, double preload) {
   const Coefficients& c = network.coefficients();
   const double u0 = amplitude;
   const double omega = 2.0 * std::numbers::pi * frequency;
@@ -211,6 +228,7 @@ std::optional<HarmonicPoint> try_closed_form_harmonic_point(const Network& netwo
   for (int root : network.topology().subtrees) {
     if (!network.topology().nodes[static_cast<std::size_t>(root)].linear) {
       if (!PwlBranch::build(network, root, branch)) throw std::logic_error("closed_form_harmonic_point: a subtree has no closed form");
+      if (preload != 0.0 && has_gap(network.topology(), root)) return std::nullopt;  // its play is not centred on the drive
       if (event_branches.size() <= events_used) event_branches.emplace_back();
       PwlPeriodicState& state = event_branches[events_used++];
       if (!state.solve(branch, u0, omega)) return std::nullopt;
@@ -228,12 +246,18 @@ std::optional<HarmonicPoint> try_closed_form_harmonic_point(const Network& netwo
   h.b = u0 * loss;
   storage += event_storage;
   loss += event_loss;
-  for (std::size_t i = 0; i < c.yeoh_d10.size(); ++i) {
-    h.d10 += c.yeoh_d10[i];
-    h.d20 += c.yeoh_d20[i];
-    h.d30 += c.yeoh_d30[i];
-  }
-  storage += 2.0 * h.d10 + 3.0 * h.d20 * u0 * u0 + 3.75 * h.d30 * u0 * u0 * u0 * u0;
+  double d10 = 0.0, d20 = 0.0, d30 = 0.0;
+  for (std::size_t i = 0; i < c.yeoh_d10.size(); ++i) d10 += c.yeoh_d10[i], d20 += c.yeoh_d20[i], d30 += c.yeoh_d30[i];
+  // Y(p + u) - Y(p) = sum_n Y^(n)(p) u^n / n! for Y(u) = 2 D10 u + 4 D20 u^3 + 6 D30 u^5 (eq. 3.3).
+  const double p = preload, p2 = p * p;
+  h.y1 = 2.0 * d10 + 12.0 * d20 * p2 + 30.0 * d30 * p2 * p2;
+  h.y2 = 12.0 * d20 * p + 60.0 * d30 * p2 * p;
+  h.y3 = 4.0 * d20 + 60.0 * d30 * p2;
+  h.y4 = 30.0 * d30 * p;
+  h.y5 = 6.0 * d30;
+  // First harmonic of the odd part: the mean of u^3 sin and u^5 sin over a cycle is 3/4 u0^3, 5/8 u0^5;
+  // the even part adds nothing to K*_1 nor to U (it is conservative and even in u).
+  storage += h.y1 + 0.75 * h.y3 * u0 * u0 + 0.625 * h.y5 * u0 * u0 * u0 * u0;
   for (std::size_t i = 0; i < c.friction_k.size(); ++i) {
     const double k = c.friction_k[i], fy = c.friction_fy[i], uy = fy / k;
     if (u0 <= uy) {
@@ -261,8 +285,17 @@ std::optional<HarmonicPoint> try_closed_form_harmonic_point(const Network& netwo
   point.cycles = cycles;
   // A sinusoidal force a sin + b cos (linear branches only) peaks at sqrt(a^2 + b^2) within the
   // loading half when b >= 0 (the loss of a passive network).
-  const bool sinusoidal = h.slip_k.empty() && h.branches.empty() && h.constant == 0.0 && h.d10 == 0.0 && h.d20 == 0.0 && h.d30 == 0.0;
-  const double force_amplitude = sinusoidal && h.b >= 0.0 ? std::hypot(h.a, h.b) : loading_half_maximum(h);
+  const bool sinusoidal = h.slip_k.empty() && h.branches.empty() && h.constant == 0.0 && h.y1 == 0.0 && h.y3 == 0.0 && h.y5 == 0.0;
+  double force_amplitude = 0.0;
+  if (sinusoidal && h.b >= 0.0) {
+    force_amplitude = std::hypot(h.a, h.b);
+  } else if (h.y2 == 0.0 && h.y4 == 0.0) {
+    force_amplitude = loading_half_maximum(h);  // max F = -min F
+  } else {                                      // (max F - min F) / 2, min F = -(max of the mirrored half)
+    const double loading = loading_half_maximum(h);
+    h.sign = -1.0;
+    force_amplitude = 0.5 * (loading + loading_half_maximum(h));
+  }
   point.measures = measures_from(force_amplitude, storage, loss, u0, definition);
   return point;
 }

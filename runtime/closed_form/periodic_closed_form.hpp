@@ -55,10 +55,20 @@ bool has_closed_form_periodic_state(const Network& network, bool event_driven = 
 
 // Requires has_closed_form_periodic_state(network), amplitude > 0 [mm], frequency > 0 [Hz].
 // Nothing when a piecewise-linear subtree's periodic state does not settle
-// (PwlPeriodicState::solve): the caller time-steps the point.
+// (PwlPeriodicState::solve), or when a preload meets a gap in one (its play is fixed in space):
+// the caller time-steps the point.
+// PRELOAD p [mm]: the drive is u = p + u0 sin(theta) from the relaxed state at p. Every branch
+// but the yeoh springs is shift-invariant (its periodic force moves by a constant); a yeoh
+// spring about p is Y(p + u) - Y(p) = y1 u + y2 u^2 + y3 u^3 + y4 u^4 + y5 u^5 with
+//   y1 = 2 D10 + 12 D20 p^2 + 30 D30 p^4 (its tangent stiffness at p), y2 = 12 D20 p + 60 D30 p^3,
+//   y3 = 4 D20 + 60 D30 p^2, y4 = 30 D30 p, y5 = 6 D30;
+// the odd part adds K' = y1 + (3/4) y3 u0^2 + (5/8) y5 u0^4 to K*_1 and the even part nothing to
+// K*_1 and U, but breaks the mirror symmetry: F^ = (max F - min F)/2 with min F searched on the
+// mirrored half.
 std::optional<HarmonicPoint> try_closed_form_harmonic_point(const Network& network, double amplitude, double frequency,
-                                                            HarmonicDefinition definition);
+                                                            HarmonicDefinition definition, double preload = 0.0);
 // The same, with a NumericalError where that returns nothing.
-HarmonicPoint closed_form_harmonic_point(const Network& network, double amplitude, double frequency, HarmonicDefinition definition);
+HarmonicPoint closed_form_harmonic_point(const Network& network, double amplitude, double frequency, HarmonicDefinition definition,
+                                         double preload = 0.0);
 
 }  // namespace rheo::runtime

@@ -26,6 +26,14 @@ Drive step_relaxation(double amplitude, double rise, double duration, double dt)
 // Splits every interval of `drive` into `substeps` equal steps (exact for a linear drive).
 Drive refine(const Drive& drive, int substeps);
 
+// A drive's start away from rest: the terminal force [N] and the force [N] and elongation [mm]
+// of every element the user wrote (Topology::probes order), rates zero (the relaxed start:
+// stepping/relaxed_state.hpp), for the integrators that take it.
+struct StartAtRest {
+  double force = 0.0;
+  std::vector<double> element_force, element_elongation;
+};
+
 struct History {
   std::vector<double> time, displacement, force;
   std::vector<std::string> element_paths;

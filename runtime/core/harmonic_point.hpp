@@ -1,4 +1,4 @@
-// A point of a harmonic test, u = u0 sin(2 pi f t): how its periodic steady state is found
+// A point of a harmonic test, u = p + u0 sin(2 pi f t) (p the preload, usually 0): how its periodic steady state is found
 // (HarmonicOptions) and what characterises it (HarmonicPoint, cycle_measures.hpp). The runner
 // that finds it is protocols/harmonic.hpp.
 #pragma once
@@ -30,6 +30,7 @@ struct HarmonicOptions {
 
 struct HarmonicPoint {
   double amplitude = 0.0;  // u0 [mm]
+  double preload = 0.0;    // p [mm]: the drive is u = p + u0 sin(2 pi f t), from the relaxed state at p
   double frequency = 0.0;  // f [Hz]
   CycleMeasures measures;
   int cycles = 0;  // simulated cycles (0: closed form; event-driven branches: the cycles their shooting followed)

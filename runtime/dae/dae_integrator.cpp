@@ -144,7 +144,7 @@ DaeIntegrator::DriveState DaeIntegrator::drive_at(double t) const {
   if (drive_.kind == DriveSignal::Kind::sine) {
     const double s = std::sin(drive_.omega * t), c = std::cos(drive_.omega * t);
     const double a = drive_.amplitude, w = drive_.omega;
-    return {a * s, a * w * c, -a * w * w * s};
+    return {drive_.offset + a * s, a * w * c, -a * w * w * s};
   }
   const Drive& d = *drive_.samples;
   const std::size_t k = std::min(segment_, d.time.size() - 2);

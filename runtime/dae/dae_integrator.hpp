@@ -34,6 +34,7 @@ struct DriveSignal {
   double amplitude = 0.0;          // sine: u = amplitude sin(omega t) [mm]
   double omega = 0.0;              // rad/s
   const Drive* samples = nullptr;  // samples: linear between them; not owned
+  double offset = 0.0;             // sine: u = offset + amplitude sin(omega t) [mm]
 };
 
 struct DaeOptions {

@@ -6,6 +6,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <stdexcept>
 #include <cmath>
 #include <limits>
 #include <numbers>
@@ -101,7 +102,8 @@ auto with_softening_hint(const Network& network, Run run) {
   }
 }
 
-HarmonicPoint harmonic_point(const Network& network, double amplitude, double frequency, const HarmonicOptions& options, DaeStatistics* statistics) {
+HarmonicPoint harmonic_point(const Network& network, double amplitude, double frequency, const HarmonicOptions& options, DaeStatistics* statistics,
+                             double preload, const StartAtRest* start) {
   const DaeGraph graph = DaeGraph::build(network);
   const double omega = 2.0 * std::numbers::pi * frequency;
   DaeOptions dae;
@@ -111,32 +113,39 @@ HarmonicPoint harmonic_point(const Network& network, double amplitude, double fr
   dae.velocity_scale = omega * amplitude;
   dae.newton_tolerance = dae_newton_tolerance(graph, amplitude, dae.force_scale);
   DaeIntegrator integrator(graph, dae);
-  integrator.start({DriveSignal::Kind::sine, amplitude, omega, nullptr});
+  const DriveSignal signal{DriveSignal::Kind::sine, amplitude, omega, nullptr, preload};
+  if (preload != 0.0) {
+    if (!start) throw std::logic_error("dae_harmonic_point: a preload needs the relaxed start");
+    const std::vector<double> positions = positions_at_rest(graph, preload, start->element_force, start->element_elongation);
+    integrator.start(signal, &positions);
+  } else {
+    integrator.start(signal);
+  }
 
   const int n = options.steps_per_cycle;
   const double period = 1.0 / frequency;
   const double tolerance = std::max(options.tolerance, 100.0 * kDaeRelativeTolerance);
   std::vector<double> phase(static_cast<std::size_t>(n)), displacement(phase.size()), force(phase.size());
 
-  std::vector<double> start;
+  std::vector<double> cycle_start;
   HarmonicPoint point;
   point.amplitude = amplitude;
   point.frequency = frequency;
   double previous_change = std::numeric_limits<double>::infinity();
   for (int cycle = 1; cycle <= options.max_cycles; ++cycle) {
-    start = integrator.state();  // reuses the capacity
+    cycle_start = integrator.state();  // reuses the capacity
     const double t0 = (cycle - 1) * period;
     for (int k = 0; k < n; ++k) {
       const double t = t0 + (k + 1) * period / n;
       const auto i = static_cast<std::size_t>(k);
       phase[i] = 2.0 * std::numbers::pi * (k + 1) / n;
-      displacement[i] = amplitude * std::sin(phase[i]);
+      displacement[i] = preload + amplitude * std::sin(phase[i]);
       force[i] = integrator.advance(t);
     }
     point.measures = measure_cycle(CycleSamples{phase, displacement, force}, amplitude, options.definition);
     point.cycles = cycle;
     const double force_scale = std::max(point.measures.force_amplitude, std::numeric_limits<double>::min());
-    const double change = integrator.change_since(start, amplitude, force_scale, omega * amplitude);
+    const double change = integrator.change_since(cycle_start, amplitude, force_scale, omega * amplitude);
     const double rate = change / previous_change;
     const double remaining = rate < 1.0 ? change * rate / (1.0 - rate) : change;
     previous_change = change;
@@ -205,8 +214,8 @@ History history(const Network& network, const Drive& drive, bool elements, DaeSt
 }  // namespace
 
 HarmonicPoint dae_harmonic_point(const Network& network, double amplitude, double frequency, const HarmonicOptions& options,
-                                 DaeStatistics* statistics) {
-  return with_softening_hint(network, [&] { return harmonic_point(network, amplitude, frequency, options, statistics); });
+                                 DaeStatistics* statistics, double preload, const StartAtRest* start) {
+  return with_softening_hint(network, [&] { return harmonic_point(network, amplitude, frequency, options, statistics, preload, start); });
 }
 
 History dae_history(const Network& network, const Drive& drive, bool elements, DaeStatistics* statistics, const StartAtRest* start) {

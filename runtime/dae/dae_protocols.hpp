@@ -17,16 +17,10 @@ namespace rheo::runtime {
 // Relative tolerance of IDA for the protocols (absolute tolerances scale with the drive).
 inline constexpr double kDaeRelativeTolerance = 1e-8;
 
+// PRELOAD p [mm]: the drive is p + u0 sin(w t), from START (the relaxed state at p; required
+// where p != 0).
 HarmonicPoint dae_harmonic_point(const Network& network, double amplitude, double frequency, const HarmonicOptions& options,
-                                 DaeStatistics* statistics = nullptr);
-
-// A history's start away from rest: the terminal force [N] and the force [N] and elongation [mm]
-// of every element the user wrote (Topology::probes order) at the first sample, rates zero
-// (the relaxed start: stepping/relaxed_state.hpp).
-struct StartAtRest {
-  double force = 0.0;
-  std::vector<double> element_force, element_elongation;
-};
+                                 DaeStatistics* statistics = nullptr, double preload = 0.0, const StartAtRest* start = nullptr);
 
 // From rest, or from START where given.
 History dae_history(const Network& network, const Drive& drive, bool elements, DaeStatistics* statistics = nullptr,

@@ -289,6 +289,13 @@ void require_fittable(const Network& start, const std::vector<int>& free, const 
   if (settings.score.method != FitMethod::exact && std::any_of(data.begin(), data.end(), [](const FitDataSet& s) { return s.is_harmonic(); }))
     if (const std::string why = approximation_misfit(start); !why.empty())
       throw UsageError(fmt::format("cannot fit model '{}': {}", start.model().name, why));
+  if (settings.score.method == FitMethod::approximate)  // the thesis's formulas (5.5-5.21) know no preload; `corrected` calibrates it in
+    for (const FitDataSet& s : data)
+      if (s.is_harmonic() && std::any_of(s.harmonic().preload.begin(), s.harmonic().preload.end(), [](double p) { return p != 0.0; }))
+        throw UsageError(
+            fmt::format("cannot fit {} with method = approximate: its points have a preload, which the thesis's approximation "
+                        "(eqs. 5.5-5.21) does not know; use method = exact or corrected",
+                        s.path));
 }
 
 // How the fitted NETWORK meets one data set: its prediction, residuals and err (eq. 6.1, or the

@@ -47,8 +47,9 @@ double thesis_err(const RelativeResiduals& r) { return std::sqrt(phi(r, 1.0, 1.0
 
 std::vector<HarmonicPoint> simulate_at(const Network& network, const HarmonicData& data, const HarmonicOptions& options) {
   std::vector<HarmonicPoint> points(data.size());
-  parallel_for(data.size(), options.threads,
-               [&](std::size_t i) { points[i] = simulate_harmonic_point(network, data.amplitude[i], data.frequency[i], options); });
+  parallel_for(data.size(), options.threads, [&](std::size_t i) {
+    points[i] = simulate_harmonic_point(network, data.amplitude[i], data.frequency[i], options, data.preload.empty() ? 0.0 : data.preload[i]);
+  });
   return points;
 }
 

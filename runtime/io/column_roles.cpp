@@ -73,6 +73,13 @@ const std::vector<RoleSpec>& specs() {
        "stiffness (N/mm), or a modulus (Pa, MPa, N/mm^2) with the specimen's area and height",
        "N/mm"},
       {Role::weight, "weight", {"weight"}, dim::none, false, "none (a plain number)", "-"},
+      {Role::preload,
+       "preload",
+       {"preload", "mean displacement", "static displacement", "static preload", "mean strain", "static strain", "preload strain"},
+       dim::length,
+       true,
+       "length (mm), or a strain (%, -, mm/mm) with the specimen's height",
+       "mm"},
   };
   return table;
 }

@@ -19,7 +19,7 @@
 
 namespace rheo::runtime {
 
-enum class Role { time, displacement, force, amplitude, frequency, stiffness, phase, storage, loss, weight };
+enum class Role { time, displacement, force, amplitude, frequency, stiffness, phase, storage, loss, weight, preload };
 
 std::string_view role_name(Role role);
 std::optional<Role> role_named(std::string_view name);

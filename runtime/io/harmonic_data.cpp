@@ -52,8 +52,13 @@ void merge_repeated_points(HarmonicData& d, lang::DuplicatePoints mode, const Ta
   std::map<std::size_t, std::vector<std::size_t>> by_amplitude;
   for (std::size_t i = 0; i < n; ++i) by_amplitude[amplitude_class[i]].push_back(i);
   classes = 0;
-  for (const auto& [amplitude, members] : by_amplitude) classify(d.frequency, members, point_class, classes);
-  std::map<std::size_t, std::vector<std::size_t>> groups;  // members in row order
+  std::vector<std::size_t> frequency_class(n);
+  for (const auto& [amplitude, members] : by_amplitude) classify(d.frequency, members, frequency_class, classes);
+  std::map<std::size_t, std::vector<std::size_t>> by_frequency;
+  for (std::size_t i = 0; i < n; ++i) by_frequency[frequency_class[i]].push_back(i);
+  classes = 0;
+  for (const auto& [frequency, members] : by_frequency) classify(d.preload, members, point_class, classes);  // p = 0 for most tables
+  std::map<std::size_t, std::vector<std::size_t>> groups;                                                    // members in row order
   for (std::size_t i = 0; i < n; ++i) groups[point_class[i]].push_back(i);
 
   std::vector<bool> keep(n, true);
@@ -62,7 +67,9 @@ void merge_repeated_points(HarmonicData& d, lang::DuplicatePoints mode, const Ta
     const std::size_t first = members.front();
     std::vector<int> rows;
     for (std::size_t i : members) rows.push_back(d.rows[i]);
-    const std::string where = fmt::format("({:g} mm, {:g} Hz)", d.amplitude[first], d.frequency[first]);
+    const std::string where = d.preload[first] == 0.0
+                                  ? fmt::format("({:g} mm, {:g} Hz)", d.amplitude[first], d.frequency[first])
+                                  : fmt::format("({:g} mm, {:g} Hz, preload {:g} mm)", d.amplitude[first], d.frequency[first], d.preload[first]);
     if (mode == lang::DuplicatePoints::error) {
       const std::size_t second = members[1];
       const std::string message = fmt::format("duplicate point {}, first at row {}; remove one, or average them with duplicates = average", where,
@@ -98,10 +105,11 @@ void merge_repeated_points(HarmonicData& d, lang::DuplicatePoints mode, const Ta
     d.stiffness[kept] = d.stiffness[i];
     d.phase[kept] = d.phase[i];
     d.weight[kept] = d.weight[i];
+    d.preload[kept] = d.preload[i];
     d.rows[kept] = d.rows[i];
     ++kept;
   }
-  for (auto* column : {&d.amplitude, &d.frequency, &d.stiffness, &d.phase, &d.weight}) column->resize(kept);
+  for (auto* column : {&d.amplitude, &d.frequency, &d.stiffness, &d.phase, &d.weight, &d.preload}) column->resize(kept);
   d.rows.resize(kept);
 }
 
@@ -156,6 +164,8 @@ HarmonicData harmonic_data_from_table(const Table& t, const DataReading& reading
   d.rows = t.rows;
   const int weight_column = find_role(t, Role::weight, how);
   d.weight = weight_column >= 0 ? role_values(t, weight_column, Role::weight, how) : std::vector<double>(d.size(), 1.0);
+  const int preload_column = find_role(t, Role::preload, how);
+  d.preload = preload_column >= 0 ? role_values(t, preload_column, Role::preload, how) : std::vector<double>(d.size(), 0.0);
   for (std::size_t i = 0; i < d.size(); ++i) {
     auto fail = [&](int column, const std::string& message) {
       if (column < 0) throw DataError(fmt::format("{}:{}:1: error: {}", t.path, t.rows[i], message));
@@ -173,6 +183,9 @@ HarmonicData harmonic_data_from_table(const Table& t, const DataReading& reading
     physical(amplitude_column, "amplitude", d.amplitude[i], lang::min_amplitude, lang::max_amplitude, "mm");
     physical(d.frequency_column, "frequency", d.frequency[i], lang::min_frequency, lang::max_frequency, "Hz");
     physical(d.stiffness_column, "stiffness", d.stiffness[i], lang::min_stiffness, lang::max_stiffness, "N/mm");
+    if (!(std::abs(d.preload[i]) <= lang::max_amplitude))
+      fail(preload_column,
+           fmt::format("preload {:g} mm is beyond the {:g} mm a rig can drive; check the column's unit", d.preload[i], lang::max_amplitude));
     if (!(d.phase[i] > -std::numbers::pi / 2 && d.phase[i] <= std::numbers::pi / 2))
       fail(d.phase_column, fmt::format("phase must lie in (-90, 90] deg, got {:g} deg; check the column's unit (deg or rad) and sign convention",
                                        d.phase[i] * 180.0 / std::numbers::pi));

@@ -41,6 +41,7 @@ struct HarmonicData {
   std::vector<double> stiffness;  // N/mm, K = |K*|
   std::vector<double> phase;      // rad
   std::vector<double> weight;     // per-point weight (optional column `weight [-]`, default 1)
+  std::vector<double> preload;    // mm, per point: the mean displacement p (optional column `preload [mm]`, default 0)
   std::vector<int> rows;          // 1-based file line of each point
   // Where the values came from, for messages and reports: table columns (-1: from the data line).
   int amplitude_column = -1, frequency_column = -1, stiffness_column = -1, phase_column = -1;

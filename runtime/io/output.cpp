@@ -3,6 +3,8 @@
 #include "runtime/core/errors.hpp"
 
 #include <fmt/format.h>
+
+#include <algorithm>
 #include <nlohmann/json.hpp>
 #include <unistd.h>
 
@@ -30,13 +32,17 @@ std::string harmonic_csv(const ResultHeader& header, const std::vector<HarmonicP
   out += definition == HarmonicDefinition::thesis
              ? "# definition thesis: stiffness = (max F - min F)/(2 u0), phase = asin(U/(pi F^ u0)) (eqs. 1.2, 5.26, 5.27)\n"
              : "# definition first_harmonic: stiffness = |F1|/u0, phase = arg F1 of the first harmonic of the force\n";
+  // A preload column only where a point has one: results without stay as they were.
+  const bool preloaded = std::any_of(points.begin(), points.end(), [](const HarmonicPoint& p) { return p.preload != 0.0; });
   out +=
       "amplitude [mm],frequency [Hz],stiffness [N/mm],phase [deg],damping [-],storage [N/mm],loss [N/mm],"
-      "force_amplitude [N],energy [N*mm],cycles [-],converged [-]\n";
+      "force_amplitude [N],energy [N*mm],cycles [-],converged [-]";
+  out += preloaded ? ",preload [mm]\n" : "\n";
   for (const auto& p : points) {
     const auto& m = p.measures;
-    out += fmt::format("{},{},{:.10g},{:.8g},{:.8g},{:.10g},{:.10g},{:.10g},{:.10g},{},{}\n", p.amplitude, p.frequency, m.stiffness,
+    out += fmt::format("{},{},{:.10g},{:.8g},{:.8g},{:.10g},{:.10g},{:.10g},{:.10g},{},{}", p.amplitude, p.frequency, m.stiffness,
                        m.phase * kDegree, m.damping, m.storage, m.loss, m.force_amplitude, m.energy, p.cycles, p.converged ? 1 : 0);
+    out += preloaded ? fmt::format(",{}\n", p.preload) : "\n";
   }
   return out;
 }
@@ -49,6 +55,7 @@ std::string harmonic_json(const ResultHeader& header, const std::vector<Harmonic
   j["definition"] = definition_name(definition);
   j["units"] = {{"amplitude", "mm"}, {"frequency", "Hz"}, {"stiffness", "N/mm"},    {"phase", "deg"},
                 {"storage", "N/mm"}, {"loss", "N/mm"},    {"force_amplitude", "N"}, {"energy", "N*mm"}};
+  if (std::any_of(points.begin(), points.end(), [](const HarmonicPoint& p) { return p.preload != 0.0; })) j["units"]["preload"] = "mm";
   auto& list = j["points"] = nlohmann::ordered_json::array();
   for (const auto& p : points) {
     const auto& m = p.measures;
@@ -63,6 +70,7 @@ std::string harmonic_json(const ResultHeader& header, const std::vector<Harmonic
                     {"energy", m.energy},
                     {"cycles", p.cycles},
                     {"converged", p.converged}});
+    if (p.preload != 0.0) list.back()["preload"] = p.preload;
   }
   return j.dump(2) + "\n";
 }

@@ -4,6 +4,7 @@
 #include "runtime/core/parallel_for.hpp"
 #include "runtime/closed_form/periodic_closed_form.hpp"
 #include "runtime/stepping/periodic_start.hpp"
+#include "runtime/stepping/relaxed_state.hpp"
 #include "runtime/stepping/simulator.hpp"
 
 #include <fmt/format.h>
@@ -55,22 +56,48 @@ void skip_geometric_tail(const std::vector<double>& cycle_start, double rho, std
 
 }  // namespace
 
+namespace {
+HarmonicPoint steady_point(const Network& network, double amplitude, double frequency, const HarmonicOptions& options, double preload);
+}  // namespace
+
 bool uses_closed_form(const Network& network, const HarmonicOptions& options) {
   if (options.steady_state == SteadyState::time_stepping || options.solver == SolverChoice::sundials) return false;
   const bool events = options.solver == SolverChoice::automatic || options.steady_state == SteadyState::closed_form;
   return has_closed_form_periodic_state(network, events);
 }
 
-HarmonicPoint simulate_harmonic_point(const Network& network, double amplitude, double frequency, const HarmonicOptions& options) {
+HarmonicPoint simulate_harmonic_point(const Network& network, double amplitude, double frequency, const HarmonicOptions& options, double preload) {
+  HarmonicPoint point = steady_point(network, amplitude, frequency, options, preload);
+  point.preload = preload;
+  return point;
+}
+
+std::vector<HarmonicPoint> simulate_harmonic_grid(const Network& network, const std::vector<double>& amplitudes,
+                                                  const std::vector<double>& frequencies, const HarmonicOptions& options, double preload) {
+  std::vector<HarmonicPoint> points(amplitudes.size() * frequencies.size());
+  parallel_for(points.size(), options.threads, [&](std::size_t i) {
+    points[i] = simulate_harmonic_point(network, amplitudes[i / frequencies.size()], frequencies[i % frequencies.size()], options, preload);
+  });
+  return points;
+}
+
+namespace {
+
+HarmonicPoint steady_point(const Network& network, double amplitude, double frequency, const HarmonicOptions& options, double preload) {
   // The measures divide by u0 and the cycle by f: a zero would be NaN in every column.
   if (!(amplitude > 0.0 && std::isfinite(amplitude) && frequency > 0.0 && std::isfinite(frequency)))
     throw std::logic_error(fmt::format("model '{}': a harmonic point needs a positive, finite amplitude and frequency, got {} mm and {} Hz",
                                        network.model().name, amplitude, frequency));
   if (uses_closed_form(network, options)) {
-    if (options.steady_state == SteadyState::closed_form) return closed_form_harmonic_point(network, amplitude, frequency, options.definition);
-    if (auto point = try_closed_form_harmonic_point(network, amplitude, frequency, options.definition)) return *point;
+    if (options.steady_state == SteadyState::closed_form)
+      return closed_form_harmonic_point(network, amplitude, frequency, options.definition, preload);
+    if (auto point = try_closed_form_harmonic_point(network, amplitude, frequency, options.definition, preload)) return *point;
   }
-  if (uses_sundials(network, options.solver)) return dae_harmonic_point(network, amplitude, frequency, options);
+  if (uses_sundials(network, options.solver)) {
+    if (preload == 0.0) return dae_harmonic_point(network, amplitude, frequency, options);
+    const StartAtRest start = relaxed_start(network, relaxed_state(network, preload));
+    return dae_harmonic_point(network, amplitude, frequency, options, nullptr, preload, &start);
+  }
   if (options.steady_state == SteadyState::closed_form)
     throw std::logic_error(
         fmt::format("model '{}' has non-linear elements inside nested series/parallel blocks, or quadratic_dashpot, gap or bouc_wen elements, "
@@ -85,12 +112,12 @@ HarmonicPoint simulate_harmonic_point(const Network& network, double amplitude, 
   const bool midpoints = network.topology().has_rate_jump;
   const StepPlan half_plan = midpoints ? StepPlan::make(network, 0.5 * dt, dt) : StepPlan{};
 
-  State state = simulator.rest_state();
-  set_periodic_start(network, plan, amplitude, n, state);
+  State state = relaxed_state(network, preload);
+  set_periodic_start(network, plan, amplitude, n, state, preload);
   State next = state, probe = state, cycle_start = state;
   std::vector<double> phase(static_cast<std::size_t>(n)), displacement(phase.size()), force(phase.size());
   std::vector<double> drive(phase.size());  // u at the end of step k [mm], the same every cycle
-  for (int k = 0; k < n; ++k) drive[static_cast<std::size_t>(k)] = amplitude * std::sin(omega * (k + 1) * dt);
+  for (int k = 0; k < n; ++k) drive[static_cast<std::size_t>(k)] = preload + amplitude * std::sin(omega * (k + 1) * dt);
   const bool needs_two_cycles = !network.topology().subtrees.empty();
 
   HarmonicPoint point;
@@ -118,8 +145,8 @@ HarmonicPoint simulate_harmonic_point(const Network& network, double amplitude, 
       }
       std::swap(state, next);
     }
-    // The drive returns to exactly 0 after a whole cycle.
-    state.u = 0.0;
+    // The drive returns to exactly p after a whole cycle.
+    state.u = preload;
     const CycleSamples samples{phase, displacement, force};
     point.measures = measure_cycle(samples, amplitude, options.definition);
     point.cycles = cycle;
@@ -143,13 +170,6 @@ HarmonicPoint simulate_harmonic_point(const Network& network, double amplitude, 
   return point;
 }
 
-std::vector<HarmonicPoint> simulate_harmonic_grid(const Network& network, const std::vector<double>& amplitudes,
-                                                  const std::vector<double>& frequencies, const HarmonicOptions& options) {
-  std::vector<HarmonicPoint> points(amplitudes.size() * frequencies.size());
-  parallel_for(points.size(), options.threads, [&](std::size_t i) {
-    points[i] = simulate_harmonic_point(network, amplitudes[i / frequencies.size()], frequencies[i % frequencies.size()], options);
-  });
-  return points;
-}
+}  // namespace
 
 }  // namespace rheo::runtime

@@ -1,4 +1,4 @@
-// Harmonic test protocol: steady-state response to u = u0 sin(2 pi f t) over a grid of
+// Harmonic test protocol: steady-state response to u = p + u0 sin(2 pi f t) (p the preload) over a grid of
 // amplitudes x frequencies (thesis Table 4.5), characterised per cycle_measures.hpp.
 //
 // Steady state is detected, not assumed. Each point starts from the exact periodic state where
@@ -36,10 +36,14 @@ bool uses_closed_form(const Network& network, const HarmonicOptions& options);
 
 // Throws std::logic_error unless amplitude and frequency are positive and finite (the
 // language and data readers refuse others at their file:line:col first).
-HarmonicPoint simulate_harmonic_point(const Network& network, double amplitude, double frequency, const HarmonicOptions& options);
+// PRELOAD p [mm]: the drive is u = p + u0 sin(2 pi f t) from the network relaxed at p
+// (stepping/relaxed_state.hpp); the closed form takes it where it can (periodic_closed_form.hpp),
+// time stepping and IDA otherwise.
+HarmonicPoint simulate_harmonic_point(const Network& network, double amplitude, double frequency, const HarmonicOptions& options,
+                                      double preload = 0.0);
 
 // Amplitude-major order (all frequencies of the first amplitude first), as in the data files.
 std::vector<HarmonicPoint> simulate_harmonic_grid(const Network& network, const std::vector<double>& amplitudes,
-                                                  const std::vector<double>& frequencies, const HarmonicOptions& options);
+                                                  const std::vector<double>& frequencies, const HarmonicOptions& options, double preload = 0.0);
 
 }  // namespace rheo::runtime

@@ -9,18 +9,6 @@
 
 namespace rheo::runtime {
 
-namespace {
-
-// The relaxed start's terminal force and element forces and elongations (rates zero).
-StartAtRest relaxed_start(const Network& network, const State& relaxed) {
-  StartAtRest start;
-  start.force = relaxed.force;
-  Simulator(network).element_outputs(StepPlan::make(network, 1.0), relaxed, relaxed, start.element_force, start.element_elongation);
-  return start;
-}
-
-}  // namespace
-
 History run_history(const Network& network, const Drive& drive, bool elements, SolverChoice solver) {
   const double u0 = drive.displacement.front();
   if (uses_sundials(network, solver)) {

@@ -128,11 +128,13 @@ ProtocolResult run(RunContext& c, const lang::HarmonicSettings& s) {
                  "points (amplitudes x frequencies)", "split the grid over several protocols");
   require_within(static_cast<double>(options.steps_per_cycle) * options.max_cycles, lang::max_steps_per_point, c.protocol,
                  "time steps per point (steps_per_cycle x cycles_max)", "lower steps_per_cycle or cycles_max");
-  HarmonicGrid grid{simulate_harmonic_grid(c.network, s.amplitudes, s.frequencies, options), options.definition};
+  HarmonicGrid grid{simulate_harmonic_grid(c.network, s.amplitudes, s.frequencies, options, s.preload), options.definition};
   c.header.protocol = harmonic_method(c.network, options);
   int not_converged = 0;
   for (const auto& point : grid.points) not_converged += point.converged ? 0 : 1;
-  std::string notes = harmonic_notes(c.network, grid.points, s.amplitudes);
+  std::vector<double> reach = s.amplitudes;  // the largest |u| each amplitude drives to
+  for (double& u : reach) u += std::abs(s.preload);
+  std::string notes = harmonic_notes(c.network, grid.points, reach);
   return ProtocolResult{c.header, std::move(grid), not_converged, std::move(notes)};
 }
 

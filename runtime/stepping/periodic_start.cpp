@@ -108,7 +108,7 @@ class LinearisedSubtree {
 
 }  // namespace
 
-void set_periodic_start(const Network& network, const StepPlan& plan, double amplitude, int steps, State& state) {
+void set_periodic_start(const Network& network, const StepPlan& plan, double amplitude, int steps, State& state, double preload) {
   const Topology& t = network.topology();
   const Coefficients& c = network.coefficients();
   const Complex z = std::polar(1.0, 2.0 * std::numbers::pi / steps);
@@ -121,6 +121,7 @@ void set_periodic_start(const Network& network, const StepPlan& plan, double amp
     state.values[static_cast<std::size_t>(t.friction_state()) + i] = amplitude > fy / k ? std::min(fy, k * amplitude - fy) : 0.0;
   }
   for (std::size_t i = 0; i < c.slider_fy.size(); ++i) state.values[static_cast<std::size_t>(t.slider_state()) + i] = -c.slider_fy[i];
+  if (preload != 0.0) return;
   const LinearisedSubtree subtree(network, plan.tree, z);
   for (int root : t.subtrees) {
     if (!subtree.supported(root)) continue;

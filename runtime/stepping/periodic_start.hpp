@@ -29,6 +29,9 @@
 
 namespace rheo::runtime {
 
-void set_periodic_start(const Network& network, const StepPlan& plan, double amplitude, int steps, State& state);
+// With PRELOAD p != 0 (u = p + u0 sin(w t)) the root elements start as above (they see only the
+// drive's increments) and the subtrees keep the state they were given (the relaxed state at p:
+// their linearisation about p is not formed here).
+void set_periodic_start(const Network& network, const StepPlan& plan, double amplitude, int steps, State& state, double preload = 0.0);
 
 }  // namespace rheo::runtime

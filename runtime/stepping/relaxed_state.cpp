@@ -204,4 +204,11 @@ State relaxed_state(const Network& network, double u0) {
   return s;
 }
 
+StartAtRest relaxed_start(const Network& network, const State& relaxed) {
+  StartAtRest start;
+  start.force = relaxed.force;
+  Simulator(network).element_outputs(StepPlan::make(network, 1.0), relaxed, relaxed, start.element_force, start.element_elongation);
+  return start;
+}
+
 }  // namespace rheo::runtime

@@ -18,6 +18,7 @@
 // from displacement 0 gives the same results either way.
 #pragma once
 
+#include "runtime/core/drive.hpp"
 #include "runtime/network/network.hpp"
 #include "runtime/stepping/simulator.hpp"
 
@@ -28,5 +29,7 @@ namespace rheo::runtime {
 // and slider forces 0; State::u = u0, State::force the terminal force [N].
 // ModelError where a yeoh spring in a chain would have to carry more than its softening law can.
 State relaxed_state(const Network& network, double u0);
+// The relaxed state's terminal force and every element's force and elongation (probes order).
+StartAtRest relaxed_start(const Network& network, const State& relaxed);
 
 }  // namespace rheo::runtime

@@ -155,6 +155,28 @@ TEST_CASE("a history from a preloaded start: the relaxed start is fitted, every 
   check_recovered(result, truth);
 }
 
+// A rig that tests about several preloads (#25 item 3): only the preloads tell D20 and D30 apart
+// from the amplitude dependence; each point is simulated about its own p.
+TEST_CASE("harmonic data at several preloads: the yeoh constants come back from the preload dependence") {
+  const auto truth = test::network_from("model y { yeoh r (D10 = 300, D20 = -1.2, D30 = 0.06) maxwell m (k = 80, tau = 8 ms) }", "y");
+  const auto start = test::network_from(R"(model y {
+      yeoh r (D10 = 100 in [1, 10000], D20 = 1 in [-100, 100], D30 = 0.5 in [-10, 10])
+      maxwell m (k = 240 in [1, 10000], tau = 3 ms in [0.1, 10000]) })",
+                                        "y");
+  runtime::HarmonicData data;
+  data.path = "preloads";
+  for (double preload : {-3.0, 0.0, 1.5, 3.0})
+    for (double f : {1.0, 10.0, 40.0}) {
+      const auto p = runtime::simulate_harmonic_point(truth, 0.2, f, {}, preload);
+      data.amplitude.push_back(0.2), data.frequency.push_back(f), data.preload.push_back(preload);
+      data.stiffness.push_back(p.measures.stiffness), data.phase.push_back(p.measures.phase);
+      data.weight.push_back(1.0), data.rows.push_back(0);
+    }
+  const auto result = runtime::fit(start, runtime::bounded_parameters(start), {{"preloads", 1.0, data}}, {});
+  CHECK(result.datasets.at(0).err < 1e-8);
+  check_recovered(result, truth);
+}
+
 TEST_CASE("specimens C and D: the default strategy from a generic start matches or beats Appendix D") {
   for (const char* specimen : {"c", "d"}) {
     CAPTURE(specimen);

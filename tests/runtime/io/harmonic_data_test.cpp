@@ -134,3 +134,21 @@ TEST_CASE("repeated points whose complex stiffnesses cancel are an error naming 
   CHECK(error_of("amplitude [mm],frequency [Hz],stiffness [N/mm],phase [deg]\n1,2,1,89.9999999999\n1,2,1,-89.9999999999\n")
             .find("h.csv:2:1: error: rows 2 and 3 repeat (1 mm, 2 Hz) and their complex stiffnesses cancel") == 0);
 }
+
+TEST_CASE("a preload column (mean displacement, or a strain with the height) gives each point its p; points at other preloads are not repeats") {
+  const auto d = harmonic_data_from_table(parse_table(
+      "h.csv",
+      "amplitude [mm],frequency [Hz],stiffness [N/mm],phase [deg],Mean displacement [um]\n0.5,10,300,5,0\n0.5,10,320,5,2000\n0.5,10,330,5,-1500\n"));
+  REQUIRE(d.size() == 3);
+  CHECK(d.preload == std::vector<double>{0.0, 2.0, -1.5});
+  CHECK(d.notes.empty());
+  const auto none = harmonic_data_from_table(parse_table("h.csv", "amplitude [mm],frequency [Hz],stiffness [N/mm],phase [deg]\n0.5,10,300,5\n"));
+  CHECK(none.preload == std::vector<double>{0.0});
+  DataReading geometry;
+  geometry.columns.height = 10.0;
+  const auto strain = harmonic_data_from_table(
+      parse_table("h.csv", "amplitude [mm],frequency [Hz],stiffness [N/mm],phase [deg],preload [%]\n0.5,10,300,5,5\n0.5,10,300,5,5\n"), geometry);
+  REQUIRE(strain.size() == 1);  // the same preload twice: one point
+  CHECK(strain.preload[0] == doctest::Approx(0.5));
+  CHECK(error_of("amplitude [mm],frequency [Hz],stiffness [N/mm],phase [deg],preload [s]\n0.5,10,300,5,1\n").find("h.csv:1:") == 0);
+}

@@ -3,6 +3,7 @@
 #include "runtime/protocols/run_protocols.hpp"
 
 #include "runtime/core/errors.hpp"
+#include "runtime/io/harmonic_data.hpp"
 #include "runtime/io/history_csv.hpp"
 #include "runtime/io/output.hpp"
 #include "support.hpp"
@@ -55,6 +56,21 @@ TEST_CASE("json output carries units and every point") {
   CHECK(j["units"]["stiffness"] == "N/mm");
   REQUIRE(j["points"].size() == 2);
   CHECK(j["points"][1]["stiffness"].get<double>() == doctest::Approx(10.0));
+}
+
+TEST_CASE("harmonic with a preload: a preload column, and the result read back as measured data keeps its preload") {
+  const auto run = run_first(std::string(kSpecimenD) + "simulate { harmonic frequency = [1, 11] Hz, amplitude = [0.2, 1] mm, preload = 2 mm }",
+                             "d.rheo");
+  const auto table = runtime::parse_table("result.csv", run.content);
+  REQUIRE(table.column("preload") >= 0);
+  const auto data = runtime::harmonic_data_from_table(table);
+  REQUIRE(data.size() == 4);
+  for (double p : data.preload) CHECK(p == 2.0);
+  const auto centred = runtime::harmonic_data_from_table(runtime::parse_table(
+      "c.csv", run_first(std::string(kSpecimenD) + "simulate { harmonic frequency = [1, 11] Hz, amplitude = [0.2, 1] mm }", "d.rheo").content));
+  CHECK(centred.preload == std::vector<double>(4, 0.0));
+  // 12 D20 p^2 + 30 D30 p^4 = -63 N/mm: the preloaded rubber is softer at small amplitude.
+  CHECK(data.stiffness[0] < centred.stiffness[0] - 30.0);
 }
 
 TEST_CASE("step protocol with element outputs: the Maxwell arm relaxes, the spring holds") {
