@@ -93,6 +93,16 @@ std::string softening_hint(const Network& network) {
   return hint;
 }
 
+// Node positions of a start at rest at U0 from the elements' state (Topology::probes order, which
+// the graph's probes follow: both walk the model's tree in source order).
+std::vector<double> start_positions(const Network& network, const DaeGraph& graph, double u0, const StartAtRest& start) {
+  const auto& probes = network.topology().probes;
+  if (probes.size() != graph.probes.size()) throw std::logic_error("dae: the graph's elements are not the network's");
+  for (std::size_t i = 0; i < probes.size(); ++i)
+    if (probes[i].path != graph.probes[i].path) throw std::logic_error("dae: element " + probes[i].path + " out of order in the graph");
+  return positions_at_rest(graph, u0, start.element_force, start.element_elongation);
+}
+
 template <class Run>
 auto with_softening_hint(const Network& network, Run run) {
   try {
@@ -116,7 +126,7 @@ HarmonicPoint harmonic_point(const Network& network, double amplitude, double fr
   const DriveSignal signal{DriveSignal::Kind::sine, amplitude, omega, nullptr, preload};
   if (preload != 0.0) {
     if (!start) throw std::logic_error("dae_harmonic_point: a preload needs the relaxed start");
-    const std::vector<double> positions = positions_at_rest(graph, preload, start->element_force, start->element_elongation);
+    const std::vector<double> positions = start_positions(network, graph, preload, *start);
     integrator.start(signal, &positions);
   } else {
     integrator.start(signal);
@@ -173,7 +183,7 @@ History history(const Network& network, const Drive& drive, bool elements, DaeSt
   dae.newton_tolerance = dae_newton_tolerance(graph, length, dae.force_scale);
   DaeIntegrator integrator(graph, dae);
   if (start) {
-    const std::vector<double> positions = positions_at_rest(graph, drive.displacement.front(), start->element_force, start->element_elongation);
+    const std::vector<double> positions = start_positions(network, graph, drive.displacement.front(), *start);
     integrator.start({DriveSignal::Kind::samples, 0.0, 0.0, &drive}, &positions);
   } else {
     integrator.start({DriveSignal::Kind::samples, 0.0, 0.0, &drive});
