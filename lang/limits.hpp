@@ -28,16 +28,23 @@ inline constexpr std::size_t max_table_bytes = std::size_t{512} << 20;
 // Errors printed for one file; the rest are counted ("... and N more errors").
 inline constexpr std::size_t max_printed_errors = 100;
 
-// Physical ranges of what a test rig drives and measures, internal units. Inside them every
-// closed form and time-stepping path stays well inside double range: the hysteresis energy
-// ~ k u0^2 (eq. 1.2), the force amplitude k u0 and the rate omega u0 neither underflow to zero
-// nor overflow. A protocol setting or a data row outside is an error naming where.
-inline constexpr double min_amplitude = 1e-9;  // mm (1 pm)
-inline constexpr double max_amplitude = 1e6;   // mm (1 km)
-inline constexpr double min_frequency = 1e-9;  // Hz
-inline constexpr double max_frequency = 1e9;   // Hz
-inline constexpr double min_stiffness = 1e-9;  // N/mm, a measured |K*|
-inline constexpr double max_stiffness = 1e12;  // N/mm
+// Physical ranges of what a test rig drives and measures, internal units, wide enough for any
+// time-temperature master curve (20 to 30 decades of reduced frequency, 1e-14 to 1e14 Hz is
+// routine) and any specimen: a modulus from 1 mPa (a melt's terminal zone) to 1 TPa times a
+// geometry factor area/height from 1e-4 mm (a thin fibre) to 1e4 mm (a wide, thin shear
+// sandwich) is 1e-13 to 1e10 N/mm. Each range is 1e-20 to 1e20, so that every product a closed
+// form or a time-stepping path forms stays far inside double range (1e-308 to 1e308): the force
+// amplitude k u0 and the rate omega u0 within 1e+-41, the hysteresis energy ~ k u0^2 (eq. 1.2)
+// within 1e+-60, omega tau for relaxation times of 1e-20 to 1e20 s within 1e+-41 (and
+// (omega tau)^2 within 1e+-82). What cannot be computed accurately at an extreme (time stepping
+// 1e20 cycles) is bounded by the work limits below, not here. A protocol setting or a data row
+// outside is an error naming where.
+inline constexpr double min_amplitude = 1e-20;  // mm
+inline constexpr double max_amplitude = 1e20;   // mm
+inline constexpr double min_frequency = 1e-20;  // Hz
+inline constexpr double max_frequency = 1e20;   // Hz
+inline constexpr double min_stiffness = 1e-20;  // N/mm, a measured |K*|
+inline constexpr double max_stiffness = 1e20;   // N/mm
 
 // Work a protocol may ask for, so that no setting makes rheo run out of memory or seemingly
 // hang: samples of one drive (rows of a history result), points of a harmonic grid, time

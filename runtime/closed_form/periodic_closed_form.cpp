@@ -2,6 +2,7 @@
 
 #include "runtime/closed_form/pwl_periodic.hpp"
 #include "runtime/core/errors.hpp"
+#include "runtime/network/leaf_kernels.hpp"
 
 #include <fmt/format.h>
 
@@ -157,8 +158,8 @@ Complex subtree_stiffness(const Network& network, int index, double omega) {
     case NodeKind::dashpot: return i * omega * p(0);
     case NodeKind::inerter: return -p(0) * omega * omega;
     case NodeKind::maxwell: {
-      const double tau = p(1) / p(0);
-      return p(0) * i * omega * tau / (1.0 + i * omega * tau);
+      const StorageLoss m = maxwell_storage_loss(p(0), omega * (p(1) / p(0)));
+      return {m.storage, m.loss};
     }
     case NodeKind::parallel:
     case NodeKind::series: {
@@ -215,10 +216,9 @@ std::optional<HarmonicPoint> try_closed_form_harmonic_point(const Network& netwo
   double storage = c.spring_k;        // K'_1 [N/mm]
   double loss = c.dashpot_c * omega;  // K''_1 [N/mm]; U = pi u0^2 K''_1 for every branch
   for (std::size_t i = 0; i < c.maxwell_k.size(); ++i) {
-    const double wt = omega * c.maxwell_c[i] / c.maxwell_k[i];
-    const double scale = c.maxwell_k[i] / (1.0 + wt * wt);
-    storage += scale * wt * wt;
-    loss += scale * wt;
+    const StorageLoss m = maxwell_storage_loss(c.maxwell_k[i], omega * (c.maxwell_c[i] / c.maxwell_k[i]));
+    storage += m.storage;
+    loss += m.loss;
   }
   thread_local std::vector<PwlPeriodicState> event_branches;
   thread_local PwlBranch branch;

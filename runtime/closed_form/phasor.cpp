@@ -1,5 +1,7 @@
 #include "runtime/closed_form/phasor.hpp"
 
+#include "runtime/network/leaf_kernels.hpp"
+
 #include <numbers>
 
 namespace rheo::runtime {
@@ -15,8 +17,8 @@ std::optional<Complex> compose(const lang::Element& e, const std::vector<double>
     case lang::ElementKind::dashpot: return i * omega * at(0);
     case lang::ElementKind::inerter: return Complex{-at(0) * omega * omega, 0.0};
     case lang::ElementKind::maxwell: {
-      const double k = at(0), tau = at(1) / k;
-      return k * i * omega * tau / (1.0 + i * omega * tau);
+      const StorageLoss m = maxwell_storage_loss(at(0), omega * (at(1) / at(0)));
+      return Complex{m.storage, m.loss};
     }
     case lang::ElementKind::springpot: return at(0) * std::pow(i * omega * at(2), at(1));
     case lang::ElementKind::parallel: {

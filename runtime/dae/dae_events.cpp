@@ -8,6 +8,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <utility>
 
 namespace rheo::runtime {
@@ -72,7 +73,7 @@ void DaeIntegrator::restart(double t, bool modes_changed) {
     std::copy(yp_.begin(), yp_.end(), N_VGetArrayPointer(solver_->yp.get()));
     collect_statistics();  // IDAReInit zeroes IDA's counters
     sundials::check_ida(IDAReInit(mem, t, solver_->y.get(), solver_->yp.get()), "IDAReInit");
-    const double horizon = drive_.kind == DriveSignal::Kind::sine ? 1e-3 / std::max(drive_.omega, 1e-12)
+    const double horizon = drive_.kind == DriveSignal::Kind::sine ? 1e-3 / std::max(drive_.omega, std::numeric_limits<double>::min())
                                                                   : 1e-3 * (drive_.samples->time.back() - drive_.samples->time.front());
     const int flag = IDACalcIC(mem, IDA_YA_YDP_INIT, t + horizon);
     if (flag < 0) {

@@ -146,8 +146,10 @@ ScaleSolution solve_scales(const Network& network, const std::vector<int>& scale
     lm.residuals = [&](const Eigen::VectorXd& x) { return problem.residuals(x, score.objective); };
     LevenbergMarquardtSettings settings;
     settings.step_tolerance = 1e-9;
-    settings.decrease_tolerance = 1e-15;                    // the affine response is cheap: stop on the step, not on phi
-    settings.typical = Eigen::VectorXd::Constant(n, 1e-6);  // scales are N/mm, N*s/mm, N: 1e-6 is near zero for each
+    settings.decrease_tolerance = 1e-15;  // the affine response is cheap: stop on the step, not on phi
+    // Scales are N/mm, N*s/mm, N: 1e-6 is near zero for each, unless a positive lower bound says
+    // the scale lives below that (a master curve's stiffnesses reach 1e-20 N/mm, limits.hpp).
+    settings.typical = lo.unaryExpr([](double bound) { return bound > 0.0 ? std::min(bound, 1e-6) : 1e-6; });
     s = levenberg_marquardt(lm, s, lo, hi, settings).x;
   }
 

@@ -1,5 +1,7 @@
 #include "runtime/fit/thesis_approximation.hpp"
 
+#include "runtime/network/leaf_kernels.hpp"
+
 #include <fmt/format.h>
 
 #include <algorithm>
@@ -66,12 +68,11 @@ HarmonicPoint approximate_point(const ThesisElements& e, double u0, double frequ
   const double w = 2.0 * std::numbers::pi * frequency;
   double storage = e.elastic, loss = 0.0;  // sums of K^{v,j} cos, sin delta_v^j (5.14)
   for (std::size_t j = 0; j < e.maxwell_k.size(); ++j) {
-    const double x = w * e.maxwell_tau[j];
-    const double modulus = e.maxwell_k[j] * x / std::hypot(1.0, x);  // |K*_j|, see the header on 5.12
-    const double sin_delta = 1.0 / std::hypot(1.0, x);               // (5.13)
-    const double cos_delta = x / std::hypot(1.0, x);
-    storage += modulus * cos_delta;
-    loss += modulus * sin_delta;
+    // |K*_j| (see the header on 5.12) times cos and sin of delta_v^j = atan(1/x) (5.13): the
+    // storage and loss stiffness, in the form that holds for any x = w t_r (leaf_kernels.hpp).
+    const StorageLoss m = maxwell_storage_loss(e.maxwell_k[j], w * e.maxwell_tau[j]);
+    storage += m.storage;
+    loss += m.loss;
   }
   const double k_visco = std::hypot(storage, loss);             // (5.14)
   const double d_visco = k_visco > 0.0 ? loss / k_visco : 0.0;  // (5.15)

@@ -270,7 +270,10 @@ Drive drive_from_table(const Table& table, const ColumnReading& reading, bool fr
   const std::vector<double> time = role_values(table, t, Role::time, reading);
   const std::vector<double> disp = role_values(table, u, Role::displacement, reading);
   if (time.size() < 2) fail(table.path, table.rows[0], 1, "a history needs at least two rows (where it starts and where it goes); add rows");
-  if (from_rest && std::abs(disp[0]) > 1e-9)
+  // Rest within 1e-9 of the history's largest displacement (any scale of the physical range).
+  double largest = 0.0;
+  for (double x : disp) largest = std::max(largest, std::abs(x));
+  if (from_rest && std::abs(disp[0]) > 1e-9 * largest)
     fail(table.path, table.rows[0], table.cell_column(0, u),
          fmt::format("with start = rest the history must start from rest (displacement 0 in its first row, found {} mm); add a first row "
                      "with displacement 0, or start relaxed at the first displacement (start = relaxed, the default)",

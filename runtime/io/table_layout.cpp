@@ -113,11 +113,18 @@ TableLayout trios_layout(const std::string& path, std::string_view text, const s
     std::size_t line;  // index of the names row in LINES
   };
   std::vector<Step> steps;
+  int bare_step_row = 0;  // a [step] line with nothing after it
   for (std::size_t i = 0; i < lines.size(); ++i)
-    if (lower(trim(text.substr(lines[i].begin, lines[i].end - lines[i].begin))) == "[step]" && i + 1 < lines.size()) {
+    if (lower(trim(text.substr(lines[i].begin, lines[i].end - lines[i].begin))) == "[step]") {
+      if (i + 1 >= lines.size()) {
+        bare_step_row = lines[i].row;
+        continue;
+      }
       const std::string_view name_line = text.substr(lines[i + 1].begin, lines[i + 1].end - lines[i + 1].begin);
       steps.push_back({std::string(trim(name_line.substr(0, name_line.find('\t')))), i + 2});
     }
+  if (steps.empty())
+    fail(path, bare_step_row, 1, "this TRIOS export's [step] line is its last: no step follows it; export the file again, or remove the line");
   TableLayout layout;
   for (const auto& s : steps) layout.steps.push_back(s.name);
   const Step* chosen = nullptr;

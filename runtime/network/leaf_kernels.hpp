@@ -41,6 +41,26 @@ struct MaxwellStep {
   ForceSlope operator()(double force_before, double de) const { return {a * force_before + b * de, b}; }
 };
 
+// Storage and loss stiffness [N/mm] of a Maxwell element k at x = omega tau (0 <= x), from
+//   K* = k i x / (1 + i x):  K' = k x^2 / (1 + x^2),  K'' = k x / (1 + x^2),   (eq. 5.11, B.58)
+// written as sums of positive terms (no cancellation) in which neither x^2 nor 1/x^2 appears
+// beside a 1 it would swamp or overflow: with r = min(x, 1/x) and d = 1 + r^2,
+//   x <= 1:  K' = k x (x / d),  K'' = k x / d;     x > 1:  K' = k / d,  K'' = k r / d.
+// Each is within a few ulp for every x from 0 to the largest double (omega tau spans 1e-41 to
+// 1e41 within lang/limits.hpp's frequencies and the relaxation times of a master curve).
+struct StorageLoss {
+  double storage;  // N/mm
+  double loss;     // N/mm
+};
+inline StorageLoss maxwell_storage_loss(double k, double x) {
+  if (x <= 1.0) {
+    const double q = x / (1.0 + x * x);
+    return {k * x * q, k * q};
+  }
+  const double r = 1.0 / x, d = 1.0 + r * r;
+  return {k / d, k * (r / d)};
+}
+
 // Dashpot F = c de/dt: the exact (constant) force over a step of constant rate.
 inline ForceSlope dashpot_step(double c_over_dt, double de) { return {c_over_dt * de, c_over_dt}; }
 

@@ -1,5 +1,6 @@
 #include "runtime/network/network.hpp"
 
+#include "lang/limits.hpp"
 #include "runtime/core/errors.hpp"
 #include "runtime/network/springpot.hpp"
 
@@ -74,6 +75,13 @@ struct Converter {
           fmt::format("{}model '{}': springpot '{}' has f_low = {:g} Hz not below f_high = {:g} Hz; give a band "
                       "f_low < f_high covering the frequencies you simulate",
                       error_at(element.where), model.name, element.path, value(3), value(4)));
+    // The band sets the chain's length (4 modes per decade): within the frequency range of
+    // lang/limits.hpp it has at most about 180 modes and every relaxation time is finite.
+    if (!(value(3) >= lang::min_frequency && value(4) <= lang::max_frequency))
+      throw ModelError(
+          fmt::format("{}model '{}': springpot '{}' has the band {:g} to {:g} Hz, beyond the frequencies rheo simulates ({:g} to "
+                      "{:g} Hz, lang/limits.hpp); give f_low and f_high within them",
+                      error_at(element.where), model.name, element.path, value(3), value(4), lang::min_frequency, lang::max_frequency));
     chain.path = element.path;
     chain.modes = springpot_mode_count(value(3), value(4));
     chain.first_derived = static_cast<int>(model.parameters.size()) + topology.derived_parameters;
@@ -402,6 +410,12 @@ void Network::derive() {
           fmt::format("{}model '{}': springpot '{}' would have f_low = {:g} Hz not below f_high = {:g} Hz; give f_low and "
                       "f_high bounds that do not overlap",
                       error_at(model_->parameters[static_cast<std::size_t>(chain.param[3])].where), model_->name, chain.path, at(3), at(4)));
+    if (!(at(3) >= lang::min_frequency && at(4) <= lang::max_frequency))
+      throw ModelError(
+          fmt::format("{}model '{}': springpot '{}' would have the band {:g} to {:g} Hz, beyond the frequencies rheo "
+                      "simulates ({:g} to {:g} Hz); give f_low and f_high bounds within them",
+                      error_at(model_->parameters[static_cast<std::size_t>(chain.param[3])].where), model_->name, chain.path, at(3), at(4),
+                      lang::min_frequency, lang::max_frequency));
     const auto modes = static_cast<std::size_t>(chain.modes);
     const std::span<double> stiffness(derived_.data() + (chain.first_derived - own), modes);
     springpot_modes({at(0), at(1), at(2), at(3), at(4)}, stiffness, {stiffness.data() + modes, modes});

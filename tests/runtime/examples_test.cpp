@@ -270,6 +270,28 @@ TEST_CASE("examples/prony_fit.rheo: the 21 stiffnesses of the generating Prony s
   CHECK(checked == 21);
 }
 
+TEST_CASE("examples/dma_master_curve_fit.rheo: a DMA export over 26 decades read through its geometry; every stiffness to 1e-6") {
+  // examples/data/README.md: E_inf = 2 MPa, arm i (tau = 10^(i - 15) s) E_i = 0.5 + 300 exp(-((i - 9)/4)^2)
+  // MPa rounded to 4 digits; a 40 mm^2 x 20 mm bar makes each 2 E N/mm.
+  auto modulus = [](int i) { return std::stod(fmt::format("{:.4g}", 0.5 + 300.0 * std::exp(-std::pow((i - 9) / 4.0, 2)))); };
+  const fs::path json = scratch() / "dma.json", fitted = scratch() / "dma_fitted.rheo";
+  REQUIRE(rheo_run(fmt::format("fit {} --json -o {} > {}", example("dma_master_curve_fit.rheo"), fitted.string(), json.string())) == 0);
+  std::ifstream in(json);
+  const auto summary = nlohmann::json::parse(in);
+  CHECK(summary.at("err").get<double>() < 1e-10);
+  int checked = 0;
+  for (const auto& p : summary.at("parameters")) {
+    if (!p.at("free").get<bool>()) continue;  // the taus, held
+    ++checked;
+    const std::string name = p.at("path").get<std::string>();
+    const double value = p.at("value").get<double>();
+    CAPTURE(name);
+    if (name == "equilibrium.k") CHECK(value == doctest::Approx(2.0 * 2.0).epsilon(1e-6));
+    else CHECK(value == doctest::Approx(2.0 * modulus(std::stoi(name.substr(1, name.find('.') - 1)))).epsilon(1e-6));
+  }
+  CHECK(checked == 26);
+}
+
 TEST_CASE("the README's 30-second example prints the first row the README shows") {
   const fs::path dir = scratch() / "readme";
   fs::create_directories(dir);
@@ -354,8 +376,9 @@ TEST_CASE("every example is run by a test: a new one fails here until it is") {
     if (const std::string name = entry.path().filename().string(); entry.path().extension() == ".rheo" && !name.ends_with("_fitted.rheo"))
       names.push_back(name);  // *_fitted.rheo: written by the example fits, not in the repository (examples/.gitignore)
   std::sort(names.begin(), names.end());
-  CHECK(names == std::vector<std::string>{"bushing_d.rheo", "coupled_bushing_fit.rheo", "hydrobushing.rheo", "hydrobushing_fit.rheo",
-                                          "hydromount.rheo", "prony_fit.rheo", "specimen_a.rheo", "specimen_a_fit.rheo", "specimen_b.rheo",
-                                          "specimen_b_fit.rheo", "specimen_c.rheo", "specimen_c_fit.rheo", "specimen_d.rheo", "specimen_d_fit.rheo",
-                                          "specimen_d_fit_all.rheo", "specimen_d_methods.rheo", "trios_amplitude_sweep_fit.rheo"});
+  CHECK(names == std::vector<std::string>{"bushing_d.rheo", "coupled_bushing_fit.rheo", "dma_master_curve_fit.rheo", "hydrobushing.rheo",
+                                          "hydrobushing_fit.rheo", "hydromount.rheo", "prony_fit.rheo", "specimen_a.rheo", "specimen_a_fit.rheo",
+                                          "specimen_b.rheo", "specimen_b_fit.rheo", "specimen_c.rheo", "specimen_c_fit.rheo", "specimen_d.rheo",
+                                          "specimen_d_fit.rheo", "specimen_d_fit_all.rheo", "specimen_d_methods.rheo",
+                                          "trios_amplitude_sweep_fit.rheo"});
 }
