@@ -132,9 +132,9 @@ struct ColumnName {
 // A data line's `force_offset`: a constant the measured force carries (a load cell's zero),
 // measured force = network force + offset.
 struct ForceOffsetSetting {
-  bool given = false;   // written on the line
-  bool free = false;    // `force_offset = free`: fitted
-  double value = 0.0;   // N, when given and not free
+  bool given = false;    // written on the line
+  bool free = false;     // `force_offset = free`: fitted
+  double value = 0.0;    // N, when given and not free
   SourceLocation where;  // of the value
   int value_begin = -1;  // byte range [value_begin, value_end) of the value in where.file's text
   int value_end = -1;

@@ -9,8 +9,7 @@ double force_offset(const FitDataSet& set, const std::vector<double>& network_fo
   if (!set.force_offset.free) return set.force_offset.value;
   if (mode == Offsets::declared) return 0.0;
   const std::vector<double>& measured = set.history().force;
-  if (network_force.size() != measured.size() || measured.empty())
-    throw std::logic_error("force_offset: one predicted force per measured sample");
+  if (network_force.size() != measured.size() || measured.empty()) throw std::logic_error("force_offset: one predicted force per measured sample");
   double sum = 0.0;
   for (std::size_t j = 0; j < measured.size(); ++j) sum += measured[j] - network_force[j];
   return sum / static_cast<double>(measured.size());

@@ -34,15 +34,15 @@ double force_offset(const FitDataSet& set, const std::vector<double>& network_fo
 struct FittedOffset {
   bool given = false;  // written on the data line (harmonic tables: has no effect, not reported)
   bool free = false;
-  double value = 0.0;                                                  // N
+  double value = 0.0;                                                // N
   double standard_error = std::numeric_limits<double>::quiet_NaN();  // N; free only: +inf when not identifiable, NaN when not computed
   bool identifiable = true;
   std::vector<double> correlation{};  // free only: with each free parameter, in FitResult::free's order
 };
 
 struct StatisticsWithOffsets {
-  ParameterStatistics parameters;             // the free parameters' (their coordinates first)
-  std::vector<FittedOffset> offsets;          // per data set: standard_error, identifiable, correlation of free offsets
+  ParameterStatistics parameters;     // the free parameters' (their coordinates first)
+  std::vector<FittedOffset> offsets;  // per data set: standard_error, identifiable, correlation of free offsets
 };
 
 // FITTED's standard error, identifiability and correlations from STATISTICS (an entry of

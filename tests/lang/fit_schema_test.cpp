@@ -164,7 +164,8 @@ TEST_CASE("a data line's duplicates: average by default, or error") {
 }
 
 TEST_CASE("a data line's force_offset: a force with its unit (any sign), or free; its value's byte range is kept") {
-  const std::string text = std::string(kModel) + "fit m {\n  data \"a.csv\"\n  data \"b.csv\", force_offset = -0.12 kN\n  data \"c.csv\", force_offset = free\n}\n";
+  const std::string text = std::string(kModel) +
+                           "fit m {\n  data \"a.csv\"\n  data \"b.csv\", force_offset = -0.12 kN\n  data \"c.csv\", force_offset = free\n}\n";
   Program p = compile_source("f.rheo", text);
   REQUIRE(p.fits.at(0).data.size() == 3);
   const auto& data = p.fits[0].data;

@@ -131,7 +131,8 @@ TEST_CASE("standard errors of a spring and a free offset: the closed form of lin
 
   Eigen::MatrixXd x(samples, 2);
   Eigen::VectorXd y(samples);
-  for (int j = 0; j < samples; ++j) x(j, 0) = h.drive.displacement[static_cast<std::size_t>(j)], x(j, 1) = 1.0, y(j) = h.force[static_cast<std::size_t>(j)];
+  for (int j = 0; j < samples; ++j)
+    x(j, 0) = h.drive.displacement[static_cast<std::size_t>(j)], x(j, 1) = 1.0, y(j) = h.force[static_cast<std::size_t>(j)];
   const Eigen::Vector2d beta = (x.transpose() * x).ldlt().solve(x.transpose() * y);
   const double s2 = (y - x * beta).squaredNorm() / (samples - 2);
   const Eigen::Matrix2d cov = s2 * (x.transpose() * x).inverse();
