@@ -28,11 +28,28 @@ namespace {
 std::string fitted_file_text(const FitJob& job, const runtime::FitResult& result, const std::string& source_file, const std::string& source) {
   std::vector<std::string> header{
       fmt::format("Fitted by `rheo fit` (method {}, objective {}) to:", job.description.method, job.description.objective)};
-  for (const auto& set : result.datasets) header.push_back(fmt::format("  {} (weight {:g}): err = {:.6g}", set.path, set.weight, set.err));
+  std::vector<lang::FittedSetting> offsets;
+  lang::Parameter newton;  // how a force is written: in N
+  newton.dimension = lang::dim::force;
+  newton.unit = "N";
+  for (std::size_t k = 0; k < result.datasets.size(); ++k) {
+    const runtime::DataSetFit& set = result.datasets[k];
+    header.push_back(fmt::format("  {} (weight {:g}): err = {:.6g}", set.path, set.weight, set.err));
+    if (set.harmonic || !set.force_offset.given || !set.force_offset.free) continue;
+    // A fitted offset is written into its data line; one given by --data has no line here.
+    const std::string value = lang::format_parameter_value(newton, set.force_offset.value);
+    const lang::ForceOffsetSetting* line = k < job.lines.size() ? &job.lines[k].force_offset : nullptr;
+    if (line && line->free && line->where.file == source_file && line->value_begin >= 0) {
+      offsets.push_back({line->value_begin, line->value_end, value});
+      header.back() += fmt::format(", force_offset fitted to {} (written on its data line)", value);
+    } else {
+      header.back() += fmt::format(", force_offset fitted to {}: give `force_offset = {}` on its data line to reuse it", value, value);
+    }
+  }
   if (result.phi > 0.0) header.push_back(fmt::format("phi (5.1) = {:.6g}, err (6.1) = {:.6g}", result.phi, result.err));
   if (result.interrupted) header.push_back("Interrupted: the best values found before the interruption.");
   header.push_back(fmt::format("Start values: {}", source_file));
-  return lang::write_fitted_source(source, source_file, result.network.model(), result.network.parameters(), result.free, header);
+  return lang::write_fitted_source(source, source_file, result.network.model(), result.network.parameters(), result.free, header, offsets);
 }
 
 }  // namespace

@@ -37,6 +37,7 @@ struct FitJob {
   const lang::CheckedModel* model = nullptr;
   std::vector<int> free;
   std::vector<runtime::FitDataSet> data;
+  std::vector<lang::FitData> lines;  // the fit block's data lines read into `data`; empty for --data
   runtime::FitSettings settings;
   runtime::FitDescription description;
   std::string output;                  // fitted .rheo destination; empty: none

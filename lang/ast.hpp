@@ -75,6 +75,8 @@ struct SettingValue {
   std::string unit;            // list: trailing unit applying to unitless items
   std::string text;            // string literal contents
   SourceLocation where;
+  int begin = -1;  // byte range [begin, end) of the value in the source text
+  int end = -1;
 };
 
 struct SettingNode {

@@ -43,8 +43,35 @@ const std::vector<SettingSpec>& data_schema() {
       {.key = "height", .shape = Shape::single, .dimension = dim::length, .positive = true},
       {.key = "amplitude", .shape = Shape::single, .dimension = dim::length, .positive = true},
       {.key = "duplicates", .shape = Shape::identifier, .dimension = dim::none, .choices = duplicate_points_words()},
+      {.key = "force_offset", .shape = Shape::single, .dimension = dim::force},
   };
   return specs;
+}
+
+// `force_offset = 120 N` (a force with its unit, any sign) or `force_offset = free`.
+ForceOffsetSetting check_force_offset(const ast::SettingNode& node, std::vector<Diagnostic>& errors) {
+  ForceOffsetSetting out{.given = true, .where = node.value.where, .value_begin = node.value.begin, .value_end = node.value.end};
+  const auto& v = node.value;
+  const std::string advice = "e.g. force_offset = 120 N, or force_offset = free to fit it";
+  if (v.kind == ast::SettingValue::Kind::expression && v.items.at(0)->kind == ast::Expr::Kind::reference && v.items[0]->path == "free") {
+    out.free = true;
+    return out;
+  }
+  std::vector<Diagnostic> as_number, as_force;
+  const SettingSpec plain{.key = "force_offset", .shape = Shape::single, .dimension = dim::none};
+  if (check_keyed_setting({plain}, "a data line", node, as_number)) {  // internal units are not assumed for an offset
+    errors.push_back({v.where, fmt::format("force_offset needs a force unit; {}", advice)});
+    return out;
+  }
+  if (auto s = check_keyed_setting(data_schema(), "a data line", node, as_force)) {
+    out.value = s->values.at(0);
+    return out;
+  }
+  for (auto& e : as_force) {
+    e.message += "; " + advice;
+    errors.push_back(std::move(e));
+  }
+  return out;
 }
 
 bool is_path_list(const std::string& key) { return key == "free" || key == "fixed"; }
@@ -209,7 +236,7 @@ FitSettings decode_fit_settings(const std::vector<Setting>& written) {
 }  // namespace
 
 FitData check_data_line(const ast::FitLine& line, std::vector<Diagnostic>& errors) {
-  FitData out{line.file, 1.0, line.file_where, {}, {}, {}, {}, {}, false, DuplicatePoints::average};
+  FitData out{line.file, 1.0, line.file_where, {}, {}, {}, {}, {}, false, DuplicatePoints::average, {}};
   check_file_name(line.file, line.file_where, errors);
   std::map<std::string, SourceLocation> seen;
   for (const auto& node : line.settings) {
@@ -231,6 +258,10 @@ FitData check_data_line(const ast::FitLine& line, std::vector<Diagnostic>& error
           errors.push_back(std::move(e));
         }
       }
+      continue;
+    }
+    if (node.key == "force_offset") {
+      out.force_offset = check_force_offset(node, errors);
       continue;
     }
     const auto s = check_keyed_setting(data_schema(), "a data line", node, errors);

@@ -77,7 +77,7 @@ std::string format_parameter_value(const Parameter& p, double value) {
 }
 
 std::string write_fitted_source(const std::string& source, const std::string& file, const CheckedModel& model, const std::vector<double>& values,
-                                const std::vector<int>& changed, const std::vector<std::string>& header) {
+                                const std::vector<int>& changed, const std::vector<std::string>& header, const std::vector<FittedSetting>& settings) {
   if (values.size() != model.parameters.size())
     throw std::logic_error(
         fmt::format("write_fitted_source: {} values for the {} parameters of model '{}'", values.size(), model.parameters.size(), model.name));
@@ -103,11 +103,16 @@ std::string write_fitted_source(const std::string& source, const std::string& fi
     edits.push_back({p.value_begin, p.value_end, format_parameter_value(p, values[static_cast<std::size_t>(i)])});
   }
   if (!errors.empty()) throw CompileError(std::move(errors), sources);
+  for (const FittedSetting& setting : settings) {
+    if (setting.value_begin < 0 || setting.value_end <= setting.value_begin || static_cast<std::size_t>(setting.value_end) > source.size())
+      throw std::logic_error(fmt::format("write_fitted_source: a data-line setting's value lies outside the given source of {}", file));
+    edits.push_back({setting.value_begin, setting.value_end, setting.text});
+  }
   std::sort(edits.begin(), edits.end(), [](const Edit& a, const Edit& b) { return a.begin > b.begin; });
   std::string out = source;
   int limit = static_cast<int>(source.size());
   for (const auto& e : edits) {
-    if (e.end > limit) throw std::logic_error("write_fitted_source: two parameters share one value expression");
+    if (e.end > limit) throw std::logic_error("write_fitted_source: two values share one expression");
     out.replace(static_cast<std::size_t>(e.begin), static_cast<std::size_t>(e.end - e.begin), e.text);
     limit = e.begin;
   }

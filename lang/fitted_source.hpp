@@ -21,8 +21,15 @@ namespace rheo::lang {
 // std::logic_error (a bug of the caller) when VALUES has the wrong size, an index is out of
 // range, a value is not finite, or a range lies outside SOURCE (SOURCE is not the text MODEL was
 // compiled from).
+// SETTINGS: values of data-line settings to write too (`force_offset = free` becomes
+// `force_offset = 123.4 N`), each replacing the byte range of its value in SOURCE.
+struct FittedSetting {
+  int value_begin = -1, value_end = -1;  // [value_begin, value_end) in SOURCE
+  std::string text;                      // the value written there
+};
 std::string write_fitted_source(const std::string& source, const std::string& file, const CheckedModel& model, const std::vector<double>& values,
-                                const std::vector<int>& changed, const std::vector<std::string>& header);
+                                const std::vector<int>& changed, const std::vector<std::string>& header,
+                                const std::vector<FittedSetting>& settings = {});
 
 // VALUE (internal units) as the value expression of P: in P's unit when it has one, else in
 // the internal unit of P's dimension ("Hz" for frequencies; plain when dimensionless). The

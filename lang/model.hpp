@@ -129,6 +129,17 @@ struct ColumnName {
   std::string name;  // the header's name, as written
 };
 
+// A data line's `force_offset`: a constant the measured force carries (a load cell's zero),
+// measured force = network force + offset.
+struct ForceOffsetSetting {
+  bool given = false;    // written on the line
+  bool free = false;     // `force_offset = free`: fitted
+  double value = 0.0;    // N, when given and not free
+  SourceLocation where;  // of the value
+  int value_begin = -1;  // byte range [value_begin, value_end) of the value in where.file's text
+  int value_end = -1;
+};
+
 // A `data "FILE" [, setting]...` line of a fit block: how FILE is read.
 struct FitData {
   std::string file;                 // as written: relative to the .rheo file, resolved by the runtime
@@ -141,6 +152,7 @@ struct FitData {
   std::optional<double> amplitude;  // mm, or a plain strain when amplitude_is_strain
   bool amplitude_is_strain = false;
   DuplicatePoints duplicates = DuplicatePoints::average;  // repeated points of a harmonic table
+  ForceOffsetSetting force_offset;                        // of a history's force; no effect on a harmonic table
 };
 
 // `fit [MODEL] { ... }`.

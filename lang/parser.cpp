@@ -127,6 +127,8 @@ struct action<g::setting_value> {
   template <typename ActionInput>
   static void apply(const ActionInput& in, State& s) {
     s.value().where = where(in);
+    s.value().begin = byte_offset(in);
+    s.value().end = byte_offset(in) + static_cast<int>(in.size());
   }
 };
 

@@ -44,7 +44,7 @@ Signature simulate_alone(const Trial& trial, const std::vector<FitDataSet>& data
   const Network network = Network::compile(program.models.front());
   Signature s;
   for (const auto& set : data) {
-    const Prediction p = predict(network, set, FitMethod::exact, score.harmonic, nullptr);
+    const Prediction p = predict(network, set, FitMethod::exact, score.harmonic, nullptr, Offsets::none);  // the trial's force alone
     std::vector<Complex> k;
     for (const auto& point : p.points) k.push_back(std::polar(point.measures.stiffness, point.measures.phase));
     s.harmonic.push_back(std::move(k));
@@ -73,7 +73,7 @@ class AddedObjective {
           m.phase = std::arg(k);
         }
       } else {
-        add_history(set.history(), basis, coefficient, f, p.force);
+        add_history(set, basis, coefficient, f, p.force);
       }
       residuals.clear();
       append_residuals(set, p, score_, residuals);
@@ -83,18 +83,32 @@ class AddedObjective {
   }
 
  private:
-  // F_m + sum a s, then beta u with beta the least-squares refit of the linear stiffness.
-  static void add_history(const HistoryData& h, const std::vector<const Signature*>& basis, const std::vector<double>& coefficient, std::size_t f,
+  // F_m + sum a s, then beta u + dc with beta the least-squares refit of the linear stiffness
+  // and, for a free force offset (fit/force_offset.hpp), dc that of the offset, jointly:
+  //   [u.u  sum u] [beta]   [u.r  ]
+  //   [sum u   M ] [dc  ] = [sum r],  r = F_exp - F (M samples; dc = 0 for a declared offset).
+  static void add_history(const FitDataSet& set, const std::vector<const Signature*>& basis, const std::vector<double>& coefficient, std::size_t f,
                           std::vector<double>& force) {
+    const HistoryData& h = set.history();
     const std::vector<double>& u = h.drive.displacement;
-    double uu = 0.0, ur = 0.0;
+    double uu = 0.0, ur = 0.0, su = 0.0, sr = 0.0;
     for (std::size_t j = 0; j < force.size(); ++j) {
       for (std::size_t b = 0; b < basis.size(); ++b) force[j] += coefficient[b] * basis[b]->history[f][j];
       uu += u[j] * u[j];
       ur += u[j] * (h.force[j] - force[j]);
+      su += u[j];
+      sr += h.force[j] - force[j];
     }
-    const double beta = uu > 0.0 ? ur / uu : 0.0;
-    for (std::size_t j = 0; j < force.size(); ++j) force[j] += beta * u[j];
+    double beta = uu > 0.0 ? ur / uu : 0.0, dc = 0.0;
+    const auto m = static_cast<double>(force.size());
+    if (const double det = uu * m - su * su; set.force_offset.free && det > 1e-12 * uu * m) {
+      beta = (ur * m - su * sr) / det;
+      dc = (uu * sr - su * ur) / det;
+    } else if (set.force_offset.free) {
+      dc = sr / m;  // u is constant: the offset takes it all
+      beta = 0.0;
+    }
+    for (std::size_t j = 0; j < force.size(); ++j) force[j] += beta * u[j] + dc;
   }
 
   const FitResult& fit_;

@@ -1,7 +1,9 @@
 #include "runtime/fit/fit.hpp"
 
 #include "runtime/core/errors.hpp"
+#include "runtime/fit/data_set_fit.hpp"
 #include "runtime/fit/fit_report.hpp"
+#include "runtime/fit/force_offset.hpp"
 #include "runtime/fit/force_scales.hpp"
 #include "runtime/fit/separable_fit.hpp"
 #include "runtime/fit/yeoh_mean_curve.hpp"
@@ -61,16 +63,25 @@ class Coordinates {
   const std::vector<int>& free_;
 };
 
-// Residual vector of all files for one method (and, for `corrected`, its factors).
-std::vector<double> residuals(const Network& network, const std::vector<FitDataSet>& data, const ScoreSettings& score, FitMethod method,
-                              const std::vector<ThesisCorrection>& corrections) {
-  std::vector<double> r;
+// Predictions of all files for one method (and, for `corrected`, its factors).
+std::vector<Prediction> predictions(const Network& network, const std::vector<FitDataSet>& data, const ScoreSettings& score, FitMethod method,
+                                    const std::vector<ThesisCorrection>& corrections, Offsets offsets) {
+  std::vector<Prediction> p;
   std::size_t harmonic_index = 0;
   for (const FitDataSet& set : data) {
     const ThesisCorrection* correction = set.is_harmonic() && method == FitMethod::corrected ? &corrections.at(harmonic_index) : nullptr;
     if (set.is_harmonic()) ++harmonic_index;
-    append_residuals(set, predict(network, set, method, score.harmonic, correction), score, r);
+    p.push_back(predict(network, set, method, score.harmonic, correction, offsets));
   }
+  return p;
+}
+
+// Residual vector of all files, free force offsets eliminated (force_offset.hpp).
+std::vector<double> residuals(const Network& network, const std::vector<FitDataSet>& data, const ScoreSettings& score, FitMethod method,
+                              const std::vector<ThesisCorrection>& corrections) {
+  std::vector<double> r;
+  const std::vector<Prediction> p = predictions(network, data, score, method, corrections, Offsets::applied);
+  for (std::size_t f = 0; f < data.size(); ++f) append_residuals(data[f], p[f], score, r);
   return r;
 }
 
@@ -98,17 +109,19 @@ std::vector<double> yeoh_start(const Network& start, const std::vector<int>& fre
   const Topology& t = start.topology();
   if (t.yeohs.size() != 1) return values;
   const HistoryData* widest = nullptr;
-  double widest_range = 0.0;
+  double widest_range = 0.0, offset = 0.0;
   for (const FitDataSet& set : data)
     if (!set.is_harmonic()) {
       const auto& u = set.history().drive.displacement;
       const auto [lo, hi] = std::minmax_element(u.begin(), u.end());
-      if (*hi - *lo > widest_range) widest = &set.history(), widest_range = *hi - *lo;
+      if (*hi - *lo > widest_range) widest = &set.history(), widest_range = *hi - *lo, offset = force_offset(set, {}, Offsets::declared);
     }
   if (!widest) return values;
+  std::vector<double> force = widest->force;  // the network's part: less a declared offset
+  for (double& f : force) f -= offset;
   std::array<YeohStartValue, 3> started;
   try {
-    started = yeoh_start_values(start.model(), t.yeohs.front(), free, {widest->drive.displacement, widest->force});
+    started = yeoh_start_values(start.model(), t.yeohs.front(), free, {widest->drive.displacement, force});
   } catch (const UserError& e) {  // the record holds no usable loop: the start stays as written
     notes.push_back(fmt::format("no yeoh start from {}: {}", widest->path, e.what()));
     return values;
@@ -146,6 +159,12 @@ class StagedSearch {
   // The residual vector of METHOD at z (for `corrected`, with the factors found so far).
   std::function<std::vector<double>(const std::vector<double>&)> residuals_for(FitMethod method) const {
     return [this, method](const std::vector<double>& z) { return residuals(coordinates_.network(z), data_, settings_.score, method, corrections_); };
+  }
+  // The predictions of METHOD at z with the declared offsets only (for statistics_with_offsets).
+  std::function<std::vector<Prediction>(const std::vector<double>&)> predictions_for(FitMethod method) const {
+    return [this, method](const std::vector<double>& z) {
+      return predictions(coordinates_.network(z), data_, settings_.score, method, corrections_, Offsets::declared);
+    };
   }
 
   // One search of METHOD from FROM with at most BUDGET evaluations (at least 1) and, under a
@@ -298,34 +317,6 @@ void require_fittable(const Network& start, const std::vector<int>& free, const 
                         s.path));
 }
 
-// How the fitted NETWORK meets one data set: its prediction, residuals and err (eq. 6.1, or the
-// RMS force residual of a history).
-DataSetFit data_set_fit(const Network& network, const FitDataSet& set, const HarmonicOptions& harmonic) {
-  DataSetFit d;
-  d.path = set.path;
-  d.weight = set.weight;
-  d.source = set.source;
-  d.harmonic = set.is_harmonic();
-  d.prediction = predict(network, set, FitMethod::exact, harmonic, nullptr);
-  if (d.harmonic) {
-    d.residuals = relative_residuals(set.harmonic(), d.prediction.points);
-    d.measured_stiffness = set.harmonic().stiffness;
-    d.measured_phase = set.harmonic().phase;
-    d.phi = phi(d.residuals, 1.0, 1.0);
-    d.err = thesis_err(d.residuals);
-    return d;
-  }
-  const HistoryData& h = set.history();
-  double sum = 0.0;
-  for (std::size_t j = 0; j < h.force.size(); ++j) {
-    const double r = (d.prediction.force[j] - h.force[j]) / h.force_scale;
-    sum += r * r;
-    d.worst = std::max(d.worst, std::abs(r));
-  }
-  d.err = std::sqrt(sum / static_cast<double>(h.force.size()));
-  return d;
-}
-
 }  // namespace
 
 FitResult fit(const Network& start, const std::vector<int>& free, const std::vector<FitDataSet>& data, const FitSettings& given) {
@@ -384,8 +375,10 @@ FitResult fit(const Network& start, const std::vector<int>& free, const std::vec
   if (result.time_limited)
     result.notes.push_back(fmt::format("stopped at the time limit of {:g} s after {} evaluations: these are the best values found by then",
                                        *settings.time_limit, result.evaluations));
+  StatisticsWithOffsets statistics;
   if (!result.interrupted && settings.statistics) {
-    result.statistics = parameter_statistics(searches.residuals_for(final_method), z, coordinates.logarithmic);
+    statistics = statistics_with_offsets(searches.predictions_for(final_method), data, score, z, coordinates.logarithmic);
+    result.statistics = statistics.parameters;
     if (!result.statistics.has_noise_estimate())
       result.notes.push_back(
           fmt::format("no standard errors: {} residuals for {} identifiable directions leave no degree of freedom to "
@@ -395,6 +388,8 @@ FitResult fit(const Network& start, const std::vector<int>& free, const std::vec
   std::size_t harmonic_points = 0;
   for (const FitDataSet& set : data) {
     result.datasets.push_back(data_set_fit(result.network, set, score.harmonic));
+    if (const std::size_t f = result.datasets.size() - 1; f < statistics.offsets.size() && set.force_offset.free)
+      add_offset_statistics(result.datasets.back().force_offset, statistics.offsets[f]);
     if (set.is_harmonic()) {
       result.phi += result.datasets.back().phi;
       harmonic_points += set.harmonic().size();

@@ -15,13 +15,15 @@
 //
 // Reported whatever the method: phi (5.1) and err (6.1) over all harmonic points by the exact
 // response at the fitted parameters, per file too; for histories the RMS force residual
-// relative to max|F|. Standard errors and correlations come from the Jacobian of the
+// relative to max|F|, with the data line's force offset (force_offset.hpp: a free one is
+// eliminated exactly at every evaluation and reported with its standard error). Standard errors and correlations come from the Jacobian of the
 // method's residuals at the optimum (fit_statistics.hpp).
 #pragma once
 
 #include "runtime/io/fit_data.hpp"
 #include "runtime/fit/fit_scoring.hpp"
 #include "runtime/fit/fit_search.hpp"
+#include "runtime/fit/data_set_fit.hpp"
 #include "runtime/fit/fit_statistics.hpp"
 #include "runtime/network/network.hpp"
 #include "runtime/fit/objective.hpp"
@@ -57,19 +59,6 @@ struct FitSettings {
   std::vector<std::vector<double>> extra_starts;
   std::function<void(const SearchProgress&)> progress;  // called after every evaluation
   const std::atomic<bool>* interrupt = nullptr;         // set (e.g. by SIGINT) to stop with the best so far
-};
-
-struct DataSetFit {
-  std::string path;
-  double weight = 1.0;
-  DataSource source;
-  bool harmonic = true;
-  Prediction prediction;                                   // exact response at the fitted parameters
-  double phi = 0.0;                                        // harmonic: eq. 5.1
-  double err = 0.0;                                        // harmonic: eq. 6.1; history: RMS of (F - F_exp) / max|F_exp|
-  double worst = 0.0;                                      // history: max |F - F_exp| / max|F_exp|
-  std::vector<double> measured_stiffness, measured_phase;  // harmonic: the data [N/mm], [rad]
-  RelativeResiduals residuals;                             // harmonic: K/K_exp - 1, d/d_exp - 1
 };
 
 struct FitResult {

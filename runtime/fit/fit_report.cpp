@@ -29,6 +29,22 @@ std::string standard_error_text(const FitResult& r, std::size_t j, int index) {
   return fmt::format("{:.3g} ({:.2g} %)", in_written_unit(parameter_of(r, index), se), value != 0.0 ? 100.0 * se / std::abs(value) : 0.0);
 }
 
+// "data rig.csv: force_offset": the parameter table's name of a fitted offset.
+std::string offset_label(const DataSetFit& d) { return fmt::format("data {}: force_offset", d.path); }
+
+bool fitted_offset(const DataSetFit& d) { return !d.harmonic && d.force_offset.given && d.force_offset.free; }
+
+std::string offset_error_text(const FittedOffset& o) {
+  if (!o.identifiable) return "not identifiable";
+  return std::isfinite(o.standard_error) ? fmt::format("{:.3g}", o.standard_error) : "-";
+}
+
+// ", force offset 120 N": a declared offset on the data set's line of the report.
+std::string declared_offset_text(const DataSetFit& d) {
+  if (d.harmonic || !d.force_offset.given) return "";
+  return d.force_offset.free ? ", force offset fitted" : fmt::format(", force offset {:g} N", d.force_offset.value);
+}
+
 }  // namespace
 
 std::string source_text(const DataSource& s) {
@@ -51,13 +67,15 @@ double in_written_unit(const lang::Parameter& p, double internal_value) {
 std::string fit_report_text(const FitDescription& d, const FitResult& r) {
   std::string out = fmt::format("rheo fit: model {} from {}\n", r.network.model().name, d.source);
   for (const DataSetFit& set : r.datasets)
-    out += fmt::format("  data {} ({}, {} {}, weight {:g}{})\n", set.path, data_kind(set), data_points(set), set.harmonic ? "points" : "samples",
-                       set.weight, source_text(set.source));
+    out += fmt::format("  data {} ({}, {} {}, weight {:g}{}{})\n", set.path, data_kind(set), data_points(set), set.harmonic ? "points" : "samples",
+                       set.weight, declared_offset_text(set), source_text(set.source));
   out += fmt::format("  method {}, objective {}, optimizer {}, seed {}\n", d.method, d.objective, d.optimizer, d.seed);
   for (const std::string& note : r.notes) out += fmt::format("  {}\n", note);
   out += "\n";
   std::size_t width = 9;
   for (int i : r.free) width = std::max(width, parameter_of(r, i).path.size());
+  for (const DataSetFit& set : r.datasets)
+    if (fitted_offset(set)) width = std::max(width, offset_label(set).size());
   out += fmt::format("  {:<{}}  {:>12}  {:>12}  {:<22}  {:<8}  {}\n", "parameter", width, "start", "fitted", "std. error", "unit", "bounds");
   for (std::size_t j = 0; j < r.free.size(); ++j) {
     const int i = r.free[j];
@@ -69,6 +87,10 @@ std::string fit_report_text(const FitDescription& d, const FitResult& r) {
                        in_written_unit(p, r.network.parameter(i)), standard_error_text(r, j, i), written_unit(p), in_written_unit(p, p.lower),
                        in_written_unit(p, p.upper), at_bound ? "  at a bound: widen it?" : "");
   }
+  for (const DataSetFit& set : r.datasets)
+    if (fitted_offset(set))
+      out += fmt::format("  {:<{}}  {:>12.6g}  {:>12.6g}  {:<22}  {:<8}  {}\n", offset_label(set), width, 0.0, set.force_offset.value,
+                         offset_error_text(set.force_offset), "N", "none");
   out += "\n";
   for (const DataSetFit& set : r.datasets) {
     if (!set.harmonic) {
@@ -93,6 +115,11 @@ std::string fit_report_text(const FitDescription& d, const FitResult& r) {
       if (std::abs(s.correlation[a][b]) > 0.95)
         out += fmt::format("  strongly correlated: {} and {} (r = {:.3f})\n", parameter_of(r, r.free[a]).path, parameter_of(r, r.free[b]).path,
                            s.correlation[a][b]);
+  for (const DataSetFit& set : r.datasets)
+    for (std::size_t a = 0; fitted_offset(set) && a < set.force_offset.correlation.size() && a < r.free.size(); ++a)
+      if (std::abs(set.force_offset.correlation[a]) > 0.95)
+        out += fmt::format("  strongly correlated: {} and {} (r = {:.3f})\n", parameter_of(r, r.free[a]).path, offset_label(set),
+                           set.force_offset.correlation[a]);
   out += fmt::format("  {} evaluations in {:.2f} s; {}\n", r.evaluations, r.wall_seconds,
                      r.interrupted ? "interrupted: these are the best values found so far" : fmt::format("optimizer status {}", r.status));
   if (r.non_finite > 0) out += fmt::format("  note: {} evaluations gave a non-finite objective and were rejected\n", r.non_finite);
@@ -149,6 +176,15 @@ std::string fit_report_json(const FitDescription& d, const FitResult& r) {
     if (set.source.material) {
       s["area_mm2"] = set.source.area.value_or(0.0);
       s["height_mm"] = set.source.height.value_or(0.0);
+    }
+    if (!set.harmonic && set.force_offset.given) {
+      json offset{{"value", set.force_offset.value}, {"unit", "N"}, {"free", set.force_offset.free}};
+      if (set.force_offset.free) {
+        if (std::isfinite(set.force_offset.standard_error)) offset["standard_error"] = set.force_offset.standard_error;
+        offset["identifiable"] = set.force_offset.identifiable;
+        if (!set.force_offset.correlation.empty()) offset["correlation"] = set.force_offset.correlation;
+      }
+      s["force_offset"] = offset;
     }
     if (set.harmonic) {
       s["phi"] = set.phi;

@@ -9,13 +9,17 @@
 //   parameters: [{path, unit, start, value, lower, upper, free, standard_error, identifiable}],
 //   correlation: {parameters: [path...], matrix: [[...]]}  (free parameters),
 //   data: [{file, kind, weight, points, err, phi?, step?, area_mm2?, height_mm? (material data),
+//           force_offset? (a history whose data line sets it: {value [N], unit "N", free,
+//             standard_error? [N], identifiable?, correlation? [with each free parameter, in
+//             correlation.parameters' order]}; the last three for a fitted (free) offset),
 //           residuals: [{amplitude_mm, frequency_hz,
 //           stiffness_measured, stiffness_model, phase_measured_deg, phase_model_deg,
 //           stiffness_residual, damping_residual}] | {rms, max}}]
 // Every parameter of the model is listed; lower/upper only for those with bounds,
 // identifiable only for free ones, standard_error only where it is finite (not for a
 // non-identifiable parameter, nor after an interrupted fit, which has no statistics). A
-// correlation entry that is not defined (NaN) is written as null.
+// correlation entry that is not defined (NaN) is written as null. The text report lists a
+// fitted offset in the parameter table as `data FILE: force_offset` (start 0, unit N, no bounds).
 #pragma once
 
 #include "runtime/fit/fit.hpp"

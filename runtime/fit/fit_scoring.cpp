@@ -1,6 +1,7 @@
 #include "runtime/fit/fit_scoring.hpp"
 #include "runtime/protocols/run_history.hpp"
 
+#include "runtime/fit/force_offset.hpp"
 #include "runtime/fit/objective.hpp"
 
 #include <cmath>
@@ -10,10 +11,12 @@
 namespace rheo::runtime {
 
 Prediction predict(const Network& network, const FitDataSet& set, FitMethod method, const HarmonicOptions& harmonic,
-                   const ThesisCorrection* correction) {
+                   const ThesisCorrection* correction, Offsets offsets) {
   Prediction p;
   if (!set.is_harmonic()) {
     p.force = run_history(network, set.history().drive, false, harmonic.solver).force;
+    p.force_offset = force_offset(set, p.force, offsets);
+    for (double& f : p.force) f += p.force_offset;
     return p;
   }
   const HarmonicData& data = set.harmonic();

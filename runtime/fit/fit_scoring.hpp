@@ -8,7 +8,8 @@
 //     sqrt(w_K) (K / K_exp - 1),   sqrt(w_d) (d / d_exp - 1),   d = sin(phase)
 //   harmonic, objective least_squares (relative, on the complex stiffness K* = K e^{i phase}):
 //     (K' - K'_exp) / |K*_exp|,    (K'' - K''_exp) / |K*_exp|
-//   history (either objective), per sample: (F - F_exp) / max|F_exp|
+//   history (either objective), per sample: (F - F_exp) / max|F_exp|, F with the data line's
+//     force offset (force_offset.hpp)
 // A harmonic table's optional `weight` column multiplies its point's squared terms.
 // For one harmonic file and objective phi the minimiser is that of eq. 5.38.
 //
@@ -24,6 +25,7 @@
 #include "runtime/protocols/harmonic.hpp"
 #include "runtime/fit/thesis_approximation.hpp"
 
+#include <cstdint>
 #include <vector>
 
 namespace rheo::runtime {
@@ -41,13 +43,22 @@ struct ScoreSettings {
 
 struct Prediction {
   std::vector<HarmonicPoint> points;  // harmonic file: one per data point, same order
-  std::vector<double> force;          // history file: model force at each sample [N]
+  std::vector<double> force;          // history file: model force at each sample [N], its offset included
+  double force_offset = 0.0;          // history file: the offset in `force` [N] (force_offset.hpp)
+};
+
+// Which force offsets a history's prediction carries.
+enum class Offsets : std::uint8_t {
+  applied,   // the declared ones, and the free ones at their least-squares value for this prediction
+  declared,  // the declared ones; a free one left at 0 (the caller supplies it)
+  none,      // none: the network's force alone
 };
 
 // `correction` (one per harmonic file, same order as the harmonic files in the fit) is used by
-// FitMethod::corrected and must then be given.
+// FitMethod::corrected and must then be given. A history's force carries the offsets OFFSETS
+// says (force_offset.hpp).
 Prediction predict(const Network& network, const FitDataSet& set, FitMethod method, const HarmonicOptions& harmonic,
-                   const ThesisCorrection* correction);
+                   const ThesisCorrection* correction, Offsets offsets = Offsets::applied);
 
 // Appends the weighted residual terms of one file (see above) to `out`.
 void append_residuals(const FitDataSet& set, const Prediction& prediction, const ScoreSettings& settings, std::vector<double>& out);

@@ -33,11 +33,14 @@ HistoryData history_data_from_table(const Table& table, const DataReading& readi
 
 FitDataSet read_fit_data(const std::string& path, double weight, const lang::SourceLocation* named_at, const DataReading& reading) {
   const Table table = read_table(path, named_at, reading.step);
-  FitDataSet set{path, weight, HarmonicData{}, {table.step, false, {}, {}}};
+  FitDataSet set{path, weight, HarmonicData{}, {table.step, false, {}, {}}, reading.force_offset};
   const bool amplitude = find_role(table, Role::amplitude, reading.columns) >= 0 || reading.amplitude || reading.strain_amplitude;
   if (amplitude && find_role(table, Role::frequency, reading.columns) >= 0) {
     set.data = harmonic_data_from_table(table, reading);
     if (set.harmonic().material) set.source = {table.step, true, reading.columns.area, reading.columns.height};
+    if (reading.force_offset.given)
+      std::get<HarmonicData>(set.data).notes.push_back(
+          fmt::format("{}: force_offset has no effect on a harmonic table: its stiffness and phase do not depend on a constant force", path));
   } else if (find_role(table, Role::time, reading.columns) >= 0) {
     set.data = history_data_from_table(table, reading);
   } else {
@@ -61,6 +64,7 @@ DataReading reading_of(const lang::FitData& line) {
   reading.columns.height = line.height;
   reading.step = line.step;
   reading.duplicates = line.duplicates;
+  reading.force_offset = {line.force_offset.given, line.force_offset.free, line.force_offset.value};
   if (line.amplitude_is_strain) reading.strain_amplitude = line.amplitude;
   else reading.amplitude = line.amplitude;
   return reading;

@@ -34,6 +34,7 @@ struct FitDataSet {
   double weight = 1.0;  // multiplies this file's mean squared residual in the objective
   std::variant<HarmonicData, HistoryData> data;
   DataSource source{};
+  ForceOffset force_offset{};  // histories only (a harmonic table's reading notes that it has no effect)
 
   bool is_harmonic() const { return std::holds_alternative<HarmonicData>(data); }
   const HarmonicData& harmonic() const { return std::get<HarmonicData>(data); }

@@ -23,6 +23,14 @@
 
 namespace rheo::runtime {
 
+// A constant offset of a measured history's force (a load cell's zero): measured force =
+// network force + offset. A harmonic table's stiffness and phase do not depend on it.
+struct ForceOffset {
+  bool given = false;  // set on the data line
+  bool free = false;   // fitted: the least-squares offset at every evaluation (fit/force_offset.hpp)
+  double value = 0.0;  // N: the declared offset (not free)
+};
+
 // How a data line asks for its file to be read (from lang::FitData, checked there): which
 // column is which and the specimen's geometry (column_roles.hpp), a TRIOS step
 // (table_layout.hpp), an amplitude for a table without one.
@@ -32,6 +40,7 @@ struct DataReading {
   std::optional<double> amplitude;         // mm
   std::optional<double> strain_amplitude;  // a plain strain (0.001 for 0.1 %); needs columns.height
   lang::DuplicatePoints duplicates = lang::DuplicatePoints::average;
+  ForceOffset force_offset{};
 };
 
 struct HarmonicData {

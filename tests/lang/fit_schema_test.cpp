@@ -162,3 +162,47 @@ TEST_CASE("a data line's duplicates: average by default, or error") {
   CHECK(word_of(DuplicatePoints::average) == "average");
   CHECK(duplicate_points_named("error") == DuplicatePoints::error);
 }
+
+TEST_CASE("a data line's force_offset: a force with its unit (any sign), or free; its value's byte range is kept") {
+  const std::string text = std::string(kModel) +
+                           "fit m {\n  data \"a.csv\"\n  data \"b.csv\", force_offset = -0.12 kN\n  data \"c.csv\", force_offset = free\n}\n";
+  Program p = compile_source("f.rheo", text);
+  REQUIRE(p.fits.at(0).data.size() == 3);
+  const auto& data = p.fits[0].data;
+  CHECK_FALSE(data[0].force_offset.given);
+  CHECK(data[1].force_offset.given);
+  CHECK_FALSE(data[1].force_offset.free);
+  CHECK(data[1].force_offset.value == doctest::Approx(-120.0));
+  CHECK(text.substr(static_cast<std::size_t>(data[1].force_offset.value_begin),
+                    static_cast<std::size_t>(data[1].force_offset.value_end - data[1].force_offset.value_begin)) == "-0.12 kN");
+  CHECK(data[2].force_offset.free);
+  CHECK(text.substr(static_cast<std::size_t>(data[2].force_offset.value_begin),
+                    static_cast<std::size_t>(data[2].force_offset.value_end - data[2].force_offset.value_begin)) == "free");
+  CHECK(data[2].force_offset.where.line == data[2].where.line);
+}
+
+TEST_CASE("a force_offset without a force unit is an error at its value, saying what to write") {
+  auto error_of = [](const std::string& setting) {
+    try {
+      compile_source("f.rheo", std::string(kModel) + "fit m {\n  data \"a.csv\", " + setting + "\n}\n");
+    } catch (const CompileError& e) {
+      return std::string(e.what());
+    }
+    return std::string("no error");
+  };
+  const std::string plain = error_of("force_offset = 120");
+  CHECK(plain.find("f.rheo:8:32") != std::string::npos);
+  CHECK(plain.find("force_offset needs a force unit; e.g. force_offset = 120 N, or force_offset = free to fit it") != std::string::npos);
+  const std::string length = error_of("force_offset = 120 mm");
+  CHECK(length.find("f.rheo:8:32") != std::string::npos);
+  CHECK(length.find("force_offset expects a force (N), got a length (mm)") != std::string::npos);
+  CHECK(length.find("or force_offset = free to fit it") != std::string::npos);
+  CHECK(error_of("force_offset = fixed").find("or force_offset = free to fit it") != std::string::npos);
+  CHECK(error_of("force_offset = 1 N, force_offset = free").find("duplicate setting 'force_offset'") != std::string::npos);
+}
+
+TEST_CASE("--data takes force_offset like a data line") {
+  const FitData d = parse_data_option("rig.csv, force_offset = free");
+  CHECK(d.force_offset.free);
+  CHECK_THROWS_AS(parse_data_option("rig.csv, force_offset = 3 s"), CompileError);
+}

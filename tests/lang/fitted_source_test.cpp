@@ -152,3 +152,15 @@ TEST_CASE("format_parameter_value: the parameter's unit, at least 10 digits, the
   p.dimension = {0, -1, 0};
   CHECK(format_parameter_value(p, 0.5) == "0.5 / 1 mm");
 }
+
+TEST_CASE("write_fitted_source: a data line's fitted setting replaces its value, parameters as before") {
+  const std::string text = "model s {\n  spring e (k = 10 N/mm in [1, 1000])\n}\nfit {\n  data \"rig.csv\", force_offset = free  # zero\n}\n";
+  const Program p = compile_source("s.rheo", text);
+  const CheckedModel& m = p.models.at(0);
+  const ForceOffsetSetting& offset = p.fits.at(0).data.at(0).force_offset;
+  const std::string out = write_fitted_source(text, "s.rheo", m, {80.0}, {0}, {}, {{offset.value_begin, offset.value_end, "40.5 N"}});
+  CHECK(out == "model s {\n  spring e (k = 80 N/mm in [1, 1000])\n}\nfit {\n  data \"rig.csv\", force_offset = 40.5 N  # zero\n}\n");
+  const Program again = compile_source("s.rheo", out);
+  CHECK(again.fits.at(0).data.at(0).force_offset.value == 40.5);
+  CHECK_THROWS_AS(write_fitted_source(text, "s.rheo", m, {80.0}, {0}, {}, {{-1, 3, "1 N"}}), std::logic_error);
+}

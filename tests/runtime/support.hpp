@@ -35,13 +35,15 @@ inline int parameter_index(const runtime::Network& network, const std::string& p
   throw std::runtime_error("test model has no parameter " + path);
 }
 
-// A history data set whose force is the model's own response to `drive` (noise-free).
+// A history data set whose force is the model's own response to `drive` (noise-free), plus a
+// constant load-cell offset `offset` [N] (the data set declares none: see FitDataSet::force_offset).
 inline runtime::FitDataSet history_data_of(const runtime::Network& truth, const runtime::Drive& drive, const std::string& path = "generated",
-                                           double weight = 1.0) {
+                                           double weight = 1.0, double offset = 0.0) {
   runtime::HistoryData h;
   h.path = path;
   h.drive = drive;
   h.force = runtime::run_history(truth, drive, false).force;
+  for (double& f : h.force) f += offset;
   for (double f : h.force) h.force_scale = std::max(h.force_scale, std::abs(f));
   h.rows.assign(h.force.size(), 0);
   return {path, weight, h, {}};
