@@ -38,7 +38,7 @@ void add_data(report::ReportContent& content, const runtime::Network& network, c
       content.harmonic.push_back(report::compare_harmonic(set.harmonic(), p.points, set.source));
       content.notes.insert(content.notes.end(), set.harmonic().notes.begin(), set.harmonic().notes.end());
       for (std::string& note : runtime::damping_left_out(set.harmonic())) content.notes.push_back(std::move(note));
-    } else content.histories.push_back(report::compare_history(set.history(), p.force, set.source));
+    } else content.histories.push_back(report::compare_history(set, p));
   }
 }
 

@@ -130,9 +130,24 @@ std::string harmonic_section(const HarmonicComparison& h, std::size_t index) {
   return out + "</div>\n";
 }
 
+// How the model met the history: where it started, and the force offset it was shown with.
+std::string start_and_offset_note(const HistoryComparison& h) {
+  std::string out;
+  if (!h.displacement.empty() && h.displacement.front() != 0.0)
+    out += fmt::format(
+        "The model starts relaxed at the first sample's displacement, {:g} mm (rate elements unloaded, friction elements slid to "
+        "zero force, springs at their static force).",
+        h.displacement.front());
+  if (h.offset.free || h.offset.given)
+    out += fmt::format("{}The model's force includes the load cell's offset, {:.6g} N ({}).", out.empty() ? "" : " ", h.offset_value,
+                       h.offset.free ? "force_offset = free: fitted" : "force_offset as declared on the data line");
+  return out;
+}
+
 std::string history_section(const HistoryComparison& h, std::size_t index) {
   const std::string id = fmt::format("t{}", index + 1);
-  const std::string note = source_note(h.source);
+  std::string note = source_note(h.source);
+  if (const std::string start = start_and_offset_note(h); !start.empty()) note += (note.empty() ? "" : " ") + start;
   return fmt::format("<h2 id=\"{}\">History: <code>{}</code></h2>\n{}<div class=\"figures\">\n{}</div>\n", id, escape(h.label),
                      note.empty() ? "" : fmt::format("<p class=\"meta source\">{}</p>\n", escape(note)),
                      figure_html("hysteresis", render_svg(hysteresis_plot(h, id + "-hysteresis"), false),

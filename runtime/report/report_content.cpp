@@ -55,7 +55,7 @@ ReportContent report_from_fit(const FitResult& r, const std::vector<FitDataSet>&
   }
   for (std::size_t k = 0; k < data.size() && k < r.datasets.size(); ++k) {
     if (data[k].is_harmonic()) content.harmonic.push_back(compare_harmonic(data[k].harmonic(), r.datasets[k].prediction.points, data[k].source));
-    else content.histories.push_back(compare_history(data[k].history(), r.datasets[k].prediction.force, data[k].source));
+    else content.histories.push_back(compare_history(data[k], r.datasets[k].prediction));
   }
   if (content.harmonic.size() > 1) content.notes.push_back(fmt::format("all harmonic data: phi (5.1) = {:.6g}, err (6.1) = {:.4e}", r.phi, r.err));
   content.notes.push_back(fmt::format("{} evaluations in {:.2f} s; {}", r.evaluations, r.wall_seconds,
@@ -85,6 +85,13 @@ HistoryComparison compare_history(const HistoryData& data, const std::vector<dou
     h.worst = std::max(h.worst, std::abs(r));
   }
   h.rms = data.force.empty() ? 0.0 : std::sqrt(sum / static_cast<double>(data.force.size()));
+  return h;
+}
+
+HistoryComparison compare_history(const FitDataSet& set, const Prediction& prediction) {
+  HistoryComparison h = compare_history(set.history(), prediction.force, set.source);
+  h.offset = set.force_offset;
+  h.offset_value = prediction.force_offset;
   return h;
 }
 

@@ -42,6 +42,8 @@ struct HistoryComparison {
   std::vector<double> baseline_force;  // an earlier model's force; empty: none
   double baseline_rms = 0.0;
   DataSource source{};
+  ForceOffset offset{};       // the data line's force_offset: model_force includes `offset_value`
+  double offset_value = 0.0;  // N, as declared or as fitted for model_force
   bool measured() const { return !measured_force.empty(); }
   bool has_baseline() const { return !baseline_force.empty(); }
 };
@@ -84,6 +86,8 @@ ReportContent report_from_fit(const FitResult& result, const std::vector<FitData
 // SOURCE: how DATA was read (FitDataSet::source), shown in the report.
 HarmonicComparison compare_harmonic(const HarmonicData& data, const std::vector<HarmonicPoint>& model, const DataSource& source = {});
 HistoryComparison compare_history(const HistoryData& data, const std::vector<double>& model_force, const DataSource& source = {});
+// The same for a measured data set and the model's prediction of it (its force offset named).
+HistoryComparison compare_history(const FitDataSet& set, const Prediction& prediction);
 
 // Adds `earlier`'s predictions as the baseline of every data set of `content` (which must come
 // from report_from_fit on the same data, in order), described as `what`.

@@ -113,3 +113,18 @@ TEST_CASE("report html: material data name their geometry and are drawn as modul
   CHECK(strain_only.find("modulus x A") == std::string::npos);
   CHECK(strain_only.find("[MPa]") == std::string::npos);
 }
+
+TEST_CASE("report html: a history from a preloaded start says the model starts relaxed there, and names the force offset it was shown with") {
+  runtime::report::ReportContent content = sample_content();
+  CHECK(runtime::report::html_report(content).find("starts relaxed") == std::string::npos);  // from 0: nothing to say
+  runtime::report::HistoryComparison& loop = content.histories.front();
+  loop.displacement = {2.0, 2.5, 2.0, 1.5, 2.0};
+  loop.offset = {true, true, 0.0};
+  loop.offset_value = 151.25;
+  const std::string html = runtime::report::html_report(content);
+  CHECK(html.find("The model starts relaxed at the first sample&#39;s displacement, 2 mm") != std::string::npos);
+  CHECK(html.find("load cell&#39;s offset, 151.25 N (force_offset = free: fitted)") != std::string::npos);
+  loop.offset = {true, false, 150.0};
+  loop.offset_value = 150.0;
+  CHECK(runtime::report::html_report(content).find("150 N (force_offset as declared on the data line)") != std::string::npos);
+}
