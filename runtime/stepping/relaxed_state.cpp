@@ -73,14 +73,7 @@ class Relaxer {
         const YeohLaw law = yeoh(n);
         return {law.force(e), law.slope(e)};
       }
-      case NodeKind::parallel: {
-        ForceSlope sum{0.0, 0.0};
-        for (int i = 0; i < n.child_count; ++i) {
-          const ForceSlope c = force(child(n, i), e);
-          sum = {sum.force + c.force, sum.slope + c.slope};
-        }
-        return sum;
-      }
+      case NodeKind::parallel: return sum_over_children(n, [&](int c) { return force(c, e); });
       case NodeKind::series: return series_force(node, e);
       default: throw std::logic_error("relaxed_state: a gap outside a series chain");
     }
@@ -94,14 +87,7 @@ class Relaxer {
       case NodeKind::spring: return {f / p(n, 0), 1.0 / p(n, 0)};
       case NodeKind::gap: return {std::copysign(0.5 * p(n, 0), f), 0.0};
       case NodeKind::yeoh: return yeoh_elongation(node, f);
-      case NodeKind::series: {
-        ForceSlope sum{0.0, 0.0};
-        for (int i = 0; i < n.child_count; ++i) {
-          const ForceSlope c = elongation(child(n, i), f);
-          sum = {sum.force + c.force, sum.slope + c.slope};
-        }
-        return sum;
-      }
+      case NodeKind::series: return sum_over_children(n, [&](int c) { return elongation(c, f); });
       case NodeKind::parallel: {
         const Play reach = play(node);
         auto residual = [&](double e) {
@@ -148,6 +134,16 @@ class Relaxer {
   int child(const TreeNode& n, int i) const { return t_.children[static_cast<std::size_t>(n.first_child + i)]; }
   double p(const TreeNode& n, int i) const { return network_.parameter(n.param[i]); }
   YeohLaw yeoh(const TreeNode& n) const { return {p(n, 0), p(n, 1), p(n, 2)}; }
+  // The children's values and slopes added: forces of a parallel block, elongations of a chain.
+  template <class Of>
+  ForceSlope sum_over_children(const TreeNode& n, Of of) const {
+    ForceSlope sum{0.0, 0.0};
+    for (int i = 0; i < n.child_count; ++i) {
+      const ForceSlope c = of(child(n, i));
+      sum = {sum.force + c.force, sum.slope + c.slope};
+    }
+    return sum;
+  }
 
   ForceSlope series_force(int node, double e) const {
     const Play reach = play(node);

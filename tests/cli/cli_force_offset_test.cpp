@@ -2,6 +2,8 @@
 // binary: the fitted offset in the text and JSON reports, written into the fitted file's data
 // line (which then fits the same as a declared offset), and named in its header for --data.
 #include "lang/frontend.hpp"
+#include "cli_support.hpp"
+#include "support.hpp"
 
 #include <doctest/doctest.h>
 #include <fmt/format.h>
@@ -22,38 +24,15 @@ namespace fs = std::filesystem;
 
 namespace {
 
-struct Run {
-  int code;
-  std::string out, err;
-};
+using Run = test::BinaryRun;
 
-fs::path scratch() {
-  const fs::path dir = fs::temp_directory_path() / fmt::format("rheo-cli-offset-{}", ::getpid());
-  fs::create_directories(dir);
-  return dir;
-}
+fs::path scratch() { return test::scratch_directory("cli-offset"); }
 
-std::string read_text(const fs::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
+std::string read_text(const fs::path& path) { return test::read_file(path.string()); }
 
 void write_text(const fs::path& path, const std::string& text) { std::ofstream(path, std::ios::binary) << text; }
 
-Run run(const std::string& arguments) {
-  const fs::path err = scratch() / "stderr.txt";
-  const std::string command = fmt::format("{} {} 2> {}", RHEO_BINARY, arguments, err.string());
-  Run r{-1, "", ""};
-  FILE* pipe = popen(command.c_str(), "r");
-  std::array<char, 4096> buffer{};
-  while (std::size_t n = std::fread(buffer.data(), 1, buffer.size(), pipe)) r.out.append(buffer.data(), n);
-  const int status = pclose(pipe);
-  r.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  r.err = read_text(err);
-  return r;
-}
+Run run(const std::string& arguments) { return test::run_rheo(arguments); }
 
 bool contains(const std::string& text, const std::string& part) { return text.find(part) != std::string::npos; }
 
