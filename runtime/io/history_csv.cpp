@@ -71,6 +71,13 @@ bool is_units_row(const std::vector<Cell>& cells, bool decimal_comma) {
   return any;
 }
 
+// For a cell that is not a number but reads as a unit: where units go.
+std::string unit_hint(const std::string& cell) {
+  const bool letters = std::any_of(cell.begin(), cell.end(), [](char c) { return std::isalpha(static_cast<unsigned char>(c)); });
+  if (!letters || !table_unit(cell)) return "";
+  return fmt::format(" ('{}' reads as a unit: units go in the names row, 'name [unit]', or in a units row directly under it)", lang::printable(cell));
+}
+
 class TableReader {
  public:
   TableReader(Table& table, const TableLayout& layout) : t_(table), layout_(layout) {}
@@ -144,8 +151,8 @@ class TableReader {
     if (s.empty() || (ec != std::errc{} && ec != std::errc::result_out_of_range) || ptr != s.data() + s.size())
       return missing(c, row,
                      s.empty() ? fmt::format("empty cell in column '{}'; fill it or remove the row", lang::printable(name))
-                               : fmt::format("'{}' is not a number (column '{}'); write a number such as 0.25 or 1e-3", lang::printable(s),
-                                             lang::printable(name)),
+                               : fmt::format("'{}' is not a number (column '{}'); write a number such as 0.25 or 1e-3{}", lang::printable(s),
+                                             lang::printable(name), unit_hint(s)),
                      column);
     if (ec == std::errc::result_out_of_range || !std::isfinite(v))
       return missing(c, row,
@@ -169,12 +176,38 @@ class TableReader {
 
 std::string header_error(const Table& table) { return fmt::format("{}:{}:1: error: ", table.path, table.header_row); }
 
+std::string header_hint(const Table& table);
+
 std::string header_columns(const Table& table) {
   constexpr std::size_t shown = 24;
   std::string names;
   for (std::size_t i = 0; i < std::min(shown, table.names.size()); ++i) names += (names.empty() ? "" : ", ") + lang::printable(table.names[i]);
   if (table.names.size() > shown) names += fmt::format(", ... ({} columns)", table.names.size());
-  return "the header has: " + names;
+  return "the header has: " + names + header_hint(table);
+}
+
+// What a names row that almost matches seems to be: one cell holding another separator, or a
+// row of units where the names belong.
+std::string header_hint(const Table& table) {
+  if (table.names.size() == 1) {
+    for (const char c : std::string_view("|:/ ")) {
+      if (table.names[0].find(c) == std::string::npos) continue;
+      return fmt::format(
+          "; rheo separates cells by ',', ';' or tab, and this names row is one cell: is {} its separator? export the table "
+          "with commas, semicolons or tabs",
+          c == ' ' ? std::string("a space") : fmt::format("'{}'", c));
+    }
+    return "";
+  }
+  const bool all_units = std::all_of(table.names.begin(), table.names.end(), [](const std::string& name) {
+    return !name.empty() && table_unit(name) && !std::isdigit(static_cast<unsigned char>(name.front()));
+  });
+  const bool dimensioned = std::any_of(table.names.begin(), table.names.end(), [](const std::string& name) {
+    const auto unit = table_unit(name);
+    return unit && !unit->dimension.dimensionless();
+  });
+  return all_units && dimensioned ? "; these look like units: put the names row first and the units row directly under it, or write 'name [unit]'"
+                                  : "";
 }
 
 int Table::cell_column(std::size_t row_index, int field) const {

@@ -106,3 +106,16 @@ TEST_CASE("a history's rows: at least two, time strictly increasing (no repeated
 TEST_CASE("read_table: a directory is not a table") {
   CHECK_THROWS_WITH_AS(read_table(RHEO_DATA_DIR), doctest::Contains("cannot read the file (it is a directory)"), DataError);
 }
+
+TEST_CASE("a table that almost matches says what rheo expected and what it found: another separator, units above the names, units in a data row") {
+  const std::string piped = drive_error("time [s]|displacement [mm]\n0|0\n1|1\n");
+  CHECK(piped.find("is '|' its separator?") != std::string::npos);
+  CHECK(drive_error("time [s] displacement [mm]\n0 0\n1 1\n").find("is a space its separator?") != std::string::npos);
+  const std::string above = drive_error("s,mm\ntime,displacement\n0,0\n1,1\n");
+  CHECK(above.find("these look like units: put the names row first") != std::string::npos);
+  CHECK(drive_error("time [s],force [N]\n0,0\n1,1\n").find("look like units") == std::string::npos);  // real names: no hint
+  const std::string below = error_of("time,displacement\n0,0\ns,mm\n");
+  CHECK(below.empty());  // a column is checked when a reader uses it
+  const std::string used = drive_error("time,displacement\n0,0\ns,mm\n");
+  CHECK(used.find("'s' reads as a unit: units go in the names row") != std::string::npos);
+}
