@@ -6,6 +6,7 @@
 #include "runtime/fit/force_offset.hpp"
 #include "runtime/fit/force_scales.hpp"
 #include "runtime/fit/separable_fit.hpp"
+#include "runtime/fit/parameter_bounds.hpp"
 #include "runtime/fit/yeoh_mean_curve.hpp"
 
 #include <fmt/format.h>
@@ -29,7 +30,7 @@ class Coordinates {
       const auto& p = parameters.at(static_cast<std::size_t>(i));
       if (!p.free)
         throw std::logic_error(fmt::format("parameter '{}' has no bounds; give it bounds to fit it, e.g. `{} in [lo, hi]`", p.path, p.path));
-      const bool log_space = p.lower > 0.0;
+      const bool log_space = logarithmic_search(p);
       logarithmic.push_back(log_space);
       auto map = [&](double v) { return log_space ? std::log(v) : v; };
       z0.push_back(map(start.parameter(i)));

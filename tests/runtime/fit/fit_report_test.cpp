@@ -8,8 +8,10 @@
 #include "support.hpp"
 
 #include <doctest/doctest.h>
+#include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
 #include <cmath>
 
 using namespace rheo;
@@ -204,4 +206,25 @@ TEST_CASE("an interrupted fit says so in both reports and has no standard errors
   CHECK(j["interrupted"] == true);
   CHECK(j["status"] == "interrupted");
   for (const json& p : j["parameters"]) CHECK_FALSE(p.contains("standard_error"));
+}
+
+TEST_CASE("a value the search left just short of a bound is at it: flagged in the table, the notes and the JSON") {
+  Fitted f = fitted(false);
+  // m.tau 1e-6 short of its upper bound of 100 ms, as a local search stopping at its tolerance leaves it.
+  std::vector<double> values = f.result.network.parameters();
+  const auto tau = static_cast<std::size_t>(index_of(f.result, "m.tau"));
+  values[tau] = 0.1 * (1.0 - 1e-6);
+  f.result.network = f.result.network.with_parameters(values);
+  const std::string text = runtime::fit_report_text(f.description, f.result);
+  CAPTURE(text);
+  const auto line_start = text.find("\n  m.tau ");
+  REQUIRE(line_start != std::string::npos);
+  CHECK(text.substr(line_start, text.find('\n', line_start + 1) - line_start).find("at a bound: widen it?") != std::string::npos);
+  const auto notes = runtime::bound_notes(f.result);
+  REQUIRE(notes.size() == 2);  // e.k, fitted onto its upper bound, and m.tau
+  CHECK(notes[0].starts_with("e.k = 250 N/mm is at its upper bound 250"));
+  CHECK(notes[1] == "m.tau = 99.9999 ms is at its upper bound 100: widen it?");
+  const json j = json::parse(runtime::fit_report_json(f.description, f.result));
+  CHECK(parameter_entry(j, "m.tau").at("at_bound") == "upper");
+  CHECK_FALSE(parameter_entry(j, "m.k").contains("at_bound"));
 }
