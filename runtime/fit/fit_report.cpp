@@ -97,9 +97,10 @@ std::string fit_report_text(const FitDescription& d, const FitResult& r) {
     const lang::Parameter& p = parameter_of(r, i);
     const double start = r.start_values.at(static_cast<std::size_t>(i));
     const bool at_bound = bound_reached(p, r.network.parameter(i)) != BoundSide::none;
-    out += fmt::format("  {:<{}}  {:>12.6g}  {:>12.6g}  {:<22}  {:<8}  [{:g}, {:g}]{}\n", p.path, width, in_written_unit(p, start),
+    const bool yeoh_started = std::find(r.yeoh_started.begin(), r.yeoh_started.end(), i) != r.yeoh_started.end();
+    out += fmt::format("  {:<{}}  {:>12.6g}  {:>12.6g}  {:<22}  {:<8}  [{:g}, {:g}]{}{}\n", p.path, width, in_written_unit(p, start),
                        in_written_unit(p, r.network.parameter(i)), standard_error_text(r, j, i), written_unit(p), in_written_unit(p, p.lower),
-                       in_written_unit(p, p.upper), at_bound ? "  at a bound: widen it?" : "");
+                       in_written_unit(p, p.upper), yeoh_started ? "  start: yeoh mean curve" : "", at_bound ? "  at a bound: widen it?" : "");
   }
   for (const DataSetFit& set : r.datasets)
     if (fitted_offset(set))
@@ -167,6 +168,7 @@ std::string fit_report_json(const FitDescription& d, const FitResult& r) {
     json e{{"path", p.path},
            {"unit", written_unit(p)},
            {"start", in_written_unit(p, r.start_values[i])},
+           {"start_from", std::find(r.yeoh_started.begin(), r.yeoh_started.end(), static_cast<int>(i)) != r.yeoh_started.end() ? "yeoh" : "given"},
            {"value", in_written_unit(p, r.network.parameter(static_cast<int>(i)))}};
     const auto it = std::find(r.free.begin(), r.free.end(), static_cast<int>(i));
     e["free"] = it != r.free.end();

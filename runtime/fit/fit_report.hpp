@@ -6,7 +6,9 @@
 //   model, source, method, objective, optimizer, seed, status, interrupted, evaluations,
 //   non_finite_evaluations, first_failure (why the first evaluation that could not be simulated
 //   failed; "" when none), wall_seconds, phi, err, notes: [text...] (FitResult::notes),
-//   parameters: [{path, unit, start, value, lower, upper, free, standard_error, identifiable,
+//   parameters: [{path, unit, start (where the search started), start_from ("yeoh": the yeoh start
+//                 from a history's mean curve set it; "given": the model's value, or --yeoh-start's), value,
+//                 lower, upper, free, standard_error, identifiable,
 //                 at_bound? ("lower" | "upper": a free parameter at a bound, parameter_bounds.hpp)}],
 //   correlation: {parameters: [path...], matrix: [[...]]}  (free parameters),
 //   data: [{file, kind, weight, points, err, phi?, step?, area_mm2?, height_mm? (material data),
