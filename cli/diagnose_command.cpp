@@ -10,6 +10,7 @@
 #include "cli/report_files.hpp"
 #include "runtime/diagnosis/diagnosis_html.hpp"
 #include "runtime/diagnosis/diagnosis_report.hpp"
+#include "runtime/fit/fit_report.hpp"
 #include "runtime/core/errors.hpp"
 #include "runtime/io/output.hpp"
 
@@ -148,6 +149,8 @@ Command add_refine_command(CLI::App& app) {
       std::cout << fmt::format("  round {}: {} = {:.4g} -> {:.4g}  effect {}{}\n", round, d.gap_name, d.gap_before, d.gap_after,
                                dx::effect_name(d.effect), d.added_element.empty() ? "" : fmt::format(", added '{}'", d.added_element))
                 << std::flush;
+      if (d.after)
+        for (const std::string& note : runtime::bound_notes(*d.after)) std::cout << "    " << note << "\n";
       source.text = d.refined_text;
       if (d.after) settings.free = free_paths(*d.after);  // the added element's parameters join; a replaced one's leave
       interrupted = d.interrupted;

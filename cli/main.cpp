@@ -3,6 +3,7 @@
 #include "lang/diagnostics.hpp"
 #include "lang/frontend.hpp"
 #include "cli/commands.hpp"
+#include "cli/usage_errors.hpp"
 #include "runtime/core/errors.hpp"
 
 #include <fmt/format.h>
@@ -33,9 +34,11 @@ int main(int argc, char** argv) {
   commands.emplace_back(refine, cli::add_refine_command(*refine));
   try {
     app.parse(argc, argv);
-  } catch (const CLI::ParseError& e) {
-    const int code = app.exit(e);
-    return code == 0 ? 0 : runtime::exit_code::usage;
+  } catch (const CLI::Success& e) {  // --help and --version (CallForHelp, CallForVersion): CLI11 prints them, exit 0
+    return app.exit(e);
+  } catch (const CLI::ParseError& e) {  // a usage error, in rheo's words (docs/errors.md#usage-errors)
+    std::cerr << "rheo: error: " << cli::usage_message(app, e, std::vector<std::string>(argv + 1, argv + argc)) << "\n";
+    return runtime::exit_code::usage;
   }
   try {
     for (auto& [sub, run] : commands)

@@ -1,5 +1,7 @@
 #include "cli/program_lookup.hpp"
 
+#include "lang/names.hpp"
+#include "lang/text_encoding.hpp"
 #include "runtime/core/errors.hpp"
 
 #include <fmt/format.h>
@@ -14,7 +16,11 @@ const lang::CheckedModel& chosen_model(const lang::Program& program, const std::
                                        const std::string& advice) {
   if (!name.empty()) {
     if (const lang::CheckedModel* m = program.find_model(name)) return *m;
-    throw runtime::UsageError(fmt::format("{} has no model '{}'", file, name));
+    std::vector<std::string> names;
+    for (const auto& m : program.models)
+      if (!m.where.file.starts_with("<stdlib>")) names.push_back(m.name);
+    throw runtime::UsageError(fmt::format("{} has no model '{}' (--model);{} its models are {}", file, lang::printable(name),
+                                          lang::did_you_mean(name, names), lang::join(names)));
   }
   std::vector<const lang::CheckedModel*> user;
   for (const auto& m : program.models)

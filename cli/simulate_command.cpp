@@ -1,5 +1,6 @@
 #include "lang/diagnostics.hpp"
 #include "lang/frontend.hpp"
+#include "lang/names.hpp"
 #include "lang/protocol_schema.hpp"
 #include "lang/text_encoding.hpp"
 #include "cli/commands.hpp"
@@ -11,6 +12,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <iostream>
 #include <memory>
@@ -45,6 +47,31 @@ void apply_overrides(lang::Protocol& protocol, const Options& o) {
   if (o.solver) common.solver = *o.solver;
   if (o.json) common.format = lang::OutputFormat::json;
   if (o.elements) common.elements = true;
+}
+
+// Why no protocol of the file runs: no simulate block, a --model or --protocol that is
+// misspelt (naming the nearest), or one the file's simulate blocks do not have.
+runtime::UsageError nothing_to_run(const lang::Program& program, const Options& o) {
+  if (!o.protocol.empty() && !lang::protocol_kind(o.protocol))
+    return runtime::UsageError(fmt::format("unknown protocol '{}' for --protocol;{} the protocols are {}", lang::printable(o.protocol),
+                                           lang::did_you_mean(o.protocol, lang::protocol_names()), lang::join(lang::protocol_names())));
+  std::vector<std::string> models, kinds;
+  for (const auto& sim : program.simulations) {
+    if (std::find(models.begin(), models.end(), sim.model) == models.end()) models.push_back(sim.model);
+    if (!o.model.empty() && sim.model != o.model) continue;
+    for (const auto& protocol : sim.protocols)
+      if (const std::string kind = lang::protocol_name(protocol.kind); std::find(kinds.begin(), kinds.end(), kind) == kinds.end())
+        kinds.push_back(kind);
+  }
+  if (program.simulations.empty())
+    return runtime::UsageError(fmt::format(
+        "{} has no simulate block; add one, e.g.\n  simulate {{\n    harmonic frequency = 1 Hz .. 51 Hz step 2 Hz, amplitude = [0.2, 1.0] mm\n  }}",
+        o.file));
+  if (!o.model.empty() && std::find(models.begin(), models.end(), o.model) == models.end())
+    return runtime::UsageError(fmt::format("{} has no simulate block of model '{}' (--model);{} its simulate blocks are of {}", o.file,
+                                           lang::printable(o.model), lang::did_you_mean(o.model, models), lang::join(models)));
+  return runtime::UsageError(fmt::format("{} has no {} protocol{}; its protocols are {}", o.file, o.protocol,
+                                         o.model.empty() ? "" : fmt::format(" for model '{}'", o.model), lang::join(kinds)));
 }
 
 }  // namespace
@@ -86,10 +113,7 @@ Command add_simulate_command(CLI::App& app) {
         jobs.push_back({program.find_model(sim.model), protocol});
       }
     }
-    if (jobs.empty())
-      throw runtime::UsageError(fmt::format(
-          "{} has no simulate block{}; add one, e.g.\n  simulate {{\n    harmonic frequency = 1 Hz .. 51 Hz step 2 Hz, amplitude = [0.2, 1.0] mm\n  }}",
-          o->file, o->model.empty() && o->protocol.empty() ? "" : " matching --model/--protocol"));
+    if (jobs.empty()) throw nothing_to_run(program, *o);
     if (!o->output.empty() && jobs.size() != 1)
       throw runtime::UsageError(fmt::format("-o names one output but {} protocols would run; select one with --protocol or --model", jobs.size()));
     if (o->report.any())

@@ -72,7 +72,7 @@ class Checker {
   }
 
   void check(const ast::Model& m) {
-    ModelLookup lookup = [this](const ast::Element& e) { return instantiate(e); };
+    ModelLookup lookup = [this, &m](const ast::Element& e) { return instantiate(e, m.name); };
     done_.emplace(m.name, build_model(m, lookup, errors_));
   }
 
@@ -83,15 +83,20 @@ class Checker {
     errors_.push_back({edge.element->where, fmt::format("recursive instantiation: {}; a model cannot contain itself", join_chain(chain))});
   }
 
-  const ModelInfo* instantiate(const ast::Element& e) {
+  // The model element E of model OWNER names, or nullptr when it is unknown (reported here, with
+  // the kinds and models it could name: never OWNER itself, which cannot contain itself) or failed.
+  const ModelInfo* instantiate(const ast::Element& e, const std::string& owner) {
     if (!declared_.count(e.kind)) {
       if (known_kinds_.empty()) {
         for (const auto& s : element_specs()) known_kinds_.emplace_back(s.kind);
         for (const auto& [name, index] : declared_) known_kinds_.push_back(name);
       }
+      std::vector<std::string> known;
+      for (const auto& kind : known_kinds_)
+        if (kind != owner || find_element_spec(kind)) known.push_back(kind);
       errors_.push_back({e.where, fmt::format("unknown element kind or model '{}';{} known: {} (and parallel, series blocks); "
                                               "stdlib models need `import NAME`",
-                                              e.kind, did_you_mean(e.kind, known_kinds_), join(known_kinds_))});
+                                              e.kind, did_you_mean(e.kind, known), join(known))});
       return nullptr;
     }
     // Checked before its users (check_models), unless it is on a reported recursion.

@@ -13,6 +13,7 @@
 #include <cmath>
 #include <map>
 #include <optional>
+#include <set>
 
 namespace rheo::lang {
 namespace {
@@ -155,8 +156,13 @@ class Builder {
     for (const auto& s : spec.alternative) accepted.emplace_back(s.name);
     const std::string what = describe_element(spec.kind, path);
     std::map<std::string, const ast::Argument*> given;
+    // Parameters an unknown one was taken for ("tua": "did you mean 'tau'?"): their absence is
+    // that message's, not another.
+    std::set<std::string> suggested;
     for (const auto& a : e.arguments) {
       if (std::find(accepted.begin(), accepted.end(), a.name) == accepted.end()) {
+        const std::string nearest = closest(a.name, accepted);
+        if (!nearest.empty()) suggested.insert(nearest);
         error(a.where, fmt::format("unknown parameter '{}' for {};{} it accepts {}", a.name, what, did_you_mean(a.name, accepted), join(accepted)));
       } else if (auto [it, fresh] = given.emplace(a.name, &a); !fresh) {
         error(a.where, fmt::format("duplicate parameter '{}' for {} (first given at line {}); give it once", a.name, what, it->second->where.line));
@@ -177,15 +183,17 @@ class Builder {
           // Reported; checking goes on with the primary parameter so its other errors surface too.
           error(second->where, fmt::format("{} takes either {} or {}, not both; remove one", what, alt, spec.slots[i].name));
         } else if (!has_slot && !has_alt) {
-          error(e.where, fmt::format("{} is missing its {} {} (or {} {}); add `{} = ...`", what, spec.alternative[0].quantity, alt,
-                                     spec.slots[i].quantity, spec.slots[i].name, alt));
+          if (!suggested.count(alt) && !suggested.count(std::string(spec.slots[i].name)))
+            error(e.where, fmt::format("{} is missing its {} {} (or {} {}); add `{} = ...`", what, spec.alternative[0].quantity, alt,
+                                       spec.slots[i].quantity, spec.slots[i].name, alt));
           ok = false;
         } else if (has_alt) {
           derived_slot = i;
         }
       } else if (!has_slot && !spec.slots[i].default_value) {
-        error(e.where, fmt::format("{} is missing its {} {} ({}); add `{} = ...`", what, spec.slots[i].quantity, spec.slots[i].name,
-                                   internal_unit(spec.slots[i].dimension), spec.slots[i].name));
+        if (!suggested.count(std::string(spec.slots[i].name)))
+          error(e.where, fmt::format("{} is missing its {} {} ({}); add `{} = ...`", what, spec.slots[i].quantity, spec.slots[i].name,
+                                     internal_unit(spec.slots[i].dimension), spec.slots[i].name));
         ok = false;
       }
     }

@@ -208,6 +208,16 @@ std::string describe_found(std::string_view text, std::size_t offset) {
 // the word at OFFSET is not such a word.
 std::string unknown_unit_hint(std::string_view text, std::size_t offset) {
   while (offset < text.size() && (text[offset] == ' ' || text[offset] == '\t')) ++offset;
+  // A unit written with the micro sign, "1 µm", "1 N*s/µm" (the grammar stops at the µ, or at
+  // the '/' before it): the whole unit, from after the number to the next separator.
+  std::size_t unit_start = offset, unit_end = offset;
+  const auto in_unit = [](char c) { return std::isalnum(static_cast<unsigned char>(c)) || c == '*' || c == '/' || c == '^' || c == '_' || c == '-'; };
+  while (unit_start > 0 && in_unit(text[unit_start - 1])) --unit_start;
+  while (unit_start < offset && (std::isdigit(static_cast<unsigned char>(text[unit_start])) || text[unit_start] == '.')) ++unit_start;
+  while (unit_end < text.size() && std::string_view(" \t\r\n,;)]}").find(text[unit_end]) == std::string_view::npos) ++unit_end;
+  const std::string_view written = text.substr(unit_start, unit_end - unit_start);
+  if (const std::string ascii = ascii_micro_spelling(written); !ascii.empty())
+    return fmt::format("; rheo reads units in ASCII, with u for micro: write '{}' for '{}'", ascii, printable(written));
   std::size_t end = offset;
   while (end < text.size() && (std::isalnum(static_cast<unsigned char>(text[end])) || text[end] == '_')) ++end;
   if (end == offset || !std::isalpha(static_cast<unsigned char>(text[offset]))) return {};

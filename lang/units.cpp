@@ -102,6 +102,22 @@ std::optional<Unit> parse_unit(std::string_view text) {
   return result;
 }
 
+std::string ascii_micro_spelling(std::string_view text) {
+  std::string out;
+  bool micro = false;
+  for (std::size_t i = 0; i < text.size(); ++i) {
+    const std::string_view rest = text.substr(i);
+    if (rest.starts_with("\xC2\xB5") || rest.starts_with("\xCE\xBC")) {
+      out += 'u';
+      micro = true;
+      ++i;
+    } else {
+      out += text[i];
+    }
+  }
+  return micro && parse_unit(out) ? out : std::string();
+}
+
 std::string internal_unit(const Dimension& d) {
   std::string numerator, denominator;
   auto place = [&](std::string_view base, int power) {

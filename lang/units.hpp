@@ -63,4 +63,9 @@ std::string unit_names();
 inline constexpr int max_unit_power = 99;
 std::optional<Unit> parse_unit(std::string_view text);
 
+// A unit written with the micro sign (U+00B5 "µm", or the Greek mu U+03BC "μs"), spelt the
+// way rheo reads it: "um", "us", "N*s/um". "" when TEXT has no micro sign, or is no unit with
+// each replaced by 'u'. For the hint of an unknown unit.
+std::string ascii_micro_spelling(std::string_view text);
+
 }  // namespace rheo::lang

@@ -285,6 +285,7 @@ class Diagnoser {
     d_.interrupted = polished.interrupted;
     if (polished.objective <= chosen_->result.objective) {
       polished.start_values = chosen_->result.start_values;
+      polished.yeoh_started = chosen_->result.yeoh_started;
       polished.evaluations += chosen_->result.evaluations;
       polished.wall_seconds += chosen_->result.wall_seconds;
       chosen_->result = std::move(polished);

@@ -47,6 +47,8 @@ std::string diagnosis_report_text(const std::string& source_file, const Diagnosi
                        d.gap_before / d.gap_after);
     out += fmt::format("  added to model {}:\n", d.before.network.model().name);
     for (const auto& line : d.added_statement) out += "    " + line + "\n";
+    if (d.after)
+      for (const std::string& note : bound_notes(*d.after)) out += "  " + note + "\n";
   } else {
     out += "  nothing added\n";
   }
@@ -110,6 +112,7 @@ std::string diagnosis_report_json(const std::string& source_file, const Diagnosi
   }
   j["criterion"] = criterion;
   j["added"] = added;
+  j["at_bounds"] = d.after ? bound_notes(*d.after) : std::vector<std::string>{};
   j["model"] = d.refined_text;
   j["model_name"] = d.before.network.model().name;
   j["source"] = source_file;

@@ -13,6 +13,8 @@
 //   gap_measure: "err (6.1)" | "RMS force residual";  err_before, err_after (that measure)
 //   criterion: {name: "BIC", residual_terms, before, after?}
 //   added: [] | [{element, effect, statement: [lines], parameters: [{path, value, unit}]}]
+//   at_bounds: [text...]: the refitted model's free parameters at a bound (fit_report.hpp's
+//              bound_notes; the text report lists them under the added element), [] for none
 //   model: the refined .rheo text (fitted values; the added element with its comment)
 //   model_name, source, output (the path written, or null), interrupted
 #pragma once

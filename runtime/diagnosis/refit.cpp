@@ -73,6 +73,7 @@ FitResult staged_refit(const Network& start, const std::vector<int>& kept, const
   std::sort(all.begin(), all.end());
   FitResult stage2 = fit(stage1.network, all, data, local_search(settings.fit, thorough ? affordable / 2 : 2 * n_all + 1 + 4 * n_all));
   stage2.start_values = stage1.start_values;
+  stage2.yeoh_started = stage1.yeoh_started;
   stage2.evaluations += stage1.evaluations;
   stage2.non_finite += stage1.non_finite;
   stage2.wall_seconds += stage1.wall_seconds;

@@ -6,6 +6,7 @@
 #include "runtime/fit/force_offset.hpp"
 #include "runtime/fit/force_scales.hpp"
 #include "runtime/fit/separable_fit.hpp"
+#include "runtime/fit/parameter_bounds.hpp"
 #include "runtime/fit/yeoh_mean_curve.hpp"
 
 #include <fmt/format.h>
@@ -29,7 +30,7 @@ class Coordinates {
       const auto& p = parameters.at(static_cast<std::size_t>(i));
       if (!p.free)
         throw std::logic_error(fmt::format("parameter '{}' has no bounds; give it bounds to fit it, e.g. `{} in [lo, hi]`", p.path, p.path));
-      const bool log_space = p.lower > 0.0;
+      const bool log_space = logarithmic_search(p);
       logarithmic.push_back(log_space);
       auto map = [&](double v) { return log_space ? std::log(v) : v; };
       z0.push_back(map(start.parameter(i)));
@@ -102,9 +103,10 @@ bool approximation_applies(const Network& network, const std::vector<FitDataSet>
   return approximation_misfit(network).empty();
 }
 
-// The yeoh start of FitSettings::yeoh_start_from_history: new start values, or the old ones.
+// The yeoh start of FitSettings::yeoh_start_from_history: new start values, or the old ones;
+// the parameters it started are added to STARTED.
 std::vector<double> yeoh_start(const Network& start, const std::vector<int>& free, const std::vector<FitDataSet>& data,
-                               std::vector<std::string>& notes) {
+                               std::vector<std::string>& notes, std::vector<int>& started_parameters) {
   std::vector<double> values = start.parameters();
   const Topology& t = start.topology();
   if (t.yeohs.size() != 1) return values;
@@ -130,6 +132,7 @@ std::vector<double> yeoh_start(const Network& start, const std::vector<int>& fre
     if (!s.free) continue;
     const lang::Parameter& p = start.model().parameters[static_cast<std::size_t>(s.parameter)];
     values[static_cast<std::size_t>(s.parameter)] = std::clamp(s.unclamped, p.lower, p.upper);
+    started_parameters.push_back(s.parameter);
     notes.push_back(fmt::format("start {} = {:.6g} {} from the mean curve of {} (eq. 5.32)", p.path,
                                 in_written_unit(p, values[static_cast<std::size_t>(s.parameter)]), written_unit(p), widest->path));
   }
@@ -333,7 +336,8 @@ FitResult fit(const Network& start, const std::vector<int>& free, const std::vec
     settings.search.reserve_evaluations = (3 * after + 1) / 2;
   }
   std::vector<std::string> notes;
-  const Network first = settings.yeoh_start_from_history ? start.with_parameters(yeoh_start(start, free, data, notes)) : start;
+  std::vector<int> yeoh_started;
+  const Network first = settings.yeoh_start_from_history ? start.with_parameters(yeoh_start(start, free, data, notes, yeoh_started)) : start;
   const Coordinates coordinates(first, free);
   const ScoreSettings& score = settings.score;
   settings.search.extra_starts.clear();
@@ -346,7 +350,7 @@ FitResult fit(const Network& start, const std::vector<int>& free, const std::vec
     settings.search.extra_starts.push_back(std::move(z));
   }
 
-  FitResult result{.network = start, .free = free, .start_values = start.parameters()};
+  FitResult result{.network = start, .free = free, .start_values = first.parameters(), .yeoh_started = yeoh_started};
   result.notes = std::move(notes);
   for (const FitDataSet& set : data)
     if (set.is_harmonic()) {

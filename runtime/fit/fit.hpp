@@ -64,7 +64,8 @@ struct FitSettings {
 struct FitResult {
   Network network;  // the model with the fitted values
   std::vector<int> free{};
-  std::vector<double> start_values{};  // all parameters, before the fit
+  std::vector<double> start_values{};  // all parameters, where the search started (after the yeoh start)
+  std::vector<int> yeoh_started{};     // the parameters whose start the yeoh start set (FitSettings::yeoh_start_from_history)
   double objective = 0.0;              // the minimised sum of squares, with the method's response
   double phi = 0.0;                    // eq. 5.1 over all harmonic points (exact response)
   double err = 0.0;                    // eq. 6.1 over all harmonic points; 0 when there are none

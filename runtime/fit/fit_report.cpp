@@ -1,5 +1,7 @@
 #include "runtime/fit/fit_report.hpp"
 
+#include "runtime/fit/parameter_bounds.hpp"
+
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
@@ -64,6 +66,19 @@ double in_written_unit(const lang::Parameter& p, double internal_value) {
   return unit ? internal_value / unit->scale : internal_value;
 }
 
+std::vector<std::string> bound_notes(const FitResult& r) {
+  std::vector<std::string> out;
+  for (int i : r.free) {
+    const lang::Parameter& p = parameter_of(r, i);
+    const BoundSide side = bound_reached(p, r.network.parameter(i));
+    if (side == BoundSide::none) continue;
+    const double bound = side == BoundSide::lower ? p.lower : p.upper;
+    out.push_back(fmt::format("{} = {:.6g} {} is at its {} bound {:g}: widen it?", p.path, in_written_unit(p, r.network.parameter(i)),
+                              written_unit(p), side == BoundSide::lower ? "lower" : "upper", in_written_unit(p, bound)));
+  }
+  return out;
+}
+
 std::string fit_report_text(const FitDescription& d, const FitResult& r) {
   std::string out = fmt::format("rheo fit: model {} from {}\n", r.network.model().name, d.source);
   for (const DataSetFit& set : r.datasets)
@@ -81,11 +96,11 @@ std::string fit_report_text(const FitDescription& d, const FitResult& r) {
     const int i = r.free[j];
     const lang::Parameter& p = parameter_of(r, i);
     const double start = r.start_values.at(static_cast<std::size_t>(i));
-    const bool at_bound = std::abs(r.network.parameter(i) - p.lower) <= 1e-9 * std::max(1.0, std::abs(p.lower)) ||
-                          std::abs(r.network.parameter(i) - p.upper) <= 1e-9 * std::max(1.0, std::abs(p.upper));
-    out += fmt::format("  {:<{}}  {:>12.6g}  {:>12.6g}  {:<22}  {:<8}  [{:g}, {:g}]{}\n", p.path, width, in_written_unit(p, start),
+    const bool at_bound = bound_reached(p, r.network.parameter(i)) != BoundSide::none;
+    const bool yeoh_started = std::find(r.yeoh_started.begin(), r.yeoh_started.end(), i) != r.yeoh_started.end();
+    out += fmt::format("  {:<{}}  {:>12.6g}  {:>12.6g}  {:<22}  {:<8}  [{:g}, {:g}]{}{}\n", p.path, width, in_written_unit(p, start),
                        in_written_unit(p, r.network.parameter(i)), standard_error_text(r, j, i), written_unit(p), in_written_unit(p, p.lower),
-                       in_written_unit(p, p.upper), at_bound ? "  at a bound: widen it?" : "");
+                       in_written_unit(p, p.upper), yeoh_started ? "  start: yeoh mean curve" : "", at_bound ? "  at a bound: widen it?" : "");
   }
   for (const DataSetFit& set : r.datasets)
     if (fitted_offset(set))
@@ -153,11 +168,14 @@ std::string fit_report_json(const FitDescription& d, const FitResult& r) {
     json e{{"path", p.path},
            {"unit", written_unit(p)},
            {"start", in_written_unit(p, r.start_values[i])},
+           {"start_from", std::find(r.yeoh_started.begin(), r.yeoh_started.end(), static_cast<int>(i)) != r.yeoh_started.end() ? "yeoh" : "given"},
            {"value", in_written_unit(p, r.network.parameter(static_cast<int>(i)))}};
     const auto it = std::find(r.free.begin(), r.free.end(), static_cast<int>(i));
     e["free"] = it != r.free.end();
     if (p.free) e["lower"] = in_written_unit(p, p.lower), e["upper"] = in_written_unit(p, p.upper);
     if (it != r.free.end()) {
+      if (const BoundSide side = bound_reached(p, r.network.parameter(static_cast<int>(i))); side != BoundSide::none)
+        e["at_bound"] = side == BoundSide::lower ? "lower" : "upper";
       const auto k = static_cast<std::size_t>(it - r.free.begin());
       if (k < r.statistics.standard_error.size() && std::isfinite(r.statistics.standard_error[k]))
         e["standard_error"] = in_written_unit(p, r.statistics.standard_error[k]);

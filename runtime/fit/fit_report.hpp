@@ -6,7 +6,10 @@
 //   model, source, method, objective, optimizer, seed, status, interrupted, evaluations,
 //   non_finite_evaluations, first_failure (why the first evaluation that could not be simulated
 //   failed; "" when none), wall_seconds, phi, err, notes: [text...] (FitResult::notes),
-//   parameters: [{path, unit, start, value, lower, upper, free, standard_error, identifiable}],
+//   parameters: [{path, unit, start (where the search started), start_from ("yeoh": the yeoh start
+//                 from a history's mean curve set it; "given": the model's value, or --yeoh-start's), value,
+//                 lower, upper, free, standard_error, identifiable,
+//                 at_bound? ("lower" | "upper": a free parameter at a bound, parameter_bounds.hpp)}],
 //   correlation: {parameters: [path...], matrix: [[...]]}  (free parameters),
 //   data: [{file, kind, weight, points, err, phi?, step?, area_mm2?, height_mm? (material data),
 //           force_offset? (a history whose data line sets it: {value [N], unit "N", free,
@@ -25,6 +28,7 @@
 #include "runtime/fit/fit.hpp"
 
 #include <string>
+#include <vector>
 
 namespace rheo::runtime {
 
@@ -42,6 +46,11 @@ struct FitDescription {
 
 std::string fit_report_text(const FitDescription& description, const FitResult& result);
 std::string fit_report_json(const FitDescription& description, const FitResult& result);
+
+// "m3.tau = 9999.93 ms is at its upper bound 10000: widen it?" for each free parameter at a
+// bound (parameter_bounds.hpp), in the order of FitResult::free. The text report flags them
+// in its table ("at a bound: widen it?").
+std::vector<std::string> bound_notes(const FitResult& result);
 
 // Parameter value in the unit the model wrote (Parameter::unit), or the internal unit.
 double in_written_unit(const lang::Parameter& parameter, double internal_value);

@@ -25,6 +25,20 @@ std::string comment_lines(const ResultHeader& h) { return fmt::format("# rheo {}
 
 const char* definition_name(HarmonicDefinition d) { return d == HarmonicDefinition::thesis ? "thesis" : "first_harmonic"; }
 
+// Significant digits for a column of VALUES: 6, or more where 6 would write two values that
+// differ by more than a relative 1e-9 (apart as data points, docs/errors.md#csv-tables) alike,
+// so that a result read back as measured data keeps its points apart; at most 17 (exact).
+int column_digits(std::vector<double> values) {
+  std::sort(values.begin(), values.end());
+  values.erase(
+      std::unique(values.begin(), values.end(), [](double a, double b) { return std::abs(b - a) <= 1e-9 * std::max(std::abs(a), std::abs(b)); }),
+      values.end());
+  int digits = 6;
+  for (std::size_t k = 1; k < values.size() && digits < 17; ++k)
+    while (digits < 17 && fmt::format("{:.{}g}", values[k - 1], digits) == fmt::format("{:.{}g}", values[k], digits)) ++digits;
+  return digits;
+}
+
 }  // namespace
 
 std::string harmonic_csv(const ResultHeader& header, const std::vector<HarmonicPoint>& points, HarmonicDefinition definition) {
@@ -38,10 +52,14 @@ std::string harmonic_csv(const ResultHeader& header, const std::vector<HarmonicP
       "amplitude [mm],frequency [Hz],stiffness [N/mm],phase [deg],damping [-],storage [N/mm],loss [N/mm],"
       "force_amplitude [N],energy [N*mm],cycles [-],converged [-]";
   out += preloaded ? ",preload [mm]\n" : "\n";
+  std::vector<double> amplitudes, frequencies;
+  for (const auto& p : points) amplitudes.push_back(p.amplitude), frequencies.push_back(p.frequency);
+  const int amplitude_digits = column_digits(amplitudes), frequency_digits = column_digits(frequencies);
   for (const auto& p : points) {
     const auto& m = p.measures;
-    out += fmt::format("{},{},{:.10g},{:.8g},{:.8g},{:.10g},{:.10g},{:.10g},{:.10g},{},{}", p.amplitude, p.frequency, m.stiffness,
-                       m.phase * kDegree, m.damping, m.storage, m.loss, m.force_amplitude, m.energy, p.cycles, p.converged ? 1 : 0);
+    out += fmt::format("{:.{}g},{:.{}g},{:.10g},{:.8g},{:.8g},{:.10g},{:.10g},{:.10g},{:.10g},{},{}", p.amplitude, amplitude_digits, p.frequency,
+                       frequency_digits, m.stiffness, m.phase * kDegree, m.damping, m.storage, m.loss, m.force_amplitude, m.energy, p.cycles,
+                       p.converged ? 1 : 0);
     out += preloaded ? fmt::format(",{}\n", p.preload) : "\n";
   }
   return out;

@@ -61,6 +61,7 @@ ReportContent report_from_fit(const FitResult& r, const std::vector<FitDataSet>&
   content.notes.push_back(fmt::format("{} evaluations in {:.2f} s; {}", r.evaluations, r.wall_seconds,
                                       r.interrupted ? "interrupted: the best values found so far" : "optimizer status " + r.status));
   for (const std::string& note : r.notes) content.notes.push_back(note);
+  for (std::string& note : bound_notes(r)) content.notes.push_back(std::move(note));
   return content;
 }
 

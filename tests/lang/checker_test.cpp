@@ -61,3 +61,20 @@ TEST_CASE("check: a model that instantiates a failed model is not usable either"
   REQUIRE(errors.size() == 1);  // only the bad spring: the fit block of `user` is not checked against a partial model
   CHECK(errors[0].message.find("expects a stiffness") != std::string::npos);
 }
+
+TEST_CASE("check: an unknown element's message lists the kinds and models it could name, not its own model") {
+  const auto errors = errors_of("model bushing { sprng s (k = 1 N/mm) }\nmodel other { spring s (k = 1 N/mm) }\n");
+  REQUIRE(errors.size() == 1);
+  const std::string& message = errors[0].message;
+  CAPTURE(message);
+  CHECK(message.find("did you mean 'spring'?") != std::string::npos);
+  CHECK(message.find(", other (and parallel, series blocks)") != std::string::npos);
+  CHECK(message.find("bushing") == std::string::npos);
+}
+
+TEST_CASE("check: a misspelt parameter is reported once, not again as a missing one") {
+  const auto errors = errors_of("model m { maxwell m1 (k = 1 N/mm, tua = 5 ms)\n spring s (kk = 2 N/mm) }\n");
+  REQUIRE(errors.size() == 2);
+  CHECK(errors[0].message.find("unknown parameter 'tua' for maxwell 'm1'; did you mean 'tau'?") != std::string::npos);
+  CHECK(errors[1].message.find("unknown parameter 'kk' for spring 's'; did you mean 'k'?") != std::string::npos);
+}

@@ -217,6 +217,8 @@ TEST_CASE("parse: a file that is not UTF-8 text is an error at its first such by
   CHECK(f.simulations.at(0).lines.at(0).settings.at(0).value.text == "straße.csv");
   // Outside them a non-ASCII character is reported whole.
   CHECK(parse_error("model m {\n  spring s (k = 1 µm)\n}\n").find("found 'µ'") != std::string::npos);
+  // A unit with the micro sign is named in the ASCII spelling rheo reads.
+  CHECK(parse_error("model m {\n  spring s (k = 1 N/µm)\n}\n").find("write 'N/um' for 'N/µm'") != std::string::npos);
   const std::string control = parse_error("model m { spring s (k = 1) \x1b[2J }");
   CHECK(control.find("found control character 0x1B") != std::string::npos);
   CHECK(control.find('\x1b') == std::string::npos);

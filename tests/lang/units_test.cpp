@@ -63,3 +63,14 @@ TEST_CASE("angular frequency converts to Hz") {
   CHECK(u->dimension == rheo::lang::dim::frequency);
   CHECK(10.0 * u->scale == doctest::Approx(10.0 / (2 * 3.14159265358979323846)));
 }
+
+TEST_CASE("a unit written with the micro sign is spelt with u, the way rheo reads it") {
+  using rheo::lang::ascii_micro_spelling;
+  CHECK(ascii_micro_spelling("\xC2\xB5m") == "um");  // µ, U+00B5
+  CHECK(ascii_micro_spelling("\xCE\xBCs") == "us");  // Greek mu, U+03BC
+  CHECK(ascii_micro_spelling("N*s/\xC2\xB5m") == "N*s/um");
+  CHECK(ascii_micro_spelling("um").empty());  // no micro sign: nothing to hint
+  CHECK(ascii_micro_spelling("\xC2\xB5"
+                             "furlong")
+            .empty());  // no unit either way
+}

@@ -8,8 +8,10 @@
 #include "support.hpp"
 
 #include <doctest/doctest.h>
+#include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
 #include <cmath>
 
 using namespace rheo;
@@ -204,4 +206,62 @@ TEST_CASE("an interrupted fit says so in both reports and has no standard errors
   CHECK(j["interrupted"] == true);
   CHECK(j["status"] == "interrupted");
   for (const json& p : j["parameters"]) CHECK_FALSE(p.contains("standard_error"));
+}
+
+TEST_CASE("a value the search left just short of a bound is at it: flagged in the table, the notes and the JSON") {
+  Fitted f = fitted(false);
+  // m.tau 1e-6 short of its upper bound of 100 ms, as a local search stopping at its tolerance leaves it.
+  std::vector<double> values = f.result.network.parameters();
+  const auto tau = static_cast<std::size_t>(index_of(f.result, "m.tau"));
+  values[tau] = 0.1 * (1.0 - 1e-6);
+  f.result.network = f.result.network.with_parameters(values);
+  const std::string text = runtime::fit_report_text(f.description, f.result);
+  CAPTURE(text);
+  const auto line_start = text.find("\n  m.tau ");
+  REQUIRE(line_start != std::string::npos);
+  CHECK(text.substr(line_start, text.find('\n', line_start + 1) - line_start).find("at a bound: widen it?") != std::string::npos);
+  const auto notes = runtime::bound_notes(f.result);
+  REQUIRE(notes.size() == 2);  // e.k, fitted onto its upper bound, and m.tau
+  CHECK(notes[0].starts_with("e.k = 250 N/mm is at its upper bound 250"));
+  CHECK(notes[1] == "m.tau = 99.9999 ms is at its upper bound 100: widen it?");
+  const json j = json::parse(runtime::fit_report_json(f.description, f.result));
+  CHECK(parameter_entry(j, "m.tau").at("at_bound") == "upper");
+  CHECK_FALSE(parameter_entry(j, "m.k").contains("at_bound"));
+}
+
+TEST_CASE("the start column shows the start the search used: the yeoh start's, marked so") {
+  const auto truth = test::network_from("model y { yeoh r (D10 = 389.4253, D20 = -2.1094, D30 = 0.0786) maxwell m (k = 60, tau = 5 ms) }", "y");
+  const auto start = test::network_from(
+      "model y { yeoh r (D10 = 300 in [10, 5000], D20 = 0 in [-50, 50], D30 = 0 in [-5, 5])\n"
+      " maxwell m (k = 100 in [1, 1000], tau = 10 ms in [0.1, 100]) }",
+      "y");
+  runtime::FitSettings settings;
+  settings.search.max_evaluations = 5;
+  settings.statistics = false;
+  Fitted f;
+  f.result = runtime::fit(start, runtime::bounded_parameters(start),
+                          {test::history_data_of(truth, runtime::static_triangle({6.25, 3.0}, 0.5, 1, 200), "loop.csv")}, settings);
+  const runtime::FitResult& r = f.result;
+  const auto d10 = static_cast<std::size_t>(index_of(r, "r.D10"));
+  CHECK(r.yeoh_started.size() == 3);
+  const double started = r.start_values.at(d10);
+  CHECK(started != 300.0);  // the mean curve's, not the model's
+  const std::string note = fmt::format("start r.D10 = {:.6g} N/mm from the mean curve of loop.csv", started);
+  CHECK(std::any_of(r.notes.begin(), r.notes.end(), [&](const std::string& n) { return n.starts_with(note); }));
+  const std::string text = runtime::fit_report_text(f.description, r);
+  CAPTURE(text);
+  const auto line_of = [&](const std::string& path) {
+    const auto at = text.find("\n  " + path + " ");
+    REQUIRE(at != std::string::npos);
+    return text.substr(at + 1, text.find('\n', at + 1) - at - 1);
+  };
+  const std::string row = line_of("r.D10");
+  CHECK(row.find(fmt::format("  {:.6g}  ", started)) != std::string::npos);
+  CHECK(row.find("start: yeoh mean curve") != std::string::npos);
+  CHECK(line_of("m.k").find("start: yeoh") == std::string::npos);
+  CHECK(line_of("m.k").find("  100  ") != std::string::npos);
+  const json j = json::parse(runtime::fit_report_json(f.description, r));
+  CHECK(parameter_entry(j, "r.D10").at("start").get<double>() == started);
+  CHECK(parameter_entry(j, "r.D10").at("start_from") == "yeoh");
+  CHECK(parameter_entry(j, "m.k").at("start_from") == "given");
 }

@@ -7,6 +7,7 @@
 #include <unistd.h>
 
 #include <filesystem>
+#include <numbers>
 #include <fstream>
 #include <sstream>
 
@@ -19,10 +20,20 @@ TEST_CASE("harmonic CSV starts with the data files' four columns") {
   const std::string csv = harmonic_csv({"m", "m.rheo", "harmonic"}, {p}, HarmonicDefinition::thesis);
   CHECK(csv.find("\namplitude [mm],frequency [Hz],stiffness [N/mm],phase [deg],") != std::string::npos);
   CHECK(csv.find("\n0.2,3,1420.5,17.76169") != std::string::npos);
-  // Amplitude and frequency are written so that they read back exactly (a result can be fitted
-  // later: points 1e-7 apart stay apart).
-  p.amplitude = 0.12345678901234, p.frequency = 1000001;
-  CHECK(harmonic_csv({"m", "m.rheo", "harmonic"}, {p}, HarmonicDefinition::thesis).find("\n0.12345678901234,1000001,") != std::string::npos);
+}
+
+TEST_CASE("harmonic CSV writes amplitude and frequency with 6 significant digits, more only to keep points apart") {
+  HarmonicPoint p;
+  p.measures.stiffness = 100, p.cycles = 1, p.converged = true;
+  // 10 rad/s and 0.1 mm + a sum's rounding, as `frequency = 10 rad/s`, `0.1 mm .. 0.3 mm step 0.1 mm` make them.
+  p.amplitude = 0.1 + 0.2, p.frequency = 10.0 / (2.0 * std::numbers::pi);
+  CHECK(harmonic_csv({"m", "m.rheo", "harmonic"}, {p}, HarmonicDefinition::thesis).find("\n0.3,1.59155,100,") != std::string::npos);
+  // Points 1e-6 apart stay apart (a result can be fitted later): that column gets the digits it needs.
+  HarmonicPoint q = p;
+  p.frequency = 1000000, q.frequency = 1000001;
+  const std::string csv = harmonic_csv({"m", "m.rheo", "harmonic"}, {p, q}, HarmonicDefinition::thesis);
+  CHECK(csv.find("\n0.3,1000000,100,") != std::string::npos);
+  CHECK(csv.find("\n0.3,1000001,100,") != std::string::npos);
 }
 
 TEST_CASE("outputs are written atomically and a failed write leaves the old file intact") {

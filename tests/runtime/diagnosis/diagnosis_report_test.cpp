@@ -1,0 +1,43 @@
+// runtime/diagnosis/diagnosis_report.hpp: the reports of `rheo diagnose` say which parameters
+// of the refitted model ended at a bound, as `rheo fit`'s does.
+#include "runtime/diagnosis/diagnosis_report.hpp"
+
+#include "support.hpp"
+
+#include <doctest/doctest.h>
+#include <nlohmann/json.hpp>
+
+using namespace rheo;
+namespace dx = rheo::runtime::diagnosis;
+
+TEST_CASE("the diagnosis reports name an added parameter the refit left at its bound") {
+  const runtime::Network before = test::network_from("model m { spring s (k = 100 in [1, 1000]) }", "m");
+  const runtime::Network after = test::network_from(
+      "model m { spring s (k = 100 in [1, 1000])\n maxwell m3 (k = 40 N/mm in [1, 10000], tau = 9999.93 ms in [0.01, 10000]) }", "m");
+  // Every member named: -Wmissing-field-initializers.
+  dx::Diagnosis d{.effect = dx::Effect::rate_dependence,
+                  .reason = {},
+                  .patterns = {},
+                  .before = {.network = before, .free = runtime::bounded_parameters(before), .start_values = before.parameters()},
+                  .after = runtime::FitResult{.network = after, .free = runtime::bounded_parameters(after), .start_values = after.parameters()},
+                  .gap_name = "err (6.1)",
+                  .gap_before = 2e-3,
+                  .gap_after = 1e-3,
+                  .residual_terms = 0,
+                  .criterion_before = 0.0,
+                  .candidates = {},
+                  .added_element = "m3",
+                  .added_summary = {},
+                  .added_statement = {"maxwell m3 (k = 40 N/mm in [1, 10000], tau = 9999.93 ms in [0.01, 10000])"},
+                  .refined_text = {},
+                  .interrupted = false,
+                  .before_program = {},
+                  .after_program = {}};
+  const std::string text = dx::diagnosis_report_text("m.rheo", d);
+  CAPTURE(text);
+  CHECK(text.find("  m3.tau = 9999.93 ms is at its upper bound 10000: widen it?\n") != std::string::npos);
+  CHECK(text.find("s.k =") == std::string::npos);
+  CHECK(text.find("m3.k =") == std::string::npos);
+  const auto j = nlohmann::json::parse(dx::diagnosis_report_json("m.rheo", d, ""));
+  CHECK(j.at("at_bounds") == nlohmann::json::array({"m3.tau = 9999.93 ms is at its upper bound 10000: widen it?"}));
+}
