@@ -14,14 +14,22 @@
 // O(s^5)). For non-integer n < 4, w^n is not smooth at w = 0 and the steps there are graded.
 // Slope (Newton): dF/dde = fy dz/dde = k dw/ds at the end of the increment.
 // n -> inf gives friction(k, fy); bounds are +-fy, never reached.
+//
+// Termination (docs/numerics.md). With m = min(n, 1), 1 - w^n >= m (1 - w) on [0, 1], so
+// 1 - w(s) <= (1 - w0) e^{-m s}: beyond s_sat = ln(2^53 (1 - w0)) / m + 1 the exact w is within
+// an ulp of 1, and the RK4 march stops there (and wherever a substep no longer moves w). The
+// substeps are therefore at most s_sat / ds_max plus the graded ones near w = 0 (w grows by a
+// factor >= 1 + 0.05 m per step there), a bound computed before each march. The inverse
+// (the increment that takes F_n to F) marches the same substeps as the forward relation until
+// one would pass the target and solves that one substep's length by a bracketed Newton
+// iteration with bisection: no unbounded search, and step(inverse(F)) = F to rounding. A march
+// or solve that exhausts its bound (never observed) returns NaN, which the tree solver turns
+// into a NumericalError naming the element and the time.
 #pragma once
 
 #include "runtime/network/leaf_kernels.hpp"
-#include "runtime/network/monotone_solve.hpp"
 
-#include <algorithm>
 #include <cmath>
-#include <limits>
 
 namespace rheo::runtime {
 
@@ -31,35 +39,8 @@ struct BoucWenLaw {
   // dw/ds at w.
   double rate(double w) const { return w < 0.0 ? 1.0 : 1.0 - std::pow(w, n); }
 
-  // Loading law from w >= 0 over s >= 0.
-  double load(double w, double s) const {
-    if (n == 1.0) return w - (1.0 - w) * std::expm1(-s);
-    const double ds_max = 0.1 / std::max(n, 2.0);
-    auto rk4 = [&](double ds) {
-      const double k1 = rate(w), k2 = rate(w + 0.5 * ds * k1), k3 = rate(w + 0.5 * ds * k2), k4 = rate(w + ds * k3);
-      w += ds / 6.0 * (k1 + 2.0 * (k2 + k3) + k4);
-    };
-    // Within 1e-16 of the asymptote w = 1 (1 - w ~ rate/n): nothing left to integrate.
-    auto saturated = [&] { return rate(w) <= 1e-16; };
-    if (n >= 4.0 || n == std::floor(n)) {  // w^n smooth: steps of ds_max and a remainder (continuous in s)
-      for (; s > 0.0 && !saturated(); s -= std::min(s, ds_max)) rk4(std::min(s, ds_max));
-      return w;
-    }
-    // w^n singular at w = 0 in a derivative RK4 needs: steps of at most w/10 there (local
-    // error ~1e-8 w^(1+n)), after a first stretch of s <= 1e-6 from the series
-    // w(s) = w0 + s - ((w0 + s)^(1+n) - w0^(1+n))/(1+n) + O(s^(1+2n)).
-    if (w < 1e-6) {
-      const double s1 = std::min(s, 1e-6);
-      w += s1 - (std::pow(w + s1, 1.0 + n) - std::pow(w, 1.0 + n)) / (1.0 + n);
-      s -= s1;
-    }
-    while (s > 0.0 && !saturated()) {
-      const double ds = std::min({s, ds_max, 0.1 * w});
-      rk4(ds);
-      s -= ds;
-    }
-    return w;
-  }
+  // Loading law from w >= 0 over s >= 0. NaN if the march exceeded its bound.
+  double load(double w, double s) const;
 
   // z after a monotone increment de [mm] from z.
   double advance(double z, double de) const {
@@ -82,32 +63,21 @@ struct BoucWenLaw {
     return {fy * z, k * rate(de > 0.0 ? z : -z)};
   }
 
-  // Increment de that takes the force from F_n to F, and dde/dF; +-inf for |F| >= fy.
-  ForceSlope inverse(double force_before, double force) const {
-    constexpr double inf = std::numeric_limits<double>::infinity();
-    if (force >= fy) return {inf, inf};
-    if (force <= -fy) return {-inf, inf};
-    if (force == force_before) return {0.0, 1.0 / (k * rate(std::abs(force / fy)))};
-    const double sign = force > force_before ? 1.0 : -1.0;
-    double w0 = sign * force_before / fy;
-    const double wt = sign * force / fy;
-    double s = 0.0;
-    if (w0 < 0.0) {
-      if (wt <= 0.0) return {sign * (wt - w0) * fy / k, 1.0 / k};
-      s = -w0;
-      w0 = 0.0;
-    }
-    if (n == 1.0) {
-      s += std::log1p((wt - w0) / (1.0 - wt));
-    } else {
-      auto residual = [&](double x) {
-        const double w = load(w0, x);
-        return ForceSlope{w - wt, rate(w)};
-      };
-      s += solve_monotone(residual, wt - w0, wt - w0, 0.0, inf, 1e-15);
-    }
-    return {sign * s * fy / k, 1.0 / (k * rate(wt))};
-  }
+  // Increment de that takes the force from F_n to F, and dde/dF; +-inf for |F| >= fy. A force
+  // beyond what the discrete law reaches (within ~1e-16 fy of fy) maps to the increment where
+  // the law saturates. NaN if a bound was exhausted.
+  ForceSlope inverse(double force_before, double force) const;
+
+ private:
+  // s with load(w0, s) = wt for 0 <= w0 < wt < 1 (the saturation length if wt is out of reach).
+  double loading_length(double w0, double wt) const;
+  double rk4(double w, double ds) const;
+  // The series start for non-smooth n: w(s) = w0 + s - ((w0 + s)^(1+n) - w0^(1+n))/(1+n).
+  double series(double w, double s) const { return w + s - (std::pow(w + s, 1.0 + n) - std::pow(w, 1.0 + n)) / (1.0 + n); }
+  bool smooth() const { return n >= 4.0 || n == std::floor(n); }
+  double ds_max() const { return 0.1 / (n > 2.0 ? n : 2.0); }
+  double saturation_length(double w) const;  // s_sat above
+  int max_substeps(double w) const;
 };
 
 }  // namespace rheo::runtime

@@ -135,9 +135,9 @@ HarmonicPoint steady_point(const Network& network, double amplitude, double freq
         const double u_mid = 0.5 * (state.u + u_next);
         phase[i] = omega * (k + 0.5) * dt;
         displacement[i] = u_mid;
-        force[i] = simulator.step(half_plan, state, u_mid, probe);
+        force[i] = simulator.step(half_plan, state, u_mid, probe, ((cycle - 1) * n + k + 0.5) * dt);
       }
-      const double f = simulator.step(plan, state, u_next, next);
+      const double f = simulator.step(plan, state, u_next, next, ((cycle - 1) * n + k + 1) * dt);
       if (!midpoints) {
         phase[i] = omega * (k + 1) * dt;
         displacement[i] = u_next;

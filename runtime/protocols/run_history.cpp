@@ -43,7 +43,7 @@ History run_history(const Network& network, const Drive& drive, bool elements, S
     const double dt = drive.time[k] - drive.time[k - 1];
     if (!(dt > 0.0)) throw std::logic_error("drive time must increase strictly");
     if (plan.dt == 0.0 || std::abs(dt - plan.dt) > 1e-9 * dt) plan = StepPlan::make(network, dt);
-    h.force[k] = simulator.step(plan, state, drive.displacement[k], next);
+    h.force[k] = simulator.step(plan, state, drive.displacement[k], next, drive.time[k]);
     if (elements) {
       simulator.element_outputs(plan, state, next, f, e);
       for (std::size_t i = 0; i < probes.size(); ++i) {

@@ -95,7 +95,7 @@ class Relaxer {
           return ForceSlope{c.force - f, c.slope};
         };
         const double from = f > 0.0 ? reach.hi : reach.lo;
-        const double e = solve_monotone(residual, from, 1.0, f > 0.0 ? from : -kInf, f > 0.0 ? kInf : from, kRelTol * std::abs(f));
+        const double e = checked(solve_monotone(residual, from, 1.0, f > 0.0 ? from : -kInf, f > 0.0 ? kInf : from, kRelTol * std::abs(f)));
         const double slope = force(node, e).slope;
         return {e, slope > 0.0 ? 1.0 / slope : 0.0};
       }
@@ -144,6 +144,15 @@ class Relaxer {
     }
     return sum;
   }
+  // NaN from solve_monotone: its iteration cap was exhausted.
+  double checked(double value) const {
+    if (std::isnan(value))
+      throw NumericalError(
+          fmt::format("model '{}': the static equilibrium of its relaxed start did not converge within the iteration cap; "
+                      "start the history from 0 (start = rest)",
+                      network_.model().name));
+    return value;
+  }
 
   ForceSlope series_force(int node, double e) const {
     const Play reach = play(node);
@@ -153,7 +162,7 @@ class Relaxer {
       return ForceSlope{c.force - e, c.slope};
     };
     const bool pulled = e > reach.hi;
-    const double f = solve_monotone(residual, 0.0, 1.0, pulled ? 0.0 : -kInf, pulled ? kInf : 0.0, kRelTol * (std::abs(e) + 1e-12));
+    const double f = checked(solve_monotone(residual, 0.0, 1.0, pulled ? 0.0 : -kInf, pulled ? kInf : 0.0, kRelTol * (std::abs(e) + 1e-12)));
     const double compliance = elongation(node, f).slope;
     return {f, compliance > 0.0 ? 1.0 / compliance : 0.0};
   }
@@ -170,8 +179,8 @@ class Relaxer {
                                    network_.model().name, f, YeohLaw::monotone_advice));
     }
     auto residual = [&](double e) { return ForceSlope{law.force(e) - f, law.slope(e)}; };
-    const double e = solve_monotone(residual, 0.0, f / law.slope(0.0), std::isfinite(soft) ? -soft : -kInf, std::isfinite(soft) ? soft : kInf,
-                                    kRelTol * std::abs(f));
+    const double e = checked(solve_monotone(residual, 0.0, f / law.slope(0.0), std::isfinite(soft) ? -soft : -kInf,
+                                            std::isfinite(soft) ? soft : kInf, kRelTol * std::abs(f)));
     return {e, 1.0 / law.slope(e)};
   }
 

@@ -24,7 +24,7 @@ State Simulator::rest_state() const {
   return s;
 }
 
-double Simulator::step(const StepPlan& plan, const State& before, double u_next, State& after) const {
+double Simulator::step(const StepPlan& plan, const State& before, double u_next, State& after, double time) const {
   const Topology& t = network_.topology();
   const Coefficients& c = network_.coefficients();
   const double du = u_next - before.u;
@@ -62,7 +62,7 @@ double Simulator::step(const StepPlan& plan, const State& before, double u_next,
   }
 
   if (!t.subtrees.empty()) {
-    const TreeSolver solver(network_, plan.tree, x);
+    const TreeSolver solver(network_, plan.tree, x, time);
     for (int root : t.subtrees) force += solver.advance(root, du, y);
   }
   after.u = u_next;

@@ -18,6 +18,7 @@
 #include "runtime/network/network.hpp"
 #include "runtime/stepping/tree_solver.hpp"
 
+#include <limits>
 #include <vector>
 
 namespace rheo::runtime {
@@ -48,7 +49,9 @@ class Simulator {
   State rest_state() const;
   // Advances `before` by plan.dt with the drive moving to u_next; writes `after` (which must
   // have the size of rest_state().values). Returns the total force [N] at the end of the step.
-  double step(const StepPlan& plan, const State& before, double u_next, State& after) const;
+  // `time` [s], the time at the end of the step, only names the step in a NumericalError when
+  // a subtree's solve exhausts its iteration cap (tree_solver.hpp).
+  double step(const StepPlan& plan, const State& before, double u_next, State& after, double time = std::numeric_limits<double>::quiet_NaN()) const;
 
   // Force [N] and elongation [mm] of every element the user wrote (Topology::probes order),
   // for the step that led from `before` to `after`.

@@ -93,12 +93,28 @@ void TreeStepPlan::prepare(const Network& network, double step, double piece_len
   }
 }
 
+std::string TreeSolver::path_of(int node) const {
+  for (const ElementProbe& probe : topology_.probes)
+    if (probe.source == ElementProbe::Source::tree_node && probe.index == node) return probe.path;
+  return "?";
+}
+
+void TreeSolver::throw_not_converged(int node, const char* what) const {
+  const TreeNode& n = at(node);
+  const char* kind = n.kind == NodeKind::series ? "series chain" : n.kind == NodeKind::parallel ? "parallel block" : "element";
+  const std::string path = path_of(node);
+  const std::string where = path == "?" ? fmt::format("a {}", kind) : fmt::format("{} '{}'", kind, path);
+  const std::string when = std::isnan(time_) ? std::string("a step") : fmt::format("the step ending at t = {:g} s", time_);
+  throw NumericalError(
+      fmt::format("model '{}': the fixed-step solve of {} ({}) did not converge within its iteration cap in {}; "
+                  "sample the history more finely there, or run it with solver = sundials",
+                  network_.model().name, where, what, when));
+}
+
 void TreeSolver::throw_softened(int node, double force) const {
   const TreeNode& n = at(node);
   const YeohLaw law{p(n, 0), p(n, 1), p(n, 2)};
-  std::string path = "?";
-  for (const ElementProbe& probe : topology_.probes)
-    if (probe.source == ElementProbe::Source::tree_node && probe.index == node) path = probe.path;
+  const std::string path = path_of(node);
   throw NumericalError(
       fmt::format("model '{}': yeoh '{}' is asked to carry {:.6g} N, but its tangent stiffness 2 D10 + 12 D20 e^2 + 30 D30 e^4 reaches "
                   "zero at |e| = {:.6g} mm, where it carries its most, {:.6g} N (eq. 3.3); a softening spring in series cannot hold "
@@ -166,7 +182,11 @@ ForceSlope TreeSolver::forward(int node, double de) const {
     case NodeKind::dashpot: return dashpot_step(coefficient(node), de);
     case NodeKind::quadratic_dashpot: return quadratic_dashpot_step(coefficient(node), de);
     case NodeKind::inerter: return inerter(node, de);
-    case NodeKind::bouc_wen: return BoucWenLaw{p(n, 0), p(n, 1), p(n, 2)}.step(f_before(n), de);
+    case NodeKind::bouc_wen: {
+      const ForceSlope r = BoucWenLaw{p(n, 0), p(n, 1), p(n, 2)}.step(f_before(n), de);
+      checked(r.force, node, "bouc_wen loading law");
+      return r;
+    }
     case NodeKind::gap: return {0.0, 0.0};  // only ever inverted (a direct member of a chain)
     case NodeKind::maxwell: return plan_.maxwell[static_cast<std::size_t>(node)](f_before(n), de);
     case NodeKind::friction: return friction_step(p(n, 0), p(n, 1), f_before(n), de);
@@ -208,7 +228,8 @@ ForceSlope TreeSolver::inverse(int node, double force) const {
       if (!(std::abs(force) < coefficient(node))) throw_softened(node, force);
       auto residual = [&](double e) { return ForceSlope{law.force(e) - force, law.slope(e)}; };
       const double tol = kRelTol * (std::abs(force) + 1e-9);
-      const double e = solve_monotone(residual, e_before(n), force / law.slope(0.0), -kInf, kInf, tol);
+      const double e = checked(solve_monotone(residual, e_before(n), force / law.slope(0.0), -kInf, kInf, tol, true, plan_.iteration_cap), node,
+                               "yeoh elongation");
       return {e - e_before(n), 1.0 / law.slope(e)};
     }
     case NodeKind::dashpot: {
@@ -221,7 +242,11 @@ ForceSlope TreeSolver::inverse(int node, double force) const {
       const ForceSlope at_rest = inerter(node, 0.0);  // linear in de
       return {(force - at_rest.force) / at_rest.slope, 1.0 / at_rest.slope};
     }
-    case NodeKind::bouc_wen: return BoucWenLaw{p(n, 0), p(n, 1), p(n, 2)}.inverse(f_before(n), force);
+    case NodeKind::bouc_wen: {
+      const ForceSlope r = BoucWenLaw{p(n, 0), p(n, 1), p(n, 2)}.inverse(f_before(n), force);
+      checked(r.force, node, "bouc_wen inverse loading law");
+      return r;
+    }
     case NodeKind::gap: {  // at an end stop; at F = 0 it holds (chains resolve the play first)
       const double h = 0.5 * p(n, 0);
       return {(force > 0.0 ? h : force < 0.0 ? -h : std::clamp(e_before(n), -h, h)) - e_before(n), 0.0};
@@ -265,7 +290,8 @@ ForceSlope TreeSolver::series_force(int node, double de) const {
   if (std::isfinite(cap.hi) && residual(cap.hi).force <= 0.0) return {cap.hi, 0.0};
   if (std::isfinite(cap.lo) && residual(cap.lo).force >= 0.0) return {cap.lo, 0.0};
   const double start = std::clamp(f_before(n), domain.lo, domain.hi);
-  const double force = solve_monotone(residual, start, 1.0, domain.lo, domain.hi, tol);
+  const double force = checked(solve_monotone(residual, start, 1.0, domain.lo, domain.hi, tol, true, plan_.iteration_cap), node,
+                               "common force of the chain");
   const double compliance = inverse(node, force).slope;
   return {force, compliance > 0.0 ? 1.0 / compliance : kInf};
 }
@@ -288,7 +314,8 @@ ForceSlope TreeSolver::parallel_elongation(int node, double force) const {
   };
   const double tol = kRelTol * (std::abs(force) + 1e-9);
   const double start = std::isfinite(lo) ? 1e-12 : (std::isfinite(hi) ? -1e-12 : 0.0);
-  const double de = solve_monotone(residual, start, 1e-3, lo, hi, tol, leftmost);
+  const double de = checked(solve_monotone(residual, start, 1e-3, lo, hi, tol, leftmost, plan_.iteration_cap), node,
+                            "common elongation of the block");
   const double stiffness = forward(node, de).slope;
   return {de, stiffness > 0.0 ? 1.0 / stiffness : kInf};
 }

@@ -24,12 +24,19 @@
 // F(de) = clamp(F0 + S de, cap): the return mapping of eq. 2.9 with the chain as the spring.
 //
 // No allocation: recursion over the flat node array, state read from `before`.
+//
+// Bounded: every iteration (solve_monotone, the bouc_wen law) has an iteration cap; a solve
+// that exhausts one throws a NumericalError naming the element (or block) and the time of the
+// step, never hangs or returns an unconverged value.
 #pragma once
 
 #include "runtime/network/bouc_wen.hpp"
 #include "runtime/network/leaf_kernels.hpp"
+#include "runtime/network/monotone_solve.hpp"
 #include "runtime/network/network.hpp"
 
+#include <cmath>
+#include <string>
 #include <vector>
 
 namespace rheo::runtime {
@@ -51,6 +58,8 @@ struct TreeStepPlan {
   // Per node: the forces [N] it can carry (caps of friction elements, sliders and bouc_wen,
   // intersected along series chains, added across parallel blocks); unbounded otherwise.
   std::vector<Interval> bounds;
+  // Refinement iterations each solve may take (solve_monotone); lowered only by tests.
+  int iteration_cap = kRefineSteps;
   void prepare(const Network& network, double dt, double piece);
 };
 
@@ -60,8 +69,9 @@ bool steps_without_iteration(const Topology& topology);
 
 class TreeSolver {
  public:
-  TreeSolver(const Network& network, const TreeStepPlan& plan, const double* before)
-      : topology_(network.topology()), network_(network), plan_(plan), before_(before) {}
+  // `time`: the time [s] at the end of the step, for error messages (NaN: not known).
+  TreeSolver(const Network& network, const TreeStepPlan& plan, const double* before, double time)
+      : topology_(network.topology()), network_(network), plan_(plan), before_(before), time_(time) {}
 
   // Force at the end of the step for an elongation increment de of subtree `node`.
   double force(int node, double de) const { return forward(node, de).force; }
@@ -91,6 +101,13 @@ class TreeSolver {
   ForceSlope inerter(int node, double de) const;
   // NumericalError: a yeoh in series asked for more force than it carries before softening.
   [[noreturn]] void throw_softened(int node, double force) const;
+  // NumericalError: the solve of `node` exhausted its iteration cap (solve_monotone, bouc_wen).
+  [[noreturn]] void throw_not_converged(int node, const char* what) const;
+  double checked(double value, int node, const char* what) const {
+    if (std::isnan(value)) throw_not_converged(node, what);
+    return value;
+  }
+  std::string path_of(int node) const;
 
   const TreeNode& at(int node) const { return topology_.nodes[static_cast<std::size_t>(node)]; }
   double e_before(const TreeNode& n) const { return before_[n.state]; }
@@ -103,6 +120,7 @@ class TreeSolver {
   const Network& network_;
   const TreeStepPlan& plan_;
   const double* before_;
+  double time_;
 };
 
 }  // namespace rheo::runtime

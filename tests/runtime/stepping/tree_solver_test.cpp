@@ -362,3 +362,34 @@ TEST_CASE("a softening yeoh: the tangent's zero in closed form, and in series a 
   }
   CHECK_THROWS_WITH_AS(ramp(net, 2.0, 60), doctest::Contains("yeoh 'r' is asked to carry"), runtime::NumericalError);
 }
+
+TEST_CASE("an exhausted iteration cap is a NumericalError naming the block and the time, not a hang") {
+  // A yeoh spring in series with a spring needs an iterative chain solve; with the cap lowered
+  // to one refinement it cannot converge, and the step says where and when.
+  const auto net = test::network_from("model y { series c { yeoh r (D10 = 1, D20 = 0.5, D30 = 0.1) spring s (k = 2) } }", "y");
+  const runtime::Simulator simulator(net);
+  runtime::StepPlan plan = runtime::StepPlan::make(net, 0.01);
+  runtime::State before = simulator.rest_state(), after = before;
+  CHECK(std::isfinite(simulator.step(plan, before, 1.5, after, 0.25)));
+  plan.tree.iteration_cap = 1;
+  CHECK_THROWS_WITH_AS(simulator.step(plan, before, 1.5, after, 0.25),
+                       doctest::Contains("did not converge within its iteration cap in the step ending at t = 0.25 s"), runtime::NumericalError);
+  CHECK_THROWS_WITH_AS(simulator.step(plan, before, 1.5, after, 0.25), doctest::Contains("model 'y'"), runtime::NumericalError);
+}
+
+TEST_CASE("bouc_wen with n < 0.5 behind gaps and in nested chains: every history ends with a result") {
+  // The pathological family of issue #26 (n from 0.05 to 0.45, increments of thousands of yield
+  // displacements, nested in a parallel block): each run ends, with |F| below the caps.
+  for (const char* n : {"0.05", "0.2", "0.45"}) {
+    const auto net = test::network_from(std::string("model m { series { gap g (width = 4 mm) parallel { bouc_wen b (k = 30000, n = ") + n +
+                                            ", fy = 1600) series { spring s (k = 100) bouc_wen c (k = 5000, n = " + n + ", fy = 50) } } } }",
+                                        "m");
+    runtime::Drive d;
+    d.time = {0.0, 0.1, 0.2, 0.3, 0.4, 0.5};
+    d.displacement = {0.0, 5.0, 1000.0, -1000.0, 2.0, 0.0};
+    const auto h = runtime::run_history(net, d, false, runtime::SolverChoice::fixed);
+    for (double f : h.force) CHECK(std::abs(f) < 1650.0);
+    CHECK(h.force[2] > 1600.0);
+    CHECK(h.force[3] < -1600.0);
+  }
+}
