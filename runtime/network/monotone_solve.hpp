@@ -58,6 +58,8 @@ double solve_monotone(F&& f, double x0, double step_hint, double domain_lo, doub
       step *= 2.0;
     }
   }
+  if (std::abs(fb) <= value_tolerance) return b;  // the bracketing landed on the root
+  if (std::abs(fa) <= value_tolerance) return a;
   // Newton from the end nearer the root, bisection when Newton leaves the bracket.
   double x = std::abs(fa) < std::abs(fb) ? a : b;
   ForceSlope fx{std::abs(fa) < std::abs(fb) ? fa : fb, 0.0};
