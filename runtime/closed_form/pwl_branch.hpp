@@ -41,6 +41,11 @@ struct PwlBranch {
   int internal_nodes = 0;
   std::vector<PwlEdge> edges;
   std::vector<int> switches;  // indices of slider and gap edges
+  // Every edge law is odd (F(-e, -de/dt) = -F(e, de/dt): sliders with one cap both ways, gaps
+  // centred on e = 0). Then under u0 sin(w t) the mirrored state half a period later is again
+  // a solution, and the periodic state is found on the half-period map (pwl_periodic.hpp).
+  // An element with an uneven law must clear it.
+  bool odd = true;
 
   // The graph of subtree `root` of `network` (a node index of Topology::subtrees), or nothing
   // when the subtree is not piecewise linear (a yeoh, quadratic_dashpot or bouc_wen below it),

@@ -74,24 +74,35 @@ Complex phased_response(Complex lambda, Complex mu, double omega, double h) {
   return sum;
 }
 
+// The eigendecomposition of A_zz into STRUCTURE (modal false where it fails, the
+// eigenvectors' reciprocal condition is below 1e-8, or V diag(lambda) V^-1 misses A_zz by more
+// than 1e-11 of its largest entry).
+void decompose_state_block(const PwlMatrix& A, int nz, PwlModeStructure& structure) {
+  structure.modal = false;
+  if (nz == 0) {
+    structure.V.resize(0, 0), structure.V_inverse.resize(0, 0), structure.lambda.resize(0);
+    structure.modal = true;
+    return;
+  }
+  const MatrixXd Azz = A.topLeftCorner(nz, nz);
+  Eigen::EigenSolver<MatrixXd> eig(Azz);
+  if (eig.info() != Eigen::Success) return;
+  Eigen::FullPivLU<Eigen::MatrixXcd> lu(eig.eigenvectors());
+  if (!(lu.rcond() > 1e-8)) return;
+  structure.V = eig.eigenvectors();
+  structure.lambda = eig.eigenvalues();
+  structure.V_inverse = lu.inverse();
+  const double error = (structure.V * structure.lambda.asDiagonal() * structure.V_inverse - Azz.cast<Complex>()).cwiseAbs().maxCoeff();
+  structure.modal = error <= 1e-11 * std::max(Azz.cwiseAbs().maxCoeff(), 1e-300);
+}
+
 }  // namespace
 
-void PwlModeSystem::decompose() {
+void PwlModeSystem::decompose(PwlModeStructure& structure) {
   modal = false;
-  if (nz > 0) {
-    const MatrixXd Azz = A.topLeftCorner(nz, nz);
-    Eigen::EigenSolver<MatrixXd> eig(Azz);
-    if (eig.info() != Eigen::Success) return;
-    Eigen::FullPivLU<Eigen::MatrixXcd> lu(eig.eigenvectors());
-    if (!(lu.rcond() > 1e-8)) return;
-    V = eig.eigenvectors();
-    lambda = eig.eigenvalues();
-    V_inverse = lu.inverse();
-    const double error = (V * lambda.asDiagonal() * V_inverse - Azz.cast<Complex>()).cwiseAbs().maxCoeff();
-    if (!(error <= 1e-11 * std::max(Azz.cwiseAbs().maxCoeff(), 1e-300))) return;
-  } else {
-    V.resize(0, 0), V_inverse.resize(0, 0), lambda.resize(0);
-  }
+  if (!structure.filled) decompose_state_block(A, nz, structure);
+  if (!structure.modal) return;
+  V = structure.V, V_inverse = structure.V_inverse, lambda = structure.lambda;
   phi = V_inverse * A.block(0, nz, nz, nh + 1).cast<Complex>();
   const PwlComplexVector a_c = A.col(cosine()).head(nz).cast<Complex>(), a_s = A.col(sine()).head(nz).cast<Complex>();
   g_plus = 0.5 * (V_inverse * (a_c - Complex(0.0, 1.0) * a_s));

@@ -57,7 +57,10 @@ PwlVector PwlModeSystem::state_at(const PwlVector& X, double t, double u0, doubl
   return w;
 }
 
-bool build_pwl_mode(const PwlBranch& branch, const PwlModeCode& code, double u0, double omega, PwlModeSystem& out) {
+bool build_pwl_mode(const PwlBranch& branch, const PwlModeCode& code, double u0, double omega, PwlModeSystem& out, PwlModeStructure* structure) {
+  PwlModeStructure local;
+  PwlModeStructure& st = structure != nullptr ? *structure : local;
+  if (st.filled && !st.determinate) return false;
   const int n = branch.internal_nodes;
   MatrixXd K = MatrixXd::Zero(n, n), C = K, M = K;
   VectorXd kT = VectorXd::Zero(n), cT = kT, mT = kT, f_slip = kT;
@@ -94,21 +97,27 @@ bool build_pwl_mode(const PwlBranch& branch, const PwlModeCode& code, double u0,
     R.row(i) = in.d.transpose();
     rho[i] = in.terminal;
   }
-  MatrixXd P = MatrixXd::Zero(n, r), N = MatrixXd::Identity(n, n);
-  if (r > 0) {
-    P = R.transpose() * (R * R.transpose()).inverse();
-    MatrixXd range, null;
-    split_by_eigenvalue(R.transpose() * R, 1.0, range, null);
-    N = null;
+  if (!st.filled) {
+    st.P = MatrixXd::Zero(n, r), st.N = MatrixXd::Identity(n, n);
+    if (r > 0) {
+      st.P = R.transpose() * (R * R.transpose()).inverse();
+      MatrixXd range, null;
+      split_by_eigenvalue(R.transpose() * R, 1.0, range, null);
+      st.N = null;
+    }
   }
+  const MatrixXd &P = st.P, &N = st.N;
   const int nq = static_cast<int>(N.cols());
   const MatrixXd Kq = N.transpose() * K * N, Cq = N.transpose() * C * N, Mq = N.transpose() * M * N;
 
   // Directions: massive (m), massless damped (d), massless undamped (a).
-  MatrixXd Vm, V0, Vd, Va;
-  split_by_eigenvalue(Mq, 0.0, Vm, V0);
-  split_by_eigenvalue(V0.transpose() * Cq * V0, 0.0, Vd, Va);
-  Vd = V0 * Vd, Va = V0 * Va;
+  if (!st.filled) {
+    MatrixXd V0, Vd0;
+    split_by_eigenvalue(Mq, 0.0, st.Vm, V0);
+    split_by_eigenvalue(V0.transpose() * Cq * V0, 0.0, Vd0, st.Va);
+    st.Vd = V0 * Vd0, st.Va = V0 * st.Va;
+  }
+  const MatrixXd &Vm = st.Vm, &Vd = st.Vd, &Va = st.Va;
   const int nm = static_cast<int>(Vm.cols()), nd = static_cast<int>(Vd.cols()), na = static_cast<int>(Va.cols());
 
   // Layout of w.
@@ -134,11 +143,16 @@ bool build_pwl_mode(const PwlBranch& branch, const PwlModeCode& code, double u0,
   // Static condensation of the undamped massless directions: K_aa eta_a = Va^T Fy w - K_ad eta_d - K_am eta_m.
   MatrixXd Ea = MatrixXd::Zero(na, dim);
   if (na > 0) {
-    const MatrixXd Kaa = Va.transpose() * Kq * Va;
-    Eigen::SelfAdjointEigenSolver<MatrixXd> eig(Kaa);
-    if (!(eig.eigenvalues().minCoeff() > 1e-11 * std::max(largest_k, 1e-300))) return false;
-    Ea = eig.eigenvectors() * eig.eigenvalues().cwiseInverse().asDiagonal() * eig.eigenvectors().transpose() *
-         (Va.transpose() * Fy - Va.transpose() * Kq * (Vd * Sd + Vm * Sm));
+    if (!st.filled) {
+      const MatrixXd Kaa = Va.transpose() * Kq * Va;
+      Eigen::SelfAdjointEigenSolver<MatrixXd> eig(Kaa);
+      if (!(eig.eigenvalues().minCoeff() > 1e-11 * std::max(largest_k, 1e-300))) {
+        st.filled = true, st.determinate = false;
+        return false;
+      }
+      st.Kaa_inverse = eig.eigenvectors() * eig.eigenvalues().cwiseInverse().asDiagonal() * eig.eigenvectors().transpose();
+    }
+    Ea = st.Kaa_inverse * (Va.transpose() * Fy - Va.transpose() * Kq * (Vd * Sd + Vm * Sm));
   }
   // y = Va eta_a + Vd eta_d + Vm eta_m as a functional of w.
   const MatrixXd Y = Va * Ea + Vd * Sd + Vm * Sm;
@@ -146,11 +160,14 @@ bool build_pwl_mode(const PwlBranch& branch, const PwlModeCode& code, double u0,
 
   out.A = MatrixXd::Zero(dim, dim);
   MatrixXd Ad = MatrixXd::Zero(nd, dim);
-  if (nd > 0) Ad = (Vd.transpose() * Cq * Vd).inverse() * (Vd.transpose() * elastic - Vd.transpose() * Cq * Vm * Sv);
+  if (!st.filled) {
+    if (nd > 0) st.Cdd_inverse = (Vd.transpose() * Cq * Vd).inverse();
+    if (nm > 0) st.Mmm_inverse = (Vm.transpose() * Mq * Vm).inverse();
+  }
+  if (nd > 0) Ad = st.Cdd_inverse * (Vd.transpose() * elastic - Vd.transpose() * Cq * Vm * Sv);
   out.A.middleRows(0, nd) = Ad;
   out.A.middleRows(iz_m, nm) = Sv;
-  if (nm > 0)
-    out.A.middleRows(iz_v, nm) = (Vm.transpose() * Mq * Vm).inverse() * (Vm.transpose() * elastic - Vm.transpose() * Cq * (Vd * Ad + Vm * Sv));
+  if (nm > 0) out.A.middleRows(iz_v, nm) = st.Mmm_inverse * (Vm.transpose() * elastic - Vm.transpose() * Cq * (Vd * Ad + Vm * Sv));
   out.drive_omega = omega;
   out.A(is, ic) = omega;
   out.A(ic, is) = -omega;
@@ -234,7 +251,8 @@ bool build_pwl_mode(const PwlBranch& branch, const PwlModeCode& code, double u0,
   out.guards.resize(static_cast<Eigen::Index>(guard_rows.size()), dim);
   for (std::size_t g = 0; g < guard_rows.size(); ++g) out.guards.row(static_cast<Eigen::Index>(g)) = guard_rows[g];
   out.guard_rates = out.guards * out.A;
-  out.decompose();
+  out.decompose(st);
+  st.filled = true;
   return true;
 }
 

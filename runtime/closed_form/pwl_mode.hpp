@@ -56,6 +56,21 @@ struct PwlTransition {
   double scale = 1.0;  // the size of the guarded quantity (N, mm or mm/s), for tolerances
 };
 
+// What building a mode computes that depends on neither the amplitude nor the frequency (only
+// the drive's columns of w do): the constraint split x = P (h - rho u) + N y, the massive,
+// damped and algebraic directions with their inverted blocks, and the modal decomposition of
+// the state block A_zz. The first build of a mode fills it; builds of the same branch and code
+// at other drives reuse it (a harmonic grid builds each mode once instead of once per point).
+struct PwlModeStructure {
+  bool filled = false;
+  bool determinate = true;  // false: the mode is indeterminate (build_pwl_mode returns false)
+  Eigen::MatrixXd P, N, Vm, Vd, Va;
+  Eigen::MatrixXd Kaa_inverse, Cdd_inverse, Mmm_inverse;
+  bool modal = false;  // V, V_inverse and lambda hold a well-conditioned eigendecomposition of A_zz
+  PwlComplexMatrix V, V_inverse;
+  PwlComplexVector lambda;
+};
+
 struct PwlModeSystem {
   PwlModeCode code;
   int nz = 0, nh = 0, dim = 0;  // dim = nz + nh + 3
@@ -87,7 +102,9 @@ struct PwlModeSystem {
   PwlMatrix propagator(double tau) const;
   PwlVector advance(double tau, const PwlVector& w) const;
   std::complex<double> phased_force_integral(double h, const PwlVector& w0) const;
-  void decompose();  // sets the modal data below; called by build_pwl_mode
+  // Sets the modal data below (called by build_pwl_mode), the eigendecomposition taken from
+  // STRUCTURE where it is filled, and stored there otherwise.
+  void decompose(PwlModeStructure& structure);
 
   bool modal = false;
   double drive_omega = 0.0;                        // w [rad/s]
@@ -102,7 +119,9 @@ struct PwlModeSystem {
 // Builds the mode `code` of `branch` for amplitude u0 [mm] and angular frequency omega
 // [rad/s]. False when the mode is indeterminate (a node or direction that nothing but
 // slipping sliders and open gaps holds): such a mode cannot be physical, and the caller
-// treats reaching it as a failure of the event-driven path.
-bool build_pwl_mode(const PwlBranch& branch, const PwlModeCode& code, double u0, double omega, PwlModeSystem& out);
+// treats reaching it as a failure of the event-driven path. STRUCTURE, when given, is used if
+// filled (it must come from the same branch and code) and filled otherwise.
+bool build_pwl_mode(const PwlBranch& branch, const PwlModeCode& code, double u0, double omega, PwlModeSystem& out,
+                    PwlModeStructure* structure = nullptr);
 
 }  // namespace rheo::runtime

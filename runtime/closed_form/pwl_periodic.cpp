@@ -2,6 +2,7 @@
 
 #include <Eigen/Eigenvalues>
 #include <Eigen/LU>
+#include <Eigen/QR>
 #include <Eigen/SVD>
 
 #include <algorithm>
@@ -27,7 +28,7 @@ constexpr double kPeriodicTolerance = 1e-11;
 // xi_i = b_i / (1 - lambda_i), except along eigenvalues 1 (directions the map leaves where
 // they are, such as the offset of a slider that never slips), where X0's component is kept.
 // A least-squares solve of (J - I) X = -b where J's eigenvectors are too ill-conditioned.
-PwlVector affine_fixed_point(const MatrixXd& J, const PwlVector& X0, const PwlVector& Y) {
+PwlVector affine_fixed_point(const PwlMatrix& J, const PwlVector& X0, const PwlVector& Y) {
   const Eigen::VectorXd b = Y - J * X0;
   Eigen::EigenSolver<MatrixXd> eig(J);
   if (eig.info() == Eigen::Success) {
@@ -41,9 +42,26 @@ PwlVector affine_fixed_point(const MatrixXd& J, const PwlVector& X0, const PwlVe
       return (V * xi).real();
     }
   }
-  Eigen::JacobiSVD<MatrixXd> svd(J - MatrixXd::Identity(J.rows(), J.cols()), Eigen::ComputeThinU | Eigen::ComputeThinV);
-  svd.setThreshold(1e-10);
-  return X0 - svd.solve(Y - X0);
+  return X0 - (J - PwlMatrix::Identity(J.rows(), J.cols())).jacobiSvd(Eigen::ComputeThinU | Eigen::ComputeThinV).setThreshold(1e-10).solve(Y - X0);
+}
+
+// The same fixed point where no eigenvalue of J is 1, by complete orthogonal decomposition (no
+// heap): the half-period map (pwl_periodic.hpp), on which a never-slipping slider's offset has
+// eigenvalue -1. Where one is 1 all the same, the step is the least-norm solution of
+// (J - I) dX = X0 - Y.
+PwlVector least_norm_fixed_point(const PwlMatrix& J, const PwlVector& X0, const PwlVector& Y) {
+  Eigen::CompleteOrthogonalDecomposition<PwlMatrix> cod(J - PwlMatrix::Identity(J.rows(), J.cols()));
+  cod.setThreshold(1e-10);
+  return X0 - cod.solve(PwlVector(Y - X0));
+}
+
+bool same_branch(const PwlBranch& a, const PwlBranch& b) {
+  if (a.internal_nodes != b.internal_nodes || a.odd != b.odd || a.switches != b.switches || a.edges.size() != b.edges.size()) return false;
+  for (std::size_t i = 0; i < a.edges.size(); ++i) {
+    const PwlEdge &x = a.edges[i], &y = b.edges[i];
+    if (x.kind != y.kind || x.a != y.a || x.b != y.b || x.value != y.value) return false;
+  }
+  return true;
 }
 
 }  // namespace
@@ -67,27 +85,22 @@ struct PwlPeriodicState::Run {
   int mode_index(const PwlModeCode& code) {
     for (std::size_t i = 0; i < self.modes_.size(); ++i)
       if (self.modes_[i].code == code) return static_cast<int>(i);
-    PwlModeSystem system;
-    if (!build_pwl_mode(branch, code, self.u0_, self.omega_, system)) return -1;
-    self.modes_.push_back(std::move(system));
+    PwlModeStructure* structure = nullptr;
+    for (auto& [known, st] : self.structures_)
+      if (known == code) structure = &st;
+    if (structure == nullptr) structure = &self.structures_.emplace_back(code, PwlModeStructure{}).second;
+    // Built in place: a mode's fixed-capacity storage is tens of kilobytes.
+    if (!build_pwl_mode(branch, code, self.u0_, self.omega_, self.modes_.emplace_back(), structure)) {
+      self.modes_.pop_back();
+      return -1;
+    }
     self.grid_step_.emplace_back();
-    self.grid_integral_.emplace_back();
     return static_cast<int>(self.modes_.size()) - 1;
   }
   const PwlMatrix& grid_step(int m) {
     PwlMatrix& E = self.grid_step_[static_cast<std::size_t>(m)];
     if (E.size() == 0) E = self.modes_[static_cast<std::size_t>(m)].propagator(step);
     return E;
-  }
-  // int_0^step F e^{i w tau} dtau as a functional of the state at the start (it is linear in it).
-  const PwlComplexRow& grid_integral(int m) {
-    PwlComplexRow& row = self.grid_integral_[static_cast<std::size_t>(m)];
-    const PwlModeSystem& s = self.modes_[static_cast<std::size_t>(m)];
-    if (row.size() == 0) {
-      row.resize(s.dim);
-      for (int j = 0; j < s.dim; ++j) row[j] = s.phased_force_integral(step, PwlVector::Unit(s.dim, j));
-    }
-    return row;
   }
   PwlVector advance(int m, double tau, const PwlVector& w) { return self.modes_[static_cast<std::size_t>(m)].advance(tau, w); }
 
@@ -235,8 +248,10 @@ struct PwlPeriodicState::Run {
     return next;
   }
 
-  // Follows one cycle from X0, settled from mode m: X_T and, with `J`, dX_T/dX0; with `record`,
-  // the pieces, switch phases and first harmonic of the cycle. False on failure.
+  // Follows the map's span (a period, or half of one for an odd branch) from X0, settled from
+  // mode m: X at its end and, with `J`, dX/dX0; with `record`, the pieces, switch phases and
+  // first harmonic. False on failure. The sensitivities are carried by one propagator per
+  // piece (from its start to its switch or the span's end), not per grid step.
   bool cycle(int& m, const PwlVector& X0, PwlVector& X_T, PwlMatrix* J, bool record) {
     PwlVector w;
     m = settle(m, X0, 0.0, w);
@@ -248,14 +263,14 @@ struct PwlPeriodicState::Run {
       S.bottomRows(3).setZero();
       Sp = &S;
     }
-    if (record) self.pieces_.clear(), self.switch_phases_.clear();
-    Complex integral{0.0, 0.0};
+    if (record) self.pieces_.assign(1, {0.0, m, w}), self.switch_phases_.clear();
     int switches = 0;
-    double t = 0.0;
+    double t = 0.0, piece_start = 0.0;
     PwlVector g0, g1;  // the guards at the start and the end of the step
     bool g0_known = false;
-    for (int k = 0; k < kGridPerCycle; ++k) {
-      const double t_end = k + 1 == kGridPerCycle ? self.period_ : (k + 1) * step;
+    const int grid_steps = self.half_wave_ ? kGridPerCycle / 2 : kGridPerCycle;
+    for (int k = 0; k < grid_steps; ++k) {
+      const double t_end = k + 1 == grid_steps ? self.span_ : (k + 1) * step;
       while (t < t_end) {
         const PwlModeSystem& s = self.modes_[static_cast<std::size_t>(m)];
         const double h = t_end - t;
@@ -272,60 +287,75 @@ struct PwlPeriodicState::Run {
           const double tau = first_crossing(m, i, w, w1, h, g0[i], g1[i]);
           if (tau < first) first = tau, fired = i;
         }
-        const double length = fired < 0 ? h : first;
-        if (record) {
-          self.pieces_.push_back({t, m, w});
-          const Complex piece = full && fired < 0 ? (grid_integral(m) * w.cast<Complex>()).value() : s.phased_force_integral(length, w);
-          integral += std::exp(Complex(0.0, self.omega_ * t)) * piece;
-        }
         if (fired < 0) {
-          if (Sp != nullptr) *Sp = (full ? grid_step(m) : s.propagator(h)) * *Sp;
           w = w1;
           g0 = g1, g0_known = true;
           t = t_end;
           break;
         }
-        if (Sp != nullptr) *Sp = s.propagator(first) * *Sp;
         w = advance(m, first, w);
         t += first;
+        if (Sp != nullptr) *Sp = s.propagator(t - piece_start) * *Sp, piece_start = t;
         g0_known = false;
         if (++switches > kMaxSwitchesPerCycle) return false;
         m = switch_at(m, fired, t, w, Sp);
         if (m < 0) return false;
-        if (record) self.switch_phases_.push_back(std::fmod(self.omega_ * t, 2.0 * std::numbers::pi));
+        if (record) {
+          self.pieces_.push_back({t, m, w});
+          self.switch_phases_.push_back(std::fmod(self.omega_ * t, 2.0 * std::numbers::pi));
+        }
       }
     }
     const PwlModeSystem& s = self.modes_[static_cast<std::size_t>(m)];
     X_T = s.to_X * w;
-    if (J != nullptr) *J = s.to_X * S;
-    if (record) {
-      const double scale = self.omega_ / (std::numbers::pi * self.u0_);
-      self.storage_ = scale * integral.imag();
-      self.loss_ = scale * integral.real();
-    }
+    if (J != nullptr) *J = s.to_X * (s.propagator(self.span_ - piece_start) * S);
     return true;
   }
 
+  // K'_1 and K''_1 of the recorded cycle, its pieces' integrals int F e^{i w t} dt in modal
+  // closed form. Over a half period of an odd branch the integral is half the period's (F and
+  // e^{i w t} both change sign after T/2).
+  void first_harmonic() {
+    Complex integral{0.0, 0.0};
+    for (std::size_t k = 0; k < self.pieces_.size(); ++k) {
+      const Piece& piece = self.pieces_[k];
+      const double end = k + 1 < self.pieces_.size() ? self.pieces_[k + 1].t : self.span_;
+      integral += std::exp(Complex(0.0, self.omega_ * piece.t)) *
+                  self.modes_[static_cast<std::size_t>(piece.mode)].phased_force_integral(end - piece.t, piece.w);
+    }
+    const double scale = (self.half_wave_ ? 2.0 : 1.0) * self.omega_ / (std::numbers::pi * self.u0_);
+    self.storage_ = scale * integral.imag();
+    self.loss_ = scale * integral.real();
+  }
+
   // The periodic state of mode m followed without its guards (the linear state every point
-  // starts from): the fixed point of X -> to_X e^{A T} w(X), by one propagator over the period.
+  // starts from): the fixed point of X -> to_X e^{A T} w(X), by one propagator over the period
+  // (of X -> -to_X e^{A T/2} w(X) for an odd branch: the symmetric state, whose stuck sliders
+  // hold no offset, as from rest).
   PwlVector linear_periodic_state(int m, const PwlVector& scale) {
     const PwlModeSystem& s = self.modes_[static_cast<std::size_t>(m)];
     const PwlVector X0 = PwlVector::Zero(scale.size());
     PwlMatrix from = s.from_X;
     from.bottomRows(3).setZero();
-    const PwlMatrix P = s.propagator(self.period_);
-    const PwlMatrix J = s.to_X * (P * from);
-    const PwlVector X_T = s.to_X * (P * s.state_at(X0, 0.0, self.u0_, self.omega_));
-    const MatrixXd Js = scale.cwiseInverse().asDiagonal() * J * scale.asDiagonal();
-    return scale.cwiseProduct(affine_fixed_point(Js, X0.cwiseQuotient(scale), X_T.cwiseQuotient(scale)));
+    const double mirror = self.half_wave_ ? -1.0 : 1.0;
+    const PwlMatrix P = s.propagator(self.span_);
+    const PwlMatrix J = mirror * (s.to_X * (P * from));
+    const PwlVector X_T = mirror * (s.to_X * (P * s.state_at(X0, 0.0, self.u0_, self.omega_)));
+    const PwlMatrix Js = scale.cwiseInverse().asDiagonal() * J * scale.asDiagonal();
+    const PwlVector Xs = X0.cwiseQuotient(scale), Ys = X_T.cwiseQuotient(scale);
+    return scale.cwiseProduct(self.half_wave_ ? least_norm_fixed_point(Js, Xs, Ys) : affine_fixed_point(Js, Xs, Ys));
   }
 };
 
 bool PwlPeriodicState::solve(const PwlBranch& branch, double u0, double omega) {
   u0_ = u0, omega_ = omega, period_ = 2.0 * std::numbers::pi / omega;
+  half_wave_ = branch.odd;
+  if (!same_branch(branch, structures_branch_)) structures_.clear(), structures_branch_ = branch;
+  span_ = half_wave_ ? 0.5 * period_ : period_;
+  const double mirror = half_wave_ ? -1.0 : 1.0;  // the map is X0 -> mirror X(span)
   storage_ = loss_ = 0.0;
   cycles_ = 0;
-  modes_.clear(), grid_step_.clear(), grid_integral_.clear(), pieces_.clear(), switch_phases_.clear();
+  modes_.clear(), grid_step_.clear(), pieces_.clear(), switch_phases_.clear();
   Run run{*this, branch, period_ / kGridPerCycle};
 
   const int n = branch.internal_nodes;
@@ -343,6 +373,7 @@ bool PwlPeriodicState::solve(const PwlBranch& branch, double u0, double omega) {
   // column can otherwise trap the alternation of Newton steps and plain cycles in a loop).
   PwlVector base, step;  // the last accepted start and its Newton step
   double base_size = std::numeric_limits<double>::infinity(), fraction = 1.0;
+  bool average_next = false;
   // Every cycle is recorded (pieces, switches, first harmonic): the one that closes on itself
   // is the periodic cycle.
   for (cycles_ = 1; cycles_ <= kMaxCycles; ++cycles_) {
@@ -357,11 +388,20 @@ bool PwlPeriodicState::solve(const PwlBranch& branch, double u0, double omega) {
       m = start_mode;
       if (!run.cycle(m, X0, X_T, &J, true)) return false;
     }
+    X_T *= mirror;
+    J *= mirror;
     last_end = X_T;
     const PwlVector residual = (X_T - X0).cwiseQuotient(scale);
     const double size = residual.cwiseAbs().maxCoeff();
     if (!std::isfinite(size)) return false;
     if (size <= kPeriodicTolerance) {
+      run.first_harmonic();
+      if (half_wave_) {
+        // The other half is this one mirrored: its switches half a period later.
+        const std::size_t n_half = switch_phases_.size();
+        for (std::size_t k = 0; k < n_half; ++k) switch_phases_.push_back(switch_phases_[k] + std::numbers::pi);
+        return true;
+      }
       // The extrema are taken as max F = -min F (periodic_closed_form.hpp): the force must be
       // half-wave symmetric, F(theta + pi) = -F(theta), as it is wherever the periodic state is
       // unique up to offsets that carry no force; checked at 16 phases.
@@ -373,11 +413,26 @@ bool PwlPeriodicState::solve(const PwlBranch& branch, double u0, double omega) {
       }
       return asymmetry <= 1e-8 * largest;
     }
+    if (half_wave_) {
+      PwlModeCode mirrored = modes_[static_cast<std::size_t>(m)].code;
+      for (auto& state : mirrored) state = static_cast<std::int8_t>(-state);
+      m = run.mode_index(mirrored);
+      if (m < 0) return false;
+    }
     start_mode = m;
+    if (average_next) {
+      // A plain step on the half map is two, X1 = P(X0) and X2 = P(X1), averaged: a slider
+      // offset the map flips (eigenvalue -1) cancels instead of alternating, and a state the
+      // map reaches in one step stays where it is.
+      average_next = false;
+      X0 = 0.5 * (X0 + X_T);
+      continue;
+    }
     if (size < base_size) {
       base_size = size, base = X0, fraction = 1.0;
-      const MatrixXd Js = scale.cwiseInverse().asDiagonal() * J * scale.asDiagonal();
-      step = scale.cwiseProduct(affine_fixed_point(Js, X0.cwiseQuotient(scale), X_T.cwiseQuotient(scale))) - X0;
+      const PwlMatrix Js = scale.cwiseInverse().asDiagonal() * J * scale.asDiagonal();
+      const PwlVector Xs = X0.cwiseQuotient(scale), Ys = X_T.cwiseQuotient(scale);
+      step = scale.cwiseProduct(half_wave_ ? least_norm_fixed_point(Js, Xs, Ys) : affine_fixed_point(Js, Xs, Ys)) - X0;
       X0 = base + step;
     } else if (fraction == 1.0) {
       fraction *= 0.5;
@@ -385,14 +440,17 @@ bool PwlPeriodicState::solve(const PwlBranch& branch, double u0, double omega) {
     } else {
       base_size = std::numeric_limits<double>::infinity();
       X0 = X_T;
+      average_next = half_wave_;
     }
   }
   return false;
 }
 
-PwlVector PwlPeriodicState::state_at_phase(double theta, int& mode) const {
+PwlVector PwlPeriodicState::state_at_phase(double theta, int& mode, double& sign) const {
   double t = std::fmod(theta / omega_, period_);
   if (t < 0.0) t += period_;
+  sign = 1.0;
+  if (half_wave_ && t >= span_) t -= span_, sign = -1.0;
   auto it = std::upper_bound(pieces_.begin(), pieces_.end(), t, [](double value, const Piece& p) { return value < p.t; });
   const Piece& piece = it == pieces_.begin() ? pieces_.front() : *std::prev(it);
   mode = piece.mode;
@@ -401,17 +459,19 @@ PwlVector PwlPeriodicState::state_at_phase(double theta, int& mode) const {
 
 double PwlPeriodicState::force(double theta) const {
   int m = 0;
-  const PwlVector w = state_at_phase(theta, m);
-  return modes_[static_cast<std::size_t>(m)].force.dot(w);
+  double sign = 1.0;
+  const PwlVector w = state_at_phase(theta, m, sign);
+  return sign * modes_[static_cast<std::size_t>(m)].force.dot(w);
 }
 
 void PwlPeriodicState::derivatives(double theta, double& first, double& second) const {
   int m = 0;
-  const PwlVector w = state_at_phase(theta, m);
+  double sign = 1.0;
+  const PwlVector w = state_at_phase(theta, m, sign);
   const PwlModeSystem& s = modes_[static_cast<std::size_t>(m)];
   const PwlVector rate = s.A * w;
-  first = s.force.dot(rate) / omega_;
-  second = s.force.dot(s.A * rate) / (omega_ * omega_);
+  first = sign * s.force.dot(rate) / omega_;
+  second = sign * s.force.dot(s.A * rate) / (omega_ * omega_);
 }
 
 }  // namespace rheo::runtime

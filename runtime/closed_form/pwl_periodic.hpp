@@ -11,10 +11,18 @@
 // sequence of events. The periodic state is its fixed point, found by Newton's method
 // (shooting): the Jacobian is propagated with the state, through each event by its saltation
 // matrix, J_new = dw_new/dX (dw/dX_old + A_old w dt) - A_new w_new dt with
-// dt = -g.dw/(g.A_old w) (g the guard that fired). Directions the map leaves unchanged (a
-// slider that never slips keeps any offset) keep the start's value: the branch starts at rest,
-// as time stepping does, and (J - I) is solved in the least-squares sense. A Newton step that
-// does not lower the residual is halved once, then a plain cycle is taken (numerics.md).
+// dt = -g.dw/(g.A_old w) (g the guard that fired), and within a mode by one propagator per
+// piece. Directions the map leaves unchanged (a slider that never slips keeps any offset) keep
+// the start's value: the branch starts at rest, as time stepping does, and (J - I) is solved
+// in the least-squares sense. A Newton step that does not lower the residual is halved once,
+// then a plain cycle is taken (numerics.md).
+//
+// An odd branch (PwlBranch::odd: every law odd) under an odd drive, u(t + T/2) = -u(t), has
+// the mirrored state -X(t + T/2) as a solution too; its periodic state is the half-wave
+// symmetric one, the fixed point of the half-period map X0 -> -X(T/2), found the same way at
+// half the cost. It is the state time stepping reaches from rest: rest and the stuck linear
+// periodic start are symmetric, and the offsets of sliders that never slip stay zero (the half
+// map flips them, so its fixed point has none).
 //
 // The cycle then yields the first harmonic exactly, K'_1 + i K''_1 = (w/(pi u0)) int_0^T
 // F(t) e^{i w t} dt, each piece's integral in modal closed form, and
@@ -24,6 +32,7 @@
 #include "runtime/closed_form/pwl_mode.hpp"
 
 #include <deque>
+#include <utility>
 #include <vector>
 
 namespace rheo::runtime {
@@ -31,10 +40,10 @@ namespace rheo::runtime {
 class PwlPeriodicState {
  public:
   // False when the event-driven path cannot settle this branch: a mode that would be
-  // indeterminate, more than 10000 switches in a cycle, no fixed point after 60 cycles, or a
-  // periodic force that is not half-wave symmetric (F(theta + pi) = -F(theta) within 1e-8 of
-  // max |F|: a slider holding an offset; the extrema are taken as max F = -min F). The caller
-  // then time-steps the point.
+  // indeterminate, more than 10000 switches in a cycle, no fixed point after 60 cycles, or
+  // (a branch that is not odd) a periodic force that is not half-wave symmetric
+  // (F(theta + pi) = -F(theta) within 1e-8 of max |F|; the extrema are taken as
+  // max F = -min F). The caller then time-steps the point.
   bool solve(const PwlBranch& branch, double u0, double omega);
 
   double storage() const { return storage_; }  // K'_1 [N/mm]
@@ -48,7 +57,7 @@ class PwlPeriodicState {
   const std::vector<double>& switch_phases() const { return switch_phases_; }
 
  private:
-  struct Piece {
+  struct Piece {     // from the span's start or a switch to the next switch or the span's end
     double t = 0.0;  // start [s]
     int mode = 0;
     PwlVector w;
@@ -56,15 +65,22 @@ class PwlPeriodicState {
   struct Run;
 
   double u0_ = 0.0, omega_ = 0.0, period_ = 0.0;
+  bool half_wave_ = false;  // an odd branch: the pieces cover [0, T/2), the rest is their mirror
+  double span_ = 0.0;       // T/2 or T [s]
   double storage_ = 0.0, loss_ = 0.0;
   int cycles_ = 0;
-  std::deque<PwlModeSystem> modes_;           // visited; a deque, so references stay valid as modes are added
-  std::vector<PwlMatrix> grid_step_;          // e^{A T/64} per mode, built when first needed
-  std::vector<PwlComplexRow> grid_integral_;  // int_0^{T/64} F e^{i w tau} dtau per mode, as a row on w
+  std::deque<PwlModeSystem> modes_;  // visited; a deque, so references stay valid as modes are added
+  // The drive-independent parts of every mode built for structures_branch_, kept across solves
+  // (the points of a grid) until a solve is given another branch (new parameters).
+  std::deque<std::pair<PwlModeCode, PwlModeStructure>> structures_;
+  PwlBranch structures_branch_;
+  std::vector<PwlMatrix> grid_step_;  // e^{A T/64} per mode, built when first needed
   std::vector<Piece> pieces_;
   std::vector<double> switch_phases_;
 
-  PwlVector state_at_phase(double theta, int& mode) const;
+  // The state at phase theta, its mode, and the sign its force takes there (-1 in the
+  // mirrored half of an odd branch).
+  PwlVector state_at_phase(double theta, int& mode, double& sign) const;
 };
 
 }  // namespace rheo::runtime

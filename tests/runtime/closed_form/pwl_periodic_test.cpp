@@ -181,3 +181,76 @@ TEST_CASE("fluid columns a fit visits: a slider that sticks at the drive's turni
     check_against_time_stepping(net, c.u0, c.f, 1, 1e-5);
   }
 }
+
+namespace {
+
+// The piecewise-linear subtree of NET (the first one) as a branch.
+runtime::PwlBranch branch_of(const runtime::Network& net) {
+  runtime::PwlBranch branch;
+  for (int root : net.topology().subtrees)
+    if (runtime::PwlBranch::build(net, root, branch)) return branch;
+  FAIL("no piecewise-linear subtree");
+  return branch;
+}
+
+const char* kOddBranches[] = {
+    "model a { series f { slider cap (fy = 60 N)\n spring k1 (k = 600 N/mm)\n parallel y { inerter column (b = 40 kg)\n"
+    " dashpot channel (c = 3.0 N*s/mm)\n spring bulge (k = 150 N/mm) } } }",
+    "model a { series arm { slider s (fy = 45 N)\n maxwell m (k = 300 N/mm, tau = 20 ms) } }",
+    "model a { series s { friction f1 (k = 400 N/mm, uy = 0.1 mm)\n"
+    " parallel p { friction f2 (k = 100 N/mm, uy = 0.2 mm)\n maxwell m (k = 80 N/mm, tau = 5 ms) } } }",
+    "model a { series s { gap g (width = 0.2 mm)\n slider s (fy = 20 N)\n spring k (k = 300 N/mm) } }"};
+
+}  // namespace
+
+TEST_CASE("the half-period map of an odd branch closes on the full-period map's periodic state") {
+  // Two paths to one state: X0 -> -X(T/2) (what odd branches use) and X0 -> X(T) with the
+  // half-wave symmetry checked afterwards (what a branch with an uneven law uses).
+  for (const char* model : kOddBranches) {
+    const auto net = test::network_from(model, "a");
+    runtime::PwlBranch half = branch_of(net), full = half;
+    REQUIRE(half.odd);
+    full.odd = false;
+    for (double u0 : {0.05, 0.5, 2.0})
+      for (double f : {0.5, 7.0, 40.0}) {
+        const std::string text = model;
+        CAPTURE(text);
+        CAPTURE(u0);
+        CAPTURE(f);
+        runtime::PwlPeriodicState a, b;
+        const double omega = 2.0 * std::numbers::pi * f;
+        REQUIRE(a.solve(half, u0, omega));
+        REQUIRE(b.solve(full, u0, omega));
+        const double scale = std::hypot(b.storage(), b.loss()) + 1e-12;  // 0 where a gap never closes
+        CHECK(std::abs(a.storage() - b.storage()) < 1e-9 * scale);
+        CHECK(std::abs(a.loss() - b.loss()) < 1e-9 * scale);
+        double largest = 0.0, difference = 0.0;
+        for (int k = 0; k < 32; ++k) {
+          const double theta = (k + 0.3) * std::numbers::pi / 16.0;
+          largest = std::max(largest, std::abs(b.force(theta)));
+          difference = std::max(difference, std::abs(a.force(theta) - b.force(theta)));
+        }
+        CHECK(difference <= 1e-9 * largest + 1e-12);
+        CHECK(a.switch_phases().size() == b.switch_phases().size());
+      }
+  }
+}
+
+TEST_CASE("modes built once serve every point of a branch, and other parameters rebuild them") {
+  const auto first = test::network_from(kOddBranches[0], "a");
+  const auto second = test::network_from(std::string(kOddBranches[0]).replace(std::string(kOddBranches[0]).find("60 N"), 4, "25 N"), "a");
+  const runtime::PwlBranch one = branch_of(first), other = branch_of(second);
+  const double omega = 2.0 * std::numbers::pi * 11.0;
+  runtime::PwlPeriodicState reused;
+  REQUIRE(reused.solve(one, 2.0, 2.0 * std::numbers::pi * 3.0));  // builds the modes at another drive
+  auto same = [&](const runtime::PwlBranch& branch) {
+    runtime::PwlPeriodicState fresh;
+    REQUIRE(reused.solve(branch, 0.7, omega));
+    REQUIRE(fresh.solve(branch, 0.7, omega));
+    CHECK(reused.storage() == doctest::Approx(fresh.storage()).epsilon(1e-13));
+    CHECK(reused.loss() == doctest::Approx(fresh.loss()).epsilon(1e-13));
+    return fresh.loss();
+  };
+  const double loss_one = same(one), loss_other = same(other);
+  CHECK(std::abs(loss_one - loss_other) > 1e-3 * std::abs(loss_one));  // the cap slips at 25 N, not at 60 N
+}
