@@ -14,6 +14,7 @@ const char* kind_word(ElementKind kind) {
     case ElementKind::quadratic_dashpot: return "quadratic_dashpot";
     case ElementKind::gap: return "gap";
     case ElementKind::bouc_wen: return "bouc_wen";
+    case ElementKind::poly_spring: return "poly_spring";
     case ElementKind::springpot: return "springpot";
     case ElementKind::parallel: return "parallel";
     case ElementKind::series: return "series";

@@ -57,13 +57,16 @@ enum class ElementKind : std::uint8_t {
   yeoh,               // D10 [N/mm], D20 [N/mm^3], D30 [N/mm^5]: F = 2 (D10 + 2 D20 e^2 + 3 D30 e^4) e  (eq. 3.3)
   dashpot,            // c [N*s/mm]:             F = c de/dt
   maxwell,            // k [N/mm], c [N*s/mm]:   spring k in series with dashpot c (tau = c/k)   (eq. 2.3)
-  friction,           // k [N/mm], fy [N]:       spring k in series with a slider slipping at |F| = fy (eq. 2.9)
-  slider,             // fy [N]:                 rigid-plastic Coulomb slider, |F| <= fy
+  friction,           // k [N/mm], fy [N]:       spring k in series with a slider slipping at |F| = fy (eq. 2.9);
+                      //   or fy_pos, fy_neg [N]: slipping at F = fy_pos in tension, F = -fy_neg in compression
+  slider,             // fy [N]:                 rigid-plastic Coulomb slider, |F| <= fy; or -fy_neg <= F <= fy_pos
   inerter,            // b [N*s^2/mm]:           two-terminal mass, F = b d2e/dt2 (a fluid column)
   quadratic_dashpot,  // cq [N*s^2/mm^2]: turbulent channel flow, F = cq |de/dt| de/dt
-  gap,                // width [mm]:             free play: F = 0 for |e| < width/2, rigid at e = +-width/2
+  gap,                // width, center [mm]:     free play: F = 0 for |e - center| < width/2, rigid at
+                      //   e = center +- width/2; |center| <= width/2 (rest lies in the play)
   bouc_wen,           // k [N/mm], n [-], fy [N]: smooth friction, F = fy z,
                       //   dz/dt = (k/fy) de/dt (1 - |z|^n (1 + sgn(z de/dt)) / 2); n -> inf: friction(k, fy)
+  poly_spring,        // k1 [N/mm], k2 [N/mm^2], k3 [N/mm^3]: F = k1 e + k2 e^2 + k3 e^3 (not odd when k2 != 0)
   springpot,          // k [N/mm], alpha [-], tau [s], f_low, f_high [Hz]: fractional derivative element,
                       //   K* = k (i w tau)^alpha, approximated over [f_low, f_high] by a Maxwell chain
                       //   (runtime/network/springpot.hpp)
@@ -77,10 +80,13 @@ const char* kind_word(ElementKind kind);
 // Parameter slots of each leaf kind, in this order, as indices into CheckedModel::parameters.
 // The checker normalises alternatives: maxwell given tau stores c = k * tau (an Expression),
 // friction and bouc_wen given uy store fy = k * uy. Optional parameters left out (springpot
-// f_low, f_high) are generated with their defaults.
+// f_low, f_high; gap center; poly_spring k2, k3) are generated with their defaults.
 //   spring: {k}   yeoh: {D10, D20, D30}   dashpot: {c}   maxwell: {k, c}
-//   friction: {k, fy}   slider: {fy}   inerter: {b}   quadratic_dashpot: {cq}   gap: {width}
-//   bouc_wen: {k, n, fy}   springpot: {k, alpha, tau, f_low, f_high}   parallel/series: {}
+//   friction: {k, fy} or {k, fy_pos, fy_neg}   slider: {fy} or {fy_pos, fy_neg}   inerter: {b}
+//   quadratic_dashpot: {cq}   gap: {width, center}   bouc_wen: {k, n, fy}   poly_spring: {k1, k2, k3}
+//   springpot: {k, alpha, tau, f_low, f_high}   parallel/series: {}
+// A friction or slider given fy_pos and fy_neg has one slot more than given fy (or uy): the
+// runtime reads its compression yield force from the last slot either way.
 struct Element {
   ElementKind kind = ElementKind::parallel;
   std::string name;             // explicit or generated ("maxwell2"); unique in its naming scope

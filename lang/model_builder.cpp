@@ -154,6 +154,7 @@ class Builder {
     std::vector<std::string> accepted;
     for (const auto& s : spec.slots) accepted.emplace_back(s.name);
     for (const auto& s : spec.alternative) accepted.emplace_back(s.name);
+    for (const auto& s : spec.split) accepted.emplace_back(s.name);
     const std::string what = describe_element(spec.kind, path);
     std::map<std::string, const ast::Argument*> given;
     // Parameters an unknown one was taken for ("tua": "did you mean 'tau'?"): their absence is
@@ -170,10 +171,14 @@ class Builder {
     }
     bool ok = true;
     std::optional<std::size_t> derived_slot;
+    const int split_given = count_split(spec, given);
+    if (split_given > 0 && !check_split(e, spec, given, what)) ok = false;
     for (std::size_t i = 0; i < spec.slots.size(); ++i) {
       const bool last = i + 1 == spec.slots.size();
       const bool has_slot = given.count(std::string(spec.slots[i].name)) != 0;
-      if (last && !spec.alternative.empty()) {
+      if (last && split_given > 0) {
+        // the split stands for the last slot (checked above)
+      } else if (last && !spec.alternative.empty()) {
         std::string alt(spec.alternative[0].name);
         const bool has_alt = given.count(alt) != 0;
         if (has_slot && has_alt) {
@@ -200,7 +205,9 @@ class Builder {
     if (!ok) return std::nullopt;
     Element out{spec.element_kind, name, path, {}, {}, e.where};
     for (std::size_t i = 0; i < spec.slots.size(); ++i) {
-      if (derived_slot == i) {
+      if (split_given > 0 && i + 1 == spec.slots.size()) {
+        for (const auto& side : spec.split) out.parameters.push_back(add_element_parameter(*given[std::string(side.name)], side, spec.kind, path));
+      } else if (derived_slot == i) {
         int alt = add_element_parameter(*given[std::string(spec.alternative[0].name)], spec.alternative[0], spec.kind, path);
         Entry derived;
         derived.parameter.path = path + "." + std::string(spec.slots[i].name);
@@ -219,6 +226,35 @@ class Builder {
       }
     }
     return out;
+  }
+
+  // How many of SPEC's split parameters (fy_pos, fy_neg) are given.
+  static int count_split(const ElementSpec& spec, const std::map<std::string, const ast::Argument*>& given) {
+    int n = 0;
+    for (const auto& side : spec.split) n += given.count(std::string(side.name)) != 0 ? 1 : 0;
+    return n;
+  }
+
+  // A split given: both of its sides, and neither the slot it replaces nor that slot's alternative.
+  bool check_split(const ast::Element& e, const ElementSpec& spec, const std::map<std::string, const ast::Argument*>& given, const std::string& what) {
+    const ParameterSpec& slot = spec.slots.back();
+    std::vector<std::string> others{std::string(slot.name)};
+    for (const auto& a : spec.alternative) others.emplace_back(a.name);
+    bool ok = true;
+    for (const auto& other : others)
+      if (auto it = given.find(other); it != given.end()) {
+        error(it->second->where, fmt::format("{} takes either {} or {} and {}, not both; remove {} or the pair", what, other, spec.split[0].name,
+                                             spec.split[1].name, other));
+        ok = false;
+      }
+    for (std::size_t i = 0; i < spec.split.size(); ++i)
+      if (!given.count(std::string(spec.split[i].name))) {
+        const ParameterSpec& missing = spec.split[i];
+        error(e.where, fmt::format("{} is given {} but not its {} {}; add `{} = ...` (or give {} alone for equal yield forces)", what,
+                                   spec.split[1 - i].name, missing.quantity, missing.name, missing.name, slot.name));
+        ok = false;
+      }
+    return ok;
   }
 
   int add_element_parameter(const ast::Argument& a, const ParameterSpec& spec, std::string_view kind, const std::string& path) {

@@ -176,6 +176,12 @@ Complex subtree_stiffness(const Network& network, int index, double omega) {
   }
 }
 
+// A one-node subtree the closed form takes as a root branch: a poly_spring, or a friction
+// element or slider with one-sided yield forces (network.hpp puts those in subtrees).
+bool is_root_leaf_with_closed_form(const TreeNode& node) {
+  return node.child_count == 0 && (node.kind == NodeKind::poly_spring || node.kind == NodeKind::friction || node.kind == NodeKind::slider);
+}
+
 // Whether the subtree below ROOT holds a gap (its play is fixed in space: not shift-invariant).
 bool has_gap(const Topology& t, int root) {
   const TreeNode& node = t.nodes[static_cast<std::size_t>(root)];
@@ -191,7 +197,8 @@ bool has_closed_form_periodic_state(const Network& network, bool event_driven) {
   const Topology& t = network.topology();
   thread_local PwlBranch branch;
   return std::all_of(t.subtrees.begin(), t.subtrees.end(), [&](int root) {
-    return t.nodes[static_cast<std::size_t>(root)].linear || (event_driven && PwlBranch::build(network, root, branch));
+    const TreeNode& node = t.nodes[static_cast<std::size_t>(root)];
+    return node.linear || is_root_leaf_with_closed_form(node) || (event_driven && PwlBranch::build(network, root, branch));
   });
 }
 
@@ -225,8 +232,24 @@ std::optional<HarmonicPoint> try_closed_form_harmonic_point(const Network& netwo
   std::size_t events_used = 0;
   int cycles = 0;                                // followed by the event-driven branches
   double event_storage = 0.0, event_loss = 0.0;  // their force is summed by LoadingHalf::force, not by a and b
+  // Root-block leaves in subtrees (is_root_leaf_with_closed_form): poly_spring coefficients
+  // summed, and friction elements and sliders at their mean yield force (see the header).
+  double k1 = 0.0, k2 = 0.0, k3 = 0.0;
+  thread_local std::vector<std::pair<double, double>> frictions;  // k, fy
+  thread_local std::vector<double> sliders;                       // fy
+  frictions.clear(), sliders.clear();
+  for (std::size_t i = 0; i < c.friction_k.size(); ++i) frictions.emplace_back(c.friction_k[i], c.friction_fy[i]);
+  sliders.assign(c.slider_fy.begin(), c.slider_fy.end());
   for (int root : network.topology().subtrees) {
-    if (!network.topology().nodes[static_cast<std::size_t>(root)].linear) {
+    const TreeNode& node = network.topology().nodes[static_cast<std::size_t>(root)];
+    if (is_root_leaf_with_closed_form(node)) {
+      const auto p = [&](int slot) { return network.parameter(node.param[slot]); };
+      if (node.kind == NodeKind::poly_spring) k1 += p(0), k2 += p(1), k3 += p(2);
+      if (node.kind == NodeKind::friction) frictions.emplace_back(p(0), 0.5 * (p(1) + p(2)));
+      if (node.kind == NodeKind::slider) sliders.push_back(0.5 * (p(0) + p(1)));
+      continue;
+    }
+    if (!node.linear) {
       if (!PwlBranch::build(network, root, branch)) throw std::logic_error("closed_form_harmonic_point: a subtree has no closed form");
       if (preload != 0.0 && has_gap(network.topology(), root)) return std::nullopt;  // its play is not centred on the drive
       if (event_branches.size() <= events_used) event_branches.emplace_back();
@@ -255,11 +278,15 @@ std::optional<HarmonicPoint> try_closed_form_harmonic_point(const Network& netwo
   h.y3 = 4.0 * d20 + 60.0 * d30 * p2;
   h.y4 = 30.0 * d30 * p;
   h.y5 = 6.0 * d30;
+  // P(p + u) - P(p) for P(u) = k1 u + k2 u^2 + k3 u^3.
+  h.y1 += k1 + 2.0 * k2 * p + 3.0 * k3 * p2;
+  h.y2 += k2 + 3.0 * k3 * p;
+  h.y3 += k3;
   // First harmonic of the odd part: the mean of u^3 sin and u^5 sin over a cycle is 3/4 u0^3, 5/8 u0^5;
   // the even part adds nothing to K*_1 nor to U (it is conservative and even in u).
   storage += h.y1 + 0.75 * h.y3 * u0 * u0 + 0.625 * h.y5 * u0 * u0 * u0 * u0;
-  for (std::size_t i = 0; i < c.friction_k.size(); ++i) {
-    const double k = c.friction_k[i], fy = c.friction_fy[i], uy = fy / k;
+  for (const auto& [k, fy] : frictions) {
+    const double uy = fy / k;
     if (u0 <= uy) {
       h.a += k * u0;
       storage += k;
@@ -273,7 +300,7 @@ std::optional<HarmonicPoint> try_closed_form_harmonic_point(const Network& netwo
     storage += k / pi * (theta + half_pi + s * std::cos(theta));
     loss += 4.0 * fy * (u0 - uy) / (pi * u0 * u0);
   }
-  for (double fy : c.slider_fy) {
+  for (double fy : sliders) {
     h.constant += fy;
     loss += 4.0 * fy / (pi * u0);
   }

@@ -12,6 +12,13 @@
 //   friction k, fy       u0 <= uy = fy/k: F = k u (elastic; the state reached from rest);
 //                        u0 > uy: F = min(fy, -fy + k (u + u0)) (Masing loop, C.2.1)
 //   slider fy            F = fy (rigid-plastic, B.25)
+//   poly_spring k1, k2, k3   F = k1 u + k2 u^2 + k3 u^3: odd part k1 u + k3 u^3 (K' = k1 + (3/4) k3 u0^2),
+//                        even part k2 u^2 (nothing to K*_1 and U; F^ = (max F - min F)/2 as for a preload)
+//   friction, slider with one-sided yield forces fy_pos, fy_neg (a root-block leaf): shaken down
+//                        from rest, the steady cycle is that of fy = (fy_pos + fy_neg)/2 plus the
+//                        constant (fy_pos - fy_neg)/2 (loading min(fy_pos, -fy_neg + k (u + u0)) =
+//                        c + min(fy, -fy + k (u + u0))), which no measure sees: K*_1, U and
+//                        max F - min F are those of the mean yield force
 //   linear subtree       F = u0 (K' sin(theta) + K'' cos(theta)), K* = K' + i K'' composed from
 //                        spring k, dashpot i w c, Maxwell k i w tau / (1 + i w tau), inerter
 //                        -b w^2 (springpot chains are Maxwell elements), parallel: sum K*,
@@ -48,7 +55,8 @@
 namespace rheo::runtime {
 
 // True when every subtree (nested block, or inerter leaf) is linear (springs, dashpots, Maxwell
-// elements, springpot chains and inerters only), or piecewise linear with an event-driven
+// elements, springpot chains and inerters only), a root-block poly_spring or one-sided friction
+// element or slider (above), or piecewise linear with an event-driven
 // periodic state (pwl_branch.hpp: those and friction elements, sliders and gaps) unless
 // `event_driven` is false.
 bool has_closed_form_periodic_state(const Network& network, bool event_driven = true);

@@ -24,8 +24,14 @@ struct BranchBuilder {
       case NodeKind::spring: add(PwlEdgeKind::spring, a, b, parameter(node, 0)); return true;
       case NodeKind::dashpot: add(PwlEdgeKind::dashpot, a, b, parameter(node, 0)); return true;
       case NodeKind::inerter: add(PwlEdgeKind::inerter, a, b, parameter(node, 0)); return true;
-      case NodeKind::slider: add(PwlEdgeKind::slider, a, b, parameter(node, 0)); return true;
-      case NodeKind::gap: add(PwlEdgeKind::gap, a, b, 0.5 * parameter(node, 0)); return true;
+      case NodeKind::slider:
+        if (node.param[1] != node.param[0]) return false;  // one-sided: not half-wave symmetric
+        add(PwlEdgeKind::slider, a, b, parameter(node, 0));
+        return true;
+      case NodeKind::gap:
+        if (parameter(node, 1) != 0.0 || network.model().parameters[static_cast<std::size_t>(node.param[1])].free) return false;
+        add(PwlEdgeKind::gap, a, b, 0.5 * parameter(node, 0));
+        return true;
       case NodeKind::maxwell: {
         const int mid = new_node();
         add(PwlEdgeKind::spring, a, mid, parameter(node, 0));
@@ -33,6 +39,7 @@ struct BranchBuilder {
         return true;
       }
       case NodeKind::friction: {
+        if (node.param[2] != node.param[1]) return false;  // one-sided: not half-wave symmetric
         const int mid = new_node();
         add(PwlEdgeKind::spring, a, mid, parameter(node, 0));
         add(PwlEdgeKind::slider, mid, b, parameter(node, 1));
@@ -52,6 +59,7 @@ struct BranchBuilder {
         return true;
       }
       case NodeKind::yeoh:
+      case NodeKind::poly_spring:
       case NodeKind::quadratic_dashpot:
       case NodeKind::bouc_wen: return false;
     }

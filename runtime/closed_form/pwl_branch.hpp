@@ -48,7 +48,10 @@ struct PwlBranch {
   bool odd = true;
 
   // The graph of subtree `root` of `network` (a node index of Topology::subtrees), or nothing
-  // when the subtree is not piecewise linear (a yeoh, quadratic_dashpot or bouc_wen below it),
+  // when the subtree is not piecewise linear (a yeoh, poly_spring, quadratic_dashpot or bouc_wen
+  // below it), holds an element whose periodic force need not be half-wave symmetric (a
+  // friction element or slider with one-sided yield forces, a gap with a center written other
+  // than 0 or fitted: the event path measures max F = -min F, so these time-step),
   // is linear (no slider, friction or gap: the phasor path serves it), or could lose its
   // determinacy in some mode: sliders and gaps that close a loop, or a path from the terminal
   // to ground, when rigid (their forces would not be fixed by the network), or is too large

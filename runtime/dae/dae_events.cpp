@@ -48,7 +48,7 @@ bool DaeIntegrator::switch_inconsistent_modes() {
     const Edge& edge = switch_edge(l);
     std::int8_t& mode = at(modes_, l);
     const double lambda = at(y_, layout_.switch_force(l));
-    if (edge.kind == EdgeKind::slider && mode == 0 && std::abs(lambda) > edge.p[0] * (1.0 + 0.5 * kSlack)) {
+    if (edge.kind == EdgeKind::slider && mode == 0 && (lambda > edge.p[0] * (1.0 + 0.5 * kSlack) || -lambda > edge.p[1] * (1.0 + 0.5 * kSlack))) {
       mode = lambda > 0.0 ? 1 : -1;
       consistent = false;
     } else if (edge.kind == EdgeKind::gap && mode != 0 && lambda * mode < -1e-12 * options_.force_scale) {
@@ -115,7 +115,7 @@ void DaeIntegrator::switch_modes(double t, const std::vector<int>& found) {
       }
     } else if (mode == 0) {
       mode = at(found, 2 * l) ? 1 : -1;
-      held = mode * edge.p[0];
+      held = gap_stop(edge, mode);
     } else {
       mode = 0;
     }

@@ -1,6 +1,7 @@
 #include "runtime/dae/dae_graph.hpp"
 
 #include "runtime/core/errors.hpp"
+#include "runtime/network/leaf_kernels.hpp"
 
 #include <fmt/format.h>
 
@@ -19,6 +20,8 @@ struct GraphBuilder {
   DaeGraph& graph;
 
   double value(const lang::Element& e, int slot) const { return network.parameter(e.parameters[static_cast<std::size_t>(slot)]); }
+  // The last slot: a slider's or friction element's compression yield force (fy, or fy_neg when given).
+  static int last(const lang::Element& e) { return static_cast<int>(e.parameters.size()) - 1; }
   int new_node() { return graph.internal_nodes++; }
 
   lang::SourceLocation where;  // of the leaf being placed
@@ -61,8 +64,11 @@ struct GraphBuilder {
       case ElementKind::quadratic_dashpot: probe.edges = {add_edge(EdgeKind::quadratic_dashpot, a, b, {value(e, 0)}, e.path)}; break;
       case ElementKind::inerter: probe.edges = {add_edge(EdgeKind::inerter, a, b, {value(e, 0)}, e.path)}; break;
       case ElementKind::bouc_wen: probe.edges = {add_edge(EdgeKind::bouc_wen, a, b, {value(e, 0), value(e, 1), value(e, 2)}, e.path)}; break;
-      case ElementKind::slider: probe.edges = {add_edge(EdgeKind::slider, a, b, {value(e, 0)}, e.path)}; break;
-      case ElementKind::gap: probe.edges = {add_edge(EdgeKind::gap, a, b, {0.5 * value(e, 0)}, e.path)}; break;
+      case ElementKind::slider: probe.edges = {add_edge(EdgeKind::slider, a, b, {value(e, 0), value(e, last(e))}, e.path)}; break;
+      case ElementKind::gap:
+        probe.edges = {add_edge(EdgeKind::gap, a, b, {0.5 * value(e, 0), gap_center(value(e, 0), value(e, 1))}, e.path)};
+        break;
+      case ElementKind::poly_spring: probe.edges = {add_edge(EdgeKind::poly_spring, a, b, {value(e, 0), value(e, 1), value(e, 2)}, e.path)}; break;
       case ElementKind::maxwell: {
         const int mid = new_node();
         probe.edges = {add_edge(EdgeKind::spring, a, mid, {value(e, 0)}, e.path), add_edge(EdgeKind::dashpot, mid, b, {value(e, 1)}, e.path)};
@@ -70,7 +76,8 @@ struct GraphBuilder {
       }
       case ElementKind::friction: {
         const int mid = new_node();
-        probe.edges = {add_edge(EdgeKind::spring, a, mid, {value(e, 0)}, e.path), add_edge(EdgeKind::slider, mid, b, {value(e, 1)}, e.path)};
+        probe.edges = {add_edge(EdgeKind::spring, a, mid, {value(e, 0)}, e.path),
+                       add_edge(EdgeKind::slider, mid, b, {value(e, 1), value(e, last(e))}, e.path)};
         break;
       }
       case ElementKind::springpot: place_springpot(e, a, b, probe); break;

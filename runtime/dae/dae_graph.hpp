@@ -9,7 +9,8 @@
 //   spring     F = k e                        yeoh       F = 2 (D10 + 2 D20 e^2 + 3 D30 e^4) e (eq. 3.3)
 //   dashpot    F = c de/dt                    quadratic  F = cq de/dt sqrt((de/dt)^2 + v_eps^2)
 //   inerter    F = b d2e/dt2                  bouc_wen   F = fy z, dz/dt = (k/fy) de/dt (1 - |z|^n (1 + sgn(z de/dt))/2)
-//   slider     |F| <= fy, sticks below fy     gap        F = 0 for |e| < w/2, rigid at e = +-w/2
+//   slider     -fy_neg <= F <= fy_pos, sticks inside     gap  F = 0 for |e - c| < w/2, rigid at e = c +- w/2
+//   poly_spring F = k1 e + k2 e^2 + k3 e^3
 //   maxwell(k, c)  -> spring k + dashpot c through a new node (eq. 2.3)
 //   friction(k, fy) -> spring k + slider fy through a new node (eq. 2.9)
 //   springpot       -> its Maxwell chain (runtime/network/springpot.hpp), each mode as a maxwell
@@ -27,7 +28,7 @@
 
 namespace rheo::runtime {
 
-enum class EdgeKind : std::uint8_t { spring, yeoh, dashpot, quadratic_dashpot, inerter, bouc_wen, slider, gap };
+enum class EdgeKind : std::uint8_t { spring, yeoh, poly_spring, dashpot, quadratic_dashpot, inerter, bouc_wen, slider, gap };
 
 inline constexpr int kTerminal = -1;                          // node index of the driven terminal
 inline constexpr int kGround = -2;                            // node index of ground
@@ -36,8 +37,9 @@ inline constexpr double kQuadraticDashpotVelocityEps = 1e-3;  // v_eps [mm/s]
 struct Edge {
   EdgeKind kind = EdgeKind::spring;
   int a = kTerminal, b = kGround;  // e = x_a - x_b
-  double p[3] = {0.0, 0.0, 0.0};   // spring {k}, yeoh {D10, D20, D30}, dashpot {c}, quadratic {cq},
-                                   // inerter {b}, bouc_wen {k, n, fy}, slider {fy}, gap {w/2}
+  double p[3] = {0.0, 0.0, 0.0};   // spring {k}, yeoh {D10, D20, D30}, poly_spring {k1, k2, k3}, dashpot {c},
+                                   // quadratic {cq}, inerter {b}, bouc_wen {k, n, fy},
+                                   // slider {fy_pos, fy_neg} (both fy when symmetric), gap {w/2, center}
   std::string path;                // the user's element this edge belongs to
   lang::SourceLocation where;      // where that element is written
 };

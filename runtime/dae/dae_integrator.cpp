@@ -185,6 +185,7 @@ void DaeIntegrator::edge_forces(const DriveState& drive, const double* y, const 
     switch (edge.kind) {
       case EdgeKind::spring: force[i] = edge.p[0] * e; break;
       case EdgeKind::yeoh: force[i] = YeohLaw{edge.p[0], edge.p[1], edge.p[2]}.force(e); break;
+      case EdgeKind::poly_spring: force[i] = PolyLaw{edge.p[0], edge.p[1], edge.p[2]}.force(e); break;
       case EdgeKind::dashpot: force[i] = edge.p[0] * at(rate_, rate_index); break;
       case EdgeKind::quadratic_dashpot: {
         const double v = at(rate_, rate_index);
@@ -223,7 +224,7 @@ void DaeIntegrator::residual(double t, const double* y, const double* yp, double
     const int i = layout_.switch_force(l);
     const double lambda = y[i];
     if (is_rigid(edge, mode)) r[i] = elongation(y, drive, edge) - at(held_, l);
-    else if (edge.kind == EdgeKind::slider) r[i] = lambda - mode * edge.p[0];
+    else if (edge.kind == EdgeKind::slider) r[i] = lambda - slip_force(edge, mode);
     else r[i] = lambda;
   }
   const int s0 = layout_.rate_coordinate(0), w0 = layout_.inerter_velocity(0), z0 = layout_.bouc_wen_state(0);
@@ -258,10 +259,10 @@ void DaeIntegrator::roots(double t, const double* y, const double* yp, double* g
     const double lambda = y[layout_.switch_force(l)];
     double* out = g + 2 * l;
     if (edge.kind == EdgeKind::slider) {
-      if (mode == 0) out[0] = lambda - edge.p[0] * (1.0 + kSlack), out[1] = lambda + edge.p[0] * (1.0 + kSlack);
+      if (mode == 0) out[0] = lambda - edge.p[0] * (1.0 + kSlack), out[1] = lambda + edge.p[1] * (1.0 + kSlack);
       else out[0] = elongation_rate(yp, drive, edge), out[1] = 1.0;
     } else {
-      const double e = elongation(y, drive, edge);
+      const double e = elongation(y, drive, edge) - edge.p[1];  // from the centre of the play
       if (mode == 0) out[0] = e - edge.p[0] * (1.0 + kGapSlack), out[1] = e + edge.p[0] * (1.0 + kGapSlack);
       else out[0] = lambda, out[1] = 1.0;
     }
@@ -288,9 +289,9 @@ void DaeIntegrator::start(const DriveSignal& drive, const std::vector<double>* p
       const double e = elongation(y_.data(), at_start, edge);
       if (edge.kind == EdgeKind::slider) {
         at(held_, l) = e;
-      } else if (std::abs(e) >= edge.p[0] * (1.0 - 1e-12)) {  // a gap on its stop
-        at(modes_, l) = e > 0.0 ? 1 : -1;
-        at(held_, l) = at(modes_, l) * edge.p[0];
+      } else if (std::abs(e - edge.p[1]) >= edge.p[0] * (1.0 - 1e-12)) {  // a gap on its stop
+        at(modes_, l) = e > edge.p[1] ? 1 : -1;
+        at(held_, l) = gap_stop(edge, at(modes_, l));
       }
     }
   }

@@ -27,8 +27,9 @@ double node_force_scale(const Network& network, int node_index, double length, d
     case NodeKind::dashpot: return p(0) * rate;
     case NodeKind::quadratic_dashpot: return p(0) * rate * rate;
     case NodeKind::maxwell: return std::min(p(0) * length, p(1) * rate);
-    case NodeKind::friction: return std::min(p(0) * length, p(1));
-    case NodeKind::slider: return p(0);
+    case NodeKind::friction: return std::min(p(0) * length, 0.5 * (p(1) + p(2)));
+    case NodeKind::slider: return 0.5 * (p(0) + p(1));
+    case NodeKind::poly_spring: return p(0) * length;
     case NodeKind::inerter: return p(0) * omega * omega * length;
     case NodeKind::bouc_wen: return std::min(p(2), p(0) * length);
     case NodeKind::gap: return std::numeric_limits<double>::infinity();  // rigid in contact
@@ -65,7 +66,7 @@ double dae_force_scale(const Network& network, double length, double rate) {
 double dae_newton_tolerance(const DaeGraph& graph, double length, double force_scale) {
   double stiffest = 0.0;
   for (const Edge& edge : graph.edges)
-    if (edge.kind == EdgeKind::spring || edge.kind == EdgeKind::yeoh)
+    if (edge.kind == EdgeKind::spring || edge.kind == EdgeKind::yeoh || edge.kind == EdgeKind::poly_spring)
       stiffest = std::max(stiffest, (edge.kind == EdgeKind::yeoh ? 2.0 : 1.0) * std::abs(edge.p[0]) * length);
   constexpr double ida_default = 0.33, floor = 1e-6;
   return stiffest > 0.0 ? std::clamp(ida_default * force_scale / stiffest, floor, ida_default) : ida_default;

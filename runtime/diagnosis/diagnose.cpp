@@ -54,6 +54,8 @@ std::string element_word(Effect effect) {
     case Effect::nonlinear_elasticity: return "nonlinear";
     case Effect::coupled_amplitude_frequency: return "coupled";
     case Effect::inertia: return "resonance";
+    case Effect::asymmetry: return "asymmetric";
+    case Effect::backlash: return "backlash";
     case Effect::none: break;
   }
   return "added";

@@ -14,11 +14,18 @@ enum class Effect {
   nonlinear_elasticity,         // stiffening or softening at large displacement
   coupled_amplitude_frequency,  // amplitude and frequency dependence do not separate (thesis ch. 9)
   inertia,                      // a resonance: stiffness rising above its trend, a phase peak
+  asymmetry,                    // a law that is not odd: yield or stiffness differ in tension and compression
+  backlash,                     // free play, possibly off-centre, before a branch engages
   none,                         // the residual is at the noise level
 };
 
-inline constexpr std::array<Effect, 5> kEffects{Effect::amplitude_dependence, Effect::rate_dependence, Effect::nonlinear_elasticity,
-                                                Effect::coupled_amplitude_frequency, Effect::inertia};
+inline constexpr std::array<Effect, 7> kEffects{Effect::amplitude_dependence,
+                                                Effect::rate_dependence,
+                                                Effect::nonlinear_elasticity,
+                                                Effect::coupled_amplitude_frequency,
+                                                Effect::inertia,
+                                                Effect::asymmetry,
+                                                Effect::backlash};
 
 constexpr std::string_view effect_name(Effect effect) {
   switch (effect) {
@@ -27,6 +34,8 @@ constexpr std::string_view effect_name(Effect effect) {
     case Effect::nonlinear_elasticity: return "nonlinear-elasticity";
     case Effect::coupled_amplitude_frequency: return "coupled-amplitude-frequency";
     case Effect::inertia: return "inertia";
+    case Effect::asymmetry: return "asymmetry";
+    case Effect::backlash: return "backlash";
     case Effect::none: return "none";
   }
   return "none";

@@ -26,6 +26,8 @@ std::string pattern_sentence(Effect effect, const ResidualPatterns& p) {
       case Effect::nonlinear_elasticity: return "the force residual grows with displacement, as stiffening or softening does";
       case Effect::coupled_amplitude_frequency: return "the loop shape changes with amplitude in a way the model's branches cannot follow";
       case Effect::inertia: return "the force residual follows the acceleration";
+      case Effect::asymmetry: return "the force residual differs between tension and compression";
+      case Effect::backlash: return "the force residual is largest where the loops turn, as free play before contact gives";
       case Effect::none: return "the force residual shows no pattern an added element explains";
     }
   }
@@ -43,6 +45,12 @@ std::string pattern_sentence(Effect effect, const ResidualPatterns& p) {
     case Effect::inertia:
       return fmt::format("the measured phase exceeds the model's most near {:.3g} Hz (by {:.2f} deg on average over amplitudes)",
                          h.phase_peak_frequency, degrees(h.phase_peak));
+    case Effect::asymmetry: return "the loops differ between tension and compression";
+    case Effect::backlash:
+      return fmt::format(
+          "the stiffness residual changes with amplitude ({:.0f} % of the residual varies with amplitude alone), as free "
+          "play taken up at larger amplitudes does",
+          percent(h.amplitude_share));
     case Effect::none: break;
   }
   return "the residual shows no pattern an added element explains";

@@ -166,9 +166,32 @@ std::vector<double Trial::*> location_fields(Shape shape) {
     case Shape::capped_maxwell: return {&Trial::time, &Trial::slip};
     case Shape::capped_column: return {&Trial::frequency, &Trial::slip, &Trial::damping_ratio};
     case Shape::tuned_column: return {&Trial::frequency, &Trial::damping_ratio};
-    case Shape::yeoh: return {};
+    case Shape::yeoh:
+    case Shape::even_spring: return {};
+    case Shape::asymmetric_friction:
+    case Shape::gapped_spring: return {&Trial::slip};
   }
   return {};
+}
+
+// k2 of an even_spring trial (F = k1 u + k2 u^2) on the objective; returns that objective. The
+// even part adds nothing to a harmonic point's measures where the odd part sets the extrema
+// (max F - min F, K*_1): its signature there is zero, and harmonic data leave k2 at 0.
+double size_even_spring(Trial& trial, const AddedObjective& objective, const std::vector<FitDataSet>& data, const DataScales& scales,
+                        const RootSpring& root_spring) {
+  Signature square;
+  for (const auto& set : data) {
+    std::vector<Complex> k;
+    std::vector<double> s;
+    if (set.is_harmonic()) k.assign(set.harmonic().size(), Complex{0.0, 0.0});
+    else
+      for (double u : set.history().drive.displacement) s.push_back(u * u);
+    square.harmonic.push_back(k), square.history.push_back(s);
+  }
+  trial.stiffness = root_spring.name.empty() ? 0.02 * scales.bounds.stiffness : root_spring.k;
+  const double range = std::max(trial.stiffness, scales.bounds.stiffness) / scales.bounds.max_displacement;
+  trial.k2 = minimise_1d([&](double x) { return objective({&square}, {x}); }, -range, range, 41, false);
+  return objective({&square}, {trial.k2});
 }
 
 // D20 and D30 of a yeoh trial by coordinate descent on the objective; returns that objective.
@@ -235,6 +258,7 @@ DataScales data_scales(const std::vector<FitDataSet>& data) {
     s.bounds.stiffness = stiffness[stiffness.size() / 2];
   }
   s.bounds.max_displacement = max_u > 0.0 ? max_u : 1.0;
+  s.has_history = std::any_of(data.begin(), data.end(), [](const FitDataSet& set) { return !set.is_harmonic(); });
   return s;
 }
 
@@ -269,6 +293,23 @@ std::vector<Trial> trial_family(Effect effect, const DataScales& s, const std::s
       family.back().replaces = root_spring;
       break;
     }
+    case Effect::asymmetry:  // one-sided yield forces show in histories only (see trial.hpp)
+      add(Shape::even_spring, 0.0, 0.0, 0.0, 0.0);
+      family.back().replaces = root_spring;
+      if (s.has_history)
+        for (double uy : log_spaced(s.amplitude_low / 30.0, s.amplitude_high, 6))
+          for (double bias : {-0.5, 0.5}) {
+            add(Shape::asymmetric_friction, 0.0, uy, 0.0, 0.0);
+            family.back().bias = bias;
+          }
+      break;
+    case Effect::backlash:
+      for (double half : log_spaced(s.amplitude_low / 10.0, s.amplitude_high, 6))
+        for (double bias : {-0.5, 0.0, 0.5}) {
+          add(Shape::gapped_spring, 0.0, half, 0.0, 0.0);
+          family.back().bias = bias;
+        }
+      break;
     case Effect::none: break;
   }
   return family;
@@ -283,6 +324,7 @@ std::vector<ScreenedEffect> screen(const FitResult& fit, const std::vector<FitDa
   // Sizes TRIAL (its stiffness, or D20 and D30) for the least objective and returns that objective.
   auto size_trial = [&](Trial& trial) {
     if (trial.shape == Shape::yeoh) return size_yeoh(trial, objective, data, scales, root_spring);
+    if (trial.shape == Shape::even_spring) return size_even_spring(trial, objective, data, scales, root_spring);
     trial.stiffness = 1.0;  // the signature is per unit stiffness; a refined trial arrives sized
     const Signature s = simulate_alone(trial, data, score, scales.bounds);
     trial.stiffness = minimise_1d([&](double a) { return objective({&s}, {a}); }, k_min, k_max, 30, true);
@@ -291,6 +333,7 @@ std::vector<ScreenedEffect> screen(const FitResult& fit, const std::vector<FitDa
   std::vector<ScreenedEffect> out;
   for (Effect effect : kEffects) {
     if (effect == Effect::nonlinear_elasticity && root_spring.has_yeoh) continue;
+    if (effect == Effect::asymmetry && !scales.has_history) continue;  // harmonic measures do not see it
     ScreenedEffect best;
     best.effect = effect;
     best.gain = -1.0;

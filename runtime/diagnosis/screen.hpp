@@ -28,6 +28,7 @@ struct DataScales {
   double frequency_low = 1.0, frequency_high = 1.0;  // [Hz]: measured, or a history's rates
   double amplitude_low = 1.0, amplitude_high = 1.0;  // [mm]: measured amplitudes, or a history's turning points
   BoundScales bounds;                                // typical stiffness and largest displacement
+  bool has_history = false;                          // some data set is a history
 };
 
 DataScales data_scales(const std::vector<FitDataSet>& data);
@@ -40,7 +41,8 @@ struct ScreenedEffect {
 };
 
 // FIT: the model fitted to DATA. Effects the model cannot take (a yeoh spring where the root
-// already has one) are left out; the others are sorted by gain, largest first.
+// already has one) or the data cannot show (asymmetry without a history: harmonic measures see
+// only a law's odd part and a yield force's mean) are left out; the others are sorted by gain, largest first.
 std::vector<ScreenedEffect> screen(const FitResult& fit, const std::vector<FitDataSet>& data, const ScoreSettings& score);
 
 // The trials of EFFECT over SCALES at unit stiffness (the yeoh one is sized by screen()).

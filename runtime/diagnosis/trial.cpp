@@ -59,6 +59,27 @@ std::vector<std::string> trial_statement(const Trial& t, const std::string& name
       column_lines(t, s, lines);
       lines.push_back("}");
       break;
+    case Shape::asymmetric_friction:
+      lines.push_back(fmt::format("friction {} (k = {}, fy_pos = {}, fy_neg = {})", name, k,
+                                  around(t.stiffness * t.slip * (1.0 + t.bias), 1.0, "N"), around(t.stiffness * t.slip * (1.0 - t.bias), 1.0, "N")));
+      break;
+    case Shape::even_spring: {
+      const double range = std::max(t.stiffness, s.stiffness) / s.max_displacement;
+      const double k2 = std::clamp(t.k2, -0.99 * range, 0.99 * range);
+      lines.push_back(fmt::format("poly_spring {} (k1 = {}, k2 = {})", name,
+                                  bounded(t.stiffness, t.stiffness / 100.0, t.stiffness * 100.0, 1.0, "N/mm"),
+                                  bounded(k2, -range, range, 1.0, "N/mm^2")));
+      break;
+    }
+    case Shape::gapped_spring: {
+      const double u = s.max_displacement;
+      lines.push_back(fmt::format("series {} {{", name));
+      lines.push_back(fmt::format("  gap    play (width = {}, center = {})", around(2.0 * t.slip, 1.0, "mm"),
+                                  bounded(std::clamp(t.bias * t.slip, -u, u), -u, u, 1.0, "mm")));
+      lines.push_back(fmt::format("  spring stop (k = {})", k));
+      lines.push_back("}");
+      break;
+    }
     case Shape::yeoh: {
       // D20, D30 ranges relative to the measured stiffness: an added yeoh starts with a small D10.
       const double d10 = t.stiffness / 2.0, range = std::max(d10, s.stiffness / 2.0), u = s.max_displacement;
@@ -91,6 +112,16 @@ std::string trial_summary(const Trial& t) {
                  ? fmt::format("a yeoh spring (D10 = {:.4g} N/mm, D20 = {:.4g} N/mm^3, D30 = {:.4g} N/mm^5)", t.stiffness / 2, t.d20, t.d30)
                  : fmt::format("a yeoh spring in place of the linear spring '{}' (D10 = {:.4g} N/mm, D20 = {:.4g} N/mm^3, D30 = {:.4g} N/mm^5)",
                                t.replaces, t.stiffness / 2, t.d20, t.d30);
+    case Shape::asymmetric_friction:
+      return fmt::format("a friction element with one-sided yield forces (k = {:.4g} N/mm, fy_pos = {:.4g} N, fy_neg = {:.4g} N)", t.stiffness,
+                         t.stiffness * t.slip * (1.0 + t.bias), t.stiffness * t.slip * (1.0 - t.bias));
+    case Shape::even_spring:
+      return t.replaces.empty() ? fmt::format("a polynomial spring (k1 = {:.4g} N/mm, k2 = {:.4g} N/mm^2)", t.stiffness, t.k2)
+                                : fmt::format("a polynomial spring in place of the linear spring '{}' (k1 = {:.4g} N/mm, k2 = {:.4g} N/mm^2)",
+                                              t.replaces, t.stiffness, t.k2);
+    case Shape::gapped_spring:
+      return fmt::format("a spring (k = {:.4g} N/mm) behind free play (width = {:.4g} mm, center = {:.4g} mm)", t.stiffness, 2.0 * t.slip,
+                         t.bias * t.slip);
   }
   return {};
 }
@@ -103,6 +134,9 @@ int added_parameter_count(const Trial& t) {
     case Shape::capped_column: return 4;
     case Shape::tuned_column: return 3;
     case Shape::yeoh: return t.replaces.empty() ? 3 : 2;
+    case Shape::asymmetric_friction: return 3;
+    case Shape::even_spring: return t.replaces.empty() ? 2 : 1;
+    case Shape::gapped_spring: return 3;
   }
   return 0;
 }

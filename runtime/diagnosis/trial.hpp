@@ -17,6 +17,15 @@
 //   yeoh            yeoh (D10, D20, D30) (eq. 3.3)           nonlinear-elasticity: replaces the root
 //                                                            spring `replaces` (D10 = k/2) or, when
 //                                                            there is none, is added (D10 = k/2 small)
+//   asymmetric_friction  friction (k, fy_pos = k slip (1 + bias), fy_neg = k slip (1 - bias))
+//                                                            asymmetry: a yield force that differs in
+//                                                            tension and compression
+//   even_spring     poly_spring (k1, k2)                     asymmetry: F = k1 u + k2 u^2; replaces the
+//                                                            root spring `replaces` (k1 = k) or is added
+//                                                            (k1 = k small)
+//   gapped_spring   series { gap (width = 2 slip, center = bias slip); spring (k) }
+//                                                            backlash: a spring engaged after free play
+//                                                            whose centre is offset by bias half-widths
 #pragma once
 
 #include "runtime/diagnosis/effect.hpp"
@@ -26,7 +35,7 @@
 
 namespace rheo::runtime::diagnosis {
 
-enum class Shape { maxwell, friction, capped_maxwell, capped_column, tuned_column, yeoh };
+enum class Shape { maxwell, friction, capped_maxwell, capped_column, tuned_column, yeoh, asymmetric_friction, even_spring, gapped_spring };
 
 struct Trial {
   Effect effect = Effect::none;
@@ -38,7 +47,9 @@ struct Trial {
   double damping_ratio = 0.0;  // zeta [-]
   double d20 = 0.0;            // yeoh [N/mm^3]
   double d30 = 0.0;            // yeoh [N/mm^5]
-  std::string replaces;        // yeoh: the root spring it replaces; empty: added
+  double bias = 0.0;           // asymmetric_friction, gapped_spring [-], in (-1, 1)
+  double k2 = 0.0;             // even_spring [N/mm^2]
+  std::string replaces;        // yeoh, even_spring: the root spring it replaces; empty: added
 };
 
 // Scales of the measurement that bound the added parameters.
@@ -51,7 +62,9 @@ struct BoundScales {
 // (wide, around the values, so that the refit can move them): k within [K/1e4, 10 K] of the
 // measured stiffness, times, slips, inertances and damping within three decades either side,
 // D20 within [-D, 5 D]/u^2 and D30 within [0, 5 D/u^4] for the largest displacement u, D the larger of
-// D10 and half the measured stiffness.
+// D10 and half the measured stiffness; k2 within [-R, R]/u, R the larger of k1 and the measured
+// stiffness; a gap's center within [-u, u] (a fitted center beyond half the width acts as the
+// stop touching at rest).
 std::vector<std::string> trial_statement(const Trial& trial, const std::string& name, const BoundScales& scales);
 
 // One line for people: "a Maxwell element (k = 51.2 N/mm, tau = 3.2 ms)".

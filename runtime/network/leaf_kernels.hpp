@@ -125,6 +125,49 @@ inline ForceSlope friction_step(double k, double fy, double force_before, double
   if (trial < -fy) return {-fy, 0.0};
   return {trial, k};
 }
+// The same with one-sided yield forces: slipping at F = fy_pos in tension and F = -fy_neg in
+// compression (fy_pos, fy_neg > 0 [N]).
+inline ForceSlope friction_step(double k, double fy_pos, double fy_neg, double force_before, double de) {
+  const double trial = force_before + k * de;
+  if (trial > fy_pos) return {fy_pos, 0.0};
+  if (trial < -fy_neg) return {-fy_neg, 0.0};
+  return {trial, k};
+}
+
+// The centre [mm] of a gap's play as the kernels take it: its `center` within +-width/2, so that
+// the rest position e = 0 lies in the play (a written value beyond is a ModelError, network.hpp;
+// a fit's trial value beyond acts as the stop touching at rest).
+inline double gap_center(double width, double center) { return std::clamp(center, -0.5 * width, 0.5 * width); }
+
+// Polynomial spring: F = k1 e + k2 e^2 + k3 e^3, dF/de = k1 + 2 k2 e + 3 k3 e^2 (k1 > 0 [N/mm],
+// k2 [N/mm^2], k3 [N/mm^3]). Not odd when k2 != 0: it stiffens on one side and softens on the
+// other. Its tangent stays positive on the interval of `monotone_range` around e = 0.
+struct PolyLaw {
+  double k1, k2, k3;
+  double force(double e) const { return e * (k1 + e * (k2 + k3 * e)); }
+  double slope(double e) const { return k1 + e * (2.0 * k2 + 3.0 * k3 * e); }
+  struct Range {
+    double lo, hi;  // mm; infinite on a side where the tangent never reaches zero
+  };
+  // The roots of 3 k3 e^2 + 2 k2 e + k1 nearest e = 0 on each side (k1 > 0, so e = 0 is none).
+  Range monotone_range() const {
+    const double a = 3.0 * k3, b = 2.0 * k2, c = k1, inf = std::numeric_limits<double>::infinity();
+    Range r{-inf, inf};
+    auto take = [&](double root) {
+      if (root > 0.0) r.hi = std::min(r.hi, root);
+      else if (root < 0.0) r.lo = std::max(r.lo, root);
+    };
+    if (a == 0.0) {
+      if (b != 0.0) take(-c / b);
+    } else if (const double disc = b * b - 4.0 * a * c; disc >= 0.0) {
+      const double q = -0.5 * (b + std::copysign(std::sqrt(disc), b));  // roots q/a and c/q
+      take(q / a);
+      if (q != 0.0) take(c / q);
+    }
+    return r;
+  }
+  static constexpr const char* monotone_advice = "bound k2 so that k2^2 < 3 k1 k3 with k3 > 0 (a law whose tangent stays positive)";
+};
 
 // Yeoh spring, eq. 3.3: F = 2 (D10 + 2 D20 e^2 + 3 D30 e^4) e = 2 D10 e + 4 D20 e^3 + 6 D30 e^5,
 // dF/de = 2 D10 + 12 D20 e^2 + 30 D30 e^4.

@@ -7,6 +7,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <cmath>
 #include <span>
 #include <stdexcept>
 
@@ -23,6 +24,7 @@ struct Proto {
   int fused_dashpot_probe = -1;  // a fused spring+dashpot pair: the dashpot's probe
   lang::SourceLocation where;    // of the element, for messages
   bool opaque = false;           // a block standing for one user element (a springpot chain)
+  bool one_sided = false;        // a friction element or slider given fy_pos and fy_neg
   std::vector<Proto> children;
   bool is_block() const { return kind == NodeKind::parallel || kind == NodeKind::series; }
 };
@@ -39,6 +41,7 @@ NodeKind node_kind(ElementKind kind) {
     case ElementKind::quadratic_dashpot: return NodeKind::quadratic_dashpot;
     case ElementKind::gap: return NodeKind::gap;
     case ElementKind::bouc_wen: return NodeKind::bouc_wen;
+    case ElementKind::poly_spring: return NodeKind::poly_spring;
     case ElementKind::springpot:
     case ElementKind::parallel: return NodeKind::parallel;
     case ElementKind::series: return NodeKind::series;
@@ -58,6 +61,12 @@ struct Converter {
       return proto;
     }
     for (std::size_t i = 0; i < element.parameters.size() && i < 3; ++i) proto.param[i] = element.parameters[i];
+    // The compression yield force's slot (network.hpp): fy again when given symmetric.
+    const std::size_t yields = element.kind == ElementKind::friction ? 2 : element.kind == ElementKind::slider ? 1 : 0;
+    if (yields > 0) {
+      proto.one_sided = element.parameters.size() > yields;
+      if (!proto.one_sided) proto.param[yields] = proto.param[yields - 1];
+    }
     proto.probe = static_cast<int>(topology.probes.size());
     proto.where = element.where;
     topology.probes.push_back({element.path, element.kind, ElementProbe::Source::tree_node, 0});
@@ -255,8 +264,8 @@ struct PlacementCheck {
 
   [[noreturn]] void gap_error(const Proto& p, const char* where) const {
     throw ModelError(
-        fmt::format("{}model '{}': gap '{}' {}; a gap must be in series with a compliant element (a spring, yeoh, dashpot, maxwell, "
-                    "friction, bouc_wen or quadratic_dashpot): write series {{ gap {} (width = {:g} mm); spring (k = ...) }}",
+        fmt::format("{}model '{}': gap '{}' {}; a gap must be in series with a compliant element (a spring, yeoh, poly_spring, dashpot, "
+                    "maxwell, friction, bouc_wen or quadratic_dashpot): write series {{ gap {} (width = {:g} mm); spring (k = ...) }}",
                     error_at(p.where), model.name, path(p), where, path(p), value(p)));
   }
   [[noreturn]] void inerter_error(const Proto& p) const {
@@ -363,10 +372,18 @@ Network Network::compile(const lang::CheckedModel& model) {
         topology->maxwells.push_back({b.param[0], b.param[1]});
         break;
       case NodeKind::friction:
+        if (b.one_sided) {
+          trees.push_back(&b);
+          break;
+        }
         group(ElementProbe::Source::root_friction, static_cast<int>(topology->frictions.size()));
         topology->frictions.push_back({b.param[0], b.param[1]});
         break;
       case NodeKind::slider:
+        if (b.one_sided) {
+          trees.push_back(&b);
+          break;
+        }
         group(ElementProbe::Source::root_slider, static_cast<int>(topology->sliders.size()));
         topology->sliders.push_back(b.param[0]);
         break;
@@ -396,6 +413,7 @@ Network Network::compile(const lang::CheckedModel& model) {
   network.parameters_.reserve(model.parameters.size());
   for (const auto& parameter : model.parameters) network.parameters_.push_back(parameter.value);
   network.derive();
+  network.check_gap_centres();
   return network;
 }
 
@@ -421,6 +439,23 @@ void Network::derive() {
     springpot_modes({at(0), at(1), at(2), at(3), at(4)}, stiffness, {stiffness.data() + modes, modes});
   }
   coefficients_ = make_coefficients(t, [this](int i) { return parameter(i); });
+}
+
+void Network::check_gap_centres() const {
+  const Topology& t = *topology_;
+  for (std::size_t i = 0; i < t.nodes.size(); ++i) {
+    const TreeNode& n = t.nodes[i];
+    if (n.kind != NodeKind::gap) continue;
+    const double width = parameter(n.param[0]), center = parameter(n.param[1]);
+    if (std::abs(center) <= 0.5 * width * (1.0 + 1e-12)) continue;
+    std::string path = "?";
+    for (const auto& probe : t.probes)
+      if (probe.source == ElementProbe::Source::tree_node && probe.index == static_cast<int>(i)) path = probe.path;
+    throw ModelError(
+        fmt::format("{}model '{}': gap '{}' has center = {:g} mm, beyond half its width ({:g} mm): its rest position "
+                    "(e = 0) must lie in its play, |center| <= width/2; give a smaller center or a wider gap",
+                    error_at(model_->parameters[static_cast<std::size_t>(n.param[1])].where), model_->name, path, center, 0.5 * width));
+  }
 }
 
 Network Network::with_parameters(const std::vector<double>& values) const {

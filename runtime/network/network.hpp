@@ -14,17 +14,19 @@
 //    takes its modes (so a springpot beside the thesis elements keeps the closed form);
 //  - leaves directly in the root parallel block are grouped by kind into flat arrays
 //    (the hot loop of the thesis models); everything else, and every inerter,
-//    quadratic_dashpot, gap and bouc_wen leaf even in the root block (a one-node subtree),
-//    is a subtree solved by TreeSolver.
+//    quadratic_dashpot, gap, bouc_wen and poly_spring leaf, and every friction element or slider
+//    with one-sided yield forces (fy_pos != fy_neg as written), even in the root block (a
+//    one-node subtree), is a subtree solved by TreeSolver.
 // Internal nodes are the junctions inside series chains: a chain of m members has m-1.
 //
 // Placement rules (ModelError naming the element, with advice, otherwise):
-//  - a gap is a direct member of a series chain with at least one compliant member;
+//  - a gap is a direct member of a series chain with at least one compliant member, and its
+//    rest position lies in its play: |center| <= width/2 as written;
 //  - an inerter below the root block has a compliant member in series with it (in some
 //    enclosing chain), so that it is never rigidly driven: a velocity jump of the drive would
 //    be an impact (an unbounded force), and the implicit inerter relation is unstable as a
 //    differentiator. In the root block it is driven directly (drive_prescribed below).
-// Compliant: spring, yeoh, dashpot, maxwell, friction, bouc_wen or quadratic_dashpot; a
+// Compliant: spring, yeoh, poly_spring, dashpot, maxwell, friction, bouc_wen or quadratic_dashpot; a
 // parallel block of compliant members; a series chain with a compliant member. Not compliant:
 // slider, gap, inerter (rigid while stuck, in contact, or to a velocity jump).
 #pragma once
@@ -50,11 +52,15 @@ enum class NodeKind : std::uint8_t {
   quadratic_dashpot,
   gap,
   bouc_wen,
+  poly_spring,
   parallel,
   series
 };
 
-// A node of a subtree below the root. Leaves carry parameter indices; blocks carry children.
+// A node of a subtree below the root. Leaves carry parameter indices (the slots of
+// lang/model.hpp, except that a friction element's param[2] and a slider's param[1] always
+// name the compression yield force fy_neg: the fy slot again when it was given symmetric);
+// blocks carry children.
 // Every subtree node owns `slots` consecutive state slots at `state`: elongation e [mm] and
 // force F [N] at the last step, then
 //   inerter (Newmark):           v [mm/s], the velocity at the last step;
@@ -184,6 +190,9 @@ class Network {
 
   // Recomputes derived_ and coefficients_ from parameters_.
   void derive();
+  // ModelError for a gap whose written rest position is outside its play (|center| > width/2);
+  // fitted values beyond act as +-width/2 (leaf_kernels.hpp gap_center).
+  void check_gap_centres() const;
 };
 
 }  // namespace rheo::runtime

@@ -61,7 +61,8 @@ std::string springpot(double x, double cy) {
 double symbol_length(ElementKind kind) {
   switch (kind) {
     case ElementKind::spring:
-    case ElementKind::yeoh: return kSpring;
+    case ElementKind::yeoh:
+    case ElementKind::poly_spring: return kSpring;
     case ElementKind::dashpot:
     case ElementKind::quadratic_dashpot: return kDashpot;
     case ElementKind::maxwell: return kSpring + kJoin + kDashpot;
@@ -81,6 +82,7 @@ std::string symbol_svg(ElementKind kind, double x, double cy) {
   switch (kind) {
     case ElementKind::spring: return spring(x, cy);
     case ElementKind::yeoh:
+    case ElementKind::poly_spring:
       return spring(x, cy) + line(x + 8, cy + 11, x + 32, cy - 11) +
              fmt::format("<path d=\"M{} {}l-6 1l3 4z\" fill=\"currentColor\"/>", coordinate(x + 33), coordinate(cy - 12));
     case ElementKind::dashpot: return dashpot(x, cy, false);

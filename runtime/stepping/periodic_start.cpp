@@ -40,6 +40,7 @@ class LinearisedSubtree {
       case NodeKind::spring:
       case NodeKind::friction: return p(n, 0);
       case NodeKind::yeoh: return 2.0 * p(n, 0);  // slope at e = 0
+      case NodeKind::poly_spring: return p(n, 0);
       case NodeKind::dashpot: return coefficient(node) * difference;
       case NodeKind::maxwell: {
         const MaxwellStep& m = plan_.maxwell[static_cast<std::size_t>(node)];
@@ -66,7 +67,7 @@ class LinearisedSubtree {
 
   // Writes the state at k = 0 of `node`, whose elongation and force phasors are e and f.
   // Returns whether every cap holds over the whole cycle (|F| <= fy of each slider and
-  // friction element).
+  // friction element; the smaller of fy_pos and fy_neg when they differ).
   bool assign(int node, Complex e, Complex f, double* state) const {
     const TreeNode& n = at(node);
     double* slots = state + n.state;
@@ -74,10 +75,10 @@ class LinearisedSubtree {
     slots[1] = std::imag(f);
     bool holds = true;
     switch (n.kind) {
-      case NodeKind::friction: holds = std::abs(f) <= p(n, 1); break;
+      case NodeKind::friction: holds = std::abs(f) <= std::min(p(n, 1), p(n, 2)); break;
       case NodeKind::slider:
         slots[0] = 0.0;
-        holds = std::abs(f) <= p(n, 0);
+        holds = std::abs(f) <= std::min(p(n, 0), p(n, 1));
         break;
       case NodeKind::inerter: slots[2] = std::imag(2.0 / plan_.dt * (1.0 - z_inverse_) / (1.0 + z_inverse_) * e); break;
       case NodeKind::parallel:

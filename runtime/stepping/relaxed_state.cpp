@@ -42,7 +42,10 @@ class Relaxer {
     const TreeNode& n = at(node);
     if (is_free(n.kind)) return {-kInf, kInf};
     switch (n.kind) {
-      case NodeKind::gap: return {-0.5 * p(n, 0), 0.5 * p(n, 0)};
+      case NodeKind::gap: {
+        const double c = gap_center(p(n, 0), p(n, 1));
+        return {c - 0.5 * p(n, 0), c + 0.5 * p(n, 0)};
+      }
       case NodeKind::parallel: {
         Play out{-kInf, kInf};
         for (int i = 0; i < n.child_count; ++i) {
@@ -73,6 +76,10 @@ class Relaxer {
         const YeohLaw law = yeoh(n);
         return {law.force(e), law.slope(e)};
       }
+      case NodeKind::poly_spring: {
+        const PolyLaw law = poly(n);
+        return {law.force(e), law.slope(e)};
+      }
       case NodeKind::parallel: return sum_over_children(n, [&](int c) { return force(c, e); });
       case NodeKind::series: return series_force(node, e);
       default: throw std::logic_error("relaxed_state: a gap outside a series chain");
@@ -85,8 +92,9 @@ class Relaxer {
     if (f == 0.0 || is_free(n.kind)) return {0.0, 0.0};
     switch (n.kind) {
       case NodeKind::spring: return {f / p(n, 0), 1.0 / p(n, 0)};
-      case NodeKind::gap: return {std::copysign(0.5 * p(n, 0), f), 0.0};
+      case NodeKind::gap: return {gap_center(p(n, 0), p(n, 1)) + std::copysign(0.5 * p(n, 0), f), 0.0};
       case NodeKind::yeoh: return yeoh_elongation(node, f);
+      case NodeKind::poly_spring: return poly_elongation(node, f);
       case NodeKind::series: return sum_over_children(n, [&](int c) { return elongation(c, f); });
       case NodeKind::parallel: {
         const Play reach = play(node);
@@ -134,6 +142,12 @@ class Relaxer {
   int child(const TreeNode& n, int i) const { return t_.children[static_cast<std::size_t>(n.first_child + i)]; }
   double p(const TreeNode& n, int i) const { return network_.parameter(n.param[i]); }
   YeohLaw yeoh(const TreeNode& n) const { return {p(n, 0), p(n, 1), p(n, 2)}; }
+  PolyLaw poly(const TreeNode& n) const { return {p(n, 0), p(n, 1), p(n, 2)}; }
+  std::string path_of(int node, const char* kind) const {
+    for (const auto& probe : t_.probes)
+      if (probe.source == ElementProbe::Source::tree_node && probe.index == node) return fmt::format("{} '{}'", kind, probe.path);
+    return fmt::format("a {}", kind);
+  }
   // The children's values and slopes added: forces of a parallel block, elongations of a chain.
   template <class Of>
   ForceSlope sum_over_children(const TreeNode& n, Of of) const {
@@ -165,6 +179,19 @@ class Relaxer {
     const double f = checked(solve_monotone(residual, 0.0, 1.0, pulled ? 0.0 : -kInf, pulled ? kInf : 0.0, kRelTol * (std::abs(e) + 1e-12)));
     const double compliance = elongation(node, f).slope;
     return {f, compliance > 0.0 ? 1.0 / compliance : 0.0};
+  }
+
+  // Elongation of a poly_spring at force f, within the range where its tangent is positive.
+  ForceSlope poly_elongation(int node, double f) const {
+    const PolyLaw law = poly(at(node));
+    const PolyLaw::Range r = law.monotone_range();
+    const double lo = std::isfinite(r.lo) ? law.force(r.lo) : -kInf, hi = std::isfinite(r.hi) ? law.force(r.hi) : kInf;
+    if (!(f > lo && f < hi))
+      throw ModelError(fmt::format("the relaxed start needs {} of model '{}' to carry {:g} N, more than its softening law can; {}",
+                                   path_of(node, "poly_spring"), network_.model().name, f, PolyLaw::monotone_advice));
+    auto residual = [&](double e) { return ForceSlope{law.force(e) - f, law.slope(e)}; };
+    const double e = checked(solve_monotone(residual, 0.0, f / law.k1, r.lo, r.hi, kRelTol * std::abs(f)));
+    return {e, 1.0 / law.slope(e)};
   }
 
   ForceSlope yeoh_elongation(int node, double f) const {

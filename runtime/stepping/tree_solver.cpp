@@ -57,8 +57,8 @@ void TreeStepPlan::prepare(const Network& network, double step, double piece_len
     const TreeNode& n = nodes[i];
     auto p = [&](int slot) { return network.parameter(n.param[slot]); };
     switch (n.kind) {
-      case NodeKind::friction: bounds[i] = {-p(1), p(1)}; break;
-      case NodeKind::slider: bounds[i] = {-p(0), p(0)}; break;
+      case NodeKind::friction: bounds[i] = {-p(2), p(1)}; break;
+      case NodeKind::slider: bounds[i] = {-p(1), p(0)}; break;
       case NodeKind::bouc_wen: bounds[i] = {-p(2), p(2)}; break;  // approached, never reached
       case NodeKind::parallel:
       case NodeKind::series: {
@@ -113,8 +113,18 @@ void TreeSolver::throw_not_converged(int node, const char* what) const {
 
 void TreeSolver::throw_softened(int node, double force) const {
   const TreeNode& n = at(node);
-  const YeohLaw law{p(n, 0), p(n, 1), p(n, 2)};
   const std::string path = path_of(node);
+  if (n.kind == NodeKind::poly_spring) {
+    const PolyLaw law{p(n, 0), p(n, 1), p(n, 2)};
+    const PolyLaw::Range r = law.monotone_range();
+    throw NumericalError(
+        fmt::format("model '{}': poly_spring '{}' is asked to carry {:.6g} N, but its tangent stiffness k1 + 2 k2 e + 3 k3 e^2 reaches zero "
+                    "(at e = {:.6g} mm and {:.6g} mm), so it carries at most {:.6g} N in compression and {:.6g} N in tension; a softening spring "
+                    "in series cannot hold more (it would snap through). Keep the drive small enough, or {}",
+                    network_.model().name, path, force, r.lo, r.hi, std::isfinite(r.lo) ? -law.force(r.lo) : kInf,
+                    std::isfinite(r.hi) ? law.force(r.hi) : kInf, PolyLaw::monotone_advice));
+  }
+  const YeohLaw law{p(n, 0), p(n, 1), p(n, 2)};
   throw NumericalError(
       fmt::format("model '{}': yeoh '{}' is asked to carry {:.6g} N, but its tangent stiffness 2 D10 + 12 D20 e^2 + 30 D30 e^4 reaches "
                   "zero at |e| = {:.6g} mm, where it carries its most, {:.6g} N (eq. 3.3); a softening spring in series cannot hold "
@@ -187,14 +197,19 @@ ForceSlope TreeSolver::forward(int node, double de) const {
       checked(r.force, node, "bouc_wen loading law");
       return r;
     }
+    case NodeKind::poly_spring: {
+      const PolyLaw law{p(n, 0), p(n, 1), p(n, 2)};
+      const double e = e_before(n) + de;
+      return {law.force(e), law.slope(e)};
+    }
     case NodeKind::gap: return {0.0, 0.0};  // only ever inverted (a direct member of a chain)
     case NodeKind::maxwell: return plan_.maxwell[static_cast<std::size_t>(node)](f_before(n), de);
-    case NodeKind::friction: return friction_step(p(n, 0), p(n, 1), f_before(n), de);
+    case NodeKind::friction: return friction_step(p(n, 0), p(n, 1), p(n, 2), f_before(n), de);
     case NodeKind::slider: {
-      const double fy = p(n, 0);
-      if (de > 0.0) return {fy, 0.0};
-      if (de < 0.0) return {-fy, 0.0};
-      return {std::clamp(f_before(n), -fy, fy), 0.0};
+      const double fy_pos = p(n, 0), fy_neg = p(n, 1);
+      if (de > 0.0) return {fy_pos, 0.0};
+      if (de < 0.0) return {-fy_neg, 0.0};
+      return {std::clamp(f_before(n), -fy_neg, fy_pos), 0.0};
     }
     case NodeKind::parallel: return add_over_children(*this, n, [&](int c) { return forward(c, de); });
     case NodeKind::series: return series_force(node, de);
@@ -209,7 +224,7 @@ Interval TreeSolver::zero_rate_interval(int node) const {
     return {f, f};
   }
   switch (n.kind) {
-    case NodeKind::slider: return {-p(n, 0), p(n, 0)};
+    case NodeKind::slider: return {-p(n, 1), p(n, 0)};
     default:  // a parallel block, or a series of rigid members
       return combine_children(*this, n, n.kind == NodeKind::series, [&](int c) { return zero_rate_interval(c); });
   }
@@ -232,6 +247,18 @@ ForceSlope TreeSolver::inverse(int node, double force) const {
                                "yeoh elongation");
       return {e - e_before(n), 1.0 / law.slope(e)};
     }
+    case NodeKind::poly_spring: {
+      const PolyLaw law{p(n, 0), p(n, 1), p(n, 2)};
+      const PolyLaw::Range r = law.monotone_range();
+      if (!(force > (std::isfinite(r.lo) ? law.force(r.lo) : -kInf) && force < (std::isfinite(r.hi) ? law.force(r.hi) : kInf)))
+        throw_softened(node, force);
+      auto residual = [&](double e) { return ForceSlope{law.force(e) - force, law.slope(e)}; };
+      const double tol = kRelTol * (std::abs(force) + 1e-9);
+      const double start = std::clamp(e_before(n), std::nextafter(r.lo, 0.0), std::nextafter(r.hi, 0.0));
+      const double e = checked(solve_monotone(residual, start, force / law.k1, r.lo, r.hi, tol, true, plan_.iteration_cap), node,
+                               "poly_spring elongation");
+      return {e - e_before(n), 1.0 / law.slope(e)};
+    }
     case NodeKind::dashpot: {
       const double b = coefficient(node);
       return {force / b, 1.0 / b};
@@ -248,16 +275,16 @@ ForceSlope TreeSolver::inverse(int node, double force) const {
       return r;
     }
     case NodeKind::gap: {  // at an end stop; at F = 0 it holds (chains resolve the play first)
-      const double h = 0.5 * p(n, 0);
-      return {(force > 0.0 ? h : force < 0.0 ? -h : std::clamp(e_before(n), -h, h)) - e_before(n), 0.0};
+      const Interval stop = stops(n);
+      return {(force > 0.0 ? stop.hi : force < 0.0 ? stop.lo : std::clamp(e_before(n), stop.lo, stop.hi)) - e_before(n), 0.0};
     }
     case NodeKind::maxwell: {
       const MaxwellStep& m = plan_.maxwell[static_cast<std::size_t>(node)];
       return {(force - m.a * f_before(n)) / m.b, 1.0 / m.b};
     }
     case NodeKind::friction: {
-      const double k = p(n, 0), fy = p(n, 1);
-      return {(std::clamp(force, -fy, fy) - f_before(n)) / k, 1.0 / k};
+      const double k = p(n, 0);
+      return {(std::clamp(force, -p(n, 2), p(n, 1)) - f_before(n)) / k, 1.0 / k};
     }
     case NodeKind::slider: return {0.0, 0.0};
     case NodeKind::series: return add_over_children(*this, n, [&](int c) { return inverse(c, force); });
@@ -331,9 +358,9 @@ Interval TreeSolver::play(const TreeNode& n) const {
   for (int i = 0; i < n.child_count; ++i) {
     const TreeNode& c = at(child(n, i));
     if (c.kind == NodeKind::gap) {
-      const double h = 0.5 * p(c, 0);
-      r.lo += -h - e_before(c);
-      r.hi += h - e_before(c);
+      const Interval stop = stops(c);
+      r.lo += stop.lo - e_before(c);
+      r.hi += stop.hi - e_before(c);
     } else {
       const double d = inverse(child(n, i), 0.0).force;
       r.lo += d;
@@ -358,8 +385,8 @@ void TreeSolver::assign_play(const TreeNode& n, double de, double* after) const 
       assign(c, inverse(c, 0.0).force, 0.0, after);
       continue;
     }
-    const double h = 0.5 * p(m, 0);
-    const double share = c == last_gap ? rest : std::clamp(rest, -h - e_before(m), h - e_before(m));
+    const Interval stop = stops(m);
+    const double share = c == last_gap ? rest : std::clamp(rest, stop.lo - e_before(m), stop.hi - e_before(m));
     after[m.state] = e_before(m) + share;
     after[m.state + 1] = 0.0;
     rest -= share;
@@ -373,8 +400,8 @@ void TreeSolver::assign(int node, double de, double force, double* after) const 
   switch (n.kind) {
     case NodeKind::inerter: assign_inerter(node, de, after); return;
     case NodeKind::gap: {  // exactly at the stop when loaded
-      const double h = 0.5 * p(n, 0);
-      after[n.state] = force > 0.0 ? h : force < 0.0 ? -h : std::clamp(after[n.state], -h, h);
+      const Interval stop = stops(n);
+      after[n.state] = force > 0.0 ? stop.hi : force < 0.0 ? stop.lo : std::clamp(after[n.state], stop.lo, stop.hi);
       return;
     }
     case NodeKind::parallel: assign_parallel(n, de, force, after); return;

@@ -9,9 +9,11 @@
 // (friction elements, sliders) bound the chain force to [lo, hi]; when the chain cannot take
 // up de below the cap, the capped member slips and absorbs the rest: the return mapping of
 // section 2.4 generalised to chains with internal nodes. Rigid-plastic sliders make a relation
-// set-valued at de = 0; that case is resolved exactly from the force interval at zero rate.
+// set-valued at de = 0; that case is resolved exactly from the force interval at zero rate. Caps
+// may be one-sided (fy_pos in tension, fy_neg in compression): every bound is an interval.
 // Gaps (direct members of chains only, network.hpp) are the dual: their inverse is set-valued
-// at F = 0 (any elongation in [-w/2, w/2]) and rigid otherwise (e = +-w/2). A chain with gaps
+// at F = 0 (any elongation in [c - w/2, c + w/2], c its center) and rigid otherwise
+// (e = c +- w/2). A chain with gaps
 // first tests whether de is reachable at F = 0, the gaps spanning their play: then F = 0 exactly
 // and the gaps take what the other members leave; otherwise it is solved on the side of F = 0
 // that de lies on, each gap at its end stop with zero compliance.
@@ -92,6 +94,11 @@ class TreeSolver {
   ForceSlope series_force(int node, double de) const;
   ForceSlope parallel_elongation(int node, double force) const;
   Interval play(const TreeNode& n) const;  // increments of a chain reachable at F = 0
+  // A gap's end stops [mm]: e = center -+ width/2.
+  Interval stops(const TreeNode& gap) const {
+    const double c = gap_center(p(gap, 0), p(gap, 1));
+    return {c - 0.5 * p(gap, 0), c + 0.5 * p(gap, 0)};
+  }
   bool has_gap(const TreeNode& n) const;
   void assign(int node, double de, double force, double* after) const;
   void assign_inerter(int node, double de, double* after) const;

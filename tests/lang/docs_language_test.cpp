@@ -59,7 +59,7 @@ TEST_CASE("docs/language.md: every element kind has a row naming each of its par
     CAPTURE(spec.kind);
     const std::string line = row(elements, std::string(spec.kind));
     REQUIRE_MESSAGE(!line.empty(), "no row for the element");
-    for (const auto& slots : {spec.slots, spec.alternative})
+    for (const auto& slots : {spec.slots, spec.alternative, spec.split})
       for (const ParameterSpec& p : slots) {
         CAPTURE(p.name);
         CHECK(mentions(line, p.name));

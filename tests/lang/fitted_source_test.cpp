@@ -164,3 +164,26 @@ TEST_CASE("write_fitted_source: a data line's fitted setting replaces its value,
   CHECK(again.fits.at(0).data.at(0).force_offset.value == 40.5);
   CHECK_THROWS_AS(write_fitted_source(text, "s.rheo", m, {80.0}, {0}, {}, {{-1, 3, "1 N"}}), std::logic_error);
 }
+
+TEST_CASE("write_fitted_source: one-sided yield forces, a gap's center and poly_spring coefficients are written back like others") {
+  const std::string source = R"(model rig {
+  friction f (k = 2 N/mm, fy_pos = 13 kN in [1, 50], fy_neg = 20 kN in [1, 50])
+  series b { gap g (width = 1 mm in [0.1, 5], center = 0.2 mm in [-1, 1])  poly_spring p (k1 = 10 N/mm in [1, 100], k2 = -0.5 N/mm^2 in [-5, 5]) }
+}
+)";
+  const Program program = compile_source("rig.rheo", source);
+  const CheckedModel& m = *program.find_model("rig");
+  std::vector<double> values;
+  for (const auto& p : m.parameters) values.push_back(p.value);
+  std::vector<int> changed;
+  for (const char* path : {"f.fy_pos", "f.fy_neg", "b.g.center", "b.p.k2"}) changed.push_back(index_of(m, path));
+  values[static_cast<std::size_t>(changed[0])] = 12500.0, values[static_cast<std::size_t>(changed[1])] = 21000.0;
+  values[static_cast<std::size_t>(changed[2])] = -0.15, values[static_cast<std::size_t>(changed[3])] = 0.75;
+  const std::string written = write_fitted_source(source, "rig.rheo", m, values, changed, {});
+  CHECK(written.find("fy_pos = 12.5 kN in [1, 50]") != std::string::npos);
+  CHECK(written.find("fy_neg = 21 kN in [1, 50]") != std::string::npos);
+  CHECK(written.find("center = -0.15 mm in [-1, 1]") != std::string::npos);
+  CHECK(written.find("k2 = 0.75 N/mm^2 in [-5, 5]") != std::string::npos);
+  const Program again = compile_source("rig.rheo", written);
+  CHECK(again.find_model("rig")->parameters[static_cast<std::size_t>(changed[1])].value == doctest::Approx(21000.0));
+}

@@ -23,15 +23,15 @@ lang::Program compiled(const dx::Trial& trial) {
 
 dx::Trial trial_of(dx::Shape shape) {
   dx::Trial t;
-  t.shape = shape, t.stiffness = 200.0, t.time = 0.004, t.slip = 0.05, t.frequency = 20.0, t.damping_ratio = 0.3;
+  t.shape = shape, t.stiffness = 200.0, t.time = 0.004, t.slip = 0.05, t.frequency = 20.0, t.damping_ratio = 0.3, t.bias = 0.4, t.k2 = 5.0;
   return t;
 }
 
 }  // namespace
 
 TEST_CASE("diagnosis trial: every shape writes a statement that compiles, with bounds around its values") {
-  for (dx::Shape shape :
-       {dx::Shape::maxwell, dx::Shape::friction, dx::Shape::capped_maxwell, dx::Shape::capped_column, dx::Shape::tuned_column, dx::Shape::yeoh}) {
+  for (dx::Shape shape : {dx::Shape::maxwell, dx::Shape::friction, dx::Shape::capped_maxwell, dx::Shape::capped_column, dx::Shape::tuned_column,
+                          dx::Shape::yeoh, dx::Shape::asymmetric_friction, dx::Shape::even_spring, dx::Shape::gapped_spring}) {
     const dx::Trial trial = trial_of(shape);
     const lang::Program program = compiled(trial);
     const lang::CheckedModel& m = program.models.front();
@@ -70,4 +70,19 @@ TEST_CASE("diagnosis trial: a yeoh replacing a spring keeps its linear stiffness
   REQUIRE(lines.size() == 1);
   CHECK(lines.front().starts_with("yeoh rubber (D10 = 100 N/mm"));
   CHECK(dx::added_parameter_count(trial) == 2);
+}
+
+TEST_CASE("diagnosis trial: the asymmetry and backlash shapes write the elements of their law") {
+  const auto friction = dx::trial_statement(trial_of(dx::Shape::asymmetric_friction), "a", {500.0, 2.0});
+  CHECK(friction.front().find("fy_pos = 14 N") != std::string::npos);  // k slip (1 + bias) = 200 0.05 1.4
+  CHECK(friction.front().find("fy_neg = 6 N") != std::string::npos);
+  dx::Trial even = trial_of(dx::Shape::even_spring);
+  even.replaces = "rubber";
+  const auto spring = dx::trial_statement(even, "rubber", {500.0, 2.0});
+  CHECK(spring.front().starts_with("poly_spring rubber (k1 = 200 N/mm"));
+  CHECK(spring.front().find("k2 = 5 N/mm^2") != std::string::npos);
+  CHECK(dx::added_parameter_count(even) == 1);
+  const auto play = dx::trial_statement(trial_of(dx::Shape::gapped_spring), "b", {500.0, 2.0});
+  CHECK(play[1].find("width = 0.1 mm") != std::string::npos);    // 2 slip
+  CHECK(play[1].find("center = 0.02 mm") != std::string::npos);  // bias slip
 }

@@ -3,6 +3,7 @@
 
 #include "runtime/core/errors.hpp"
 #include "runtime/closed_form/periodic_closed_form.hpp"
+#include "runtime/network/leaf_kernels.hpp"
 #include "runtime/network/springpot.hpp"
 #include "support.hpp"
 
@@ -186,4 +187,40 @@ TEST_CASE("a springpot band with f_low not below f_high is a model error at the 
   CHECK_THROWS_WITH_AS(test::network_from("model b {\n  springpot sp (k = 5, alpha = 0.5, tau = 1 ms, f_low = 10 Hz, f_high = 1 Hz)\n}", "b"),
                        doctest::Contains("test.rheo:2:3: error: model 'b': springpot 'sp' has f_low = 10 Hz not below f_high = 1 Hz"),
                        runtime::ModelError);
+}
+
+TEST_CASE("one-sided friction elements and sliders, and poly springs, are subtrees; symmetric ones stay in the root groups") {
+  const auto net = test::network_from(R"(
+    model a { friction f (k = 2 N/mm, fy = 3 N)  friction g (k = 2 N/mm, fy_pos = 3 N, fy_neg = 5 N)
+              slider s (fy = 1 N)  slider t (fy_pos = 1 N, fy_neg = 2 N)  poly_spring p (k1 = 10 N/mm, k2 = 1 N/mm^2) })",
+                                      "a");
+  const auto& t = net.topology();
+  CHECK(t.frictions.size() == 1);
+  CHECK(t.sliders.size() == 1);
+  REQUIRE(t.subtrees.size() == 3);
+  const auto& g = t.nodes[static_cast<std::size_t>(t.subtrees[0])];
+  CHECK(g.kind == runtime::NodeKind::friction);
+  CHECK(net.parameter(g.param[1]) == 3.0);  // fy_pos
+  CHECK(net.parameter(g.param[2]) == 5.0);  // fy_neg
+  const auto& s = t.nodes[static_cast<std::size_t>(t.subtrees[1])];
+  CHECK(net.parameter(s.param[0]) == 1.0);
+  CHECK(net.parameter(s.param[1]) == 2.0);
+  CHECK(t.nodes[static_cast<std::size_t>(t.subtrees[2])].kind == runtime::NodeKind::poly_spring);
+  // A symmetric friction element nested in a chain reads fy from both cap slots.
+  const auto nested = test::network_from("model n { series c { spring a (k = 1)  friction f (k = 2 N/mm, fy = 3 N) } }", "n");
+  const auto& f = nested.topology().nodes[static_cast<std::size_t>(nested.topology().subtrees[0]) + 2];
+  REQUIRE(f.kind == runtime::NodeKind::friction);
+  CHECK(f.param[2] == f.param[1]);
+}
+
+TEST_CASE("a gap whose rest position lies outside its play is a model error at its center; a fit's values beyond act as the stop") {
+  CHECK_THROWS_WITH_AS(test::network_from("model b {\n  series c { gap g (width = 1 mm, center = 0.6 mm)  spring k (k = 1) }\n}", "b"),
+                       doctest::Contains("error: model 'b': gap 'c.g' has center = 0.6 mm, beyond half its width (0.5 mm)"), runtime::ModelError);
+  CHECK_NOTHROW(test::network_from("model b { series c { gap g (width = 1 mm, center = -0.5 mm)  spring k (k = 1) } }", "b"));
+  const auto net = test::network_from("model b { series c { gap g (width = 1 mm, center = 0.2 mm)  spring k (k = 1) } }", "b");
+  std::vector<double> values = net.parameters();
+  values[static_cast<std::size_t>(test::parameter_index(net, "c.g.center"))] = 3.0;
+  CHECK_NOTHROW(static_cast<void>(net.with_parameters(values)));
+  CHECK(runtime::gap_center(1.0, 3.0) == 0.5);
+  CHECK(runtime::gap_center(1.0, -0.2) == -0.2);
 }
