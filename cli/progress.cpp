@@ -9,11 +9,10 @@ namespace rheo::cli {
 
 std::shared_ptr<Progress> Progress::start(bool requested, std::optional<double> time_limit) {
   const bool terminal = ::isatty(STDERR_FILENO) != 0;
-  return std::shared_ptr<Progress>(new Progress(terminal && !requested,
-                                                requested  ? kRequestedInterval
-                                                : terminal ? 0.2
-                                                           : kLogInterval,
-                                                time_limit));
+  const double interval = requested ? kRequestedInterval : terminal ? 0.2 : kLogInterval;
+  auto progress = std::shared_ptr<Progress>(new Progress(terminal && !requested, interval, time_limit));
+  progress->requested_ = requested;
+  return progress;
 }
 
 Progress::Progress(bool live, double interval, std::optional<double> time_limit)
@@ -24,12 +23,14 @@ double Progress::elapsed() const { return std::chrono::duration<double>(std::chr
 void Progress::stage(const std::string& what) {
   finish();
   what_ = what;
+  first_of_stage_ = requested_;
   std::cerr << "rheo: " << what << "\n" << std::flush;
 }
 
 void Progress::evaluation(const runtime::SearchProgress& p) {
   const auto now = std::chrono::steady_clock::now();
-  if (std::chrono::duration<double>(now - last_).count() < interval_) return;
+  if (!first_of_stage_ && std::chrono::duration<double>(now - last_).count() < interval_) return;
+  first_of_stage_ = false;
   last_ = now;
   const std::string clock = time_limit_ ? fmt::format("{:.0f} s of {:g} s", elapsed(), *time_limit_) : fmt::format("{:.0f} s", elapsed());
   const std::string line = fmt::format("{}: {} evaluations, best objective {:.6g} ({}), {}", what_.empty() ? "searching" : what_, p.evaluations,

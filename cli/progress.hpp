@@ -2,7 +2,8 @@
 // objective and the time (of the time limit, when there is one). On a terminal one live line is
 // rewritten in place at most every 0.2 s; otherwise (a log file, a pipe, a CI job), or with
 // --progress, a whole line is written every few seconds (kLogInterval, or kRequestedInterval
-// with --progress), so that a run that takes long is seen to be working.
+// with --progress, which also writes one at the first evaluation after each stage), so that a
+// run that takes long is seen to be working.
 #pragma once
 
 #include "runtime/fit/fit_search.hpp"
@@ -46,6 +47,8 @@ class Progress {
   std::chrono::steady_clock::time_point started_, last_;
   std::string what_;
   bool line_open_ = false;  // a live line is on the screen
+  bool requested_ = false;  // --progress: also a line at the first evaluation after each stage
+  bool first_of_stage_ = false;
 };
 
 }  // namespace rheo::cli
