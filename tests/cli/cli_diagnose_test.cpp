@@ -99,7 +99,7 @@ TEST_CASE("rheo diagnose: usage and data errors exit 2 and 4 before any fit, and
   CHECK(png.err.find("fitting") == std::string::npos);  // refused before the first fit
 }
 
-TEST_CASE("rheo diagnose --time-limit: stops in time with the results so far; --progress writes progress lines to a pipe") {
+TEST_CASE("rheo diagnose --time-limit stops in time with the results so far, and --progress writes progress lines to a pipe") {
   const fs::path dir = rheo::test::scratch_directory("diagnose-time");
   const fs::path model = linear_model(dir);
   // 1 ms: the model's fit is cut after its start, and nothing after it begins.

@@ -134,7 +134,7 @@ std::pair<runtime::FitResult, std::vector<runtime::FitDataSet>> history_fit(cons
 
 }  // namespace
 
-TEST_CASE("noise estimate, history: white force noise is found under a smooth miss; the autocorrelation tells them apart") {
+TEST_CASE("noise estimate, history: white force noise is found under a smooth miss, and the autocorrelation tells them apart") {
   const auto [noise_only, d1] = history_fit([](double) { return 0.0; }, 0.003, 11);
   const dx::NoiseEstimate white = dx::estimate_noise(noise_only, d1);
   REQUIRE(white.estimated);
