@@ -84,6 +84,9 @@ Command add_fit_command(CLI::App& app) {
   app.add_option("--time-limit", o->time_limit,
                  "Wall-clock bound of each fit, e.g. 60s or 5min: the search stops in time for the standard errors and reports the best "
                  "values found (status TIME_LIMIT_REACHED); default: the fit block's time_limit, else none");
+  app.add_flag("--progress", o->progress,
+               "Write a progress line to standard error every second, also on a terminal; without it a live line on a terminal, else a line "
+               "every 5 s");
   app.add_option("--threads", o->threads, "Harmonic points evaluated at once (0: every hardware thread); results do not depend on it; default 1")
       ->check(CLI::Range(0, 1024));
   app.add_option("--yeoh-start", o->yeoh_start,
@@ -95,8 +98,8 @@ Command add_fit_command(CLI::App& app) {
   app.footer(
       "Settings given here override the fit block's. Data lines and `output` in a fit block are relative to the\n"
       ".rheo file; --data and -o to the working directory. The report goes to standard output, messages to standard\n"
-      "error (with a progress line when it is a terminal). Ctrl-C stops the search and writes the best result so far\n"
-      "(exit code 130).");
+      "error, with progress: a live line on a terminal, else a line every 5 s (--progress: a line every second).\n"
+      "Ctrl-C stops the search and writes the best result so far (exit code 130).");
   return [o, report] {
     check_report_targets(*report);
     // Read once: the fitted file is written from the text compiled, however the file changes meanwhile.

@@ -2,6 +2,7 @@
 
 #include "cli/data_option.hpp"
 #include "cli/program_lookup.hpp"
+#include "cli/progress.hpp"
 #include "lang/units.hpp"
 #include "runtime/core/errors.hpp"
 #include "runtime/io/output.hpp"
@@ -26,25 +27,6 @@ namespace {
 std::atomic<bool> interrupt_requested{false};
 
 extern "C" void on_interrupt(int) { interrupt_requested.store(true); }
-
-// Installs the Ctrl-C handler for the lifetime of a fit; a second Ctrl-C kills as usual.
-class InterruptScope {
- public:
-  InterruptScope() {
-    interrupt_requested.store(false);
-    struct sigaction action {};
-    action.sa_handler = on_interrupt;
-    action.sa_flags = static_cast<int>(SA_RESETHAND);  // glibc defines it as an unsigned 0x80000000
-    sigemptyset(&action.sa_mask);
-    sigaction(SIGINT, &action, &previous_);
-  }
-  ~InterruptScope() { sigaction(SIGINT, &previous_, nullptr); }
-  InterruptScope(const InterruptScope&) = delete;
-  InterruptScope& operator=(const InterruptScope&) = delete;
-
- private:
-  struct sigaction previous_ {};
-};
 
 // The NLopt algorithm an `optimizer` names; nullopt for `default` (the staged strategy of
 // fit_search.hpp).
@@ -166,6 +148,21 @@ void set_yeoh_start(FitJob& job, const std::string& path) {
 
 }  // namespace
 
+InterruptScope::InterruptScope() {
+  interrupt_requested.store(false);
+  struct sigaction action {};
+  action.sa_handler = on_interrupt;
+  action.sa_flags = static_cast<int>(SA_RESETHAND);  // glibc defines it as an unsigned 0x80000000
+  sigemptyset(&action.sa_mask);
+  sigaction(SIGINT, &action, &previous_);
+}
+
+InterruptScope::~InterruptScope() { sigaction(SIGINT, &previous_, nullptr); }
+
+const std::atomic<bool>* InterruptScope::flag() const { return &interrupt_requested; }
+
+double duration_option(const std::string& text, const char* option) { return duration_in_seconds(text, option); }
+
 std::vector<FitJob> fit_jobs(const lang::Program& program, const FitOptions& o) {
   std::vector<FitJob> jobs;
   auto add = [&](const lang::CheckedModel& model, const lang::FitDirective* block) {
@@ -176,6 +173,7 @@ std::vector<FitJob> fit_jobs(const lang::Program& program, const FitOptions& o) 
       throw runtime::UsageError(
           fmt::format("model '{}' has no parameter with bounds; give bounds to the ones to fit, e.g. `k = 300 N/mm in [10, 5000]`", model.name));
     job.description.source = o.file;
+    job.progress_lines = o.progress;
     configure(job, block, o);
     if (!o.data.empty()) {
       for (const auto& text : o.data) job.data.push_back(read_data_option(text));
@@ -210,27 +208,16 @@ std::vector<FitJob> fit_jobs(const lang::Program& program, const FitOptions& o) 
 
 runtime::FitResult run_fit_job(const FitJob& job) {
   runtime::FitSettings settings = job.settings;
-  const bool show_progress = ::isatty(STDERR_FILENO) != 0;
-  const auto started = std::chrono::steady_clock::now();
-  auto last = started;
-  if (show_progress)
-    settings.progress = [&](const runtime::SearchProgress& p) {
-      const auto now = std::chrono::steady_clock::now();
-      if (now - last < std::chrono::milliseconds(200)) return;
-      last = now;
-      const double elapsed = std::chrono::duration<double>(now - started).count();
-      const std::string clock = settings.time_limit ? fmt::format("{:.0f} s of {:g} s", elapsed, *settings.time_limit)
-                                                    : fmt::format("{:.0f} s", elapsed);
-      std::cerr << fmt::format("\r  fit {}: {} evaluations, best objective {:.6g} ({}), {}   ", job.model->name, p.evaluations, p.best, p.stage, clock)
-                << std::flush;
-    };
+  const std::shared_ptr<Progress> progress = Progress::start(job.progress_lines, settings.time_limit);
+  progress->label(fmt::format("fit {}", job.model->name));
+  settings.progress = Progress::evaluation_callback(progress);
   InterruptScope interrupt_scope;
-  settings.interrupt = &interrupt_requested;
+  settings.interrupt = interrupt_scope.flag();
   std::cerr << job.notes;
   runtime::Network start = runtime::Network::compile(*job.model);
   if (!job.start_values.empty()) start = start.with_parameters(job.start_values);
   runtime::FitResult result = runtime::fit(start, job.free, job.data, settings);
-  if (show_progress) std::cerr << "\r" << std::string(100, ' ') << "\r" << std::flush;
+  progress->finish();
   return result;
 }
 

@@ -7,6 +7,9 @@
 #include "runtime/fit/fit.hpp"
 #include "runtime/fit/fit_report.hpp"
 
+#include <csignal>
+
+#include <atomic>
 #include <string>
 #include <vector>
 
@@ -31,6 +34,7 @@ struct FitOptions {
   std::string orders;
   int threads = 1;         // data points evaluated at once; 0: every hardware thread
   std::string time_limit;  // --time-limit as written ("60s", "2 min"); empty: the block's or none
+  bool progress = false;   // --progress: progress lines every second, also on a terminal (cli/progress.hpp)
 };
 
 struct FitJob {
@@ -44,13 +48,32 @@ struct FitJob {
   std::vector<double> start_values;    // all parameters, internal units; empty: the model's
   bool steps_per_cycle_given = false;  // the fit block sets steps_per_cycle
   std::string notes;                   // said before the fit (e.g. where --yeoh-start put the yeoh spring)
+  bool progress_lines = false;         // FitOptions::progress
 };
 
 std::vector<FitJob> fit_jobs(const lang::Program& program, const FitOptions& options);
 
-// Runs the fit; shows a progress line on standard error when it is a terminal; Ctrl-C stops
-// the search with the best result so far (FitResult::interrupted).
+// Runs the fit with progress on standard error (cli/progress.hpp); Ctrl-C stops the search with
+// the best result so far (FitResult::interrupted).
 runtime::FitResult run_fit_job(const FitJob& job);
+
+// Installs the Ctrl-C handler for its lifetime (a second Ctrl-C kills as usual); flag() becomes
+// true on Ctrl-C, for FitSettings::interrupt.
+class InterruptScope {
+ public:
+  InterruptScope();
+  ~InterruptScope();
+  InterruptScope(const InterruptScope&) = delete;
+  InterruptScope& operator=(const InterruptScope&) = delete;
+  const std::atomic<bool>* flag() const;
+
+ private:
+  struct sigaction previous_ {};
+};
+
+// A duration written on the command line ("60", "60s", "2 min", "500 ms") in seconds, or the
+// UsageError naming OPTION.
+double duration_option(const std::string& text, const char* option);
 
 // --orders: fits the job's model with every combination of element counts and prints a table.
 int run_order_study(const std::vector<FitJob>& jobs, const FitOptions& options);

@@ -3,6 +3,7 @@
 #include "lang/fitted_source.hpp"
 #include "lang/frontend.hpp"
 #include "lang/source_edit.hpp"
+#include "runtime/diagnosis/candidate_model.hpp"
 #include "runtime/diagnosis/evidence_text.hpp"
 #include "runtime/diagnosis/refit.hpp"
 #include "runtime/fit/fit_scoring.hpp"
@@ -12,6 +13,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <limits>
 #include <memory>
 #include <numbers>
 #include <stdexcept>
@@ -31,12 +33,6 @@ Compiled compile(const ModelSource& source, const std::string& text) {
   return {program, model};
 }
 
-int index_of(const lang::CheckedModel& model, const std::string& path) {
-  for (std::size_t i = 0; i < model.parameters.size(); ++i)
-    if (model.parameters[i].path == path) return static_cast<int>(i);
-  return -1;
-}
-
 int residual_terms(const std::vector<FitDataSet>& data) {
   int n = 0;
   for (const auto& set : data) n += set.is_harmonic() ? 2 * static_cast<int>(set.harmonic().size()) : static_cast<int>(set.history().force.size());
@@ -45,83 +41,6 @@ int residual_terms(const std::vector<FitDataSet>& data) {
 
 double criterion(const FitResult& r, int n) {
   return n * std::log(std::max(r.objective, 1e-300)) + static_cast<double>(r.free.size()) * std::log(static_cast<double>(n));
-}
-
-std::string element_word(Effect effect) {
-  switch (effect) {
-    case Effect::amplitude_dependence: return "slip";
-    case Effect::rate_dependence: return "relaxation";
-    case Effect::nonlinear_elasticity: return "nonlinear";
-    case Effect::coupled_amplitude_frequency: return "coupled";
-    case Effect::inertia: return "resonance";
-    case Effect::asymmetry: return "asymmetric";
-    case Effect::backlash: return "backlash";
-    case Effect::none: break;
-  }
-  return "added";
-}
-
-std::string unique_name(const lang::CheckedModel& model, const std::string& word) {
-  auto taken = [&](const std::string& name) {
-    return std::any_of(model.root.children.begin(), model.root.children.end(), [&](const lang::Element& e) { return e.name == name; }) ||
-           std::any_of(model.parameters.begin(), model.parameters.end(), [&](const lang::Parameter& p) { return p.path == name; });
-  };
-  std::string name = word;
-  for (int k = 2; taken(name); ++k) name = fmt::format("{}{}", word, k);
-  return name;
-}
-
-// The fitted model's source with TRIAL written in as NAME, under COMMENT.
-std::string with_trial(const std::string& fitted_text, const lang::CheckedModel& fitted, const Trial& trial, const std::string& name,
-                       const BoundScales& bounds, const std::string& comment) {
-  const std::vector<std::string> lines = trial_statement(trial, name, bounds);
-  if (trial.replaces.empty()) {
-    std::vector<std::string> block{"# " + comment};
-    block.insert(block.end(), lines.begin(), lines.end());
-    return lang::append_to_model(fitted_text, fitted, block);
-  }
-  for (const auto& e : fitted.root.children)
-    if (e.name == trial.replaces) {
-      const lang::TextSpan span = lang::element_statement(fitted_text, e);
-      return lang::replace_span(fitted_text, span, "# " + comment + "\n" + lang::line_indent(fitted_text, span.begin) + lines.front());
-    }
-  throw std::logic_error(fmt::format("model '{}' has no root element '{}' to replace", fitted.name, trial.replaces));
-}
-
-// Empty when the resonance of a refitted fluid column (the element ELEMENT of MODEL) lies inside
-// the measured frequencies with a margin of 10 % either side, else why not. Shapes without a
-// resonance are always resolved.
-std::string resolved_resonance(const Trial& trial, const lang::CheckedModel& model, const Network& network, const std::string& element,
-                               const DataScales& scales) {
-  if (trial.shape != Shape::tuned_column && trial.shape != Shape::capped_column) return {};
-  const int k = index_of(model, element + ".chamber.k"), b = index_of(model, element + ".column.mass.b");
-  if (k < 0 || b < 0) throw std::logic_error(fmt::format("diagnose: the fluid column '{}' lacks chamber.k or column.mass.b", element));
-  const double resonance = std::sqrt(network.parameter(k) / network.parameter(b)) / (2.0 * std::numbers::pi);  // [Hz]
-  constexpr double kMargin = 1.1;
-  if (resonance >= kMargin * scales.frequency_low && resonance <= scales.frequency_high / kMargin) return {};
-  return fmt::format(
-      "its resonance, refitted to {:.3g} Hz, is not inside the measured {:.3g}-{:.3g} Hz with a measured frequency 10 % "
-      "either side, so the data cannot tell it from a relaxation or a stiffness trend",
-      resonance, scales.frequency_low, scales.frequency_high);
-}
-
-// The limit without inertia (b -> 0) of a refitted slider-capped fluid column ELEMENT: chamber
-// spring and channel dashpot in series are a Maxwell element of k = chamber.k and
-// tau = channel.c / chamber.k, capped by the same slider: the capped_maxwell shape, one
-// parameter fewer and no resonance to place.
-Trial resonance_free_limit(const Trial& column, const lang::CheckedModel& model, const Network& refitted, const std::string& element) {
-  auto value = [&](const std::string& path) {
-    const int i = index_of(model, element + "." + path);
-    if (i < 0) throw std::logic_error(fmt::format("diagnose: the fluid column '{}' lacks {}", element, path));
-    return refitted.parameter(i);
-  };
-  Trial limit = column;
-  limit.shape = Shape::capped_maxwell;
-  limit.stiffness = value("chamber.k");
-  limit.time = value("column.channel.c") / limit.stiffness;
-  limit.slip = value("cap.fy") / limit.stiffness;
-  limit.frequency = limit.damping_ratio = 0.0;
-  return limit;
 }
 
 // Whether candidate A is preferred to B: the one with fewer parameters when its gap is within
@@ -177,10 +96,30 @@ class Diagnoser {
     if (s_.stage) s_.stage(what);
   }
 
+  // Seconds to the deadline; +inf without one.
+  double time_left() const {
+    if (!s_.deadline) return std::numeric_limits<double>::infinity();
+    return std::chrono::duration<double>(*s_.deadline - std::chrono::steady_clock::now()).count();
+  }
+
+  // Whether the next step must not begin: a fit was interrupted, or the deadline has passed.
+  bool stopped() {
+    if (!d_.interrupted && time_left() <= 0.0) d_.time_limited = true;
+    return d_.interrupted || d_.time_limited;
+  }
+
+  // S with its fits bounded by SHARE of the time left (and by their own limit).
+  DiagnoseSettings within(double share) const {
+    DiagnoseSettings s = s_;
+    if (const double left = time_left(); std::isfinite(left))
+      s.fit.time_limit = std::min(s.fit.time_limit.value_or(1e300), std::max(1e-3, share * left));
+    return s;
+  }
+
   std::vector<int> free_parameters() const {
     if (settings_.free.empty()) return lang::default_free_parameters(*base_.model);
     std::vector<int> free;
-    for (const auto& path : settings_.free) free.push_back(index_of(*base_.model, path));
+    for (const auto& path : settings_.free) free.push_back(parameter_index(*base_.model, path));
     if (std::count(free.begin(), free.end(), -1)) throw std::logic_error(fmt::format("model '{}': a free parameter is not in it", source_.model));
     return free;
   }
@@ -192,11 +131,14 @@ class Diagnoser {
     d_.gap_name = harmonic ? "err (6.1)" : "RMS force residual";
     stage(fmt::format("fitting model {}", source_.model));
     d_.before_program = base_.program;
-    d_.before = fit(Network::compile(*base_.model), free, data_, s_.fit);
+    d_.before = fit(Network::compile(*base_.model), free, data_, within(1.0 / 3.0).fit);
+    d_.time_limited = d_.before.time_limited;
     d_.gap_before = d_.gap_after = fit_gap(d_.before);
     d_.residual_terms = residual_terms(data_);
     d_.criterion_before = criterion(d_.before, d_.residual_terms);
     d_.patterns = residual_patterns(d_.before, data_);
+    d_.noise = estimate_noise(d_.before, data_);
+    d_.noise_ratio = noise_ratio(d_.gap_before, d_.noise, d_.residual_terms, static_cast<int>(d_.before.free.size()));
     fitted_text_ = lang::write_fitted_source(source_.text, source_.file, *base_.model, d_.before.network.parameters(), d_.before.free, {});
     d_.interrupted = d_.before.interrupted;
     for (int i : d_.before.free) kept_paths_.push_back(base_.model->parameters[static_cast<std::size_t>(i)].path);
@@ -206,7 +148,7 @@ class Diagnoser {
 
   // Step 2: every effect screened, leading first.
   std::vector<ScreenedEffect> screen_effects() {
-    if (d_.interrupted) return {};
+    if (stopped()) return {};
     stage("screening the effects");
     return screen(d_.before, data_, s_.fit.score);
   }
@@ -216,18 +158,22 @@ class Diagnoser {
   void refit_leading(const std::vector<ScreenedEffect>& screened_effects) {
     const double leading_gain = screened_effects.empty() ? 0.0 : screened_effects.front().gain;
     int refitted = 0;
+    int to_refit = 0;  // the refits still to run, for their share of the time left
+    for (const ScreenedEffect& screened : screened_effects)
+      if (screened.gain >= std::max(s_.min_screen_gain, s_.relative_screen_gain * leading_gain)) ++to_refit;
+    to_refit = std::min(to_refit, s_.confirm);
     for (const ScreenedEffect& screened : screened_effects) {
       CandidateOutcome outcome;
       outcome.screened = screened;
       const Trial& trial = screened.trial;
-      outcome.element = trial.replaces.empty() ? unique_name(*fitted_.model, element_word(screened.effect)) : trial.replaces;
-      if (refitted >= s_.confirm || screened.gain < std::max(s_.min_screen_gain, s_.relative_screen_gain * leading_gain) || d_.interrupted) {
+      outcome.element = trial.replaces.empty() ? candidate_name(*fitted_.model, screened.effect) : trial.replaces;
+      if (refitted >= s_.confirm || screened.gain < std::max(s_.min_screen_gain, s_.relative_screen_gain * leading_gain) || stopped()) {
         d_.candidates.push_back(outcome);
         continue;
       }
       ++refitted;
-      const std::optional<Trial> limit = refit_candidate(trial, outcome);
-      if (!limit || d_.interrupted) continue;
+      const std::optional<Trial> limit = refit_candidate(trial, outcome, 1.0 / (to_refit - refitted + 2));
+      if (!limit || stopped()) continue;
       // The column's limit without inertia competes with it: where the data hold no resonance
       // (or cannot place it) the limit earns the coupling with one parameter fewer.
       CandidateOutcome limit_outcome;
@@ -238,33 +184,35 @@ class Diagnoser {
           "the limit without inertia of the fluid column before it (its chamber and channel as a Maxwell "
           "element, tau = c/k = {:.4g} ms){}",
           limit->time * 1e3, outcome.unresolved.empty() ? "" : ", whose resonance the data cannot place");
-      refit_candidate(*limit, limit_outcome);
+      refit_candidate(*limit, limit_outcome, 1.0 / (to_refit - refitted + 2));
     }
   }
 
   // Steps 3 and 4 for one candidate: the fitted model with TRIAL added as OUTCOME.element,
   // refitted in two stages; recorded, and kept as the choice if it earns its parameters and is
   // preferred to the choice so far. Returns the limit without inertia of a capped fluid column.
-  std::optional<Trial> refit_candidate(const Trial& trial, CandidateOutcome& outcome) {
+  // SHARE: of the time left, for this refit.
+  std::optional<Trial> refit_candidate(const Trial& trial, CandidateOutcome& outcome, double share) {
     const auto started = std::chrono::steady_clock::now();
     stage(fmt::format("refitting with {} for {}", trial_summary(trial), effect_name(outcome.screened.effect)));
     const std::string comment = fmt::format("candidate for {}", effect_name(outcome.screened.effect));
     Compiled candidate = compile(source_, with_trial(fitted_text_, *fitted_.model, trial, outcome.element, scales_.bounds, comment));
     std::vector<int> kept, added;
     for (const auto& path : kept_paths_)
-      if (const int i = index_of(*candidate.model, path); i >= 0) kept.push_back(i);
+      if (const int i = parameter_index(*candidate.model, path); i >= 0) kept.push_back(i);
     for (std::size_t i = 0; i < candidate.model->parameters.size(); ++i) {
       const lang::Parameter& p = candidate.model->parameters[i];
       if (p.free && p.path.starts_with(outcome.element + ".") && std::find(kept.begin(), kept.end(), static_cast<int>(i)) == kept.end())
         added.push_back(static_cast<int>(i));
     }
-    FitResult result = staged_refit(Network::compile(*candidate.model), kept, added, data_, s_);
+    FitResult result = staged_refit(Network::compile(*candidate.model), kept, added, data_, within(share));
     outcome.refitted = true;
     outcome.gap_after = fit_gap(result);
     outcome.criterion = criterion(result, d_.residual_terms);
     outcome.parameters = static_cast<int>(result.free.size());
     outcome.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
     d_.interrupted = d_.interrupted || result.interrupted;
+    d_.time_limited = d_.time_limited || result.time_limited;
     outcome.unresolved = resolved_resonance(trial, *candidate.model, result.network, outcome.element, scales_);
     std::optional<Trial> limit;
     if (trial.shape == Shape::capped_column) limit = resonance_free_limit(trial, *candidate.model, result.network, outcome.element);
@@ -278,13 +226,14 @@ class Diagnoser {
 
   // Step 5: BOBYQA over every free parameter of the chosen model again, kept when no worse.
   void polish() {
-    if (d_.interrupted) return;
+    if (stopped()) return;
     stage("polishing the refined model");
     const int n = static_cast<int>(chosen_->result.free.size());
-    FitSettings settings = local_search(s_.fit, affordable_evaluations(chosen_->result.network, data_, s_, 2 * n + 1 + 20 * n));
+    FitSettings settings = local_search(within(1.0).fit, affordable_evaluations(chosen_->result.network, data_, s_, 2 * n + 1 + 20 * n));
     settings.statistics = settings_.standard_errors;
     FitResult polished = fit(chosen_->result.network, chosen_->result.free, data_, settings);
     d_.interrupted = polished.interrupted;
+    d_.time_limited = d_.time_limited || polished.time_limited;
     if (polished.objective <= chosen_->result.objective) {
       polished.start_values = chosen_->result.start_values;
       polished.yeoh_started = chosen_->result.yeoh_started;
@@ -294,11 +243,17 @@ class Diagnoser {
     }
   }
 
-  // No candidate earned: effect none, the model as fitted.
+  // No candidate earned: the model as fitted, its residual at the noise (none) or not (unexplained).
   Diagnosis finish_none() {
     d_.effect = Effect::none;
-    d_.reason = none_reason(d_, s_);
-    std::vector<std::string> header{fmt::format("Checked by `rheo diagnose`: effect none, nothing added. {} = {:.4g}.", d_.gap_name, d_.gap_before)};
+    const bool beyond_noise = systematic(d_.gap_before, d_.noise, d_.residual_terms, static_cast<int>(d_.before.free.size()));
+    d_.verdict = beyond_noise ? Verdict::unexplained : Verdict::none;
+    if (beyond_noise) d_.unexplained = residual_shape(d_.before, data_);
+    d_.reason = beyond_noise ? unexplained_reason(d_) : none_reason(d_, s_);
+    const std::string noise = d_.noise.estimated ? fmt::format(" (the noise leaves {:.4g})", d_.noise.floor) : "";
+    std::vector<std::string> header{fmt::format("Checked by `rheo diagnose`: {}, nothing added. {} = {:.4g}{}.",
+                                                beyond_noise ? "unexplained: a systematic residual no candidate removes" : "effect none",
+                                                d_.gap_name, d_.gap_before, noise)};
     d_.refined_text = lang::write_fitted_source(source_.text, source_.file, *base_.model, d_.before.network.parameters(), d_.before.free, header);
     return std::move(d_);
   }
@@ -307,6 +262,7 @@ class Diagnoser {
   // under the comment that says why) with its fitted values.
   Diagnosis finish_refined() {
     d_.candidates[chosen_->candidate].chosen = true;
+    d_.verdict = Verdict::named;
     const CandidateOutcome& winner = d_.candidates[chosen_->candidate];
     d_.effect = winner.screened.effect;
     d_.gap_after = fit_gap(chosen_->result);
@@ -341,6 +297,10 @@ class Diagnoser {
 };
 
 }  // namespace
+
+std::string_view verdict_name(const Diagnosis& diagnosis) {
+  return diagnosis.verdict == Verdict::unexplained ? "unexplained" : effect_name(diagnosis.effect);
+}
 
 Diagnosis diagnose(const ModelSource& source, const std::vector<FitDataSet>& data, const DiagnoseSettings& settings) {
   return Diagnoser(source, data, settings).run();

@@ -7,9 +7,9 @@
 //   3. Confirm the leading effects (at most `confirm`, screening gain >= `min_screen_gain` and
 //      >= `relative_screen_gain` times the leading one's):
 //      write the element into the fitted model's source with bounds, compile it and refit in
-//      two stages: the new parameters alone from the screened element, then every free
-//      parameter together from there (thorough where the work budget affords it, local
-//      otherwise; diagnose.cpp staged_refit).
+//      two stages: the new parameters alone, sampled over the range the data support and
+//      searched locally from the best samples and the screened element, then every free
+//      parameter together from the best of those and from the screened element (refit.hpp).
 //   4. Choose by the Bayesian information criterion over the N residual terms of the fit,
 //        BIC = N ln(J) + p ln(N),   J the minimised objective, p the free parameters,
 //      so that a larger model must earn its parameters: a candidate earns when its BIC is below
@@ -18,21 +18,28 @@
 //      lower BIC. A resonance (the fluid-column shapes) earns only where the measurement
 //      resolves it: refitted to f_r = sqrt(k/b)/(2 pi), a measured frequency must lie at least
 //      10 % below and one 10 % above it; at the edge of the data a resonance is a relaxation's
-//      rising stiffness with one more parameter. None earns: the effect is `none` and nothing is added.
+//      rising stiffness with one more parameter. None earns: nothing is added, and the verdict
+//      is `none` when the gap is indistinguishable from the measurement noise estimated from the
+//      residual (noise_estimate.hpp), else `unexplained`, with the residual's shape
+//      (unexplained.hpp) and the best candidate's numbers.
 //   5. Polish the chosen model: BOBYQA over every free parameter again with the refit's budget;
 //      gap_after is the polished model's (with its standard errors when `standard_errors`).
 // The gap is err (eq. 6.1) over the harmonic points when there are any, else the RMS over the
 // history files of their RMS force residual relative to max|F_exp|.
 #pragma once
 
+#include "runtime/diagnosis/noise_estimate.hpp"
 #include "runtime/diagnosis/patterns.hpp"
 #include "runtime/diagnosis/screen.hpp"
+#include "runtime/diagnosis/unexplained.hpp"
 #include "runtime/fit/fit.hpp"
 
+#include <chrono>
 #include <functional>
 #include <memory>
 #include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 namespace rheo::runtime::diagnosis {
@@ -54,21 +61,35 @@ struct DiagnoseSettings {
   // fitted noise at one frequency for a 13 % drop on data the model explained.
   double min_improvement = 0.25;
   double parsimony = 0.1;  // a candidate with fewer parameters wins if its gap is within this of another's
-  // Budgets. A refit may spend `refit_work` time steps (diagnose.cpp evaluation_work: counted on
-  // the candidate's first prediction, not timed), at most `max_evaluations` per stage. Where
-  // that affords `thorough_evaluations` per parameter of both stages, stage 1 is the default
-  // strategy (a sampled look a decade around the screened element, local searches from the
-  // best) and stage 2 BOBYQA, each with half the budget; else both are BOBYQA with lean budgets
-  // of 2 n + 1 (BOBYQA's first model) plus 15 per new parameter (stage 1) or 4 per free one
-  // (stage 2). The polish gets the refit's budget, at least 2 n + 1 + 20 n.
+  // Budgets. A refit may spend `refit_work` time steps (refit.cpp evaluation_work: counted on
+  // the candidate's first prediction, not timed), at most `max_evaluations` per stage. Stage 1
+  // first looks over the range the data support for the new parameters (global_look.hpp):
+  // `global_samples` points per new parameter, up to four times that where the work budget
+  // affords a quarter of it; then Levenberg-Marquardt over the new parameters from the screened
+  // element and the `global_starts` - 1 best points, the best result kept. Stage 2 runs Levenberg-Marquardt over every free parameter from the best of
+  // stage 1 and from the screened element as sized, each with a quarter of the budget (at least
+  // 2 n + 1 + 4 n). Where the budget affords `thorough_evaluations` per parameter of both
+  // stages, the local searches of stage 1 share half of it, else each gets 2 n + 1 + 15 n for n
+  // new parameters. The polish gets the refit's budget, at least 2 n + 1 + 20 n.
   double refit_work = 1e7;
   int max_evaluations = 20000;
   int thorough_evaluations = 100;
+  int global_samples = 10;
+  int global_starts = 3;
   // Standard errors of the model as fitted and of the refined one (reports show them); each
   // costs 2 n + 1 evaluations, which for time-stepped models is seconds.
   bool standard_errors = false;
   std::function<void(const std::string&)> stage;  // told what runs next ("refitting ..."); may be empty
+  // Wall-clock bound of the whole diagnosis: the model's fit may take a third of the time left,
+  // each candidate's refit an equal share of what is left then (the polish one more), and what
+  // has not begun by the deadline is skipped; the result so far (Diagnosis::time_limited).
+  std::optional<std::chrono::steady_clock::time_point> deadline;
 };
+
+// What the diagnosis concludes: an effect named (its element added), `none` (the gap is
+// indistinguishable from the measurement noise) or `unexplained` (the residual is more than the
+// noise, but no candidate earns its parameters).
+enum class Verdict { named, none, unexplained };
 
 struct CandidateOutcome {
   ScreenedEffect screened;
@@ -90,9 +111,13 @@ struct CandidateOutcome {
 };
 
 struct Diagnosis {
-  Effect effect = Effect::none;
-  std::string reason;         // why, with numbers
-  ResidualPatterns patterns;  // of the model as fitted
+  Verdict verdict = Verdict::none;
+  Effect effect = Effect::none;              // the effect named; none for the verdicts none and unexplained
+  std::string reason;                        // why, with numbers
+  ResidualPatterns patterns;                 // of the model as fitted
+  NoiseEstimate noise;                       // behind the residual of the model as fitted
+  double noise_ratio = 0.0;                  // gap_before over the floor noise leaves (noise_estimate.hpp); 0 without an estimate
+  std::optional<ResidualShape> unexplained;  // the verdict unexplained: where the residual lies, what it resembles
   FitResult before;
   std::optional<FitResult> after;            // the refined model refitted; empty for none
   std::string gap_name;                      // "err (6.1)" or "RMS force residual"
@@ -105,6 +130,7 @@ struct Diagnosis {
   std::vector<std::string> added_statement;  // its lines in the refined file
   std::string refined_text;                  // the whole file with fitted values (and the element, with a comment)
   bool interrupted = false;                  // a fit was stopped (Ctrl-C): the result so far
+  bool time_limited = false;                 // DiagnoseSettings::deadline cut a fit short or skipped one: the result so far
   // Own the models that before.network and after->network refer to.
   std::shared_ptr<const lang::Program> before_program, after_program;
 };
@@ -116,5 +142,8 @@ Diagnosis diagnose(const ModelSource& source, const std::vector<FitDataSet>& dat
 
 // The gap of a fit as defined above.
 double fit_gap(const FitResult& result);
+
+// The verdict's word in reports and JSON: the effect's name, "none" or "unexplained".
+std::string_view verdict_name(const Diagnosis& diagnosis);
 
 }  // namespace rheo::runtime::diagnosis

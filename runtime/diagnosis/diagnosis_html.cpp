@@ -33,8 +33,8 @@ std::string gap_table(const std::vector<Diagnosis>& rounds) {
   out += row("as given, fitted", start);
   for (std::size_t k = 0; k < rounds.size(); ++k) {
     const Diagnosis& d = rounds[k];
-    const std::string what = d.effect == Effect::none ? "nothing added (none)"
-                                                      : fmt::format("<code>{}</code> added ({})", escape(d.added_element), effect_name(d.effect));
+    const std::string what = d.verdict != Verdict::named ? fmt::format("nothing added ({})", verdict_name(d))
+                                                         : fmt::format("<code>{}</code> added ({})", escape(d.added_element), effect_name(d.effect));
     out += row(fmt::format("round {}: {}", k + 1, what), d.gap_after);
   }
   return out + "</table>\n";
@@ -65,15 +65,18 @@ std::string candidate_table(const Diagnosis& d) {
 }
 
 std::string round_html(const Diagnosis& d, std::size_t index, bool several) {
-  std::string out = several ? fmt::format("<h3>Round {}: {}</h3>\n", index + 1, effect_name(d.effect))
-                            : fmt::format("<h3>Effect: {}</h3>\n", effect_name(d.effect));
+  std::string out = several ? fmt::format("<h3>Round {}: {}</h3>\n", index + 1, verdict_name(d))
+                            : fmt::format("<h3>Effect: {}</h3>\n", verdict_name(d));
   out += fmt::format("<p>{}</p>\n<p>Where the model as fitted missed:</p>\n<ul>\n", escape(d.reason));
   for (const std::string& line : pattern_lines(d.patterns)) out += fmt::format("<li>{}</li>\n", escape(line));
+  if (const std::string noise = noise_sentence(d); !noise.empty()) out += fmt::format("<li>{}</li>\n", escape(noise));
   out +=
       "</ul>\n<p>Candidates: the share of the objective the element removes alone (screened), then the gap and BIC "
       "after refitting it with every free parameter. A candidate earns when its BIC is lower and the gap drops enough.</p>\n";
   out += candidate_table(d);
-  if (d.effect == Effect::none) return out + "<p>Nothing added.</p>\n";
+  if (d.verdict == Verdict::unexplained)
+    return out + "<p>Nothing added: the residual is more than the noise, but no candidate element removes it (verdict unexplained).</p>\n";
+  if (d.verdict != Verdict::named) return out + "<p>Nothing added.</p>\n";
   out += fmt::format("<p>Added to model <code>{}</code> ({}), then every free parameter polished: {} {:.4g} &rarr; {:.4g}.</p>\n",
                      escape(d.before.network.model().name), escape(d.added_summary), escape(d.gap_name), d.gap_before, d.gap_after);
   std::string statement;
@@ -90,7 +93,7 @@ report::ReportContent diagnosis_report_content(const std::vector<Diagnosis>& rou
   const Diagnosis& last = rounds.back();
   report::ReportContent content = report::report_from_fit(final_fit(last), data, description);
   const std::string model = first.before.network.model().name;
-  const bool added = std::any_of(rounds.begin(), rounds.end(), [](const Diagnosis& d) { return d.effect != Effect::none; });
+  const bool added = std::any_of(rounds.begin(), rounds.end(), [](const Diagnosis& d) { return d.verdict == Verdict::named; });
   content.title = fmt::format("{}: model {}", command, model);
   content.origin = fmt::format("{}: {} {:.4g} -> {:.4g} in {} round{}; fits: method {}, objective {}, seed {}", command, first.gap_name,
                                first.gap_before, last.gap_after, rounds.size(), rounds.size() == 1 ? "" : "s", description.method,
@@ -107,6 +110,7 @@ report::ReportContent diagnosis_report_content(const std::vector<Diagnosis>& rou
                                 "The network before the first round; the refined network is drawn above.");
   content.sections.push_back({"diagnosis", several ? "Refinement" : "Diagnosis", html});
   if (last.interrupted) content.notes.push_back("interrupted: the results so far");
+  if (last.time_limited) content.notes.push_back("stopped at the time limit: the results so far");
   return content;
 }
 

@@ -30,6 +30,7 @@ std::string diagnosis_report_text(const std::string& source_file, const Diagnosi
                      d.criterion_before, d.residual_terms);
   out += "where the model misses\n";
   for (const auto& line : pattern_lines(d.patterns)) out += "  " + line + "\n";
+  if (const std::string noise = noise_sentence(d); !noise.empty()) out += "  " + noise + "\n";
   out += "\ncandidates (screened: share of the objective the element removes alone; refitted: with every free parameter)\n";
   out += fmt::format("  {:<28}  {:>8}  {:>12}  {:>10}  {}\n", "effect", "screened", d.gap_name, "BIC", "element");
   for (const auto& c : d.candidates) {
@@ -41,8 +42,8 @@ std::string diagnosis_report_text(const std::string& source_file, const Diagnosi
     if (!c.unresolved.empty()) out += fmt::format("  {} cannot earn: {}\n", effect_name(c.screened.effect), c.unresolved);
     else if (!c.limit_of.empty())
       out += fmt::format("  {} also tried as {}: {}\n", effect_name(c.screened.effect), trial_summary(c.screened.trial), c.limit_of);
-  out += fmt::format("\neffect: {}\n  why: {}\n", effect_name(d.effect), d.reason);
-  if (d.effect != Effect::none) {
+  out += fmt::format("\neffect: {}\n  why: {}\n", verdict_name(d), d.reason);
+  if (d.verdict == Verdict::named) {
     out += fmt::format("  {}: {:.4g} -> {:.4g} after a final polish ({:.2f} times lower)\n", d.gap_name, d.gap_before, d.gap_after,
                        d.gap_before / d.gap_after);
     out += fmt::format("  added to model {}:\n", d.before.network.model().name);
@@ -53,6 +54,7 @@ std::string diagnosis_report_text(const std::string& source_file, const Diagnosi
     out += "  nothing added\n";
   }
   if (d.interrupted) out += "  interrupted: the results so far\n";
+  if (d.time_limited) out += "  stopped at the time limit: the results so far\n";
   return out;
 }
 
@@ -88,12 +90,16 @@ std::string diagnosis_report_json(const std::string& source_file, const Diagnosi
     candidates.push_back(e);
   }
   evidence["candidates"] = candidates;
+  const NoiseEstimate& n = d.noise;
+  evidence["noise"] = n.estimated ? json{{"floor", n.floor},
+                                         {"relative_error", n.relative_error},
+                                         {"ratio", d.noise_ratio},
+                                         {"pseudo_residuals", n.pseudo_residuals}}
+                                  : json(nullptr);
+  if (n.estimated && d.patterns.has_harmonic) evidence["noise"]["stiffness"] = n.stiffness, evidence["noise"]["phase_deg"] = degrees(n.phase);
+  if (n.estimated && !d.patterns.has_harmonic) evidence["noise"]["force"] = n.force, evidence["noise"]["autocorrelation"] = n.autocorrelation;
 
-  json j{{"effect", effect_name(d.effect)},
-         {"evidence", evidence},
-         {"gap_measure", d.gap_name},
-         {"err_before", d.gap_before},
-         {"err_after", d.gap_after}};
+  json j{{"effect", verdict_name(d)}, {"evidence", evidence}, {"gap_measure", d.gap_name}, {"err_before", d.gap_before}, {"err_after", d.gap_after}};
   json criterion{{"name", "BIC"}, {"residual_terms", d.residual_terms}, {"before", d.criterion_before}};
   json added = json::array();
   if (d.after) {
@@ -118,6 +124,30 @@ std::string diagnosis_report_json(const std::string& source_file, const Diagnosi
   j["source"] = source_file;
   j["output"] = output.empty() ? json(nullptr) : json(output);
   j["interrupted"] = d.interrupted;
+  j["time_limited"] = d.time_limited;
+  j["unexplained"] = nullptr;
+  if (d.unexplained) {
+    auto range = [](const std::optional<LevelRange>& r, const char* unit) {
+      return r ? json{{std::string("low_") + unit, r->low}, {std::string("high_") + unit, r->high}, {"share", r->share}, {"levels", r->levels}}
+               : json(nullptr);
+    };
+    json u{{"reason", d.reason},
+           {"amplitudes", range(d.unexplained->amplitudes, "mm")},
+           {"frequencies", range(d.unexplained->frequencies, "hz")},
+           {"resembles", d.unexplained->resembles ? json(resemblance_name(*d.unexplained->resembles)) : json(nullptr)},
+           {"resembles_share", d.unexplained->resembles_share},
+           {"best_candidate", nullptr}};
+    const CandidateOutcome* best = nullptr;
+    for (const auto& c : d.candidates)
+      if (c.refitted && (!best || c.criterion < best->criterion)) best = &c;
+    if (best)
+      u["best_candidate"] = {{"effect", effect_name(best->screened.effect)},
+                             {"trial", trial_summary(best->screened.trial)},
+                             {"gap_after", best->gap_after},
+                             {"criterion", best->criterion},
+                             {"parameters", best->parameters}};
+    j["unexplained"] = u;
+  }
   return j.dump(2) + "\n";
 }
 

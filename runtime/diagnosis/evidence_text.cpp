@@ -69,10 +69,18 @@ std::string effect_reason(const Diagnosis& d, const CandidateOutcome& w) {
       d.criterion_before, w.criterion, w.parameters - static_cast<int>(d.before.free.size()));
 }
 
-std::string none_reason(const Diagnosis& d, const DiagnoseSettings& s) {
+namespace {
+
+// The refitted candidate of the lowest BIC, or null.
+const CandidateOutcome* best_candidate(const Diagnosis& d) {
   const CandidateOutcome* best = nullptr;
   for (const auto& c : d.candidates)
     if (c.refitted && (!best || c.criterion < best->criterion)) best = &c;
+  return best;
+}
+
+std::string without_noise(const Diagnosis& d, const DiagnoseSettings& s) {
+  const CandidateOutcome* best = best_candidate(d);
   if (!best) {
     const double top = d.candidates.empty() ? 0.0 : d.candidates.front().screened.gain;
     return fmt::format(
@@ -86,9 +94,67 @@ std::string none_reason(const Diagnosis& d, const DiagnoseSettings& s) {
                        best->unresolved);
   return fmt::format(
       "the best candidate, {} for {}, lowered {} only from {:.4g} to {:.4g} and BIC from {:.1f} to {:.1f}; an element must "
-      "lower BIC and the gap by {:.0f} % to earn its parameters, so the residual is taken as noise",
+      "lower BIC and the gap by {:.0f} % to earn its parameters",
       trial_summary(best->screened.trial), effect_name(best->screened.effect), d.gap_name, d.gap_before, best->gap_after, d.criterion_before,
       best->criterion, percent(s.min_improvement));
+}
+
+std::string range_text(const LevelRange& r, const char* unit) {
+  if (r.levels == r.of) return fmt::format("spread over all {} levels", r.of);
+  const std::string where = r.low == r.high ? fmt::format("{:.4g} {}", r.low, unit) : fmt::format("{:.4g}-{:.4g} {}", r.low, r.high, unit);
+  return fmt::format("{:.0f} % at {} ({} of {} levels)", percent(r.share), where, r.levels, r.of);
+}
+
+}  // namespace
+
+std::string noise_sentence(const Diagnosis& d) {
+  const NoiseEstimate& n = d.noise;
+  if (!n.estimated) return {};
+  const std::string what =
+      d.patterns.has_harmonic
+          ? fmt::format("from the residual's roughness over the amplitude x frequency grid: {:.2f} % in stiffness, {:.3f} deg in phase",
+                        100.0 * n.stiffness, degrees(n.phase))
+          : fmt::format("from the force residual's roughness in time: {:.3f} % of max|F| (lag-1 autocorrelation of the residual {:.2f})",
+                        100.0 * n.force, n.autocorrelation);
+  return fmt::format("measurement noise estimated {}; noise alone leaves {} = {:.4g} (+-{:.0f} %), and the gap is {:.2f} times that", what,
+                     d.gap_name, n.floor, percent(n.relative_error), d.noise_ratio);
+}
+
+std::string none_reason(const Diagnosis& d, const DiagnoseSettings& s) {
+  const std::string noise = noise_sentence(d);
+  return without_noise(d, s) + (noise.empty() ? ", so the residual is taken as noise" : "; the residual is noise: " + noise);
+}
+
+std::string unexplained_reason(const Diagnosis& d) {
+  std::string out = fmt::format("the residual is systematic but no candidate explains it: {}", noise_sentence(d));
+  if (d.unexplained) {
+    const ResidualShape& shape = *d.unexplained;
+    if (shape.amplitudes && shape.frequencies)
+      out += fmt::format("; its square lies {} of amplitude and {} of frequency", range_text(*shape.amplitudes, "mm"),
+                         range_text(*shape.frequencies, "Hz"));
+    if (d.patterns.has_harmonic) {
+      const HarmonicPatterns& h = d.patterns.harmonic;
+      out += fmt::format(
+          "; {:.0f} % of it varies with amplitude alone, {:.0f} % with frequency alone, {:.0f} % with both together; RMS {:.2f} % in "
+          "stiffness and {:.3f} deg in phase, largest {:+.2f} % at {:.4g} mm, {:.4g} Hz",
+          percent(h.amplitude_share), percent(h.frequency_share), percent(h.interaction_share), 100.0 * h.stiffness_rms, degrees(h.phase_rms),
+          100.0 * h.worst_stiffness.residual, h.worst_stiffness.amplitude, h.worst_stiffness.frequency);
+    }
+    if (shape.resembles)
+      out += fmt::format("; the force residual resembles {} ({:.0f} % of its square)", resemblance_name(*shape.resembles),
+                         percent(shape.resembles_share));
+    for (const auto& h : d.patterns.histories)
+      out += fmt::format("; {}: largest {:.2f} % of max|F| at u = {:.4g} mm", h.path, 100.0 * h.worst, h.worst_displacement);
+  }
+  if (const CandidateOutcome* best = best_candidate(d))
+    out += fmt::format("; the best candidate, {} for {}, lowered {} only from {:.4g} to {:.4g} (BIC {:.1f} -> {:.1f}){}",
+                       trial_summary(best->screened.trial), effect_name(best->screened.effect), d.gap_name, d.gap_before, best->gap_after,
+                       d.criterion_before, best->criterion, best->unresolved.empty() ? "" : ", and " + best->unresolved);
+  else if (!d.candidates.empty())
+    out += fmt::format("; the leading screened element, {} for {}, would remove only {:.1f} % of the objective",
+                       trial_summary(d.candidates.front().screened.trial), effect_name(d.candidates.front().screened.effect),
+                       percent(d.candidates.front().screened.gain));
+  return out + ": an effect outside the vocabulary, or a model that needs more than one element at once";
 }
 
 std::string added_summary(const FitResult& refit, const std::string& element) {

@@ -16,8 +16,18 @@ std::string pattern_sentence(Effect effect, const ResidualPatterns& patterns);
 // Why WINNER was chosen: its pattern sentence, its screening share, the gap and BIC.
 std::string effect_reason(const Diagnosis& diagnosis, const CandidateOutcome& winner);
 
-// Why nothing was added: no candidate screened above the threshold, or none earned its parameters.
+// Why nothing was added and the residual is noise: no candidate screened above the threshold, or
+// none earned its parameters; and the gap against the noise estimate.
 std::string none_reason(const Diagnosis& diagnosis, const DiagnoseSettings& settings);
+
+// Why the verdict is unexplained: how far the gap is above the noise, where the residual lies,
+// what it resembles, and the best candidate's numbers.
+std::string unexplained_reason(const Diagnosis& diagnosis);
+
+// The noise estimate in words: "measurement noise estimated from the residual's roughness over
+// the grid: 1.02 % in stiffness, 0.151 deg in phase; it leaves err (6.1) = 0.0021 (+-8 %), and the
+// gap is 1.04 times that"; empty without an estimate.
+std::string noise_sentence(const Diagnosis& diagnosis);
 
 // "cap.fy = 60.74 N, arm.k = 520 N/mm, arm.tau = 5.036 ms": the fitted parameters of ELEMENT in
 // their written units.

@@ -1,11 +1,14 @@
 #include "runtime/diagnosis/refit.hpp"
 
+#include "runtime/diagnosis/global_look.hpp"
 #include "runtime/fit/fit_scoring.hpp"
 #include "runtime/protocols/harmonic.hpp"
 #include "runtime/protocols/solver_choice.hpp"
 #include "runtime/stepping/tree_solver.hpp"
 
 #include <algorithm>
+#include <chrono>
+#include <optional>
 
 namespace rheo::runtime::diagnosis {
 namespace {
@@ -64,20 +67,67 @@ FitResult staged_refit(const Network& start, const std::vector<int>& kept, const
   const int n_added = static_cast<int>(added.size()), n_all = n_added + static_cast<int>(kept.size());
   const int affordable = affordable_evaluations(start, data, settings, 0);
   const bool thorough = affordable >= settings.thorough_evaluations * (n_added + n_all);
-  FitSettings first = local_search(settings.fit, thorough ? affordable / 2 : 2 * n_added + 1 + 15 * n_added);
-  if (thorough) first.search.algorithm.reset(), first.search.starts = 3, first.search.samples = -1;
-  FitResult stage1 = fit(start, added, data, first);
-  if (stage1.interrupted || kept.empty()) return stage1;
+  const auto started = std::chrono::steady_clock::now();
+  auto seconds = [&] { return std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count(); };
+  // Stage 1: the global look, then a local search of the new parameters from each of its best points.
+  const int samples = std::max(settings.global_samples * n_added, std::min(affordable / 4, 4 * settings.global_samples * n_added));
+  const std::vector<SampledStart> starts = global_look(start, added, data, settings.fit.score, samples, settings.global_starts);
+  const int per_start = thorough ? affordable / (2 * static_cast<int>(starts.size())) : 2 * n_added + 1 + 15 * n_added;
+  std::optional<FitResult> stage1;
+  int evaluations = samples + 1, non_finite = 0;
+  for (std::size_t k = 0; k < starts.size(); ++k) {
+    FitSettings first = local_search(settings.fit, per_start);
+    first.search.algorithm.reset(), first.search.samples = 0;  // Levenberg-Marquardt from the point, then a polish
+    if (settings.fit.time_limit) {
+      first.time_limit = (*settings.fit.time_limit / 2.0 - seconds()) / static_cast<double>(starts.size() - k);  // stage 2 gets half
+      if (*first.time_limit <= 0.0 && stage1) break;
+      first.time_limit = std::max(1e-3, *first.time_limit);
+    }
+    FitResult local = fit(start.with_parameters(starts[k].values), added, data, first);
+    evaluations += local.evaluations, non_finite += local.non_finite;
+    const bool interrupted = local.interrupted;
+    if (!stage1 || local.objective < stage1->objective) stage1 = std::move(local);
+    if (interrupted) {
+      stage1->interrupted = true;
+      break;
+    }
+  }
+  stage1->evaluations = evaluations, stage1->non_finite = non_finite, stage1->wall_seconds = seconds();
+  stage1->start_values = start.parameters();
+  if (stage1->interrupted || kept.empty()) return std::move(*stage1);
   std::vector<int> all = kept;
   all.insert(all.end(), added.begin(), added.end());
   std::sort(all.begin(), all.end());
-  FitResult stage2 = fit(stage1.network, all, data, local_search(settings.fit, thorough ? affordable / 2 : 2 * n_all + 1 + 4 * n_all));
-  stage2.start_values = stage1.start_values;
-  stage2.yeoh_started = stage1.yeoh_started;
-  stage2.evaluations += stage1.evaluations;
-  stage2.non_finite += stage1.non_finite;
-  stage2.wall_seconds += stage1.wall_seconds;
-  return stage2;
+  // Stage 2 from the best of stage 1, and from the screened element as it was sized: the model's
+  // own elements may have taken up part of the missing effect, so that the new element helps
+  // only once they give it back, which the new parameters alone cannot find.
+  std::optional<FitResult> stage2;
+  const std::vector<Network> froms{stage1->network, start};
+  for (std::size_t k = 0; k < froms.size(); ++k) {
+    FitSettings second = local_search(settings.fit, std::max(affordable / 4, 2 * n_all + 1 + 4 * n_all));
+    if (k == 1) second.search.algorithm.reset(), second.search.samples = 0;  // Levenberg-Marquardt, then a polish
+    if (settings.fit.time_limit) {
+      second.time_limit = (*settings.fit.time_limit - seconds()) / static_cast<double>(froms.size() - k);
+      if (*second.time_limit <= 0.0 && stage2) break;
+      second.time_limit = std::max(1e-3, *second.time_limit);
+    }
+    FitResult local = fit(froms[k], all, data, second);
+    const int spent = local.evaluations + (stage2 ? stage2->evaluations : 0);
+    const bool interrupted = local.interrupted, time_limited = local.time_limited || (stage2 && stage2->time_limited);
+    if (!stage2 || local.objective < stage2->objective) stage2 = std::move(local);
+    stage2->evaluations = spent, stage2->time_limited = time_limited;
+    if (interrupted) {
+      stage2->interrupted = true;
+      break;
+    }
+  }
+  stage2->time_limited = stage2->time_limited || stage1->time_limited;
+  stage2->start_values = stage1->start_values;
+  stage2->yeoh_started = stage1->yeoh_started;
+  stage2->evaluations += stage1->evaluations;
+  stage2->non_finite += stage1->non_finite;
+  stage2->wall_seconds = seconds();
+  return std::move(*stage2);
 }
 
 }  // namespace rheo::runtime::diagnosis

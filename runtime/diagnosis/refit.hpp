@@ -16,8 +16,11 @@ int affordable_evaluations(const Network& network, const std::vector<FitDataSet>
 // BASE as one local BOBYQA search of at most EVALUATIONS, without statistics or a Yeoh start.
 FitSettings local_search(const FitSettings& base, int evaluations);
 
-// Stage 1: the ADDED parameters alone from START; stage 2: every free parameter (KEPT and ADDED)
-// from there (DiagnoseSettings budgets). The result counts the evaluations of both.
+// Stage 1: the ADDED parameters sampled over the range the data support (global_look.hpp), then
+// searched by Levenberg-Marquardt from START and the best samples;
+// stage 2: every free parameter (KEPT and ADDED) by Levenberg-Marquardt from the best of stage
+// 1 and from START, the better kept (DiagnoseSettings budgets; a time limit in
+// settings.fit.time_limit is shared: half to stage 1). The result counts the evaluations of both.
 FitResult staged_refit(const Network& start, const std::vector<int>& kept, const std::vector<int>& added, const std::vector<FitDataSet>& data,
                        const DiagnoseSettings& settings);
 

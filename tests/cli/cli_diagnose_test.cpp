@@ -98,3 +98,27 @@ TEST_CASE("rheo diagnose: usage and data errors exit 2 and 4 before any fit, and
   CHECK(png.err.find("librsvg2-bin") != std::string::npos);
   CHECK(png.err.find("fitting") == std::string::npos);  // refused before the first fit
 }
+
+TEST_CASE("rheo diagnose --time-limit stops in time with the results so far, and --progress writes progress lines to a pipe") {
+  const fs::path dir = rheo::test::scratch_directory("diagnose-time");
+  const fs::path model = linear_model(dir);
+  // 1 ms: the model's fit is cut after its start, and nothing after it begins.
+  const auto limited = run_rheo(fmt::format("diagnose {} --json --time-limit 1ms", model.string()));
+  CAPTURE(limited.err);
+  REQUIRE(limited.code == 0);
+  const auto j = nlohmann::json::parse(limited.out);
+  CHECK(j["time_limited"] == true);
+  CHECK(j["added"].empty());
+  CHECK(j["evidence"]["candidates"].empty());
+  CHECK(limited.err.find("screening") == std::string::npos);
+  const auto bad = run_rheo(fmt::format("refine {} --time-limit soon", model.string()));
+  CHECK(bad.code == 2);
+  CHECK(bad.err.find("--time-limit 'soon'") != std::string::npos);
+  // Standard error is a pipe here: --progress still writes whole lines, one per stage at least.
+  const auto progress = run_rheo(fmt::format("diagnose {} --json --progress", model.string()));
+  REQUIRE(progress.code == 0);
+  CHECK(progress.err.find("rheo: fitting model linear\n") != std::string::npos);
+  CHECK(progress.err.find("rheo: fitting model linear\nrheo: fitting model linear: 1 evaluations") != std::string::npos);
+  CHECK(progress.err.find("\r") == std::string::npos);
+  CHECK(nlohmann::json::parse(progress.out)["evidence"].contains("noise"));
+}

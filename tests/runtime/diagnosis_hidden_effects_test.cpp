@@ -14,6 +14,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <numbers>
 #include <random>
 
 using namespace rheo;
@@ -35,9 +36,10 @@ std::string candidates(const dx::Diagnosis& d) {
 }
 
 void require_effect(const dx::Diagnosis& d, dx::Effect effect) {
-  MESSAGE("named " << dx::effect_name(d.effect) << ", gap " << d.gap_before << " -> " << d.gap_after << "; candidates (BIC before "
-                   << d.criterion_before << "):" << candidates(d));
-  INFO("named " << dx::effect_name(d.effect) << ": " << d.reason);
+  MESSAGE("named " << dx::verdict_name(d) << ", gap " << d.gap_before << " -> " << d.gap_after << " (noise floor " << d.noise.floor << " +- "
+                   << d.noise.relative_error << ", ratio " << d.noise_ratio << "); candidates (BIC before " << d.criterion_before
+                   << "):" << candidates(d));
+  INFO("named " << dx::verdict_name(d) << ": " << d.reason);
   INFO("gap " << d.gap_before << " -> " << d.gap_after);
   CHECK(dx::effect_name(d.effect) == dx::effect_name(effect));
   CHECK(d.gap_after <= d.gap_before / 3.0);
@@ -182,7 +184,15 @@ TEST_CASE("diagnose, harmonic: data the model already explains gives none") {
   friction f (k = 100 N/mm in [1, 10000], uy = 20 um in [0.1, 10000])
 }
 )";
-  require_none(diagnose(start, {harmonic_measurement(truth, 8)}));
+  const dx::Diagnosis d = diagnose(start, {harmonic_measurement(truth, 8)});
+  require_none(d);
+  // The verdict none is the noise's: estimated near the injected 1 % and 0.15 deg, the gap at it.
+  CHECK(d.verdict == dx::Verdict::none);
+  REQUIRE(d.noise.estimated);
+  CHECK(d.noise.stiffness == doctest::Approx(0.01).epsilon(0.3));
+  CHECK(d.noise.phase * 180.0 / std::numbers::pi == doctest::Approx(0.15).epsilon(0.3));
+  CHECK(d.noise_ratio == doctest::Approx(1.0).epsilon(0.3));
+  CHECK(dx::diagnosis_report_json("start.rheo", d, "").find("\"noise\": {") != std::string::npos);
 }
 
 TEST_CASE("diagnose, static loops: a Yeoh law behind the loops is nonlinear-elasticity") {

@@ -15,9 +15,13 @@ TEST_CASE("the diagnosis reports name an added parameter the refit left at its b
   const runtime::Network after = test::network_from(
       "model m { spring s (k = 100 in [1, 1000])\n maxwell m3 (k = 40 N/mm in [1, 10000], tau = 9999.93 ms in [0.01, 10000]) }", "m");
   // Every member named: -Wmissing-field-initializers.
-  dx::Diagnosis d{.effect = dx::Effect::rate_dependence,
+  dx::Diagnosis d{.verdict = dx::Verdict::named,
+                  .effect = dx::Effect::rate_dependence,
                   .reason = {},
                   .patterns = {},
+                  .noise = {},
+                  .noise_ratio = 0.0,
+                  .unexplained = {},
                   .before = {.network = before, .free = runtime::bounded_parameters(before), .start_values = before.parameters()},
                   .after = runtime::FitResult{.network = after, .free = runtime::bounded_parameters(after), .start_values = after.parameters()},
                   .gap_name = "err (6.1)",
@@ -31,6 +35,7 @@ TEST_CASE("the diagnosis reports name an added parameter the refit left at its b
                   .added_statement = {"maxwell m3 (k = 40 N/mm in [1, 10000], tau = 9999.93 ms in [0.01, 10000])"},
                   .refined_text = {},
                   .interrupted = false,
+                  .time_limited = false,
                   .before_program = {},
                   .after_program = {}};
   const std::string text = dx::diagnosis_report_text("m.rheo", d);

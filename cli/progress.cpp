@@ -1,0 +1,59 @@
+#include "cli/progress.hpp"
+
+#include <fmt/format.h>
+#include <unistd.h>
+
+#include <iostream>
+
+namespace rheo::cli {
+
+std::shared_ptr<Progress> Progress::start(bool requested, std::optional<double> time_limit) {
+  const bool terminal = ::isatty(STDERR_FILENO) != 0;
+  const double interval = requested ? kRequestedInterval : terminal ? 0.2 : kLogInterval;
+  auto progress = std::shared_ptr<Progress>(new Progress(terminal && !requested, interval, time_limit));
+  progress->requested_ = requested;
+  return progress;
+}
+
+Progress::Progress(bool live, double interval, std::optional<double> time_limit)
+    : live_(live), interval_(interval), time_limit_(time_limit), started_(std::chrono::steady_clock::now()), last_(started_) {}
+
+double Progress::elapsed() const { return std::chrono::duration<double>(std::chrono::steady_clock::now() - started_).count(); }
+
+void Progress::stage(const std::string& what) {
+  finish();
+  what_ = what;
+  first_of_stage_ = requested_;
+  std::cerr << "rheo: " << what << "\n" << std::flush;
+}
+
+void Progress::evaluation(const runtime::SearchProgress& p) {
+  const auto now = std::chrono::steady_clock::now();
+  if (!first_of_stage_ && std::chrono::duration<double>(now - last_).count() < interval_) return;
+  first_of_stage_ = false;
+  last_ = now;
+  const std::string clock = time_limit_ ? fmt::format("{:.0f} s of {:g} s", elapsed(), *time_limit_) : fmt::format("{:.0f} s", elapsed());
+  const std::string line = fmt::format("{}: {} evaluations, best objective {:.6g} ({}), {}", what_.empty() ? "searching" : what_, p.evaluations,
+                                       p.best, p.stage, clock);
+  if (live_) {
+    std::cerr << "\r  " << line << "   " << std::flush;
+    line_open_ = true;
+  } else {
+    std::cerr << "rheo: " << line << "\n" << std::flush;
+  }
+}
+
+void Progress::finish() {
+  if (line_open_) std::cerr << "\r" << std::string(120, ' ') << "\r" << std::flush;
+  line_open_ = false;
+}
+
+std::function<void(const runtime::SearchProgress&)> Progress::evaluation_callback(const std::shared_ptr<Progress>& progress) {
+  return [progress](const runtime::SearchProgress& p) { progress->evaluation(p); };
+}
+
+std::function<void(const std::string&)> Progress::stage_callback(const std::shared_ptr<Progress>& progress) {
+  return [progress](const std::string& what) { progress->stage(what); };
+}
+
+}  // namespace rheo::cli

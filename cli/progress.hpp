@@ -1,0 +1,54 @@
+// Progress of a long search on standard error: what runs, the evaluations so far, the best
+// objective and the time (of the time limit, when there is one). On a terminal one live line is
+// rewritten in place at most every 0.2 s; otherwise (a log file, a pipe, a CI job), or with
+// --progress, a whole line is written every few seconds (kLogInterval, or kRequestedInterval
+// with --progress, which also writes one at the first evaluation after each stage), so that a
+// run that takes long is seen to be working.
+#pragma once
+
+#include "runtime/fit/fit_search.hpp"
+
+#include <chrono>
+#include <functional>
+#include <memory>
+#include <optional>
+#include <string>
+
+namespace rheo::cli {
+
+inline constexpr double kLogInterval = 5.0;        // [s] between lines when standard error is not a terminal
+inline constexpr double kRequestedInterval = 1.0;  // [s] between lines with --progress
+
+class Progress {
+ public:
+  // REQUESTED: --progress given; TIME_LIMIT: the command's bound [s], shown beside the clock.
+  static std::shared_ptr<Progress> start(bool requested, std::optional<double> time_limit);
+
+  // Names what runs next ("fitting model coupled"): written at once as a line of its own.
+  void stage(const std::string& what);
+  // Names what runs without a line of its own (the progress lines carry it).
+  void label(const std::string& what) { what_ = what; }
+  // For FitSettings::progress: called after every evaluation of a search.
+  void evaluation(const runtime::SearchProgress& p);
+  // Clears a live line before other output.
+  void finish();
+
+  // The callbacks bound to THIS (shared: they may outlive the caller's copy).
+  static std::function<void(const runtime::SearchProgress&)> evaluation_callback(const std::shared_ptr<Progress>& progress);
+  static std::function<void(const std::string&)> stage_callback(const std::shared_ptr<Progress>& progress);
+
+ private:
+  Progress(bool live, double interval, std::optional<double> time_limit);
+  double elapsed() const;
+
+  bool live_ = false;  // a terminal without --progress: one line rewritten in place
+  double interval_ = kLogInterval;
+  std::optional<double> time_limit_;
+  std::chrono::steady_clock::time_point started_, last_;
+  std::string what_;
+  bool line_open_ = false;  // a live line is on the screen
+  bool requested_ = false;  // --progress: also a line at the first evaluation after each stage
+  bool first_of_stage_ = false;
+};
+
+}  // namespace rheo::cli

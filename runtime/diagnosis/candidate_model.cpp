@@ -1,0 +1,94 @@
+#include "runtime/diagnosis/candidate_model.hpp"
+
+#include "lang/source_edit.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+#include <stdexcept>
+
+namespace rheo::runtime::diagnosis {
+namespace {
+
+std::string element_word(Effect effect) {
+  switch (effect) {
+    case Effect::amplitude_dependence: return "slip";
+    case Effect::rate_dependence: return "relaxation";
+    case Effect::nonlinear_elasticity: return "nonlinear";
+    case Effect::coupled_amplitude_frequency: return "coupled";
+    case Effect::inertia: return "resonance";
+    case Effect::asymmetry: return "asymmetric";
+    case Effect::backlash: return "backlash";
+    case Effect::none: break;
+  }
+  return "added";
+}
+
+std::string unique_name(const lang::CheckedModel& model, const std::string& word) {
+  auto taken = [&](const std::string& name) {
+    return std::any_of(model.root.children.begin(), model.root.children.end(), [&](const lang::Element& e) { return e.name == name; }) ||
+           std::any_of(model.parameters.begin(), model.parameters.end(), [&](const lang::Parameter& p) { return p.path == name; });
+  };
+  std::string name = word;
+  for (int k = 2; taken(name); ++k) name = fmt::format("{}{}", word, k);
+  return name;
+}
+
+}  // namespace
+
+int parameter_index(const lang::CheckedModel& model, const std::string& path) {
+  for (std::size_t i = 0; i < model.parameters.size(); ++i)
+    if (model.parameters[i].path == path) return static_cast<int>(i);
+  return -1;
+}
+
+std::string candidate_name(const lang::CheckedModel& model, Effect effect) { return unique_name(model, element_word(effect)); }
+
+std::string with_trial(const std::string& fitted_text, const lang::CheckedModel& fitted, const Trial& trial, const std::string& name,
+                       const BoundScales& bounds, const std::string& comment) {
+  const std::vector<std::string> lines = trial_statement(trial, name, bounds);
+  if (trial.replaces.empty()) {
+    std::vector<std::string> block{"# " + comment};
+    block.insert(block.end(), lines.begin(), lines.end());
+    return lang::append_to_model(fitted_text, fitted, block);
+  }
+  for (const auto& e : fitted.root.children)
+    if (e.name == trial.replaces) {
+      const lang::TextSpan span = lang::element_statement(fitted_text, e);
+      return lang::replace_span(fitted_text, span, "# " + comment + "\n" + lang::line_indent(fitted_text, span.begin) + lines.front());
+    }
+  throw std::logic_error(fmt::format("model '{}' has no root element '{}' to replace", fitted.name, trial.replaces));
+}
+
+std::string resolved_resonance(const Trial& trial, const lang::CheckedModel& model, const Network& network, const std::string& element,
+                               const DataScales& scales) {
+  if (trial.shape != Shape::tuned_column && trial.shape != Shape::capped_column) return {};
+  const int k = parameter_index(model, element + ".chamber.k"), b = parameter_index(model, element + ".column.mass.b");
+  if (k < 0 || b < 0) throw std::logic_error(fmt::format("diagnose: the fluid column '{}' lacks chamber.k or column.mass.b", element));
+  const double resonance = std::sqrt(network.parameter(k) / network.parameter(b)) / (2.0 * std::numbers::pi);  // [Hz]
+  constexpr double kMargin = 1.1;
+  if (resonance >= kMargin * scales.frequency_low && resonance <= scales.frequency_high / kMargin) return {};
+  return fmt::format(
+      "its resonance, refitted to {:.3g} Hz, is not inside the measured {:.3g}-{:.3g} Hz with a measured frequency 10 % "
+      "either side, so the data cannot tell it from a relaxation or a stiffness trend",
+      resonance, scales.frequency_low, scales.frequency_high);
+}
+
+Trial resonance_free_limit(const Trial& column, const lang::CheckedModel& model, const Network& refitted, const std::string& element) {
+  auto value = [&](const std::string& path) {
+    const int i = parameter_index(model, element + "." + path);
+    if (i < 0) throw std::logic_error(fmt::format("diagnose: the fluid column '{}' lacks {}", element, path));
+    return refitted.parameter(i);
+  };
+  Trial limit = column;
+  limit.shape = Shape::capped_maxwell;
+  limit.stiffness = value("chamber.k");
+  limit.time = value("column.channel.c") / limit.stiffness;
+  limit.slip = value("cap.fy") / limit.stiffness;
+  limit.frequency = limit.damping_ratio = 0.0;
+  return limit;
+}
+
+}  // namespace rheo::runtime::diagnosis

@@ -1,0 +1,36 @@
+// A candidate of rheo diagnose (diagnose.hpp, step 3) as a model: its element written into the
+// fitted model's source under a name of its own, and what its refitted values say about a
+// fluid column's resonance (whether the data resolve it, and its limit without inertia).
+#pragma once
+
+#include "runtime/diagnosis/screen.hpp"
+#include "runtime/network/network.hpp"
+
+#include <string>
+
+namespace rheo::runtime::diagnosis {
+
+// Index of the parameter PATH of MODEL, or -1.
+int parameter_index(const lang::CheckedModel& model, const std::string& path);
+
+// A root element name for EFFECT's element not yet taken in MODEL: "slip", "slip2", ...
+std::string candidate_name(const lang::CheckedModel& model, Effect effect);
+
+// The fitted model's source with TRIAL written in as NAME, under COMMENT: appended to the
+// model's body, or in place of the root element TRIAL.replaces.
+std::string with_trial(const std::string& fitted_text, const lang::CheckedModel& fitted, const Trial& trial, const std::string& name,
+                       const BoundScales& bounds, const std::string& comment);
+
+// Empty when the resonance of a refitted fluid column (the element ELEMENT of MODEL) lies inside
+// the measured frequencies with a margin of 10 % either side, else why not. Shapes without a
+// resonance are always resolved.
+std::string resolved_resonance(const Trial& trial, const lang::CheckedModel& model, const Network& network, const std::string& element,
+                               const DataScales& scales);
+
+// The limit without inertia (b -> 0) of a refitted slider-capped fluid column ELEMENT: chamber
+// spring and channel dashpot in series are a Maxwell element of k = chamber.k and
+// tau = channel.c / chamber.k, capped by the same slider: the capped_maxwell shape, one
+// parameter fewer and no resonance to place.
+Trial resonance_free_limit(const Trial& column, const lang::CheckedModel& model, const Network& refitted, const std::string& element);
+
+}  // namespace rheo::runtime::diagnosis

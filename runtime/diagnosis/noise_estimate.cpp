@@ -1,0 +1,225 @@
+#include "runtime/diagnosis/noise_estimate.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <map>
+
+namespace rheo::runtime::diagnosis {
+namespace {
+
+using Cell = std::pair<std::size_t, std::size_t>;  // (amplitude level, frequency level)
+
+// Sums of q_i over one axis: their count, sum and sum of squares, and per grid cell the sum and
+// count of the q_i it takes part in (as the middle point or a neighbour): its local variance.
+struct Moments {
+  int m = 0;
+  double sum = 0.0, sum_sq = 0.0;
+  std::map<Cell, std::pair<double, int>> local;
+  void add(double q) { ++m, sum += q, sum_sq += q * q; }
+  void add(double q, const std::array<Cell, 3>& cells) {
+    add(q);
+    for (const Cell& c : cells) local[c].first += q, ++local[c].second;
+  }
+  double mean() const { return m ? sum / m : 0.0; }
+  Moments pooled(const Moments& other) const {
+    Moments p{m + other.m, sum + other.sum, sum_sq + other.sum_sq, local};
+    for (const auto& [cell, entry] : other.local) p.local[cell].first += entry.first, p.local[cell].second += entry.second;
+    return p;
+  }
+  // The sum over CELLS of their local variances (the mean for a cell in no pseudo-residual):
+  // for noise whose size varies over the grid (a damping residual's grows as the phase falls),
+  // the edges weigh as much as the middle, as they do in err.
+  double total_over(const std::vector<Cell>& cells) const {
+    double total = 0.0;
+    for (const Cell& c : cells) {
+      const auto it = local.find(c);
+      total += it == local.end() ? mean() : it->second.first / it->second.second;
+    }
+    return total;
+  }
+  // Standard error of the mean: sd(q) sqrt(2/m) (neighbouring q share points).
+  double standard_error() const {
+    if (m < 2) return 0.0;
+    const double variance = std::max(0.0, (sum_sq - sum * sum / m) / (m - 1));
+    return std::sqrt(variance * 2.0 / m);
+  }
+};
+
+// The pseudo-residual's q = e^2/(1 + w_-^2 + w_+^2) of R at X between its neighbours (XL, RL), (XH, RH).
+double pseudo_q(double xl, double rl, double x, double r, double xh, double rh) {
+  const double wl = (xh - x) / (xh - xl), wh = (x - xl) / (xh - xl);
+  const double e = r - (wl * rl + wh * rh);
+  return e * e / (1.0 + wl * wl + wh * wh);
+}
+
+// The measure of LEVELS (sorted, distinct) that spaces them more evenly: log when they are
+// positive and their largest over smallest log step is below that of the linear steps.
+std::vector<double> even_measure(const std::vector<double>& levels) {
+  if (levels.size() < 3 || levels.front() <= 0.0) return levels;
+  auto unevenness = [](const std::vector<double>& x) {
+    double lo = 1e300, hi = 0.0;
+    for (std::size_t i = 1; i < x.size(); ++i) lo = std::min(lo, x[i] - x[i - 1]), hi = std::max(hi, x[i] - x[i - 1]);
+    return hi / lo;
+  };
+  std::vector<double> logs;
+  for (double v : levels) logs.push_back(std::log(v));
+  return unevenness(logs) < unevenness(levels) ? logs : levels;
+}
+
+struct GridTerm {
+  double r_k = 0.0, r_d = 0.0, phase = 0.0;  // phase: model - measured [rad]
+};
+
+// Moments of r_K, r_d and the phase along one axis of the grid CELLS (key: (row level, position
+// level) -> terms), X the positions' measure; ALONG_FREQUENCY: rows are amplitude levels.
+std::array<Moments, 3> along(const std::map<Cell, GridTerm>& cells, const std::vector<double>& x, bool along_frequency) {
+  std::array<Moments, 3> out;
+  std::map<std::size_t, std::vector<std::pair<std::size_t, GridTerm>>> rows;
+  for (const auto& [key, term] : cells) rows[key.first].emplace_back(key.second, term);  // sorted by position
+  for (const auto& [row, line] : rows)
+    for (std::size_t i = 1; i + 1 < line.size(); ++i) {
+      const double xl = x[line[i - 1].first], xi = x[line[i].first], xh = x[line[i + 1].first];
+      const GridTerm &l = line[i - 1].second, &c = line[i].second, &h = line[i + 1].second;
+      std::array<Cell, 3> at;
+      for (std::size_t k = 0; k < 3; ++k) {
+        const std::size_t position = line[i + k - 1].first;
+        at[k] = along_frequency ? Cell{row, position} : Cell{position, row};
+      }
+      out[0].add(pseudo_q(xl, l.r_k, xi, c.r_k, xh, h.r_k), at);
+      out[1].add(pseudo_q(xl, l.r_d, xi, c.r_d, xh, h.r_d), at);
+      out[2].add(pseudo_q(xl, l.phase, xi, c.phase, xh, h.phase), at);
+    }
+  return out;
+}
+
+std::size_t level_index(const std::vector<double>& levels, double value) {
+  return static_cast<std::size_t>(std::lower_bound(levels.begin(), levels.end(), value * (1.0 - 1e-9)) - levels.begin());
+}
+
+std::vector<double> distinct_levels(std::vector<double> values) {
+  std::sort(values.begin(), values.end());
+  std::vector<double> out;
+  for (double v : values)
+    if (out.empty() || std::abs(v - out.back()) > 1e-9 * std::max(std::abs(v), 1e-300)) out.push_back(v);
+  return out;
+}
+
+void estimate_harmonic(const FitResult& fit, const std::vector<FitDataSet>& data, NoiseEstimate& out) {
+  std::vector<double> amplitudes, frequencies;
+  int n = 0;
+  for (const auto& set : data)
+    if (set.is_harmonic()) {
+      const HarmonicData& d = set.harmonic();
+      amplitudes.insert(amplitudes.end(), d.amplitude.begin(), d.amplitude.end());
+      frequencies.insert(frequencies.end(), d.frequency.begin(), d.frequency.end());
+      n += static_cast<int>(d.size());
+    }
+  amplitudes = distinct_levels(amplitudes), frequencies = distinct_levels(frequencies);
+  // Cells keyed (amplitude, frequency) and (frequency, amplitude): the first point measured in each.
+  std::map<Cell, GridTerm> by_amplitude, by_frequency;
+  std::vector<Cell> points;  // the cell of every point measured
+  for (std::size_t s = 0; s < data.size(); ++s) {
+    if (!data[s].is_harmonic()) continue;
+    const HarmonicData& d = data[s].harmonic();
+    const DataSetFit& set = fit.datasets[s];
+    for (std::size_t j = 0; j < d.size(); ++j) {
+      const std::size_t a = level_index(amplitudes, d.amplitude[j]), f = level_index(frequencies, d.frequency[j]);
+      const GridTerm term{set.residuals.stiffness[j], set.residuals.damping[j], set.prediction.points[j].measures.phase - d.phase[j]};
+      points.emplace_back(a, f);
+      by_amplitude.emplace(std::pair{a, f}, term);
+      by_frequency.emplace(std::pair{f, a}, term);
+    }
+  }
+  const std::array<Moments, 3> along_f = along(by_amplitude, even_measure(frequencies), true);
+  const std::array<Moments, 3> along_a = along(by_frequency, even_measure(amplitudes), false);
+  // Per term, both axes pooled where they agree within two standard errors of their difference;
+  // else the smoother one (the other holds a systematic bend).
+  std::array<Moments, 3> taken;
+  std::array<bool, 3> along_frequency{};
+  for (std::size_t term = 0; term < 3; ++term) {
+    const Moments &f = along_f[term], &a = along_a[term];
+    if (f.m < kMinPseudoResiduals || a.m < kMinPseudoResiduals) {
+      taken[term] = f.m >= a.m ? f : a;
+      along_frequency[term] = f.m >= a.m;
+    } else if (std::abs(f.mean() - a.mean()) <= 2.0 * std::hypot(f.standard_error(), a.standard_error())) {
+      taken[term] = f.pooled(a);
+    } else {
+      taken[term] = f.mean() <= a.mean() ? f : a;
+      along_frequency[term] = f.mean() <= a.mean();
+    }
+  }
+  const Moments *k = taken[0].m >= kMinPseudoResiduals ? &taken[0] : nullptr, *dmp = taken[1].m >= kMinPseudoResiduals ? &taken[1] : nullptr,
+                *phase = taken[2].m >= kMinPseudoResiduals ? &taken[2] : nullptr;
+  if (!k || !dmp || !phase || n == 0) return;
+  out.estimated = true;
+  out.stiffness = std::sqrt(k->mean());
+  out.phase = std::sqrt(phase->mean());
+  out.harmonic_along_frequency = along_frequency[0];
+  out.pseudo_residuals = std::min(k->m, dmp->m);
+  const double variance = (k->total_over(points) + dmp->total_over(points)) / n;  // per point, of r_K^2 + r_d^2
+  out.floor = std::sqrt(n * variance) / n;
+  const double se = std::hypot(k->standard_error(), dmp->standard_error());
+  out.relative_error = variance > 0.0 ? 0.5 * se / (k->mean() + dmp->mean()) : 0.0;
+}
+
+void estimate_histories(const FitResult& fit, const std::vector<FitDataSet>& data, NoiseEstimate& out) {
+  double variance_sum = 0.0, se_sq = 0.0, lag_sum = 0.0, lag_weight = 0.0;
+  int files = 0;
+  for (std::size_t s = 0; s < data.size(); ++s) {
+    if (data[s].is_harmonic()) continue;
+    const HistoryData& h = data[s].history();
+    const std::vector<double>& t = h.drive.time;
+    const std::vector<double>& model = fit.datasets[s].prediction.force;
+    std::vector<double> r(h.force.size());
+    for (std::size_t j = 0; j < r.size(); ++j) r[j] = (model[j] - h.force[j]) / h.force_scale;
+    Moments q;
+    for (std::size_t j = 1; j + 1 < r.size(); ++j)
+      if (t[j + 1] > t[j - 1]) q.add(pseudo_q(t[j - 1], r[j - 1], t[j], r[j], t[j + 1], r[j + 1]));
+    if (q.m < kMinPseudoResiduals) continue;
+    ++files;
+    variance_sum += q.mean();
+    se_sq += q.standard_error() * q.standard_error();
+    out.pseudo_residuals += q.m;
+    double mean = 0.0;
+    for (double v : r) mean += v;
+    mean /= static_cast<double>(r.size());
+    double c0 = 0.0, c1 = 0.0;
+    for (std::size_t j = 0; j < r.size(); ++j) {
+      c0 += (r[j] - mean) * (r[j] - mean);
+      if (j + 1 < r.size()) c1 += (r[j] - mean) * (r[j + 1] - mean);
+    }
+    if (c0 > 0.0) lag_sum += static_cast<double>(r.size()) * c1 / c0, lag_weight += static_cast<double>(r.size());
+  }
+  if (files == 0) return;
+  out.estimated = true;
+  const double variance = variance_sum / files;  // the mean over files of the squared RMS, as the gap takes it
+  out.force = std::sqrt(variance);
+  out.floor = out.force;
+  out.relative_error = variance > 0.0 ? 0.5 * std::sqrt(se_sq) / files / variance : 0.0;
+  out.autocorrelation = lag_weight > 0.0 ? lag_sum / lag_weight : 0.0;
+}
+
+}  // namespace
+
+NoiseEstimate estimate_noise(const FitResult& fit, const std::vector<FitDataSet>& data) {
+  NoiseEstimate out;
+  const bool harmonic = std::any_of(data.begin(), data.end(), [](const FitDataSet& set) { return set.is_harmonic(); });
+  if (harmonic) estimate_harmonic(fit, data, out);  // the gap is err (6.1) over the harmonic points
+  else estimate_histories(fit, data, out);
+  return out;
+}
+
+double noise_ratio(double gap, const NoiseEstimate& noise, int residual_terms, int parameters) {
+  if (!noise.estimated || !(noise.floor > 0.0)) return 0.0;
+  const double dof = std::max(1.0, static_cast<double>(residual_terms - parameters)) / std::max(1, residual_terms);
+  return gap / (noise.floor * std::sqrt(dof));
+}
+
+bool systematic(double gap, const NoiseEstimate& noise, int residual_terms, int parameters) {
+  if (!noise.estimated) return false;
+  if (!(noise.floor > 0.0)) return gap > 0.0;
+  return noise_ratio(gap, noise, residual_terms, parameters) > 1.0 + std::max(0.25, 3.0 * noise.relative_error);
+}
+
+}  // namespace rheo::runtime::diagnosis
