@@ -97,10 +97,17 @@ struct PwlPeriodicState::Run {
     self.grid_step_.emplace_back();
     return static_cast<int>(self.modes_.size()) - 1;
   }
-  const PwlMatrix& grid_step(int m) {
-    PwlMatrix& E = self.grid_step_[static_cast<std::size_t>(m)];
-    if (E.size() == 0) E = self.modes_[static_cast<std::size_t>(m)].propagator(step);
-    return E;
+  // [E; G E; G' E] for E = e^{A T/64} of mode m, G its guards and G' their rates: one product
+  // gives the state a grid step on, its guards and their slopes there.
+  const PwlGridStep& grid_step(int m) {
+    PwlGridStep& stacked = self.grid_step_[static_cast<std::size_t>(m)];
+    if (stacked.size() == 0) {
+      const PwlModeSystem& s = self.modes_[static_cast<std::size_t>(m)];
+      const PwlMatrix E = s.propagator(step);
+      stacked.resize(s.dim + 2 * s.guards.rows(), s.dim);
+      stacked << E, s.guards * E, s.guard_rates * E;
+    }
+    return stacked;
   }
   PwlVector advance(int m, double tau, const PwlVector& w) { return self.modes_[static_cast<std::size_t>(m)].advance(tau, w); }
 
@@ -266,7 +273,8 @@ struct PwlPeriodicState::Run {
     if (record) self.pieces_.assign(1, {0.0, m, w}), self.switch_phases_.clear();
     int switches = 0;
     double t = 0.0, piece_start = 0.0;
-    PwlVector g0, g1;  // the guards at the start and the end of the step
+    PwlVector w1, g0, g1, dg0, dg1;  // the state a step on; the guards and their slopes at both ends
+    Eigen::Matrix<double, Eigen::Dynamic, 1, 0, 3 * kPwlMaxDim, 1> stacked;
     bool g0_known = false;
     const int grid_steps = self.half_wave_ ? kGridPerCycle / 2 : kGridPerCycle;
     for (int k = 0; k < grid_steps; ++k) {
@@ -275,10 +283,15 @@ struct PwlPeriodicState::Run {
         const PwlModeSystem& s = self.modes_[static_cast<std::size_t>(m)];
         const double h = t_end - t;
         const bool full = std::abs(h - step) <= 1e-12 * step;
-        const PwlVector w1 = full ? PwlVector(grid_step(m) * w) : advance(m, h, w);
-        if (!g0_known) g0.noalias() = s.guards * w;
-        g1.noalias() = s.guards * w1;
-        const PwlVector dg0 = s.guard_rates * w;
+        const Eigen::Index dim = s.dim, guards = s.guards.rows();
+        if (!g0_known) g0.noalias() = s.guards * w, dg0.noalias() = s.guard_rates * w;
+        if (full) {
+          stacked.noalias() = grid_step(m) * w;
+          w1 = stacked.head(dim), g1 = stacked.segment(dim, guards), dg1 = stacked.tail(guards);
+        } else {
+          w1 = advance(m, h, w);
+          g1.noalias() = s.guards * w1, dg1.noalias() = s.guard_rates * w1;
+        }
         double first = std::numeric_limits<double>::infinity();
         int fired = -1;
         for (int i = 0; i < g0.size(); ++i) {
@@ -289,7 +302,7 @@ struct PwlPeriodicState::Run {
         }
         if (fired < 0) {
           w = w1;
-          g0 = g1, g0_known = true;
+          g0 = g1, dg0 = dg1, g0_known = true;
           t = t_end;
           break;
         }

@@ -74,7 +74,9 @@ class PwlPeriodicState {
   // (the points of a grid) until a solve is given another branch (new parameters).
   std::deque<std::pair<PwlModeCode, PwlModeStructure>> structures_;
   PwlBranch structures_branch_;
-  std::vector<PwlMatrix> grid_step_;  // e^{A T/64} per mode, built when first needed
+  // Per mode, built when first needed: e^{A T/64} stacked over the guards and guard rates it leads to.
+  using PwlGridStep = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, 3 * kPwlMaxDim, kPwlMaxDim>;
+  std::vector<PwlGridStep> grid_step_;
   std::vector<Piece> pieces_;
   std::vector<double> switch_phases_;
 
