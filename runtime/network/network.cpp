@@ -260,21 +260,25 @@ struct PlacementCheck {
   const std::vector<ElementProbe>& probes;
 
   const std::string& path(const Proto& p) const { return probes[static_cast<std::size_t>(p.probe)].path; }
+  // The element's own name (the last part of its path), as it is written in its statement.
+  std::string local_name(const Proto& p) const { return path(p).substr(path(p).rfind('.') + 1); }
   double value(const Proto& p) const { return model.parameters[static_cast<std::size_t>(p.param[0])].value; }
 
   [[noreturn]] void gap_error(const Proto& p, const char* where) const {
     throw ModelError(
         fmt::format("{}model '{}': gap '{}' {}; a gap must be in series with a compliant element (a spring, yeoh, poly_spring, dashpot, "
-                    "maxwell, friction, bouc_wen or quadratic_dashpot): write series {{ gap {} (width = {:g} mm); spring (k = ...) }}",
-                    error_at(p.where), model.name, path(p), where, path(p), value(p)));
+                    "maxwell, friction, bouc_wen or quadratic_dashpot): write series {{ gap {} (width = {:g} mm)  spring (k = 500 N/mm) }} "
+                    "with the stiffness the gap engages",
+                    error_at(p.where), model.name, path(p), where, local_name(p), value(p)));
   }
   [[noreturn]] void inerter_error(const Proto& p) const {
     throw ModelError(
         fmt::format("{}model '{}': inerter '{}' is connected to the drive through sliders, gaps or inerters only (or parallel "
                     "blocks holding one), so a change of the drive velocity while they hold would be an impact (an unbounded "
                     "force); put a compliant element (a spring, dashpot, maxwell, ...) in series with it, e.g. "
-                    "series {{ spring (k = ...); inerter {} (b = {:g} N*s^2/mm) }}, or place it directly in the model's parallel block",
-                    error_at(p.where), model.name, path(p), path(p), value(p)));
+                    "series {{ spring (k = 500 N/mm)  inerter {} (b = {:g} N*s^2/mm) }} with a stiffness of your own, or place it directly in "
+                    "the model's parallel block",
+                    error_at(p.where), model.name, path(p), local_name(p), value(p)));
   }
 
   void visit(const Proto& p, bool driven, bool root_level) const {

@@ -116,7 +116,15 @@ TEST_CASE("placement: gaps only in series with a compliant member, inerters neve
   };
   const std::string root = error_of("model p { spring s (k = 1) gap play (width = 0.2 mm) }");
   CHECK(root.find("gap 'play' is in the model's parallel block") != std::string::npos);
-  CHECK(root.find("series { gap play (width = 0.2 mm); spring (k = ...) }") != std::string::npos);
+  CHECK(root.find("series { gap play (width = 0.2 mm)  spring (k = 500 N/mm) }") != std::string::npos);
+  // The placement each message proposes is a statement that builds (#22 item 1).
+  auto proposal = [](const std::string& message) {
+    const auto begin = message.find("series {"), end = message.find(" }", begin);
+    REQUIRE(begin != std::string::npos);
+    REQUIRE(end != std::string::npos);
+    return message.substr(begin, end + 2 - begin);
+  };
+  CHECK_NOTHROW(test::network_from("model p { spring s (k = 1) " + proposal(root) + " }", "p"));
   CHECK(error_of("model p { series { spring s (k = 1) parallel { gap g (width = 1 mm) spring t (k = 1) } } }")
             .find("gap 'g' is inside a parallel block") != std::string::npos);
   CHECK(error_of("model p { series { gap g (width = 1 mm) slider f (fy = 1) } }").find("no compliant member") != std::string::npos);
@@ -124,6 +132,9 @@ TEST_CASE("placement: gaps only in series with a compliant member, inerters neve
         std::string::npos);
   const std::string inerter = error_of("model p { series { slider f (fy = 1) inerter m (b = 1 kg) } }");
   CHECK(inerter.find("inerter 'm' is connected to the drive through sliders, gaps or inerters only") != std::string::npos);
+  CHECK_NOTHROW(test::network_from("model p { " + proposal(inerter) + " }", "p"));
+  const std::string nested = error_of("model p { series outer { spring s (k = 1) parallel { gap g (width = 1 mm) spring t (k = 1) } } }");
+  CHECK(nested.find("gap g (width = 1 mm)") != std::string::npos);  // the name as written, not its path
   CHECK(error_of("model p { series { inerter a (b = 1 kg) inerter b (b = 2 kg) } }").find("inerter 'a'") != std::string::npos);
   // Accepted: compliant members in series, also further out than the inerter's own block.
   CHECK(error_of("model p { series { gap g (width = 1 mm) maxwell m (k = 1, tau = 1 ms) } }").empty());
