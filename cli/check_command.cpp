@@ -1,5 +1,6 @@
 #include "lang/frontend.hpp"
 #include "cli/commands.hpp"
+#include "cli/program_lookup.hpp"
 #include "runtime/dae/dae_graph.hpp"
 #include "runtime/protocols/harmonic.hpp"
 #include "runtime/network/network.hpp"
@@ -7,6 +8,7 @@
 
 #include <fmt/format.h>
 
+#include <filesystem>
 #include <iostream>
 #include <memory>
 
@@ -37,6 +39,25 @@ bool runs_on_sundials(const lang::Program& program, const runtime::Network& netw
   return false;
 }
 
+// A note per data or history file the program reads that does not exist (resolved as the
+// runs resolve it: relative to the .rheo file), `FILE:LINE:COL: warning: ...`. Not an error: a
+// file may name data that a simulate block or a rig writes later.
+std::string missing_file_notes(const lang::Program& program, const std::string& rheo_file) {
+  std::string notes;
+  auto note = [&](const std::string& name, const lang::SourceLocation& where, const char* what) {
+    const std::string path = relative_to(rheo_file, name);
+    if (std::filesystem::exists(path)) return;
+    notes += fmt::format("{}:{}:{}: warning: {} '{}' does not exist (looked for {}); fit, report and simulate will fail on it until it does\n",
+                         where.file, where.line, where.column, what, name, path);
+  };
+  for (const auto& fit : program.fits)
+    for (const auto& data : fit.data) note(data.file, data.where, "data file");
+  for (const auto& simulation : program.simulations)
+    for (const auto& protocol : simulation.protocols)
+      if (const auto* history = std::get_if<lang::HistorySettings>(&protocol.settings)) note(history->file, history->file_where, "history file");
+  return notes;
+}
+
 }  // namespace
 
 Command add_check_command(CLI::App& app) {
@@ -57,6 +78,7 @@ Command add_check_command(CLI::App& app) {
       if (runs_on_sundials(program, network)) (void)runtime::DaeGraph::build(network);  // ModelError for what IDA cannot integrate
       if (options->graph) graphs += network.describe();
     }
+    std::cerr << missing_file_notes(program, options->file);
     std::cout << fmt::format("{}: ok: {} model(s), {} parameter(s), {} simulate block(s)\n", options->file, program.models.size(), parameters,
                              program.simulations.size())
               << graphs;

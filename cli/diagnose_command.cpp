@@ -1,6 +1,7 @@
 // `rheo diagnose FILE --data CSV... [-o REFINED.rheo] [--json] [--report R.html] [--plot P.svg]`
 // and `rheo refine FILE --data CSV... [-o FINAL.rheo] [--rounds N] [--report ...] [--plot ...]`: name the effect a model misses,
 // add the element that supplies it and refit (runtime/diagnosis/diagnose.hpp); see docs/cli.md.
+#include "cli/model_output.hpp"
 #include "lang/frontend.hpp"
 #include "lang/limits.hpp"
 #include "cli/data_option.hpp"
@@ -152,7 +153,7 @@ Command add_diagnose_command(CLI::App& app) {
     const dx::Diagnosis d = dx::diagnose(p->source, p->job.data, p->settings);
     p->progress->finish();
     if (!o->fit.output.empty()) {
-      runtime::write_output(o->fit.output, d.refined_text);
+      write_model_file(o->fit.output, d.refined_text, o->fit.file);
       std::cerr << fmt::format("rheo: refined model {} written to {}\n", p->source.model, o->fit.output);
     }
     write_report(*o, *p, {d}, "rheo diagnose");
@@ -196,7 +197,7 @@ Command add_refine_command(CLI::App& app) {
       }
       if (round == o->rounds) std::cout << fmt::format("  stopped after {} rounds (--rounds); the last model may still miss an effect\n", round);
     }
-    runtime::write_output(output, source.text);
+    write_model_file(output, source.text, o->fit.file);
     std::cerr << fmt::format("rheo: final model {} written to {}\n", source.model, output);
     write_report(*o, *p, rounds, "rheo refine");
     return interrupted ? exit_code_interrupted : runtime::exit_code::ok;

@@ -5,6 +5,7 @@
 #include "cli/data_option.hpp"
 #include "cli/commands.hpp"
 #include "cli/fit_job.hpp"
+#include "cli/model_output.hpp"
 #include "cli/program_lookup.hpp"
 #include "cli/report_files.hpp"
 #include "runtime/core/errors.hpp"
@@ -121,7 +122,7 @@ Command add_fit_command(CLI::App& app) {
       interrupted = interrupted || result.interrupted;
       if (report->any()) write_report_files(runtime::report::report_from_fit(result, job.data, job.description), *report);
       if (!job.output.empty()) {
-        runtime::write_output(job.output, fitted_file_text(job, result, o->file, source));
+        write_model_file(job.output, fitted_file_text(job, result, o->file, source), o->file);
         std::cerr << fmt::format("rheo: fitted model {} written to {}\n", result.network.model().name, job.output);
       }
       if (o->json) {

@@ -3,6 +3,7 @@
 #include "lang/fitted_source.hpp"
 #include "lang/frontend.hpp"
 #include "cli/fit_job.hpp"
+#include "cli/model_output.hpp"
 #include "runtime/core/errors.hpp"
 #include "runtime/fit/order_study.hpp"
 #include "runtime/io/output.hpp"
@@ -74,7 +75,7 @@ double akaike(const FittedStructure& s, std::size_t points) {
 }
 
 // -o with --orders: the structure with the lowest Akaike criterion (lowest err without harmonic data).
-void write_chosen(const std::vector<FittedStructure>& fitted, const FitJob& job, const std::string& path) {
+void write_chosen(const std::vector<FittedStructure>& fitted, const FitJob& job, const std::string& path, const std::string& source_file) {
   std::size_t points = 0;
   for (const auto& set : job.data)
     if (set.is_harmonic()) points += set.harmonic().size();
@@ -86,7 +87,7 @@ void write_chosen(const std::vector<FittedStructure>& fitted, const FitJob& job,
                   count(best.friction)),
       fmt::format("the lowest Akaike criterion N ln(phi/N) + 2 k (err (6.1) = {:.6g}, {} parameters).", best.err, best.free.size())};
   for (const auto& set : job.data) header.push_back(fmt::format("Data: {}", set.path));
-  runtime::write_output(path, lang::write_fitted_source(best.source, best.name, *best.model, best.values, best.free, header));
+  write_model_file(path, lang::write_fitted_source(best.source, best.name, *best.model, best.values, best.free, header), source_file);
   std::cerr << fmt::format("rheo: the chosen structure ({} maxwell, {} friction) written to {}\n", count(best.maxwell), count(best.friction), path);
 }
 
@@ -146,7 +147,7 @@ int run_order_study(const std::vector<FitJob>& jobs, const FitOptions& options) 
     }
   }
   // Only an explicit -o: the block's `output` names the file of the block's own fit.
-  if (!options.output.empty()) write_chosen(fitted, job, options.output);
+  if (!options.output.empty()) write_chosen(fitted, job, options.output, options.file);
   if (options.json) std::cout << rows.dump(2) << "\n";
   return runtime::exit_code::ok;
 }

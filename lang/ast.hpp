@@ -89,6 +89,7 @@ struct DirectiveLine {
   bool output = false;  // `output "FILE"` line
   std::string kind;     // protocol name
   std::string file;     // output file
+  int file_begin = -1;  // byte offset of the file name's opening quote in the source text
   std::vector<SettingNode> settings;
   SourceLocation where;
 };
@@ -108,6 +109,7 @@ struct FitLine {
   std::vector<SettingNode> settings;
   SourceLocation where;       // of the first word
   SourceLocation file_where;  // of the file name
+  int file_begin = -1;        // byte offset of the file name's opening quote in the source text
 };
 
 struct Fit {

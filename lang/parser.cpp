@@ -65,8 +65,9 @@ struct action<g::kw_output> {
 template <>
 struct action<g::output_file> {
   template <typename ActionInput>
-  static void apply(const ActionInput&, State& s) {
+  static void apply(const ActionInput& in, State& s) {
     s.simulate().lines.back().file = s.string;
+    s.simulate().lines.back().file_begin = byte_offset(in);
   }
 };
 template <>
@@ -169,6 +170,7 @@ struct fit_line_file {
   static void apply(const ActionInput& in, State& s) {
     s.fit().lines.back().file = s.string;
     s.fit().lines.back().file_where = where(in);
+    s.fit().lines.back().file_begin = byte_offset(in);
   }
 };
 template <>
