@@ -28,11 +28,28 @@ struct Options {
   int threads = 1;
 };
 
-// The model simulated at every point of every data file.
-void add_data(report::ReportContent& content, const runtime::Network& network, const std::vector<runtime::FitDataSet>& data, int threads) {
+// Data to compare the model with, and how its harmonic points are simulated: the settings of
+// the fit block the data belong to (definition, solver, steps per cycle), so that the report
+// scores the model as `rheo fit` does (#22 item 3).
+struct ReportData {
+  runtime::FitDataSet set;
+  runtime::HarmonicOptions options;
+};
+
+runtime::HarmonicOptions harmonic_options_of(const lang::FitDirective* block, int threads) {
   runtime::HarmonicOptions options;
   options.threads = threads;
-  for (const runtime::FitDataSet& set : data) {
+  if (block == nullptr) return options;
+  options.definition = block->settings.definition;
+  options.solver = block->settings.solver;
+  options.steps_per_cycle = block->settings.steps_per_cycle.value_or(options.steps_per_cycle);
+  options.tolerance = 1e-6;  // as the fit scores (cli/fit_job.cpp)
+  return options;
+}
+
+// The model simulated at every point of every data file.
+void add_data(report::ReportContent& content, const runtime::Network& network, const std::vector<ReportData>& data) {
+  for (const auto& [set, options] : data) {
     const runtime::Prediction p = runtime::predict(network, set, runtime::FitMethod::exact, options, nullptr);
     if (set.is_harmonic()) {
       content.harmonic.push_back(report::compare_harmonic(set.harmonic(), p.points, set.source));
@@ -55,15 +72,22 @@ void add_protocols(report::ReportContent& content, const runtime::Network& netwo
   }
 }
 
-std::vector<runtime::FitDataSet> fit_block_data(const lang::Program& program, const std::string& model, const std::string& file) {
-  std::vector<runtime::FitDataSet> data;
+std::vector<ReportData> fit_block_data(const lang::Program& program, const std::string& model, const std::string& file, int threads) {
+  std::vector<ReportData> data;
   for (const auto& block : program.fits) {
     if (block.model != model) continue;
-    for (const auto& d : block.data) {
-      data.push_back(runtime::read_fit_data(relative_to(file, d.file), d.weight, &d.where, runtime::reading_of(d)));
-    }
+    for (const auto& d : block.data)
+      data.push_back(
+          {runtime::read_fit_data(relative_to(file, d.file), d.weight, &d.where, runtime::reading_of(d)), harmonic_options_of(&block, threads)});
   }
   return data;
+}
+
+// The first fit block of MODEL, whose settings --data is scored with; null when there is none.
+const lang::FitDirective* first_fit_block(const lang::Program& program, const std::string& model) {
+  for (const auto& block : program.fits)
+    if (block.model == model) return &block;
+  return nullptr;
 }
 
 }  // namespace
@@ -80,7 +104,8 @@ Command add_report_command(CLI::App& app) {
   app.add_option("--threads", o->threads, "Harmonic points simulated at once (0: every hardware thread); default 1")->check(CLI::Range(0, 1024));
   app.footer(
       "Without --data the report shows the model's simulate protocols, or, when it has none, the data of its fit\n"
-      "blocks. --data is relative to the working directory, data lines of fit blocks to the .rheo file.");
+      "blocks. --data is relative to the working directory, data lines of fit blocks to the .rheo file. Harmonic\n"
+      "points are simulated with the model's (first) fit block's definition, solver and steps per cycle.");
   return [o] {
     if (!o->targets.any()) throw runtime::UsageError("rheo report writes nothing without -o REPORT.html or --plot FIGURE.svg; add one");
     const lang::Program program = lang::load_program(o->file);
@@ -88,13 +113,14 @@ Command add_report_command(CLI::App& app) {
     const runtime::Network network = runtime::Network::compile(model);
     report::ReportContent content = report::report_for_model(network, o->file, "rheo report");
     if (!o->data.empty()) {
-      std::vector<runtime::FitDataSet> data;
-      for (const auto& text : o->data) data.push_back(read_data_option(text));
-      add_data(content, network, data, o->threads);
+      std::vector<ReportData> data;
+      for (const auto& text : o->data)
+        data.push_back({read_data_option(text), harmonic_options_of(first_fit_block(program, model.name), o->threads)});
+      add_data(content, network, data);
     } else {
       add_protocols(content, network, program, *o);
       if (content.harmonic.empty() && content.histories.empty())
-        add_data(content, network, fit_block_data(program, model.name, o->file), o->threads);
+        add_data(content, network, fit_block_data(program, model.name, o->file, o->threads));
     }
     if (content.harmonic.empty() && content.histories.empty())
       throw runtime::UsageError(

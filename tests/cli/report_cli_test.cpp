@@ -7,12 +7,15 @@
 #include <doctest/doctest.h>
 #include <fmt/format.h>
 
+#include <fstream>
+
 using rheo::test::count;
 using rheo::test::run_rheo;
 
 namespace {
 std::string example(const std::string& name) { return fmt::format("{}/{}", RHEO_EXAMPLES_DIR, name); }
 std::string data(const std::string& name) { return fmt::format("{}/{}", RHEO_DATA_DIR, name); }
+void write_text(const std::string& path, const std::string& text) { std::ofstream(path, std::ios::binary) << text; }
 }  // namespace
 
 TEST_CASE("rheo report: specimen D against its harmonic and static data") {
@@ -128,4 +131,36 @@ TEST_CASE("rheo report: a Prony master curve over 18 decades, log axes with deca
   CHECK(figure.find("frequency [Hz] (log)") != std::string::npos);
   CHECK(figure.find(">1e-9<") != std::string::npos);
   CHECK(figure.find("e+") == std::string::npos);
+}
+
+TEST_CASE("rheo report scores fit-block data with the block's definition, as rheo fit --report does") {
+  // Noise-free first-harmonic data of a spring and a friction element (whose thesis and
+  // first-harmonic stiffness and phase differ), and that model fitted to it under
+  // definition = first_harmonic: err is rounding there, 1e-3 or more under the thesis definition.
+  const auto dir = rheo::test::scratch_directory("report_definition");
+  const std::string model = "model t {\n  spring k (k = 100 N/mm in [1, 1000])\n  friction f (k = 200 N/mm in [1, 1000], uy = 50 um in [1, 1000])\n}\n";
+  write_text((dir / "truth.rheo").string(),
+             model +
+                 "simulate {\n  harmonic frequency = [1, 10] Hz, amplitude = [0.02, 0.1, 0.5] mm, definition = first_harmonic\n"
+                 "  output \"truth.csv\"\n}\n");
+  REQUIRE(run_rheo("simulate " + (dir / "truth.rheo").string()).code == 0);
+  const auto file = dir / "fit.rheo";
+  write_text(file.string(), model + "fit t {\n  data \"truth.csv\"\n  definition = first_harmonic\n}\n");
+  auto err_on_page = [](const std::string& page) {
+    const auto at = page.find("err (6.1) = ");
+    REQUIRE(at != std::string::npos);
+    return std::stod(page.substr(at + 12, 12));
+  };
+  const auto r = run_rheo(fmt::format("report {} -o {}", file.string(), (dir / "block.html").string()));
+  CAPTURE(r.err);
+  REQUIRE(r.code == 0);
+  CHECK(err_on_page(rheo::test::read_file((dir / "block.html").string())) < 1e-8);
+  // --data takes the settings of the model's fit block too; a file without one, the thesis definition.
+  REQUIRE(run_rheo(fmt::format("report {} --data {} -o {}", file.string(), (dir / "truth.csv").string(), (dir / "data.html").string())).code == 0);
+  CHECK(err_on_page(rheo::test::read_file((dir / "data.html").string())) < 1e-8);
+  write_text((dir / "plain.rheo").string(), model);
+  REQUIRE(
+      run_rheo(fmt::format("report {} --data {} -o {}", (dir / "plain.rheo").string(), (dir / "truth.csv").string(), (dir / "plain.html").string())).code ==
+      0);
+  CHECK(err_on_page(rheo::test::read_file((dir / "plain.html").string())) > 1e-4);
 }
