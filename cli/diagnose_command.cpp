@@ -91,10 +91,6 @@ std::unique_ptr<Prepared> prepare(const DiagnoseOptions& o) {
   p->settings.fit = p->job.settings;
   if (o.steps_per_cycle > 0) p->settings.fit.score.harmonic.steps_per_cycle = o.steps_per_cycle;
   else if (!p->job.steps_per_cycle_given) p->settings.fit.score.harmonic.steps_per_cycle = 128;
-  // The candidates nest sliders and inerters, which `auto` would give to IDA; fixed steps are
-  // exact for the sampled drive and much faster per point (docs/numerics.md).
-  if (p->settings.fit.score.harmonic.solver == runtime::SolverChoice::automatic)
-    p->settings.fit.score.harmonic.solver = runtime::SolverChoice::fixed;
   for (int i : p->job.free) p->settings.free.push_back(p->job.model->parameters[static_cast<std::size_t>(i)].path);
   p->settings.confirm = o.candidates;
   p->settings.standard_errors = o.report.any();  // the report's parameter table shows them

@@ -23,8 +23,10 @@ namespace {
 // iterations, 0.3-3 us; docs/performance.md), and a point stepped event to event 300 per
 // cycle its shooting followed. Counted, not timed, so that budgets, and
 // results, do not depend on the machine.
-// A cycle followed event to event (closed_form/pwl_periodic.hpp: 64 grid steps of a small
-// matrix, the located switches and, once, the first harmonic) costs about 100 us, 300 units.
+// A cycle followed event to event (closed_form/pwl_periodic.hpp) counts 300 units: what it cost
+// (about 100 us) when the unit was set. Shooting on the half-period map with modes reused across
+// points made it about 13 us (docs/performance.md); the count was kept, so that the refits'
+// budgets, and their results, did not change with the speed.
 constexpr double kEventCycleWork = 300.0;
 
 double evaluation_work(const Network& network, const std::vector<FitDataSet>& data, const HarmonicOptions& options) {
