@@ -150,7 +150,13 @@ class Diagnoser {
   std::vector<ScreenedEffect> screen_effects() {
     if (stopped()) return {};
     stage("screening the effects");
-    return screen(d_.before, data_, s_.fit.score);
+    std::vector<ScreenedEffect> screened = screen(d_.before, data_, s_.fit.score);
+    // Harmonic sweeps that measure no interaction (patterns.hpp) give no evidence of coupling,
+    // and a coupled element that fits them would be named for what they cannot show.
+    const bool histories = std::any_of(data_.begin(), data_.end(), [](const FitDataSet& set) { return !set.is_harmonic(); });
+    if (d_.patterns.has_harmonic && !histories && !d_.patterns.harmonic.interaction_measured())
+      std::erase_if(screened, [](const ScreenedEffect& e) { return e.effect == Effect::coupled_amplitude_frequency; });
+    return screened;
   }
 
   // Step 3: the leading effects refitted (a refitted capped fluid column is followed by its limit

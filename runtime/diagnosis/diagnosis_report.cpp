@@ -70,6 +70,7 @@ std::string diagnosis_report_json(const std::string& source_file, const Diagnosi
         {"amplitude_share", h.amplitude_share},
         {"frequency_share", h.frequency_share},
         {"interaction_share", h.interaction_share},
+        {"interaction_measured", h.interaction_measured()},
         {"worst_stiffness",
          {{"amplitude_mm", h.worst_stiffness.amplitude}, {"frequency_hz", h.worst_stiffness.frequency}, {"residual", h.worst_stiffness.residual}}},
         {"worst_phase",

@@ -6,7 +6,8 @@
 //           diagnose.hpp: none is a residual at the noise, unexplained one beyond it that no
 //           candidate removes)
 //   evidence: {reason, patterns: [text...], harmonic?: {points, stiffness_rms, phase_rms_deg,
-//              amplitude_share, frequency_share, interaction_share, worst_stiffness: {amplitude_mm,
+//              amplitude_share, frequency_share, interaction_share, interaction_measured (false: the
+//              grid cannot measure it, the share is 0 and coupling is not screened), worst_stiffness: {amplitude_mm,
 //              frequency_hz, residual}, worst_phase: {amplitude_mm, frequency_hz, residual_deg},
 //              phase_peak: {frequency_hz, excess_deg}}, histories: [{file, rms, max, worst_displacement_mm}],
 //              candidates: [{effect, screened_gain, element, trial, refitted, gap_after?,

@@ -33,9 +33,11 @@ std::string pattern_sentence(Effect effect, const ResidualPatterns& p) {
   }
   switch (effect) {
     case Effect::amplitude_dependence:
-      return fmt::format("the residual changes with amplitude alike at every frequency ({:.0f} % of it)", percent(h.amplitude_share));
+      return fmt::format("the residual changes with amplitude{} ({:.0f} % of it)", h.interaction_measured() ? " alike at every frequency" : "",
+                         percent(h.amplitude_share));
     case Effect::rate_dependence:
-      return fmt::format("the residual changes with frequency alike at every amplitude ({:.0f} % of it)", percent(h.frequency_share));
+      return fmt::format("the residual changes with frequency{} ({:.0f} % of it)", h.interaction_measured() ? " alike at every amplitude" : "",
+                         percent(h.frequency_share));
     case Effect::nonlinear_elasticity:
       return fmt::format("the stiffness residual changes with amplitude ({:.0f} % of the residual varies with amplitude alone)",
                          percent(h.amplitude_share));
@@ -200,10 +202,17 @@ std::vector<std::string> pattern_lines(const ResidualPatterns& p) {
                     "{:.4g} Hz (model - measured)",
                     100.0 * h.worst_stiffness.residual, h.worst_stiffness.amplitude, h.worst_stiffness.frequency, degrees(h.worst_phase.residual),
                     h.worst_phase.amplitude, h.worst_phase.frequency));
-    lines.push_back(
-        fmt::format("share of the residual that varies with amplitude alone {:.0f} %, with frequency alone {:.0f} %, with both "
-                    "together (interaction) {:.0f} %",
-                    percent(h.amplitude_share), percent(h.frequency_share), percent(h.interaction_share)));
+    if (h.interaction_measured())
+      lines.push_back(
+          fmt::format("share of the residual that varies with amplitude alone {:.0f} %, with frequency alone {:.0f} %, with both "
+                      "together (interaction) {:.0f} %",
+                      percent(h.amplitude_share), percent(h.frequency_share), percent(h.interaction_share)));
+    else
+      lines.push_back(
+          fmt::format("share of the residual that varies with amplitude {:.0f} %, with frequency {:.0f} %; whether the two act together is not "
+                      "measured: no two amplitudes share two frequencies (a grid, not single sweeps, measures it), so coupled-amplitude-frequency "
+                      "is not a candidate",
+                      percent(h.amplitude_share), percent(h.frequency_share)));
     if (h.phase_peak > 0.0)
       lines.push_back(fmt::format("the measured phase exceeds the model's most near {:.4g} Hz: {:.3f} deg on average over amplitudes",
                                   h.phase_peak_frequency, degrees(h.phase_peak)));

@@ -52,6 +52,24 @@ void decompose(const std::vector<GridPoint>& grid, std::size_t n_a, std::size_t 
   out.interaction_share = ss_i / total;
 }
 
+// C - (n_a + n_f - components) for the distinct cells of GRID (see patterns.hpp).
+int interaction_dof(const std::vector<GridPoint>& grid, std::size_t n_a, std::size_t n_f) {
+  std::vector<std::size_t> parent(n_a + n_f);
+  for (std::size_t i = 0; i < parent.size(); ++i) parent[i] = i;
+  auto find = [&](std::size_t x) {
+    while (parent[x] != x) x = parent[x] = parent[parent[x]];
+    return x;
+  };
+  std::vector<std::pair<std::size_t, std::size_t>> cells;
+  for (const auto& g : grid) cells.emplace_back(g.amplitude, g.frequency);
+  std::sort(cells.begin(), cells.end());
+  cells.erase(std::unique(cells.begin(), cells.end()), cells.end());
+  std::size_t components = n_a + n_f;
+  for (const auto& [a, f] : cells)
+    if (const std::size_t ra = find(a), rf = find(n_a + f); ra != rf) parent[ra] = rf, --components;
+  return static_cast<int>(cells.size()) - static_cast<int>(n_a + n_f - components);
+}
+
 }  // namespace
 
 ResidualPatterns residual_patterns(const FitResult& fit, const std::vector<FitDataSet>& data) {
@@ -93,6 +111,7 @@ ResidualPatterns residual_patterns(const FitResult& fit, const std::vector<FitDa
   h.stiffness_rms = std::sqrt(sum_k / h.points);
   h.phase_rms = std::sqrt(sum_phase / h.points);
   decompose(grid, amplitudes.size(), frequencies.size(), h);
+  h.interaction_dof = interaction_dof(grid, amplitudes.size(), frequencies.size());
   h.phase_peak = -1e300;
   for (const auto& [level, entry] : phase_excess)
     if (const double mean = entry.first / entry.second; mean > h.phase_peak) h.phase_peak = mean, h.phase_peak_frequency = frequencies[level];

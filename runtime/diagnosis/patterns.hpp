@@ -22,6 +22,12 @@ struct HarmonicPatterns {
   double amplitude_share = 0.0;  // share of sum(r_K^2 + r_d^2) in A, F, I (the mean takes the rest)
   double frequency_share = 0.0;
   double interaction_share = 0.0;
+  // Degrees of freedom the grid leaves the interaction: measured (amplitude, frequency) cells
+  // less the additive model's levels, C - (n_a + n_f - components) over the graph of levels
+  // joined by cells. 0 for one amplitude sweep and one frequency sweep (an L), a line or a
+  // single point: every residual then fits A + F and the interaction is not measured.
+  int interaction_dof = 0;
+  bool interaction_measured() const { return interaction_dof > 0; }
   struct Worst {
     double amplitude = 0.0, frequency = 0.0;  // [mm], [Hz]
     double residual = 0.0;                    // r_K [-], or model - measured phase [rad]

@@ -138,3 +138,38 @@ TEST_CASE("diagnose, coupled bushing (#24): the refit finds the hidden arm's yie
     if (model.parameters[i].path == d.added_element + ".cap.fy") fy = d.after->network.parameter(static_cast<int>(i));
   CHECK(fy == doctest::Approx(70.0).epsilon(0.15));
 }
+
+TEST_CASE("diagnose on an L of two sweeps: the interaction is not measured, and coupling is not named from it") {
+  // #22 item 9: one amplitude sweep (at 9 Hz) and one frequency sweep (at 0.5 mm) of a bushing
+  // whose slider-capped Maxwell arm couples amplitude and frequency; the start model lacks the
+  // arm. The L cannot show that coupling: every residual on it is additive.
+  const std::string truth = R"(model truth { spring k0 (k = 700 N/mm)  maxwell m1 (k = 150 N/mm, tau = 4 ms)
+                               series arm { slider s (fy = 70 N)  maxwell ma (k = 350 N/mm, tau = 15 ms) } })";
+  const std::string start =
+      "model start {\n  spring k0 (k = 500 N/mm in [10, 10000])\n  maxwell m1 (k = 100 N/mm in [1, 10000], tau = 10 ms in [0.01, 10000])\n}\n";
+  const runtime::Network network = test::network_from(truth, "truth");
+  std::vector<std::pair<double, double>> cells;  // (amplitude, frequency)
+  for (double a : {0.05, 0.1, 0.2, 0.5, 1.0, 2.0}) cells.emplace_back(a, 9.0);
+  for (double f : {1.0, 3.0, 5.0, 13.0, 21.0, 41.0}) cells.emplace_back(0.5, f);
+  std::mt19937 random(77);
+  std::normal_distribution<double> normal(0.0, 1.0);
+  runtime::HarmonicData h;
+  h.path = "l_shape.csv";
+  for (const auto& [a, f] : cells) {
+    const auto p = runtime::simulate_harmonic_point(network, a, f, test::simulation_options());
+    h.amplitude.push_back(a), h.frequency.push_back(f);
+    h.stiffness.push_back(p.measures.stiffness * (1.0 + 0.01 * normal(random)));
+    h.phase.push_back(p.measures.phase + 0.15 * std::numbers::pi / 180.0 * normal(random));
+    h.rows.push_back(static_cast<int>(h.rows.size()) + 2);
+  }
+  const dx::Diagnosis d = diagnose(start, {runtime::FitDataSet{h.path, 1.0, h, {}}});
+  MESSAGE(summary(d));
+  CHECK_FALSE(d.patterns.harmonic.interaction_measured());
+  CHECK(d.effect != dx::Effect::coupled_amplitude_frequency);
+  for (const auto& c : d.candidates) CHECK(c.screened.effect != dx::Effect::coupled_amplitude_frequency);
+  const std::string text = dx::diagnosis_report_text("start.rheo", d);
+  CHECK(text.find("is not measured") != std::string::npos);
+  CHECK(text.find("interaction holds") == std::string::npos);
+  const auto j = nlohmann::json::parse(dx::diagnosis_report_json("start.rheo", d, ""));
+  CHECK(j["evidence"]["harmonic"]["interaction_measured"] == false);
+}

@@ -68,3 +68,35 @@ TEST_CASE("diagnosis patterns: a missing cell of the grid still splits an additi
   CHECK(p.harmonic.interaction_share < 1e-12);
   CHECK(p.harmonic.amplitude_share > p.harmonic.frequency_share);
 }
+
+TEST_CASE("diagnosis patterns: the interaction's degrees of freedom, (n_a - 1)(n_f - 1) on a grid, none on an L of two sweeps") {
+  // Keeps the points of the 3 x 4 grid for which KEEP(i, j) holds.
+  auto patterns_of = [](auto keep) {
+    auto [fit, data] = fit_with([](std::size_t i, std::size_t j) { return 0.01 * static_cast<double>(i * j); });  // pure interaction
+    auto& h = std::get<runtime::HarmonicData>(data.front().data);
+    auto& set = fit.datasets.front();
+    runtime::HarmonicData kept;
+    runtime::DataSetFit kept_set;
+    for (std::size_t k = 0; k < h.size(); ++k)
+      if (keep(k / kF.size(), k % kF.size())) {
+        kept.amplitude.push_back(h.amplitude[k]), kept.frequency.push_back(h.frequency[k]);
+        kept.stiffness.push_back(h.stiffness[k]), kept.phase.push_back(h.phase[k]);
+        kept_set.prediction.points.push_back(set.prediction.points[k]);
+        kept_set.residuals.stiffness.push_back(set.residuals.stiffness[k]), kept_set.residuals.damping.push_back(0.0);
+      }
+    h = kept, set = kept_set;
+    return runtime::diagnosis::residual_patterns(fit, data).harmonic;
+  };
+  const auto grid = patterns_of([](std::size_t, std::size_t) { return true; });
+  CHECK(grid.interaction_dof == 6);
+  CHECK(grid.interaction_measured());
+  CHECK(grid.interaction_share > 0.1);
+  // An amplitude sweep at 5 Hz and a frequency sweep at 0.5 mm: every residual is additive there.
+  const auto l_shape = patterns_of([](std::size_t i, std::size_t j) { return i == 1 || j == 1; });
+  CHECK(l_shape.interaction_dof == 0);
+  CHECK_FALSE(l_shape.interaction_measured());
+  CHECK(l_shape.interaction_share < 1e-12);
+  // The L and one more point off both sweeps: one degree of freedom.
+  const auto l_plus = patterns_of([](std::size_t i, std::size_t j) { return i == 1 || j == 1 || (i == 2 && j == 3); });
+  CHECK(l_plus.interaction_dof == 1);
+}
