@@ -26,6 +26,10 @@ CycleMeasures measures_from(double force_amplitude, double storage1, double loss
     m.damping = m.force_amplitude > 0.0 ? m.energy / (std::numbers::pi * m.force_amplitude * amplitude) : 0.0;
     m.damping_clamped = m.damping > 1.0;
     m.phase = std::asin(std::clamp(m.damping, -1.0, 1.0));
+    // Where the in-phase part of the force opposes the displacement (K'_1 < 0, a mass above its
+    // resonance) the phase lies beyond 90 deg, as the first harmonic's does: d = sin(phase) and
+    // F^/u0 keep their values, the sign of K' is kept in the phase (#22 item 8).
+    if (storage1 < 0.0) m.phase = std::numbers::pi - m.phase;
   } else {
     m.stiffness = std::hypot(storage1, loss1);
     m.phase = std::atan2(loss1, storage1);

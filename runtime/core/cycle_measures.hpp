@@ -25,7 +25,7 @@ struct CycleMeasures {
   double energy = 0.0;           // U, dissipated per cycle [N*mm]
   double stiffness = 0.0;        // K [N/mm]
   double damping = 0.0;          // d = U/(pi F^ u0) (thesis) or sin(phase) (first harmonic)
-  double phase = 0.0;            // [rad]
+  double phase = 0.0;            // [rad]; thesis: asin(d), or pi - asin(d) where K'_1 < 0 (mass-dominated)
   double storage = 0.0;          // K cos(phase) [N/mm]
   double loss = 0.0;             // K sin(phase) [N/mm]
   bool damping_clamped = false;  // thesis definition with d > 1 (e.g. a bare slider: d = 4/pi)

@@ -43,3 +43,23 @@ TEST_CASE("a rigid-plastic slider's square loop has d = 4/pi: clamped to 90 deg 
   CHECK(m.damping_clamped);
   CHECK(m.phase == doctest::Approx(std::numbers::pi / 2));
 }
+
+TEST_CASE("above a resonance (K'_1 < 0) the thesis phase lies beyond 90 deg, as the first harmonic's") {
+  // An ellipse lagging by delta in (90, 180) deg: F = K u0 sin(theta + delta). Both definitions
+  // give K and delta; before, the thesis definition folded the phase to 180 - delta.
+  const double u0 = 0.4, stiffness = 50.0;
+  for (double degrees : {95.0, 135.0, 179.0}) {
+    const double delta = degrees * std::numbers::pi / 180.0;
+    const double storage = stiffness * std::cos(delta), loss = stiffness * std::sin(delta);
+    const CycleMeasures thesis = measures_from(stiffness * u0, storage, loss, u0, HarmonicDefinition::thesis);
+    const CycleMeasures first = measures_from(stiffness * u0, storage, loss, u0, HarmonicDefinition::first_harmonic);
+    CAPTURE(degrees);
+    CHECK(thesis.phase == doctest::Approx(delta).epsilon(1e-12));
+    CHECK(first.phase == doctest::Approx(delta).epsilon(1e-12));
+    CHECK(thesis.damping == doctest::Approx(std::sin(delta)).epsilon(1e-12));  // d = U/(pi F^ u0) unchanged
+    CHECK(thesis.storage == doctest::Approx(storage).epsilon(1e-12));          // negative: the sign is kept
+  }
+  // A pure mass: no loss, K'_1 < 0: 180 deg, not 0.
+  CHECK(measures_from(2.0, -5.0, 0.0, 0.4, HarmonicDefinition::thesis).phase == doctest::Approx(std::numbers::pi));
+  CHECK(measures_from(2.0, 5.0, 0.0, 0.4, HarmonicDefinition::thesis).phase == doctest::Approx(0.0));
+}
