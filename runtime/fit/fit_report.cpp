@@ -3,6 +3,7 @@
 #include "runtime/fit/parameter_bounds.hpp"
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 #include <nlohmann/json.hpp>
 
 #include <algorithm>
@@ -32,6 +33,37 @@ std::string standard_error_text(const FitResult& r, std::size_t j, int index) {
 }
 
 // "data rig.csv: force_offset": the parameter table's name of a fitted offset.
+// The element of MODEL whose stiffness (slot 0 of a spring, maxwell or friction element) is
+// parameter INDEX, with the block holding it; {nullptr, nullptr} otherwise.
+std::pair<const lang::Element*, const lang::Element*> stiffness_owner(const lang::Element& block, int index) {
+  for (const lang::Element& e : block.children) {
+    const bool stiffness = (e.kind == lang::ElementKind::spring || e.kind == lang::ElementKind::maxwell || e.kind == lang::ElementKind::friction) &&
+                           !e.parameters.empty() && e.parameters.front() == index;
+    if (stiffness) return {&e, &block};
+    if (auto found = stiffness_owner(e, index); found.first != nullptr) return found;
+  }
+  return {nullptr, nullptr};
+}
+
+// Why the parameters of GROUP (indices into r.free) are not identifiable: they act only
+// together; for stiffnesses in one series chain, the combination the data fix.
+std::string together_note(const FitResult& r, const std::vector<int>& group) {
+  std::vector<std::string> paths, names;
+  const lang::Element* chain = nullptr;
+  bool series = true;
+  for (int j : group) {
+    const int index = r.free.at(static_cast<std::size_t>(j));
+    paths.push_back(parameter_of(r, index).path);
+    const auto [element, block] = stiffness_owner(r.network.model().root, index);
+    series = series && element != nullptr && block->kind == lang::ElementKind::series && (chain == nullptr || chain == block);
+    if (element != nullptr) chain = block, names.push_back(element->name);
+  }
+  std::string out = fmt::format("  not identifiable: {} act only together; the data determine one combination of them", fmt::join(paths, " and "));
+  if (series && group.size() == 2) out += fmt::format(" (in series: only {0} {1}/({0} + {1}))", names[0], names[1]);
+  else if (series) out += fmt::format(" (in series: only 1/(1/{}))", fmt::join(names, " + 1/"));
+  return out + ": fix all but one of them\n";
+}
+
 std::string offset_label(const DataSetFit& d) { return fmt::format("data {}: force_offset", d.path); }
 
 bool fitted_offset(const DataSetFit& d) { return !d.harmonic && d.force_offset.given && d.force_offset.free; }
@@ -125,6 +157,7 @@ std::string fit_report_text(const FitDescription& d, const FitResult& r) {
   }
   if (r.datasets.size() > 1 && r.phi > 0.0) out += fmt::format("  all harmonic data: phi = {:.6g}, err = {:.4e}\n", r.phi, r.err);
   const auto& s = r.statistics;
+  for (const auto& group : s.together) out += together_note(r, group);
   for (std::size_t a = 0; a < s.correlation.size(); ++a)
     for (std::size_t b = a + 1; b < s.correlation[a].size(); ++b)
       if (std::abs(s.correlation[a][b]) > 0.95)
@@ -161,6 +194,13 @@ std::string fit_report_json(const FitDescription& d, const FitResult& r) {
   j["phi"] = r.phi;
   j["err"] = r.err;
   j["notes"] = r.notes;
+  json together = json::array();  // groups of parameter paths that act only together
+  for (const auto& group : r.statistics.together) {
+    json paths = json::array();
+    for (int k : group) paths.push_back(parameter_of(r, r.free.at(static_cast<std::size_t>(k))).path);
+    together.push_back(paths);
+  }
+  j["not_identifiable_together"] = together;
   json parameters = json::array();
   const auto& all = r.network.model().parameters;
   for (std::size_t i = 0; i < all.size(); ++i) {

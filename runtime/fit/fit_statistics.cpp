@@ -16,6 +16,8 @@ namespace {
 constexpr double kRelativeStep = 1e-6;
 constexpr double kSingularTolerance = 1e-8;  // of the largest singular value
 constexpr double kNullComponent = 1e-6;
+constexpr double kUndeterminedRelativeError = 1e3;  // standard error over |value| beyond which a parameter is not identifiable
+constexpr double kGroupComponent = 0.1;             // of a singular vector, for the groups that act together
 
 Eigen::VectorXd evaluate(const std::function<std::vector<double>(const std::vector<double>&)>& residuals, const std::vector<double>& z,
                          std::size_t expected_size) {
@@ -90,6 +92,24 @@ ParameterStatistics parameter_statistics(const std::function<std::vector<double>
       if (i != j && out.identifiable[i] && out.identifiable[j])
         out.correlation[i][j] = covariance(ii, jj) / std::sqrt(covariance(ii, ii) * covariance(jj, jj));
     }
+  }
+  // The practical tier (fit_statistics.hpp): standard errors beyond any useful range.
+  for (std::size_t i = 0; i < n; ++i) {
+    const double value = logarithmic[i] ? std::exp(z[i]) : std::abs(z[i]);
+    if (!out.identifiable[i] || !(out.standard_error[i] > kUndeterminedRelativeError * value)) continue;
+    out.identifiable[i] = false;
+    out.standard_error[i] = std::numeric_limits<double>::infinity();
+    for (std::size_t j = 0; j < n; ++j)
+      if (j != i) out.correlation[i][j] = out.correlation[j][i] = nan;
+  }
+  // Groups along the null directions and the smallest singular value's.
+  for (Eigen::Index k = 0; k < nn; ++k) {
+    const bool weakest = k == std::min<Eigen::Index>(s.size(), nn) - 1;
+    if (!(k >= s.size() || inverse_square(k) == 0.0 || weakest)) continue;
+    std::vector<int> group;
+    for (Eigen::Index j = 0; j < nn; ++j)
+      if (!out.identifiable[static_cast<std::size_t>(j)] && std::abs(v(j, k)) > kGroupComponent) group.push_back(static_cast<int>(j));
+    if (group.size() >= 2 && std::find(out.together.begin(), out.together.end(), group) == out.together.end()) out.together.push_back(group);
   }
   return out;
 }

@@ -15,6 +15,13 @@
 // |P_null e_j| = sqrt(sum over zero s_k of V_jk^2) <= 1e-6. For identifiable coordinates the
 // pseudo-inverse entries are the exact (co)variances of estimable quantities even when other
 // coordinates are not identifiable; a non-identifiable coordinate's variance is unbounded.
+// A coordinate whose standard error exceeds 1000 times its parameter's value counts as not
+// identifiable too: the data leave it free within any range a user cares about (a direction
+// the finite differences of a time-stepped or event-driven response resolve only to their
+// noise, as two stiffnesses in series, r = +-1; #22 item 7).
+// Groups: the non-identifiable coordinates that share a direction of J's smallest singular
+// values (components above 0.1 of its unit vector): they act only together, and the data fix
+// one combination of them.
 // Parameter space (delta method): p_j = exp(z_j) for logarithmic coordinates, else p_j = z_j,
 //   SE(p_j) = |dp_j/dz_j| sqrt(Cov_z,jj),  dp/dz = p_j (log) or 1,
 //   correlation(p_i, p_j) = Cov_z,ij / sqrt(Cov_z,ii Cov_z,jj)  (invariant under the monotone
@@ -33,8 +40,9 @@ struct ParameterStatistics {
                                                  // rows and columns of non-identifiable parameters
                                                  // (and where a variance is 0: a perfect fit)
   std::vector<bool> identifiable;
-  int rank = 0;       // numerical rank of J
-  int residuals = 0;  // m
+  std::vector<std::vector<int>> together;  // groups (2 or more) of non-identifiable coordinates that act only together
+  int rank = 0;                            // numerical rank of J
+  int residuals = 0;                       // m
   bool has_noise_estimate() const { return residuals > rank; }
 };
 

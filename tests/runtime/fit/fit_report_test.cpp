@@ -265,3 +265,34 @@ TEST_CASE("the start column shows the start the search used: the yeoh start's, m
   CHECK(parameter_entry(j, "r.D10").at("start_from") == "yeoh");
   CHECK(parameter_entry(j, "m.k").at("start_from") == "given");
 }
+
+TEST_CASE("two stiffnesses in series are not identifiable, and the report names the combination the data fix") {
+  // #22 item 7: only k1 k2/(k1 + k2) acts; the fit must say so rather than print a standard
+  // error of millions of percent with r = +-1.
+  const char* source = R"(model s {
+  series c { spring k1 (k = 300 N/mm in [1, 10000])  spring k2 (k = 100 N/mm in [1, 10000]) }
+  maxwell m (k = 50 N/mm, tau = 10 ms in [0.1, 1000])
+})";
+  const auto truth = test::network_from(
+      "model s { series c { spring k1 (k = 200 N/mm)  spring k2 (k = 200 N/mm) }\n"
+      " maxwell m (k = 50 N/mm, tau = 10 ms) }",
+      "s");
+  const auto start = test::network_from(source, "s");
+  runtime::FitSettings settings;
+  const runtime::FitResult r = runtime::fit(start, runtime::bounded_parameters(start), {harmonic_from(truth)}, settings);
+  REQUIRE(r.statistics.identifiable.size() == 3);
+  CHECK_FALSE(r.statistics.identifiable[0]);
+  CHECK_FALSE(r.statistics.identifiable[1]);
+  CHECK(r.statistics.identifiable[2]);  // tau is determined
+  REQUIRE(r.statistics.together.size() == 1);
+  CHECK(r.statistics.together.front() == std::vector<int>{0, 1});
+  // The combination is the truth's 100 N/mm.
+  const double k1 = r.network.parameter(r.free[0]), k2 = r.network.parameter(r.free[1]);
+  CHECK(k1 * k2 / (k1 + k2) == doctest::Approx(100.0).epsilon(1e-6));
+  const std::string text = runtime::fit_report_text({}, r);
+  CHECK(text.find("not identifiable: c.k1.k and c.k2.k act only together") != std::string::npos);
+  CHECK(text.find("in series: only k1 k2/(k1 + k2)") != std::string::npos);
+  CHECK(text.find("strongly correlated: c.k1.k") == std::string::npos);
+  const json j = json::parse(runtime::fit_report_json({}, r));
+  CHECK(j["not_identifiable_together"] == json::array({json::array({"c.k1.k", "c.k2.k"})}));
+}
