@@ -181,7 +181,7 @@ TEST_CASE("hydrobushing: rheo diagnose names the uncoupled model's missing coupl
   CHECK(rheo_run(fmt::format("check {} > /dev/null", refined.string())) == 0);
 }
 
-TEST_CASE("examples/hydromount.rheo: at 0.05 mm its cap holds and the grid is K* of the uncapped mount; at 2 mm F^ <= k_rubber u0 + fy") {
+TEST_CASE("examples/hydromount.rheo: at 0.05 mm its cap holds and the grid is K* of the uncapped mount, at 2 mm F^ <= k_rubber u0 + fy") {
   const fs::path out = scratch() / "hydromount_harmonic.csv";
   REQUIRE(rheo_run(fmt::format("simulate {} -o {}", example("hydromount.rheo"), out.string())) == 0);
   const runtime::Table t = runtime::read_table(out.string());
@@ -207,7 +207,7 @@ TEST_CASE("examples/hydromount.rheo: at 0.05 mm its cap holds and the grid is K*
   CHECK(large == 8);
 }
 
-TEST_CASE("the example fits of specimens A-D reach their documented err; the fitted files score it again") {
+TEST_CASE("the example fits of specimens A-D reach their documented err, the fitted files score it again") {
   // docs/tutorial.md: A 1.1413e-2 (Table D.4: 1.1869e-2), B 7.0444e-3 (Table D.4: 7.8852e-3),
   // C 2.7922e-3 (Table D.4: 2.8506e-3), D 1.4901e-3 (noise floor 1.5043e-3).
   // A fixed seed repeats bit for bit on one machine; 1e-3 relative leaves room for another libm.
@@ -271,7 +271,7 @@ TEST_CASE("examples/prony_fit.rheo: the 21 stiffnesses of the generating Prony s
   CHECK(checked == 21);
 }
 
-TEST_CASE("examples/dma_master_curve_fit.rheo: a DMA export over 26 decades read through its geometry; every stiffness to 1e-6") {
+TEST_CASE("examples/dma_master_curve_fit.rheo: a DMA export over 26 decades read through its geometry, every stiffness to 1e-6") {
   // examples/data/README.md: E_inf = 2 MPa, arm i (tau = 10^(i - 15) s) E_i = 0.5 + 300 exp(-((i - 9)/4)^2)
   // MPa rounded to 4 digits; a 40 mm^2 x 20 mm bar makes each 2 E N/mm.
   auto modulus = [](int i) { return std::stod(fmt::format("{:.4g}", 0.5 + 300.0 * std::exp(-std::pow((i - 9) / 4.0, 2)))); };
@@ -311,7 +311,7 @@ TEST_CASE("the README's 30-second example prints the first row the README shows"
 // The coupled bushing (#23): the generating model of examples/data/README.md explains the data to
 // their noise (1 % in stiffness, 0.15 deg in phase), and a short fit from the example's generic
 // start falls more than tenfold in err. The default fit is bench/ work (BM_CoupledBushing_Fit).
-TEST_CASE("examples/coupled_bushing_fit.rheo: the README's generating model scores at the noise; a short fit from the example's start") {
+TEST_CASE("examples/coupled_bushing_fit.rheo: the README's generating model scores at the noise, a short fit from the example's start") {
   const fs::path dir = scratch();
   const fs::path truth = dir / "coupled_truth.rheo", grid = dir / "coupled_truth.csv";
   {

@@ -258,7 +258,7 @@ TEST_CASE("the Newmark inerter under midpoint sampling (a dashpot in the root bl
   CHECK(e1.stiffness / e2.stiffness < 5.0);
 }
 
-TEST_CASE("inerter in the root block with a spring: K* = k - b w^2; with a dashpot + i c w (midpoint sampling)") {
+TEST_CASE("inerter in the root block with a spring: K* = k - b w^2, with a dashpot + i c w (midpoint sampling)") {
   // The drive-prescribed inerter estimates d2u/dt2 at the step end from the last three step
   // rates; for the sampled sine that is -w^2 u (1 + (11/12) theta^2 + O(theta^3)), so the
   // relative error of F^ is (11/12) theta^2 b w^2 / |k - b w^2| (6.3e-6 at 40 Hz, N = 2048):
