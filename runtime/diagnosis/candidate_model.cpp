@@ -57,7 +57,10 @@ std::string with_trial(const std::string& fitted_text, const lang::CheckedModel&
   for (const auto& e : fitted.root.children)
     if (e.name == trial.replaces) {
       const lang::TextSpan span = lang::element_statement(fitted_text, e);
-      return lang::replace_span(fitted_text, span, "# " + comment + "\n" + lang::line_indent(fitted_text, span.begin) + lines.front());
+      const std::string indent = lang::line_indent(fitted_text, span.begin);
+      std::string replacement = "# " + comment;
+      for (const std::string& line : lines) replacement += "\n" + indent + line;
+      return lang::replace_span(fitted_text, span, replacement);
     }
   throw std::logic_error(fmt::format("model '{}' has no root element '{}' to replace", fitted.name, trial.replaces));
 }

@@ -17,7 +17,7 @@ int parameter_index(const lang::CheckedModel& model, const std::string& path);
 std::string candidate_name(const lang::CheckedModel& model, Effect effect);
 
 // The fitted model's source with TRIAL written in as NAME, under COMMENT: appended to the
-// model's body, or in place of the root element TRIAL.replaces.
+// model's body, or in place of the root element TRIAL.replaces (a gapped_element holds it).
 std::string with_trial(const std::string& fitted_text, const lang::CheckedModel& fitted, const Trial& trial, const std::string& name,
                        const BoundScales& bounds, const std::string& comment);
 

@@ -166,7 +166,8 @@ class Diagnoser {
       CandidateOutcome outcome;
       outcome.screened = screened;
       const Trial& trial = screened.trial;
-      outcome.element = trial.replaces.empty() ? candidate_name(*fitted_.model, screened.effect) : trial.replaces;
+      outcome.element = trial.replaces.empty() || trial.shape == Shape::gapped_element ? candidate_name(*fitted_.model, screened.effect)
+                                                                                       : trial.replaces;
       if (refitted >= s_.confirm || screened.gain < std::max(s_.min_screen_gain, s_.relative_screen_gain * leading_gain) || stopped()) {
         d_.candidates.push_back(outcome);
         continue;
