@@ -94,4 +94,19 @@ Trial resonance_free_limit(const Trial& column, const lang::CheckedModel& model,
   return limit;
 }
 
+std::string gap_outside_play(const Network& network) {
+  const Topology& t = network.topology();
+  for (std::size_t i = 0; i < t.nodes.size(); ++i) {
+    const TreeNode& n = t.nodes[i];
+    if (n.kind != NodeKind::gap) continue;
+    const double width = network.parameter(n.param[0]), center = network.parameter(n.param[1]);
+    if (std::abs(center) <= 0.5 * width * (1.0 + 1e-12)) continue;
+    return fmt::format(
+        "a gap's refitted centre ({:.4g} mm) lies beyond half its width ({:.4g} mm): its rest position is outside the play, "
+        "a stop touching at rest that no .rheo file can state",
+        center, 0.5 * width);
+  }
+  return {};
+}
+
 }  // namespace rheo::runtime::diagnosis

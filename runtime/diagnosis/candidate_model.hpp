@@ -27,6 +27,11 @@ std::string with_trial(const std::string& fitted_text, const lang::CheckedModel&
 std::string resolved_resonance(const Trial& trial, const lang::CheckedModel& model, const Network& network, const std::string& element,
                                const DataScales& scales);
 
+// Empty when every gap of NETWORK has its rest position in its play (|center| <= width/2), else
+// why the refitted model cannot be written: a fit may move a centre beyond half the width
+// (the gap then acts as a stop touching at rest), which a .rheo file refuses.
+std::string gap_outside_play(const Network& network);
+
 // The limit without inertia (b -> 0) of a refitted slider-capped fluid column ELEMENT: chamber
 // spring and channel dashpot in series are a Maxwell element of k = chamber.k and
 // tau = channel.c / chamber.k, capped by the same slider: the capped_maxwell shape, one

@@ -215,6 +215,7 @@ class Diagnoser {
     d_.interrupted = d_.interrupted || result.interrupted;
     d_.time_limited = d_.time_limited || result.time_limited;
     outcome.unresolved = resolved_resonance(trial, *candidate.model, result.network, outcome.element, scales_);
+    if (outcome.unresolved.empty()) outcome.unresolved = gap_outside_play(result.network);
     std::optional<Trial> limit;
     if (trial.shape == Shape::capped_column) limit = resonance_free_limit(trial, *candidate.model, result.network, outcome.element);
     const bool earns = outcome.unresolved.empty() && outcome.criterion < d_.criterion_before &&
@@ -225,7 +226,8 @@ class Diagnoser {
     return limit;
   }
 
-  // Step 5: BOBYQA over every free parameter of the chosen model again, kept when no worse.
+  // Step 5: BOBYQA over every free parameter of the chosen model again, kept when no worse and
+  // writable (no gap's rest position outside its play).
   void polish() {
     if (stopped()) return;
     stage("polishing the refined model");
@@ -235,7 +237,7 @@ class Diagnoser {
     FitResult polished = fit(chosen_->result.network, chosen_->result.free, data_, settings);
     d_.interrupted = polished.interrupted;
     d_.time_limited = d_.time_limited || polished.time_limited;
-    if (polished.objective <= chosen_->result.objective) {
+    if (polished.objective <= chosen_->result.objective && gap_outside_play(polished.network).empty()) {
       polished.start_values = chosen_->result.start_values;
       polished.yeoh_started = chosen_->result.yeoh_started;
       polished.evaluations += chosen_->result.evaluations;
