@@ -1,5 +1,7 @@
 #include "runtime/closed_form/pwl_branch.hpp"
 
+#include "runtime/network/leaf_kernels.hpp"
+
 #include <numeric>
 
 namespace rheo::runtime {
@@ -32,7 +34,7 @@ struct BranchBuilder {
       case NodeKind::slider: add_slider(node, 0, 1, a, b); return true;
       case NodeKind::gap:
         if (parameter(node, 1) != 0.0 || network.model().parameters[static_cast<std::size_t>(node.param[1])].free) branch.odd = false;
-        add(PwlEdgeKind::gap, a, b, 0.5 * parameter(node, 0), 0.0, parameter(node, 1));
+        add(PwlEdgeKind::gap, a, b, 0.5 * parameter(node, 0), 0.0, gap_center(parameter(node, 0), parameter(node, 1)));  // as the kernels
         return true;
       case NodeKind::maxwell: {
         const int mid = new_node();

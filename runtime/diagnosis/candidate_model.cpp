@@ -1,6 +1,7 @@
 #include "runtime/diagnosis/candidate_model.hpp"
 
 #include "lang/source_edit.hpp"
+#include "runtime/network/leaf_kernels.hpp"
 
 #include <fmt/format.h>
 
@@ -94,19 +95,18 @@ Trial resonance_free_limit(const Trial& column, const lang::CheckedModel& model,
   return limit;
 }
 
-std::string gap_outside_play(const Network& network) {
+Network with_gaps_in_play(const Network& network) {
   const Topology& t = network.topology();
-  for (std::size_t i = 0; i < t.nodes.size(); ++i) {
-    const TreeNode& n = t.nodes[i];
+  std::vector<double> values = network.parameters();
+  bool moved = false;
+  for (const TreeNode& n : t.nodes) {
     if (n.kind != NodeKind::gap) continue;
-    const double width = network.parameter(n.param[0]), center = network.parameter(n.param[1]);
-    if (std::abs(center) <= 0.5 * width * (1.0 + 1e-12)) continue;
-    return fmt::format(
-        "a gap's refitted centre ({:.4g} mm) lies beyond half its width ({:.4g} mm): its rest position is outside the play, "
-        "a stop touching at rest that no .rheo file can state",
-        center, 0.5 * width);
+    const auto c = static_cast<std::size_t>(n.param[1]);
+    const double center = gap_center(network.parameter(n.param[0]), network.parameter(n.param[1]));
+    const lang::Parameter& p = network.model().parameters[c];
+    if (center != values[c] && (!p.free || (center >= p.lower && center <= p.upper))) values[c] = center, moved = true;
   }
-  return {};
+  return moved ? network.with_parameters(values) : network;
 }
 
 }  // namespace rheo::runtime::diagnosis

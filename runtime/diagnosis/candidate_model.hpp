@@ -27,10 +27,11 @@ std::string with_trial(const std::string& fitted_text, const lang::CheckedModel&
 std::string resolved_resonance(const Trial& trial, const lang::CheckedModel& model, const Network& network, const std::string& element,
                                const DataScales& scales);
 
-// Empty when every gap of NETWORK has its rest position in its play (|center| <= width/2), else
-// why the refitted model cannot be written: a fit may move a centre beyond half the width
-// (the gap then acts as a stop touching at rest), which a .rheo file refuses.
-std::string gap_outside_play(const Network& network);
+// NETWORK with every gap's centre within its play, |center| <= width/2: a fit may move a centre
+// beyond half the width, where every path acts as if it were at +-width/2 (leaf_kernels.hpp
+// gap_center), but a .rheo file refuses it. The same predictions, written as a file can state
+// them (unless the edge lies outside the bounds the centre was fitted in: then it stays).
+Network with_gaps_in_play(const Network& network);
 
 // The limit without inertia (b -> 0) of a refitted slider-capped fluid column ELEMENT: chamber
 // spring and channel dashpot in series are a Maxwell element of k = chamber.k and

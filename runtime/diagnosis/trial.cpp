@@ -5,15 +5,24 @@
 #include <algorithm>
 #include <cmath>
 #include <numbers>
+#include <string>
 
 namespace rheo::runtime::diagnosis {
 namespace {
 
 constexpr double kDecades = 1e3;  // bounds of times, slips, inertances: this factor either side
 
+// A bound to 3 significant digits where that rounds outward (down for LO, up for HI), else to
+// the value's 6: rounding is monotone, so a value at its bound still prints within it.
+std::string bound(double x, bool upper) {
+  const std::string short_form = fmt::format("{:.3g}", x);
+  const double read = std::stod(short_form);
+  return (upper ? read >= x : read <= x) ? short_form : fmt::format("{:.6g}", x);
+}
+
 // `VALUE UNIT in [LO, HI]` with the value in the unit (internal value / per_unit).
 std::string bounded(double value, double lo, double hi, double per_unit, const char* unit) {
-  return fmt::format("{:.6g} {} in [{:.3g}, {:.3g}]", value / per_unit, unit, lo / per_unit, hi / per_unit);
+  return fmt::format("{:.6g} {} in [{}, {}]", value / per_unit, unit, bound(lo / per_unit, false), bound(hi / per_unit, true));
 }
 
 std::string around(double value, double per_unit, const char* unit) { return bounded(value, value / kDecades, value * kDecades, per_unit, unit); }

@@ -16,6 +16,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <random>
 
 using namespace rheo;
 namespace dx = runtime::diagnosis;
@@ -72,4 +73,44 @@ TEST_CASE("diagnose on the friction damper's rig file: backlash, then asymmetry,
   CHECK(parameter(second, "backlash.f.fy_neg") == doctest::Approx(20000.0).epsilon(0.01));
   CHECK(parameter(second, "s.k") == doctest::Approx(30.0).epsilon(0.1));
   CHECK(second.after->datasets[0].prediction.force_offset == doctest::Approx(-575.0).epsilon(0.05));
+}
+
+TEST_CASE("diagnose, the rig file's programme through other values: play and one-sided yield that earn only together") {
+  // Caps 20 kN in tension and 12 kN in compression behind 4 mm of play centred at -1 mm, a
+  // 50 N/mm spring, 100 N of noise and a +300 N zero, another earthquake record: here neither
+  // the play nor the asymmetry lowers the gap by a quarter alone (each leaves the other's
+  // residual), so diagnose refits them together in the friction element.
+  const char* truth = R"(model damper {
+  spring s (k = 50 N/mm)
+  series stop { gap play (width = 4 mm, center = -1 mm)  friction f (k = 2500 N/mm, fy_pos = 20000 N, fy_neg = 12000 N) }
+})";
+  std::mt19937 bits(test::rig_file::kSeed + 1);
+  const runtime::Drive drive = test::rig_file::programme(bits);
+  const runtime::History h = runtime::run_history(test::network_from(truth, "damper"), drive, false, runtime::SolverChoice::fixed);
+  runtime::HistoryData data;
+  data.path = "other_damper.csv";
+  data.drive = drive;
+  for (double f : h.force) data.force.push_back(f + 300.0 + 100.0 * test::rig_file::normal(bits));
+  data.rows.assign(data.force.size(), 0);
+  for (double f : data.force) data.force_scale = std::max(data.force_scale, std::abs(f));
+  runtime::FitDataSet set{data.path, 1.0, data};
+  set.force_offset = {.given = true, .free = true, .value = 0.0};
+  dx::DiagnoseSettings settings;
+  settings.fit.score.harmonic.solver = runtime::SolverChoice::fixed;
+  const double noise = 100.0 / data.force_scale;
+
+  const dx::Diagnosis d = dx::diagnose({"damper.rheo", kStart, "damper"}, {set}, settings);
+  MESSAGE(fmt::format("{} {:.4g} -> {:.4g}, noise put in {:.4g}", dx::verdict_name(d), d.gap_before, d.gap_after, noise));
+  const auto together = std::find_if(d.candidates.begin(), d.candidates.end(), [](const dx::CandidateOutcome& c) { return c.chosen; });
+  REQUIRE(together != d.candidates.end());
+  CHECK(together->limit_of.find("neither earned alone") != std::string::npos);
+  for (const dx::CandidateOutcome& c : d.candidates)  // alone, none earned its parameters
+    if (c.refitted && !c.chosen) CHECK(c.gap_after > 0.75 * d.gap_before);
+  REQUIRE(d.after.has_value());
+  CHECK(d.gap_after < 1.2 * noise);
+  CHECK(parameter(d, "backlash.play.width") == doctest::Approx(4.0).epsilon(0.02));
+  CHECK(parameter(d, "backlash.play.center") == doctest::Approx(-1.0).epsilon(0.05));
+  CHECK(parameter(d, "backlash.f.fy_pos") == doctest::Approx(20000.0).epsilon(0.01));
+  CHECK(parameter(d, "backlash.f.fy_neg") == doctest::Approx(12000.0).epsilon(0.01));
+  CHECK(d.refined_text.find("series backlash") != std::string::npos);
 }
