@@ -8,6 +8,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <complex>
 #include <numbers>
 #include <vector>
@@ -23,7 +24,10 @@ constexpr int samples_per_half_cycle = 32;
 // u = u0 sin(theta), where a gathers every branch linear in u (springs, Maxwell K', frictions that
 // never slip), Y_odd(u) = y1 u + y3 u^3 + y5 u^5 and E(u) = y2 u^2 + y4 u^4 the odd and even parts
 // of the yeoh springs' Y(p + u) - Y(p) about the preload p. The unloading half is the loading
-// half's mirror with the even part's sign turned (sign = -1): F(theta + pi) = -[F(theta) with -E].
+// half's mirror with the even part's sign turned (sign = -1): F(theta + pi) = -[F(theta) with -E];
+// an event-driven branch that is not half-wave symmetric (PwlPeriodicState::half_wave) enters
+// the mirror as -F_b(theta + pi). With `polarity` -1 the whole force is negated, so that the
+// maximum found is -(the minimum).
 // The per-friction arrays are scratch space reused from point to point (no allocation once
 // they have grown).
 struct LoadingHalf {
@@ -33,6 +37,7 @@ struct LoadingHalf {
   double y1 = 0.0, y3 = 0.0, y5 = 0.0;              // odd part of the yeoh springs about p [N/mm^n]
   double y2 = 0.0, y4 = 0.0;                        // even part (0 without preload)
   double sign = 1.0;                                // of the even part: +1 loading, -1 mirrored unloading
+  double polarity = 1.0;                            // +1: F, -1: -F
   double constant = 0.0;                            // sliders, N
   std::vector<double> slip_k, slip_fy, slip_theta;  // frictions with u0 > uy; theta_q where they start to slip
   std::vector<double> ends;                         // piece ends
@@ -40,7 +45,7 @@ struct LoadingHalf {
 
   void clear() {
     a = b = y1 = y3 = y5 = y2 = y4 = constant = 0.0;
-    sign = 1.0;
+    sign = polarity = 1.0;
     slip_k.clear(), slip_fy.clear(), slip_theta.clear(), ends.clear(), branches.clear();
   }
   double force(double theta) const {
@@ -49,8 +54,13 @@ struct LoadingHalf {
     const double u2 = u * u;
     double f = a * s + b * std::cos(theta) + u * (y1 + u2 * (y3 + y5 * u2)) + sign * u2 * (y2 + y4 * u2) + constant;
     for (std::size_t q = 0; q < slip_k.size(); ++q) f += std::min(slip_fy[q], -slip_fy[q] + slip_k[q] * u0 * (1.0 + s));
-    for (const PwlPeriodicState* branch : branches) f += branch->force(theta);
-    return f;
+    for (const PwlPeriodicState* branch : branches) f += mirrored(*branch) ? -branch->force(theta + std::numbers::pi) : branch->force(theta);
+    return polarity * f;
+  }
+  bool mirrored(const PwlPeriodicState& branch) const { return sign < 0.0 && !branch.half_wave(); }
+  bool half_wave() const {
+    return y2 == 0.0 && y4 == 0.0 &&
+           std::all_of(branches.begin(), branches.end(), [](const PwlPeriodicState* branch) { return branch->half_wave(); });
   }
   // Stiffness (dF/du) of the slipping frictions still elastic on the piece holding `piece_mid`.
   double elastic_stiffness_on(double piece_mid) const {
@@ -69,9 +79,15 @@ struct LoadingHalf {
     second = -s * in_phase + c * c * u0 * u0 * d2y - b * c;
     for (const PwlPeriodicState* branch : branches) {
       double f1 = 0.0, f2 = 0.0;
-      branch->derivatives(theta, f1, f2);
+      if (mirrored(*branch)) {
+        branch->derivatives(theta + std::numbers::pi, f1, f2);
+        f1 = -f1, f2 = -f2;
+      } else {
+        branch->derivatives(theta, f1, f2);
+      }
       first += f1, second += f2;
     }
+    first *= polarity, second *= polarity;
   }
   // A lower bound of dF/du over |u| <= u0 without the frictions' share (>= 0); only for a
   // yeoh part without an even part (no preload).
@@ -103,17 +119,21 @@ double stationary_point(const LoadingHalf& h, double lo, double hi, double k_ela
   return x;
 }
 
-// max F over the loading half. When dF/dtheta >= 0 on [-pi/2, 0] is guaranteed (every branch's
-// in-phase stiffness non-negative, b >= 0), only [0, pi/2] is searched.
+// max F over the loading half (as h.sign and h.polarity make it). When dF/dtheta >= 0 on
+// [-pi/2, 0] is guaranteed (every branch's in-phase stiffness non-negative, b >= 0), only
+// [0, pi/2] is searched.
 double loading_half_maximum(LoadingHalf& h) {
   const bool odd = h.y2 == 0.0 && h.y4 == 0.0;
-  const double from = odd && h.branches.empty() && h.b >= 0.0 && h.least_in_phase() >= 0.0 ? 0.0 : -half_pi;
+  const double from = odd && h.polarity > 0.0 && h.branches.empty() && h.b >= 0.0 && h.least_in_phase() >= 0.0 ? 0.0 : -half_pi;
   h.ends.assign({from, half_pi});
   for (double t : h.slip_theta)
     if (t > from) h.ends.push_back(t);
   for (const PwlPeriodicState* branch : h.branches)
     for (double t : branch->switch_phases()) {
-      const double theta = t > 3.0 * half_pi ? t - 4.0 * half_pi : t;
+      // In [-pi/2, 3 pi/2); a mirrored branch's kinks lie half a period earlier.
+      double theta = std::fmod((h.mirrored(*branch) ? t - std::numbers::pi : t) + half_pi, 2.0 * std::numbers::pi);
+      if (theta < 0.0) theta += 2.0 * std::numbers::pi;
+      theta -= half_pi;
       if (theta > from && theta < half_pi) h.ends.push_back(theta);
     }
   std::sort(h.ends.begin(), h.ends.end());
@@ -316,12 +336,26 @@ std::optional<HarmonicPoint> try_closed_form_harmonic_point(const Network& netwo
   double force_amplitude = 0.0;
   if (sinusoidal && h.b >= 0.0) {
     force_amplitude = std::hypot(h.a, h.b);
-  } else if (h.y2 == 0.0 && h.y4 == 0.0) {
+  } else if (h.half_wave()) {
     force_amplitude = loading_half_maximum(h);  // max F = -min F
-  } else {                                      // (max F - min F) / 2, min F = -(max of the mirrored half)
+  } else if (h.branches.empty()) {              // (max F - min F) / 2, min F = -(max of the mirrored half)
     const double loading = loading_half_maximum(h);
     h.sign = -1.0;
     force_amplitude = 0.5 * (loading + loading_half_maximum(h));
+  } else {
+    // An uneven event-driven branch: its extrema may lie in either half, so max F and min F are
+    // searched over both: max(F) = max(max of the loading half, -(max of -F's mirror)), ...
+    double max_f = -std::numeric_limits<double>::infinity(), min_f = std::numeric_limits<double>::infinity();
+    for (double sign : {1.0, -1.0}) {
+      h.sign = sign;
+      h.polarity = 1.0;
+      const double up = loading_half_maximum(h);  // loading: max F; mirrored: -min F over the unloading half
+      h.polarity = -1.0;
+      const double down = loading_half_maximum(h);  // loading: -min F; mirrored: max F over the unloading half
+      max_f = std::max(max_f, sign > 0.0 ? up : down);
+      min_f = std::min(min_f, sign > 0.0 ? -down : -up);
+    }
+    force_amplitude = 0.5 * (max_f - min_f);
   }
   point.measures = measures_from(force_amplitude, storage, loss, u0, definition);
   return point;

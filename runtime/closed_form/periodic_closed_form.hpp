@@ -57,7 +57,8 @@ namespace rheo::runtime {
 // True when every subtree (nested block, or inerter leaf) is linear (springs, dashpots, Maxwell
 // elements, springpot chains and inerters only), a root-block poly_spring or one-sided friction
 // element or slider (above), or piecewise linear with an event-driven
-// periodic state (pwl_branch.hpp: those and friction elements, sliders and gaps) unless
+// periodic state (pwl_branch.hpp: those and friction elements, sliders and gaps, also with
+// one-sided caps and off-centre; F^ = (max F - min F)/2 over the whole cycle for those) unless
 // `event_driven` is false.
 bool has_closed_form_periodic_state(const Network& network, bool event_driven = true);
 

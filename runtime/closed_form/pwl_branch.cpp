@@ -1,5 +1,7 @@
 #include "runtime/closed_form/pwl_branch.hpp"
 
+#include "runtime/network/leaf_kernels.hpp"
+
 #include <numeric>
 
 namespace rheo::runtime {
@@ -11,9 +13,14 @@ struct BranchBuilder {
 
   double parameter(const TreeNode& node, int slot) const { return network.parameter(node.param[slot]); }
   int new_node() { return branch.internal_nodes++; }
-  void add(PwlEdgeKind kind, int a, int b, double value) {
+  void add(PwlEdgeKind kind, int a, int b, double value, double cap_neg = 0.0, double center = 0.0) {
     if (kind == PwlEdgeKind::slider || kind == PwlEdgeKind::gap) branch.switches.push_back(static_cast<int>(branch.edges.size()));
-    branch.edges.push_back({kind, a, b, value});
+    branch.edges.push_back({kind, a, b, value, cap_neg, center});
+  }
+  // A slider of caps in slots (pos, neg) of NODE: separate slots make the branch uneven.
+  void add_slider(const TreeNode& node, int pos, int neg, int a, int b) {
+    if (node.param[neg] != node.param[pos]) branch.odd = false;
+    add(PwlEdgeKind::slider, a, b, parameter(node, pos), parameter(node, neg));
   }
 
   // False when the subtree holds an element that is not piecewise linear.
@@ -24,13 +31,10 @@ struct BranchBuilder {
       case NodeKind::spring: add(PwlEdgeKind::spring, a, b, parameter(node, 0)); return true;
       case NodeKind::dashpot: add(PwlEdgeKind::dashpot, a, b, parameter(node, 0)); return true;
       case NodeKind::inerter: add(PwlEdgeKind::inerter, a, b, parameter(node, 0)); return true;
-      case NodeKind::slider:
-        if (node.param[1] != node.param[0]) return false;  // one-sided: not half-wave symmetric
-        add(PwlEdgeKind::slider, a, b, parameter(node, 0));
-        return true;
+      case NodeKind::slider: add_slider(node, 0, 1, a, b); return true;
       case NodeKind::gap:
-        if (parameter(node, 1) != 0.0 || network.model().parameters[static_cast<std::size_t>(node.param[1])].free) return false;
-        add(PwlEdgeKind::gap, a, b, 0.5 * parameter(node, 0));
+        if (parameter(node, 1) != 0.0 || network.model().parameters[static_cast<std::size_t>(node.param[1])].free) branch.odd = false;
+        add(PwlEdgeKind::gap, a, b, 0.5 * parameter(node, 0), 0.0, gap_center(parameter(node, 0), parameter(node, 1)));  // as the kernels
         return true;
       case NodeKind::maxwell: {
         const int mid = new_node();
@@ -39,10 +43,9 @@ struct BranchBuilder {
         return true;
       }
       case NodeKind::friction: {
-        if (node.param[2] != node.param[1]) return false;  // one-sided: not half-wave symmetric
         const int mid = new_node();
         add(PwlEdgeKind::spring, a, mid, parameter(node, 0));
-        add(PwlEdgeKind::slider, mid, b, parameter(node, 1));
+        add_slider(node, 1, 2, mid, b);
         return true;
       }
       case NodeKind::parallel:

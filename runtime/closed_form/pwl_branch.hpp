@@ -7,10 +7,12 @@
 //   spring k [N/mm]          F = k e
 //   dashpot c [N*s/mm]       F = c de/dt
 //   inerter b [N*s^2/mm]     F = b d2e/dt2
-//   slider fy [N]            |F| <= fy; rigid (de/dt = 0) while |F| < fy, F = fy sgn(de/dt) while it slips
-//   gap w [mm]               F = 0 while |e| < w/2; rigid at e = +-w/2 while it pushes back (F e >= 0)
+//   slider fy+, fy- [N]      -fy- <= F <= fy+; rigid (de/dt = 0) inside, F = fy+ while it slips
+//                            with de/dt > 0, F = -fy- with de/dt < 0 (fy+ = fy- = fy: one cap both ways)
+//   gap w, c [mm]            F = 0 while |e - c| < w/2; rigid at e = c + w/2 while it pulls
+//                            (F >= 0) and at e = c - w/2 while it pushes (F <= 0)
 //   maxwell (k, c)           spring k + dashpot c through a new node (eq. 2.3)
-//   friction (k, fy)         spring k + slider fy through a new node (eq. 2.9)
+//   friction (k, fy+, fy-)   spring k + slider (fy+, fy-) through a new node (eq. 2.9)
 // Between switches of its sliders and gaps every such branch is linear (docs/numerics.md).
 #pragma once
 
@@ -34,7 +36,12 @@ inline constexpr int kPwlGround = -2;    // node index of ground
 struct PwlEdge {
   PwlEdgeKind kind = PwlEdgeKind::spring;
   int a = kPwlTerminal, b = kPwlGround;
-  double value = 0.0;  // k, c, b, fy, or the gap's half width w/2
+  double value = 0.0;    // k, c, b, a slider's cap in tension fy+ [N], or a gap's half width w/2 [mm]
+  double cap_neg = 0.0;  // a slider's cap in compression fy- [N] (fy+ for one cap both ways)
+  double center = 0.0;   // a gap's centre c [mm]
+
+  // The force of a slider slipping in direction `sign` (+1: de/dt > 0, F = fy+; -1: F = -fy-).
+  double slip_force(int sign) const { return sign > 0 ? value : -cap_neg; }
 };
 
 struct PwlBranch {
@@ -44,15 +51,14 @@ struct PwlBranch {
   // Every edge law is odd (F(-e, -de/dt) = -F(e, de/dt): sliders with one cap both ways, gaps
   // centred on e = 0). Then under u0 sin(w t) the mirrored state half a period later is again
   // a solution, and the periodic state is found on the half-period map (pwl_periodic.hpp).
-  // An element with an uneven law must clear it.
+  // False where a slider or friction element has separate caps fy_pos, fy_neg (their values
+  // aside: a fit may move them apart) or a gap a centre written other than 0 or fitted: the
+  // periodic state is then found on the full-period map.
   bool odd = true;
 
   // The graph of subtree `root` of `network` (a node index of Topology::subtrees), or nothing
   // when the subtree is not piecewise linear (a yeoh, poly_spring, quadratic_dashpot or bouc_wen
-  // below it), holds an element whose periodic force need not be half-wave symmetric (a
-  // friction element or slider with one-sided yield forces, a gap with a center written other
-  // than 0 or fitted: the event path measures max F = -min F, so these time-step),
-  // is linear (no slider, friction or gap: the phasor path serves it), or could lose its
+  // below it), is linear (no slider, friction or gap: the phasor path serves it), or could lose its
   // determinacy in some mode: sliders and gaps that close a loop, or a path from the terminal
   // to ground, when rigid (their forces would not be fixed by the network), or is too large
   // for kPwlMaxDim (more than about ten internal nodes: it time-steps).

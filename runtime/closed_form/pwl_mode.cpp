@@ -70,7 +70,7 @@ bool build_pwl_mode(const PwlBranch& branch, const PwlModeCode& code, double u0,
     const PwlEdge& e = branch.edges[static_cast<std::size_t>(branch.switches[s])];
     if (code[s] == 0 && e.kind == PwlEdgeKind::gap) continue;  // open: no force
     if (code[s] != 0 && e.kind == PwlEdgeKind::slider) {
-      f_slip += incidence(e, n).d * (code[s] * e.value);
+      f_slip += incidence(e, n).d * e.slip_force(code[s]);
       continue;
     }
     rigid.push_back(branch.switches[s]);
@@ -225,19 +225,19 @@ bool build_pwl_mode(const PwlBranch& branch, const PwlModeCode& code, double u0,
       case PwlEdgeKind::slider:
         if (state == 0) {
           force = lambda.row(rigid_index++);
-          RowVectorXd upper = -force, lower = force;
-          upper[i1] += e.value, lower[i1] += e.value;
+          RowVectorXd upper = -force, lower = force;  // fy+ - F >= 0, F + fy- >= 0
+          upper[i1] += e.value, lower[i1] += e.cap_neg;
           guard(upper, which, 1, e.value);
-          guard(lower, which, -1, e.value);
+          guard(lower, which, -1, e.cap_neg);
         } else {
-          force[i1] = state * e.value;
+          force[i1] = e.slip_force(state);
           guard(state * elongation * out.A, which, 0, rate_scale);
         }
         break;
       case PwlEdgeKind::gap:
         if (state == 0) {
-          RowVectorXd upper = -elongation, lower = elongation;
-          upper[i1] += e.value, lower[i1] += e.value;
+          RowVectorXd upper = -elongation, lower = elongation;  // c + w/2 - e >= 0, e - (c - w/2) >= 0
+          upper[i1] += e.center + e.value, lower[i1] += e.value - e.center;
           guard(upper, which, 1, std::max(e.value, 1e-9 * u0));
           guard(lower, which, -1, std::max(e.value, 1e-9 * u0));
         } else {

@@ -8,7 +8,7 @@
 // equilibrium give the second-order system
 //   M x'' + C x' + K x = -(k_T u + c_T u' + m_T u'') - f_slip - R^T lambda,
 // M, C, K the inerter, dashpot and spring Laplacians over the internal nodes (symmetric,
-// positive semi-definite), k_T, c_T, m_T their couplings to the terminal, f_slip the +-fy of
+// positive semi-definite), k_T, c_T, m_T their couplings to the terminal, f_slip the fy+ or -fy- of
 // slipping sliders, and for the rigid edges (stuck sliders, closed gaps) the constraints
 // R x + rho u = h with their held elongations h and unknown tensions lambda. With
 // x = R^+ (h - rho u) + N y (N an orthonormal basis of ker R) and the projection onto N the
@@ -21,8 +21,9 @@
 // Every quantity the branch needs is then a linear functional of w: node positions and
 // velocities X = (x, x') = to_X w, the tensions lambda (from the full equilibrium with
 // x'' = to_X-part A^2 w), the terminal force F = force w, and the guards: rows of
-// `guards` w that stay >= 0 while the mode holds (a stuck slider's fy -+ lambda, a slipping
-// slider's sgn * rate, an open gap's w/2 -+ e, a closed gap's sgn * lambda).
+// `guards` w that stay >= 0 while the mode holds (a stuck slider's fy+ - lambda and
+// lambda + fy-, a slipping slider's sgn * rate, an open gap's c + w/2 - e and e - c + w/2, a
+// closed gap's sgn * lambda).
 #pragma once
 
 #include "runtime/closed_form/pwl_branch.hpp"
@@ -44,8 +45,8 @@ using PwlComplexVector = Eigen::Matrix<std::complex<double>, Eigen::Dynamic, 1, 
 using PwlComplexRow = Eigen::Matrix<std::complex<double>, 1, Eigen::Dynamic, Eigen::RowMajor, 1, kPwlMaxDim>;
 using PwlComplexMatrix = Eigen::Matrix<std::complex<double>, Eigen::Dynamic, Eigen::Dynamic, 0, kPwlMaxDim, kPwlMaxDim>;
 
-// One entry per PwlBranch::switches: slider 0 stuck, +1 / -1 slipping with F = +-fy (de/dt of
-// that sign); gap 0 open, +1 / -1 closed at e = +-w/2.
+// One entry per PwlBranch::switches: slider 0 stuck, +1 / -1 slipping with F = fy+ / -fy- (de/dt
+// of that sign); gap 0 open, +1 / -1 closed at e = c + w/2 / c - w/2.
 using PwlModeCode = std::vector<std::int8_t>;
 
 // What a guard row leads to when it reaches zero: switch `which` (an index into

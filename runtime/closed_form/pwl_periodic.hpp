@@ -17,6 +17,14 @@
 // in the least-squares sense. A Newton step that does not lower the residual is halved once,
 // then a plain cycle is taken (numerics.md).
 //
+// A branch that is not odd (one-sided caps, an off-centre gap) is followed over the whole
+// period, its fixed point that of the full-period map; where that map leaves directions
+// unchanged (a slider that shakes down and stays stuck keeps the offset the first cycles left
+// it) the fixed point keeps the start's component, as time stepping from rest keeps what its
+// first cycles leave: the two agree where the slip in every cycle fixes the offsets. A branch
+// that ratchets (one-sided caps before a dashpot: the slider and the dashpot drift by the same
+// amount every period, the force periodic, the positions not) has no fixed point: time-stepped.
+//
 // An odd branch (PwlBranch::odd: every law odd) under an odd drive, u(t + T/2) = -u(t), has
 // the mirrored state -X(t + T/2) as a solution too; its periodic state is the half-wave
 // symmetric one, the fixed point of the half-period map X0 -> -X(T/2), found the same way at
@@ -40,11 +48,13 @@ namespace rheo::runtime {
 class PwlPeriodicState {
  public:
   // False when the event-driven path cannot settle this branch: a mode that would be
-  // indeterminate, more than 10000 switches in a cycle, no fixed point after 60 cycles, or
-  // (a branch that is not odd) a periodic force that is not half-wave symmetric
-  // (F(theta + pi) = -F(theta) within 1e-8 of max |F|; the extrema are taken as
-  // max F = -min F). The caller then time-steps the point.
+  // indeterminate, more than 10000 switches in a cycle, or no fixed point after 60 cycles. The
+  // caller then time-steps the point.
   bool solve(const PwlBranch& branch, double u0, double omega);
+  // Whether the steady force is half-wave symmetric, F(theta + pi) = -F(theta), by
+  // construction (an odd branch): then max F = -min F. Otherwise, a branch with uneven laws
+  // (one-sided caps, an off-centre gap), the extrema are those of the whole period.
+  bool half_wave() const { return half_wave_; }
 
   double storage() const { return storage_; }  // K'_1 [N/mm]
   double loss() const { return loss_; }        // K''_1 [N/mm]

@@ -1,6 +1,7 @@
 #include "runtime/diagnosis/candidate_model.hpp"
 
 #include "lang/source_edit.hpp"
+#include "runtime/network/leaf_kernels.hpp"
 
 #include <fmt/format.h>
 
@@ -57,7 +58,10 @@ std::string with_trial(const std::string& fitted_text, const lang::CheckedModel&
   for (const auto& e : fitted.root.children)
     if (e.name == trial.replaces) {
       const lang::TextSpan span = lang::element_statement(fitted_text, e);
-      return lang::replace_span(fitted_text, span, "# " + comment + "\n" + lang::line_indent(fitted_text, span.begin) + lines.front());
+      const std::string indent = lang::line_indent(fitted_text, span.begin);
+      std::string replacement = "# " + comment;
+      for (const std::string& line : lines) replacement += "\n" + indent + line;
+      return lang::replace_span(fitted_text, span, replacement);
     }
   throw std::logic_error(fmt::format("model '{}' has no root element '{}' to replace", fitted.name, trial.replaces));
 }
@@ -89,6 +93,20 @@ Trial resonance_free_limit(const Trial& column, const lang::CheckedModel& model,
   limit.slip = value("cap.fy") / limit.stiffness;
   limit.frequency = limit.damping_ratio = 0.0;
   return limit;
+}
+
+Network with_gaps_in_play(const Network& network) {
+  const Topology& t = network.topology();
+  std::vector<double> values = network.parameters();
+  bool moved = false;
+  for (const TreeNode& n : t.nodes) {
+    if (n.kind != NodeKind::gap) continue;
+    const auto c = static_cast<std::size_t>(n.param[1]);
+    const double center = gap_center(network.parameter(n.param[0]), network.parameter(n.param[1]));
+    const lang::Parameter& p = network.model().parameters[c];
+    if (center != values[c] && (!p.free || (center >= p.lower && center <= p.upper))) values[c] = center, moved = true;
+  }
+  return moved ? network.with_parameters(values) : network;
 }
 
 }  // namespace rheo::runtime::diagnosis

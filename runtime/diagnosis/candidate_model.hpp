@@ -17,7 +17,7 @@ int parameter_index(const lang::CheckedModel& model, const std::string& path);
 std::string candidate_name(const lang::CheckedModel& model, Effect effect);
 
 // The fitted model's source with TRIAL written in as NAME, under COMMENT: appended to the
-// model's body, or in place of the root element TRIAL.replaces.
+// model's body, or in place of the root element TRIAL.replaces (a gapped_element holds it).
 std::string with_trial(const std::string& fitted_text, const lang::CheckedModel& fitted, const Trial& trial, const std::string& name,
                        const BoundScales& bounds, const std::string& comment);
 
@@ -26,6 +26,12 @@ std::string with_trial(const std::string& fitted_text, const lang::CheckedModel&
 // resonance are always resolved.
 std::string resolved_resonance(const Trial& trial, const lang::CheckedModel& model, const Network& network, const std::string& element,
                                const DataScales& scales);
+
+// NETWORK with every gap's centre within its play, |center| <= width/2: a fit may move a centre
+// beyond half the width, where every path acts as if it were at +-width/2 (leaf_kernels.hpp
+// gap_center), but a .rheo file refuses it. The same predictions, written as a file can state
+// them (unless the edge lies outside the bounds the centre was fitted in: then it stays).
+Network with_gaps_in_play(const Network& network);
 
 // The limit without inertia (b -> 0) of a refitted slider-capped fluid column ELEMENT: chamber
 // spring and channel dashpot in series are a Maxwell element of k = chamber.k and

@@ -15,7 +15,9 @@
 //      so that a larger model must earn its parameters: a candidate earns when its BIC is below
 //      the model's and it lowers the gap by at least `min_improvement`. Of those that earn, the
 //      one with fewer parameters wins if its gap is within `parsimony` of the other's, else the
-//      lower BIC. A resonance (the fluid-column shapes) earns only where the measurement
+//      lower BIC. Where none earns but free play and asymmetry were both refitted, play in
+//      front of a friction element made one-sided is refitted as one more candidate.
+//      A resonance (the fluid-column shapes) earns only where the measurement
 //      resolves it: refitted to f_r = sqrt(k/b)/(2 pi), a measured frequency must lie at least
 //      10 % below and one 10 % above it; at the edge of the data a resonance is a relaxation's
 //      rising stiffness with one more parameter. None earns: nothing is added, and the verdict

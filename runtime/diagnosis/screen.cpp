@@ -1,6 +1,7 @@
 #include "runtime/diagnosis/screen.hpp"
 
 #include "lang/frontend.hpp"
+#include "runtime/diagnosis/element_text.hpp"
 #include "runtime/fit/fit_scoring.hpp"
 
 #include <fmt/format.h>
@@ -8,6 +9,9 @@
 #include <algorithm>
 #include <cmath>
 #include <complex>
+#include <map>
+#include <optional>
+#include <stdexcept>
 #include <numbers>
 #include <numeric>
 
@@ -37,10 +41,9 @@ struct Signature {
   std::vector<std::vector<double>> history;    // per set (empty for harmonic sets): s(t) per sample
 };
 
-Signature simulate_alone(const Trial& trial, const std::vector<FitDataSet>& data, const ScoreSettings& score, const BoundScales& bounds) {
-  std::string text = "model probe {\n";
-  for (const auto& line : trial_statement(trial, "added", bounds)) text += line + "\n";
-  const lang::Program program = lang::compile_source("<diagnose probe>", text + "}\n");
+// The response of STATEMENT (one or more element lines) alone on every data set.
+Signature simulate_statement(const std::string& statement, const std::vector<FitDataSet>& data, const ScoreSettings& score) {
+  const lang::Program program = lang::compile_source("<diagnose probe>", "model probe {\n" + statement + "\n}\n");
   const Network network = Network::compile(program.models.front());
   Signature s;
   for (const auto& set : data) {
@@ -52,6 +55,13 @@ Signature simulate_alone(const Trial& trial, const std::vector<FitDataSet>& data
   }
   return s;
 }
+
+Signature simulate_alone(const Trial& trial, const std::vector<FitDataSet>& data, const ScoreSettings& score, const BoundScales& bounds) {
+  std::string text;
+  for (const auto& line : trial_statement(trial, "added", bounds)) text += line + "\n";
+  return simulate_statement(text, data, score);
+}
+
 
 // Objective of the fitted model plus sum_b coefficient[b] * basis[b], as fit_scoring.hpp scores it.
 class AddedObjective {
@@ -170,9 +180,12 @@ std::vector<double Trial::*> location_fields(Shape shape) {
     case Shape::even_spring: return {};
     case Shape::asymmetric_friction:
     case Shape::gapped_spring: return {&Trial::slip};
+    case Shape::gapped_element: return {&Trial::slip, &Trial::bias};
+    case Shape::one_sided_element: return {&Trial::bias};
   }
   return {};
 }
+
 
 // k2 of an even_spring trial (F = k1 u + k2 u^2) on the objective; returns that objective. The
 // even part adds nothing to a harmonic point's measures where the odd part sets the extrema
@@ -322,7 +335,24 @@ std::vector<ScreenedEffect> screen(const FitResult& fit, const std::vector<FitDa
   const RootSpring root_spring = stiffest_root_spring(fit.network);
   const double k_max = 3.0 * scales.bounds.stiffness, k_min = 1e-4 * scales.bounds.stiffness;
   // Sizes TRIAL (its stiffness, or D20 and D30) for the least objective and returns that objective.
+  // The response of a root element alone (gapped_element: what the play is put in front of).
+  std::map<std::string, Signature> element_alone;
   auto size_trial = [&](Trial& trial) {
+    if (trial.shape == Shape::gapped_element || trial.shape == Shape::one_sided_element) {
+      // The rebuilt element replaces the element's response s_e by its own, s_p, resized:
+      // F_m - s_e + a s_p (the element's force scales with a, as every shape's with its
+      // stiffness), a within a decade either side of 1.
+      const lang::Element& e = root_element(fit.network, trial.replaces);
+      if (trial.shape == Shape::one_sided_element) trial.inner = joined(*element_text(fit.network, e, trial.bias));
+      auto known = element_alone.find(trial.replaces);
+      if (known == element_alone.end())
+        known = element_alone.emplace(trial.replaces, simulate_statement(joined(*element_text(fit.network, e)), data, score)).first;
+      const Signature played = simulate_alone(trial, data, score, scales.bounds);
+      const Signature* basis_pair[] = {&played, &known->second};
+      const std::vector<const Signature*> basis(std::begin(basis_pair), std::end(basis_pair));
+      trial.stiffness = minimise_1d([&](double a) { return objective(basis, {a, -1.0}); }, 0.1, 10.0, 21, true);
+      return objective(basis, {trial.stiffness, -1.0});
+    }
     if (trial.shape == Shape::yeoh) return size_yeoh(trial, objective, data, scales, root_spring);
     if (trial.shape == Shape::even_spring) return size_even_spring(trial, objective, data, scales, root_spring);
     trial.stiffness = 1.0;  // the signature is per unit stiffness; a refined trial arrives sized
@@ -340,7 +370,13 @@ std::vector<ScreenedEffect> screen(const FitResult& fit, const std::vector<FitDa
     // Scan the family; then refine the best member of each shape by a pattern search over its
     // location (times, slips, resonances and damping ratios), halving the step in log each round.
     std::vector<std::pair<Trial, double>> best_of_shape;
-    for (Trial trial : trial_family(effect, scales, root_spring.name)) {
+    std::vector<Trial> family = trial_family(effect, scales, root_spring.name);
+    const std::vector<Trial> rebuilt = effect == Effect::backlash
+                                           ? gapped_element_family(fit.network, log_spaced(scales.amplitude_low / 10.0, scales.amplitude_high, 6))
+                                       : effect == Effect::asymmetry ? one_sided_family(fit.network)
+                                                                     : std::vector<Trial>{};
+    family.insert(family.end(), rebuilt.begin(), rebuilt.end());
+    for (Trial trial : family) {
       ++best.trials;
       const double value = size_trial(trial);
       auto it = std::find_if(best_of_shape.begin(), best_of_shape.end(), [&](const auto& b) { return b.first.shape == trial.shape; });
@@ -355,6 +391,7 @@ std::vector<ScreenedEffect> screen(const FitResult& fit, const std::vector<FitDa
             Trial moved = trial;
             moved.*field *= factor;
             if (field == &Trial::damping_ratio && moved.damping_ratio > 2.0) continue;
+            if (field == &Trial::bias && std::abs(moved.bias) >= 0.95) continue;  // the rest position stays in the play
             ++best.trials;
             if (const double v = size_trial(moved); v < value) trial = moved, value = v;
           }

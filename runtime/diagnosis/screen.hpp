@@ -11,6 +11,9 @@
 // and the fit objective (fit_scoring.hpp) J(a) is minimised over a >= 0 (a log scan, then a
 // golden section). A yeoh spring in place of the root spring adds 4 D20 a^2 + 6 D30 a^4 to the
 // stiffness at amplitude a (4 D20 u^3 + 6 D30 u^5 to the force), minimised over D20 and D30.
+// A trial that rebuilds a root element e of the model (free play in front of it, its one-cap
+// yields split; element_text.hpp) replaces e's response s_e by its own s_p: F_m - s_e + a s_p,
+// minimised over a in [0.1, 10] (s_p and s_e simulated alone at the fitted values).
 // gain = 1 - J(best)/J(0): the share of the objective the element would remove without any
 // other parameter moving; a cheap, optimistic-or-pessimistic proxy for the refit that
 // diagnose.hpp then does for the leading effects.

@@ -5,15 +5,24 @@
 #include <algorithm>
 #include <cmath>
 #include <numbers>
+#include <string>
 
 namespace rheo::runtime::diagnosis {
 namespace {
 
 constexpr double kDecades = 1e3;  // bounds of times, slips, inertances: this factor either side
 
+// A bound to 3 significant digits where that rounds outward (down for LO, up for HI), else to
+// the value's 6: rounding is monotone, so a value at its bound still prints within it.
+std::string bound(double x, bool upper) {
+  const std::string short_form = fmt::format("{:.3g}", x);
+  const double read = std::stod(short_form);
+  return (upper ? read >= x : read <= x) ? short_form : fmt::format("{:.6g}", x);
+}
+
 // `VALUE UNIT in [LO, HI]` with the value in the unit (internal value / per_unit).
 std::string bounded(double value, double lo, double hi, double per_unit, const char* unit) {
-  return fmt::format("{:.6g} {} in [{:.3g}, {:.3g}]", value / per_unit, unit, lo / per_unit, hi / per_unit);
+  return fmt::format("{:.6g} {} in [{}, {}]", value / per_unit, unit, bound(lo / per_unit, false), bound(hi / per_unit, true));
 }
 
 std::string around(double value, double per_unit, const char* unit) { return bounded(value, value / kDecades, value * kDecades, per_unit, unit); }
@@ -80,6 +89,26 @@ std::vector<std::string> trial_statement(const Trial& t, const std::string& name
       lines.push_back("}");
       break;
     }
+    case Shape::gapped_element: {
+      const double u = s.max_displacement;
+      lines.push_back(fmt::format("series {} {{", name));
+      lines.push_back(fmt::format("  gap play (width = {}, center = {})", around(2.0 * t.slip, 1.0, "mm"),
+                                  bounded(std::clamp(t.bias * t.slip, -u, u), -u, u, 1.0, "mm")));
+      for (std::size_t at = 0; at <= t.inner.size();) {
+        const std::size_t end = std::min(t.inner.find('\n', at), t.inner.size());
+        lines.push_back("  " + t.inner.substr(at, end - at));
+        at = end + 1;
+      }
+      lines.push_back("}");
+      break;
+    }
+    case Shape::one_sided_element:
+      for (std::size_t at = 0; at <= t.inner.size();) {
+        const std::size_t end = std::min(t.inner.find('\n', at), t.inner.size());
+        lines.push_back(t.inner.substr(at, end - at));
+        at = end + 1;
+      }
+      break;
     case Shape::yeoh: {
       // D20, D30 ranges relative to the measured stiffness: an added yeoh starts with a small D10.
       const double d10 = t.stiffness / 2.0, range = std::max(d10, s.stiffness / 2.0), u = s.max_displacement;
@@ -122,6 +151,10 @@ std::string trial_summary(const Trial& t) {
     case Shape::gapped_spring:
       return fmt::format("a spring (k = {:.4g} N/mm) behind free play (width = {:.4g} mm, center = {:.4g} mm)", t.stiffness, 2.0 * t.slip,
                          t.bias * t.slip);
+    case Shape::gapped_element:
+      return fmt::format("free play (width = {:.4g} mm, center = {:.4g} mm) in front of '{}'", 2.0 * t.slip, t.bias * t.slip, t.replaces);
+    case Shape::one_sided_element:
+      return fmt::format("the yield forces of '{}' made one-sided (fy_pos = {:.3g} fy, fy_neg = {:.3g} fy)", t.replaces, 1.0 + t.bias, 1.0 - t.bias);
   }
   return {};
 }
@@ -137,6 +170,8 @@ int added_parameter_count(const Trial& t) {
     case Shape::asymmetric_friction: return 3;
     case Shape::even_spring: return t.replaces.empty() ? 2 : 1;
     case Shape::gapped_spring: return 3;
+    case Shape::gapped_element: return 2;
+    case Shape::one_sided_element: return t.split_parameters;
   }
   return 0;
 }

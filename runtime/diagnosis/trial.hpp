@@ -26,6 +26,17 @@
 //   gapped_spring   series { gap (width = 2 slip, center = bias slip); spring (k) }
 //                                                            backlash: a spring engaged after free play
 //                                                            whose centre is offset by bias half-widths
+//   gapped_element  series { gap (width = 2 slip, center = bias slip); <the root element `replaces`> }
+//                                                            backlash: free play in series with the
+//                                                            branch it frees (`inner`: that element's
+//                                                            statement at its fitted values; `stiffness`
+//                                                            the factor its force took in the screen,
+//                                                            the refit starting from it as fitted)
+//   one_sided_element  <the root element `replaces`, its caps fy split into fy_pos = fy (1 + bias),
+//                      fy_neg = fy (1 - bias)>           asymmetry: yield forces of the model's own
+//                                                            friction elements and sliders that differ
+//                                                            in tension and compression (`inner`: the
+//                                                            rewritten statement, `stiffness` as above)
 #pragma once
 
 #include "runtime/diagnosis/effect.hpp"
@@ -35,7 +46,19 @@
 
 namespace rheo::runtime::diagnosis {
 
-enum class Shape { maxwell, friction, capped_maxwell, capped_column, tuned_column, yeoh, asymmetric_friction, even_spring, gapped_spring };
+enum class Shape {
+  maxwell,
+  friction,
+  capped_maxwell,
+  capped_column,
+  tuned_column,
+  yeoh,
+  asymmetric_friction,
+  even_spring,
+  gapped_spring,
+  gapped_element,
+  one_sided_element
+};
 
 struct Trial {
   Effect effect = Effect::none;
@@ -47,9 +70,12 @@ struct Trial {
   double damping_ratio = 0.0;  // zeta [-]
   double d20 = 0.0;            // yeoh [N/mm^3]
   double d30 = 0.0;            // yeoh [N/mm^5]
-  double bias = 0.0;           // asymmetric_friction, gapped_spring [-], in (-1, 1)
+  double bias = 0.0;           // asymmetric_friction, gapped_spring, gapped_element, one_sided_element [-], in (-1, 1)
   double k2 = 0.0;             // even_spring [N/mm^2]
-  std::string replaces;        // yeoh, even_spring: the root spring it replaces; empty: added
+  std::string replaces;        // yeoh, even_spring: the root spring it replaces; empty: added;
+                               // gapped_element, one_sided_element: the root element it rebuilds
+  std::string inner;           // gapped_element, one_sided_element: the statement of `replaces` (lines), with bounds
+  int split_parameters = 0;    // one_sided_element: the free parameters the split adds (1 per cap that was free, 2 per fixed one)
 };
 
 // Scales of the measurement that bound the added parameters.
@@ -70,7 +96,8 @@ std::vector<std::string> trial_statement(const Trial& trial, const std::string& 
 // One line for people: "a Maxwell element (k = 51.2 N/mm, tau = 3.2 ms)".
 std::string trial_summary(const Trial& trial);
 
-// Parameters the shape adds (a yeoh replacing a spring adds two).
+// Parameters the shape adds (a yeoh replacing a spring adds two, free play in front of an
+// element its width and centre).
 int added_parameter_count(const Trial& trial);
 
 }  // namespace rheo::runtime::diagnosis

@@ -125,7 +125,7 @@ TEST_CASE("rheo corpus: every invalid file exits 3 and prints each expected erro
   }
 }
 
-TEST_CASE("deep nesting: 10,000 levels exit 3 with the limit's message; a model at the limit checks and simulates at once") {
+TEST_CASE("deep nesting: 10,000 levels exit 3 with the limit's message, a model at the limit checks and simulates at once") {
   const int d = 10000;
   std::string text = "model m {\n  ";
   for (int i = 0; i < d; ++i) text += "parallel { spring a (k = 1 N/mm) series { ";

@@ -80,7 +80,7 @@ TEST_CASE("rheo report --data 'FILE, columns = ...' compares the model with the 
   CHECK(fs::exists(html));
 }
 
-TEST_CASE("rheo fit: repeated points are averaged with a note in the report; --data 'FILE, duplicates = error' refuses them") {
+TEST_CASE("rheo fit: repeated points are averaged with a note in the report, --data 'FILE, duplicates = error' refuses them") {
   const fs::path csv = rheo::test::scratch_directory("cli-data") / "repeated.csv";
   std::ofstream(csv, std::ios::binary) << "amplitude [mm],frequency [Hz],stiffness [N/mm],phase [deg]\n0.5,10,250,0\n1,10,250,0\n0.5,10,250,0\n";
   const auto r = run_rheo(fmt::format("fit {} --data {}", spring_model().string(), csv.string()));

@@ -62,7 +62,7 @@ TEST_CASE("rheo diagnose: names the stiffening, writes the refined model, the JS
   CHECK(r.err.find("report written to") != std::string::npos);
 }
 
-TEST_CASE("rheo refine: rounds until none, each printed with its gap; the final model and report written") {
+TEST_CASE("rheo refine: rounds until none, each printed with its gap, the final model and report written") {
   const fs::path dir = rheo::test::scratch_directory("refine");
   const fs::path model = linear_model(dir), html = dir / "refine.html";
   // Without -o the final model goes beside the file, as FILE_refined.rheo.

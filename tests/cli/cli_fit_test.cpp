@@ -116,7 +116,7 @@ std::vector<std::string> comment_lines(const std::string& text) {
 
 }  // namespace
 
-TEST_CASE("parsing and simulating the fitted file reproduces the reported fit; the file keeps the source's comments") {
+TEST_CASE("parsing and simulating the fitted file reproduces the reported fit, the file keeps the source's comments") {
   const fs::path out = scratch() / "specimen_d_fitted.rheo";
   const Run r = run(fmt::format("fit {} -o {} --json", example("specimen_d_fit.rheo"), out.string()));
   REQUIRE(r.code == 0);
@@ -142,7 +142,7 @@ TEST_CASE("parsing and simulating the fitted file reproduces the reported fit; t
                   "\""));
 }
 
-TEST_CASE("a file without a fit block is fitted to --data; without --data it exits 2 and says to give it") {
+TEST_CASE("a file without a fit block is fitted to --data, without --data it exits 2 and says to give it") {
   const Run r = run(fmt::format("fit {} --data {} --json", start_model().string(), truth_data().string()));
   REQUIRE(r.code == 0);
   const json report = json::parse(r.out);
@@ -338,7 +338,7 @@ TEST_CASE("--yeoh-start leaves fixed yeoh constants as written, so the fitted fi
   CHECK(std::abs(err_of_file(out, "specimen_d", data("specimen_D_harmonic.csv")) / reported - 1.0) < 1e-9);
 }
 
-TEST_CASE("--orders fits every structure and tables err; the true structure fits noise-free data exactly") {
+TEST_CASE("--orders fits every structure and tables err, the true structure fits noise-free data exactly") {
   const std::string arguments = fmt::format("fit {} --data {} --orders maxwell=1..2,friction=1..2", start_model().string(), truth_data().string());
   const Run text = run(arguments);
   REQUIRE(text.code == 0);

@@ -134,7 +134,7 @@ TEST_CASE("data errors exit 4 and leave no output") {
   CHECK(line == "earlier result");
 }
 
-TEST_CASE("a history from a preloaded displacement starts relaxed there; start = rest refuses it at the cell") {
+TEST_CASE("a history from a preloaded displacement starts relaxed there, start = rest refuses it at the cell") {
   const auto history = write("preloaded.csv", "time [s],displacement [mm]\n0,2\n0.5,2.5\n");
   const auto model = write("preloaded.rheo", fmt::format("model m {{ spring s (k = 5 N/mm)\n friction f (k = 10 N/mm, fy = 1 N) }}\n"
                                                          "simulate {{ history file = \"{}\" }}\n",
@@ -148,7 +148,7 @@ TEST_CASE("a history from a preloaded displacement starts relaxed there; start =
   CHECK(rest.output.find("preloaded.csv:2:3: error: with start = rest the history must start from rest") != std::string::npos);
 }
 
-TEST_CASE("simulate --threads gives the same file as one thread; a negative count is a usage error") {
+TEST_CASE("simulate --threads gives the same file as one thread, a negative count is a usage error") {
   const std::string base = fmt::format("simulate {}/hydromount.rheo -o - --set 'steps_per_cycle = 256' --protocol harmonic", RHEO_EXAMPLES_DIR);
   const Result one = run(base);
   const Result two = run(base + " --threads 2");

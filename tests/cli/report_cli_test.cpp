@@ -38,7 +38,7 @@ TEST_CASE("rheo report: specimen D against its harmonic and static data") {
   CHECK(count(figure, "class=\"series\"") == 14);  // 7 amplitudes, measured and model
 }
 
-TEST_CASE("rheo report: without data, the simulate protocols; errors exit 2 and 4") {
+TEST_CASE("rheo report: without data, the simulate protocols, errors exit 2 and 4") {
   const auto dir = rheo::test::scratch_directory("report");
   const auto html = dir / "bushing_d.html";
   const auto r = run_rheo(fmt::format("report {} -o {}", example("bushing_d.rheo"), html.string()));

@@ -57,7 +57,7 @@ TEST_CASE("--help and --version are no errors") {
   }
 }
 
-TEST_CASE("an unknown --protocol names the nearest protocol; one the file lacks names those it has") {
+TEST_CASE("an unknown --protocol names the nearest protocol, one the file lacks names those it has") {
   check_usage_error(run_rheo("simulate " + example("bushing_d.rheo") + " --protocol harmonik"),
                     "unknown protocol 'harmonik' for --protocol; did you mean 'harmonic'?");
   check_usage_error(run_rheo("simulate " + example("bushing_d.rheo") + " --protocol step"), "has no step protocol; its protocols are harmonic");

@@ -59,7 +59,7 @@ TEST_CASE("format: bytes that are not text are shown as U+FFFD, never raw") {
         "c\n    ^\n");
 }
 
-TEST_CASE("format: a long line is shown around the column; diagnostics on a 10 MB line stay cheap") {
+TEST_CASE("format: a long line is shown around the column, diagnostics on a 10 MB line stay cheap") {
   std::string line(10'000'000, 'a');
   line[5'000'000] = 'X';
   SourceSet sources;

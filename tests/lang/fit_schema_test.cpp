@@ -23,7 +23,7 @@ std::vector<std::string> free_paths(const Program& p, const FitDirective& f) {
 }
 }  // namespace
 
-TEST_CASE("check_fit: settings in internal units, data lines with weights, output; free/fixed are not settings") {
+TEST_CASE("check_fit: settings in internal units, data lines with weights, output, free/fixed are not settings") {
   Program p = compile_source("f.rheo", std::string(kModel) + R"(fit m {
   data "data/a.csv"
   data "b.csv", weight = 0.5
@@ -163,7 +163,7 @@ TEST_CASE("a data line's duplicates: average by default, or error") {
   CHECK(duplicate_points_named("error") == DuplicatePoints::error);
 }
 
-TEST_CASE("a data line's force_offset: a force with its unit (any sign), or free; its value's byte range is kept") {
+TEST_CASE("a data line's force_offset: a force with its unit (any sign), or free, its value's byte range is kept") {
   const std::string text = std::string(kModel) +
                            "fit m {\n  data \"a.csv\"\n  data \"b.csv\", force_offset = -0.12 kN\n  data \"c.csv\", force_offset = free\n}\n";
   Program p = compile_source("f.rheo", text);

@@ -49,7 +49,7 @@ std::vector<int> written(const CheckedModel& m) {
 
 }  // namespace
 
-TEST_CASE("write_fitted_source: changed values round-trip to 1e-12; everything else is kept byte for byte") {
+TEST_CASE("write_fitted_source: changed values round-trip to 1e-12, everything else is kept byte for byte") {
   const std::string source = kSource;
   const Program before = compile_source("f.rheo", source);
   const CheckedModel& m = model_of(before);

@@ -111,7 +111,7 @@ TEST_CASE("build_model: a springpot's alpha lies strictly between 0 and 1, its b
                        doctest::Contains("springpot 'sp' is missing its fractional order alpha"), CompileError);
 }
 
-TEST_CASE("build_model: a chain of 100,000 parameter references resolves; a cycle through all of it is one error") {
+TEST_CASE("build_model: a chain of 100,000 parameter references resolves, a cycle through all of it is one error") {
   // Each parameter refers to the one declared after it: resolving p0 needs the whole chain first.
   const int n = 100000;
   std::string source = "model m {\n";

@@ -12,7 +12,7 @@ TEST_CASE("closest suggests only plausible names") {
   CHECK(join({"a", "b"}) == "a, b");
 }
 
-TEST_CASE("lists and chains in messages are cut past 30 names; suggestions only among a bounded set") {
+TEST_CASE("lists and chains in messages are cut past 30 names, suggestions only among a bounded set") {
   std::vector<std::string> many;
   for (int i = 0; i < 1000000; ++i) many.push_back(fmt::format("p{}", i));
   CHECK(join(many) ==

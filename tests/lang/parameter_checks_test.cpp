@@ -14,7 +14,7 @@ TEST_CASE("describe_parameter: element parameters by owner, model parameters by 
   CHECK(describe_parameter(p, {}) == "parameter 'k0'");
 }
 
-TEST_CASE("check_bounds: plain bounds take the value's unit; the parameter becomes free") {
+TEST_CASE("check_bounds: plain bounds take the value's unit, the parameter becomes free") {
   ast::File f = parse("b.rheo", "model m { param k0 = 5 um in [1, 10] }");
   const ast::Bounds& b = *f.models.at(0).parameters.at(0).bounds;
   Parameter p;

@@ -19,7 +19,7 @@ std::string parse_error(std::string_view text) {
 }
 }  // namespace
 
-TEST_CASE("parse: statements are free-form; units bind to the number before them") {
+TEST_CASE("parse: statements are free-form, units bind to the number before them") {
   ast::File f = parse("p.rheo",
                       "import zener model m { param k0 = 300 N/mm in [10, 5000] maxwell m1 (k = 2 * k0, tau = 4.335ms)\n"
                       "series s { spring (k=.5) } } simulate m { step amplitude = 1 in, duration = 4. s output \"o.csv\" }");
@@ -108,7 +108,7 @@ TEST_CASE("parse_data_text: a file name to the first comma or in double quotes, 
   CHECK_THROWS_WITH_AS(parse_data_text("<command line>", R"("a,b.csv)"), doctest::Contains("unterminated string literal"), CompileError);
 }
 
-TEST_CASE("parse: fit blocks are data lines, output lines and settings lines; `data` is reserved only there") {
+TEST_CASE("parse: fit blocks are data lines, output lines and settings lines, `data` is reserved only there") {
   ast::File f = parse("p.rheo", R"(model data { spring data (k = 1) }
 fit data {
   data "a.csv"  data "b.csv", weight = 0.5
@@ -208,7 +208,7 @@ TEST_CASE("parse: hostile nesting 10,000 deep is a parse error at the first leve
                        doctest::Contains("<command line>:1:212: error: expression nested deeper than"), CompileError);
 }
 
-TEST_CASE("parse: a file that is not UTF-8 text is an error at its first such byte; UTF-8 text parses") {
+TEST_CASE("parse: a file that is not UTF-8 text is an error at its first such byte, UTF-8 text parses") {
   CHECK(parse_error("model m {\n  spring s (k = 1 N/mm) \xff\n}\n").find("p.rheo:2:25: error: found byte 0xFF, which is not UTF-8") == 0);
   CHECK(parse_error(std::string("model m {\0}", 11)).find("p.rheo:1:10: error: found a NUL byte") == 0);
   // Non-ASCII UTF-8 in comments and strings is text; columns count bytes.
@@ -224,7 +224,7 @@ TEST_CASE("parse: a file that is not UTF-8 text is an error at its first such by
   CHECK(control.find('\x1b') == std::string::npos);
 }
 
-TEST_CASE("parse: a word after a number that is no unit is named as such; a missing comma before a key is not") {
+TEST_CASE("parse: a word after a number that is no unit is named as such, a missing comma before a key is not") {
   const std::string nmm = parse_error("model m {\n  spring s (k = 1.5e3 Nmm)\n}\n");
   CHECK(nmm.find("p.rheo:2:23: error: expected ')' to close the argument list of 'spring s', found 'Nmm'; 'Nmm' is not a unit rheo "
                  "knows: use N, kN, mN, mm, m, cm, um, in, s, ms, us, min, Hz, kHz, kg, g, rad, Pa, kPa, MPa, GPa, deg, %, combined with") == 0);

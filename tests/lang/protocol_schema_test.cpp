@@ -20,7 +20,7 @@ TEST_CASE("protocol names map to kinds") {
   CHECK(protocol_names().size() == 5);
 }
 
-TEST_CASE("check_setting: ranges include an end within 1e-9 relative; lists take a trailing unit") {
+TEST_CASE("check_setting: ranges include an end within 1e-9 relative, lists take a trailing unit") {
   std::vector<Diagnostic> errors;
   auto r = check(ProtocolKind::harmonic, "frequency = 0.1 Hz .. 0.3 Hz step 0.1 Hz", errors);
   REQUIRE(r);

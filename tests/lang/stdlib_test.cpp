@@ -84,7 +84,7 @@ TEST_CASE("stdlib: the Fig. 2.6 and Fig. 9.1 models have a Yeoh spring where the
   CHECK(kinds(root.children.at(1)) == std::vector<K>{K::slider, K::maxwell});
 }
 
-TEST_CASE("stdlib: hydromount is a rubber spring beside a slider, a spring and the fluid node; the uncapped one lacks the slider") {
+TEST_CASE("stdlib: hydromount is a rubber spring beside a slider, a spring and the fluid node, the uncapped one lacks the slider") {
   using K = ElementKind;
   Program p = compile_source("t.rheo", "import hydromount");
   const CheckedModel& m = p.models.at(0);

@@ -34,7 +34,7 @@ TEST_CASE("find_encoding_problem: the first byte that is not UTF-8 text, or the 
   CHECK(nul->description.find("found a NUL byte") == 0);
 }
 
-TEST_CASE("printable: no byte that garbles a terminal; long text is cut") {
+TEST_CASE("printable: no byte that garbles a terminal, long text is cut") {
   CHECK(printable("µm") == "µm");
   CHECK(printable("a\xff"
                   "b") ==

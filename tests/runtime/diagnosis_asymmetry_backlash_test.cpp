@@ -60,7 +60,7 @@ TEST_CASE("diagnose, static loops: a spring behind off-centre free play is backl
   require_effect(d, dx::Effect::backlash);
 }
 
-TEST_CASE("asymmetry is screened on histories only; backlash on harmonic tables too") {
+TEST_CASE("asymmetry is screened on histories only, backlash on harmonic tables too") {
   runtime::HarmonicData h;
   h.amplitude = {0.1, 1.0}, h.frequency = {1.0, 1.0}, h.stiffness = {100.0, 90.0}, h.phase = {0.1, 0.1}, h.rows = {2, 3};
   const std::vector<runtime::FitDataSet> harmonic{{"h.csv", 1.0, h}};

@@ -105,7 +105,7 @@ TEST_CASE("stiffness ratios of 1e9 in one network: a soft arm behind a stiff one
   }
 }
 
-TEST_CASE("a zero-amplitude point: refused, not NaN; amplitudes tending to zero reach the stuck linear limit on every path") {
+TEST_CASE("a zero-amplitude point: refused, not NaN, amplitudes tending to zero reach the stuck linear limit on every path") {
   // Below uy every friction element sticks and the Yeoh spring is 2 D10 (eq. 3.3): K* is that
   // of the linear network, nested chains included.
   const auto net = test::network_from(R"(

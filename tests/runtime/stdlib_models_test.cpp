@@ -142,7 +142,7 @@ TEST_CASE("stdlib series_friction_maxwell: below the slip force it is a Zener mo
   check(p, 100.0 + maxwell(200, 0.01, 7.0));
 }
 
-TEST_CASE("stdlib series_friction_maxwell slipping: a Jenkins element when the arm cannot relax; IDA agrees when it can") {
+TEST_CASE("stdlib series_friction_maxwell slipping: a Jenkins element when the arm cannot relax, IDA agrees when it can") {
   // tau = 1e6 s: at 3 Hz the arm is a spring (relaxation ~ 1/(omega tau) = 5e-8), so the branch
   // is a friction element (k 200 N/mm, uy = fy / k = 0.1 mm): slipping at u0 = 0.5 mm, C.17-C.20.
   for (double u0 : {0.05, 0.5, 2.0}) {

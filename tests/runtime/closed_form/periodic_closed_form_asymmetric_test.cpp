@@ -1,7 +1,7 @@
 // The closed-form periodic state of laws that are not odd (issue 24): a poly_spring's even
 // power and one-sided yield forces in the model's parallel body, against dense numeric
-// integration of the law and against the independent time-stepping and IDA paths; nested, they
-// leave the event path (pwl_branch.hpp) and time-step.
+// integration of the law and against the independent time-stepping and IDA paths; nested, with
+// off-centre gaps, they take the event path over the whole period (pwl_periodic.hpp).
 #include "runtime/closed_form/periodic_closed_form.hpp"
 #include "runtime/closed_form/pwl_branch.hpp"
 #include "runtime/network/leaf_kernels.hpp"
@@ -102,33 +102,42 @@ TEST_CASE("a poly_spring alone: (max F - min F)/2 and the first harmonic against
   }
 }
 
-TEST_CASE("nested one-sided caps and off-centre gaps leave the event path; automatic time-steps them, and IDA agrees") {
+TEST_CASE("nested one-sided caps and off-centre gaps take the event path over the whole period, and IDA agrees") {
   runtime::PwlBranch branch;
   const auto symmetric = test::network_from("model n { spring k0 (k = 10)  series c { spring a (k = 300)  friction f (k = 600, fy = 40 N) } }", "n");
-  CHECK(runtime::PwlBranch::build(symmetric, symmetric.topology().subtrees[0], branch));
+  REQUIRE(runtime::PwlBranch::build(symmetric, symmetric.topology().subtrees[0], branch));
+  CHECK(branch.odd);
   const auto one_sided = test::network_from(
       "model n { spring k0 (k = 10)  series c { spring a (k = 300)  friction f (k = 600, fy_pos = 40 N, fy_neg = 25 N) } }", "n");
-  CHECK_FALSE(runtime::PwlBranch::build(one_sided, one_sided.topology().subtrees[0], branch));
-  CHECK_FALSE(runtime::has_closed_form_periodic_state(one_sided));
+  REQUIRE(runtime::PwlBranch::build(one_sided, one_sided.topology().subtrees[0], branch));
+  CHECK_FALSE(branch.odd);
+  const runtime::PwlEdge& slider = branch.edges[static_cast<std::size_t>(branch.switches[0])];
+  CHECK(slider.value == 40.0);
+  CHECK(slider.cap_neg == 25.0);
+  CHECK(slider.slip_force(-1) == -25.0);
   const auto centred = test::network_from("model g { series c { gap g (width = 0.4 mm)  spring a (k = 300) }  maxwell m (k = 50, tau = 1 ms) }", "g");
-  CHECK(runtime::has_closed_form_periodic_state(centred));
+  REQUIRE(runtime::PwlBranch::build(centred, centred.topology().subtrees[0], branch));
+  CHECK(branch.odd);
   const auto offset = test::network_from(
       "model g { series c { gap g (width = 0.4 mm, center = 0.1 mm)  spring a (k = 300) }  maxwell m (k = 50, tau = 1 ms) }", "g");
-  CHECK_FALSE(runtime::has_closed_form_periodic_state(offset));
-  HarmonicOptions automatic, ida;
+  REQUIRE(runtime::PwlBranch::build(offset, offset.topology().subtrees[0], branch));
+  CHECK_FALSE(branch.odd);
+  CHECK(branch.edges[static_cast<std::size_t>(branch.switches[0])].center == 0.1);
+  HarmonicOptions ida;
   ida.solver = runtime::SolverChoice::sundials;
-  ida.tolerance = 1e-7;
-  for (const auto* net : {&one_sided, &offset}) {
-    const auto a = runtime::simulate_harmonic_point(*net, 0.5, 5.0, automatic);
-    const auto b = runtime::simulate_harmonic_point(*net, 0.5, 5.0, ida);
-    CHECK(a.cycles > 0);
-    CHECK(a.converged);
-    CHECK(b.converged);
-    CHECK(test::relative_error(a.measures.stiffness, b.measures.stiffness) < 1e-4);
-    CHECK(std::abs(a.measures.phase - b.measures.phase) < 1e-4);
-  }
+  ida.tolerance = 1e-8;
+  for (const auto* net : {&one_sided, &offset})
+    for (double u0 : {0.05, 0.5, 2.0}) {
+      CAPTURE(u0);
+      const auto exact = runtime::try_closed_form_harmonic_point(*net, u0, 5.0, HarmonicDefinition::thesis);
+      REQUIRE(exact.has_value());
+      const auto b = runtime::simulate_harmonic_point(*net, u0, 5.0, ida);
+      CHECK(b.converged);
+      CHECK(test::relative_error(exact->measures.stiffness, b.measures.stiffness) < 1e-5);
+      CHECK(std::abs(exact->measures.phase - b.measures.phase) < 1e-5);
+    }
   // The off-centre gap's loop is not half-wave symmetric: its stiffness differs from the centred one's.
-  const auto c = runtime::simulate_harmonic_point(centred, 0.25, 5.0, automatic);
-  const auto o = runtime::simulate_harmonic_point(offset, 0.25, 5.0, automatic);
+  const auto c = runtime::closed_form_harmonic_point(centred, 0.25, 5.0, HarmonicDefinition::thesis);
+  const auto o = runtime::closed_form_harmonic_point(offset, 0.25, 5.0, HarmonicDefinition::thesis);
   CHECK(test::relative_error(o.measures.stiffness, c.measures.stiffness) > 0.05);
 }

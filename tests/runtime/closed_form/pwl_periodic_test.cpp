@@ -157,6 +157,47 @@ TEST_CASE("gaps, nested frictions and a gap behind a slider against time steppin
   }
 }
 
+TEST_CASE("one-sided caps and off-centre gaps against time stepping: F^ = (max F - min F)/2 over the whole cycle") {
+  // Uneven laws (PwlBranch::odd false): the full-period map, no half-wave symmetry. Amplitudes
+  // where the caps hold, where both slip and where the gap's contacts differ by side.
+  const char* models[] = {
+      "model a { spring k0 (k = 10 N/mm)\n series s { spring k (k = 300 N/mm)\n friction f (k = 600 N/mm, fy_pos = 40 N, fy_neg = 25 N) } }",
+      "model a { spring k0 (k = 100 N/mm)\n series s { gap g (width = 0.4 mm, center = 0.15 mm)\n maxwell m (k = 300 N/mm, tau = 10 ms) } }",
+      "model a { spring k0 (k = 30 N/mm)\n series s { gap g (width = 0.6 mm, center = 0.15 mm)\n"
+      " friction f (k = 400 N/mm, fy_pos = 13 N, fy_neg = 20 N) } }"};
+  for (const char* model : models) {
+    const auto net = test::network_from(model, "a");
+    const std::string text = model;
+    CAPTURE(text);
+    runtime::PwlBranch branch;
+    REQUIRE(runtime::PwlBranch::build(net, net.topology().subtrees.back(), branch));
+    CHECK_FALSE(branch.odd);
+    for (double u0 : {0.05, 0.3, 2.0})
+      for (double f : {0.5, 17.0}) check_against_time_stepping(net, u0, f, 2, 1e-5);
+  }
+}
+
+TEST_CASE("a one-sided slider before a Maxwell arm ratchets: the event path finds no fixed point and says so") {
+  // Slipping further one way than the other each cycle, the slider and the dashpot drift by the
+  // same amount every period: the force is periodic, the positions are not, and the
+  // full-period map has no fixed point. The event path declines; the automatic path hands the
+  // point to time stepping, whose state does not repeat either: it reports the point as not
+  // converged rather than a steady state (a limit of both paths for ratcheting branches).
+  const auto net = test::network_from("model a { series arm { slider s (fy_pos = 45 N, fy_neg = 30 N)\n maxwell m (k = 300 N/mm, tau = 20 ms) } }",
+                                      "a");
+  runtime::PwlBranch branch;
+  REQUIRE(runtime::PwlBranch::build(net, net.topology().subtrees[0], branch));
+  runtime::PwlPeriodicState state;
+  CHECK_FALSE(state.solve(branch, 0.3, 2.0 * std::numbers::pi * 17.0));
+  CHECK_FALSE(runtime::try_closed_form_harmonic_point(net, 0.3, 17.0, HarmonicDefinition::thesis).has_value());
+  runtime::HarmonicOptions options;
+  options.max_cycles = 40;
+  CHECK_FALSE(runtime::simulate_harmonic_point(net, 0.3, 17.0, options).converged);
+  // Where the caps hold, nothing drifts and the event path answers.
+  REQUIRE(state.solve(branch, 0.05, 2.0 * std::numbers::pi * 17.0));
+  check_against_time_stepping(net, 0.05, 17.0, 2, 1e-5);
+}
+
 TEST_CASE("fluid columns a fit visits: a slider that sticks at the drive's turning point, a heavy column Newton must globalise") {
   // Found by the default-settings fit of examples/hydrobushing_fit.rheo block 2; both used to
   // give up (the first switched stuck <-> slipping without end at t = T/4, the second trapped

@@ -89,7 +89,7 @@ TEST_CASE("fixed-step and SUNDIALS agree on a quasi-static history of a friction
   CHECK(worst < 1e-4 * scale);
 }
 
-TEST_CASE("IDA failing on a yeoh that softens in series names the yeoh and its limit; below the limit it agrees with fixed steps") {
+TEST_CASE("IDA failing on a yeoh that softens in series names the yeoh and its limit, below the limit it agrees with fixed steps") {
   const auto network = test::network_from("model y { series { yeoh r (D10 = 1, D20 = -1, D30 = 0) spring k (k = 1) } }", "y");
   runtime::HarmonicOptions options;
   options.solver = runtime::SolverChoice::sundials;

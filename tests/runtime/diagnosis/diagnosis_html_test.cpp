@@ -71,7 +71,7 @@ TEST_CASE("diagnosis html: one round draws the refined model over the model befo
   CHECK(count(page, "data-style=\"dashed\"") == 1);  // the loop of the model before
 }
 
-TEST_CASE("diagnosis html: refine's rounds each get a row and a part; a last round of none adds nothing to draw") {
+TEST_CASE("diagnosis html: refine's rounds each get a row and a part, a last round of none adds nothing to draw") {
   const auto data = yeoh_loops();
   const dx::Diagnosis first = test::diagnose(kStart, data);
   REQUIRE(first.effect == dx::Effect::nonlinear_elasticity);

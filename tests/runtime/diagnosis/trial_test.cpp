@@ -24,6 +24,15 @@ lang::Program compiled(const dx::Trial& trial) {
 dx::Trial trial_of(dx::Shape shape) {
   dx::Trial t;
   t.shape = shape, t.stiffness = 200.0, t.time = 0.004, t.slip = 0.05, t.frequency = 20.0, t.damping_ratio = 0.3, t.bias = 0.4, t.k2 = 5.0;
+  // The element a rebuilding shape writes (gapped_element: behind the play; one_sided_element:
+  // split), its own parameters fixed so that the bounded ones are what the shape adds.
+  static const std::string fixed_friction = "friction f (k = 300 N/mm, fy = 20 N)";
+  static const std::string split_friction = "friction f (k = 300 N/mm, fy_pos = 28 N in [1, 200], fy_neg = 12 N in [1, 200])";
+  if (shape == dx::Shape::gapped_element || shape == dx::Shape::one_sided_element) {
+    t.replaces = fixed_friction.substr(9, 1);
+    t.inner = shape == dx::Shape::gapped_element ? fixed_friction : split_friction;
+    t.split_parameters = 2;
+  }
   return t;
 }
 
@@ -31,7 +40,8 @@ dx::Trial trial_of(dx::Shape shape) {
 
 TEST_CASE("diagnosis trial: every shape writes a statement that compiles, with bounds around its values") {
   for (dx::Shape shape : {dx::Shape::maxwell, dx::Shape::friction, dx::Shape::capped_maxwell, dx::Shape::capped_column, dx::Shape::tuned_column,
-                          dx::Shape::yeoh, dx::Shape::asymmetric_friction, dx::Shape::even_spring, dx::Shape::gapped_spring}) {
+                          dx::Shape::yeoh, dx::Shape::asymmetric_friction, dx::Shape::even_spring, dx::Shape::gapped_spring,
+                          dx::Shape::gapped_element, dx::Shape::one_sided_element}) {
     const dx::Trial trial = trial_of(shape);
     const lang::Program program = compiled(trial);
     const lang::CheckedModel& m = program.models.front();

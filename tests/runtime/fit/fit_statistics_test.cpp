@@ -111,7 +111,7 @@ TEST_CASE("rank deficiency: only the estimable parameters get finite statistics"
   CHECK(unused.correlation[0][1] == doctest::Approx(line.corr).epsilon(1e-7));
 }
 
-TEST_CASE("without a degree of freedom: identifiability and correlation, but no standard errors; sizes must agree") {
+TEST_CASE("without a degree of freedom: identifiability and correlation, but no standard errors, sizes must agree") {
   // r = (1 - z0 - z1, 2 - z0 - 2 z1): J = -[[1, 1], [1, 2]], full rank, m = rank = 2.
   const auto two = [](const std::vector<double>& z) { return std::vector<double>{1.0 - z[0] - z[1], 2.0 - z[0] - 2 * z[1]}; };
   const auto exact = parameter_statistics(two, {0.0, 1.0}, {false, false});

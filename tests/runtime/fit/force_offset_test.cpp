@@ -98,7 +98,7 @@ TEST_CASE("a history with a load-cell offset: parameters and offset recovered, o
   }
 }
 
-TEST_CASE("the true offset declared fits as the free one does; without an offset the fit is measurably worse") {
+TEST_CASE("the true offset declared fits as the free one does, without an offset the fit is measurably worse") {
   const runtime::Network start = test::network_from(kStart, "t");
   const auto free = runtime::bounded_parameters(start);
   const runtime::FitResult fitted = runtime::fit(start, free, {with_offset(generated(kOffset), true)}, {});

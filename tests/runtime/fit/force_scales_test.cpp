@@ -44,7 +44,7 @@ TEST_CASE("a shape parameter, or a stiffness that moves a shape, is not a scale"
   CHECK(scale_paths("model m { spring a (k = 1) series { spring b (k = 10 in [1, 100]) slider f (fy = 1 in [0.5, 2]) } }").empty());
 }
 
-TEST_CASE("a springpot's k scales its Maxwell modes; its alpha does not") {
+TEST_CASE("a springpot's k scales its Maxwell modes, its alpha does not") {
   CHECK(scale_paths("model m { spring s (k = 1) springpot p (k = 10 in [1, 100], alpha = 0.3 in [0.1, 0.9], tau = 1 s, f_low = 0.1 Hz, "
                     "f_high = 100 Hz) }") == std::vector<std::string>{"p.k"});
 }

@@ -120,7 +120,7 @@ TEST_CASE("a given Jacobian is used instead of differences, and gives the same m
   CHECK(std::abs(r.x(1) - d.best_b(r.x(0))) < 1e-8);
 }
 
-TEST_CASE("residuals that cannot be evaluated reject the step; at the start they are an error") {
+TEST_CASE("residuals that cannot be evaluated reject the step, at the start they are an error") {
   // r = x - 3 has its minimum at 3, but the model cannot be evaluated beyond x = 2.
   LeastSquaresProblem p;
   p.residuals = [](const VectorXd& x) {

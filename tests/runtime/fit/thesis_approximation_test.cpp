@@ -138,7 +138,7 @@ TEST_CASE("networks outside Figs. 5.1/5.3 are rejected with the element and the 
   CHECK_THROWS_AS(runtime::approximate_harmonic(net, {0.0}, {1.0}), std::logic_error);
 }
 
-TEST_CASE("specimen D: the approximation deviates from the exact steady state by a bounded amount; 5.2-5.4 calibrate it") {
+TEST_CASE("specimen D: the approximation deviates from the exact steady state by a bounded amount, 5.2-5.4 calibrate it") {
   // The deviation has three sources: the linearised yeoh spring (K_e = 2 D10 ignores D20, D30:
   // F^ of the spring alone is 4.9 % low at 3 mm), the scalar sum (5.20) of viscous and frictional
   // stiffness that peak at different times (cos delta = 1, 5.6), and the weighted damping (5.21).

@@ -60,7 +60,7 @@ TEST_CASE("a pure yeoh spring's loop gives its constants to 1e-10") {
   CHECK(relative_error(d.d30, kTableD4.d30) < 1e-10);
 }
 
-TEST_CASE("mean curve: branches sampled differently are interpolated; a closed cycle's split branch is joined") {
+TEST_CASE("mean curve: branches sampled differently are interpolated, a closed cycle's split branch is joined") {
   // Linear branches F = 2 u +- 10 (interpolation is exact for them): loading sampled at 0.1 mm,
   // unloading at 0.07 mm steps, one cycle 0 -> 1 -> -1 -> 0 starting mid-loading. The branches
   // jump at the tips (each run shares its turning sample with the next), which the default

@@ -36,7 +36,7 @@ TEST_CASE("every role the language accepts in `columns` is one the readers know,
           rheo::lang::data_column_roles().end());
 }
 
-TEST_CASE("usual names in any case and spacing; unused columns may hold anything") {
+TEST_CASE("usual names in any case and spacing, unused columns may hold anything") {
   const Table t = parse_table("h.csv",
                               "Temperature [degC],Amplitude [mm],FREQUENCY [Hz],Dynamic  Stiffness [N/mm],Phase Angle [\xC2\xB0],Comment\n"
                               "23,0.5,10,1200,8,first\n23,1,10,1100,9,\n");
@@ -51,7 +51,7 @@ TEST_CASE("usual names in any case and spacing; unused columns may hold anything
   CHECK(e.phase[0] == doctest::Approx(std::atan2(400.0, 300.0)));
 }
 
-TEST_CASE("a data line names unusual columns; a name the header lacks is an error listing the header") {
+TEST_CASE("a data line names unusual columns, a name the header lacks is an error listing the header") {
   DataReading reading;
   reading.columns.columns = {{Role::frequency, "f"}, {Role::storage, "Es"}, {Role::loss, "El"}, {Role::amplitude, "u0"}};
   const HarmonicData d = harmonic_data_from_table(parse_table("m.csv", "u0 [mm],f [Hz],Es [N/mm],El [N/mm]\n0.1,2,30,40\n"), reading);

@@ -63,7 +63,7 @@ TEST_CASE("a harmonic table may give storage and loss instead of stiffness and p
   CHECK(set.harmonic().phase[0] == doctest::Approx(std::atan2(4.0, 3.0)).epsilon(1e-15));
 }
 
-TEST_CASE("a table with time, displacement and force is a history; its force scale is max |F|") {
+TEST_CASE("a table with time, displacement and force is a history, its force scale is max |F|") {
   const auto path = write("history.csv", "time [ms],displacement [um],force [kN]\n0,0,0.01\n500,100,0.2\n1000,-300,-0.45\n");
   const runtime::FitDataSet set = runtime::read_fit_data(path, 2.0);
   REQUIRE_FALSE(set.is_harmonic());
@@ -106,7 +106,7 @@ TEST_CASE("a history whose force is zero throughout names the file and its first
   CHECK(contains(message, "zero"));
 }
 
-TEST_CASE("a harmonic table lacking a needed column says so at the header; a history from a displacement is read as it is") {
+TEST_CASE("a harmonic table lacking a needed column says so at the header, a history from a displacement is read as it is") {
   const auto no_phase = write("nophase.csv", "amplitude [mm],frequency [Hz],stiffness [N/mm]\n0.5,10,300\n");
   const std::string phase_message = data_error(no_phase);
   CAPTURE(phase_message);

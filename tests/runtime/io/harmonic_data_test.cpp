@@ -61,7 +61,7 @@ TEST_CASE("a phase <= 0 from noise on a nearly elastic point is kept, its dampin
   CHECK(notes[1].rfind("h.csv:3: phase 0 deg <= 0", 0) == 0);
 }
 
-TEST_CASE("an optional weight column weighs points; a negative weight is located") {
+TEST_CASE("an optional weight column weighs points, a negative weight is located") {
   const auto d = harmonic_data_from_table(
       parse_table("h.csv", "amplitude [mm],frequency [Hz],stiffness [N/mm],phase [deg],weight [-]\n1,2,3,4,0.5\n1,3,3,4,2\n"));
   REQUIRE(d.weight.size() == 2);
@@ -77,7 +77,7 @@ namespace {
 const char* kHeader = "amplitude [mm],frequency [Hz],stiffness [N/mm],phase [deg],weight [-]\n";
 }  // namespace
 
-TEST_CASE("repeated points: the mean complex stiffness, the mean weight, the first row; a note names the rows") {
+TEST_CASE("repeated points: the mean complex stiffness, the mean weight, the first row, a note names the rows") {
   // Rows 3 and 5 repeat (0.5 mm, 10 Hz): K* = 100 and 100 i N/mm, mean 50 + 50 i.
   const auto d = harmonic_data_from_table(
       parse_table("h.csv", std::string(kHeader) + "1,10,120,8,1\n0.5,10,100,0,1\n1,20,118,9,1\n0.5,10,100,90,3\n"));
@@ -93,7 +93,7 @@ TEST_CASE("repeated points: the mean complex stiffness, the mean weight, the fir
   CHECK(d.notes[0] == "h.csv:3: rows 3 and 5 repeat (0.5 mm, 10 Hz): averaged into one point (mean storage and loss stiffness)");
 }
 
-TEST_CASE("repeated points: three repeats are one point; equal storage and loss average to themselves") {
+TEST_CASE("repeated points: three repeats are one point, equal storage and loss average to themselves") {
   const auto d = harmonic_data_from_table(
       parse_table("h.csv", std::string(kHeader) + "0.2,1,200,10,1\n0.2,1,200,10,1\n0.1,1,50,5,1\n0.2,1,200,10,1\n"));
   REQUIRE(d.size() == 2);
@@ -135,7 +135,7 @@ TEST_CASE("repeated points whose complex stiffnesses cancel are an error naming 
             .find("h.csv:2:1: error: rows 2 and 3 repeat (1 mm, 2 Hz) and their complex stiffnesses cancel") == 0);
 }
 
-TEST_CASE("a preload column (mean displacement, or a strain with the height) gives each point its p; points at other preloads are not repeats") {
+TEST_CASE("a preload column (mean displacement, or a strain with the height) gives each point its p, points at other preloads are not repeats") {
   const auto d = harmonic_data_from_table(parse_table(
       "h.csv",
       "amplitude [mm],frequency [Hz],stiffness [N/mm],phase [deg],Mean displacement [um]\n0.5,10,300,5,0\n0.5,10,320,5,2000\n0.5,10,330,5,-1500\n"));

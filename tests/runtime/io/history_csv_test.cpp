@@ -28,7 +28,7 @@ std::string drive_error(const std::string& text) {
 }
 }  // namespace
 
-TEST_CASE("units in the header convert to N, mm, s; comments, BOM and CRLF are accepted") {
+TEST_CASE("units in the header convert to N, mm, s, comments, BOM and CRLF are accepted") {
   const Table t = parse_table("t.csv", "\xEF\xBB\xBF# a comment\r\ntime [ms],displacement [um],force [kN]\r\n0,0,0\r\n10,500,1.5\r\n");
   REQUIRE(t.rows.size() == 2);
   CHECK(t.columns[0][1] == doctest::Approx(0.01));
@@ -60,7 +60,7 @@ TEST_CASE("a column is checked when a reader uses it: its unit, its kind and eve
             .find("h.csv:1:28: error: column 'displacement' appears twice in the header (columns 2 and 3)") == 0);
 }
 
-TEST_CASE("a drive needs time and displacement and increasing time; it starts where its first row is, or from rest where asked") {
+TEST_CASE("a drive needs time and displacement and increasing time, it starts where its first row is, or from rest where asked") {
   CHECK(drive_error("time [s],force [N]\n0,0\n1,1\n").find("needs columns 'time [s]' and 'displacement [mm]'") != std::string::npos);
   CHECK(drive_error("time [s],displacement [mm]\n0,0\n1,1\n1,2\n").find("h.csv:4:1: error: time must increase strictly") == 0);
   const Table moving = parse_table("h.csv", "time [s],displacement [mm]\n0,0.5\n1,1\n");

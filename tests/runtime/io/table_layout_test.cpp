@@ -27,7 +27,7 @@ std::string error_of(const std::string& text, const std::string& path = "t.csv",
 }
 }  // namespace
 
-TEST_CASE("the delimiter is the one the names row uses most: tab, then ';', then ','") {
+TEST_CASE("the delimiter is the one the names row uses most: tab, then semicolon, then comma") {
   CHECK(detect_delimiter("a,b,c") == ',');
   CHECK(detect_delimiter("a;b;c") == ';');
   CHECK(detect_delimiter("a\tb\tc") == '\t');
@@ -42,7 +42,7 @@ TEST_CASE("the delimiter is the one the names row uses most: tab, then ';', then
   CHECK(cells[2].column == 35);
 }
 
-TEST_CASE("';' and tab tables take a decimal comma; ',' tables do not") {
+TEST_CASE("semicolon and tab tables take a decimal comma, comma tables do not") {
   const Table semicolon = parse_table("t.csv", "Time [s];Displacement [mm]\n0;0\n0,5;1,25\n");
   CHECK(semicolon.columns[0][1] == 0.5);
   CHECK(semicolon.columns[1][1] == 1.25);
@@ -80,7 +80,7 @@ TEST_CASE("units in brackets, in parentheses when they are units, or in a units 
                   .has_value());
 }
 
-TEST_CASE("a TRIOS export: each [step] is a table with names and units rows; the data line picks one") {
+TEST_CASE("a TRIOS export: each [step] is a table with names and units rows, the data line picks one") {
   const Table amplitude = read_table(trios, nullptr, "Amplitude sweep");
   CHECK(amplitude.step == "Amplitude sweep - 1");
   CHECK(amplitude.names.size() == 43);
@@ -105,7 +105,7 @@ TEST_CASE("a TRIOS export: each [step] is a table with names and units rows; the
   CHECK(parse_table("one.txt", "[step]\nRamp - 1\nTime\tForce\ns\tN\n0\t1\n\n").rows.size() == 1);
 }
 
-TEST_CASE("spreadsheet workbooks are refused with what to do; UTF-16 text is read") {
+TEST_CASE("spreadsheet workbooks are refused with what to do, UTF-16 text is read") {
   CHECK(error_of("PK\x03\x04rest"s, "sweep.csv").find("sweep.csv:1:1: error: this is a spreadsheet workbook, not a text table; export the sheet as CSV") ==
         0);
   CHECK(error_of("\xD0\xCF\x11\xE0 rest"s, "old.dat").find("old.dat:1:1: error: this is a spreadsheet workbook") == 0);

@@ -137,7 +137,7 @@ TEST_CASE("bouc_wen with large n approaches the friction element's loop") {
   }
 }
 
-TEST_CASE("inverse near saturation terminates and inverts the forward relation; huge increments saturate below fy") {
+TEST_CASE("inverse near saturation terminates and inverts the forward relation, huge increments saturate below fy") {
   // Issue #26: the inverse searched s over [0, inf) by calling the loading law, whose march
   // never ended for n < 0.5 once the target lay within ~1e-15 of fy (a substep that no longer
   // moves w, with s doubled towards infinity). It now marches the forward substeps once and

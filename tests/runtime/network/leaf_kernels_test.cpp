@@ -19,7 +19,7 @@ TEST_CASE("one-sided return mapping: the trial force clamped to [-fy_neg, fy_pos
   for (double de : {-4.0, -1.0, 0.5, 3.0}) CHECK(friction_step(2.0, 3.0, 3.0, 1.0, de).force == friction_step(2.0, 3.0, 1.0, de).force);
 }
 
-TEST_CASE("poly_spring: F = k1 e + k2 e^2 + k3 e^3 and its tangent; the tangent's zeros bound the monotone range") {
+TEST_CASE("poly_spring: F = k1 e + k2 e^2 + k3 e^3 and its tangent, the tangent's zeros bound the monotone range") {
   const PolyLaw law{10.0, -1.0, 0.2};
   CHECK(law.force(2.0) == doctest::Approx(10.0 * 2 - 4.0 + 0.2 * 8));
   CHECK(law.force(-2.0) == doctest::Approx(-20.0 - 4.0 - 1.6));

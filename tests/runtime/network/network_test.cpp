@@ -200,7 +200,7 @@ TEST_CASE("a springpot band with f_low not below f_high is a model error at the 
                        runtime::ModelError);
 }
 
-TEST_CASE("one-sided friction elements and sliders, and poly springs, are subtrees; symmetric ones stay in the root groups") {
+TEST_CASE("one-sided friction elements and sliders, and poly springs, are subtrees, symmetric ones stay in the root groups") {
   const auto net = test::network_from(R"(
     model a { friction f (k = 2 N/mm, fy = 3 N)  friction g (k = 2 N/mm, fy_pos = 3 N, fy_neg = 5 N)
               slider s (fy = 1 N)  slider t (fy_pos = 1 N, fy_neg = 2 N)  poly_spring p (k1 = 10 N/mm, k2 = 1 N/mm^2) })",
@@ -224,7 +224,7 @@ TEST_CASE("one-sided friction elements and sliders, and poly springs, are subtre
   CHECK(f.param[2] == f.param[1]);
 }
 
-TEST_CASE("a gap whose rest position lies outside its play is a model error at its center; a fit's values beyond act as the stop") {
+TEST_CASE("a gap whose rest position lies outside its play is a model error at its center, a fit's values beyond act as the stop") {
   CHECK_THROWS_WITH_AS(test::network_from("model b {\n  series c { gap g (width = 1 mm, center = 0.6 mm)  spring k (k = 1) }\n}", "b"),
                        doctest::Contains("error: model 'b': gap 'c.g' has center = 0.6 mm, beyond half its width (0.5 mm)"), runtime::ModelError);
   CHECK_NOTHROW(test::network_from("model b { series c { gap g (width = 1 mm, center = -0.5 mm)  spring k (k = 1) } }", "b"));

@@ -85,7 +85,7 @@ TEST_CASE("step protocol with element outputs: the Maxwell arm relaxes, the spri
   CHECK(arm.back() == doctest::Approx(arm[1] * std::exp(-(1.0 - 1e-3) / 0.1)).epsilon(1e-9));
 }
 
-TEST_CASE("solver = sundials names itself in the header; with steady_state = closed_form it is a usage error") {
+TEST_CASE("solver = sundials names itself in the header, with steady_state = closed_form it is a usage error") {
   const std::string model = "model m { spring k (k = 100 N/mm)\n maxwell x (k = 50 N/mm, tau = 10 ms) }\n";
   const auto run = run_first(model + "simulate { harmonic frequency = 5 Hz, amplitude = 0.5 mm, solver = sundials }", "s.rheo");
   CHECK(run.content.find("solver=sundials (IDA") != std::string::npos);

@@ -56,7 +56,7 @@ TEST_CASE("report html: self-contained, no script, every figure and section pres
   CHECK(test::xml_problem(html.substr(html.find("<body>"), html.find("</body>") + 7 - html.find("<body>"))) == "");
 }
 
-TEST_CASE("report html: names are escaped; parameters with units and bounds; err per data set") {
+TEST_CASE("report html: names are escaped, parameters with units and bounds, err per data set") {
   const std::string html = runtime::report::html_report(sample_content());
   CHECK(html.find("dir/&lt;odd&gt; &amp; name.rheo") != std::string::npos);
   CHECK(html.find("<odd>") == std::string::npos);

@@ -34,7 +34,7 @@ std::vector<std::string> ids(const std::vector<Plot>& plots) {
 
 }  // namespace
 
-TEST_CASE("report figures: at most 8 curves, spread over the values; the primary figure is standalone") {
+TEST_CASE("report figures: at most 8 curves, spread over the values, the primary figure is standalone") {
   HarmonicComparison grid;
   for (int a = 1; a <= 12; ++a)
     for (const double f : {1.0, 10.0}) {
@@ -81,7 +81,7 @@ TEST_CASE("report figures: a master curve at one amplitude is drawn over frequen
   }
 }
 
-TEST_CASE("report figures: an amplitude sweep at one frequency is drawn over amplitude; material data as moduli over strain") {
+TEST_CASE("report figures: an amplitude sweep at one frequency is drawn over amplitude, material data as moduli over strain") {
   HarmonicComparison g = kelvin_voigt({0.001, 0.01, 0.1, 1.0}, {1.0}, 2.0, 0.05);
   for (std::size_t i = 0; i < g.amplitude.size(); ++i) {  // measured softening with amplitude
     g.measured_stiffness.push_back(g.model_stiffness[i] / (1.0 + 10.0 * g.amplitude[i]));

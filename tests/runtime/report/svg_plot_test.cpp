@@ -140,7 +140,7 @@ TEST_CASE("report svg plot: 28 decades of frequency and 16 of stiffness, labels 
   CHECK(count(svg, "stroke=\"#eeeeee\"") + x.size() + y.size() >= 29 + 15);
 }
 
-TEST_CASE("report svg plot: on a log axis the markers set the range; a line far below them is clipped a decade beyond") {
+TEST_CASE("report svg plot: on a log axis the markers set the range, a line far below them is clipped a decade beyond") {
   Plot plot{"clip", "Storage", {"strain [%]", Scale::log}, {"storage modulus [MPa]", Scale::log}, {}};
   plot.series.push_back({"measured", "1 Hz", 0, SeriesStyle::markers, {0.01, 1, 100}, {0.02, 0.01, 0.001}});
   plot.series.push_back({"model", "1 Hz", 0, SeriesStyle::line, {0.01, 1, 100}, {0.02, 0.01, 1e-18}});

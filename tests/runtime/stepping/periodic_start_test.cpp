@@ -94,7 +94,7 @@ TEST_CASE("periodic start: a linear subtree starts at its discrete periodic stat
   CHECK(point.cycles == 2);  // nested networks always check a second cycle
 }
 
-TEST_CASE("periodic start: a slider-capped chain whose cap holds starts periodic; one that slips starts at rest") {
+TEST_CASE("periodic start: a slider-capped chain whose cap holds starts periodic, one that slips starts at rest") {
   const auto network = test::network_from(kCapped, "m");
   // At 0.05 mm and 5 Hz the chain force stays near k_chain u0 ~ 20 N < 50 N: the cap holds.
   const CycleFromStart held = one_cycle(network, 0.05, 5.0, 128);

@@ -31,7 +31,7 @@ double element(const runtime::History& h, const std::string& path, bool force, s
 
 }  // namespace
 
-TEST_CASE("relaxed at u0, a root-parallel network carries only its elastic springs' force; Maxwell and friction start unloaded") {
+TEST_CASE("relaxed at u0, a root-parallel network carries only its elastic springs' force, Maxwell and friction start unloaded") {
   const auto net = test::network_from(
       "model m { spring s (k = 120 N/mm)\n yeoh y (D10 = 80 N/mm, D20 = -2 N/mm^3, D30 = 0.3 N/mm^5)\n maxwell m1 (k = 50 N/mm, tau = 10 ms)\n"
       "friction f (k = 400 N/mm, uy = 0.05 mm)\n slider l (fy = 7 N)\n dashpot d (c = 2 N*s/mm) }",
@@ -63,7 +63,7 @@ TEST_CASE("from displacement 0 the relaxed state is the rest state, bit for bit"
   CHECK(relaxed.u == 0.0);
 }
 
-TEST_CASE("springs in series share the force by their compliances; a yeoh spring in series carries the same force") {
+TEST_CASE("springs in series share the force by their compliances, a yeoh spring in series carries the same force") {
   const auto net = test::network_from(
       "model m { series a { spring k1 (k = 300 N/mm)\n spring k2 (k = 600 N/mm) }\n"
       "series b { spring k3 (k = 50 N/mm)\n yeoh y (D10 = 20 N/mm, D20 = 3 N/mm^3, D30 = 0.5 N/mm^5) } }",

@@ -1,0 +1,61 @@
+// The cycle follower of the event path (pwl_periodic.hpp): one span of the cycle map (a period,
+// or half of one for an odd branch) followed event to event from a given state, with the
+// sensitivities of the shooting Newton step, the recorded pieces and the first harmonic.
+// Internal to pwl_periodic.cpp and pwl_cycle.cpp.
+#pragma once
+
+#include "runtime/closed_form/pwl_periodic.hpp"
+
+namespace rheo::runtime {
+
+inline constexpr int kPwlGridPerCycle = 64;  // guard checks per cycle
+
+struct PwlPeriodicState::Run {
+  PwlPeriodicState& self;
+  const PwlBranch& branch;
+  double step = 0.0;  // grid step T/64 [s]
+
+  int mode_index(const PwlModeCode& code);
+  // [E; G E; G' E] for E = e^{A T/64} of mode m, G its guards and G' their rates: one product
+  // gives the state a grid step on, its guards and their slopes there.
+  const PwlGridStep& grid_step(int m);
+  PwlVector advance(int m, double tau, const PwlVector& w) { return self.modes_[static_cast<std::size_t>(m)].advance(tau, w); }
+
+  // Whether guard i of mode m is being left at state w: by its value, slope and curvature
+  // (leaving()), and by its value a probe of 1e-7 T ahead where those leave it level or where
+  // the curvature turns a slightly falling guard back up within the probe (a slider at the
+  // drive's turning point, its slope there rounding noise of forces rates far larger).
+  bool leaves(int m, int i, const PwlVector& w);
+
+  // The mode reached from `m` at time t with positions and velocities X once every guard the
+  // state violates has switched (a stuck slider above fy slips, a slipping one whose rate
+  // points against its force sticks, ...); -1 when it does not settle.
+  int settle(int m, const PwlVector& X, double t, PwlVector& w);
+
+  // The first time in (0, h] at which guard row i of mode m crosses from positive to
+  // negative along w(tau) = e^{A tau} w0, or infinity.
+  double first_crossing(int m, int i, const PwlVector& w0, const PwlVector& w1, double h, double g0, double g1);
+
+  // Switches at time t from mode m (state w) through guard i; with sensitivities S (dw/dX0)
+  // applies the saltation matrix. Returns the new mode or -1.
+  int switch_at(int m, int i, double t, PwlVector& w, PwlMatrix* S);
+
+  // Follows the map's span (a period, or half of one for an odd branch) from X0, settled from
+  // mode m: X at its end and, with `J`, dX/dX0; with `record`, the pieces, switch phases and
+  // first harmonic. False on failure. The sensitivities are carried by one propagator per
+  // piece (from its start to its switch or the span's end), not per grid step.
+  bool cycle(int& m, const PwlVector& X0, PwlVector& X_T, PwlMatrix* J, bool record);
+
+  // K'_1 and K''_1 of the recorded cycle, its pieces' integrals int F e^{i w t} dt in modal
+  // closed form. Over a half period of an odd branch the integral is half the period's (F and
+  // e^{i w t} both change sign after T/2).
+  void first_harmonic();
+
+  // The periodic state of mode m followed without its guards (the linear state every point
+  // starts from): the fixed point of X -> to_X e^{A T} w(X), by one propagator over the period
+  // (of X -> -to_X e^{A T/2} w(X) for an odd branch: the symmetric state, whose stuck sliders
+  // hold no offset, as from rest).
+  PwlVector linear_periodic_state(int m, const PwlVector& scale);
+};
+
+}  // namespace rheo::runtime

@@ -1,0 +1,38 @@
+#include "runtime/closed_form/pwl_fixed_point.hpp"
+
+#include <Eigen/Eigenvalues>
+#include <Eigen/LU>
+#include <Eigen/QR>
+#include <Eigen/SVD>
+
+#include <complex>
+
+namespace rheo::runtime {
+
+using Eigen::MatrixXd;
+using Complex = std::complex<double>;
+
+PwlVector affine_fixed_point(const PwlMatrix& J, const PwlVector& X0, const PwlVector& Y) {
+  const Eigen::VectorXd b = Y - J * X0;
+  Eigen::EigenSolver<MatrixXd> eig(J);
+  if (eig.info() == Eigen::Success) {
+    const Eigen::MatrixXcd V = eig.eigenvectors();
+    const Eigen::VectorXcd lambda = eig.eigenvalues();
+    Eigen::FullPivLU<Eigen::MatrixXcd> lu(V);
+    if (lu.rcond() > 1e-10) {
+      const Eigen::VectorXcd xi0 = lu.solve(X0.cast<Complex>()), beta = lu.solve(b.cast<Complex>());
+      Eigen::VectorXcd xi(xi0.size());
+      for (Eigen::Index i = 0; i < xi.size(); ++i) xi[i] = std::abs(1.0 - lambda[i]) > 1e-9 ? beta[i] / (1.0 - lambda[i]) : xi0[i];
+      return (V * xi).real();
+    }
+  }
+  return X0 - (J - PwlMatrix::Identity(J.rows(), J.cols())).jacobiSvd(Eigen::ComputeThinU | Eigen::ComputeThinV).setThreshold(1e-10).solve(Y - X0);
+}
+
+PwlVector least_norm_fixed_point(const PwlMatrix& J, const PwlVector& X0, const PwlVector& Y) {
+  Eigen::CompleteOrthogonalDecomposition<PwlMatrix> cod(J - PwlMatrix::Identity(J.rows(), J.cols()));
+  cod.setThreshold(1e-10);
+  return X0 - cod.solve(PwlVector(Y - X0));
+}
+
+}  // namespace rheo::runtime
