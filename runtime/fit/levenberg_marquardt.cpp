@@ -26,30 +26,59 @@ Eigen::VectorXd try_residuals(const LeastSquaresProblem& problem, const Eigen::V
   }
 }
 
+// r at each of XS: the problem's batch, or try_residuals on each in turn.
+std::vector<Eigen::VectorXd> try_residuals(const LeastSquaresProblem& problem, const std::vector<Eigen::VectorXd>& xs) {
+  if (!problem.residuals_batch) {
+    std::vector<Eigen::VectorXd> out;
+    out.reserve(xs.size());
+    for (const Eigen::VectorXd& x : xs) out.push_back(try_residuals(problem, x));
+    return out;
+  }
+  std::vector<Eigen::VectorXd> out = problem.residuals_batch(xs);
+  for (Eigen::VectorXd& r : out)
+    if (!r.allFinite()) r = Eigen::VectorXd();
+  return out;
+}
+
 // Forward differences, each step into the box: forwards, else backwards, else (a box narrower
-// than the step) to the farther bound. A column whose moved point cannot be evaluated is tried
-// the other way; where neither can, it is zero and `complete` is false.
+// than the step) to the farther bound. The moved points are independent: every column's first
+// step is evaluated as one batch, then, as a second, the other way for each column whose moved
+// point could not be evaluated; where neither can, the column is zero and `complete` is false.
 Eigen::MatrixXd difference_jacobian(const LeastSquaresProblem& problem, const Eigen::VectorXd& x, const Eigen::VectorXd& r,
                                     const Eigen::VectorXd& lower, const Eigen::VectorXd& upper, const Eigen::VectorXd& typical,
                                     double relative_step, bool& complete) {
   Eigen::MatrixXd j = Eigen::MatrixXd::Zero(r.size(), x.size());
-  complete = true;
+  std::vector<double> steps(static_cast<std::size_t>(x.size()), 0.0);
+  std::vector<bool> done(steps.size(), false);
   for (Eigen::Index c = 0; c < x.size(); ++c) {
     const double step = relative_step * std::max(std::abs(x(c)), typical(c));
     const double room_up = upper(c) - x(c), room_down = x(c) - lower(c);
-    double h = room_up >= step ? step : room_down >= step ? -step : room_up >= room_down ? room_up : -room_down;
-    bool done = h == 0.0;  // a box of zero width: the coordinate cannot move
-    for (int attempt = 0; attempt < 2 && !done; ++attempt, h = -h) {
-      if (x(c) + h > upper(c) || x(c) + h < lower(c)) continue;
-      Eigen::VectorXd moved = x;
-      moved(c) += h;
-      const Eigen::VectorXd r_moved = try_residuals(problem, moved);
-      if (r_moved.size() != r.size()) continue;
-      j.col(c) = (r_moved - r) / h;
-      done = true;
-    }
-    complete = complete && done;
+    steps[static_cast<std::size_t>(c)] = room_up >= step ? step : room_down >= step ? -step : room_up >= room_down ? room_up : -room_down;
+    done[static_cast<std::size_t>(c)] = steps[static_cast<std::size_t>(c)] == 0.0;  // a box of zero width: the coordinate cannot move
   }
+  for (int attempt = 0; attempt < 2; ++attempt) {
+    std::vector<Eigen::Index> columns;
+    std::vector<double> hs;
+    std::vector<Eigen::VectorXd> moved;
+    for (Eigen::Index c = 0; c < x.size(); ++c) {
+      const auto u = static_cast<std::size_t>(c);
+      const double h = attempt == 0 ? steps[u] : -steps[u];
+      if (done[u] || x(c) + h > upper(c) || x(c) + h < lower(c)) continue;
+      columns.push_back(c);
+      hs.push_back(h);
+      moved.push_back(x);
+      moved.back()(c) += h;
+    }
+    if (columns.empty()) break;
+    const std::vector<Eigen::VectorXd> r_moved = try_residuals(problem, moved);
+    for (std::size_t k = 0; k < columns.size(); ++k) {
+      const Eigen::Index c = columns[k];
+      if (r_moved[k].size() != r.size()) continue;
+      j.col(c) = (r_moved[k] - r) / hs[k];
+      done[static_cast<std::size_t>(c)] = true;
+    }
+  }
+  complete = std::all_of(done.begin(), done.end(), [](bool d) { return d; });
   return j;
 }
 
