@@ -2,6 +2,7 @@
 
 #include "runtime/core/errors.hpp"
 #include "runtime/fit/data_set_fit.hpp"
+#include "runtime/fit/fit_coordinates.hpp"
 #include "runtime/fit/fit_report.hpp"
 #include "runtime/fit/force_offset.hpp"
 #include "runtime/fit/force_scales.hpp"
@@ -20,49 +21,6 @@
 
 namespace rheo::runtime {
 namespace {
-
-// Maps search coordinates z to the full parameter vector of the model.
-class Coordinates {
- public:
-  Coordinates(const Network& start, const std::vector<int>& free) : start_(start), free_(free) {
-    const auto& parameters = start.model().parameters;
-    for (int i : free) {
-      const auto& p = parameters.at(static_cast<std::size_t>(i));
-      if (!p.free)
-        throw std::logic_error(fmt::format("parameter '{}' has no bounds; give it bounds to fit it, e.g. `{} in [lo, hi]`", p.path, p.path));
-      const bool log_space = logarithmic_search(p);
-      logarithmic.push_back(log_space);
-      auto map = [&](double v) { return log_space ? std::log(v) : v; };
-      z0.push_back(map(start.parameter(i)));
-      lower.push_back(map(p.lower));
-      upper.push_back(map(p.upper));
-    }
-  }
-  std::vector<double> values(const std::vector<double>& z) const {
-    std::vector<double> v = start_.parameters();
-    for (std::size_t j = 0; j < free_.size(); ++j) v[static_cast<std::size_t>(free_[j])] = logarithmic[j] ? std::exp(z[j]) : z[j];
-    return v;
-  }
-  Network network(const std::vector<double>& z) const { return start_.with_parameters(values(z)); }
-  // The coordinates of the free parameters' values in `values` (every model parameter).
-  std::vector<double> z_of(const std::vector<double>& values) const {
-    std::vector<double> z(free_.size());
-    for (std::size_t j = 0; j < free_.size(); ++j) {
-      const double v = values[static_cast<std::size_t>(free_[j])];
-      z[j] = logarithmic[j] ? std::log(v) : v;
-    }
-    return z;
-  }
-  const std::vector<int>& free() const { return free_; }
-  const lang::CheckedModel& model() const { return start_.model(); }
-
-  std::vector<double> z0, lower, upper;
-  std::vector<bool> logarithmic;
-
- private:
-  const Network& start_;
-  const std::vector<int>& free_;
-};
 
 // Predictions of all files for one method (and, for `corrected`, its factors).
 std::vector<Prediction> predictions(const Network& network, const std::vector<FitDataSet>& data, const ScoreSettings& score, FitMethod method,
@@ -177,6 +135,7 @@ class StagedSearch {
     const Residuals r = residuals_for(method);
     SearchSettings search = settings_.search;
     search.max_evaluations = std::max(1, budget);
+    search.threads = settings_.score.harmonic.threads;  // each evaluation builds its own network: safe at once
     if (search.deadline && time_share < 1.0) {
       const auto now = std::chrono::steady_clock::now();
       if (*search.deadline > now)
@@ -247,6 +206,7 @@ class StagedSearch {
     };
     SearchSettings search = settings_.search;
     search.max_evaluations = std::max(1, total() / static_cast<int>(scales.size() + 1));
+    search.threads = 1;  // the objective keeps the best solve and counts: one evaluation at a time
     search.extra_starts.clear();
     const SearchResult found = runtime::search(objective, start, shape_lower, shape_upper, shape_log, search, settings_.progress,
                                                settings_.interrupt);

@@ -2,6 +2,7 @@
 
 #include "runtime/core/errors.hpp"
 #include "runtime/fit/levenberg_marquardt.hpp"
+#include "runtime/fit/search_tracker.hpp"
 
 #include <fmt/format.h>
 
@@ -14,106 +15,11 @@
 namespace rheo::runtime {
 namespace {
 
-struct Interrupted {};
-struct Exhausted {};
-struct OutOfTime {};
 struct LocalBudgetSpent {};
 
 // A Levenberg-Marquardt local search that has not converged after this many Jacobians is
 // crawling along a curved valley; its budget serves the next start better.
 constexpr int kMaxLocalIterations = 50;
-
-// Counts evaluations, keeps the best point, reports progress, and stops on interrupt, when the
-// budget is spent (some NLopt algorithms, e.g. DIRECT-L, overrun their own maxeval) or when the
-// deadline would be passed (fit_search.hpp).
-class Tracker {
- public:
-  // With RESIDUALS the objective is their sum of squares and the last residuals are kept.
-  Tracker(const Objective& objective, const Residuals* residuals, const std::function<void(const SearchProgress&)>& progress,
-          const std::atomic<bool>* interrupt, const SearchSettings& settings)
-      : objective_(objective),
-        residuals_(residuals),
-        progress_(progress),
-        interrupt_(interrupt),
-        budget_(std::max(1, settings.max_evaluations)),
-        limit_(budget_),
-        deadline_(settings.deadline),
-        reserve_(std::max(0, settings.reserve_evaluations)) {}
-
-  // The first call (the start) is always evaluated, so that the best point has a value.
-  double operator()(const std::vector<double>& z) {
-    if (evaluations_ > 0 && interrupt_ && interrupt_->load(std::memory_order_relaxed)) throw Interrupted{};
-    if (evaluations_ >= limit_) throw Exhausted{};
-    if (evaluations_ > 0 && deadline_) {
-      const auto now = std::chrono::steady_clock::now();
-      if (now + (now - started_) / evaluations_ * (1 + reserve_) > *deadline_) throw OutOfTime{};
-    }
-    double value = std::numeric_limits<double>::quiet_NaN();
-    last_residuals_.clear();
-    try {
-      if (residuals_ != nullptr) {
-        last_residuals_ = (*residuals_)(z);
-        value = std::accumulate(last_residuals_.begin(), last_residuals_.end(), 0.0, [](double sum, double r) { return sum + r * r; });
-      } else {
-        value = objective_(z);
-      }
-    } catch (const NumericalError& e) {  // this point cannot be simulated: rejected like NaN
-      if (first_failure_.empty()) first_failure_ = e.what();
-    }
-    ++evaluations_;
-    if (!std::isfinite(value)) ++non_finite_;
-    if (std::isfinite(value) && value < best_value_) {
-      best_value_ = value;
-      best_z_ = z;
-    }
-    if (progress_) progress_({evaluations_, best_value_, stage_});
-    return value;
-  }
-  // The residuals at z (empty where they could not be evaluated), counted like the objective.
-  const std::vector<double>& residuals(const std::vector<double>& z) {
-    (*this)(z);
-    return last_residuals_;
-  }
-  bool has_residuals() const { return residuals_ != nullptr; }
-  // With a deadline: caps the budget at the evaluations the time left affords at the mean cost
-  // so far, less the reserve, so that the stages share what can actually run (or restores it
-  // when the time left affords it all). True when that cap is below the budget given.
-  bool cap_to_deadline() {
-    if (!deadline_ || evaluations_ == 0) return false;
-    const auto now = std::chrono::steady_clock::now();
-    const double mean = std::chrono::duration<double>(now - started_).count() / evaluations_;
-    const double left = std::chrono::duration<double>(*deadline_ - now).count();
-    const double affordable = mean > 0.0 ? std::floor(left / mean) - reserve_ : budget_;
-    limit_ = affordable < budget_ - evaluations_ ? evaluations_ + static_cast<int>(std::max(0.0, affordable)) : budget_;
-    return limit_ < budget_;
-  }
-  int limit() const { return limit_; }
-  bool capped() const { return limit_ < budget_; }
-  void stage(const char* name) { stage_ = name; }
-  int evaluations() const { return evaluations_; }
-  int non_finite() const { return non_finite_; }
-  const std::string& first_failure() const { return first_failure_; }
-  double best_value() const { return best_value_; }
-  const std::vector<double>& best_z() const { return best_z_; }
-
- private:
-  const Objective& objective_;
-  const Residuals* residuals_;
-  std::vector<double> last_residuals_;
-  const std::function<void(const SearchProgress&)>& progress_;
-  const std::atomic<bool>* interrupt_;
-  int budget_;  // max_evaluations
-  int limit_;   // the budget, or less where the deadline affords less
-  std::optional<std::chrono::steady_clock::time_point> deadline_;
-  int reserve_;
-  std::chrono::steady_clock::time_point started_ = std::chrono::steady_clock::now();
-  int evaluations_ = 0;
-  int non_finite_ = 0;
-  double best_value_ = std::numeric_limits<double>::infinity();
-  std::vector<double> best_z_;
-  std::string first_failure_;
-  const char* stage_ = "";
-};
 
 bool is_global(Algorithm a) { return a == Algorithm::direct_l || a == Algorithm::crs2 || a == Algorithm::isres || a == Algorithm::mlsl; }
 
@@ -133,10 +39,11 @@ std::vector<unsigned> first_primes(std::size_t count) {
 
 // SAMPLES points of the box a decade (log coordinates) or a quarter of the range (linear ones)
 // either side of START, within the bounds, on a Halton sequence shifted by SEED (Cranley-
-// Patterson rotation), each with its objective value: best first, non-finite values last.
-std::vector<std::pair<double, std::vector<double>>> sample_box(const Objective& objective, const std::vector<double>& start,
-                                                               const std::vector<double>& lower, const std::vector<double>& upper,
-                                                               const std::vector<bool>& logarithmic, int samples, unsigned long seed) {
+// Patterson rotation), each with its objective value (evaluated as one batch): best first,
+// non-finite values last.
+std::vector<std::pair<double, std::vector<double>>> sample_box(Tracker& tracker, const std::vector<double>& start, const std::vector<double>& lower,
+                                                               const std::vector<double>& upper, const std::vector<bool>& logarithmic, int samples,
+                                                               unsigned long seed) {
   const std::size_t n = start.size();
   std::mt19937_64 random(seed);
   std::uniform_real_distribution<double> unit(0.0, 1.0);
@@ -148,15 +55,15 @@ std::vector<std::pair<double, std::vector<double>>> sample_box(const Objective& 
     box_lo[j] = std::max(lower[j], start[j] - half);
     box_hi[j] = std::min(upper[j], start[j] + half);
   }
-  std::vector<std::pair<double, std::vector<double>>> sampled;
-  std::vector<double> z(n);
-  for (int s = 1; s <= samples; ++s) {
+  std::vector<std::vector<double>> points(static_cast<std::size_t>(std::max(0, samples)), std::vector<double>(n));
+  for (std::size_t s = 0; s < points.size(); ++s)
     for (std::size_t j = 0; j < n; ++j) {
-      const double t = std::fmod(radical_inverse(static_cast<unsigned long>(s), primes[j]) + shift[j], 1.0);
-      z[j] = box_lo[j] + t * (box_hi[j] - box_lo[j]);
+      const double t = std::fmod(radical_inverse(static_cast<unsigned long>(s + 1), primes[j]) + shift[j], 1.0);
+      points[s][j] = box_lo[j] + t * (box_hi[j] - box_lo[j]);
     }
-    sampled.emplace_back(objective(z), z);
-  }
+  const std::vector<double> values = tracker.values(points);
+  std::vector<std::pair<double, std::vector<double>>> sampled;
+  for (std::size_t s = 0; s < points.size(); ++s) sampled.emplace_back(values[s], std::move(points[s]));
   // Non-finite samples sort last (NaN would break the ordering std::sort relies on).
   auto key = [](double v) { return std::isfinite(v) ? v : std::numeric_limits<double>::infinity(); };
   std::stable_sort(sampled.begin(), sampled.end(), [&](const auto& a, const auto& b) { return key(a.first) < key(b.first); });
@@ -173,6 +80,17 @@ std::string least_squares_local(Tracker& tracker, const std::vector<double>& fro
     if (tracker.evaluations() - first >= budget) throw LocalBudgetSpent{};
     const std::vector<double>& r = tracker.residuals(std::vector<double>(x.data(), x.data() + x.size()));
     return Eigen::VectorXd(Eigen::Map<const Eigen::VectorXd>(r.data(), static_cast<Eigen::Index>(r.size())));
+  };
+  // As the calls above one after another: the local budget first, then the tracker's stops.
+  problem.residuals_batch = [&](const std::vector<Eigen::VectorXd>& xs) {
+    const auto left = static_cast<std::size_t>(std::max(0, budget - (tracker.evaluations() - first)));
+    std::vector<std::vector<double>> zs;
+    for (std::size_t k = 0; k < std::min(left, xs.size()); ++k) zs.emplace_back(xs[k].data(), xs[k].data() + xs[k].size());
+    const std::vector<std::vector<double>> rs = tracker.residuals(zs);
+    if (zs.size() < xs.size()) throw LocalBudgetSpent{};
+    std::vector<Eigen::VectorXd> out;
+    for (const std::vector<double>& r : rs) out.emplace_back(Eigen::Map<const Eigen::VectorXd>(r.data(), static_cast<Eigen::Index>(r.size())));
+    return out;
   };
   LevenbergMarquardtSettings lm;
   lm.max_iterations = std::min(budget, kMaxLocalIterations);
@@ -231,7 +149,7 @@ SearchResult search_with(const Objective& objective, const Residuals* residuals,
       // Sample a box around the start, then run local searches from the start and the best samples.
       tracker.stage("sample");
       const int wanted_samples = settings.samples >= 0 ? settings.samples : std::max(10 * static_cast<int>(n), 40);
-      const auto sampled = sample_box(tracked, start, lower, upper, logarithmic, std::max(0, std::min(wanted_samples, remaining() / 4)),
+      const auto sampled = sample_box(tracker, start, lower, upper, logarithmic, std::max(0, std::min(wanted_samples, remaining() / 4)),
                                       settings.seed);
       // Each distinct point once (an extra start may be the start itself).
       std::vector<std::vector<double>> starts{start};

@@ -12,7 +12,7 @@
 //   3. polish: the local method again from the best point found, with a fresh trust region.
 // A local algorithm named (bobyqa, sbplx, neldermead) takes the local method's place; a global one
 // (direct_l, crs2, isres, mlsl) searches the whole box with half the budget, then BOBYQA polishes.
-// The same seed gives the same result, evaluation for evaluation.
+// The same seed gives the same result, evaluation for evaluation, for every `threads`.
 //
 // Budget: the start is always evaluated first; after it, no evaluation is made beyond
 // max_evaluations in all (stages share what is left; an NLopt stage that would take the total
@@ -49,6 +49,11 @@ struct SearchSettings {
   std::vector<std::vector<double>> extra_starts;  // default strategy: local searches from these too
   std::optional<std::chrono::steady_clock::time_point> deadline;
   int reserve_evaluations = 0;
+  // Independent evaluations (a differenced Jacobian's columns, the samples) made at once, each
+  // whole on one thread (search_tracker.hpp); 0: every hardware thread. Results do not depend
+  // on it. Above 1 the objective or residuals are called from several threads at once and must
+  // be safe for that.
+  int threads = 1;
 };
 
 struct SearchProgress {

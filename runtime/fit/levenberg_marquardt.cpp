@@ -26,31 +26,81 @@ Eigen::VectorXd try_residuals(const LeastSquaresProblem& problem, const Eigen::V
   }
 }
 
+// r at each of XS: the problem's batch, or try_residuals on each in turn.
+std::vector<Eigen::VectorXd> try_residuals(const LeastSquaresProblem& problem, const std::vector<Eigen::VectorXd>& xs) {
+  if (!problem.residuals_batch) {
+    std::vector<Eigen::VectorXd> out;
+    out.reserve(xs.size());
+    for (const Eigen::VectorXd& x : xs) out.push_back(try_residuals(problem, x));
+    return out;
+  }
+  std::vector<Eigen::VectorXd> out = problem.residuals_batch(xs);
+  for (Eigen::VectorXd& r : out)
+    if (!r.allFinite()) r = Eigen::VectorXd();
+  return out;
+}
+
 // Forward differences, each step into the box: forwards, else backwards, else (a box narrower
-// than the step) to the farther bound. A column whose moved point cannot be evaluated is tried
-// the other way; where neither can, it is zero and `complete` is false.
+// than the step) to the farther bound. The moved points are independent: every column's first
+// step is evaluated as one batch, then, as a second, the other way for each column whose moved
+// point could not be evaluated; where neither can, the column is zero and `complete` is false.
 Eigen::MatrixXd difference_jacobian(const LeastSquaresProblem& problem, const Eigen::VectorXd& x, const Eigen::VectorXd& r,
                                     const Eigen::VectorXd& lower, const Eigen::VectorXd& upper, const Eigen::VectorXd& typical,
                                     double relative_step, bool& complete) {
   Eigen::MatrixXd j = Eigen::MatrixXd::Zero(r.size(), x.size());
-  complete = true;
+  std::vector<double> steps(static_cast<std::size_t>(x.size()), 0.0);
+  std::vector<bool> done(steps.size(), false);
   for (Eigen::Index c = 0; c < x.size(); ++c) {
     const double step = relative_step * std::max(std::abs(x(c)), typical(c));
     const double room_up = upper(c) - x(c), room_down = x(c) - lower(c);
-    double h = room_up >= step ? step : room_down >= step ? -step : room_up >= room_down ? room_up : -room_down;
-    bool done = h == 0.0;  // a box of zero width: the coordinate cannot move
-    for (int attempt = 0; attempt < 2 && !done; ++attempt, h = -h) {
-      if (x(c) + h > upper(c) || x(c) + h < lower(c)) continue;
-      Eigen::VectorXd moved = x;
-      moved(c) += h;
-      const Eigen::VectorXd r_moved = try_residuals(problem, moved);
-      if (r_moved.size() != r.size()) continue;
-      j.col(c) = (r_moved - r) / h;
-      done = true;
-    }
-    complete = complete && done;
+    steps[static_cast<std::size_t>(c)] = room_up >= step ? step : room_down >= step ? -step : room_up >= room_down ? room_up : -room_down;
+    done[static_cast<std::size_t>(c)] = steps[static_cast<std::size_t>(c)] == 0.0;  // a box of zero width: the coordinate cannot move
   }
+  for (int attempt = 0; attempt < 2; ++attempt) {
+    std::vector<Eigen::Index> columns;
+    std::vector<double> hs;
+    std::vector<Eigen::VectorXd> moved;
+    for (Eigen::Index c = 0; c < x.size(); ++c) {
+      const auto u = static_cast<std::size_t>(c);
+      const double h = attempt == 0 ? steps[u] : -steps[u];
+      if (done[u] || x(c) + h > upper(c) || x(c) + h < lower(c)) continue;
+      columns.push_back(c);
+      hs.push_back(h);
+      moved.push_back(x);
+      moved.back()(c) += h;
+    }
+    if (columns.empty()) break;
+    const std::vector<Eigen::VectorXd> r_moved = try_residuals(problem, moved);
+    for (std::size_t k = 0; k < columns.size(); ++k) {
+      const Eigen::Index c = columns[k];
+      if (r_moved[k].size() != r.size()) continue;
+      j.col(c) = (r_moved[k] - r) / hs[k];
+      done[static_cast<std::size_t>(c)] = true;
+    }
+  }
+  complete = std::all_of(done.begin(), done.end(), [](bool d) { return d; });
   return j;
+}
+
+// The linear model of one Jacobian, reduced once for all its damped steps: with J = Q R (Q
+// orthonormal columns, k = min(m, n) of them), || J d + r ||^2 = || R d + Q^T r ||^2 + (|| r ||^2
+// - || Q^T r ||^2), the last term not depending on d. So each damped step is a bounded problem
+// of k + n rows instead of m + n (m residuals: hundreds of harmonic terms, thousands of history
+// samples), with the same minimiser; the column norms, which the solver scales by, are J's.
+struct LinearModel {
+  const Eigen::MatrixXd& j;
+  Eigen::VectorXd r;          // a copy: the search moves on from r when it takes a step
+  Eigen::MatrixXd reduced;    // R, k x n
+  Eigen::VectorXd projected;  // Q^T r, k
+};
+
+LinearModel linear_model(const Eigen::MatrixXd& j, const Eigen::VectorXd& r) {
+  const Eigen::HouseholderQR<Eigen::MatrixXd> qr(j);
+  const Eigen::Index k = std::min(j.rows(), j.cols());
+  LinearModel model{j, r, qr.matrixQR().topRows(k).triangularView<Eigen::Upper>(), {}};
+  const Eigen::VectorXd qtr = qr.householderQ().adjoint() * r;
+  model.projected = qtr.head(k);
+  return model;
 }
 
 // The step minimising || J d + r ||^2 + lambda || D d ||^2 within the box, and the decrease of
@@ -60,17 +110,17 @@ struct Step {
   double predicted = 0.0;
 };
 
-Step damped_step(const Eigen::MatrixXd& j, const Eigen::VectorXd& r, const Eigen::VectorXd& scale, double lambda, const Eigen::VectorXd& x,
-                 const Eigen::VectorXd& lower, const Eigen::VectorXd& upper) {
-  const Eigen::Index m = j.rows(), n = j.cols();
-  Eigen::MatrixXd a(m + n, n);
-  a.topRows(m) = j;
+Step damped_step(const LinearModel& model, const Eigen::VectorXd& scale, double lambda, const Eigen::VectorXd& x, const Eigen::VectorXd& lower,
+                 const Eigen::VectorXd& upper) {
+  const Eigen::Index k = model.reduced.rows(), n = model.reduced.cols();
+  Eigen::MatrixXd a(k + n, n);
+  a.topRows(k) = model.reduced;
   a.bottomRows(n) = (std::sqrt(lambda) * scale).asDiagonal();
-  Eigen::VectorXd b = Eigen::VectorXd::Zero(m + n);
-  b.head(m) = -r;
+  Eigen::VectorXd b = Eigen::VectorXd::Zero(k + n);
+  b.head(k) = -model.projected;
   Step step;
   step.d = bounded_least_squares(a, b, lower - x, upper - x).x;
-  step.predicted = r.squaredNorm() - (j * step.d + r).squaredNorm();
+  step.predicted = model.r.squaredNorm() - (model.j * step.d + model.r).squaredNorm();
   return step;
 }
 
@@ -115,7 +165,8 @@ LevenbergMarquardtResult levenberg_marquardt(const LeastSquaresProblem& problem,
     scale = scale.size() == norms.size() ? Eigen::VectorXd(scale.cwiseMax(norms)) : norms;
     // First-order test: what the undamped step could still gain, by the linear model (not where
     // a column could not be differenced: it would look insensitive).
-    const double undamped = damped_step(j, out.residuals, scale, 0.0, out.x, lower, upper).predicted;
+    const LinearModel model = linear_model(j, out.residuals);
+    const double undamped = damped_step(model, scale, 0.0, out.x, lower, upper).predicted;
     if (complete && undamped <= settings.decrease_tolerance * out.value) {
       out.status = "FTOL_REACHED";
       return out;
@@ -129,7 +180,7 @@ LevenbergMarquardtResult levenberg_marquardt(const LeastSquaresProblem& problem,
         out.status = "NO_DESCENT";
         return out;
       }
-      const Step step = damped_step(j, out.residuals, scale, lambda, out.x, lower, upper);
+      const Step step = damped_step(model, scale, lambda, out.x, lower, upper);
       const Eigen::VectorXd trial = (out.x + step.d).cwiseMax(lower).cwiseMin(upper);
       const Eigen::VectorXd trial_r = try_residuals(problem, trial);
       const double trial_value = trial_r.size() == out.residuals.size() ? trial_r.squaredNorm() : std::numeric_limits<double>::infinity();

@@ -39,11 +39,19 @@
 
 #include <functional>
 #include <string>
+#include <vector>
 
 namespace rheo::runtime {
 
 struct LeastSquaresProblem {
   std::function<Eigen::VectorXd(const Eigen::VectorXd& x)> residuals;
+  // Optional: the residuals at several independent points (a differenced Jacobian's moved
+  // points: all n columns one way, then those that failed the other way, in column order), as
+  // `residuals` would give them called on each in turn: entry i empty where that call throws
+  // NumericalError or is not finite; an exception of any other kind passes through, as it
+  // would from the first point it is thrown for. It may evaluate the points at once; the search
+  // is the same whatever it does. Empty: `residuals` on each in turn.
+  std::function<std::vector<Eigen::VectorXd>(const std::vector<Eigen::VectorXd>& xs)> residuals_batch;
   // Optional: dr/dx at x, where the residuals are r. Empty: forward differences.
   std::function<Eigen::MatrixXd(const Eigen::VectorXd& x, const Eigen::VectorXd& r)> jacobian;
 };

@@ -1,6 +1,7 @@
 // The binary's exit codes and messages (docs/cli.md): 0 ok, 2 usage, 3 model, 4 data.
 #include <doctest/doctest.h>
 #include <fmt/format.h>
+#include <nlohmann/json.hpp>
 #include <unistd.h>
 
 #include <array>
@@ -157,6 +158,29 @@ TEST_CASE("simulate --threads gives the same file as one thread, a negative coun
   CHECK(one.output.find("amplitude [mm]") != std::string::npos);
   CHECK(two.output == one.output);
   CHECK(run(base + " --threads -1").code == 2);
+}
+
+TEST_CASE("fit --threads 2 writes the fitted model and the summary of one thread: same parameters, err and evaluations") {
+  // Specimen D's default fit: Jacobian columns and samples side by side on two threads.
+  auto fitted = [](int threads) {
+    const fs::path model = write(fmt::format("specimen_d_fitted_{}.rheo", threads), "");
+    const Result r = run(fmt::format("fit {}/specimen_d_fit.rheo --threads {} --json -o {}", RHEO_EXAMPLES_DIR, threads, model.string()));
+    REQUIRE(r.code == 0);
+    const std::size_t begin = r.output.find("\n{") + 1;  // after the line naming the file written
+    nlohmann::json summary = nlohmann::json::parse(r.output.substr(begin, r.output.rfind('}') + 1 - begin));
+    summary.erase("wall_seconds");
+    std::ifstream in(model);
+    return std::pair{summary, std::string(std::istreambuf_iterator<char>(in), {})};
+  };
+  const auto [one, one_model] = fitted(1);
+  const auto [two, two_model] = fitted(2);
+  CHECK(one.at("evaluations").get<int>() > 100);
+  CHECK(two.at("evaluations") == one.at("evaluations"));
+  CHECK(two.at("err") == one.at("err"));
+  CHECK(two.at("parameters") == one.at("parameters"));
+  CHECK(two == one);
+  CHECK(one_model.find("model specimen_d") != std::string::npos);
+  CHECK(two_model == one_model);
 }
 
 TEST_CASE("a model file that cannot be read exits 4 naming it, for every command") {
