@@ -110,10 +110,12 @@ TEST_CASE("repro backends 05 and 06: check refuses where the run would use IDA, 
   check_refused_on_ida("06_fixed_slow_boucwen_yeoh_friction", "sits inside a block of a network with sliders, gaps or friction elements");
 }
 
+// Fixed steps are first order in nested dashpots at the file's 1 ms samples: observed 3.4e-4
+// (07), 1.3e-4 (10) and 3.5e-4 (09) of max |F|.
 TEST_CASE("repro backends 07 and 10: the histories of bouc_wen + Maxwell and of depth-8 nesting agree between the integrators") {
   CHECK(difference(history("07_fixed_harmonic_noconv_boucwen_maxwell", "fixed"), history("07_fixed_harmonic_noconv_boucwen_maxwell", "sundials")) <
         2e-3);
-  CHECK(difference(history("10_deep8_fixed_slow", "fixed"), history("10_deep8_fixed_slow", "sundials")) < 2e-2);
+  CHECK(difference(history("10_deep8_fixed_slow", "fixed"), history("10_deep8_fixed_slow", "sundials")) < 2e-3);
 }
 
 TEST_CASE("repro backends 08: a lone dashpot's forces agree sample for sample between the integrators") {
@@ -128,5 +130,5 @@ TEST_CASE("repro backends 08: a lone dashpot's forces agree sample for sample be
 }
 
 TEST_CASE("repro backends 09: the undamped mass behind a slider runs its history on both integrators") {
-  CHECK(difference(history("09_undamped_inerter_harmonic", "fixed"), history("09_undamped_inerter_harmonic", "sundials")) < 2e-2);
+  CHECK(difference(history("09_undamped_inerter_harmonic", "fixed"), history("09_undamped_inerter_harmonic", "sundials")) < 2e-3);
 }

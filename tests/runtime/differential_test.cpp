@@ -19,7 +19,7 @@ using namespace rheo;
 
 namespace {
 
-constexpr int kModels = 8;             // in the suite (about 10 s in Release on a loaded 2-core machine; tests/differential/run runs more)
+constexpr int kModels = 8;             // in the suite (15-40 s in Release on a busy 2-core machine; tests/differential/run runs more)
 constexpr std::uint64_t kSeed = 2026;  // RHEO_DIFFERENTIAL_SEED overrides
 constexpr int kMaxDepth = 6;
 constexpr int kRefine = 4;             // fixed steps per drive sample (the drive is the same piecewise-linear one), and twice that
