@@ -129,10 +129,25 @@ DaeGraph DaeGraph::build(const Network& network) {
           fmt::format("{}inerter '{}' of model '{}' sits directly between the terminal and ground, so its force b d2u/dt2 needs the "
                       "drive's acceleration, which a sampled drive does not have; put it in series with a spring, or use solver = fixed",
                       error_at(edge.where), edge.path, graph.model));
+    if (edge.kind == EdgeKind::slider && edge.a < 0 && edge.b < 0)  // (a gap there is refused by Network::compile)
+      throw ModelError(
+          fmt::format("{}slider '{}' of model '{}' sits directly between the terminal and ground, where the drive alone sets its "
+                      "elongation, so IDA has no unknown to hold it stuck; put it in series with a spring (a friction element), or "
+                      "use solver = fixed",
+                      error_at(edge.where), edge.path, graph.model));
     if (!is_switch(edge.kind))
       for (int node : {edge.a, edge.b})
         if (node >= 0) held[static_cast<std::size_t>(node)] = 1;
   }
+  if (!graph.switch_edges.empty())
+    for (int index : graph.bouc_wen_edges) {
+      const Edge& edge = graph.edges[static_cast<std::size_t>(index)];
+      if (edge.a < 0 && edge.b < 0) continue;  // driven directly: its rate is the drive's
+      throw ModelError(
+          fmt::format("{}bouc_wen '{}' of model '{}' sits inside a block of a network with sliders, gaps or friction elements; its state's "
+                      "rate follows node rates that jump when they switch, and IDA finds no consistent state there; use solver = fixed",
+                      error_at(edge.where), edge.path, graph.model));
+    }
   for (const Edge& edge : graph.edges)
     for (int node : {edge.a, edge.b})
       if (node >= 0 && !held[static_cast<std::size_t>(node)])

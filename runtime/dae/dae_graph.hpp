@@ -64,8 +64,9 @@ struct DaeGraph {
   std::string model;
 
   // Throws ModelError with advice when the network cannot be posed as an index-1
-  // DAE: an internal node held only by sliders and gaps, an inerter directly between terminal
-  // and ground.
+  // DAE: an internal node held only by sliders and gaps, an inerter, slider or gap directly
+  // between terminal and ground, a bouc_wen between internal nodes in a network with sliders
+  // or gaps (friction elements included; docs/errors.md lists these rules).
   static DaeGraph build(const Network& network);
 };
 

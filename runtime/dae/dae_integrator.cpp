@@ -272,6 +272,7 @@ void DaeIntegrator::roots(double t, const double* y, const double* yp, double* g
 void DaeIntegrator::start(const DriveSignal& drive, const std::vector<double>* positions) {
   drive_ = drive;
   segment_ = 0;
+  rate_jump_pending_ = false;
   time_ = drive.kind == DriveSignal::Kind::samples ? drive.samples->time.front() : 0.0;
   events_ = 0;
   totals_ = {};
@@ -301,6 +302,12 @@ void DaeIntegrator::start(const DriveSignal& drive, const std::vector<double>* p
 
 double DaeIntegrator::advance(double t) {
   const bool samples = drive_.kind == DriveSignal::Kind::samples;
+  if (rate_jump_pending_) {  // the last advance ended on a sample; the next piece starts here
+    rate_jump_pending_ = false;
+    ++segment_;
+    restart(time_, false);
+    stick_reversed_sliders();
+  }
   if (!solver_) {
     time_ = t;
     if (samples)
@@ -312,6 +319,10 @@ double DaeIntegrator::advance(double t) {
     if (at_breakpoint) stop = drive_.samples->time[segment_ + 1];
     solve_to(stop);
     if (at_breakpoint && time_ >= stop) {
+      if (stop >= t) {  // the sample asked for: report it before the rate jumps (run_history.hpp)
+        rate_jump_pending_ = true;
+        break;
+      }
       ++segment_;
       restart(time_, false);  // the drive rate jumps here
       stick_reversed_sliders();

@@ -83,7 +83,9 @@ class DaeIntegrator {
   // zero), or with POSITIONS (one per internal node, mm) from that configuration at rest (rates
   // zero): sliders stuck where they are, gaps closed where an elongation is at a stop.
   void start(const DriveSignal& drive, const std::vector<double>* positions = nullptr);
-  // Integrates to time t [s] (> the current time); returns the terminal force [N] at t.
+  // Integrates to time t [s] (> the current time); returns the terminal force [N] at t. On a
+  // sampled drive the force at a sample time is its left limit: rates are those of the piece
+  // ending there (the fixed-step convention, run_history.hpp), as are element_outputs().
   double advance(double t);
 
   double time() const { return time_; }
@@ -127,6 +129,9 @@ class DaeIntegrator {
   DaeOptions options_;
   DriveSignal drive_;
   std::size_t segment_ = 0;  // samples: the interval [time[segment_], time[segment_ + 1]]
+  // samples: advance() stopped on a sample, still on the piece ending there (so that the force
+  // it returns is the left limit at that sample); the next advance() restarts on the next piece.
+  bool rate_jump_pending_ = false;
   DaeLayout layout_;
   std::vector<int> rate_of_edge_, switch_of_edge_, bouc_wen_of_edge_;  // -1 where not
   SwitchModes modes_;

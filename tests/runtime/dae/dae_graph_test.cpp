@@ -42,3 +42,24 @@ TEST_CASE("refused: an inerter between terminal and ground, and sliders meeting 
       runtime::DaeGraph::build(test::network_from("model m { spring k (k = 1 N/mm)\n series s { slider a (fy = 1 N)\n slider b (fy = 2 N) } }", "m")),
       doctest::Contains("merge the sliders or put a spring between them"), runtime::ModelError);
 }
+
+TEST_CASE("refused: a slider between terminal and ground (issue 26 reproducer 01)") {
+  CHECK_THROWS_WITH_AS(runtime::DaeGraph::build(test::network_from("model m { spring k (k = 100 N/mm)\n slider s (fy = 5 N) }", "m")),
+                       doctest::Contains("slider 's' of model 'm' sits directly between the terminal and ground"), runtime::ModelError);
+  // The same slider behind a spring (a friction element) has an internal node to hold.
+  CHECK_NOTHROW(runtime::DaeGraph::build(test::network_from("model m { spring k (k = 100 N/mm)\n friction f (k = 10 N/mm, fy = 5 N) }", "m")));
+}
+
+TEST_CASE("refused: a nested bouc_wen in a network with sliders or gaps, not a bouc_wen driven directly") {
+  const std::string series_slider = "model m { series c { bouc_wen b (k = 785 N/mm, n = 2, uy = 17 um)\n slider s (fy = 6.7 N) } }";
+  CHECK_THROWS_WITH_AS(runtime::DaeGraph::build(test::network_from(series_slider, "m")),
+                       doctest::Contains("bouc_wen 'c.b' of model 'm' sits inside a block of a network with sliders, gaps or friction"),
+                       runtime::ModelError);
+  const std::string elsewhere =
+      "model m { friction f (k = 10 N/mm, fy = 1 N)\n series c { bouc_wen b (k = 100 N/mm, n = 2, fy = 1 N)\n spring k (k = 50 N/mm) } }";
+  CHECK_THROWS_WITH_AS(runtime::DaeGraph::build(test::network_from(elsewhere, "m")), doctest::Contains("use solver = fixed"), runtime::ModelError);
+  CHECK_NOTHROW(runtime::DaeGraph::build(
+      test::network_from("model m { bouc_wen b (k = 100 N/mm, n = 2, fy = 1 N)\n friction f (k = 10 N/mm, fy = 1 N) }", "m")));
+  CHECK_NOTHROW(runtime::DaeGraph::build(
+      test::network_from("model m { series c { bouc_wen b (k = 100 N/mm, n = 2, fy = 1 N)\n spring k (k = 50 N/mm) } }", "m")));
+}

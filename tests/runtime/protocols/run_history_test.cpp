@@ -115,3 +115,28 @@ TEST_CASE("a spring behind an off-centre gap touches at e = center +- width/2, b
     }
   }
 }
+
+// The sample convention (docs/numerics.md "The sample convention of histories"): the force at
+// sample j is the force at t_j at the end of the step from t_{j-1}, with the rates of the piece
+// ending there; the same on both integrators. Uneven samples and a pause tell a convention that
+// looks one piece ahead (or averages) from this one.
+TEST_CASE("sample convention: a lone dashpot reports c (u_j - u_j-1)/(t_j - t_j-1) and a spring k u_j on both integrators") {
+  const runtime::Drive drive{{0.0, 0.001, 0.003, 0.004, 0.0045, 0.007, 0.008, 0.010}, {0.0, 0.02, 0.05, 0.05, 0.03, -0.04, -0.01, 0.0}};
+  const double c = 0.119303, k = 85.6;
+  const auto dashpot = test::network_from(fmt::format("model m {{ dashpot d (c = {} N*s/mm) }}", c), "m");
+  const auto spring = test::network_from(fmt::format("model m {{ spring s (k = {} N/mm) }}", k), "m");
+  for (const SolverChoice solver : {SolverChoice::fixed, SolverChoice::sundials}) {
+    const std::string name(lang::word_of(solver));
+    CAPTURE(name);
+    const runtime::History d = runtime::run_history(dashpot, drive, true, solver);
+    const runtime::History s = runtime::run_history(spring, drive, true, solver);
+    CHECK(d.force[0] == 0.0);
+    for (std::size_t j = 1; j < drive.time.size(); ++j) {
+      CAPTURE(j);
+      const double rate = (drive.displacement[j] - drive.displacement[j - 1]) / (drive.time[j] - drive.time[j - 1]);
+      CHECK(d.force[j] == doctest::Approx(c * rate).epsilon(1e-9).scale(1e-9));
+      CHECK(d.element_force[0][j] == doctest::Approx(c * rate).epsilon(1e-9).scale(1e-9));
+      CHECK(s.force[j] == doctest::Approx(k * drive.displacement[j]).epsilon(1e-9).scale(1e-9));
+    }
+  }
+}
