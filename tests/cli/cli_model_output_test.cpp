@@ -2,13 +2,12 @@
 // -o`, `diagnose -o` and `refine -o` into another folder write data lines that still name the
 // same files, so the written file fits and checks from there; `rheo check` warns of a data file
 // that does not exist and still exits 0.
+#include "cli_support.hpp"
+#include "support.hpp"
+
 #include <doctest/doctest.h>
 #include <fmt/format.h>
-#include <sys/wait.h>
-#include <unistd.h>
 
-#include <array>
-#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -16,39 +15,13 @@
 #include <vector>
 
 namespace fs = std::filesystem;
+using rheo::test::run_rheo;
 
 namespace {
 
-struct Run {
-  int code;
-  std::string out, err;
-};
-
-fs::path scratch() {
-  const fs::path dir = fs::temp_directory_path() / fmt::format("rheo-cli-model-output-{}", ::getpid());
-  fs::create_directories(dir);
-  return dir;
-}
-
-std::string read_text(const fs::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
-
-Run run(const std::string& arguments) {
-  const fs::path err = scratch() / "stderr.txt";
-  const std::string command = fmt::format("{} {} 2> {}", RHEO_BINARY, arguments, err.string());
-  Run r{-1, "", ""};
-  FILE* pipe = popen(command.c_str(), "r");
-  std::array<char, 4096> buffer{};
-  while (std::size_t n = std::fread(buffer.data(), 1, buffer.size(), pipe)) r.out.append(buffer.data(), n);
-  const int status = pclose(pipe);
-  r.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  r.err = read_text(err);
-  return r;
-}
+fs::path scratch() { return rheo::test::scratch_directory("cli-model-output"); }
+std::string read_text(const fs::path& path) { return rheo::test::read_file(path.string()); }
+auto run(const std::string& arguments) { return run_rheo(arguments); }
 
 // The data lines of a .rheo text.
 std::vector<std::string> data_names(const std::string& text) {
@@ -74,7 +47,7 @@ TEST_CASE("fit -o into another folder: the data lines name the same files, and t
                                     "fit m {\n  data \"data/h.csv\"\n  data \"" +
                                         (home / "data" / "h.csv").string() + "\", weight = 0.5\n}\n";
   const fs::path out = away / "fitted.rheo";
-  const Run r = run(fmt::format("fit {} -o {}", (home / "m.rheo").string(), out.string()));
+  const auto r = run(fmt::format("fit {} -o {}", (home / "m.rheo").string(), out.string()));
   REQUIRE(r.code == 0);
   const auto names = data_names(read_text(out));
   REQUIRE(names.size() == 2);
@@ -92,7 +65,7 @@ TEST_CASE("fit -o into another folder: the data lines name the same files, and t
 TEST_CASE("check warns of a data file that does not exist, naming where, and exits 0") {
   const fs::path file = scratch() / "missing.rheo";
   std::ofstream(file) << "model m { spring k (k = 1 N/mm in [0.1, 10]) }\nfit m {\n  data \"nowhere/h.csv\"\n}\n";
-  const Run r = run("check " + file.string());
+  const auto r = run("check " + file.string());
   CHECK(r.code == 0);
   CHECK(r.err.find(fmt::format("{}:3:8: warning: data file 'nowhere/h.csv' does not exist", file.string())) != std::string::npos);
 }

@@ -24,6 +24,11 @@ using test::harmonic_measurement;
 
 namespace {
 
+// Loops of a spring and a friction element, and the same structure from a generic start.
+const std::string kLoopTruth = "model truth { spring s (k = 250 N/mm)  friction f (k = 300 N/mm, uy = 80 um) }";
+const std::string kLoopStart =
+    "model start {\n  spring s (k = 300 N/mm in [10, 10000])\n  friction f (k = 100 N/mm in [1, 10000], uy = 20 um in [0.1, 10000])\n}\n";
+
 std::string summary(const dx::Diagnosis& d) {
   std::string out = fmt::format("verdict {}, gap {:.4g} -> {:.4g}, noise floor {:.4g} (+-{:.2f}), ratio {:.3g}; {}", dx::verdict_name(d),
                                 d.gap_before, d.gap_after, d.noise.floor, d.noise.relative_error, d.noise_ratio, d.reason);
@@ -36,9 +41,7 @@ std::string summary(const dx::Diagnosis& d) {
 }  // namespace
 
 TEST_CASE("diagnose verdict, history: loops the model explains are none, the force noise found within 15 %") {
-  const std::string truth = "model truth { spring s (k = 250 N/mm)  friction f (k = 300 N/mm, uy = 80 um) }";
-  const std::string start =
-      "model start {\n  spring s (k = 300 N/mm in [10, 10000])\n  friction f (k = 100 N/mm in [1, 10000], uy = 20 um in [0.1, 10000])\n}\n";
+  const std::string truth = kLoopTruth, start = kLoopStart;
   const dx::Diagnosis d = diagnose(start, {test::history_measurement(truth, runtime::static_triangle({3.0, 1.0, 0.3}, 0.05, 1, 400), 22)});
   MESSAGE(summary(d));
   CHECK(d.verdict == dx::Verdict::none);
@@ -51,9 +54,7 @@ TEST_CASE("diagnose verdict, history: a force law that is not odd is asymmetry, 
   // Sine loops of a spring and a friction element with a force c u^2 (5 % of max|F| at the
   // largest displacement) on top: different in tension and compression; a polynomial spring's
   // k2 term is exactly that law.
-  const std::string truth = "model truth { spring s (k = 250 N/mm)  friction f (k = 300 N/mm, uy = 80 um) }";
-  const std::string start =
-      "model start {\n  spring s (k = 300 N/mm in [10, 10000])\n  friction f (k = 100 N/mm in [1, 10000], uy = 20 um in [0.1, 10000])\n}\n";
+  const std::string truth = kLoopTruth, start = kLoopStart;
   const runtime::Drive drive = runtime::quasistatic_sine({2.0, 1.0}, 0.1, 2, 400);
   runtime::FitDataSet measured = test::history_measurement(truth, drive, 23);
   auto& h = std::get<runtime::HistoryData>(measured.data);
@@ -73,9 +74,7 @@ TEST_CASE("diagnose verdict, history: a disturbance no element explains is unexp
   // a systematic residual that no element of the vocabulary (time-invariant laws of the
   // displacement and its history, which answer the drive in its harmonics) can take; a resonant
   // element could follow one of the sines, not six.
-  const std::string truth = "model truth { spring s (k = 250 N/mm)  friction f (k = 300 N/mm, uy = 80 um) }";
-  const std::string start =
-      "model start {\n  spring s (k = 300 N/mm in [10, 10000])\n  friction f (k = 100 N/mm in [1, 10000], uy = 20 um in [0.1, 10000])\n}\n";
+  const std::string truth = kLoopTruth, start = kLoopStart;
   const runtime::Drive drive = runtime::quasistatic_sine({2.0, 1.0}, 0.1, 2, 400);
   runtime::FitDataSet measured = test::history_measurement(truth, drive, 23);
   auto& h = std::get<runtime::HistoryData>(measured.data);
