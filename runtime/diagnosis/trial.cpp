@@ -27,6 +27,13 @@ std::string bounded(double value, double lo, double hi, double per_unit, const c
 
 std::string around(double value, double per_unit, const char* unit) { return bounded(value, value / kDecades, value * kDecades, per_unit, unit); }
 
+// The free play of a gapped shape: width 2 slip, its centre bias slip within +-U [mm] (the
+// largest measured displacement), as the statement inside the shape's series block.
+std::string play_statement(const Trial& t, double u) {
+  return fmt::format("  gap play (width = {}, center = {})", around(2.0 * t.slip, 1.0, "mm"),
+                     bounded(std::clamp(t.bias * t.slip, -u, u), -u, u, 1.0, "mm"));
+}
+
 std::string stiffness_argument(double k, const BoundScales& s) {
   return bounded(k, std::min(s.stiffness * 1e-4, k / 10.0), std::max(s.stiffness * 10.0, k * 10.0), 1.0, "N/mm");
 }
@@ -83,8 +90,7 @@ std::vector<std::string> trial_statement(const Trial& t, const std::string& name
     case Shape::gapped_spring: {
       const double u = s.max_displacement;
       lines.push_back(fmt::format("series {} {{", name));
-      lines.push_back(fmt::format("  gap    play (width = {}, center = {})", around(2.0 * t.slip, 1.0, "mm"),
-                                  bounded(std::clamp(t.bias * t.slip, -u, u), -u, u, 1.0, "mm")));
+      lines.push_back(play_statement(t, u));
       lines.push_back(fmt::format("  spring stop (k = {})", k));
       lines.push_back("}");
       break;
@@ -92,8 +98,7 @@ std::vector<std::string> trial_statement(const Trial& t, const std::string& name
     case Shape::gapped_element: {
       const double u = s.max_displacement;
       lines.push_back(fmt::format("series {} {{", name));
-      lines.push_back(fmt::format("  gap play (width = {}, center = {})", around(2.0 * t.slip, 1.0, "mm"),
-                                  bounded(std::clamp(t.bias * t.slip, -u, u), -u, u, 1.0, "mm")));
+      lines.push_back(play_statement(t, u));
       for (std::size_t at = 0; at <= t.inner.size();) {
         const std::size_t end = std::min(t.inner.find('\n', at), t.inner.size());
         lines.push_back("  " + t.inner.substr(at, end - at));
