@@ -9,23 +9,24 @@ constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 constexpr double kSeriesStretch = 1e-6;  // s of the series start near w = 0 (non-smooth n)
 constexpr double kSaturated = 1e-16;     // dw/ds below which nothing is left to integrate
 
-// x in [0, length] with g(x) = 0 for g increasing, g(0) < 0 <= g(length): Newton with the
-// slope `slope(x)`, bisection whenever Newton leaves the bracket or does not halve it; at most
-// 200 iterations (bisection alone reaches double resolution in 64 from any bracket).
-template <class G, class Slope>
-double solve_bracketed(G&& g, Slope&& slope, double length) {
-  double a = 0.0, b = length, x = length;
+// x in (0, length] with g(x) = 0 for g increasing, g(0) < 0 <= g(length), where `g(x)` gives
+// {g, dg/dx}: Newton from x0, with a bisection whenever a step leaves the bracket or three steps
+// have not halved it. Ends when a Newton step is within rounding of x or the bracket is within
+// rounding of its end; at most 200 iterations (bisection alone resolves any bracket in 64).
+template <class G>
+double solve_bracketed(G&& g, double length, double x0) {
+  constexpr double eps = std::numeric_limits<double>::epsilon();
+  double a = 0.0, b = length, x = x0 > 0.0 && x0 < length ? x0 : length;
   double width = b - a;
   for (int i = 0; i < 200; ++i) {
-    const double v = g(x);
-    if (v == 0.0) return x;
-    (v < 0.0 ? a : b) = x;
-    if (b - a <= 4.0 * std::numeric_limits<double>::epsilon() * b) return b;
-    const double d = slope(x);
-    double next = d > 0.0 ? x - v / d : kNaN;
-    const bool halved = b - a <= 0.5 * width;
-    if (!(next > a && next < b) || !halved) next = 0.5 * (a + b);
-    width = b - a;
+    const ForceSlope v = g(x);
+    if (v.force == 0.0) return x;
+    (v.force < 0.0 ? a : b) = x;
+    if (b - a <= 4.0 * eps * b) return b;
+    double next = v.slope > 0.0 ? x - v.force / v.slope : kNaN;
+    if (next > a && next < b && std::abs(next - x) <= 2.0 * eps * x) return next;
+    if (!(next > a && next < b) || (i % 3 == 2 && b - a > 0.5 * width)) next = 0.5 * (a + b);
+    if (i % 3 == 2) width = b - a;
     x = next;
   }
   return kNaN;
@@ -71,11 +72,17 @@ double BoucWenLaw::load(double w, double s) const {
 
 double BoucWenLaw::loading_length(double w0, double wt) const {
   if (n == 1.0) return std::log1p((wt - w0) / (1.0 - wt));
-  auto slope = [&](double w) { return rate(w); };
+  // The first guess of a substep's length: the rate at its start.
+  auto guess = [&](double from) { return (wt - from) / rate(from); };
   double s = 0.0, w = w0;
   if (!smooth() && w < kSeriesStretch) {
     if (series(w0, kSeriesStretch) >= wt)
-      return solve_bracketed([&](double x) { return series(w0, x) - wt; }, [&](double x) { return slope(series(w0, x)); }, kSeriesStretch);
+      return solve_bracketed(
+          [&](double x) {
+            const double v = series(w0, x);
+            return ForceSlope{v - wt, rate(v)};
+          },
+          kSeriesStretch, guess(w0));
     w = series(w0, kSeriesStretch);
     s = kSeriesStretch;
   }
@@ -86,7 +93,12 @@ double BoucWenLaw::loading_length(double w0, double wt) const {
     const double next = rk4(w, ds);
     if (next >= wt) {
       const double from = w;
-      return s + solve_bracketed([&](double x) { return rk4(from, x) - wt; }, [&](double x) { return slope(rk4(from, x)); }, ds);
+      return s + solve_bracketed(
+                     [&](double x) {
+                       const double v = rk4(from, x);
+                       return ForceSlope{v - wt, rate(v)};
+                     },
+                     ds, guess(from));
     }
     if (!(next > w)) break;
     w = next;

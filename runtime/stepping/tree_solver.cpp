@@ -3,6 +3,7 @@
 #include "runtime/core/errors.hpp"
 
 #include "runtime/network/monotone_solve.hpp"
+#include "runtime/stepping/tree_newton.hpp"
 
 #include <fmt/format.h>
 
@@ -91,6 +92,8 @@ void TreeStepPlan::prepare(const Network& network, double step, double piece_len
       default: break;
     }
   }
+  newton.prepare(network, bounds, coefficient);
+  work.resize(nodes.size());
 }
 
 std::string TreeSolver::path_of(int node) const {
@@ -217,6 +220,23 @@ ForceSlope TreeSolver::forward(int node, double de) const {
   return {0.0, 0.0};
 }
 
+ForceSlope TreeSolver::forward_at_rest(int node, double direction) const {
+  const TreeNode& n = at(node);
+  const double f = f_before(n);
+  switch (n.kind) {
+    case NodeKind::friction: {  // elastic unless pushed beyond the cap it holds
+      const bool slips = (direction > 0.0 && f >= p(n, 1)) || (direction < 0.0 && f <= -p(n, 2));
+      return {f, slips ? 0.0 : p(n, 0)};
+    }
+    case NodeKind::bouc_wen: {  // unloading (z against the direction) is elastic
+      const BoucWenLaw law{p(n, 0), p(n, 1), p(n, 2)};
+      const double w = (direction > 0.0 ? 1.0 : -1.0) * f / law.fy;
+      return {f, w < 0.0 ? law.k : law.k * law.rate(w)};
+    }
+    default: return forward(node, 0.0);
+  }
+}
+
 Interval TreeSolver::zero_rate_interval(int node) const {
   const TreeNode& n = at(node);
   if (!n.rigid_when_stuck) {
@@ -243,8 +263,11 @@ ForceSlope TreeSolver::inverse(int node, double force) const {
       if (!(std::abs(force) < coefficient(node))) throw_softened(node, force);
       auto residual = [&](double e) { return ForceSlope{law.force(e) - force, law.slope(e)}; };
       const double tol = kRelTol * (std::abs(force) + 1e-9);
-      const double e = checked(solve_monotone(residual, e_before(n), force / law.slope(0.0), -kInf, kInf, tol, true, plan_.iteration_cap), node,
-                               "yeoh elongation");
+      // Within the monotone range |e| < e* (law.force(+-e*) = +-coefficient bracket F).
+      const double peak = law.softening_elongation();
+      const double e = checked(
+          solve_monotone(residual, std::clamp(e_before(n), -peak, peak), force / law.slope(0.0), -peak, peak, tol, true, plan_.iteration_cap), node,
+          "yeoh elongation");
       return {e - e_before(n), 1.0 / law.slope(e)};
     }
     case NodeKind::poly_spring: {
@@ -477,6 +500,15 @@ void TreeSolver::assign_series(int node, double de, double force, double* after)
 }
 
 double TreeSolver::advance(int node, double de, double* after) const {
+  if (plan_.newton.iterative[static_cast<std::size_t>(node)]) {
+    double force = 0.0;
+    if (TreeNewton(*this, plan_).advance(node, de, after, force)) return force;
+    ++plan_.work.fallbacks;
+  }
+  return advance_nested(node, de, after);
+}
+
+double TreeSolver::advance_nested(int node, double de, double* after) const {
   const double force = forward(node, de).force;
   assign(node, de, force, after);
   return force;

@@ -36,16 +36,13 @@
 #include "runtime/network/leaf_kernels.hpp"
 #include "runtime/network/monotone_solve.hpp"
 #include "runtime/network/network.hpp"
+#include "runtime/stepping/tree_newton_plan.hpp"
 
 #include <cmath>
 #include <string>
 #include <vector>
 
 namespace rheo::runtime {
-
-struct Interval {
-  double lo, hi;
-};
 
 // Per-step constants of subtree leaves (depend on dt).
 struct TreeStepPlan {
@@ -60,8 +57,14 @@ struct TreeStepPlan {
   // Per node: the forces [N] it can carry (caps of friction elements, sliders and bouc_wen,
   // intersected along series chains, added across parallel blocks); unbounded otherwise.
   std::vector<Interval> bounds;
-  // Refinement iterations each solve may take (solve_monotone); lowered only by tests.
+  // Refinement iterations each solve may take (solve_monotone, and the global Newton
+  // iterations of tree_newton.hpp); lowered only by tests.
   int iteration_cap = kRefineSteps;
+  // Subtrees with series chains or blocks to iterate are solved for all their unknowns at once
+  // (tree_newton.hpp), falling back to the nested solve below.
+  NewtonLayout newton;
+  // That solve's scratch: a plan serves one thread at a time.
+  mutable NewtonWork work;
   void prepare(const Network& network, double dt, double piece);
 };
 
@@ -85,7 +88,13 @@ class TreeSolver {
   int child(const TreeNode& n, int i) const { return topology_.children[static_cast<std::size_t>(n.first_child + i)]; }
 
  private:
+  friend class TreeNewton;
+  // The nested solve of `advance` (recursive 1-D solves), without the global Newton solve.
+  double advance_nested(int node, double de, double* after) const;
   ForceSlope forward(int node, double de) const;
+  // A leaf's force at de = 0 and its slope on the side of `direction` (> 0: lengthening): one-
+  // sided where the law has a kink there (a friction element at its cap, bouc_wen reversing).
+  ForceSlope forward_at_rest(int node, double direction) const;
   ForceSlope affine(int node) const;  // {F0 [N], S [N/mm]} of a linear node
   ForceSlope capped_linear(int node, double de, Interval cap) const;
   ForceSlope inverse(int node, double force) const;  // {elongation increment, d de / dF}

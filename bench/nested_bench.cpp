@@ -1,0 +1,121 @@
+// Cost per fixed step of nested networks against their flat equivalents (issue #26 item 3: at
+// most 10x) and of bouc_wen against a friction element (issue #24: at most 10x).
+//  - the reproducers of tests/corpus/repro/backends/ that cost seconds per sample before the
+//    global Newton solve (runtime/stepping/tree_newton.hpp): 03 gap + bouc_wen, 05 bouc_wen +
+//    inerter behind a gap, 06 bouc_wen + yeoh + friction nested, 07 bouc_wen + Maxwell, 10
+//    depth-8 nesting; each beside the same elements all in the model's parallel block;
+//  - a lone friction element and a lone bouc_wen (its k and fy).
+// Drive: the harmonic protocol's, u = A sin(2 pi f t) at f = 2 Hz with 2048 steps per cycle,
+// A = Arg um (50: the gaps barely engage; 400: every bouc_wen saturates), after one cycle from
+// rest. Reported per step: time (s_per_step), the global solve's member evaluations
+// (evaluations_per_step) and the steps that fell back to the nested solve (fallbacks).
+#include "lang/frontend.hpp"
+#include "runtime/stepping/simulator.hpp"
+
+#include <benchmark/benchmark.h>
+
+#include <cmath>
+#include <fstream>
+#include <numbers>
+#include <sstream>
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace {
+
+using namespace rheo;
+
+std::string repro(const std::string& name) {
+  std::ifstream in(std::string(RHEO_CORPUS_DIR) + "/repro/backends/" + name + ".rheo");
+  std::stringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
+
+// The reproducers' elements, each in the model's parallel block.
+const char* const kFlat03 = R"(model m {
+  bouc_wen (k = 942.461 N/mm, n = 4.49061, uy = 47.5779 um)
+  spring (k = 239.639 N/mm)
+})";
+const char* const kFlat05 = R"(model m {
+  spring (k = 174.508 N/mm)
+  bouc_wen (k = 192.416 N/mm, n = 4.07668, uy = 53.6044 um)
+  inerter (b = 1.22431 kg)
+})";
+const char* const kFlat06 = R"(model m {
+  friction (k = 173.863 N/mm, fy = 8.2742 N)
+  bouc_wen (k = 106.467 N/mm, n = 2.4487, fy = 9.32452 N)
+  yeoh (D10 = 294.216 N/mm, D20 = -6.28247 N/mm^3, D30 = 0.528421 N/mm^5)
+  yeoh (D10 = 136.721 N/mm, D20 = 11.5635 N/mm^3, D30 = 2.11757 N/mm^5)
+})";
+const char* const kFlat07 = R"(model m {
+  bouc_wen (k = 61.8286 N/mm, n = 1.70764, fy = 2.85385 N)
+  maxwell (k = 599.631 N/mm, c = 2.73345 N*s/mm)
+})";
+const char* const kFlat10 = R"(model m {
+  spring (k = 85.6325 N/mm)
+  maxwell (k = 230.818 N/mm, tau = 21.3296 ms)
+  maxwell (k = 82.9547 N/mm, c = 0.207639 N*s/mm)
+  maxwell (k = 24.8856 N/mm, tau = 7.58514 ms)
+  inerter (b = 0.564727 kg)
+  friction (k = 114.23 N/mm, uy = 26.576 um)
+  friction (k = 146.809 N/mm, fy = 32.3679 N)
+  friction (k = 380.166 N/mm, fy = 6.78928 N)
+  spring (k = 10.6157 N/mm)
+  maxwell (k = 81.5424 N/mm, tau = 5.89151 ms)
+  spring (k = 113.919 N/mm)
+  maxwell (k = 20.0432 N/mm, tau = 47.5925 ms)
+  spring (k = 16.5952 N/mm)
+  maxwell (k = 713.098 N/mm, tau = 11.5166 ms)
+  spring (k = 258.933 N/mm)
+  maxwell (k = 51.6768 N/mm, c = 0.244034 N*s/mm)
+  spring (k = 433.339 N/mm)
+})";
+const char* const kFriction = "model m { friction (k = 61.8286 N/mm, fy = 2.85385 N) }";
+const char* const kBoucWen = "model m { bouc_wen (k = 61.8286 N/mm, n = 1.70764, fy = 2.85385 N) }";
+
+void step_cost(benchmark::State& state, const std::string& source) {
+  const lang::Program program = lang::compile_source("bench.rheo", source);
+  const runtime::Network network = runtime::Network::compile(*program.find_model("m"));
+  const runtime::Simulator simulator(network);
+  constexpr int n = 2048;
+  const runtime::StepPlan plan = runtime::StepPlan::make(network, 0.5 / n);
+  std::vector<double> drive(n);
+  for (int k = 0; k < n; ++k)
+    drive[static_cast<std::size_t>(k)] = 1e-3 * static_cast<double>(state.range(0)) * std::sin(2.0 * std::numbers::pi * (k + 1) / n);
+  runtime::State a = simulator.rest_state(), b = a;
+  auto cycle = [&] {
+    for (double u : drive) {
+      benchmark::DoNotOptimize(simulator.step(plan, a, u, b));
+      std::swap(a, b);
+    }
+    a.u = 0.0;
+  };
+  cycle();
+  const runtime::NewtonWork start = plan.tree.work;
+  long steps = 0;
+  for (auto _ : state) {
+    cycle();
+    steps += n;
+  }
+  const auto& work = plan.tree.work;
+  state.counters["s_per_step"] = benchmark::Counter(static_cast<double>(steps), benchmark::Counter::kIsRate | benchmark::Counter::kInvert);
+  state.counters["evaluations_per_step"] = static_cast<double>(work.evaluations - start.evaluations) / static_cast<double>(steps);
+  state.counters["fallbacks"] = static_cast<double>(work.fallbacks - start.fallbacks);
+}
+
+}  // namespace
+
+BENCHMARK_CAPTURE(step_cost, friction, std::string(kFriction))->Arg(50)->Arg(400);
+BENCHMARK_CAPTURE(step_cost, bouc_wen, std::string(kBoucWen))->Arg(50)->Arg(400);
+BENCHMARK_CAPTURE(step_cost, repro03_nested, repro("03_gap_bouc_wen_sundials"))->Arg(50)->Arg(400);
+BENCHMARK_CAPTURE(step_cost, repro03_flat, std::string(kFlat03))->Arg(50)->Arg(400);
+BENCHMARK_CAPTURE(step_cost, repro05_nested, repro("05_fixed_slow_gap_boucwen_inerter"))->Arg(50)->Arg(400);
+BENCHMARK_CAPTURE(step_cost, repro05_flat, std::string(kFlat05))->Arg(50)->Arg(400);
+BENCHMARK_CAPTURE(step_cost, repro06_nested, repro("06_fixed_slow_boucwen_yeoh_friction"))->Arg(50)->Arg(400);
+BENCHMARK_CAPTURE(step_cost, repro06_flat, std::string(kFlat06))->Arg(50)->Arg(400);
+BENCHMARK_CAPTURE(step_cost, repro07_nested, repro("07_fixed_harmonic_noconv_boucwen_maxwell"))->Arg(50)->Arg(400);
+BENCHMARK_CAPTURE(step_cost, repro07_flat, std::string(kFlat07))->Arg(50)->Arg(400);
+BENCHMARK_CAPTURE(step_cost, repro10_nested, repro("10_deep8_fixed_slow"))->Arg(50)->Arg(400);
+BENCHMARK_CAPTURE(step_cost, repro10_flat, std::string(kFlat10))->Arg(50)->Arg(400);
