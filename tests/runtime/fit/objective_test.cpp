@@ -7,6 +7,7 @@
 #include <doctest/doctest.h>
 
 #include <cmath>
+#include <numbers>
 
 using namespace rheo;
 
@@ -32,4 +33,41 @@ TEST_CASE("err (6.1) of the Appendix D model of specimen D") {
   CHECK(err > 5e-4);
   CHECK(err < 2e-3);
   CHECK(runtime::phi(r, 0.5, 0.5) == doctest::Approx(0.5 * runtime::phi(r, 1.0, 1.0)));
+}
+
+TEST_CASE("above a resonance eq. 5.1 compares the stiffness with its sign") {
+  constexpr double deg = std::numbers::pi / 180.0;
+  // Below every resonance: K_th / K_exp - 1 as in eq. 5.1.
+  CHECK(runtime::stiffness_residual(110.0, 20 * deg, 100.0, 10 * deg) == doctest::Approx(0.1));
+  // Both above (phase 180 deg - asin d): -110 / -100 - 1 = 0.1.
+  CHECK(runtime::stiffness_residual(110.0, 160 * deg, 100.0, 150 * deg) == doctest::Approx(0.1));
+  // On opposite sides: -110 / 100 - 1 = -2.1, although |K| and sin(phase) would match.
+  CHECK(runtime::stiffness_residual(110.0, 30 * deg, 100.0, 150 * deg) == doctest::Approx(-2.1));
+  CHECK(runtime::damping_residual(30 * deg, 150 * deg) == doctest::Approx(0.0).epsilon(1e-12));
+  // Noise beyond 180 deg on a nearly undamped mass point: the damping term is left out.
+  CHECK(runtime::damping_residual(170 * deg, 180 * deg) == 0.0);
+}
+
+TEST_CASE("a mass-dominated point written by simulate reads back and scores zero against its model") {
+  const auto program = lang::compile_source("m.rheo",
+                                            "model m {\n  spring s (k = 100 N/mm)\n  dashpot d (c = 0.05 N*s/mm)\n  inerter i (b = 2 kg)\n}\n");
+  const auto net = runtime::Network::compile(*program.find_model("m"));
+  // Resonance at sqrt(k/b)/(2 pi) = sqrt(100 / 0.002)/(2 pi) = 35.6 Hz: 10 Hz below it, 80 Hz above.
+  runtime::HarmonicData data;
+  data.path = "m.csv";
+  for (double f : {10.0, 80.0}) {
+    const double w = 2 * std::numbers::pi * f, storage = 100.0 - 0.002 * w * w, loss = 0.05 * w;
+    data.amplitude.push_back(1.0);
+    data.frequency.push_back(f);
+    data.stiffness.push_back(std::hypot(storage, loss));
+    data.phase.push_back(std::atan2(loss, storage));
+    data.weight.push_back(1.0);
+    data.preload.push_back(0.0);
+    data.rows.push_back(static_cast<int>(data.rows.size()) + 2);
+  }
+  CHECK(data.phase[1] > std::numbers::pi / 2);
+  const auto r = runtime::relative_residuals(data, runtime::simulate_at(net, data, {}));
+  CHECK(std::abs(r.stiffness[0]) < 1e-9);
+  CHECK(std::abs(r.stiffness[1]) < 1e-9);
+  CHECK(std::abs(r.damping[1]) < 1e-9);
 }
