@@ -10,8 +10,8 @@ namespace {
 [[noreturn]] void too_many_terms(const PronyCards& cards) {
   std::string chains;
   for (const auto& c : cards.springpots)
-    chains += fmt::format("{}springpot '{}' ({}:{}:{}) {} modes over {} .. {} Hz", chains.empty() ? "" : ", ", c.path, c.where.file, c.where.line,
-                          c.where.column, c.modes, c.f_low, c.f_high);
+    chains += fmt::format("{}springpot '{}' ({}:{}:{}) {} modes over {:g} .. {:g} Hz", chains.empty() ? "" : ", ", c.path, c.where.file,
+                          c.where.line, c.where.column, c.modes, c.f_low, c.f_high);
   const std::string prefix = cards.springpots.empty() ? "" : error_at(cards.springpots.front().where);
   throw ModelError(fmt::format("{}model '{}' makes {} Prony terms, and ANSYS's TB,PRONY takes at most {} pairs{}; {}", prefix, cards.model,
                                cards.terms.size(), kAnsysMaxPronyPairs, chains.empty() ? "" : fmt::format(" ({})", chains),

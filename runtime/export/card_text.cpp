@@ -76,8 +76,8 @@ std::string card_header(const PronyCards& cards, const MaterialMapping& mapping,
     for (const auto& c : cards.springpots)
       if (c.path == t.element) chain = &c;
     if (chain)
-      line(fmt::format("  springpot {} ({}) -> {}: rheo's Maxwell chain of it, {} modes fitted to k (i w tau)^alpha over {} .. {} Hz", t.element,
-                       at(t.where), term_range(i, n), chain->modes, chain->f_low, chain->f_high));
+      line(fmt::format("  springpot {} ({}) -> {}: rheo's Maxwell chain of it, {} modes standing for k (i w tau)^alpha over {:g} .. {:g} Hz",
+                       t.element, at(t.where), term_range(i, n), chain->modes, chain->f_low, chain->f_high));
     else line(fmt::format("  Maxwell element {} ({}) -> {}", t.element, at(t.where), term_range(i, n)));
     i += n;
   }
