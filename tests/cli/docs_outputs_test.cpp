@@ -1,6 +1,6 @@
 // The files the commands of docs/tutorial.md and README.md write (-o, --output, --report,
-// --plot), and those the examples' `output` lines name, are ignored by git: following the
-// tutorial leaves `git status` clean. Needs git and a checkout; skipped without them.
+// --plot, --abaqus, --ansys), and those the examples' `output` lines name, are ignored by git:
+// following the tutorial leaves `git status` clean. Needs git and a checkout; skipped without them.
 #include "cli_support.hpp"
 
 #include <doctest/doctest.h>
@@ -29,7 +29,7 @@ std::string read_text(const fs::path& path) {
 // The files `$ build/rheo ...` lines of TEXT write, relative to the repository root.
 std::vector<std::string> written_by_commands(const std::string& text) {
   static const std::regex command(R"((?:^|\n)\$ build/rheo ([^\n]*))");
-  static const std::regex destination(R"((?:-o|--output|--report|--plot) ([^\s'`|]+))");
+  static const std::regex destination(R"((?:-o|--output|--report|--plot|--abaqus|--ansys) ([^\s'`|]+))");
   std::vector<std::string> out;
   for (auto c = std::sregex_iterator(text.begin(), text.end(), command); c != std::sregex_iterator(); ++c) {
     const std::string line = (*c)[1];
