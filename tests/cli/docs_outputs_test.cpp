@@ -1,6 +1,7 @@
 // The files the commands of docs/tutorial.md and README.md write (-o, --output, --report,
-// --plot, --abaqus, --ansys), and those the examples' `output` lines name, are ignored by git:
-// following the tutorial leaves `git status` clean. Needs git and a checkout; skipped without them.
+// --plot, --abaqus, --ansys), and those the examples' `output` lines name, are ignored by git: following the
+// tutorial leaves `git status` clean. The commands write into examples/, not the repository
+// root. Needs git and a checkout; skipped without them.
 #include "cli_support.hpp"
 
 #include <doctest/doctest.h>
@@ -45,7 +46,7 @@ bool ignored(const std::string& path) {
 
 }  // namespace
 
-TEST_CASE("every file the tutorial's commands and the examples' output lines write is ignored by git") {
+TEST_CASE("every file the tutorial's commands and the examples' output lines write lies in examples/ and is ignored by git") {
   if (std::system(fmt::format("git -C '{}' rev-parse --is-inside-work-tree >/dev/null 2>&1", RHEO_SOURCE_DIR).c_str()) != 0) {
     MESSAGE("SKIPPED: the source tree is no git checkout");
     return;
@@ -54,6 +55,10 @@ TEST_CASE("every file the tutorial's commands and the examples' output lines wri
   for (const char* doc : {"docs/tutorial.md", "README.md"})
     for (auto& path : written_by_commands(read_text(fs::path(RHEO_SOURCE_DIR) / doc))) outputs.push_back(std::move(path));
   CHECK(outputs.size() >= 10);
+  for (const auto& path : outputs) {
+    CAPTURE(path);
+    CHECK(path.rfind("examples/", 0) == 0);  // not the repository root
+  }
   static const std::regex output_line(R"(\boutput "([^"]+)\")");
   for (const auto& entry : fs::directory_iterator(RHEO_EXAMPLES_DIR))
     if (entry.path().extension() == ".rheo") {
