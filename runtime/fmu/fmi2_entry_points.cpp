@@ -20,6 +20,7 @@
 #include <cstring>
 #include <memory>
 #include <new>
+#include <set>
 #include <string>
 
 namespace {
@@ -32,8 +33,24 @@ constexpr const char* kErrorCategory = "logStatusError";
 struct Instance {
   std::string name;
   fmi2CallbackFunctions callbacks{};
-  bool logging = false;
   std::unique_ptr<CoSimulation> cosimulation;
+  // The FMU states handed to the host and not yet freed: a state passed back is checked against
+  // them, so that a stale or foreign pointer is an error, not a crash. Freed with the instance.
+  std::set<Snapshot*> states;
+
+  ~Instance() {
+    for (Snapshot* s : states) delete s;
+  }
+  Snapshot* new_state(Snapshot s) {
+    auto owned = std::make_unique<Snapshot>(std::move(s));
+    states.insert(owned.get());
+    return owned.release();
+  }
+  Snapshot& state(fmi2FMUstate handle) {
+    const auto found = states.find(static_cast<Snapshot*>(handle));
+    if (found == states.end()) throw rheo::UsageError("FMUstate is not a state this instance gave out, or was freed");
+    return **found;
+  }
 };
 
 std::string escaped(const std::string& text) {
@@ -90,18 +107,18 @@ extern "C" {
 const char* fmi2GetTypesPlatform(void) { return fmi2TypesPlatform; }
 const char* fmi2GetVersion(void) { return fmi2Version; }
 
-fmi2Status fmi2SetDebugLogging(fmi2Component c, fmi2Boolean loggingOn, size_t nCategories, const fmi2String categories[]) {
-  return guarded(c, "fmi2SetDebugLogging", [&](Instance& i) {
+// Errors are logged whatever loggingOn says, and nothing else is: the call checks the categories.
+fmi2Status fmi2SetDebugLogging(fmi2Component c, fmi2Boolean /*loggingOn*/, size_t nCategories, const fmi2String categories[]) {
+  return guarded(c, "fmi2SetDebugLogging", [&](Instance&) {
     require_array(categories, nCategories, "categories");
     for (size_t k = 0; k < nCategories; ++k)
       if (!categories[k] || std::strcmp(categories[k], kErrorCategory) != 0)
         throw rheo::UsageError(fmt::format("unknown log category '{}'; the FMU logs {}", categories[k] ? categories[k] : "(null)", kErrorCategory));
-    i.logging = loggingOn != fmi2False;
   });
 }
 
 fmi2Component fmi2Instantiate(fmi2String instanceName, fmi2Type fmuType, fmi2String fmuGUID, fmi2String fmuResourceLocation,
-                              const fmi2CallbackFunctions* functions, fmi2Boolean /*visible*/, fmi2Boolean loggingOn) {
+                              const fmi2CallbackFunctions* functions, fmi2Boolean /*visible*/, fmi2Boolean /*loggingOn*/) {
   const fmi2CallbackLogger logger = functions ? functions->logger : nullptr;
   fmi2ComponentEnvironment environment = functions ? functions->componentEnvironment : nullptr;
   const char* name = instanceName ? instanceName : "";
@@ -112,7 +129,6 @@ fmi2Component fmi2Instantiate(fmi2String instanceName, fmi2Type fmuType, fmi2Str
     auto instance = std::make_unique<Instance>();
     instance->name = name;
     if (functions) instance->callbacks = *functions;
-    instance->logging = loggingOn != fmi2False;
     instance->cosimulation = rheo::runtime::fmu::load_cosimulation(rheo::runtime::fmu::resource_folder(fmuResourceLocation), fmuGUID, RHEO_VERSION);
     return instance.release();
   } catch (const rheo::UserError& e) {
@@ -180,50 +196,54 @@ fmi2Status fmi2SetString(fmi2Component c, const fmi2ValueReference[], size_t nvr
   return guarded(c, "fmi2SetString", [&](Instance&) { no_variables_of("String", nvr); });
 }
 
-// FMU states: a Snapshot on the heap, owned by the host until fmi2FreeFMUstate.
+// FMU states: Snapshots on the heap, owned by the instance, handed to the host until it frees
+// them (or frees the instance).
 fmi2Status fmi2GetFMUstate(fmi2Component c, fmi2FMUstate* FMUstate) {
   return guarded(c, "fmi2GetFMUstate", [&](Instance& i) {
     require_array(FMUstate, 1, "FMUstate");
-    if (*FMUstate) *static_cast<Snapshot*>(*FMUstate) = i.cosimulation->snapshot();
-    else *FMUstate = new Snapshot(i.cosimulation->snapshot());
+    if (*FMUstate) i.state(*FMUstate) = i.cosimulation->snapshot();
+    else *FMUstate = i.new_state(i.cosimulation->snapshot());
   });
 }
 fmi2Status fmi2SetFMUstate(fmi2Component c, fmi2FMUstate FMUstate) {
-  return guarded(c, "fmi2SetFMUstate", [&](Instance& i) {
-    if (!FMUstate) throw rheo::UsageError("FMUstate is NULL; pass one fmi2GetFMUstate returned");
-    i.cosimulation->restore(*static_cast<const Snapshot*>(FMUstate));
-  });
+  return guarded(c, "fmi2SetFMUstate", [&](Instance& i) { i.cosimulation->restore(i.state(FMUstate)); });
 }
+// FMUstate is the address of the host's handle. A host that passes the handle itself (fmusim
+// 31d7d40 does, restoring a state from a file) gets it freed all the same: a handle is one of
+// the instance's states, which no host's variable is, so the two cannot be confused.
 fmi2Status fmi2FreeFMUstate(fmi2Component c, fmi2FMUstate* FMUstate) {
-  return guarded(c, "fmi2FreeFMUstate", [&](Instance&) {
+  return guarded(c, "fmi2FreeFMUstate", [&](Instance& i) {
     if (!FMUstate) return;
-    delete static_cast<Snapshot*>(*FMUstate);
-    *FMUstate = nullptr;
+    auto* handle = static_cast<Snapshot*>(static_cast<void*>(FMUstate));
+    const bool passed_itself = i.states.count(handle) > 0;
+    if (!passed_itself && !*FMUstate) return;
+    if (!passed_itself) handle = &i.state(*FMUstate);
+    i.states.erase(handle);
+    delete handle;
+    if (!passed_itself) *FMUstate = nullptr;
   });
 }
 fmi2Status fmi2SerializedFMUstateSize(fmi2Component c, fmi2FMUstate FMUstate, size_t* size) {
   return guarded(c, "fmi2SerializedFMUstateSize", [&](Instance& i) {
-    if (!FMUstate || !size) throw rheo::UsageError("FMUstate or size is NULL");
-    *size = i.cosimulation->serialize(*static_cast<const Snapshot*>(FMUstate)).size();
+    require_array(size, 1, "size");
+    *size = i.cosimulation->serialize(i.state(FMUstate)).size();
   });
 }
 fmi2Status fmi2SerializeFMUstate(fmi2Component c, fmi2FMUstate FMUstate, fmi2Byte serializedState[], size_t size) {
   return guarded(c, "fmi2SerializeFMUstate", [&](Instance& i) {
-    if (!FMUstate) throw rheo::UsageError("FMUstate is NULL");
-    const std::string bytes = i.cosimulation->serialize(*static_cast<const Snapshot*>(FMUstate));
+    const std::string bytes = i.cosimulation->serialize(i.state(FMUstate));
     if (size < bytes.size())
       throw rheo::UsageError(fmt::format("the buffer holds {} bytes; the state needs {} (fmi2SerializedFMUstateSize)", size, bytes.size()));
     require_array(serializedState, bytes.size(), "serializedState");
     std::memcpy(serializedState, bytes.data(), bytes.size());
   });
 }
+// Always a new state: the standard has the FMU construct one, whatever *FMUstate holds on entry.
 fmi2Status fmi2DeSerializeFMUstate(fmi2Component c, const fmi2Byte serializedState[], size_t size, fmi2FMUstate* FMUstate) {
   return guarded(c, "fmi2DeSerializeFMUstate", [&](Instance& i) {
     require_array(serializedState, size, "serializedState");
     require_array(FMUstate, 1, "FMUstate");
-    Snapshot s = i.cosimulation->deserialize(std::string_view(serializedState, size));
-    if (*FMUstate) *static_cast<Snapshot*>(*FMUstate) = std::move(s);
-    else *FMUstate = new Snapshot(std::move(s));
+    *FMUstate = i.new_state(i.cosimulation->deserialize(std::string_view(serializedState, size)));
   });
 }
 

@@ -176,6 +176,16 @@ TEST_CASE("fmi2 binary: an FMU state serialized to bytes and read back repeats t
   REQUIRE(fmu.fmi2SetFMUstate(c, read) == fmi2OK);
   CHECK(run(60, 120) == first);
   CHECK(fmu.fmi2FreeFMUstate(c, &read) == fmi2OK);
+  CHECK(read == nullptr);
+  // A freed or foreign state is an error, not a crash; a host that passes the state itself to
+  // fmi2FreeFMUstate instead of its address (fmusim 31d7d40) gets it freed.
+  double not_a_state = 0.0;
+  CHECK(fmu.fmi2SetFMUstate(c, &not_a_state) == fmi2Error);
+  REQUIRE(fmu.fmi2GetFMUstate(c, &state) == fmi2OK);
+  CHECK(fmu.fmi2FreeFMUstate(c, static_cast<fmi2FMUstate*>(state)) == fmi2OK);
+  CHECK(fmu.fmi2SetFMUstate(c, state) == fmi2Error);
+  state = nullptr;
+  REQUIRE(fmu.fmi2GetFMUstate(c, &state) == fmi2OK);  // left for fmi2FreeInstance to free
   CHECK(fmu.fmi2Reset(c) == fmi2OK);
   fmu.fmi2FreeInstance(c);
   std::filesystem::remove_all(dir.parent_path());
