@@ -30,10 +30,10 @@ const char* phase_name(Phase p) {
 // step sizes up.
 bool same_time(double a, double b, double h) { return std::abs(a - b) <= 1e-9 * std::max({std::abs(a), std::abs(b), h}); }
 
-// A jump of the input within a few ulps of where the terminal is: rounding, not a jump.
+// A jump of the input within a few ulps of where the terminal is (8 epsilon of the larger
+// magnitude: 4 to 8 ulps): rounding, not a jump.
 bool rounding_only(double from, double to) {
-  const double m = std::max(std::abs(from), std::abs(to));
-  return std::abs(to - from) <= 4.0 * (std::nextafter(m, std::numeric_limits<double>::infinity()) - m);
+  return std::abs(to - from) <= 8.0 * std::numeric_limits<double>::epsilon() * std::max(std::abs(from), std::abs(to));
 }
 
 }  // namespace
@@ -49,6 +49,7 @@ CoSimulation::CoSimulation(const std::string& file_name, std::string_view source
   }
   variables_ = fmu_variables(*model_);
   compiled_ = std::make_unique<Network>(Network::compile(*model_));
+  root_only_ = compiled_->topology().subtrees.empty();
   now_.parameters = compiled_->parameters();
 }
 
@@ -113,6 +114,11 @@ void CoSimulation::reset() {
 }
 
 void CoSimulation::set_real(unsigned reference, double value) {
+  // The input, between steps: what a host sets every step.
+  if (reference == kInputU && now_.phase == Phase::stepping && std::abs(value) <= lang::max_amplitude) {
+    now_.input = value;
+    return;
+  }
   const Variable& v = variable(reference);
   switch (v.causality) {
     case Causality::output: throw UsageError(fmt::format("{} is the FMU's output: it cannot be set", v.name));
@@ -136,8 +142,9 @@ void CoSimulation::set_real(unsigned reference, double value) {
 }
 
 double CoSimulation::get_real(unsigned reference) const {
-  const Variable& v = variable(reference);
   const bool started = now_.phase == Phase::stepping || now_.phase == Phase::terminated;
+  if (reference == kOutputF && started) return now_.state.force;  // what a host reads every step
+  const Variable& v = variable(reference);
   switch (v.causality) {
     case Causality::input: return now_.input;
     case Causality::output:
@@ -152,6 +159,10 @@ double CoSimulation::get_real(unsigned reference) const {
 }
 
 void CoSimulation::set_input_derivative(unsigned reference, int order, double value) {
+  if (reference == kInputU && order == 1 && now_.phase == Phase::stepping && std::isfinite(value)) {  // every step, with ramps
+    now_.input_rate = value;
+    return;
+  }
   const Variable& v = variable(reference);
   if (v.causality != Causality::input) throw UsageError(fmt::format("{} is not an input: only u takes input derivatives", v.name));
   if (order != 1)
@@ -176,7 +187,8 @@ void CoSimulation::prepare_plans(double h) {
   plans_.held.dashpot_c_over_dt = 0.0;
 }
 
-void CoSimulation::do_step(double t, double h) {
+// Why a step cannot be taken (the same tests as do_step's, one at a time, off its path).
+void CoSimulation::refuse_step(double t, double h) const {
   if (now_.phase != Phase::stepping) throw UsageError(fmt::format("fmi2DoStep is called after initialisation, not {}", phase_name(now_.phase)));
   if (!(h > 0.0) || !std::isfinite(h)) throw UsageError(fmt::format("communication step size {} s: it must be a positive, finite number", h));
   if (!std::isfinite(t) || !same_time(t, now_.time, h))
@@ -188,21 +200,29 @@ void CoSimulation::do_step(double t, double h) {
   if (stop_time_ && !(t + h <= *stop_time_) && !same_time(t + h, *stop_time_, h))
     throw UsageError(fmt::format("a step of {} s from t = {} s ends past the stop time {} s (fmi2SetupExperiment)", h, t, *stop_time_));
   const double u = now_.input, rate = now_.input_rate, target = u + rate * h;
-  if (!(std::abs(target) <= lang::max_amplitude))
-    throw DataError(fmt::format("u = {} mm with du/dt = {} mm/s reaches {} mm at the step's end, outside [-{}, {}] mm", u, rate, target,
-                                lang::max_amplitude, lang::max_amplitude));
+  throw DataError(fmt::format("u = {} mm with du/dt = {} mm/s reaches {} mm at the step's end, outside [-{}, {}] mm", u, rate, target,
+                              lang::max_amplitude, lang::max_amplitude));
+}
+
+void CoSimulation::do_step(double t, double h) {
+  const double u = now_.input, rate = now_.input_rate, target = u + rate * h;
+  const bool ok = now_.phase == Phase::stepping && h > 0.0 && h <= std::numeric_limits<double>::max() && same_time(t, now_.time, h) && t + h > t &&
+                  (!stop_time_ || t + h <= *stop_time_ || same_time(t + h, *stop_time_, h)) && std::abs(target) <= lang::max_amplitude;
+  if (!ok) refuse_step(t, h);
   if (plans_.h == 0.0 || std::abs(h - plans_.h) > 1e-9 * h) prepare_plans(h);  // the tolerance of run_history.cpp
   const State& before = now_.state;
   if (before.u == u || rounding_only(before.u, u)) {
     simulator_->step(plans_.whole, before, target, next_, t + h);
-  } else if (rate == 0.0 && network_->topology().subtrees.empty()) {
+  } else if (rate == 0.0 && root_only_) {
     simulator_->step(plans_.held, before, u, next_, t + h);
   } else {
     const double delta = h * kJumpFraction;
     simulator_->step(plans_.jump, before, u + rate * delta, mid_, t + delta);
     simulator_->step(plans_.rest, mid_, target, next_, t + h);
   }
-  std::swap(now_.state, next_);
+  now_.state.values.swap(next_.values);
+  now_.state.u = next_.u;
+  now_.state.force = next_.force;
   now_.time = t + h;
   now_.input_rate = 0.0;
 }

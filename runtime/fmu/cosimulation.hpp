@@ -101,6 +101,7 @@ class CoSimulation {
   Network network_with(const std::vector<double>& parameters) const;
   void prepare_plans(double h);
   void start_network();
+  [[noreturn]] void refuse_step(double t, double h) const;
 
   std::shared_ptr<const lang::Program> program_;
   const lang::CheckedModel* model_ = nullptr;
@@ -109,6 +110,7 @@ class CoSimulation {
   std::unique_ptr<Network> network_;   // with the values set, from the end of initialisation
   std::unique_ptr<Simulator> simulator_;
   Plans plans_;
+  bool root_only_ = false;  // every element in the model's body: a held input's jump is exact in one pass
   Snapshot now_;
   State mid_, next_;
   double start_time_ = 0.0;

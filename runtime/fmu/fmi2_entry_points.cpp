@@ -90,10 +90,14 @@ fmi2Status guarded(fmi2Component c, const char* function, Body&& body) {
   return fmi2Error;
 }
 
+[[noreturn, gnu::noinline, gnu::cold]] void null_array(const char* what, size_t n) {
+  throw rheo::UsageError(fmt::format("{} is NULL for {} values", what, n));
+}
+
 // ARRAY, of N elements, may be null only when N is 0.
 template <class T>
 void require_array(const T* array, size_t n, const char* what) {
-  if (n > 0 && array == nullptr) throw rheo::UsageError(fmt::format("{} is NULL for {} values", what, n));
+  if (n > 0 && array == nullptr) null_array(what, n);
 }
 
 void no_variables_of(const char* type, size_t n) {
