@@ -23,7 +23,16 @@
 #include <set>
 #include <string>
 
+namespace __gnu_cxx {
+void __freeres();  // libstdc++'s own (what valgrind calls at exit); no header declares it
+}
+
 namespace {
+
+// libstdc++, linked in statically, allocates a 72 KB arena for exceptions thrown when memory runs
+// out (its emergency pool) when the library is loaded. Freed when the host unloads the FMU, so
+// that loading and unloading it does not lose the arena each time.
+[[gnu::destructor]] void free_exception_pool() { __gnu_cxx::__freeres(); }
 
 using rheo::runtime::fmu::CoSimulation;
 using rheo::runtime::fmu::Snapshot;
