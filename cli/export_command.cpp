@@ -7,8 +7,12 @@
 #include "runtime/export/fmu_export.hpp"
 #include "runtime/io/output.hpp"
 
+#include <fcntl.h>
 #include <fmt/format.h>
+#include <unistd.h>
 
+#include <cerrno>
+#include <cstring>
 #include <filesystem>
 #include <iostream>
 #include <memory>
@@ -23,6 +27,21 @@ struct Options {
   int fmi = 2;
 };
 
+// DataError unless a file can be created beside PATH (the write's temporary file): a missing or
+// read-only folder, found before any work. Probes with a file of its own, removed at once.
+void check_folder_takes_files(const std::string& path) {
+  runtime::check_output_destination(path);
+  if (path == "-") return;
+  const std::filesystem::path folder = std::filesystem::path(path).parent_path().empty() ? "." : std::filesystem::path(path).parent_path();
+  const std::string probe = (folder / fmt::format(".rheo-export-probe-{}", ::getpid())).string();
+  const int fd = ::open(probe.c_str(), O_WRONLY | O_CREAT | O_EXCL, 0600);
+  if (fd < 0)
+    throw runtime::DataError(
+        fmt::format("{}: error: cannot create a file in {} ({}); choose a folder you can write to", path, folder.string(), std::strerror(errno)));
+  ::close(fd);
+  ::unlink(probe.c_str());
+}
+
 // The FMU of the chosen model, written atomically to o.fmu: a destination that cannot be written
 // is found before any work, and a failed export leaves no file there.
 int export_fmu(const Options& o) {
@@ -31,7 +50,7 @@ int export_fmu(const Options& o) {
         fmt::format("--fmi 3: FMI 3.0 export is not available yet in rheo {}; export FMI 2.0 co-simulation (--fmi 2, the default), which the "
                     "FMI 3.0 hosts import as well",
                     RHEO_VERSION));
-  runtime::check_output_destination(o.fmu);
+  check_folder_takes_files(o.fmu);
   const std::string text = lang::read_source(o.file);
   const lang::Program program = lang::compile_source(o.file, text);
   const lang::CheckedModel& model = chosen_model(program, o.file, o.model, "to export", "choose one with --model");

@@ -166,7 +166,7 @@ void CoSimulation::set_input_derivative(unsigned reference, int order, double va
   const Variable& v = variable(reference);
   if (v.causality != Causality::input) throw UsageError(fmt::format("{} is not an input: only u takes input derivatives", v.name));
   if (order != 1)
-    throw UsageError(fmt::format("derivative of order {} of u: the FMU takes the first derivative only (maxInputDerivativeOrder 1)", order));
+    throw UsageError(fmt::format("derivative of order {} of u: the FMU follows the first derivative only (a ramp over the step)", order));
   if (now_.phase != Phase::stepping && now_.phase != Phase::initialization)
     throw UsageError(fmt::format("input derivatives are set between steps; the FMU is {}", phase_name(now_.phase)));
   if (!std::isfinite(value)) throw DataError(fmt::format("du/dt = {} mm/s: it must be a finite number", value));

@@ -59,6 +59,10 @@ TEST_CASE("rheo export --fmu: an unwritable destination is caught before the mod
   CHECK(r.err.find("missing.rheo") == std::string::npos);
   const auto existing = rheo::test::run_rheo(fmt::format("export {}/bushing_d.rheo --fmu {}", RHEO_EXAMPLES_DIR, dir.string()));  // a directory
   CHECK(existing.code == 4);
+  // A folder that exists but takes no new file (as root too: /proc creates none).
+  const auto read_only = rheo::test::run_rheo(fmt::format("export {} --fmu /proc/x.fmu", (dir / "missing.rheo").string()));
+  CHECK(read_only.code == 4);
+  CHECK(read_only.err.find("/proc/x.fmu: error: cannot create a file in /proc") != std::string::npos);
   CHECK(listing(dir).empty());
   fs::remove_all(dir);
 }
