@@ -137,7 +137,8 @@ void CoSimulation::set_real(unsigned reference, double value) {
   if ((v.min && value < *v.min) || (v.max && value > *v.max))
     throw DataError(fmt::format("{} = {} {} lies outside its range [{}, {}] (modelDescription.xml min and max)", v.name, value, v.unit,
                                 v.min ? fmt::format("{}", *v.min) : std::string("-inf"), v.max ? fmt::format("{}", *v.max) : std::string("inf")));
-  if (v.causality == Causality::input) now_.input = value;
+  if (reference == kInputU) now_.input = value;
+  else if (reference == kInputV) now_.input_velocity = value;
   else now_.parameters[static_cast<std::size_t>(v.parameter)] = value;
 }
 
@@ -146,7 +147,7 @@ double CoSimulation::get_real(unsigned reference) const {
   if (reference == kOutputF && started) return now_.state.force;  // what a host reads every step
   const Variable& v = variable(reference);
   switch (v.causality) {
-    case Causality::input: return now_.input;
+    case Causality::input: return reference == kInputU ? now_.input : now_.input_velocity;
     case Causality::output:
       if (started) return now_.state.force;
       return relaxed_state(network_with(now_.parameters), now_.input).force;  // what initialisation will start from
@@ -161,16 +162,18 @@ double CoSimulation::get_real(unsigned reference) const {
 void CoSimulation::set_input_derivative(unsigned reference, int order, double value) {
   if (reference == kInputU && order == 1 && now_.phase == Phase::stepping && std::isfinite(value)) {  // every step, with ramps
     now_.input_rate = value;
+    now_.rate_set = true;
     return;
   }
   const Variable& v = variable(reference);
-  if (v.causality != Causality::input) throw UsageError(fmt::format("{} is not an input: only u takes input derivatives", v.name));
+  if (reference != kInputU) throw UsageError(fmt::format("{} is not the input u: only u takes input derivatives", v.name));
   if (order != 1)
     throw UsageError(fmt::format("derivative of order {} of u: the FMU follows the first derivative only (a ramp over the step)", order));
   if (now_.phase != Phase::stepping && now_.phase != Phase::initialization)
     throw UsageError(fmt::format("input derivatives are set between steps; the FMU is {}", phase_name(now_.phase)));
   if (!std::isfinite(value)) throw DataError(fmt::format("du/dt = {} mm/s: it must be a finite number", value));
   now_.input_rate = value;
+  now_.rate_set = true;
 }
 
 void CoSimulation::prepare_plans(double h) {
@@ -199,13 +202,13 @@ void CoSimulation::refuse_step(double t, double h) const {
   if (!(t + h > t)) throw UsageError(fmt::format("communication step size {} s is below the resolution of the time t = {} s", h, t));
   if (stop_time_ && !(t + h <= *stop_time_) && !same_time(t + h, *stop_time_, h))
     throw UsageError(fmt::format("a step of {} s from t = {} s ends past the stop time {} s (fmi2SetupExperiment)", h, t, *stop_time_));
-  const double u = now_.input, rate = now_.input_rate, target = u + rate * h;
+  const double u = now_.input, rate = now_.rate_set ? now_.input_rate : now_.input_velocity, target = u + rate * h;
   throw DataError(fmt::format("u = {} mm with du/dt = {} mm/s reaches {} mm at the step's end, outside [-{}, {}] mm", u, rate, target,
                               lang::max_amplitude, lang::max_amplitude));
 }
 
 void CoSimulation::do_step(double t, double h) {
-  const double u = now_.input, rate = now_.input_rate, target = u + rate * h;
+  const double u = now_.input, rate = now_.rate_set ? now_.input_rate : now_.input_velocity, target = u + rate * h;
   const bool ok = now_.phase == Phase::stepping && h > 0.0 && h <= std::numeric_limits<double>::max() && same_time(t, now_.time, h) && t + h > t &&
                   (!stop_time_ || t + h <= *stop_time_ || same_time(t + h, *stop_time_, h)) && std::abs(target) <= lang::max_amplitude;
   if (!ok) refuse_step(t, h);
@@ -225,6 +228,7 @@ void CoSimulation::do_step(double t, double h) {
   now_.state.force = next_.force;
   now_.time = t + h;
   now_.input_rate = 0.0;
+  now_.rate_set = false;
 }
 
 void CoSimulation::restore(const Snapshot& s) {

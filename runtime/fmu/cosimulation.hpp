@@ -4,8 +4,8 @@
 //
 // Input path over a communication step [t, t + h] (docs/numerics.md#fmu-input-between-communication-points):
 //   u(s) = u_n + v_n (s - t),
-// u_n the input set before the step, v_n its derivative (fmi2SetRealInputDerivatives; 0 unless
-// set for this step: zero-order hold). Where u_n differs from where the terminal is (the end of
+// u_n the input set before the step, v_n its derivative for this step (fmi2SetRealInputDerivatives)
+// or else the input v as last set (0, its start value: zero-order hold). Where u_n differs from where the terminal is (the end of
 // the last step), the terminal jumps to u_n at t. The kernels are the fixed-step ones of
 // `rheo simulate --solver fixed` (stepping/simulator.hpp), exact for a piecewise-linear drive;
 // a jump is taken
@@ -56,7 +56,9 @@ struct Snapshot {
   Phase phase = Phase::instantiated;
   double time = 0.0;               // s, the current communication point
   double input = 0.0;              // mm, u as last set
-  double input_rate = 0.0;         // mm/s, its derivative for the next step
+  double input_velocity = 0.0;     // mm/s, v as last set
+  double input_rate = 0.0;         // mm/s, u's derivative for the next step, where set
+  bool rate_set = false;           // whether it is (fmi2SetRealInputDerivatives since the last step)
   std::vector<double> parameters;  // the model's, internal units
   State state;                     // the network's at `time` (empty before initialisation ends)
 };
@@ -80,7 +82,7 @@ class CoSimulation {
 
   void set_real(unsigned reference, double value);
   double get_real(unsigned reference) const;
-  // ORDER 1: du/dt [mm/s] of u for the next step (higher orders: UsageError, the FMU declares 1).
+  // ORDER 1: du/dt [mm/s] of u for the next step, in place of v (higher orders: UsageError).
   void set_input_derivative(unsigned reference, int order, double value);
   void do_step(double t, double h);
 

@@ -3,7 +3,8 @@
 //   "rheoFMS1"  magic and format version (8 bytes)
 //   n, name     the model's name (count, bytes)
 //   phase       0 instantiated, 1 initialisation, 2 stepping, 3 terminated
-//   time [s], input u [mm], input_rate du/dt [mm/s], state.u [mm], state.force [N]
+//   time [s], input u [mm], input v [mm/s], input_rate du/dt [mm/s], rate_set (1 or 0), state.u [mm],
+//   state.force [N]
 //   n, values   the model's parameters (internal units)
 //   n, values   the network's state (Topology layout: forces N, elongations mm, ...)
 // A state is read back only by an instance of the same model on the same platform.
@@ -68,7 +69,7 @@ std::string CoSimulation::serialize(const Snapshot& s) const {
   put_count(out, model_->name.size());
   out += model_->name;
   put_count(out, static_cast<std::uint64_t>(s.phase));
-  for (double x : {s.time, s.input, s.input_rate, s.state.u, s.state.force}) put_double(out, x);
+  for (double x : {s.time, s.input, s.input_velocity, s.input_rate, s.rate_set ? 1.0 : 0.0, s.state.u, s.state.force}) put_double(out, x);
   put_doubles(out, s.parameters);
   put_doubles(out, s.state.values);
   return out;
@@ -87,7 +88,9 @@ Snapshot CoSimulation::deserialize(std::string_view bytes) const {
   s.phase = static_cast<Phase>(phase);
   s.time = in.number();
   s.input = in.number();
+  s.input_velocity = in.number();
   s.input_rate = in.number();
+  s.rate_set = in.number() != 0.0;
   s.state.u = in.number();
   s.state.force = in.number();
   s.parameters = in.numbers(model_->parameters.size());

@@ -93,13 +93,24 @@ std::vector<Variable> fmu_variables(const lang::CheckedModel& model) {
                          .min = std::nullopt,
                          .max = std::nullopt,
                          .description = "terminal force at the communication point"});
+  out.push_back(Variable{.name = "v",
+                         .reference = kInputV,
+                         .causality = Causality::input,
+                         .unit = "mm/s",
+                         .start = 0.0,
+                         .min = std::nullopt,
+                         .max = std::nullopt,
+                         .description = "terminal velocity over the next step, for hosts that provide it (0: u is held over the step)"});
   std::map<std::string, lang::ElementKind> kinds;
   collect_kinds(model.root, kinds);
   for (std::size_t i = 0; i < model.parameters.size(); ++i) {
     const lang::Parameter& p = model.parameters[i];
-    if (p.path == "u" || p.path == "F")
+    if (p.path == "u" || p.path == "F" || p.path == "v")
       throw ModelError(fmt::format("{}parameter '{}' of model '{}' has the name of the FMU's {}; rename it to export the model", error_at(p.where),
-                                   p.path, model.name, p.path == "u" ? "input (the displacement u)" : "output (the force F)"));
+                                   p.path, model.name,
+                                   p.path == "u"   ? "input u (the displacement)"
+                                   : p.path == "v" ? "input v (the velocity)"
+                                                   : "output F (the force)"));
     out.push_back(parameter_variable(p, static_cast<int>(i), kinds));
   }
   return out;

@@ -2,7 +2,9 @@
 // that `rheo export` writes and the FMU binary that serves them, so that both number them alike:
 //   value reference 0  u  input  [mm]  the terminal displacement (the other terminal is ground)
 //   value reference 1  F  output [N]   the terminal force at the last communication point
-//   value reference 2 + i              the model's parameter i (CheckedModel::parameters order),
+//   value reference 2  v  input [mm/s] the terminal's velocity over the next step, for hosts that
+//                                      provide it (0, its start: the input u is held)
+//   value reference 3 + i              the model's parameter i (CheckedModel::parameters order),
 //                                      in rheo's internal units (N, mm, s): a literal value is a
 //                                      parameter the host may set until initialisation ends
 //                                      (variability "fixed"), one computed from others (maxwell c
@@ -20,12 +22,13 @@ namespace rheo::runtime::fmu {
 
 inline constexpr unsigned kInputU = 0;
 inline constexpr unsigned kOutputF = 1;
-inline constexpr unsigned kFirstParameter = 2;
+inline constexpr unsigned kInputV = 2;
+inline constexpr unsigned kFirstParameter = 3;
 
 enum class Causality { input, output, parameter, calculated_parameter };
 
 struct Variable {
-  std::string name;  // "u", "F", or the parameter's path ("m1.tau")
+  std::string name;  // "u", "F", "v", or the parameter's path ("m1.tau")
   unsigned reference = 0;
   Causality causality = Causality::parameter;
   std::string unit;  // rheo's internal unit ("N/mm", "N*s/mm"); empty for a plain number
@@ -35,11 +38,11 @@ struct Variable {
   // input's the range of a rig's displacement (lang/limits.hpp).
   std::optional<double> min, max;
   std::string description;
-  int parameter = -1;  // index into CheckedModel::parameters; -1 for u and F
+  int parameter = -1;  // index into CheckedModel::parameters; -1 for u, F and v
 };
 
 // The variables of MODEL in value-reference order. ModelError when a model-level parameter is
-// named `u` or `F`, the names of the FMU's input and output.
+// named `u`, `F` or `v`, the names of the FMU's inputs and output.
 std::vector<Variable> fmu_variables(const lang::CheckedModel& model);
 
 // A fingerprint of what an FMU computes: rheo's version, the model's name and the source text,

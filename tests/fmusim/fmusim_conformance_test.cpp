@@ -159,6 +159,44 @@ TEST_CASE("fmusim runs a Bouc-Wen damper's FMU: valid, silent, and rheo's force 
   MESSAGE(fmt::format("bouc_wen: max |F| {:.6g} N, max difference {:.3g} N ({:.2g} of it)", c.peak, c.worst, c.worst / c.peak));
 }
 
+TEST_CASE("fmusim drives the hydrobushing's FMU with its velocity input v: rheo's force on the linear history within 1e-9") {
+  if (!fmusim_available()) return;
+  // A host that provides the velocity over each step, v_n = (u_{n+1} - u_n)/h, gives the FMU the
+  // piecewise-linear drive that rheo simulates: no lag, one kernel pass per step.
+  const fs::path dir = rheo::test::scratch_directory("fmusim-velocity");
+  std::ofstream(dir / "model.rheo") << example("hydrobushing.rheo")
+                                    << "\nsimulate hydrobushing {\n  history file = \"linear.csv\", solver = fixed\n  output \"rheo.csv\"\n}\n";
+  REQUIRE(rheo::test::run_rheo(fmt::format("export {} --fmu {}", (dir / "model.rheo").string(), (dir / "m.fmu").string())).code == 0);
+  {
+    std::ofstream in(dir / "in.csv"), linear(dir / "linear.csv");
+    in << "\"time\",\"u\",\"v\"\n";
+    linear << "time [s],displacement [mm]\n";
+    for (int n = 0; n <= kSteps; ++n) {
+      const double v = n < kSteps ? (displacement(n + 1) - displacement(n)) / kStep : 0.0;
+      in << fmt::format("{:.17g},{:.17g},{:.17g}\n", n * kStep, displacement(n), v);
+      linear << fmt::format("{:.17g},{:.17g}\n", n * kStep, displacement(n));
+    }
+  }
+  const std::string log = run(
+      fmt::format("cd {} && {} --interface-type cs --logging-on --log-level ok --input-file in.csv --output-interval {} "
+                  "--stop-time {} --output-variable F --output-file fmusim.csv m.fmu",
+                  dir.string(), FMUSIM_BINARY, kStep, kSteps * kStep));
+  CHECK(log.empty());
+  REQUIRE(rheo::test::run_rheo(fmt::format("simulate {}", (dir / "model.rheo").string())).code == 0);
+  const std::vector<double> fmu = column(dir / "fmusim.csv", 1), rheo = column(dir / "rheo.csv", 2);
+  REQUIRE(fmu.size() == static_cast<std::size_t>(kSteps + 1));
+  REQUIRE(rheo.size() == fmu.size());
+  double peak = 0.0, worst = 0.0;
+  for (std::size_t n = 0; n < fmu.size(); ++n) {
+    peak = std::max(peak, std::abs(rheo[n]));
+    worst = std::max(worst, std::abs(fmu[n] - rheo[n]));
+  }
+  MESSAGE(fmt::format("hydrobushing with v: max |F| {:.6g} N, max difference {:.3g} N ({:.2g} of it)", peak, worst, worst / peak));
+  CHECK(peak > 500.0);
+  CHECK(worst <= 1e-9 * peak);
+  fs::remove_all(dir);
+}
+
 TEST_CASE("fmusim continues a run from the FMU state another run saved, bit for bit as if it had not stopped") {
   if (!fmusim_available()) return;
   const fs::path dir = rheo::test::scratch_directory("fmusim-state");

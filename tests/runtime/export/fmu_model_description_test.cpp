@@ -30,6 +30,7 @@ TEST_CASE("fmu description: each unit is defined in SI base units: N = kg m/s^2,
   CHECK(has(xml, "<Unit name=\"N*s/mm\">\n      <BaseUnit kg=\"1\" s=\"-1\" factor=\"1000\"/>"));
   CHECK(has(xml, "<Unit name=\"N*s^2/mm\">\n      <BaseUnit kg=\"1\" factor=\"1000\"/>"));  // inertance: 1 N s^2/mm = 1000 kg
   CHECK(has(xml, "<Unit name=\"s\">\n      <BaseUnit s=\"1\"/>"));
+  CHECK(has(xml, "<Unit name=\"mm/s\">\n      <BaseUnit m=\"1\" s=\"-1\" factor=\"0.001\"/>"));
   // The inerter's 2 kg is 0.002 N*s^2/mm internally.
   CHECK(has(xml, "<Real unit=\"N*s^2/mm\" min=\"2.2250738585072014e-308\" start=\"0.002\"/>"));
 }
@@ -43,13 +44,16 @@ TEST_CASE("fmu description: input, output, parameters and calculated parameters,
             "name=\"F\" valueReference=\"1\" description=\"terminal force at the communication point\" causality=\"output\" "
             "variability=\"continuous\" initial=\"calculated\">\n      <Real unit=\"N\"/>"));
   CHECK(has(xml, "causality=\"parameter\" variability=\"fixed\" initial=\"exact\">\n      <Real unit=\"N/mm\" min=\"1\" max=\"100\" start=\"20\"/>"));
-  CHECK(has(xml, "name=\"m1.c\" valueReference=\"5\""));
+  CHECK(has(xml,
+            "name=\"v\" valueReference=\"2\" description=\"terminal velocity over the next step, for hosts that provide it (0: u is held over "
+            "the step)\" causality=\"input\" variability=\"continuous\">\n      <Real unit=\"mm/s\" start=\"0\"/>"));
+  CHECK(has(xml, "name=\"m1.c\" valueReference=\"6\""));
   CHECK(has(
       xml,
       "causality=\"calculatedParameter\" variability=\"fixed\" initial=\"calculated\">\n      <Real unit=\"N*s/mm\" min=\"2.2250738585072014e-308\"/>"));
-  // Outputs: F (index 2) without direct feedthrough; initial unknowns: F and the calculated m1.c (index 6).
+  // Outputs: F (index 2) without direct feedthrough; initial unknowns: F and the calculated m1.c (index 7).
   CHECK(has(xml, "<Outputs>\n      <Unknown index=\"2\" dependencies=\"\"/>\n    </Outputs>"));
-  CHECK(has(xml, "<InitialUnknowns>\n      <Unknown index=\"2\"/>\n      <Unknown index=\"6\"/>\n    </InitialUnknowns>"));
+  CHECK(has(xml, "<InitialUnknowns>\n      <Unknown index=\"2\"/>\n      <Unknown index=\"7\"/>\n    </InitialUnknowns>"));
   CHECK(has(xml, "canGetAndSetFMUstate=\"true\""));
   CHECK(has(xml, "canSerializeFMUstate=\"true\""));
   CHECK(has(xml, "canInterpolateInputs=\"true\""));

@@ -76,6 +76,27 @@ TEST_CASE("fmu: with input derivatives the input is a ramp: spring + dashpot giv
   CHECK(force(c) == doctest::Approx(20.0 * v * 25 * h).epsilon(1e-12));
 }
 
+TEST_CASE("fmu: the input v makes the step a ramp as long as it is set, and a derivative overrides it for one step") {
+  CoSimulation c = started("model kv { spring s (k = 20 N/mm) dashpot d (c = 3 N*s/mm) }", "kv");
+  const double h = 1e-3, v = 40.0;  // mm/s
+  c.set_real(runtime::fmu::kInputV, v);
+  for (int n = 0; n < 5; ++n) {
+    c.set_real(runtime::fmu::kInputU, v * n * h);
+    c.do_step(n * h, h);
+    CHECK(force(c) == doctest::Approx(20.0 * v * (n + 1) * h + 3.0 * v).epsilon(1e-12));
+  }
+  c.set_real(runtime::fmu::kInputU, v * 5 * h);
+  c.set_input_derivative(runtime::fmu::kInputU, 1, -v);
+  c.do_step(5 * h, h);
+  CHECK(force(c) == doctest::Approx(20.0 * v * 4 * h - 3.0 * v).epsilon(1e-12));
+  c.set_real(runtime::fmu::kInputU, v * 4 * h);  // where the ramp ended: v holds again
+  c.do_step(6 * h, h);
+  CHECK(force(c) == doctest::Approx(20.0 * v * 5 * h + 3.0 * v).epsilon(1e-12));
+  CHECK(c.get_real(runtime::fmu::kInputV) == v);
+  CHECK_THROWS_AS(c.set_input_derivative(runtime::fmu::kInputV, 1, 1.0), UsageError);
+  CHECK_THROWS_AS(c.set_real(runtime::fmu::kInputV, std::numeric_limits<double>::infinity()), DataError);
+}
+
 TEST_CASE("fmu: a jump into a subtree is a ramp over h/2^10 then a hold, as rheo's history run of that path") {
   // Springs k2 and k in series with the dashpot c: a Maxwell arm of K = k k2/(k + k2), tau' = c/K.
   const double k = 100, k2 = 300, c = 1.5, K = k * k2 / (k + k2), tau = c / K, U = 0.2, h = 1e-3;  // tau' = 20 ms

@@ -33,7 +33,7 @@ TEST_CASE("fmu resources: the model loads when the GUID is the resources' own, a
   const std::string guid = runtime::fmu::fmu_guid("9.9.9", "b", source);
   const auto c = runtime::fmu::load_cosimulation(dir.string(), guid, "9.9.9");
   CHECK(c->model().name == "b");
-  CHECK(c->get_real(2) == 3.0);
+  CHECK(c->get_real(runtime::fmu::kFirstParameter) == 3.0);
   CHECK_THROWS_WITH_AS(runtime::fmu::load_cosimulation(dir.string(), guid, "9.9.8"), doctest::Contains("were changed or come from another FMU"),
                        UsageError);
   std::filesystem::remove(dir / runtime::fmu::kModelNameResource);

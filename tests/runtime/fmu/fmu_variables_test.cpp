@@ -24,13 +24,13 @@ const runtime::fmu::Variable& named(const std::vector<runtime::fmu::Variable>& v
 
 }  // namespace
 
-TEST_CASE("fmu variables: u and F first, then every parameter in the model's order, in internal units") {
+TEST_CASE("fmu variables: u, F and v first, then every parameter in the model's order, in internal units") {
   const auto model = test::model_from(
       "model m {\n  maxwell m1 (k = 61.476 N/mm, tau = 4.335 ms)\n  friction f1 (k = 1 kN/mm in [0.1, 5], uy = 101.58 um)\n"
       "  springpot p (k = 10 N/mm, alpha = 0.3, tau = 1 s)\n  yeoh y (D10 = 300 N/mm, D20 = -2 N/mm^3, D30 = 0.1 N/mm^5)\n}",
       "m");
   const auto vs = runtime::fmu::fmu_variables(model);
-  REQUIRE(vs.size() == 2 + model.parameters.size());
+  REQUIRE(vs.size() == 3 + model.parameters.size());
   for (std::size_t i = 0; i < vs.size(); ++i) CHECK(vs[i].reference == i);
   CHECK(vs[0].name == "u");
   CHECK(vs[0].causality == Causality::input);
@@ -38,9 +38,13 @@ TEST_CASE("fmu variables: u and F first, then every parameter in the model's ord
   CHECK(vs[1].name == "F");
   CHECK(vs[1].causality == Causality::output);
   CHECK(vs[1].unit == "N");
+  CHECK(vs[2].name == "v");
+  CHECK(vs[2].causality == Causality::input);
+  CHECK(vs[2].unit == "mm/s");
+  CHECK(vs[2].start == 0.0);
   for (std::size_t i = 0; i < model.parameters.size(); ++i) {
-    CHECK(vs[i + 2].name == model.parameters[i].path);
-    CHECK(vs[i + 2].start == model.parameters[i].value);
+    CHECK(vs[i + 3].name == model.parameters[i].path);
+    CHECK(vs[i + 3].start == model.parameters[i].value);
   }
   // Written units become internal ones: ms -> s, um -> mm, kN/mm -> N/mm.
   CHECK(named(vs, "m1.tau").unit == "s");
@@ -64,7 +68,7 @@ TEST_CASE("fmu variables: u and F first, then every parameter in the model's ord
   CHECK(named(vs, "m1.k").description.find("stiffness of maxwell 'm1', line 2:") == 0);
 }
 
-TEST_CASE("fmu variables: a model-level parameter named u or F is refused, naming where it is written") {
+TEST_CASE("fmu variables: a model-level parameter named u, F or v is refused, naming where it is written") {
   const auto model = test::model_from("model m {\n  param u = 3 N/mm\n  spring s (k = u)\n}", "m");
   CHECK_THROWS_WITH_AS(runtime::fmu::fmu_variables(model), doctest::Contains("test.rheo:2:"), ModelError);
 }
