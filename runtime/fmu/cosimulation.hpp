@@ -5,10 +5,10 @@
 // Input path over a communication step [t, t + h] (docs/numerics.md#fmu-input-between-communication-points):
 //   u(s) = u_n + v_n (s - t),
 // u_n the input set before the step, v_n its derivative for this step (fmi2SetRealInputDerivatives)
-// or else the input v as last set (0, its start value: zero-order hold). Where u_n differs from where the terminal is (the end of
-// the last step), the terminal jumps to u_n at t. The kernels are the fixed-step ones of
-// `rheo simulate --solver fixed` (stepping/simulator.hpp), exact for a piecewise-linear drive;
-// a jump is taken
+// or else the input v as last set (0, its start value: zero-order hold). Where u_n differs from
+// where the terminal is (the end of the last step), the terminal jumps to u_n at t. The kernels
+// are the fixed-step ones of `rheo simulate --solver fixed` (stepping/simulator.hpp), exact for a
+// piecewise-linear drive; a jump is taken
 //   - exactly, where every element sits in the root parallel block and the input is held: the
 //     step's coefficients become those of a jump followed by a hold (a Maxwell arm's
 //     F <- a (F + k du), a root dashpot carries nothing at the step's end), one kernel pass;
