@@ -58,8 +58,8 @@ int export_fmu(const Options& o) {
   const std::string fmu = runtime::exporter::fmu_archive(model, {name, text, RHEO_VERSION});
   runtime::write_output(o.fmu, fmu);
   if (o.fmu != "-")
-    std::cerr << fmt::format("rheo: FMU of model {} (FMI 2.0 co-simulation, {} parameters) written to {} ({} bytes)\n", model.name,
-                             model.parameters.size(), o.fmu, fmu.size());
+    std::cerr << fmt::format("rheo: FMU of model {} (FMI 2.0 co-simulation, {} parameters) written to {}\n", model.name, model.parameters.size(),
+                             o.fmu);
   return runtime::exit_code::ok;
 }
 
