@@ -30,7 +30,7 @@ std::string read_text(const fs::path& path) {
 // The files `$ build/rheo ...` lines of TEXT write, relative to the repository root.
 std::vector<std::string> written_by_commands(const std::string& text) {
   static const std::regex command(R"((?:^|\n)\$ build/rheo ([^\n]*))");
-  static const std::regex destination(R"((?:-o|--output|--report|--plot|--abaqus|--ansys) ([^\s'`|]+))");
+  static const std::regex destination(R"((?:-o|--output|--report|--plot|--abaqus|--ansys|--fmu) ([^\s'`|]+))");
   std::vector<std::string> out;
   for (auto c = std::sregex_iterator(text.begin(), text.end(), command); c != std::sregex_iterator(); ++c) {
     const std::string line = (*c)[1];
