@@ -1,8 +1,11 @@
 // Every example runs through the real binary (the last test case lists them, so none is left
 // out), and its key numbers are checked against closed forms, the documented numbers and the
 // reference data of examples/data (README.md there): the Appendix D models reproduce the
-// noise-free harmonic grids within 0.05 % in stiffness and 0.01 deg in phase, and specimen D's
-// static and quasi-static tests within the stated force noise (0.3 % of the maximum).
+// noise-free harmonic grids within what those files guarantee (1e-5 relative in stiffness and
+// 2e-4 deg in phase of the exact steady state, each written to 4 decimals), and specimen D's
+// static and quasi-static tests within the stated force noise (0.3 % of the maximum). Numbers
+// that come from rheo's own output (the documented errs, the README's row) are regression
+// checks, named so, each beside an independent check of the same quantity.
 #include "runtime/io/history_csv.hpp"
 
 #include <doctest/doctest.h>
@@ -41,24 +44,37 @@ int rheo_run(const std::string& arguments) {
 std::string example(const std::string& name) { return fmt::format("{}/{}", RHEO_EXAMPLES_DIR, name); }
 std::string data(const std::string& name) { return fmt::format("{}/{}", RHEO_DATA_DIR, name); }
 
-void compare_harmonic(const std::string& rheo_file, const std::string& reference) {
+// The worst deviation of the simulated grid of RHEO_FILE from the noise-free REFERENCE, each as
+// a fraction of what the file guarantees: relative STIFFNESS_ACCURACY and PHASE_ACCURACY [deg] of
+// the exact steady state (examples/data/README.md), plus half a unit of the 4th decimal each
+// value is written to (5e-5 N/mm, 5e-5 deg). rheo's closed form is exact to rounding, so a
+// fraction above 1 is an error in rheo, not in the data.
+struct GridDeviation {
+  double stiffness = 0.0, phase = 0.0;  // worst |error| / bound
+};
+GridDeviation compare_harmonic(const std::string& rheo_file, const std::string& reference, double stiffness_accuracy, double phase_accuracy) {
   const fs::path out = scratch() / (fs::path(rheo_file).stem().string() + "_harmonic.csv");
   REQUIRE(rheo_run(fmt::format("simulate {} --protocol harmonic -o {}", example(rheo_file), out.string())) == 0);
   const runtime::Table got = runtime::read_table(out.string());
   const runtime::Table want = runtime::read_table(data(reference));
   REQUIRE(got.rows.size() == want.rows.size());
-  double worst_stiffness = 0.0, worst_phase = 0.0;
+  constexpr double half_digit = 0.5e-4;
+  GridDeviation worst;
   for (std::size_t i = 0; i < want.rows.size(); ++i) {
     REQUIRE(std::abs(got.columns[0][i] - want.columns[0][i]) < 1e-9);  // amplitude
     REQUIRE(std::abs(got.columns[1][i] - want.columns[1][i]) < 1e-9);  // frequency
-    worst_stiffness = std::max(worst_stiffness, std::abs(got.columns[2][i] / want.columns[2][i] - 1.0));
-    worst_phase = std::max(worst_phase, std::abs(got.columns[3][i] - want.columns[3][i]) * 180.0 / M_PI);
+    const double stiffness = want.columns[2][i], phase_deg = want.columns[3][i] * 180.0 / M_PI;
+    worst.stiffness = std::max(worst.stiffness, std::abs(got.columns[2][i] - stiffness) / (stiffness_accuracy * stiffness + half_digit));
+    worst.phase = std::max(worst.phase, std::abs(got.columns[3][i] * 180.0 / M_PI - phase_deg) / (phase_accuracy + half_digit));
   }
   CAPTURE(rheo_file);
-  CHECK(worst_stiffness <= 5e-4);
-  CHECK(worst_phase <= 0.01);
-  MESSAGE(fmt::format("{}: worst stiffness error {:.2e}, worst phase error {:.2e} deg", rheo_file, worst_stiffness, worst_phase));
+  CHECK(worst.stiffness <= 1.0);
+  CHECK(worst.phase <= 1.0);
+  MESSAGE(fmt::format("{}: worst stiffness error {:.2f} and worst phase error {:.2f} of what {} guarantees", rheo_file, worst.stiffness,
+                      worst.phase, reference));
+  return worst;
 }
+void compare_specimen(const std::string& rheo_file, const std::string& reference) { compare_harmonic(rheo_file, reference, 1e-5, 2e-4); }
 
 // Residual of a simulated history against a measured one, RMS relative to the largest force.
 double relative_rms_residual(const std::string& simulated, const std::string& measured) {
@@ -77,10 +93,18 @@ double relative_rms_residual(const std::string& simulated, const std::string& me
 
 }  // namespace
 
-TEST_CASE("specimen A reproduces its reference harmonic grid") { compare_harmonic("specimen_a.rheo", "specimen_A_reference.csv"); }
-TEST_CASE("specimen B reproduces its reference harmonic grid") { compare_harmonic("specimen_b.rheo", "specimen_B_reference.csv"); }
-TEST_CASE("specimen C reproduces its reference harmonic grid") { compare_harmonic("specimen_c.rheo", "specimen_C_reference.csv"); }
-TEST_CASE("specimen D reproduces its reference harmonic grid") { compare_harmonic("specimen_d.rheo", "specimen_D_reference.csv"); }
+TEST_CASE("specimen A reproduces its reference harmonic grid to the file's accuracy") {
+  compare_specimen("specimen_a.rheo", "specimen_A_reference.csv");
+}
+TEST_CASE("specimen B reproduces its reference harmonic grid to the file's accuracy") {
+  compare_specimen("specimen_b.rheo", "specimen_B_reference.csv");
+}
+TEST_CASE("specimen C reproduces its reference harmonic grid to the file's accuracy") {
+  compare_specimen("specimen_c.rheo", "specimen_C_reference.csv");
+}
+TEST_CASE("specimen D reproduces its reference harmonic grid to the file's accuracy") {
+  compare_specimen("specimen_d.rheo", "specimen_D_reference.csv");
+}
 
 TEST_CASE("specimen D static and quasi-static tests agree with the data within its noise") {
   const fs::path dir = scratch();
@@ -127,22 +151,11 @@ TEST_CASE("fitting specimen D to its harmonic and static tests at once brings bo
   CHECK(fs::exists(fitted));
 }
 
-TEST_CASE("examples/hydrobushing.rheo reproduces hydrobushing_reference.csv within 0.2 % and 0.05 deg (SUNDIALS)") {
-  const fs::path out = scratch() / "hydrobushing_harmonic.csv";
-  REQUIRE(rheo_run(fmt::format("simulate {} -o {}", example("hydrobushing.rheo"), out.string())) == 0);
-  const runtime::Table got = runtime::read_table(out.string());
-  const runtime::Table want = runtime::read_table(data("hydrobushing_reference.csv"));
-  REQUIRE(got.rows.size() == want.rows.size());
-  double worst_stiffness = 0.0, worst_phase = 0.0;
-  for (std::size_t i = 0; i < want.rows.size(); ++i) {
-    REQUIRE(std::abs(got.columns[0][i] - want.columns[0][i]) < 1e-9);
-    REQUIRE(std::abs(got.columns[1][i] - want.columns[1][i]) < 1e-9);
-    worst_stiffness = std::max(worst_stiffness, std::abs(got.columns[2][i] / want.columns[2][i] - 1.0));
-    worst_phase = std::max(worst_phase, std::abs(got.columns[3][i] - want.columns[3][i]) * 180.0 / M_PI);
-  }
-  MESSAGE(fmt::format("hydrobushing.rheo: worst stiffness error {:.2e}, worst phase error {:.3f} deg", worst_stiffness, worst_phase));
-  CHECK(worst_stiffness <= 2e-3);
-  CHECK(worst_phase <= 0.05);
+// The event-driven periodic state of the fluid column (solver = auto) is exact; the file is
+// accurate to about 0.06 % and 0.03 deg (examples/data/README.md). dae_protocols_test runs the
+// same grid on IDA.
+TEST_CASE("examples/hydrobushing.rheo reproduces hydrobushing_reference.csv to the file's accuracy, 0.06 % and 0.03 deg") {
+  compare_harmonic("hydrobushing.rheo", "hydrobushing_reference.csv", 6e-4, 0.03);
 }
 
 TEST_CASE("hydrobushing: a coupled topology fits with err (6.1) over 3 times lower than the uncoupled 2 Maxwell + 4 friction model") {
