@@ -7,7 +7,6 @@
 #include "runtime/protocols/harmonic.hpp"
 
 #include "runtime/fit/objective.hpp"
-#include "runtime/network/leaf_kernels.hpp"
 #include "support.hpp"
 
 #include <doctest/doctest.h>
@@ -150,7 +149,7 @@ TEST_CASE("a history from a preloaded start: the relaxed start is fitted, every 
     drive.displacement.push_back(2.0 + 0.8 * std::sin(2.0 * std::numbers::pi * 2.0 * k * 1.25e-3));
   }
   const auto data = test::history_data_of(truth, drive);
-  CHECK(data.history().force.front() == doctest::Approx(runtime::YeohLaw{200, 1.5, 0.05}.force(2.0)).epsilon(1e-14));
+  CHECK(data.history().force.front() == doctest::Approx(test::yeoh_force(200, 1.5, 0.05, 2.0)).epsilon(1e-14));
   const auto result = runtime::fit(start, runtime::bounded_parameters(start), {data}, {});
   CHECK(result.datasets.at(0).err < 1e-7);
   check_recovered(result, truth);
