@@ -16,5 +16,6 @@ Command add_fit_command(CLI::App& app);
 Command add_report_command(CLI::App& app);
 Command add_diagnose_command(CLI::App& app);
 Command add_refine_command(CLI::App& app);
+Command add_export_command(CLI::App& app);
 
 }  // namespace rheo::cli

@@ -188,9 +188,10 @@ Command add_refine_command(CLI::App& app) {
       const dx::Diagnosis& d = rounds.emplace_back(dx::diagnose(source, p->job.data, settings));
       p->progress->finish();
       if (round == 1) std::cout << fmt::format("rheo refine: model {} from {}; gap measure {}\n", source.model, o->fit.file, d.gap_name);
-      std::cout << round_line(round, d) << std::flush;
+      std::cout << round_line(round, d);
       if (d.after)
         for (const std::string& note : runtime::bound_notes(*d.after)) std::cout << "    " << note << "\n";
+      std::cout << std::flush;  // before the next round's stages on standard error, in a log as on a terminal
       source.text = d.refined_text;
       if (d.after) settings.free = free_paths(*d.after);  // the added element's parameters join; a replaced one's leave
       interrupted = d.interrupted;

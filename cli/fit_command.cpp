@@ -128,7 +128,8 @@ Command add_fit_command(CLI::App& app) {
       if (o->json) {
         json_reports.push_back(runtime::fit_report_json(job.description, result));
       } else {
-        std::cout << runtime::fit_report_text(job.description, result) << (k + 1 < jobs.size() ? "\n" : "");
+        // Flushed: the next fit's messages on standard error follow it in a log as on a terminal.
+        std::cout << runtime::fit_report_text(job.description, result) << (k + 1 < jobs.size() ? "\n" : "") << std::flush;
       }
       if (result.interrupted) break;
     }

@@ -204,7 +204,10 @@ struct setting_equals : one<'='> {};
 struct setting : seq<setting_key, sep, must<setting_equals>, sep, must<setting_value>> {};
 struct protocol_kind : identifier {};  // `step` is both a protocol and a keyword
 struct setting_next : if_must<seq<sep, one<','>>, sep, setting> {};
-struct protocol_line : seq<protocol_kind, sep, must<setting>, star<setting_next>> {};
+// `history "drive.csv"`, the file without its key (as a data line writes it): its own message.
+struct protocol_file_key : failure {};
+struct protocol_bare_string : seq<at<one<'"'>>, must<protocol_file_key>> {};
+struct protocol_line : seq<protocol_kind, sep, sor<protocol_bare_string, must<setting>>, star<setting_next>> {};
 struct output_file : string_literal {};
 struct output_line : if_must<kw_output, sep, output_file> {};
 struct directive_line : sor<output_line, protocol_line> {};

@@ -46,6 +46,7 @@ template <> inline constexpr const char* errors::message<range_end> = "expected 
 template <> inline constexpr const char* errors::message<range_step_keyword> = "expected 'step' after the end of the range (FROM .. TO step STEP), found {found}";
 template <> inline constexpr const char* errors::message<range_step> = "expected the step of the range after 'step', found {found}";
 template <> inline constexpr const char* errors::message<setting> = "expected a setting `KEY = VALUE`, found {found}";
+template <> inline constexpr const char* errors::message<protocol_file_key> = "a protocol's file is a setting: write `file = \"NAME.csv\"` (e.g. history file = \"drive.csv\"), found {found}";
 template <> inline constexpr const char* errors::message<setting_equals> = "expected '=' after the setting name, found {found}";
 template <> inline constexpr const char* errors::message<setting_value> = "expected a value, a list [..], a range FROM .. TO step STEP or a \"string\" after '=', found {found}";
 template <> inline constexpr const char* errors::message<output_file> = "expected a file name in double quotes after 'output', found {found}";

@@ -21,8 +21,20 @@ namespace {
 // and may not include each other.
 const std::map<std::string, int>& ranks() {
   static const std::map<std::string, int> r{
-      {"stdlib", 0},      {"lang", 1},       {"runtime/core", 2},      {"runtime/network", 3}, {"runtime/stepping", 4}, {"runtime/closed_form", 4},
-      {"runtime/dae", 4}, {"runtime/io", 4}, {"runtime/protocols", 5}, {"runtime/fit", 6},     {"runtime/report", 7},   {"runtime/diagnosis", 8},
+      {"stdlib", 0},
+      {"lang", 1},
+      {"runtime/core", 2},
+      {"runtime/network", 3},
+      {"runtime/stepping", 4},
+      {"runtime/closed_form", 4},
+      {"runtime/dae", 4},
+      {"runtime/io", 4},
+      {"runtime/protocols", 5},
+      {"runtime/fmu", 5},
+      {"runtime/fit", 6},
+      {"runtime/export", 6},
+      {"runtime/report", 7},
+      {"runtime/diagnosis", 8},
       {"cli", 9},
   };
   return r;

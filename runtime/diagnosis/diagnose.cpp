@@ -278,8 +278,11 @@ class Diagnoser {
     outcome.unresolved = resolved_resonance(trial, *candidate.model, result.network, outcome.element, scales_);
     std::optional<Trial> limit;
     if (trial.shape == Shape::capped_column) limit = resonance_free_limit(trial, *candidate.model, result.network, outcome.element);
+    // A gap just beyond the noise cannot fall by min_improvement; taking it to the noise earns too.
+    const bool to_noise = reaches_noise(d_.gap_before, static_cast<int>(d_.before.free.size()), outcome.gap_after, outcome.parameters, d_.noise,
+                                        d_.residual_terms);
     const bool earns = outcome.unresolved.empty() && outcome.criterion < d_.criterion_before &&
-                       outcome.gap_after <= (1.0 - s_.min_improvement) * d_.gap_before;
+                       (outcome.gap_after <= (1.0 - s_.min_improvement) * d_.gap_before || to_noise);
     if (earns && (!chosen_ || preferred(outcome, d_.candidates[chosen_->candidate], s_.parsimony)))
       chosen_ = Chosen{d_.candidates.size(), trial, std::move(candidate), std::move(result)};
     d_.candidates.push_back(outcome);

@@ -222,4 +222,8 @@ bool systematic(double gap, const NoiseEstimate& noise, int residual_terms, int 
   return noise_ratio(gap, noise, residual_terms, parameters) > 1.0 + std::max(0.25, 3.0 * noise.relative_error);
 }
 
+bool reaches_noise(double gap_before, int parameters_before, double gap_after, int parameters_after, const NoiseEstimate& noise, int residual_terms) {
+  return systematic(gap_before, noise, residual_terms, parameters_before) && !systematic(gap_after, noise, residual_terms, parameters_after);
+}
+
 }  // namespace rheo::runtime::diagnosis

@@ -58,6 +58,11 @@ NoiseEstimate estimate_noise(const FitResult& fit, const std::vector<FitDataSet>
 // Without an estimate (too few neighbours) nothing can be told from noise: false.
 bool systematic(double gap, const NoiseEstimate& noise, int residual_terms, int parameters);
 
+// Whether a candidate took a systematic GAP_BEFORE (P_BEFORE parameters) to the noise
+// (GAP_AFTER with P_AFTER is not systematic): a gap just beyond the noise cannot fall by a fixed
+// share, yet a candidate that leaves only noise explains all of it.
+bool reaches_noise(double gap_before, int parameters_before, double gap_after, int parameters_after, const NoiseEstimate& noise, int residual_terms);
+
 // GAP over the floor pure noise would leave for a fit of P parameters to N terms (1: at the noise).
 double noise_ratio(double gap, const NoiseEstimate& noise, int residual_terms, int parameters);
 

@@ -176,6 +176,7 @@ std::vector<double Trial::*> location_fields(Shape shape) {
     case Shape::capped_maxwell: return {&Trial::time, &Trial::slip};
     case Shape::capped_column: return {&Trial::frequency, &Trial::slip, &Trial::damping_ratio};
     case Shape::tuned_column: return {&Trial::frequency, &Trial::damping_ratio};
+    case Shape::mass:
     case Shape::yeoh:
     case Shape::even_spring: return {};
     case Shape::asymmetric_friction:
@@ -300,6 +301,7 @@ std::vector<Trial> trial_family(Effect effect, const DataScales& s, const std::s
     case Effect::inertia:
       for (double f : log_spaced(s.frequency_low, s.frequency_high, 10))
         for (double zeta : {0.15, 0.5}) add(Shape::tuned_column, 0.0, 0.0, f, zeta);
+      add(Shape::mass, 0.0, 0.0, s.frequency_high, 0.0);
       break;
     case Effect::nonlinear_elasticity: {
       add(Shape::yeoh, 0.0, 0.0, 0.0, 0.0);

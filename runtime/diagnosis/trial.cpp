@@ -75,6 +75,7 @@ std::vector<std::string> trial_statement(const Trial& t, const std::string& name
       column_lines(t, s, lines);
       lines.push_back("}");
       break;
+    case Shape::mass: lines.push_back(fmt::format("inerter {} (b = {})", name, around(inertance(t), 1e-3, "kg"))); break;
     case Shape::asymmetric_friction:
       lines.push_back(fmt::format("friction {} (k = {}, fy_pos = {}, fy_neg = {})", name, k,
                                   around(t.stiffness * t.slip * (1.0 + t.bias), 1.0, "N"), around(t.stiffness * t.slip * (1.0 - t.bias), 1.0, "N")));
@@ -141,6 +142,7 @@ std::string trial_summary(const Trial& t) {
     case Shape::tuned_column:
       return fmt::format("a resonant column (k = {:.4g} N/mm onto an inerter and a dashpot; resonance {:.3g} Hz, damping ratio {:.2g})",
                          t.stiffness, t.frequency, t.damping_ratio);
+    case Shape::mass: return fmt::format("a mass (b = {:.4g} kg: -{:.4g} N/mm at {:.3g} Hz)", inertance(t) * 1e3, t.stiffness, t.frequency);
     case Shape::yeoh:
       return t.replaces.empty()
                  ? fmt::format("a yeoh spring (D10 = {:.4g} N/mm, D20 = {:.4g} N/mm^3, D30 = {:.4g} N/mm^5)", t.stiffness / 2, t.d20, t.d30)
@@ -171,6 +173,7 @@ int added_parameter_count(const Trial& t) {
     case Shape::capped_maxwell: return 3;
     case Shape::capped_column: return 4;
     case Shape::tuned_column: return 3;
+    case Shape::mass: return 1;
     case Shape::yeoh: return t.replaces.empty() ? 3 : 2;
     case Shape::asymmetric_friction: return 3;
     case Shape::even_spring: return t.replaces.empty() ? 2 : 1;

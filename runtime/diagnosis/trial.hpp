@@ -14,6 +14,10 @@
 //                                                            inertia: K*(w) = 1/(1/k + 1/(i w c - b w^2)),
 //                                                            resonance at b = k/(2 pi f_r)^2,
 //                                                            c = 2 zeta sqrt(k b)
+//   mass            inerter (b = k/(2 pi f)^2)               inertia: a mass the drive moves (the part's,
+//                                                            or the rig's not subtracted), K*(w) = -b w^2,
+//                                                            sized by its stiffness k at the highest
+//                                                            measured frequency f
 //   yeoh            yeoh (D10, D20, D30) (eq. 3.3)           nonlinear-elasticity: replaces the root
 //                                                            spring `replaces` (D10 = k/2) or, when
 //                                                            there is none, is added (D10 = k/2 small)
@@ -52,6 +56,7 @@ enum class Shape {
   capped_maxwell,
   capped_column,
   tuned_column,
+  mass,
   yeoh,
   asymmetric_friction,
   even_spring,

@@ -46,8 +46,9 @@ std::pair<const lang::Element*, const lang::Element*> stiffness_owner(const lang
 }
 
 // Why the parameters of GROUP (indices into r.free) are not identifiable: they act only
-// together; for stiffnesses in one series chain, the combination the data fix.
-std::string together_note(const FitResult& r, const std::vector<int>& group) {
+// together, spanning UNDETERMINED directions the data leave free; for stiffnesses in one series
+// chain, the combination the data fix.
+std::string together_note(const FitResult& r, const std::vector<int>& group, int undetermined) {
   std::vector<std::string> paths, names;
   const lang::Element* chain = nullptr;
   bool series = true;
@@ -58,10 +59,17 @@ std::string together_note(const FitResult& r, const std::vector<int>& group) {
     series = series && element != nullptr && block->kind == lang::ElementKind::series && (chain == nullptr || chain == block);
     if (element != nullptr) chain = block, names.push_back(element->name);
   }
-  std::string out = fmt::format("  not identifiable: {} act only together; the data determine one combination of them", fmt::join(paths, " and "));
-  if (series && group.size() == 2) out += fmt::format(" (in series: only {0} {1}/({0} + {1}))", names[0], names[1]);
-  else if (series) out += fmt::format(" (in series: only 1/(1/{}))", fmt::join(names, " + 1/"));
-  return out + ": fix all but one of them\n";
+  const int size = static_cast<int>(group.size()), determined = size - undetermined;
+  if (determined <= 0)
+    return fmt::format("  not identifiable: {} act only together; the data determine none of their combinations: fix them\n",
+                       fmt::join(paths, " and "));
+  std::string out = determined == 1 ? fmt::format("  not identifiable: {} act only together; the data determine one combination of them",
+                                                  fmt::join(paths, " and "))
+                                    : fmt::format("  not identifiable: {} act only together; the data determine {} combinations of them",
+                                                  fmt::join(paths, " and "), determined);
+  if (determined == 1 && series && size == 2) out += fmt::format(" (in series: only {0} {1}/({0} + {1}))", names[0], names[1]);
+  else if (determined == 1 && series) out += fmt::format(" (in series: only 1/(1/{}))", fmt::join(names, " + 1/"));
+  return out + (determined == 1 ? ": fix all but one of them\n" : fmt::format(": fix {} of them\n", undetermined));
 }
 
 std::string offset_label(const DataSetFit& d) { return fmt::format("data {}: force_offset", d.path); }
@@ -157,7 +165,7 @@ std::string fit_report_text(const FitDescription& d, const FitResult& r) {
   }
   if (r.datasets.size() > 1 && r.phi > 0.0) out += fmt::format("  all harmonic data: phi = {:.6g}, err = {:.4e}\n", r.phi, r.err);
   const auto& s = r.statistics;
-  for (const auto& group : s.together) out += together_note(r, group);
+  for (std::size_t g = 0; g < s.together.size(); ++g) out += together_note(r, s.together[g], s.undetermined.at(g));
   for (std::size_t a = 0; a < s.correlation.size(); ++a)
     for (std::size_t b = a + 1; b < s.correlation[a].size(); ++b)
       if (std::abs(s.correlation[a][b]) > 0.95)

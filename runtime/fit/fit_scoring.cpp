@@ -45,7 +45,7 @@ void append_residuals(const FitDataSet& set, const Prediction& prediction, const
     const CycleMeasures& m = prediction.points[i].measures;
     const double point_scale = d.weight.empty() ? scale : scale * std::sqrt(d.weight[i]);
     if (settings.objective == FitObjective::phi) {
-      out.push_back(point_scale * std::sqrt(settings.stiffness_weight) * (m.stiffness / d.stiffness[i] - 1.0));
+      out.push_back(point_scale * std::sqrt(settings.stiffness_weight) * stiffness_residual(m.stiffness, m.phase, d.stiffness[i], d.phase[i]));
       out.push_back(point_scale * std::sqrt(settings.damping_weight) * damping_residual(m.phase, d.phase[i]));
     } else {
       const std::complex<double> model = std::polar(m.stiffness, m.phase), measured = std::polar(d.stiffness[i], d.phase[i]);

@@ -32,6 +32,53 @@ Eigen::VectorXd evaluate(const std::function<std::vector<double>(const std::vect
   return Eigen::Map<const Eigen::VectorXd>(r.data(), static_cast<Eigen::Index>(r.size()));
 }
 
+// The undetermined subspace U: J's null directions, and each direction along which alone some
+// coordinate's standard error exceeds the practical bound (kUndeterminedRelativeError times its
+// value; `variance_scale` s^2, `bound` per coordinate in z units). P = V_U V_U^T is its projector
+// (independent of the basis chosen inside U). Non-identifiable coordinates i, j act together when
+// |P_ij| > kGroupComponent^2; each connected group C holds round(sum_{i in C} P_ii) undetermined
+// directions, so the data fix |C| minus that many combinations of its parameters.
+void group_undetermined(const Eigen::MatrixXd& v, const Eigen::VectorXd& inverse_square, double variance_scale, const std::vector<double>& bound,
+                        ParameterStatistics& out) {
+  const Eigen::Index n = v.rows();
+  std::vector<bool> in_u(static_cast<std::size_t>(n), false);
+  for (Eigen::Index k = 0; k < n; ++k) {
+    in_u[static_cast<std::size_t>(k)] = inverse_square(k) == 0.0;
+    for (Eigen::Index j = 0; j < n; ++j)
+      if (!out.identifiable[static_cast<std::size_t>(j)] &&
+          variance_scale * v(j, k) * v(j, k) * inverse_square(k) > bound[static_cast<std::size_t>(j)] * bound[static_cast<std::size_t>(j)])
+        in_u[static_cast<std::size_t>(k)] = true;
+  }
+  Eigen::MatrixXd projector = Eigen::MatrixXd::Zero(n, n);
+  for (Eigen::Index k = 0; k < n; ++k)
+    if (in_u[static_cast<std::size_t>(k)]) projector += v.col(k) * v.col(k).transpose();
+  std::vector<int> component(static_cast<std::size_t>(n), -1);
+  int components = 0;
+  for (Eigen::Index seed = 0; seed < n; ++seed) {
+    if (out.identifiable[static_cast<std::size_t>(seed)] || component[static_cast<std::size_t>(seed)] >= 0) continue;
+    std::vector<Eigen::Index> stack{seed};
+    component[static_cast<std::size_t>(seed)] = components;
+    while (!stack.empty()) {
+      const Eigen::Index i = stack.back();
+      stack.pop_back();
+      for (Eigen::Index j = 0; j < n; ++j)
+        if (!out.identifiable[static_cast<std::size_t>(j)] && component[static_cast<std::size_t>(j)] < 0 &&
+            std::abs(projector(i, j)) > kGroupComponent * kGroupComponent)
+          component[static_cast<std::size_t>(j)] = components, stack.push_back(j);
+    }
+    ++components;
+  }
+  for (int c = 0; c < components; ++c) {
+    std::vector<int> group;
+    double trace = 0.0;
+    for (Eigen::Index j = 0; j < n; ++j)
+      if (component[static_cast<std::size_t>(j)] == c) group.push_back(static_cast<int>(j)), trace += projector(j, j);
+    if (group.size() < 2) continue;
+    out.together.push_back(group);
+    out.undetermined.push_back(std::clamp(static_cast<int>(std::lround(trace)), 1, static_cast<int>(group.size())));
+  }
+}
+
 }  // namespace
 
 ParameterStatistics parameter_statistics(const std::function<std::vector<double>(const std::vector<double>&)>& residuals,
@@ -102,15 +149,10 @@ ParameterStatistics parameter_statistics(const std::function<std::vector<double>
     for (std::size_t j = 0; j < n; ++j)
       if (j != i) out.correlation[i][j] = out.correlation[j][i] = nan;
   }
-  // Groups along the null directions and the smallest singular value's.
-  for (Eigen::Index k = 0; k < nn; ++k) {
-    const bool weakest = k == std::min<Eigen::Index>(s.size(), nn) - 1;
-    if (!(k >= s.size() || inverse_square(k) == 0.0 || weakest)) continue;
-    std::vector<int> group;
-    for (Eigen::Index j = 0; j < nn; ++j)
-      if (!out.identifiable[static_cast<std::size_t>(j)] && std::abs(v(j, k)) > kGroupComponent) group.push_back(static_cast<int>(j));
-    if (group.size() >= 2 && std::find(out.together.begin(), out.together.end(), group) == out.together.end()) out.together.push_back(group);
-  }
+  // The practical bound in z units: 1000 |p| / |dp/dz| (1000 for a logarithmic coordinate).
+  std::vector<double> bound;
+  for (std::size_t i = 0; i < n; ++i) bound.push_back(kUndeterminedRelativeError * (logarithmic[i] ? 1.0 : std::abs(z[i])));
+  group_undetermined(v, inverse_square, s2, bound, out);
   return out;
 }
 

@@ -19,9 +19,10 @@
 // identifiable too: the data leave it free within any range a user cares about (a direction
 // the finite differences of a time-stepped or event-driven response resolve only to their
 // noise, as two stiffnesses in series, r = +-1; #22 item 7).
-// Groups: the non-identifiable coordinates that share a direction of J's smallest singular
-// values (components above 0.1 of its unit vector): they act only together, and the data fix
-// one combination of them.
+// Groups: the non-identifiable coordinates coupled through the undetermined subspace (J's null
+// directions and, for each practically non-identifiable coordinate, the direction that carries
+// most of its variance): they act only together; a group of g coordinates spanning d
+// undetermined directions leaves the data g - d combinations of them (d = g - 1: one).
 // Parameter space (delta method): p_j = exp(z_j) for logarithmic coordinates, else p_j = z_j,
 //   SE(p_j) = |dp_j/dz_j| sqrt(Cov_z,jj),  dp/dz = p_j (log) or 1,
 //   correlation(p_i, p_j) = Cov_z,ij / sqrt(Cov_z,ii Cov_z,jj)  (invariant under the monotone
@@ -41,6 +42,7 @@ struct ParameterStatistics {
                                                  // (and where a variance is 0: a perfect fit)
   std::vector<bool> identifiable;
   std::vector<std::vector<int>> together;  // groups (2 or more) of non-identifiable coordinates that act only together
+  std::vector<int> undetermined;           // per group: the undetermined directions it spans, 1..size
   int rank = 0;                            // numerical rank of J
   int residuals = 0;                       // m
   bool has_noise_estimate() const { return residuals > rank; }

@@ -12,7 +12,12 @@
 namespace rheo::runtime {
 
 double damping_residual(double model_phase, double measured_phase) {
-  return measured_phase > 0.0 ? std::sin(model_phase) / std::sin(measured_phase) - 1.0 : 0.0;
+  return measured_phase > 0.0 && measured_phase < std::numbers::pi ? std::sin(model_phase) / std::sin(measured_phase) - 1.0 : 0.0;
+}
+
+double stiffness_residual(double model_stiffness, double model_phase, double measured_stiffness, double measured_phase) {
+  const auto signed_stiffness = [](double stiffness, double phase) { return std::cos(phase) < 0.0 ? -stiffness : stiffness; };
+  return signed_stiffness(model_stiffness, model_phase) / signed_stiffness(measured_stiffness, measured_phase) - 1.0;
 }
 
 std::vector<std::string> damping_left_out(const HarmonicData& data) {
@@ -23,6 +28,11 @@ std::vector<std::string> damping_left_out(const HarmonicData& data) {
           fmt::format("{}:{}: phase {:g} deg <= 0 (noise on a nearly elastic point): its damping term is left out of "
                       "eq. 5.1, which divides by sin(phase)",
                       data.path, data.rows[i], data.phase[i] * 180.0 / std::numbers::pi));
+    else if (!(data.phase[i] < std::numbers::pi))
+      notes.push_back(
+          fmt::format("{}:{}: phase {:g} deg >= 180 (noise on a nearly undamped mass-dominated point): its damping term is left "
+                      "out of eq. 5.1, which divides by sin(phase)",
+                      data.path, data.rows[i], data.phase[i] * 180.0 / std::numbers::pi));
   return notes;
 }
 
@@ -30,7 +40,7 @@ RelativeResiduals relative_residuals(const HarmonicData& data, const std::vector
   if (model.size() != data.size()) throw std::logic_error("model and data have different numbers of points");
   RelativeResiduals r;
   for (std::size_t i = 0; i < data.size(); ++i) {
-    r.stiffness.push_back(model[i].measures.stiffness / data.stiffness[i] - 1.0);
+    r.stiffness.push_back(stiffness_residual(model[i].measures.stiffness, model[i].measures.phase, data.stiffness[i], data.phase[i]));
     r.damping.push_back(damping_residual(model[i].measures.phase, data.phase[i]));
   }
   return r;

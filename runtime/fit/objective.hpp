@@ -14,11 +14,18 @@
 namespace rheo::runtime {
 
 // Eq. 5.1's relative damping error sin(phase_model) / sin(phase_measured) - 1 [-]; 0 (the term
-// left out) where the measured phase [rad] is <= 0, which noise on a nearly elastic point can
-// give (it has no relative error: the quotient changes sign or is infinite).
+// left out) where the measured phase [rad] is <= 0 or >= pi, which noise on a nearly elastic (or
+// nearly undamped mass-dominated) point can give (it has no relative error: the quotient changes
+// sign or is infinite).
 double damping_residual(double model_phase, double measured_phase);
 
-// "FILE:ROW: phase ... <= 0 ..." for each such point of `data`, for the fit's notes.
+// Eq. 5.1's relative stiffness error K_th / K_exp - 1 [-], each stiffness [N/mm] signed by its
+// storage part: a point above a resonance (phase [rad] beyond pi/2, where the thesis definition
+// writes 180 deg - asin d) counts as -K. Below every resonance this is eq. 5.1 unchanged; a model
+// on the other side of a resonance than the data scores <= -1, not a match.
+double stiffness_residual(double model_stiffness, double model_phase, double measured_stiffness, double measured_phase);
+
+// "FILE:ROW: phase ... <= 0 ..." (or >= 180 deg) for each such point of `data`, for the fit's notes.
 std::vector<std::string> damping_left_out(const HarmonicData& data);
 
 struct RelativeResiduals {

@@ -151,14 +151,14 @@ MeanCurve mean_curve(const LoopSamples& loop, double turning_margin) {
   check_sizes(loop, "mean_curve");
   if (!(turning_margin >= 0.0 && turning_margin < 0.5))
     throw std::logic_error(fmt::format("mean_curve: turning margin {} is outside [0, 0.5)", turning_margin));
-  if (loop.displacement.size() < 3) throw DataError("mean_curve: the loop has fewer than 3 samples");
+  if (loop.displacement.size() < 3) throw DataError("the loop has fewer than 3 samples");
   const auto [lo_it, hi_it] = std::minmax_element(loop.displacement.begin(), loop.displacement.end());
   const double u_min = *lo_it, u_max = *hi_it, range = u_max - u_min;
   const auto runs = monotone_runs(loop.displacement);
   const auto loading = full_branch(loop, runs, +1, u_min, u_max);
   const auto unloading = full_branch(loop, runs, -1, u_min, u_max);
   if (!loading || !unloading)
-    throw DataError(fmt::format("mean_curve: no full {} branch from {} mm to {} mm; pass at least one closed cycle",
+    throw DataError(fmt::format("its widest loop has no full {} branch from {} mm to {} mm; a yeoh start needs at least one closed cycle",
                                 loading ? "unloading" : "loading", u_min, u_max));
 
   const double lo = std::max({loading->front().first, unloading->front().first, u_min + turning_margin * range});
@@ -176,7 +176,7 @@ MeanCurve mean_curve(const LoopSamples& loop, double turning_margin) {
   }
   if (curve.displacement.size() < 3)
     throw DataError(
-        fmt::format("mean_curve: only {} common displacements remain between {} mm and {} mm after excluding "
+        fmt::format("only {} common displacements remain between {} mm and {} mm after excluding "
                     "the turning regions; sample the loop more densely or reduce the margin",
                     curve.displacement.size(), lo, hi));
   return curve;

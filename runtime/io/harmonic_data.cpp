@@ -186,8 +186,9 @@ HarmonicData harmonic_data_from_table(const Table& t, const DataReading& reading
     if (!(std::abs(d.preload[i]) <= lang::max_amplitude))
       fail(preload_column,
            fmt::format("preload {:g} mm is beyond the {:g} mm a rig can drive; check the column's unit", d.preload[i], lang::max_amplitude));
-    if (!(d.phase[i] > -std::numbers::pi / 2 && d.phase[i] <= std::numbers::pi / 2))
-      fail(d.phase_column, fmt::format("phase must lie in (-90, 90] deg, got {:g} deg; check the column's unit (deg or rad) and sign convention",
+    // Above a resonance the phase passes 90 deg (thesis: 180 deg - asin d; first harmonic: arg K*).
+    if (!(d.phase[i] > -std::numbers::pi / 2 && d.phase[i] <= std::numbers::pi))
+      fail(d.phase_column, fmt::format("phase must lie in (-90, 180] deg, got {:g} deg; check the column's unit (deg or rad) and sign convention",
                                        d.phase[i] * 180.0 / std::numbers::pi));
   }
   merge_repeated_points(d, reading.duplicates, t, amplitude_column);

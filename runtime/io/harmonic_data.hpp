@@ -3,10 +3,10 @@
 // (`amplitude [mm],frequency [Hz],stiffness [N/mm],phase [deg]`). Converted to the internal
 // system: amplitude mm, frequency Hz, stiffness N/mm, phase rad. Malformed input (missing
 // column, negative or zero amplitude or frequency, non-positive stiffness, a phase outside
-// (-90, 90] deg, negative weight) is a DataError naming file:row:column. Points at the same
+// (-90, 180] deg (beyond 90 deg: above a resonance), negative weight) is a DataError naming file:row:column. Points at the same
 // (amplitude, frequency), relative 1e-9 (overlapping segments of a master curve), are averaged
 // into one, with a note, or are an error under DataReading::duplicates = error. A
-// phase <= 0 (noise on a nearly elastic point) is kept: fits leave its damping term out
+// phase <= 0 or >= 180 deg (noise on a nearly elastic or undamped point) is kept: fits leave its damping term out
 // (objective.hpp, damping_residual).
 // An optional `weight [-]` column weighs each point's residuals in a fit.
 // Columns are found by role (column_roles.hpp); moduli and strains of material data become

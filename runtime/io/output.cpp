@@ -140,6 +140,19 @@ void check_output_destination(const std::string& path) {
   const fs::path parent = target.parent_path().empty() ? fs::path(".") : target.parent_path();
   if (!fs::is_directory(parent, ec))
     throw DataError(fmt::format("{}: error: the output's directory {} does not exist; create it or choose another path", path, parent.string()));
+  // write_output writes a device or pipe in place, and a regular file (through its links) to a
+  // temporary sibling renamed over it: the first needs the file writable, the second its directory.
+  const auto status = fs::status(target, ec);
+  if (fs::exists(status) && !fs::is_regular_file(status)) {
+    if (::access(target.c_str(), W_OK) != 0)
+      throw DataError(fmt::format("{}: error: the output cannot be written ({}); choose another path", path, std::strerror(errno)));
+    return;
+  }
+  const fs::path resolved = fs::exists(status) ? fs::canonical(target, ec) : target;
+  const fs::path directory = ec || resolved.parent_path().empty() ? parent : resolved.parent_path();
+  if (::access(directory.c_str(), W_OK | X_OK) != 0)
+    throw DataError(fmt::format("{}: error: the output's directory {} is not writable ({}); choose another path", path, directory.string(),
+                                std::strerror(errno)));
 }
 
 void write_output(const std::string& path, const std::string& content) {

@@ -31,8 +31,9 @@ std::string rendered(const ProtocolResult& result, lang::OutputFormat format);
 // Writes `content` to `path` atomically ("-" or empty: standard output). Throws DataError.
 void write_output(const std::string& path, const std::string& content);
 
-// DataError unless `path` ("-" or empty: standard output) can be written: a directory, or a
-// parent directory that does not exist, is named with advice. Called before long runs, so
+// DataError unless `path` ("-" or empty: standard output) can be written: a directory, a
+// parent directory that does not exist or is not writable, or a device or pipe that is not, is
+// named with advice. Called before long runs, so
 // that a fit does not end with its result unwritable.
 void check_output_destination(const std::string& path);
 

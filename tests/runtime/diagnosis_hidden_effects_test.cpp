@@ -176,6 +176,21 @@ TEST_CASE("diagnose, harmonic: a resonant column is inertia") {
   require_effect(diagnose(start, {harmonic_measurement(truth, 7)}), dx::Effect::inertia);
 }
 
+// A mass the drive moves (b = 28 kg against ~800 N/mm: resonance 27 Hz): above it the storage
+// stiffness is negative and the phase beyond 90 deg, which eq. 5.1 compares with its sign.
+TEST_CASE("diagnose, harmonic: a mass moved past its resonance is inertia, and the refit finds its inertance") {
+  const std::string truth = "model truth { spring s (k = 700 N/mm)  maxwell m (k = 150 N/mm, tau = 4 ms)  inerter mass (b = 28 kg) }";
+  const std::string start =
+      "model start {\n  spring s (k = 500 N/mm in [10, 10000])\n  maxwell m (k = 100 N/mm in [1, 10000], tau = 10 ms in [0.01, 10000])\n}\n";
+  const runtime::FitDataSet data = harmonic_measurement(truth, 21);
+  CHECK(*std::max_element(data.harmonic().phase.begin(), data.harmonic().phase.end()) > std::numbers::pi / 2);
+  const dx::Diagnosis d = diagnose(start, {data});
+  require_effect(d, dx::Effect::inertia);
+  const auto chosen = std::find_if(d.candidates.begin(), d.candidates.end(), [](const dx::CandidateOutcome& c) { return c.chosen; });
+  REQUIRE(chosen != d.candidates.end());
+  CHECK(chosen->screened.trial.shape == dx::Shape::mass);
+}
+
 TEST_CASE("diagnose, harmonic: data the model already explains gives none") {
   const std::string truth = "model truth { spring s (k = 700 N/mm)  maxwell m (k = 90 N/mm, tau = 6 ms)  friction f (k = 250 N/mm, uy = 60 um) }";
   const std::string start = R"(model start {

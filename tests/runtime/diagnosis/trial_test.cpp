@@ -40,7 +40,7 @@ dx::Trial trial_of(dx::Shape shape) {
 
 TEST_CASE("diagnosis trial: every shape writes a statement that compiles, with bounds around its values") {
   for (dx::Shape shape : {dx::Shape::maxwell, dx::Shape::friction, dx::Shape::capped_maxwell, dx::Shape::capped_column, dx::Shape::tuned_column,
-                          dx::Shape::yeoh, dx::Shape::asymmetric_friction, dx::Shape::even_spring, dx::Shape::gapped_spring,
+                          dx::Shape::mass, dx::Shape::yeoh, dx::Shape::asymmetric_friction, dx::Shape::even_spring, dx::Shape::gapped_spring,
                           dx::Shape::gapped_element, dx::Shape::one_sided_element}) {
     const dx::Trial trial = trial_of(shape);
     const lang::Program program = compiled(trial);
@@ -95,4 +95,18 @@ TEST_CASE("diagnosis trial: the asymmetry and backlash shapes write the elements
   const auto play = dx::trial_statement(trial_of(dx::Shape::gapped_spring), "b", {500.0, 2.0});
   CHECK(play[1].find("width = 0.1 mm") != std::string::npos);    // 2 slip
   CHECK(play[1].find("center = 0.02 mm") != std::string::npos);  // bias slip
+}
+
+TEST_CASE("diagnosis trial: the mass is -k at its reference frequency (closed form K* = -b w^2)") {
+  const dx::Trial trial = trial_of(dx::Shape::mass);
+  const lang::Program program = compiled(trial);
+  const runtime::Network network = runtime::Network::compile(program.models.front());
+  runtime::HarmonicOptions o;
+  o.definition = runtime::HarmonicDefinition::first_harmonic;
+  for (double f : {trial.frequency, 3.0 * trial.frequency}) {
+    const auto point = runtime::simulate_harmonic_point(network, 1.0, f, o);
+    // b is written to 6 significant digits: 1e-5 relative.
+    CHECK(point.measures.stiffness == doctest::Approx(trial.stiffness * (f / trial.frequency) * (f / trial.frequency)).epsilon(1e-5));
+    CHECK(point.measures.phase == doctest::Approx(std::numbers::pi).epsilon(1e-9));
+  }
 }

@@ -132,3 +132,18 @@ TEST_CASE("without a degree of freedom: identifiability and correlation, but no 
   const auto growing = [&](const std::vector<double>&) { return std::vector<double>(static_cast<std::size_t>(3 + calls++), 1.0); };
   CHECK_THROWS_AS(parameter_statistics(growing, {0.0}, {false}), std::logic_error);
 }
+
+TEST_CASE("groups that act together count the combinations the data leave free") {
+  const Line line;
+  // Intercept a = z0 + z2 + z3 and slope b = z1 + z4: {0, 2, 3} span 2 undetermined directions
+  // (one combination fixed), {1, 4} one; the subspace's basis does not matter.
+  const auto st = parameter_statistics([&](const std::vector<double>& z) { return line.residuals(z[0] + z[2] + z[3], z[1] + z[4]); },
+                                       {0.2 * line.a, 0.5 * line.b, 0.3 * line.a, 0.5 * line.a, 0.5 * line.b}, {false, false, false, false, false});
+  CHECK(st.rank == 2);
+  REQUIRE(st.together.size() == 2);
+  REQUIRE(st.undetermined.size() == 2);
+  CHECK(st.together[0] == std::vector<int>{0, 2, 3});
+  CHECK(st.undetermined[0] == 2);
+  CHECK(st.together[1] == std::vector<int>{1, 4});
+  CHECK(st.undetermined[1] == 1);
+}

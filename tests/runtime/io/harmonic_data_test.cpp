@@ -44,7 +44,7 @@ TEST_CASE("malformed harmonic tables are located by file:row:column") {
             .find("h.csv:2:1: error: amplitude must be positive, got -1 mm (column 'amplitude')") == 0);
   CHECK(error_of("amplitude [mm],frequency [Hz],stiffness [N/mm],phase [deg]\n1,0,3,4\n").find("frequency must be positive") != std::string::npos);
   CHECK(error_of("amplitude [mm],frequency [Hz],stiffness [N/mm],phase [deg]\n1,2,3,-90\n")
-            .find("h.csv:2:7: error: phase must lie in (-90, 90] deg, got -90 deg; check the column's unit") == 0);
+            .find("h.csv:2:7: error: phase must lie in (-90, 180] deg, got -90 deg; check the column's unit") == 0);
 }
 
 TEST_CASE("a phase <= 0 from noise on a nearly elastic point is kept, its damping term left out of eq. 5.1 and named") {
