@@ -3,9 +3,6 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
-#include <cstdio>
-#include <cstdlib>
-static const bool kDebug = std::getenv("RHEO_NEWTON_DEBUG") != nullptr;
 
 namespace rheo::runtime {
 namespace {
@@ -15,7 +12,7 @@ constexpr double kRelTol = 1e-13;      // as TreeSolver's solves, relative to ea
 constexpr double kFloor = 1e-9;        // absolute part of a residual's scale [mm or N]
 constexpr double kTangentSpan = 1e12;  // tangents kept within stiffness * 10^(+-12) (NewtonLayout)
 constexpr int kLineSearch = 16;        // halvings of a step before the watchdog takes it whole
-constexpr double kPivot = 0.9;          // share of a chain's compliance that makes a member its pivot
+constexpr double kPivot = 0.9;         // share of a chain's compliance that makes a member its pivot
 constexpr int kWatchdog = 4;           // full steps a solve may take that do not lower the merit
 constexpr double kStagnation = 1e4;    // residuals accepted (in tolerances) where Newton no longer moves
 }  // namespace
@@ -23,7 +20,7 @@ constexpr double kStagnation = 1e4;    // residuals accepted (in tolerances) whe
 void TreeNewton::residual(double r, double scale, double rounding, bool force) {
   // Relative to the node's own scale, and no finer than the subtree's (an inner node that
   // carries next to nothing needs no digits the subtree's force cannot show).
-  const double excess = std::abs(r) / (kRelTol * (scale + (force ? force_scale_ : length_scale_)) + rounding);
+  const double excess = std::abs(r) / (kRelTol * std::max(scale, force ? force_scale_ : length_scale_) + rounding);
   if (!(excess <= 1.0)) converged_ = false;
   worst_ = std::max(worst_, excess);
   const double q = r / (force ? force_scale_ : length_scale_);
@@ -225,7 +222,7 @@ TreeNewton::Lin TreeNewton::member(int n, double force) {
     converged_ = false, worst_ = merit_ = kInf;
     return {de, de, 0.0};
   }
-  residual(f.force - force, std::abs(force) + std::abs(f.force) + kFloor, 4.0 * kEps * std::abs(de) * f.slope, true);
+  residual(f.force - force, std::abs(force) + kFloor, 4.0 * kEps * std::abs(de) * f.slope, true);
   const double floor = layout_.stiffness[i] / kTangentSpan;
   const double compliance = 1.0 / std::clamp(f.slope, floor, kTangentSpan * kTangentSpan * floor);
   const double hat = de + (force - f.force) * compliance;
@@ -357,12 +354,6 @@ bool TreeNewton::solve(int root, double de, double* after, double& force) {
     }
     if (!std::isfinite(merit)) return false;
     update_forward(root, de);
-    if (kDebug) {
-      std::fprintf(stderr, "it %d merit %.3e worst %.3e de %.6g:", iteration, merit, worst_, de);
-      for (std::size_t i = static_cast<std::size_t>(root); i < static_cast<std::size_t>(root + layout_.extent[static_cast<std::size_t>(root)]); ++i)
-        if (layout_.role[i] != NewtonRole::closed && layout_.role[i] != NewtonRole::sum) std::fprintf(stderr, " [%zu %d x=%.17g st=%d step=%.3e]", i, (int)layout_.role[i], w_.x[i], w_.state[i], w_.target[i] - w_.x[i]);
-      std::fprintf(stderr, "\n");
-    }
     const std::size_t first = static_cast<std::size_t>(root), last = first + static_cast<std::size_t>(layout_.extent[first]);
     bool moves = false;
     for (std::size_t i = first; i < last; ++i) {

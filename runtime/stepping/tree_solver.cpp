@@ -500,7 +500,7 @@ void TreeSolver::assign_series(int node, double de, double force, double* after)
 }
 
 double TreeSolver::advance(int node, double de, double* after) const {
-  if (plan_.newton.iterative[static_cast<std::size_t>(node)]) {
+  if (plan_.global_newton && plan_.newton.iterative[static_cast<std::size_t>(node)]) {
     double force = 0.0;
     if (TreeNewton(*this, plan_).advance(node, de, after, force)) return force;
     ++plan_.work.fallbacks;

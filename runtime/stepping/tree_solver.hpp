@@ -61,8 +61,10 @@ struct TreeStepPlan {
   // iterations of tree_newton.hpp); lowered only by tests.
   int iteration_cap = kRefineSteps;
   // Subtrees with series chains or blocks to iterate are solved for all their unknowns at once
-  // (tree_newton.hpp), falling back to the nested solve below.
+  // (tree_newton.hpp), falling back to the nested solve below. `global_newton = false` takes
+  // the nested solve alone: tests compare the two paths.
   NewtonLayout newton;
+  bool global_newton = true;
   // That solve's scratch: a plan serves one thread at a time.
   mutable NewtonWork work;
   void prepare(const Network& network, double dt, double piece);
