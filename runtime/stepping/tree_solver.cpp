@@ -485,7 +485,10 @@ void TreeSolver::assign_series(int node, double de, double force, double* after)
     const Interval b = bounds(child(n, i));
     if (force >= b.hi || force <= b.lo || (n.rigid_when_stuck && de == 0.0)) slipping = child(n, i);
   }
-  // Interior: the last member not a gap takes the rounding remainder.
+  // Interior: the last compliant member takes the rounding remainder, not a gap, nor a block
+  // stuck at zero rate (its rigid members would be stored slipping on a rounding increment).
+  for (int i = n.child_count - 1; i >= 0 && slipping < 0; --i)
+    if (at(child(n, i)).kind != NodeKind::gap && inverse(child(n, i), force).slope > 0.0) slipping = child(n, i);
   for (int i = n.child_count - 1; i >= 0 && slipping < 0; --i)
     if (at(child(n, i)).kind != NodeKind::gap) slipping = child(n, i);
   double taken = 0.0;
