@@ -5,6 +5,10 @@
 //    inerter behind a gap, 06 bouc_wen + yeoh + friction nested, 07 bouc_wen + Maxwell, 10
 //    depth-8 nesting; each beside the same elements all in the model's parallel block;
 //  - a lone friction element and a lone bouc_wen (its k and fy).
+//  - depth 2 ... 8: a chain of Maxwell elements and blocks of friction elements nested `depth`
+//    blocks below the model's body, innermost a bouc_wen (or a spring), against the same
+//    elements all in the model's parallel block; the spring family also by the nested solve
+//    (TreeStepPlan::global_newton = false), whose cost grows about 3^depth.
 // Drive: the harmonic protocol's, u = A sin(2 pi f t) at f = 2 Hz with 2048 steps per cycle,
 // A = Arg um (50: the gaps barely engage; 400: every bouc_wen saturates), after one cycle from
 // rest. Reported per step: time (s_per_step), the global solve's member evaluations
@@ -75,15 +79,33 @@ const char* const kFlat10 = R"(model m {
 const char* const kFriction = "model m { friction (k = 61.8286 N/mm, fy = 2.85385 N) }";
 const char* const kBoucWen = "model m { bouc_wen (k = 61.8286 N/mm, n = 1.70764, fy = 2.85385 N) }";
 
-void step_cost(benchmark::State& state, const std::string& source) {
+// The depth family: `depth` blocks below the model's body, from the outermost a series chain
+// (a block in the body would merge with it), then parallel and series in turn.
+std::string level(int depth, const std::string& inner, int i = 0) {
+  if (i == depth) return inner;
+  if (i % 2 == 0) return "series { maxwell (k = 400 N/mm, tau = 5 ms) " + level(depth, inner, i + 1) + " }";
+  return "parallel { friction (k = 150 N/mm, fy = 3 N) " + level(depth, inner, i + 1) + " }";
+}
+std::string flat_level(int depth, const std::string& inner, int i = 0) {
+  if (i == depth) return inner;
+  return (i % 2 == 0 ? "maxwell (k = 400 N/mm, tau = 5 ms) " : "friction (k = 150 N/mm, fy = 3 N) ") + flat_level(depth, inner, i + 1);
+}
+const char* const kInnerBoucWen = "bouc_wen (k = 200 N/mm, n = 2, fy = 4 N)";
+const char* const kInnerSpring = "spring (k = 300 N/mm)";
+std::string deep(int depth, const char* inner, bool nested) {
+  return "model m { spring (k = 100 N/mm) " + (nested ? level(depth, inner) : flat_level(depth, inner)) + " }";
+}
+
+// Steps one cycle of amplitude `amplitude_um` after one from rest; counters per step.
+void cycles(benchmark::State& state, const std::string& source, double amplitude_um, bool global_newton = true) {
   const lang::Program program = lang::compile_source("bench.rheo", source);
   const runtime::Network network = runtime::Network::compile(*program.find_model("m"));
   const runtime::Simulator simulator(network);
   constexpr int n = 2048;
-  const runtime::StepPlan plan = runtime::StepPlan::make(network, 0.5 / n);
+  runtime::StepPlan plan = runtime::StepPlan::make(network, 0.5 / n);
+  plan.tree.global_newton = global_newton;
   std::vector<double> drive(n);
-  for (int k = 0; k < n; ++k)
-    drive[static_cast<std::size_t>(k)] = 1e-3 * static_cast<double>(state.range(0)) * std::sin(2.0 * std::numbers::pi * (k + 1) / n);
+  for (int k = 0; k < n; ++k) drive[static_cast<std::size_t>(k)] = 1e-3 * amplitude_um * std::sin(2.0 * std::numbers::pi * (k + 1) / n);
   runtime::State a = simulator.rest_state(), b = a;
   auto cycle = [&] {
     for (double u : drive) {
@@ -105,6 +127,13 @@ void step_cost(benchmark::State& state, const std::string& source) {
   state.counters["fallbacks"] = static_cast<double>(work.fallbacks - start.fallbacks);
 }
 
+void step_cost(benchmark::State& state, const std::string& source) { cycles(state, source, static_cast<double>(state.range(0))); }
+
+// Depth state.range(0), 200 um.
+void depth_cost(benchmark::State& state, const char* inner, bool nested, bool global_newton) {
+  cycles(state, deep(static_cast<int>(state.range(0)), inner, nested), 200.0, global_newton);
+}
+
 }  // namespace
 
 BENCHMARK_CAPTURE(step_cost, friction, std::string(kFriction))->Arg(50)->Arg(400);
@@ -119,3 +148,8 @@ BENCHMARK_CAPTURE(step_cost, repro07_nested, repro("07_fixed_harmonic_noconv_bou
 BENCHMARK_CAPTURE(step_cost, repro07_flat, std::string(kFlat07))->Arg(50)->Arg(400);
 BENCHMARK_CAPTURE(step_cost, repro10_nested, repro("10_deep8_fixed_slow"))->Arg(50)->Arg(400);
 BENCHMARK_CAPTURE(step_cost, repro10_flat, std::string(kFlat10))->Arg(50)->Arg(400);
+BENCHMARK_CAPTURE(depth_cost, bouc_wen_nested, kInnerBoucWen, true, true)->DenseRange(2, 8);
+BENCHMARK_CAPTURE(depth_cost, bouc_wen_flat, kInnerBoucWen, false, true)->DenseRange(2, 8);
+BENCHMARK_CAPTURE(depth_cost, spring_nested, kInnerSpring, true, true)->DenseRange(2, 8);
+BENCHMARK_CAPTURE(depth_cost, spring_nested_solve, kInnerSpring, true, false)->DenseRange(2, 8);
+BENCHMARK_CAPTURE(depth_cost, spring_flat, kInnerSpring, false, true)->DenseRange(2, 8);
