@@ -91,10 +91,10 @@ void NewtonLayout::prepare(const Network& network, const std::vector<Interval>& 
         double hi = kInf, lo = -kInf;  // the peaks of softening springs: open ends
         if (m.kind == NodeKind::yeoh) hi = coefficient[c], lo = -coefficient[c];
         if (m.kind == NodeKind::poly_spring) {
-          const PolyLaw law{network.parameter(m.param[0]), network.parameter(m.param[1]), network.parameter(m.param[2])};
-          const PolyLaw::Range r = law.monotone_range();
-          if (std::isfinite(r.hi)) hi = law.force(r.hi);
-          if (std::isfinite(r.lo)) lo = law.force(r.lo);
+          const PolyLaw poly{network.parameter(m.param[0]), network.parameter(m.param[1]), network.parameter(m.param[2])};
+          const PolyLaw::Range r = poly.monotone_range();
+          if (std::isfinite(r.hi)) hi = poly.force(r.hi);
+          if (std::isfinite(r.lo)) lo = poly.force(r.lo);
         }
         if (hi <= d.hi) d.hi = hi, reaches_hi[i] = 0;
         if (lo >= d.lo) d.lo = lo, reaches_lo[i] = 0;

@@ -65,8 +65,8 @@ struct NewtonWork {
   std::vector<double> x, saved, target, input, out, hat, tangent;
   std::vector<double> load;   // a member's or block's force at its iterate [N]
   std::vector<double> slope;  // and its tangent stiffness there [N/mm], not floored
-  // Per unknown: its change over the plan's last step (a chain's force, a block's or member's
-  // elongation increment); per subtree root: that step's increment [mm]. The next start.
+  // Per block or member: its elongation increment over the plan's last step [mm]; per subtree
+  // root: that step's increment [mm]. The next step's start.
   std::vector<double> last, last_de;
   // Per node: the evaluation's regime (NewtonWork::State values).
   std::vector<std::int8_t> state;
