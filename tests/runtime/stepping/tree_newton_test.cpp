@@ -18,9 +18,24 @@
 #include <doctest/doctest.h>
 
 #include <algorithm>
+#include <atomic>
 #include <chrono>
 #include <cmath>
+#include <cstdlib>
+#include <new>
 #include <numbers>
+
+// Every allocation of the test binary counted (the step loop must make none).
+namespace {
+std::atomic<long> allocations{0};
+}  // namespace
+void* operator new(std::size_t size) {
+  ++allocations;
+  if (void* p = std::malloc(size > 0 ? size : 1)) return p;
+  throw std::bad_alloc();
+}
+void operator delete(void* p) noexcept { std::free(p); }
+void operator delete(void* p, std::size_t) noexcept { std::free(p); }
 
 using namespace rheo;
 
@@ -150,4 +165,26 @@ TEST_CASE("tree_newton: random nested networks to depth 6 step as the nested sol
   // inverse is singular at F = 0).
   CHECK(tally.evaluations <= 6 * tally.solves);
   CHECK(tally.fallbacks * 500 <= tally.solves);
+}
+
+TEST_CASE("tree_newton: steps of nested bouc_wen and of depth-8 nesting allocate nothing") {
+  const long counted = allocations.load();
+  int* volatile probe = new int(1);  // the counter counts
+  delete probe;
+  REQUIRE(allocations.load() == counted + 1);
+  for (const char* name : {"06_fixed_slow_boucwen_yeoh_friction", "05_fixed_slow_gap_boucwen_inerter", "10_deep8_fixed_slow"}) {
+    CAPTURE(name);
+    const runtime::Network network = test::network_from(test::read_file(std::string(RHEO_CORPUS_DIR) + "/repro/backends/" + name + ".rheo"), "m");
+    const runtime::Simulator simulator(network);
+    const runtime::StepPlan plan = runtime::StepPlan::make(network, kDt);
+    runtime::State a = simulator.rest_state(), b = a;
+    const long before = allocations.load();
+    for (int k = 1; k <= 2000; ++k) {
+      const double t = kDt * k;
+      (void)simulator.step(plan, a, 0.4 * std::sin(2 * std::numbers::pi * 2 * t), b, t);
+      std::swap(a, b);
+    }
+    CHECK(allocations.load() == before);
+    CHECK(plan.tree.work.solves == 2000);
+  }
 }
