@@ -485,10 +485,15 @@ void TreeSolver::assign_series(int node, double de, double force, double* after)
     const Interval b = bounds(child(n, i));
     if (force >= b.hi || force <= b.lo || (n.rigid_when_stuck && de == 0.0)) slipping = child(n, i);
   }
-  // Interior: the last compliant member takes the rounding remainder, not a gap, nor a block
-  // stuck at zero rate (its rigid members would be stored slipping on a rounding increment).
-  for (int i = n.child_count - 1; i >= 0 && slipping < 0; --i)
-    if (at(child(n, i)).kind != NodeKind::gap && inverse(child(n, i), force).slope > 0.0) slipping = child(n, i);
+  // Interior: the most compliant member takes the rounding remainder (a saturated bouc_wen, not
+  // the spring beside it, which would be stretched beyond fy/k; never a block stuck at zero
+  // rate, whose rigid members would be stored slipping). Linear and capped-linear chains (closed
+  // forms): the last member not a gap.
+  double most = 0.0;
+  for (int i = 0; i < n.child_count && slipping < 0 && !n.linear && !n.capped_linear; ++i)
+    if (at(child(n, i)).kind != NodeKind::gap) most = std::max(most, inverse(child(n, i), force).slope);
+  for (int i = 0; i < n.child_count && slipping < 0 && most > 0.0; ++i)
+    if (at(child(n, i)).kind != NodeKind::gap && inverse(child(n, i), force).slope == most) slipping = child(n, i);
   for (int i = n.child_count - 1; i >= 0 && slipping < 0; --i)
     if (at(child(n, i)).kind != NodeKind::gap) slipping = child(n, i);
   double taken = 0.0;

@@ -6,8 +6,9 @@
 //  - the state against equilibrium and compatibility: in a series chain every member carries the
 //    chain's force and the members' elongations add up to the chain's; in a parallel block the
 //    forces add up and every member has the block's elongation; a spring carries k e.
-// (The nested solve's own states are not compared: near a bouc_wen's saturation its chains give
-// the rounding remainder of F to the last member, a spring stretched beyond fy/k.)
+// (The nested solve's own states are not compared: where a step's elongations are ill-conditioned
+// in its force, a bouc_wen near saturation, they depend on which member takes the rounding
+// remainder.) Seeds 1-7 at 100 models each: forces within 7e-11, states within 7.6e-10.
 #include "runtime/stepping/tree_newton.hpp"
 
 #include "random_network.hpp"
