@@ -25,6 +25,10 @@
 // friction elements within their caps acting as springs of force F_n, sliders rigid) is
 // F(de) = clamp(F0 + S de, cap): the return mapping of eq. 2.9 with the chain as the spring.
 //
+// Subtrees whose chains iterate are first solved for all their unknowns at once by one global
+// Newton iteration (tree_newton.hpp), which evaluates every member once per iteration whatever
+// the depth; the nested solve above is its fallback and, in tests, its second path.
+//
 // No allocation: recursion over the flat node array, state read from `before`.
 //
 // Bounded: every iteration (solve_monotone, the bouc_wen law) has an iteration cap; a solve
