@@ -13,6 +13,7 @@ namespace {
 
 constexpr int kMaxCycles = 60;
 constexpr double kPeriodicTolerance = 1e-11;
+constexpr std::size_t kMaxStoredModes = 128;  // modes kept across solves (~50 kB each)
 
 bool same_branch(const PwlBranch& a, const PwlBranch& b) {
   if (a.internal_nodes != b.internal_nodes || a.odd != b.odd || a.switches != b.switches || a.edges.size() != b.edges.size()) return false;
@@ -28,12 +29,13 @@ bool same_branch(const PwlBranch& a, const PwlBranch& b) {
 bool PwlPeriodicState::solve(const PwlBranch& branch, double u0, double omega) {
   u0_ = u0, omega_ = omega, period_ = 2.0 * std::numbers::pi / omega;
   half_wave_ = branch.odd;
-  if (!same_branch(branch, structures_branch_)) structures_.clear(), structures_branch_ = branch;
+  if (!same_branch(branch, structures_branch_)) structures_.clear(), structures_branch_ = branch, stored_ = 0;
+  if (stored_ > kMaxStoredModes) stored_ = 0;
   span_ = half_wave_ ? 0.5 * period_ : period_;
   const double mirror = half_wave_ ? -1.0 : 1.0;  // the map is X0 -> mirror X(span)
   storage_ = loss_ = 0.0;
   cycles_ = 0;
-  modes_.clear(), grid_step_.clear(), pieces_.clear(), switch_phases_.clear();
+  active_.clear(), pieces_.clear(), switch_phases_.clear();
   Run run{*this, branch, period_ / kPwlGridPerCycle};
 
   const int n = branch.internal_nodes;
@@ -117,15 +119,45 @@ bool PwlPeriodicState::solve(const PwlBranch& branch, double u0, double omega) {
   return false;
 }
 
-PwlVector PwlPeriodicState::state_at_phase(double theta, int& mode, double& sign) const {
-  double t = std::fmod(theta / omega_, period_);
+std::size_t PwlPeriodicState::piece_at_phase(double theta, double& t, double& sign) const {
+  t = std::fmod(theta / omega_, period_);
   if (t < 0.0) t += period_;
   sign = 1.0;
   if (half_wave_ && t >= span_) t -= span_, sign = -1.0;
   auto it = std::upper_bound(pieces_.begin(), pieces_.end(), t, [](double value, const Piece& p) { return value < p.t; });
-  const Piece& piece = it == pieces_.begin() ? pieces_.front() : *std::prev(it);
+  return it == pieces_.begin() ? 0 : static_cast<std::size_t>(std::prev(it) - pieces_.begin());
+}
+
+PwlVector PwlPeriodicState::state_at_phase(double theta, int& mode, double& sign) const {
+  double t = 0.0;
+  const Piece& piece = pieces_[piece_at_phase(theta, t, sign)];
   mode = piece.mode;
   return modes_[static_cast<std::size_t>(mode)].advance(t - piece.t, piece.w);
+}
+
+void PwlPeriodicState::slopes(double theta0, double step, int count, double* first) const {
+  std::size_t current = pieces_.size();  // the piece w is in (none yet)
+  double current_sign = 0.0, current_t = 0.0;
+  int propagator_mode = -1;  // the mode P was built for
+  PwlVector w;
+  PwlRow slope_row;  // force A / omega of the current piece's mode
+  PwlMatrix P;       // that mode's propagator over step / omega
+  for (int j = 0; j <= count; ++j) {
+    double t = 0.0, sign = 1.0;
+    const std::size_t k = piece_at_phase(theta0 + j * step, t, sign);
+    const int mode = pieces_[k].mode;
+    const PwlModeSystem& s = modes_[static_cast<std::size_t>(mode)];
+    if (k == current && sign == current_sign && t > current_t) {
+      if (propagator_mode != mode) P = s.propagator(step / omega_), propagator_mode = mode;
+      w = P * w;
+    } else {
+      w = s.advance(t - pieces_[k].t, pieces_[k].w);
+      slope_row = (s.force * s.A) / omega_;
+      current = k, current_sign = sign;
+    }
+    current_t = t;
+    first[j] = sign * slope_row.dot(w);
+  }
 }
 
 double PwlPeriodicState::force(double theta) const {

@@ -63,6 +63,11 @@ class PwlPeriodicState {
   // At phase theta = w t [rad] of the steady cycle (any real theta): F [N], dF/dtheta, d2F/dtheta2.
   double force(double theta) const;
   void derivatives(double theta, double& first, double& second) const;
+  // dF/dtheta at theta_j = theta0 + j step for j = 0..count, into first[0..count]: the state is
+  // carried from sample to sample by one propagator of its piece (as derivatives(), to
+  // rounding), restarted where a piece or the half period ends. The force's maximum search
+  // samples its slope so (periodic_closed_form.cpp).
+  void slopes(double theta0, double step, int count, double* first) const;
   // Phases in [0, 2 pi) at which a slider or gap switches in the steady cycle (kinks of F).
   const std::vector<double>& switch_phases() const { return switch_phases_; }
 
@@ -79,12 +84,21 @@ class PwlPeriodicState {
   double span_ = 0.0;       // T/2 or T [s]
   double storage_ = 0.0, loss_ = 0.0;
   int cycles_ = 0;
-  std::deque<PwlModeSystem> modes_;  // visited; a deque, so references stay valid as modes are added
+  // The modes built for structures_branch_, the first stored_ of modes_, each for the drive
+  // frequency stored_omega_ and every amplitude (pwl_mode.hpp), kept across solves (the
+  // amplitudes of a grid's frequencies) up to kMaxStoredModes; storage beyond stored_ is
+  // rebuilt in place (a deque, so references stay valid as modes are added). active_: the
+  // modes this solve has visited, searched first.
+  std::deque<PwlModeSystem> modes_;
+  std::vector<double> stored_omega_;
+  std::size_t stored_ = 0;
+  std::vector<int> active_;
   // The drive-independent parts of every mode built for structures_branch_, kept across solves
   // (the points of a grid) until a solve is given another branch (new parameters).
   std::deque<std::pair<PwlModeCode, PwlModeStructure>> structures_;
   PwlBranch structures_branch_;
-  // Per mode, built when first needed: e^{A T/64} stacked over the guards and guard rates it leads to.
+  // Per mode (as modes_), built when first needed: e^{A T/64} stacked over the guards and
+  // guard rates it leads to; empty until then.
   using PwlGridStep = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, 3 * kPwlMaxDim, kPwlMaxDim>;
   std::vector<PwlGridStep> grid_step_;
   std::vector<Piece> pieces_;
@@ -93,6 +107,8 @@ class PwlPeriodicState {
   // The state at phase theta, its mode, and the sign its force takes there (-1 in the
   // mirrored half of an odd branch).
   PwlVector state_at_phase(double theta, int& mode, double& sign) const;
+  // The piece holding phase theta, the time t [s] into the span there and the sign as above.
+  std::size_t piece_at_phase(double theta, double& t, double& sign) const;
 };
 
 }  // namespace rheo::runtime
