@@ -49,16 +49,15 @@ void split_by_eigenvalue(const MatrixXd& S, double reference, MatrixXd& range, M
 
 PwlVector PwlModeSystem::state_at(const PwlVector& X, double t, double u0, double omega) const {
   PwlVector w = from_X * X;
-  const double s = u0 * std::sin(omega * t), c = u0 * std::cos(omega * t);
-  w.segment(nz, nh) += held_drive * s;
+  const double s = std::sin(omega * t), c = std::cos(omega * t);
+  w.segment(nz, nh) += held_drive * (u0 * s);
   w[one()] = 1.0;
   w[sine()] = s;
   w[cosine()] = c;
   return w;
 }
 
-bool build_pwl_mode(const PwlBranch& branch, const PwlModeCode& code, double omega, PwlModeSystem& out, PwlModeStructure* structure) {
-  constexpr double u0 = 1.0;  // the drive's columns of w are u0 s and u0 c: every term below is per unit amplitude
+bool build_pwl_mode(const PwlBranch& branch, const PwlModeCode& code, double u0, double omega, PwlModeSystem& out, PwlModeStructure* structure) {
   PwlModeStructure local;
   PwlModeStructure& st = structure != nullptr ? *structure : local;
   if (st.filled && !st.determinate) return false;
@@ -203,11 +202,11 @@ bool build_pwl_mode(const PwlBranch& branch, const PwlModeCode& code, double ome
   out.guards.resize(0, dim);
   out.transitions.clear();
   std::vector<RowVectorXd> guard_rows;
-  auto guard = [&](const RowVectorXd& row, int which, std::int8_t to, double fixed, double per_amplitude) {
+  auto guard = [&](const RowVectorXd& row, int which, std::int8_t to, double scale) {
     guard_rows.push_back(row);
-    out.transitions.push_back({which, to, fixed, per_amplitude});
+    out.transitions.push_back({which, to, scale});
   };
-  // Guard sizes: a rate w u0 [mm/s], a force largest_k u0 [N], a cap fy [N], a half width w/2 [mm] (at least 1e-9 u0).
+  const double rate_scale = u0 * omega, force_scale = std::max(largest_k * u0, 1e-300);
   int rigid_index = 0;
   std::size_t switch_index = 0;
   for (std::size_t i = 0; i < branch.edges.size(); ++i) {
@@ -228,22 +227,22 @@ bool build_pwl_mode(const PwlBranch& branch, const PwlModeCode& code, double ome
           force = lambda.row(rigid_index++);
           RowVectorXd upper = -force, lower = force;  // fy+ - F >= 0, F + fy- >= 0
           upper[i1] += e.value, lower[i1] += e.cap_neg;
-          guard(upper, which, 1, e.value, 0.0);
-          guard(lower, which, -1, e.cap_neg, 0.0);
+          guard(upper, which, 1, e.value);
+          guard(lower, which, -1, e.cap_neg);
         } else {
           force[i1] = e.slip_force(state);
-          guard(state * elongation * out.A, which, 0, 0.0, omega);
+          guard(state * elongation * out.A, which, 0, rate_scale);
         }
         break;
       case PwlEdgeKind::gap:
         if (state == 0) {
           RowVectorXd upper = -elongation, lower = elongation;  // c + w/2 - e >= 0, e - (c - w/2) >= 0
           upper[i1] += e.center + e.value, lower[i1] += e.value - e.center;
-          guard(upper, which, 1, e.value, 1e-9);
-          guard(lower, which, -1, e.value, 1e-9);
+          guard(upper, which, 1, std::max(e.value, 1e-9 * u0));
+          guard(lower, which, -1, std::max(e.value, 1e-9 * u0));
         } else {
           force = lambda.row(rigid_index++);
-          guard(state * force, which, 0, 1e-300, largest_k);
+          guard(state * force, which, 0, force_scale);
         }
         break;
     }

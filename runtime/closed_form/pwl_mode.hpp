@@ -2,9 +2,7 @@
 // slider stuck or slipping, every gap open or closed. In a mode the branch is a linear system
 // with constant coefficients, written as the augmented linear ODE
 //   w' = A w,   w = (z, h, 1, s, c),   s = sin(w t), c = cos(w t)   (s' = w c, c' = -w s),
-// which its matrix exponential solves exactly: w(t + tau) = e^{A tau} w(t). The drive enters
-// as u0 s and u0 c (the entries of w are those, not s and c): every drive term of the mode is
-// proportional to u0, so a mode built once for (code, w) serves every amplitude.
+// which its matrix exponential solves exactly: w(t + tau) = e^{A tau} w(t).
 //
 // Derivation (node positions x [mm] of the internal nodes, N of them): edge laws in node
 // equilibrium give the second-order system
@@ -32,7 +30,6 @@
 
 #include <Eigen/Dense>
 
-#include <algorithm>
 #include <complex>
 #include <cstdint>
 #include <vector>
@@ -57,10 +54,7 @@ using PwlModeCode = std::vector<std::int8_t>;
 struct PwlTransition {
   int which = 0;
   std::int8_t to = 0;
-  // The size of the guarded quantity (N, mm or mm/s) at amplitude u0 [mm], for tolerances:
-  // max(fixed, per_amplitude u0).
-  double fixed = 1.0, per_amplitude = 0.0;
-  double scale(double u0) const { return std::max(fixed, per_amplitude * u0); }
+  double scale = 1.0;  // the size of the guarded quantity (N, mm or mm/s), for tolerances
 };
 
 // What building a mode computes that depends on neither the amplitude nor the frequency (only
@@ -87,7 +81,7 @@ struct PwlModeSystem {
 
   PwlMatrix A;                             // dim x dim
   PwlMatrix to_X;                          // 2N x dim: X = (x, x') = to_X w
-  PwlMatrix from_X;                        // dim x 2N: w = from_X X + drive terms (rows one, u0 s, u0 c: 0)
+  PwlMatrix from_X;                        // dim x 2N: w = from_X X + drive terms (rows one, s, c: 0)
   PwlVector held_drive;                    // nh: h = R x + rho u, the rho of each rigid edge
   PwlRow force;                            // terminal force [N]
   PwlMatrix guards;                        // rows >= 0 while the mode holds
@@ -123,11 +117,12 @@ struct PwlModeSystem {
   PwlComplexVector gap_zero, gap_plus, gap_minus;  // 1/(mu - lambda_j) for mu = 0, i w, -i w (0 where mu = lambda_j)
 };
 
-// Builds the mode `code` of `branch` for the angular frequency omega [rad/s] (and every
-// amplitude: w holds u0 s and u0 c). False when the mode is indeterminate (a node or direction that nothing but
+// Builds the mode `code` of `branch` for amplitude u0 [mm] and angular frequency omega
+// [rad/s]. False when the mode is indeterminate (a node or direction that nothing but
 // slipping sliders and open gaps holds): such a mode cannot be physical, and the caller
 // treats reaching it as a failure of the event-driven path. STRUCTURE, when given, is used if
 // filled (it must come from the same branch and code) and filled otherwise.
-bool build_pwl_mode(const PwlBranch& branch, const PwlModeCode& code, double omega, PwlModeSystem& out, PwlModeStructure* structure = nullptr);
+bool build_pwl_mode(const PwlBranch& branch, const PwlModeCode& code, double u0, double omega, PwlModeSystem& out,
+                    PwlModeStructure* structure = nullptr);
 
 }  // namespace rheo::runtime

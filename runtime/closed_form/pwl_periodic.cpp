@@ -13,7 +13,7 @@ namespace {
 
 constexpr int kMaxCycles = 60;
 constexpr double kPeriodicTolerance = 1e-11;
-constexpr std::size_t kMaxStoredModes = 128;  // modes kept across solves (~50 kB each)
+constexpr std::size_t kMaxSolved = 2048;  // solves kept per branch (about 1.5 kB each)
 
 bool same_branch(const PwlBranch& a, const PwlBranch& b) {
   if (a.internal_nodes != b.internal_nodes || a.odd != b.odd || a.switches != b.switches || a.edges.size() != b.edges.size()) return false;
@@ -29,14 +29,61 @@ bool same_branch(const PwlBranch& a, const PwlBranch& b) {
 bool PwlPeriodicState::solve(const PwlBranch& branch, double u0, double omega) {
   u0_ = u0, omega_ = omega, period_ = 2.0 * std::numbers::pi / omega;
   half_wave_ = branch.odd;
-  if (!same_branch(branch, structures_branch_)) structures_.clear(), structures_branch_ = branch, stored_ = 0;
-  if (stored_ > kMaxStoredModes) stored_ = 0;
+  if (!same_branch(branch, structures_branch_)) structures_.clear(), structures_branch_ = branch, solved_count_ = 0;
   span_ = half_wave_ ? 0.5 * period_ : period_;
-  const double mirror = half_wave_ ? -1.0 : 1.0;  // the map is X0 -> mirror X(span)
   storage_ = loss_ = 0.0;
   cycles_ = 0;
-  active_.clear(), pieces_.clear(), switch_phases_.clear();
+  mode_count_ = 0, pieces_.clear(), switch_phases_.clear();
   Run run{*this, branch, period_ / kPwlGridPerCycle};
+  for (std::size_t k = 0; k < solved_count_; ++k) {
+    const std::size_t i = (solved_next_ + k) % solved_count_;
+    if (solved_[i].u0 == u0 && solved_[i].omega == omega) {
+      solved_next_ = (i + 1) % solved_count_;
+      return restore(run, solved_[i]);
+    }
+  }
+  const bool ok = shoot(run);
+  remember(ok);
+  return ok;
+}
+
+bool PwlPeriodicState::restore(Run& run, const Solved& solved) {
+  cycles_ = solved.cycles;
+  if (!solved.ok) return false;
+  storage_ = solved.storage, loss_ = solved.loss;
+  switch_phases_ = solved.switch_phases;
+  pieces_ = solved.pieces;
+  thread_local std::vector<int> modes;
+  modes.clear();
+  for (const PwlModeCode& code : solved.codes) {
+    modes.push_back(run.mode_index(code));
+    if (modes.back() < 0) return false;  // not reached: the mode was built when the point was solved
+  }
+  for (Piece& piece : pieces_) piece.mode = modes[static_cast<std::size_t>(piece.mode)];
+  return true;
+}
+
+void PwlPeriodicState::remember(bool ok) {
+  if (solved_count_ == kMaxSolved) return;
+  if (solved_count_ == solved_.size()) solved_.emplace_back();
+  Solved& s = solved_[solved_count_++];
+  s.u0 = u0_, s.omega = omega_, s.ok = ok, s.cycles = cycles_;
+  s.storage = storage_, s.loss = loss_;
+  s.switch_phases = switch_phases_;
+  s.pieces = pieces_;
+  s.codes.clear();
+  for (Piece& piece : s.pieces) {
+    const PwlModeCode& code = modes_[static_cast<std::size_t>(piece.mode)].code;
+    const auto known = std::find(s.codes.begin(), s.codes.end(), code);
+    piece.mode = static_cast<int>(known - s.codes.begin());
+    if (known == s.codes.end()) s.codes.push_back(code);
+  }
+}
+
+bool PwlPeriodicState::shoot(Run& run) {
+  const PwlBranch& branch = run.branch;
+  const double u0 = u0_, omega = omega_;
+  const double mirror = half_wave_ ? -1.0 : 1.0;  // the map is X0 -> mirror X(span)
 
   const int n = branch.internal_nodes;
   PwlVector scale(2 * n);  // positions by u0, velocities by w u0

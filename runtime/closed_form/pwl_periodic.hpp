@@ -49,7 +49,8 @@ class PwlPeriodicState {
  public:
   // False when the event-driven path cannot settle this branch: a mode that would be
   // indeterminate, more than 10000 switches in a cycle, or no fixed point after 60 cycles. The
-  // caller then time-steps the point.
+  // caller then time-steps the point. A solve of the same branch (every edge and value equal)
+  // at a drive solved before (up to 2048 drives) restores that result.
   bool solve(const PwlBranch& branch, double u0, double omega);
   // Whether the steady force is half-wave symmetric, F(theta + pi) = -F(theta), by
   // construction (an odd branch): then max F = -min F. Otherwise, a branch with uneven laws
@@ -78,21 +79,29 @@ class PwlPeriodicState {
     PwlVector w;
   };
   struct Run;
+  // A solve kept for its drive (u0, omega) while the branch stays the same: a fit's evaluation
+  // that changed only parameters outside this branch (the columns of a Jacobian) restores it,
+  // its pieces' modes rebuilt as they were, instead of shooting again; the same result to the
+  // last bit. Modes by index into codes.
+  struct Solved {
+    double u0 = 0.0, omega = 0.0;
+    bool ok = false;
+    int cycles = 0;
+    double storage = 0.0, loss = 0.0;
+    std::vector<Piece> pieces;
+    std::vector<PwlModeCode> codes;
+    std::vector<double> switch_phases;
+  };
 
   double u0_ = 0.0, omega_ = 0.0, period_ = 0.0;
   bool half_wave_ = false;  // an odd branch: the pieces cover [0, T/2), the rest is their mirror
   double span_ = 0.0;       // T/2 or T [s]
   double storage_ = 0.0, loss_ = 0.0;
   int cycles_ = 0;
-  // The modes built for structures_branch_, the first stored_ of modes_, each for the drive
-  // frequency stored_omega_ and every amplitude (pwl_mode.hpp), kept across solves (the
-  // amplitudes of a grid's frequencies) up to kMaxStoredModes; storage beyond stored_ is
-  // rebuilt in place (a deque, so references stay valid as modes are added). active_: the
-  // modes this solve has visited, searched first.
+  // The modes visited by this solve are the first mode_count_; the rest are storage kept from
+  // earlier solves, rebuilt in place (a deque, so references stay valid as modes are added).
   std::deque<PwlModeSystem> modes_;
-  std::vector<double> stored_omega_;
-  std::size_t stored_ = 0;
-  std::vector<int> active_;
+  std::size_t mode_count_ = 0;
   // The drive-independent parts of every mode built for structures_branch_, kept across solves
   // (the points of a grid) until a solve is given another branch (new parameters).
   std::deque<std::pair<PwlModeCode, PwlModeStructure>> structures_;
@@ -103,6 +112,14 @@ class PwlPeriodicState {
   std::vector<PwlGridStep> grid_step_;
   std::vector<Piece> pieces_;
   std::vector<double> switch_phases_;
+  // Solves of structures_branch_, the first solved_count_ (storage beyond is reused); a lookup
+  // starts at solved_next_, after the last one found (a grid's points come in order).
+  std::vector<Solved> solved_;
+  std::size_t solved_count_ = 0, solved_next_ = 0;
+
+  bool shoot(Run& run);  // the periodic state by shooting (the solve proper)
+  bool restore(Run& run, const Solved& solved);
+  void remember(bool ok);
 
   // The state at phase theta, its mode, and the sign its force takes there (-1 in the
   // mirrored half of an odd branch).
