@@ -76,7 +76,8 @@ int PwlPeriodicState::Run::settle(int m, const PwlVector& X, double t, PwlVector
     for (int i = 0; i < s.guards.rows() && violated < 0; ++i)
       if (leaves(m, static_cast<int>(i), w)) violated = static_cast<int>(i);
     if (violated < 0) return m;
-    PwlModeCode code = s.code;
+    PwlModeCode& code = self.settle_code_;
+    code = s.code;
     const PwlTransition& tr = s.transitions[static_cast<std::size_t>(violated)];
     code[static_cast<std::size_t>(tr.which)] = tr.to;
     m = mode_index(code);
@@ -163,7 +164,8 @@ double PwlPeriodicState::Run::first_crossing(int m, int i, const PwlVector& w0, 
 int PwlPeriodicState::Run::switch_at(int m, int i, double t, PwlVector& w, PwlMatrix* S) {
   const PwlModeSystem& old = self.modes_[static_cast<std::size_t>(m)];
   const PwlVector X = old.to_X * w;
-  PwlModeCode code = old.code;
+  PwlModeCode& code = self.switch_code_;
+  code = old.code;
   const PwlTransition& tr = old.transitions[static_cast<std::size_t>(i)];
   code[static_cast<std::size_t>(tr.which)] = tr.to;
   PwlVector w_new;

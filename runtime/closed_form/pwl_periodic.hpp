@@ -112,6 +112,7 @@ class PwlPeriodicState {
   std::vector<PwlGridStep> grid_step_;
   std::vector<Piece> pieces_;
   std::vector<double> switch_phases_;
+  PwlModeCode settle_code_, switch_code_;  // scratch of Run::settle and Run::switch_at (no allocation per event)
   // Solves of structures_branch_, the first solved_count_ (storage beyond is reused); a lookup
   // starts at solved_next_, after the last one found (a grid's points come in order).
   std::vector<Solved> solved_;
