@@ -2,14 +2,14 @@
 // Reference FMUs' simulator, validates each FMU's modelDescription.xml against the FMI 2.0 or 3.0
 // schema, loads its binary and runs it as co-simulation on a displacement history, setting each
 // sample at its communication point, which the FMU holds over the step. Every check runs for an
-// FMI 2.0 and an FMI 3.0 export of the model. Its force must be rheo's own, `rheo simulate --solver fixed` on the same held
-// (staircase) history, within 1e-7 of the largest |F|; with logging on nothing may be logged.
-// The staircase is written for rheo as a history whose input ramps to the next value over the
-// first part of each step: h/2^10, the FMU's own ramp, for networks with subtrees; h/2^20 for a
-// network all in the model's body, where the FMU jumps exactly and a ramp of h/2^20 differs from
-// the jump by 2^-21 h/tau of a Maxwell arm's jump force (runtime/fmu/cosimulation.hpp;
-// docs/numerics.md#fmu-input-between-communication-points). The step is 2^-11 s, so that every
-// time fmusim and rheo form is exact in binary.
+// FMI 2.0 and an FMI 3.0 export of the model. Its force must be rheo's own, `rheo simulate
+// --solver fixed` on the same held (staircase) history, within 1e-7 of the largest |F|; with
+// logging on nothing may be logged. The staircase is written for rheo as a history whose input
+// ramps to the next value over the first part of each step: h/2^10, the FMU's own ramp, for
+// networks with subtrees; h/2^20 for a network all in the model's body, where the FMU jumps
+// exactly and a ramp of h/2^20 differs from the jump by 2^-21 h/tau of a Maxwell arm's jump force
+// (runtime/fmu/cosimulation.hpp; docs/numerics.md#fmu-input-between-communication-points). The
+// step is 2^-11 s, so that every time fmusim and rheo form is exact in binary.
 #include "cli_support.hpp"
 
 #include <doctest/doctest.h>
