@@ -56,7 +56,7 @@ enum class Phase { instantiated, initialization, stepping, terminated };
 // The standard whose entry points drive the instance: only the function names in messages differ.
 enum class FmiVersion { fmi2 = 2, fmi3 = 3 };
 
-// Everything a step changes, and the parameters: an FMU state (fmi2GetFMUstate).
+// Everything a step changes, and the parameters: an FMU state (fmi2GetFMUstate, fmi3GetFMUState).
 struct Snapshot {
   Phase phase = Phase::instantiated;
   double time = 0.0;               // s, the current communication point

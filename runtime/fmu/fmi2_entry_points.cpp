@@ -1,7 +1,8 @@
 // The FMI 2.0 co-simulation entry points of an exported FMU's binary, written from the FMI 2.0.4
 // specification (sections 2.1 and 4): the common functions and those of co-simulation, with the
 // standard's names and C calling convention (third_party/fmi2/fmi2Functions.h declares them and
-// exports them from the shared library; nothing else of the binary is visible).
+// exports them from the shared library; beside them only the fmi3* functions of
+// fmi3_entry_points.cpp are visible).
 //
 // Each call runs CoSimulation (cosimulation.hpp) under fmu_instance.hpp's guard: a UserError
 // becomes fmi2Error with its message logged under category logStatusError, memory exhaustion
