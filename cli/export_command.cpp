@@ -1,5 +1,5 @@
 // `rheo export FILE`: a model written for other tools. --fmu writes it as a Functional Mock-up Unit
-// for co-simulation (runtime/export/fmu_export.hpp); --abaqus and --ansys write the material cards
+// for co-simulation, FMI 2.0 or (--fmi 3) FMI 3.0 (runtime/export/fmu_export.hpp); --abaqus and --ansys write the material cards
 // of its linear viscoelastic part (cli/fe_export.hpp). docs/cli.md#rheo-export.
 #include "lang/frontend.hpp"
 #include "cli/commands.hpp"
@@ -53,11 +53,12 @@ int export_fmu(const Options& o) {
   const lang::Program program = lang::compile_source(o.file, text);
   const lang::CheckedModel& model = chosen_model(program, o.file, o.model, "to export", "choose one with --model");
   const std::string name = std::filesystem::path(o.file).filename().string();
-  const std::string fmu = runtime::exporter::fmu_archive(model, {name, text, RHEO_VERSION});
+  const auto fmi = o.fmi == 3 ? runtime::fmu::FmiVersion::fmi3 : runtime::fmu::FmiVersion::fmi2;
+  const std::string fmu = runtime::exporter::fmu_archive(model, {name, text, RHEO_VERSION, fmi});
   runtime::write_output(o.fmu, fmu);
   if (o.fmu != "-")
-    std::cerr << fmt::format("rheo: FMU of model {} (FMI 2.0 co-simulation, {} parameters) written to {}\n", model.name, model.parameters.size(),
-                             o.fmu);
+    std::cerr << fmt::format("rheo: FMU of model {} (FMI {}.0 co-simulation, {} parameters) written to {}\n", model.name, o.fmi,
+                             model.parameters.size(), o.fmu);
   return runtime::exit_code::ok;
 }
 
@@ -70,7 +71,7 @@ Command add_export_command(CLI::App& app) {
   app.add_option("--fmu", o->fmu,
                  "Write the model as a Functional Mock-up Unit for co-simulation here (OUT.fmu): input u [mm], output F [N], "
                  "the parameters settable until initialisation ends");
-  app.add_option("--fmi", o->fmi, "The FMI version of the FMU: 2 (default); 3 is not available yet")->check(CLI::IsMember({2, 3}));
+  app.add_option("--fmi", o->fmi, "The FMI version of the FMU: 2 (FMI 2.0, the default) or 3 (FMI 3.0)")->check(CLI::IsMember({2, 3}));
   add_fe_export_options(app, o->fe);
   app.footer(
       "The FMU steps the network with the fixed-step kernels of `rheo simulate --solver fixed`. The Abaqus and ANSYS cards take a "
@@ -79,14 +80,7 @@ Command add_export_command(CLI::App& app) {
       "anything is computed. See docs/cli.md#rheo-export.");
   return [o] {
     if (o->fmu.empty() && !o->fe.any()) throw runtime::UsageError("nothing to export; give --fmu OUT.fmu, --abaqus OUT.inp and/or --ansys OUT.mac");
-    if (!o->fmu.empty()) {
-      if (o->fmi == 3)
-        throw runtime::UsageError(
-            fmt::format("--fmi 3: FMI 3.0 export is not available yet in rheo {}; export FMI 2.0 co-simulation (--fmi 2, the default), which the "
-                        "FMI 3.0 hosts import as well",
-                        RHEO_VERSION));
-      check_folder_takes_files(o->fmu);
-    }
+    if (!o->fmu.empty()) check_folder_takes_files(o->fmu);
     if (o->fe.any()) {
       check_fe_export_options(o->fe);
       const lang::Program program = lang::load_program(o->file);

@@ -95,6 +95,21 @@ Trial resonance_free_limit(const Trial& column, const lang::CheckedModel& model,
   return limit;
 }
 
+Trial column_from_limit(const Trial& column, const lang::CheckedModel& model, const Network& refitted, const std::string& element) {
+  auto value = [&](const std::string& path) {
+    const int i = parameter_index(model, element + "." + path);
+    if (i < 0) throw std::logic_error(fmt::format("diagnose: the capped Maxwell element '{}' lacks {}", element, path));
+    return refitted.parameter(i);
+  };
+  Trial restart = column;
+  restart.shape = Shape::capped_column;
+  restart.stiffness = value("arm.k");
+  restart.slip = value("cap.fy") / restart.stiffness;
+  restart.time = 0.0;
+  restart.damping_ratio = std::numbers::pi * column.frequency * value("arm.tau");
+  return restart;
+}
+
 Network with_gaps_in_play(const Network& network) {
   const Topology& t = network.topology();
   std::vector<double> values = network.parameters();

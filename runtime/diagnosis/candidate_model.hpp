@@ -39,4 +39,11 @@ Network with_gaps_in_play(const Network& network);
 // parameter fewer and no resonance to place.
 Trial resonance_free_limit(const Trial& column, const lang::CheckedModel& model, const Network& refitted, const std::string& element);
 
+// The way back: the slider-capped fluid column COLUMN (its shape and resonance f_r) started from
+// the refitted limit ELEMENT (cap fy, arm k and tau): chamber k = arm.k, channel c = k tau, and
+// the mass that puts the resonance at f_r, b = k/(2 pi f_r)^2 (so zeta = pi f_r tau). The column
+// holds its limit (b -> 0), so a column refit that ends above its limit's gap stopped outside
+// its basin; this is where to search it again.
+Trial column_from_limit(const Trial& column, const lang::CheckedModel& model, const Network& refitted, const std::string& element);
+
 }  // namespace rheo::runtime::diagnosis

@@ -1,5 +1,7 @@
 #include "runtime/diagnosis/diagnose.hpp"
 
+#include "runtime/diagnosis/criterion.hpp"
+
 #include "runtime/diagnosis/element_text.hpp"
 
 #include "lang/fitted_source.hpp"
@@ -33,16 +35,6 @@ Compiled compile(const ModelSource& source, const std::string& text) {
   const lang::CheckedModel* model = program->find_model(source.model);
   if (!model) throw std::logic_error(fmt::format("{} has no model '{}'", source.file, source.model));
   return {program, model};
-}
-
-int residual_terms(const std::vector<FitDataSet>& data) {
-  int n = 0;
-  for (const auto& set : data) n += set.is_harmonic() ? 2 * static_cast<int>(set.harmonic().size()) : static_cast<int>(set.history().force.size());
-  return n;
-}
-
-double criterion(const FitResult& r, int n) {
-  return n * std::log(std::max(r.objective, 1e-300)) + static_cast<double>(r.free.size()) * std::log(static_cast<double>(n));
 }
 
 // Whether candidate A is preferred to B: the one with fewer parameters when its gap is within
@@ -138,9 +130,10 @@ class Diagnoser {
     d_.time_limited = d_.before.time_limited;
     d_.gap_before = d_.gap_after = fit_gap(d_.before);
     d_.residual_terms = residual_terms(data_);
-    d_.criterion_before = criterion(d_.before, d_.residual_terms);
     d_.patterns = residual_patterns(d_.before, data_);
     d_.noise = estimate_noise(d_.before, data_);
+    d_.noise_weighted = noise_weighted(data_, d_.noise);
+    d_.criterion_before = criterion(d_.before, d_.residual_terms, d_.noise_weighted, d_.noise);
     d_.noise_ratio = noise_ratio(d_.gap_before, d_.noise, d_.residual_terms, static_cast<int>(d_.before.free.size()));
     fitted_text_ = lang::write_fitted_source(source_.text, source_.file, *base_.model, d_.before.network.parameters(), d_.before.free, {});
     d_.interrupted = d_.before.interrupted;
@@ -181,6 +174,7 @@ class Diagnoser {
         continue;
       }
       ++refitted;
+      const std::size_t column_at = d_.candidates.size();
       const std::optional<Trial> limit = refit_candidate(trial, outcome, 1.0 / (to_refit - refitted + 2));
       if (!limit || stopped()) continue;
       // The column's limit without inertia competes with it: where the data hold no resonance
@@ -193,7 +187,19 @@ class Diagnoser {
           "the limit without inertia of the fluid column before it (its chamber and channel as a Maxwell "
           "element, tau = c/k = {:.4g} ms){}",
           limit->time * 1e3, outcome.unresolved.empty() ? "" : ", whose resonance the data cannot place");
-      refit_candidate(*limit, limit_outcome, 1.0 / (to_refit - refitted + 2));
+      const std::optional<Trial> restart = refit_candidate(*limit, limit_outcome, 1.0 / (to_refit - refitted + 2), &trial);
+      // The column holds its limit (b -> 0): a column refit that ends above the limit's gap
+      // stopped outside its basin, and searches again from the limit's optimum.
+      const double column_gap = d_.candidates[column_at].gap_after, limit_gap = d_.candidates.back().gap_after;
+      if (!restart || stopped() || !(limit_gap < column_gap)) continue;
+      CandidateOutcome again;
+      again.screened = screened;
+      again.screened.trial = *restart;
+      again.element = outcome.element;
+      again.limit_of = fmt::format(
+          "the fluid column again, started from its limit's optimum (its first refit stopped at {:.4g}, above the limit's {:.4g})", column_gap,
+          limit_gap);
+      refit_candidate(*restart, again, 1.0 / (to_refit - refitted + 2));
     }
   }
 
@@ -251,9 +257,10 @@ class Diagnoser {
 
   // Steps 3 and 4 for one candidate: the fitted model with TRIAL added as OUTCOME.element,
   // refitted in two stages; recorded, and kept as the choice if it earns its parameters and is
-  // preferred to the choice so far. Returns the limit without inertia of a capped fluid column.
+  // preferred to the choice so far. Returns the limit without inertia of a capped fluid column,
+  // and for the limit of COLUMN (given) that column started from the limit's optimum.
   // SHARE: of the time left, for this refit.
-  std::optional<Trial> refit_candidate(const Trial& trial, CandidateOutcome& outcome, double share) {
+  std::optional<Trial> refit_candidate(const Trial& trial, CandidateOutcome& outcome, double share, const Trial* column = nullptr) {
     const auto started = std::chrono::steady_clock::now();
     stage(fmt::format("refitting with {} for {}", trial_summary(trial), effect_name(outcome.screened.effect)));
     const std::string comment = fmt::format("candidate for {}", effect_name(outcome.screened.effect));
@@ -270,14 +277,15 @@ class Diagnoser {
     result.network = with_gaps_in_play(result.network);  // the same predictions, as a file can state them
     outcome.refitted = true;
     outcome.gap_after = fit_gap(result);
-    outcome.criterion = criterion(result, d_.residual_terms);
+    outcome.criterion = criterion(result, d_.residual_terms, d_.noise_weighted, d_.noise);
     outcome.parameters = static_cast<int>(result.free.size());
     outcome.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
     d_.interrupted = d_.interrupted || result.interrupted;
     d_.time_limited = d_.time_limited || result.time_limited;
     outcome.unresolved = resolved_resonance(trial, *candidate.model, result.network, outcome.element, scales_);
-    std::optional<Trial> limit;
-    if (trial.shape == Shape::capped_column) limit = resonance_free_limit(trial, *candidate.model, result.network, outcome.element);
+    std::optional<Trial> next;
+    if (trial.shape == Shape::capped_column) next = resonance_free_limit(trial, *candidate.model, result.network, outcome.element);
+    if (column != nullptr) next = column_from_limit(*column, *candidate.model, result.network, outcome.element);
     // A gap just beyond the noise cannot fall by min_improvement; taking it to the noise earns too.
     const bool to_noise = reaches_noise(d_.gap_before, static_cast<int>(d_.before.free.size()), outcome.gap_after, outcome.parameters, d_.noise,
                                         d_.residual_terms);
@@ -286,7 +294,7 @@ class Diagnoser {
     if (earns && (!chosen_ || preferred(outcome, d_.candidates[chosen_->candidate], s_.parsimony)))
       chosen_ = Chosen{d_.candidates.size(), trial, std::move(candidate), std::move(result)};
     d_.candidates.push_back(outcome);
-    return limit;
+    return next;
   }
 
   // Step 5: BOBYQA over every free parameter of the chosen model again, kept when no worse; its

@@ -70,21 +70,15 @@ void check_fmu_steppable(const Network& network) {
   }
 }
 
-std::string fmu_archive(const lang::CheckedModel& model, const FmuSource& source) {
-  check_fmu_steppable(Network::compile(model));
-  FmuDescription d;
-  d.model_identifier = model.name;
-  d.guid = fmu::fmu_guid(source.rheo_version, model.name, source.text);
-  d.rheo_version = source.rheo_version;
-  d.source_name = source.file_name;
-  d.source = source.text;
-  const std::string description = fmi2_model_description(model, d);
-  const std::string model_name = model.name + "\n";
-  static constexpr std::string_view kFmiHeadersNotice =
-      "The binary in binaries/ is built with the FMI 2.0 header files fmi2Functions.h, fmi2FunctionTypes.h and\n"
-      "fmi2TypesPlatform.h:\n\n"
+namespace {
+
+// The notice of the FMI headers of VERSION ("2.0", "3.0"; the files HEADERS, the copyright's last
+// YEAR) that the binary is built with: the 2-Clause BSD License asks for it beside the binary.
+std::string headers_notice(const char* version, const char* headers, const char* year) {
+  return fmt::format(
+      "The binary in binaries/ is built with the FMI {} header files {}:\n\n"
       "Copyright (C) 2008-2011 MODELISAR consortium,\n"
-      "              2012-2019 Modelica Association Project \"FMI\"\n"
+      "              2012-{} Modelica Association Project \"FMI\"\n"
       "              All rights reserved.\n\n"
       "Redistribution and use in source and binary forms, with or without modification, are permitted provided that the\n"
       "following conditions are met:\n\n"
@@ -98,9 +92,28 @@ std::string fmu_archive(const lang::CheckedModel& model, const FmuSource& source
       "SPECIAL, EXEMPLARY, OR CONSEQUENTIAL DAMAGES (INCLUDING, BUT NOT LIMITED TO, PROCUREMENT OF SUBSTITUTE GOODS OR\n"
       "SERVICES; LOSS OF USE, DATA, OR PROFITS; OR BUSINESS INTERRUPTION) HOWEVER CAUSED AND ON ANY THEORY OF LIABILITY,\n"
       "WHETHER IN CONTRACT, STRICT LIABILITY, OR TORT (INCLUDING NEGLIGENCE OR OTHERWISE) ARISING IN ANY WAY OUT OF THE USE\n"
-      "OF THIS SOFTWARE, EVEN IF ADVISED OF THE POSSIBILITY OF SUCH DAMAGE.\n";
-  const std::string binary_name = fmt::format("binaries/{}/{}.so", kFmuPlatform, model.name);
-  const std::string platform_folder = fmt::format("binaries/{}/", kFmuPlatform);
+      "OF THIS SOFTWARE, EVEN IF ADVISED OF THE POSSIBILITY OF SUCH DAMAGE.\n",
+      version, headers, year);
+}
+
+}  // namespace
+
+std::string fmu_archive(const lang::CheckedModel& model, const FmuSource& source) {
+  check_fmu_steppable(Network::compile(model));
+  FmuDescription d;
+  d.model_identifier = model.name;
+  d.guid = fmu::fmu_guid(source.rheo_version, model.name, source.text);
+  d.rheo_version = source.rheo_version;
+  d.source_name = source.file_name;
+  d.source = source.text;
+  const bool fmi3 = source.fmi == fmu::FmiVersion::fmi3;
+  const std::string description = fmi3 ? fmi3_model_description(model, d) : fmi2_model_description(model, d);
+  const std::string model_name = model.name + "\n";
+  const std::string fmi2_notice = headers_notice("2.0", "fmi2Functions.h, fmi2FunctionTypes.h and fmi2TypesPlatform.h", "2019");
+  const std::string fmi3_notice = headers_notice("3.0", "fmi3Functions.h, fmi3FunctionTypes.h and fmi3PlatformTypes.h", "2023");
+  const char* platform = fmi3 ? kFmi3Platform : kFmuPlatform;
+  const std::string binary_name = fmt::format("binaries/{}/{}.so", platform, model.name);
+  const std::string platform_folder = fmt::format("binaries/{}/", platform);
   return zip_archive({
       {"modelDescription.xml", description},
       {"binaries/", {}},
@@ -111,7 +124,8 @@ std::string fmu_archive(const lang::CheckedModel& model, const FmuSource& source
       {std::string("resources/") + fmu::kModelNameResource, model_name},
       {"documentation/", {}},
       {"documentation/licenses/", {}},
-      {"documentation/licenses/fmi2-headers.txt", kFmiHeadersNotice},
+      {"documentation/licenses/fmi2-headers.txt", fmi2_notice},
+      {"documentation/licenses/fmi3-headers.txt", fmi3_notice},
   });
 }
 

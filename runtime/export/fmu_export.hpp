@@ -1,13 +1,17 @@
-// `rheo export FILE --fmu OUT.fmu` (docs/cli.md#rheo-export): a Functional Mock-up Unit for
-// co-simulation, FMI 2.0, that runs a model of FILE with rheo's fixed-step kernels:
+// `rheo export FILE --fmu OUT.fmu [--fmi 2|3]` (docs/cli.md#rheo-export): a Functional Mock-up
+// Unit for co-simulation, FMI 2.0 or FMI 3.0, that runs a model of FILE with rheo's fixed-step
+// kernels:
 //   modelDescription.xml              fmu_model_description.hpp
 //   binaries/linux64/MODEL.so         fmu_binary.hpp: one shared library, the same for every model
-//   resources/model.rheo, model_name.txt   what the library compiles at fmi2Instantiate
-//                                     (runtime/fmu/fmu_resources.hpp)
-//   documentation/licenses/fmi2-headers.txt   the notice of the FMI headers the library is built with
+//     (FMI 3.0: binaries/x86_64-linux/)  and both versions (its fmi2* and fmi3* functions)
+//   resources/model.rheo, model_name.txt   what the library compiles at fmi2Instantiate or
+//                                     fmi3InstantiateCoSimulation (runtime/fmu/fmu_resources.hpp)
+//   documentation/licenses/fmi2-headers.txt, fmi3-headers.txt   the notices of the FMI headers the
+//                                     library is built with
 #pragma once
 
 #include "lang/model.hpp"
+#include "runtime/fmu/cosimulation.hpp"
 #include "runtime/network/network.hpp"
 
 #include <string>
@@ -26,6 +30,7 @@ struct FmuSource {
   std::string file_name;  // as given, for the description
   std::string_view text;  // the file's text, carried into resources/model.rheo
   std::string rheo_version;
+  fmu::FmiVersion fmi = fmu::FmiVersion::fmi2;
 };
 
 // The bytes of the FMU (a ZIP archive) of MODEL, one of the models SOURCE compiles to. Calls

@@ -36,6 +36,7 @@ const char* causality_word(Causality c) {
     case Causality::output: return "output";
     case Causality::parameter: return "parameter";
     case Causality::calculated_parameter: return "calculatedParameter";
+    case Causality::independent: return "independent";
   }
   return "?";
 }
@@ -47,6 +48,7 @@ std::string scalar_variable(const Variable& v) {
     case Causality::output: attributes = " variability=\"continuous\" initial=\"calculated\""; break;
     case Causality::parameter: attributes = " variability=\"fixed\" initial=\"exact\""; break;
     case Causality::calculated_parameter: attributes = " variability=\"fixed\" initial=\"calculated\""; break;
+    case Causality::independent: attributes = " variability=\"continuous\""; break;
   }
   std::string real;
   if (!v.unit.empty()) real += fmt::format(" unit=\"{}\"", xml_attribute(v.unit));
@@ -56,6 +58,38 @@ std::string scalar_variable(const Variable& v) {
   return fmt::format(
       "    <ScalarVariable name=\"{}\" valueReference=\"{}\" description=\"{}\" causality=\"{}\"{}>\n      <Real{}/>\n    </ScalarVariable>\n",
       xml_attribute(v.name), v.reference, xml_attribute(v.description), causality_word(v.causality), attributes, real);
+}
+
+// <Float64> of V (FMI 3.0 section 2.4.7): the attributes of an FMI 2.0 <ScalarVariable> and its
+// <Real> in one element.
+std::string float64_variable(const Variable& v) {
+  std::string attributes;
+  switch (v.causality) {
+    case Causality::input: attributes = " variability=\"continuous\""; break;
+    case Causality::output: attributes = " variability=\"continuous\" initial=\"calculated\""; break;
+    case Causality::parameter: attributes = " variability=\"fixed\" initial=\"exact\""; break;
+    case Causality::calculated_parameter: attributes = " variability=\"fixed\" initial=\"calculated\""; break;
+    case Causality::independent: attributes = " variability=\"continuous\""; break;
+  }
+  if (!v.unit.empty()) attributes += fmt::format(" unit=\"{}\"", xml_attribute(v.unit));
+  if (v.min) attributes += fmt::format(" min=\"{}\"", *v.min);
+  if (v.max) attributes += fmt::format(" max=\"{}\"", *v.max);
+  if (v.causality == Causality::input || v.causality == Causality::parameter) attributes += fmt::format(" start=\"{}\"", v.start);
+  return fmt::format("    <Float64 name=\"{}\" valueReference=\"{}\" description=\"{}\" causality=\"{}\"{}/>\n", xml_attribute(v.name), v.reference,
+                     xml_attribute(v.description), causality_word(v.causality), attributes);
+}
+
+std::string unit_definitions(const std::vector<Variable>& variables) {
+  std::set<std::string> units;
+  for (const auto& v : variables)
+    if (!v.unit.empty()) units.insert(v.unit);
+  std::string xml = "  <UnitDefinitions>\n";
+  for (const auto& u : units) xml += unit_definition(u);
+  return xml + "  </UnitDefinitions>\n";
+}
+
+std::string description_text(const lang::CheckedModel& model, const FmuDescription& d) {
+  return fmt::format("rheo model {} from {}, exported by rheo {}. Source text:\n{}", model.name, d.source_name, d.rheo_version, d.source);
 }
 
 }  // namespace
@@ -82,12 +116,10 @@ std::string xml_attribute(std::string_view text) {
 }
 
 std::string fmi2_model_description(const lang::CheckedModel& model, const FmuDescription& d) {
-  const std::vector<Variable> variables = fmu::fmu_variables(model);
-  std::set<std::string> units;
-  for (const auto& v : variables)
-    if (!v.unit.empty()) units.insert(v.unit);
-  const std::string description = fmt::format("rheo model {} from {}, exported by rheo {}. Source text:\n{}", model.name, d.source_name,
-                                              d.rheo_version, d.source);
+  std::vector<Variable> variables = fmu::fmu_variables(model);
+  // FMI 2.0 leaves the independent variable time implicit (section 2.2.7); it is the last.
+  std::erase_if(variables, [](const Variable& v) { return v.causality == Causality::independent; });
+  const std::string description = description_text(model, d);
   std::string xml = fmt::format(
       "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n"
       "<fmiModelDescription fmiVersion=\"2.0\" modelName=\"{}\" guid=\"{}\"\n"
@@ -96,12 +128,10 @@ std::string fmi2_model_description(const lang::CheckedModel& model, const FmuDes
       "  <CoSimulation modelIdentifier=\"{}\" needsExecutionTool=\"false\" canHandleVariableCommunicationStepSize=\"true\"\n"
       "    canInterpolateInputs=\"true\" maxOutputDerivativeOrder=\"0\" canRunAsynchronuously=\"false\"\n"
       "    canBeInstantiatedOnlyOncePerProcess=\"false\" canNotUseMemoryManagementFunctions=\"true\" canGetAndSetFMUstate=\"true\"\n"
-      "    canSerializeFMUstate=\"true\" providesDirectionalDerivative=\"false\"/>\n"
-      "  <UnitDefinitions>\n",
+      "    canSerializeFMUstate=\"true\" providesDirectionalDerivative=\"false\"/>\n",
       xml_attribute(model.name), d.guid, xml_attribute(description), xml_attribute(d.rheo_version), d.model_identifier);
-  for (const auto& u : units) xml += unit_definition(u);
+  xml += unit_definitions(variables);
   xml +=
-      "  </UnitDefinitions>\n"
       "  <LogCategories>\n"
       "    <Category name=\"logStatusError\" description=\"every call that returns fmi2Error: what went wrong and what to do\"/>\n"
       "  </LogCategories>\n"
@@ -123,6 +153,43 @@ std::string fmi2_model_description(const lang::CheckedModel& model, const FmuDes
       xml += fmt::format("      <Unknown index=\"{}\"/>\n", v.reference + 1);
   xml +=
       "    </InitialUnknowns>\n"
+      "  </ModelStructure>\n"
+      "</fmiModelDescription>\n";
+  return xml;
+}
+
+std::string fmi3_model_description(const lang::CheckedModel& model, const FmuDescription& d) {
+  const std::vector<Variable> variables = fmu::fmu_variables(model);
+  std::string xml = fmt::format(
+      "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n"
+      "<fmiModelDescription fmiVersion=\"3.0\" modelName=\"{}\" instantiationToken=\"{}\"\n"
+      "  description=\"{}\"\n"
+      "  generationTool=\"rheo {}\" variableNamingConvention=\"structured\">\n"
+      "  <CoSimulation modelIdentifier=\"{}\" needsExecutionTool=\"false\" canBeInstantiatedOnlyOncePerProcess=\"false\"\n"
+      "    canGetAndSetFMUState=\"true\" canSerializeFMUState=\"true\" providesDirectionalDerivatives=\"false\"\n"
+      "    providesAdjointDerivatives=\"false\" providesPerElementDependencies=\"false\" canHandleVariableCommunicationStepSize=\"true\"\n"
+      "    maxOutputDerivativeOrder=\"0\" providesIntermediateUpdate=\"false\" mightReturnEarlyFromDoStep=\"false\"\n"
+      "    canReturnEarlyAfterIntermediateUpdate=\"false\" hasEventMode=\"false\"/>\n",
+      xml_attribute(model.name), d.guid, xml_attribute(description_text(model, d)), xml_attribute(d.rheo_version), d.model_identifier);
+  xml += unit_definitions(variables);
+  xml +=
+      "  <LogCategories>\n"
+      "    <Category name=\"logStatusError\" description=\"every call that returns fmi3Error: what went wrong and what to do\"/>\n"
+      "  </LogCategories>\n"
+      "  <DefaultExperiment startTime=\"0\"/>\n"
+      "  <ModelVariables>\n";
+  for (const auto& v : variables) xml += float64_variable(v);
+  // ModelStructure names variables by value reference. F at a communication point depends on the
+  // network's state only, not on the input set after it: no dependencies.
+  xml += fmt::format(
+      "  </ModelVariables>\n"
+      "  <ModelStructure>\n"
+      "    <Output valueReference=\"{}\" dependencies=\"\"/>\n",
+      fmu::kOutputF);
+  for (const auto& v : variables)
+    if (v.causality == Causality::output || v.causality == Causality::calculated_parameter)
+      xml += fmt::format("    <InitialUnknown valueReference=\"{}\"/>\n", v.reference);
+  xml +=
       "  </ModelStructure>\n"
       "</fmiModelDescription>\n";
   return xml;

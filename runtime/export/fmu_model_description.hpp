@@ -1,5 +1,6 @@
-// modelDescription.xml of an exported FMU, FMI 2.0 co-simulation (the standard's section 2.2
-// and 4.3; valid against fmi2ModelDescription.xsd): the variables of runtime/fmu/fmu_variables.hpp
+// modelDescription.xml of an exported FMU, FMI 2.0 co-simulation (the standard's sections 2.2
+// and 4.3; valid against fmi2ModelDescription.xsd) or FMI 3.0 co-simulation without event mode
+// (sections 2.4 and 4.4; fmi3ModelDescription.xsd): the variables of runtime/fmu/fmu_variables.hpp
 // with their units (each defined in SI base units), start values and bounds; the model's source
 // text and rheo's version in the description.
 #pragma once
@@ -12,14 +13,16 @@
 namespace rheo::runtime::exporter {
 
 struct FmuDescription {
-  std::string model_identifier;  // the binary's name, binaries/linux64/MODEL_IDENTIFIER.so
-  std::string guid;              // fmu_guid()
+  std::string model_identifier;  // the binary's name, binaries/<platform>/MODEL_IDENTIFIER.so
+  std::string guid;              // fmu_guid(): FMI 2.0's guid, FMI 3.0's instantiationToken
   std::string rheo_version;
   std::string source_name;  // the .rheo file's name, for the description
   std::string_view source;  // its text
 };
 
+// FMI 2.0 leaves the independent variable time implicit; FMI 3.0 declares it (one must be).
 std::string fmi2_model_description(const lang::CheckedModel& model, const FmuDescription& d);
+std::string fmi3_model_description(const lang::CheckedModel& model, const FmuDescription& d);
 
 // TEXT with &, <, >, " and the control characters an attribute would lose (newline, tab,
 // carriage return) written as XML references.

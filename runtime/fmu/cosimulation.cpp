@@ -16,16 +16,6 @@
 namespace rheo::runtime::fmu {
 namespace {
 
-const char* phase_name(Phase p) {
-  switch (p) {
-    case Phase::instantiated: return "instantiated (before fmi2EnterInitializationMode)";
-    case Phase::initialization: return "in initialisation mode";
-    case Phase::stepping: return "stepping (after fmi2ExitInitializationMode)";
-    case Phase::terminated: return "terminated";
-  }
-  return "?";
-}
-
 // Whether two communication times are the same point, within the rounding of a host that adds
 // step sizes up.
 bool same_time(double a, double b, double h) { return std::abs(a - b) <= 1e-9 * std::max({std::abs(a), std::abs(b), h}); }
@@ -38,8 +28,20 @@ bool rounding_only(double from, double to) {
 
 }  // namespace
 
-CoSimulation::CoSimulation(const std::string& file_name, std::string_view source, const std::string& model_name)
-    : program_(std::make_shared<const lang::Program>(lang::compile_source(file_name, source))) {
+std::string CoSimulation::call(const char* name) const { return fmt::format("fmi{}{}", static_cast<int>(fmi_), name); }
+
+std::string CoSimulation::phase_name(Phase p) const {
+  switch (p) {
+    case Phase::instantiated: return fmt::format("instantiated (before {})", call("EnterInitializationMode"));
+    case Phase::initialization: return "in initialisation mode";
+    case Phase::stepping: return fmt::format("stepping (after {})", call("ExitInitializationMode"));
+    case Phase::terminated: return "terminated";
+  }
+  return "?";
+}
+
+CoSimulation::CoSimulation(const std::string& file_name, std::string_view source, const std::string& model_name, FmiVersion fmi)
+    : program_(std::make_shared<const lang::Program>(lang::compile_source(file_name, source))), fmi_(fmi) {
   model_ = program_->find_model(model_name);
   if (!model_) {
     std::vector<std::string> names;
@@ -64,7 +66,7 @@ Network CoSimulation::network_with(const std::vector<double>& parameters) const 
 
 void CoSimulation::setup_experiment(double start_time, std::optional<double> stop_time) {
   if (now_.phase != Phase::instantiated)
-    throw UsageError(fmt::format("fmi2SetupExperiment is called before initialisation, not {}", phase_name(now_.phase)));
+    throw UsageError(fmt::format("{} is called before initialisation, not {}", call("SetupExperiment"), phase_name(now_.phase)));
   if (!std::isfinite(start_time)) throw DataError(fmt::format("start time {} s: it must be a finite number", start_time));
   if (stop_time && !(*stop_time >= start_time))
     throw DataError(fmt::format("stop time {} s lies before the start time {} s", *stop_time, start_time));
@@ -75,7 +77,14 @@ void CoSimulation::setup_experiment(double start_time, std::optional<double> sto
 
 void CoSimulation::enter_initialization() {
   if (now_.phase != Phase::instantiated)
-    throw UsageError(fmt::format("fmi2EnterInitializationMode is called once after instantiation, not {}", phase_name(now_.phase)));
+    throw UsageError(fmt::format("{} is called once after instantiation, not {}", call("EnterInitializationMode"), phase_name(now_.phase)));
+  now_.phase = Phase::initialization;
+}
+
+void CoSimulation::enter_initialization(double start_time, std::optional<double> stop_time) {
+  if (now_.phase != Phase::instantiated)
+    throw UsageError(fmt::format("{} is called once after instantiation, not {}", call("EnterInitializationMode"), phase_name(now_.phase)));
+  setup_experiment(start_time, stop_time);
   now_.phase = Phase::initialization;
 }
 
@@ -92,14 +101,15 @@ void CoSimulation::start_network() {
 
 void CoSimulation::exit_initialization() {
   if (now_.phase != Phase::initialization)
-    throw UsageError(fmt::format("fmi2ExitInitializationMode is called in initialisation mode, not {}", phase_name(now_.phase)));
+    throw UsageError(fmt::format("{} is called in initialisation mode, not {}", call("ExitInitializationMode"), phase_name(now_.phase)));
   start_network();
   now_.phase = Phase::stepping;
   now_.time = start_time_;
 }
 
 void CoSimulation::terminate() {
-  if (now_.phase != Phase::stepping) throw UsageError(fmt::format("fmi2Terminate is called after initialisation, not {}", phase_name(now_.phase)));
+  if (now_.phase != Phase::stepping)
+    throw UsageError(fmt::format("{} is called after initialisation, not {}", call("Terminate"), phase_name(now_.phase)));
   now_.phase = Phase::terminated;
 }
 
@@ -126,12 +136,15 @@ void CoSimulation::set_real(unsigned reference, double value) {
       throw UsageError(fmt::format("{} is computed from other parameters (a calculatedParameter): set those instead", v.name));
     case Causality::parameter:
       if (now_.phase != Phase::instantiated && now_.phase != Phase::initialization)
-        throw UsageError(fmt::format("parameter {} is fixed once initialisation ends; the FMU is {}: set it before fmi2ExitInitializationMode",
-                                     v.name, phase_name(now_.phase)));
+        throw UsageError(fmt::format("parameter {} is fixed once initialisation ends; the FMU is {}: set it before {}", v.name,
+                                     phase_name(now_.phase), call("ExitInitializationMode")));
       break;
     case Causality::input:
       if (now_.phase == Phase::terminated) throw UsageError(fmt::format("input {} cannot be set: the FMU is terminated", v.name));
       break;
+    case Causality::independent:
+      throw UsageError(fmt::format("{} is the independent variable: {} sets it, {} advances it", v.name,
+                                   call(fmi_ == FmiVersion::fmi2 ? "SetupExperiment" : "EnterInitializationMode"), call("DoStep")));
   }
   if (std::isnan(value) || std::isinf(value)) throw DataError(fmt::format("{} = {}: it must be a finite number", v.name, value));
   if ((v.min && value < *v.min) || (v.max && value > *v.max))
@@ -155,6 +168,7 @@ double CoSimulation::get_real(unsigned reference) const {
       if (!started) return network_with(now_.parameters).parameters()[static_cast<std::size_t>(v.parameter)];
       break;
     case Causality::parameter: break;
+    case Causality::independent: return now_.time;
   }
   return now_.parameters[static_cast<std::size_t>(v.parameter)];
 }
@@ -192,16 +206,17 @@ void CoSimulation::prepare_plans(double h) {
 
 // Why a step cannot be taken (the same tests as do_step's, one at a time, off its path).
 void CoSimulation::refuse_step(double t, double h) const {
-  if (now_.phase != Phase::stepping) throw UsageError(fmt::format("fmi2DoStep is called after initialisation, not {}", phase_name(now_.phase)));
+  if (now_.phase != Phase::stepping)
+    throw UsageError(fmt::format("{} is called after initialisation, not {}", call("DoStep"), phase_name(now_.phase)));
   if (!(h > 0.0) || !std::isfinite(h)) throw UsageError(fmt::format("communication step size {} s: it must be a positive, finite number", h));
   if (!std::isfinite(t) || !same_time(t, now_.time, h))
     throw UsageError(
-        fmt::format("fmi2DoStep from t = {} s, but the FMU is at t = {} s (the end of its last step); restore an FMU state "
-                    "(fmi2SetFMUstate) to step from elsewhere",
-                    t, now_.time));
+        fmt::format("{} from t = {} s, but the FMU is at t = {} s (the end of its last step); restore an FMU state ({}) to step from elsewhere",
+                    call("DoStep"), t, now_.time, fmi_ == FmiVersion::fmi2 ? "fmi2SetFMUstate" : "fmi3SetFMUState"));
   if (!(t + h > t)) throw UsageError(fmt::format("communication step size {} s is below the resolution of the time t = {} s", h, t));
   if (stop_time_ && !(t + h <= *stop_time_) && !same_time(t + h, *stop_time_, h))
-    throw UsageError(fmt::format("a step of {} s from t = {} s ends past the stop time {} s (fmi2SetupExperiment)", h, t, *stop_time_));
+    throw UsageError(fmt::format("a step of {} s from t = {} s ends past the stop time {} s ({})", h, t, *stop_time_,
+                                 call(fmi_ == FmiVersion::fmi2 ? "SetupExperiment" : "EnterInitializationMode")));
   const double u = now_.input, rate = now_.rate_set ? now_.input_rate : now_.input_velocity, target = u + rate * h;
   throw DataError(fmt::format("u = {} mm with du/dt = {} mm/s reaches {} mm at the step's end, outside [-{}, {}] mm", u, rate, target,
                               lang::max_amplitude, lang::max_amplitude));

@@ -1,11 +1,13 @@
-// One co-simulation instance of an exported model: what the FMU binary's fmi2* entry points
-// (fmi2_entry_points.cpp) serve, in C++ with typed errors, so that tests and benchmarks drive it
-// without a host.
+// One co-simulation instance of an exported model: what the FMU binary's fmi2* and fmi3* entry
+// points (fmi2_entry_points.cpp, fmi3_entry_points.cpp) serve, in C++ with typed errors, so that
+// tests and benchmarks drive it without a host. The two versions differ only in how a host starts
+// initialisation (FMI 3.0 passes the experiment's times to fmi3EnterInitializationMode) and in the
+// function names the messages cite.
 //
 // Input path over a communication step [t, t + h] (docs/numerics.md#fmu-input-between-communication-points):
 //   u(s) = u_n + v_n (s - t),
-// u_n the input set before the step, v_n its derivative for this step (fmi2SetRealInputDerivatives)
-// or else the input v as last set (0, its start value: zero-order hold). Where u_n differs from
+// u_n the input set before the step, v_n its derivative for this step (fmi2SetRealInputDerivatives;
+// FMI 3.0 co-simulation has no such call) or else the input v as last set (0, its start value: zero-order hold). Where u_n differs from
 // where the terminal is (the end of the last step), the terminal jumps to u_n at t. The kernels
 // are the fixed-step ones of `rheo simulate --solver fixed` (stepping/simulator.hpp), exact for a
 // piecewise-linear drive; a jump is taken
@@ -47,11 +49,14 @@ namespace rheo::runtime::fmu {
 // The fraction of a communication step over which a jump of the input is ramped (see above).
 inline constexpr double kJumpFraction = 1.0 / 1024.0;  // 2^-10
 
-// FMI 2.0 co-simulation states (section 4.2.4 of the standard), as far as they change what a
-// call may do.
+// Co-simulation states (FMI 2.0 section 4.2.4; FMI 3.0 section 4.2, without event mode: stepping
+// is its Step Mode), as far as they change what a call may do.
 enum class Phase { instantiated, initialization, stepping, terminated };
 
-// Everything a step changes, and the parameters: an FMU state (fmi2GetFMUstate).
+// The standard whose entry points drive the instance: only the function names in messages differ.
+enum class FmiVersion { fmi2 = 2, fmi3 = 3 };
+
+// Everything a step changes, and the parameters: an FMU state (fmi2GetFMUstate, fmi3GetFMUState).
 struct Snapshot {
   Phase phase = Phase::instantiated;
   double time = 0.0;               // s, the current communication point
@@ -66,7 +71,7 @@ struct Snapshot {
 class CoSimulation {
  public:
   // Compiles model MODEL_NAME of SOURCE (named FILE_NAME in messages). CompileError, ModelError.
-  CoSimulation(const std::string& file_name, std::string_view source, const std::string& model_name);
+  CoSimulation(const std::string& file_name, std::string_view source, const std::string& model_name, FmiVersion fmi = FmiVersion::fmi2);
 
   const lang::CheckedModel& model() const { return *model_; }
   const std::vector<Variable>& variables() const { return variables_; }
@@ -75,6 +80,9 @@ class CoSimulation {
 
   void setup_experiment(double start_time, std::optional<double> stop_time);
   void enter_initialization();
+  // FMI 3.0's fmi3EnterInitializationMode: setup_experiment and enter_initialization in one call,
+  // which changes nothing when it throws.
+  void enter_initialization(double start_time, std::optional<double> stop_time);
   // The network with the parameters as set, relaxed at the input u (stepping/relaxed_state.hpp).
   void exit_initialization();
   void terminate();
@@ -104,6 +112,9 @@ class CoSimulation {
   void prepare_plans(double h);
   void start_network();
   [[noreturn]] void refuse_step(double t, double h) const;
+  // "fmi2NAME" or "fmi3NAME", for messages.
+  std::string call(const char* name) const;
+  std::string phase_name(Phase p) const;
 
   std::shared_ptr<const lang::Program> program_;
   const lang::CheckedModel* model_ = nullptr;
@@ -117,6 +128,7 @@ class CoSimulation {
   State mid_, next_;
   double start_time_ = 0.0;
   std::optional<double> stop_time_;
+  FmiVersion fmi_ = FmiVersion::fmi2;
 };
 
 }  // namespace rheo::runtime::fmu

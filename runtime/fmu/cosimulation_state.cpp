@@ -1,5 +1,5 @@
-// The byte form of an FMU state (fmi2SerializeFMUstate): native doubles and 64-bit counts, in
-// this order:
+// The byte form of an FMU state (fmi2SerializeFMUstate, fmi3SerializeFMUState; one form for both
+// versions): native doubles and 64-bit counts, in this order:
 //   "rheoFMS1"  magic and format version (8 bytes)
 //   n, name     the model's name (count, bytes)
 //   phase       0 instantiated, 1 initialisation, 2 stepping, 3 terminated

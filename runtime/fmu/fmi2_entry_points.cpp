@@ -1,27 +1,26 @@
 // The FMI 2.0 co-simulation entry points of an exported FMU's binary, written from the FMI 2.0.4
 // specification (sections 2.1 and 4): the common functions and those of co-simulation, with the
 // standard's names and C calling convention (third_party/fmi2/fmi2Functions.h declares them and
-// exports them from the shared library; nothing else of the binary is visible).
+// exports them from the shared library; beside them only the fmi3* functions of
+// fmi3_entry_points.cpp are visible).
 //
-// Each call runs CoSimulation (cosimulation.hpp) and never lets an exception reach the host: a
-// UserError becomes fmi2Error with its message logged under category logStatusError (always, as
-// the standard asks of errors), anything else fmi2Error with "internal error" in front, memory
-// exhaustion fmi2Fatal. A call that fails changes nothing, so a host may restore a saved FMU state
-// (fmi2SetFMUstate) and go on. Messages are escaped for the logger's printf-style format ('%' as
-// "%%") and the standard's variable references ('#' as "##").
+// Each call runs CoSimulation (cosimulation.hpp) under fmu_instance.hpp's guard: a UserError
+// becomes fmi2Error with its message logged under category logStatusError, memory exhaustion
+// fmi2Fatal. Messages are escaped for the logger's printf-style format ('%' as "%%") and the
+// standard's variable references ('#' as "##").
 #include "fmi2Functions.h"
 
 #include "runtime/core/errors.hpp"
 #include "runtime/fmu/cosimulation.hpp"
+#include "runtime/fmu/fmu_instance.hpp"
 #include "runtime/fmu/fmu_resources.hpp"
 
 #include <fmt/format.h>
 
 #include <cstring>
 #include <memory>
-#include <new>
-#include <set>
 #include <string>
+#include <utility>
 
 namespace __gnu_cxx {
 void __freeres();  // libstdc++'s own (what valgrind calls at exit); no header declares it
@@ -34,33 +33,11 @@ namespace {
 // that loading and unloading it does not lose the arena each time.
 [[gnu::destructor]] void free_exception_pool() { __gnu_cxx::__freeres(); }
 
-using rheo::runtime::fmu::CoSimulation;
-using rheo::runtime::fmu::Snapshot;
-
-constexpr const char* kErrorCategory = "logStatusError";
-
-struct Instance {
-  std::string name;
-  fmi2CallbackFunctions callbacks{};
-  std::unique_ptr<CoSimulation> cosimulation;
-  // The FMU states handed to the host and not yet freed: a state passed back is checked against
-  // them, so that a stale or foreign pointer is an error, not a crash. Freed with the instance.
-  std::set<Snapshot*> states;
-
-  ~Instance() {
-    for (Snapshot* s : states) delete s;
-  }
-  Snapshot* new_state(Snapshot s) {
-    auto owned = std::make_unique<Snapshot>(std::move(s));
-    states.insert(owned.get());
-    return owned.release();
-  }
-  Snapshot& state(fmi2FMUstate handle) {
-    const auto found = states.find(static_cast<Snapshot*>(handle));
-    if (found == states.end()) throw rheo::UsageError("FMUstate is not a state this instance gave out, or was freed");
-    return **found;
-  }
-};
+using rheo::runtime::fmu::FmiVersion;
+using rheo::runtime::fmu::kErrorCategory;
+using rheo::runtime::fmu::no_variables_of;
+using rheo::runtime::fmu::Outcome;
+using rheo::runtime::fmu::require_array;
 
 std::string escaped(const std::string& text) {
   std::string out;
@@ -76,41 +53,24 @@ void log_error(fmi2CallbackLogger logger, fmi2ComponentEnvironment environment, 
   if (logger) logger(environment, instance, fmi2Error, kErrorCategory, escaped(message).c_str());
 }
 
-void log_error(const Instance& i, const std::string& message) {
-  log_error(i.callbacks.logger, i.callbacks.componentEnvironment, i.name.c_str(), message);
-}
+struct Instance final : rheo::runtime::fmu::FmuInstance {
+  using FmuInstance::FmuInstance;
+  fmi2CallbackFunctions callbacks{};
+  void log_error(const std::string& message) const override {
+    ::log_error(callbacks.logger, callbacks.componentEnvironment, name().c_str(), message);
+  }
+};
 
 // Runs BODY on the instance C; fmi2OK, or the status of what it threw, logged.
 template <class Body>
 fmi2Status guarded(fmi2Component c, const char* function, Body&& body) {
   if (!c) return fmi2Error;
-  Instance& i = *static_cast<Instance*>(c);
-  try {
-    body(i);
-    return fmi2OK;
-  } catch (const rheo::UserError& e) {
-    log_error(i, fmt::format("{}: {}", function, e.what()));
-  } catch (const std::bad_alloc&) {
-    log_error(i, fmt::format("{}: out of memory", function));
-    return fmi2Fatal;
-  } catch (const std::exception& e) {
-    log_error(i, fmt::format("{}: internal error: {}; please report it to rheo with the FMU", function, e.what()));
+  switch (rheo::runtime::fmu::guarded(*static_cast<Instance*>(c), function, std::forward<Body>(body))) {
+    case Outcome::ok: return fmi2OK;
+    case Outcome::fatal: return fmi2Fatal;
+    case Outcome::error: break;
   }
   return fmi2Error;
-}
-
-[[noreturn, gnu::noinline, gnu::cold]] void null_array(const char* what, size_t n) {
-  throw rheo::UsageError(fmt::format("{} is NULL for {} values", what, n));
-}
-
-// ARRAY, of N elements, may be null only when N is 0.
-template <class T>
-void require_array(const T* array, size_t n, const char* what) {
-  if (n > 0 && array == nullptr) null_array(what, n);
-}
-
-void no_variables_of(const char* type, size_t n) {
-  if (n > 0) throw rheo::UsageError(fmt::format("the FMU has no {} variables ({} value references given)", type, n));
 }
 
 }  // namespace
@@ -139,10 +99,10 @@ fmi2Component fmi2Instantiate(fmi2String instanceName, fmi2Type fmuType, fmi2Str
     if (fmuType != fmi2CoSimulation) throw rheo::UsageError("this FMU is for co-simulation only (fmuType fmi2CoSimulation)");
     if (!fmuGUID) throw rheo::UsageError("fmuGUID is NULL; pass the guid of modelDescription.xml");
     if (!fmuResourceLocation) throw rheo::UsageError("fmuResourceLocation is NULL; the FMU reads its model from its resources folder");
-    auto instance = std::make_unique<Instance>();
-    instance->name = name;
+    auto instance = std::make_unique<Instance>(name);
     if (functions) instance->callbacks = *functions;
-    instance->cosimulation = rheo::runtime::fmu::load_cosimulation(rheo::runtime::fmu::resource_folder(fmuResourceLocation), fmuGUID, RHEO_VERSION);
+    instance->cosimulation = rheo::runtime::fmu::load_cosimulation(rheo::runtime::fmu::resource_folder(fmuResourceLocation), fmuGUID, RHEO_VERSION,
+                                                                   FmiVersion::fmi2);
     return instance.release();
   } catch (const rheo::UserError& e) {
     log_error(logger, environment, name, fmt::format("fmi2Instantiate: {}", e.what()));
@@ -209,8 +169,7 @@ fmi2Status fmi2SetString(fmi2Component c, const fmi2ValueReference[], size_t nvr
   return guarded(c, "fmi2SetString", [&](Instance&) { no_variables_of("String", nvr); });
 }
 
-// FMU states: Snapshots on the heap, owned by the instance, handed to the host until it frees
-// them (or frees the instance).
+// FMU states: FmuInstance's, handed to the host until it frees them (or frees the instance).
 fmi2Status fmi2GetFMUstate(fmi2Component c, fmi2FMUstate* FMUstate) {
   return guarded(c, "fmi2GetFMUstate", [&](Instance& i) {
     require_array(FMUstate, 1, "FMUstate");
@@ -221,20 +180,8 @@ fmi2Status fmi2GetFMUstate(fmi2Component c, fmi2FMUstate* FMUstate) {
 fmi2Status fmi2SetFMUstate(fmi2Component c, fmi2FMUstate FMUstate) {
   return guarded(c, "fmi2SetFMUstate", [&](Instance& i) { i.cosimulation->restore(i.state(FMUstate)); });
 }
-// FMUstate is the address of the host's handle. A host that passes the handle itself (fmusim
-// 31d7d40 does, restoring a state from a file) gets it freed all the same: a handle is one of
-// the instance's states, which no host's variable is, so the two cannot be confused.
 fmi2Status fmi2FreeFMUstate(fmi2Component c, fmi2FMUstate* FMUstate) {
-  return guarded(c, "fmi2FreeFMUstate", [&](Instance& i) {
-    if (!FMUstate) return;
-    auto* handle = static_cast<Snapshot*>(static_cast<void*>(FMUstate));
-    const bool passed_itself = i.states.count(handle) > 0;
-    if (!passed_itself && !*FMUstate) return;
-    if (!passed_itself) handle = &i.state(*FMUstate);
-    i.states.erase(handle);
-    delete handle;
-    if (!passed_itself) *FMUstate = nullptr;
-  });
+  return guarded(c, "fmi2FreeFMUstate", [&](Instance& i) { i.free_state(FMUstate); });
 }
 fmi2Status fmi2SerializedFMUstateSize(fmi2Component c, fmi2FMUstate FMUstate, size_t* size) {
   return guarded(c, "fmi2SerializedFMUstateSize", [&](Instance& i) {

@@ -59,17 +59,17 @@ std::string resource_folder(std::string_view uri) {
   return path;
 }
 
-std::unique_ptr<CoSimulation> load_cosimulation(const std::string& folder, std::string_view guid, std::string_view rheo_version) {
+std::unique_ptr<CoSimulation> load_cosimulation(const std::string& folder, std::string_view guid, std::string_view rheo_version, FmiVersion fmi) {
   const std::string source = read_resource(folder, kSourceResource);
   std::string name = read_resource(folder, kModelNameResource);
   while (!name.empty() && (name.back() == '\n' || name.back() == '\r')) name.pop_back();
   const std::string expected = fmu_guid(rheo_version, name, source);
   if (guid != expected)
     throw UsageError(
-        fmt::format("the host passed GUID {}, but the FMU's resources (model '{}', rheo {}) have {}: the resources or "
+        fmt::format("the host passed {} {}, but the FMU's resources (model '{}', rheo {}) have {}: the resources or "
                     "modelDescription.xml were changed or come from another FMU; export it again with rheo export",
-                    guid, name, rheo_version, expected));
-  return std::make_unique<CoSimulation>(kSourceResource, source, name);
+                    fmi == FmiVersion::fmi2 ? "GUID" : "instantiationToken", guid, name, rheo_version, expected));
+  return std::make_unique<CoSimulation>(kSourceResource, source, name, fmi);
 }
 
 }  // namespace rheo::runtime::fmu

@@ -1,5 +1,6 @@
 // What an exported FMU carries in its resources/ folder, and how its binary finds it from the
-// fmuResourceLocation URI a host passes to fmi2Instantiate.
+// fmuResourceLocation URI a host passes to fmi2Instantiate, or the resourcePath of
+// fmi3InstantiateCoSimulation.
 //   resources/model.rheo       the .rheo source as it was exported (every model of the file)
 //   resources/model_name.txt   the name of the model the FMU runs (one line)
 #pragma once
@@ -23,7 +24,8 @@ std::string resource_folder(std::string_view uri);
 // The co-simulation the files in FOLDER describe. DataError for a file that cannot be read;
 // UsageError when GUID (the host's, from modelDescription.xml) is not fmu_guid() of what the files
 // hold with RHEO_VERSION_TEXT (the binary's version): the resources were changed or come from
-// another FMU. CompileError, ModelError from the model itself.
-std::unique_ptr<CoSimulation> load_cosimulation(const std::string& folder, std::string_view guid, std::string_view rheo_version);
+// another FMU. CompileError, ModelError from the model itself. FMI: the version of the host's calls.
+std::unique_ptr<CoSimulation> load_cosimulation(const std::string& folder, std::string_view guid, std::string_view rheo_version,
+                                                FmiVersion fmi = FmiVersion::fmi2);
 
 }  // namespace rheo::runtime::fmu

@@ -105,14 +105,23 @@ std::vector<Variable> fmu_variables(const lang::CheckedModel& model) {
   collect_kinds(model.root, kinds);
   for (std::size_t i = 0; i < model.parameters.size(); ++i) {
     const lang::Parameter& p = model.parameters[i];
-    if (p.path == "u" || p.path == "F" || p.path == "v")
+    if (p.path == "u" || p.path == "F" || p.path == "v" || p.path == "time")
       throw ModelError(fmt::format("{}parameter '{}' of model '{}' has the name of the FMU's {}; rename it to export the model", error_at(p.where),
                                    p.path, model.name,
                                    p.path == "u"   ? "input u (the displacement)"
                                    : p.path == "v" ? "input v (the velocity)"
-                                                   : "output F (the force)"));
+                                   : p.path == "F" ? "output F (the force)"
+                                                   : "independent variable time"));
     out.push_back(parameter_variable(p, static_cast<int>(i), kinds));
   }
+  out.push_back(Variable{.name = "time",
+                         .reference = static_cast<unsigned>(out.size()),
+                         .causality = Causality::independent,
+                         .unit = "s",
+                         .start = 0.0,
+                         .min = std::nullopt,
+                         .max = std::nullopt,
+                         .description = "time at the last communication point"});
   return out;
 }
 

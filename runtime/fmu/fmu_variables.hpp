@@ -9,6 +9,10 @@
 //                                      parameter the host may set until initialisation ends
 //                                      (variability "fixed"), one computed from others (maxwell c
 //                                      from tau, `k = 2 * k0`) a calculatedParameter.
+//   value reference 3 + n  time [s]        the independent variable: the last communication point
+//                                          (n parameters; declared in FMI 3.0's description, where
+//                                          one variable must be independent; FMI 2.0 leaves it
+//                                          implicit)
 #pragma once
 
 #include "lang/model.hpp"
@@ -25,7 +29,7 @@ inline constexpr unsigned kOutputF = 1;
 inline constexpr unsigned kInputV = 2;
 inline constexpr unsigned kFirstParameter = 3;
 
-enum class Causality { input, output, parameter, calculated_parameter };
+enum class Causality { input, output, parameter, calculated_parameter, independent };
 
 struct Variable {
   std::string name;  // "u", "F", "v", or the parameter's path ("m1.tau")
@@ -38,11 +42,11 @@ struct Variable {
   // input's the range of a rig's displacement (lang/limits.hpp).
   std::optional<double> min, max;
   std::string description;
-  int parameter = -1;  // index into CheckedModel::parameters; -1 for u, F and v
+  int parameter = -1;  // index into CheckedModel::parameters; -1 for u, F, v and time
 };
 
 // The variables of MODEL in value-reference order. ModelError when a model-level parameter is
-// named `u`, `F` or `v`, the names of the FMU's inputs and output.
+// named `u`, `F`, `v` or `time`, the names of the FMU's inputs, output and independent variable.
 std::vector<Variable> fmu_variables(const lang::CheckedModel& model);
 
 // A fingerprint of what an FMU computes: rheo's version, the model's name and the source text,

@@ -1,6 +1,6 @@
 // `rheo export --fmu` from the command line: what it writes, and the bad input of #27: a model
 // that cannot be exported (element, line:col), an unwritable destination caught before any work,
-// no partial .fmu after a failure, and FMI 3.0 not offered yet (docs/errors.md).
+// no partial .fmu after a failure, and the FMI version chosen with --fmi (docs/errors.md).
 #include "cli_support.hpp"
 
 #include <doctest/doctest.h>
@@ -40,6 +40,22 @@ TEST_CASE("rheo export --fmu: writes the FMU of the file's model and says so") {
   fs::remove_all(dir);
 }
 
+TEST_CASE("rheo export --fmu --fmi 3: writes an FMI 3.0 FMU, its binary under binaries/x86_64-linux") {
+  const auto dir = rheo::test::scratch_directory("export-fmi3");
+  const auto out = dir / "bushing_d.fmu";
+  const auto r = rheo::test::run_rheo(fmt::format("export {}/bushing_d.rheo --fmu {} --fmi 3", RHEO_EXAMPLES_DIR, out.string()));
+  CHECK(r.code == 0);
+  CHECK(r.err.find("rheo: FMU of model bushing_d (FMI 3.0 co-simulation, 12 parameters) written to") != std::string::npos);
+  std::ifstream in(out, std::ios::binary);
+  const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  CHECK(bytes.compare(0, 4, std::string("PK\x03\x04", 4)) == 0);
+  // ZIP entry names are stored as they are: the FMI 3.0 platform folder, and no FMI 2.0 one.
+  CHECK(bytes.find("binaries/x86_64-linux/bushing_d.so") != std::string::npos);
+  CHECK(bytes.find("binaries/linux64/") == std::string::npos);
+  CHECK(listing(dir) == std::vector<std::string>{"bushing_d.fmu"});
+  fs::remove_all(dir);
+}
+
 TEST_CASE("rheo export --fmu: a model the fixed-step kernels cannot step is refused with its element and line:col, leaving nothing") {
   const auto dir = rheo::test::scratch_directory("export-refused");
   std::ofstream(dir / "mass.rheo") << "model m {\n  spring s (k = 10 N/mm)\n  inerter mass (b = 1 kg)\n}\n";
@@ -67,13 +83,11 @@ TEST_CASE("rheo export --fmu: an unwritable destination is caught before the mod
   fs::remove_all(dir);
 }
 
-TEST_CASE("rheo export: usage errors: FMI 3.0 is not available yet, other versions, no output, several models") {
+TEST_CASE("rheo export: usage errors: FMI versions other than 2 and 3, no output, several models") {
   const auto dir = rheo::test::scratch_directory("export-usage");
   const std::string d = RHEO_EXAMPLES_DIR;
-  const auto fmi3 = rheo::test::run_rheo(fmt::format("export {}/bushing_d.rheo --fmu {}/x.fmu --fmi 3", d, dir.string()));
-  CHECK(fmi3.code == 2);
-  CHECK(fmi3.err.find("--fmi 3: FMI 3.0 export is not available yet") != std::string::npos);
   CHECK(rheo::test::run_rheo(fmt::format("export {}/bushing_d.rheo --fmu {}/x.fmu --fmi 1", d, dir.string())).code == 2);
+  CHECK(rheo::test::run_rheo(fmt::format("export {}/bushing_d.rheo --fmu {}/x.fmu --fmi 4", d, dir.string())).code == 2);
   const auto none = rheo::test::run_rheo(fmt::format("export {}/bushing_d.rheo", d));
   CHECK(none.code == 2);
   CHECK(none.err.find("--fmu OUT.fmu") != std::string::npos);

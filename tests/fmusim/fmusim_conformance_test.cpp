@@ -1,14 +1,15 @@
 // Conformance of exported FMUs with an independent FMI host (#27 item 2): fmusim, the FMI
-// Reference FMUs' simulator, validates each FMU's modelDescription.xml against the FMI 2.0 schema,
-// loads its binary and runs it as co-simulation on a displacement history, holding each input
-// over the step. Its force must be rheo's own, `rheo simulate --solver fixed` on the same held
-// (staircase) history, within 1e-7 of the largest |F|; with logging on nothing may be logged.
-// The staircase is written for rheo as a history whose input ramps to the next value over the
-// first part of each step: h/2^10, the FMU's own ramp, for networks with subtrees; h/2^20 for a
-// network all in the model's body, where the FMU jumps exactly and a ramp of h/2^20 differs from
-// the jump by 2^-21 h/tau of a Maxwell arm's jump force (runtime/fmu/cosimulation.hpp;
-// docs/numerics.md#fmu-input-between-communication-points). The step is 2^-11 s, so that every
-// time fmusim and rheo form is exact in binary.
+// Reference FMUs' simulator, validates each FMU's modelDescription.xml against the FMI 2.0 or 3.0
+// schema, loads its binary and runs it as co-simulation on a displacement history, setting each
+// sample at its communication point, which the FMU holds over the step. Every check runs for an
+// FMI 2.0 and an FMI 3.0 export of the model. Its force must be rheo's own, `rheo simulate
+// --solver fixed` on the same held (staircase) history, within 1e-7 of the largest |F|; with
+// logging on nothing may be logged. The staircase is written for rheo as a history whose input
+// ramps to the next value over the first part of each step: h/2^10, the FMU's own ramp, for
+// networks with subtrees; h/2^20 for a network all in the model's body, where the FMU jumps
+// exactly and a ramp of h/2^20 differs from the jump by 2^-21 h/tau of a Maxwell arm's jump force
+// (runtime/fmu/cosimulation.hpp; docs/numerics.md#fmu-input-between-communication-points). The
+// step is 2^-11 s, so that every time fmusim and rheo form is exact in binary.
 #include "cli_support.hpp"
 
 #include <doctest/doctest.h>
@@ -81,14 +82,15 @@ struct Comparison {
   std::string log;
 };
 
-// Exports MODEL of SOURCE, runs it in fmusim on the sampled displacement and rheo on the held
-// history (ramps of RAMP h); the largest |F| and the largest difference.
-Comparison compare(const std::string& name, const std::string& source, const std::string& model, double ramp) {
-  const fs::path dir = rheo::test::scratch_directory("fmusim-" + name);
+// Exports MODEL of SOURCE as an FMU of FMI version FMI (2 or 3), runs it in fmusim on the sampled
+// displacement and rheo on the held history (ramps of RAMP h); the largest |F| and the largest
+// difference.
+Comparison compare(const std::string& name, const std::string& source, const std::string& model, double ramp, int fmi) {
+  const fs::path dir = rheo::test::scratch_directory(fmt::format("fmusim-{}-fmi{}", name, fmi));
   std::ofstream(dir / "model.rheo") << source << "\nsimulate " << model
                                     << " {\n  history file = \"held.csv\", solver = fixed\n  output \"rheo.csv\"\n}\n";
   const auto exported = rheo::test::run_rheo(
-      fmt::format("export {} --fmu {} --model {}", (dir / "model.rheo").string(), (dir / "m.fmu").string(), model));
+      fmt::format("export {} --fmu {} --model {} --fmi {}", (dir / "model.rheo").string(), (dir / "m.fmu").string(), model, fmi));
   REQUIRE_MESSAGE(exported.code == 0, exported.err);
   {
     std::ofstream in(dir / "in.csv"), held(dir / "held.csv");
@@ -107,7 +109,7 @@ Comparison compare(const std::string& name, const std::string& source, const std
                   "--output-interval {} --stop-time {} --output-variable F --output-file fmusim.csv m.fmu",
                   dir.string(), FMUSIM_BINARY, kStep, kSteps * kStep));
   const std::string calls = text_of((dir / "calls.log").string());
-  CHECK(calls.find("fmi2DoStep(") != std::string::npos);
+  CHECK(calls.find(fmt::format("fmi{}DoStep(", fmi)) != std::string::npos);
   for (const char* bad : {"-> Warning", "-> Discard", "-> Error", "-> Fatal"}) CHECK_MESSAGE(calls.find(bad) == std::string::npos, bad);
   const auto simulated = rheo::test::run_rheo(fmt::format("simulate {}", (dir / "model.rheo").string()));
   REQUIRE_MESSAGE(simulated.code == 0, simulated.err);
@@ -126,81 +128,44 @@ Comparison compare(const std::string& name, const std::string& source, const std
 
 std::string example(const std::string& file) { return text_of(std::string(RHEO_EXAMPLES_DIR) + "/" + file); }
 
-}  // namespace
-
-TEST_CASE("fmusim runs specimen D's FMU: valid, silent, and rheo's force on the held history within 1e-7") {
+void check_specimen_d(int fmi) {
   if (!fmusim_available()) return;
-  const Comparison c = compare("specimen-d", example("specimen_d.rheo"), "specimen_d", 1.0 / 1048576.0);
+  const Comparison c = compare("specimen-d", example("specimen_d.rheo"), "specimen_d", 1.0 / 1048576.0, fmi);
   CHECK(c.log.empty());
   CHECK(c.peak > 500.0);
   CHECK(c.worst <= 1e-7 * c.peak);
-  MESSAGE(fmt::format("specimen D: max |F| {:.6g} N, max difference {:.3g} N ({:.2g} of it)", c.peak, c.worst, c.worst / c.peak));
+  MESSAGE(fmt::format("specimen D, FMI {}: max |F| {:.6g} N, max difference {:.3g} N ({:.2g} of it)", fmi, c.peak, c.worst, c.worst / c.peak));
 }
 
-TEST_CASE("fmusim runs the hydrobushing's FMU: valid, silent, and rheo's force on the held history within 1e-7") {
+void check_hydrobushing(int fmi) {
   if (!fmusim_available()) return;
-  const Comparison c = compare("hydrobushing", example("hydrobushing.rheo"), "hydrobushing", 1.0 / 1024.0);
+  const Comparison c = compare("hydrobushing", example("hydrobushing.rheo"), "hydrobushing", 1.0 / 1024.0, fmi);
   CHECK(c.log.empty());
   CHECK(c.peak > 500.0);
   CHECK(c.worst <= 1e-7 * c.peak);
-  MESSAGE(fmt::format("hydrobushing: max |F| {:.6g} N, max difference {:.3g} N ({:.2g} of it)", c.peak, c.worst, c.worst / c.peak));
+  MESSAGE(fmt::format("hydrobushing, FMI {}: max |F| {:.6g} N, max difference {:.3g} N ({:.2g} of it)", fmi, c.peak, c.worst, c.worst / c.peak));
 }
 
-TEST_CASE("fmusim runs a Bouc-Wen damper's FMU: valid, silent, and rheo's force on the held history within 1e-7") {
+void check_bouc_wen(int fmi) {
   if (!fmusim_available()) return;
   const std::string source =
       "# A smooth-friction damper: rubber, a Bouc-Wen element and a Maxwell arm in parallel.\n"
       "model bouc_wen_damper {\n  spring rubber (k = 200 N/mm)\n  bouc_wen slip (k = 800 N/mm, n = 1.5, fy = 60 N)\n"
       "  maxwell visco (k = 120 N/mm, tau = 6 ms)\n}\n";
-  const Comparison c = compare("bouc-wen", source, "bouc_wen_damper", 1.0 / 1024.0);
+  const Comparison c = compare("bouc-wen", source, "bouc_wen_damper", 1.0 / 1024.0, fmi);
   CHECK(c.log.empty());
   CHECK(c.peak > 200.0);
   CHECK(c.worst <= 1e-7 * c.peak);
-  MESSAGE(fmt::format("bouc_wen: max |F| {:.6g} N, max difference {:.3g} N ({:.2g} of it)", c.peak, c.worst, c.worst / c.peak));
+  MESSAGE(fmt::format("bouc_wen, FMI {}: max |F| {:.6g} N, max difference {:.3g} N ({:.2g} of it)", fmi, c.peak, c.worst, c.worst / c.peak));
 }
 
-TEST_CASE("fmusim drives the hydrobushing's FMU with its velocity input v: rheo's force on the linear history within 1e-9") {
+// fmusim saves the FMU state at t = 200 h of one run into a file, and a second run restores it
+// and steps on to 400 h: its forces must be a whole run's, bit for bit.
+void check_state_continuation(int fmi) {
   if (!fmusim_available()) return;
-  // A host that provides the velocity over each step, v_n = (u_{n+1} - u_n)/h, gives the FMU the
-  // piecewise-linear drive that rheo simulates: no lag, one kernel pass per step.
-  const fs::path dir = rheo::test::scratch_directory("fmusim-velocity");
-  std::ofstream(dir / "model.rheo") << example("hydrobushing.rheo")
-                                    << "\nsimulate hydrobushing {\n  history file = \"linear.csv\", solver = fixed\n  output \"rheo.csv\"\n}\n";
-  REQUIRE(rheo::test::run_rheo(fmt::format("export {} --fmu {}", (dir / "model.rheo").string(), (dir / "m.fmu").string())).code == 0);
-  {
-    std::ofstream in(dir / "in.csv"), linear(dir / "linear.csv");
-    in << "\"time\",\"u\",\"v\"\n";
-    linear << "time [s],displacement [mm]\n";
-    for (int n = 0; n <= kSteps; ++n) {
-      const double v = n < kSteps ? (displacement(n + 1) - displacement(n)) / kStep : 0.0;
-      in << fmt::format("{:.17g},{:.17g},{:.17g}\n", n * kStep, displacement(n), v);
-      linear << fmt::format("{:.17g},{:.17g}\n", n * kStep, displacement(n));
-    }
-  }
-  const std::string log = run(
-      fmt::format("cd {} && {} --interface-type cs --logging-on --log-level ok --input-file in.csv --output-interval {} "
-                  "--stop-time {} --output-variable F --output-file fmusim.csv m.fmu",
-                  dir.string(), FMUSIM_BINARY, kStep, kSteps * kStep));
-  CHECK(log.empty());
-  REQUIRE(rheo::test::run_rheo(fmt::format("simulate {}", (dir / "model.rheo").string())).code == 0);
-  const std::vector<double> fmu = column(dir / "fmusim.csv", 1), rheo = column(dir / "rheo.csv", 2);
-  REQUIRE(fmu.size() == static_cast<std::size_t>(kSteps + 1));
-  REQUIRE(rheo.size() == fmu.size());
-  double peak = 0.0, worst = 0.0;
-  for (std::size_t n = 0; n < fmu.size(); ++n) {
-    peak = std::max(peak, std::abs(rheo[n]));
-    worst = std::max(worst, std::abs(fmu[n] - rheo[n]));
-  }
-  MESSAGE(fmt::format("hydrobushing with v: max |F| {:.6g} N, max difference {:.3g} N ({:.2g} of it)", peak, worst, worst / peak));
-  CHECK(peak > 500.0);
-  CHECK(worst <= 1e-9 * peak);
-  fs::remove_all(dir);
-}
-
-TEST_CASE("fmusim continues a run from the FMU state another run saved, bit for bit as if it had not stopped") {
-  if (!fmusim_available()) return;
-  const fs::path dir = rheo::test::scratch_directory("fmusim-state");
-  const auto exported = rheo::test::run_rheo(fmt::format("export {}/hydrobushing.rheo --fmu {}", RHEO_EXAMPLES_DIR, (dir / "h.fmu").string()));
+  const fs::path dir = rheo::test::scratch_directory(fmt::format("fmusim-state-fmi{}", fmi));
+  const auto exported = rheo::test::run_rheo(
+      fmt::format("export {}/hydrobushing.rheo --fmu {} --fmi {}", RHEO_EXAMPLES_DIR, (dir / "h.fmu").string(), fmi));
   REQUIRE(exported.code == 0);
   {
     std::ofstream in(dir / "in.csv");
@@ -226,4 +191,68 @@ TEST_CASE("fmusim continues a run from the FMU state another run saved, bit for 
   CHECK(peak > 500.0);
   CHECK(worst == 0.0);
   fs::remove_all(dir);
+}
+
+// A host that provides the velocity over each step, v_n = (u_{n+1} - u_n)/h, gives the FMU the
+// piecewise-linear drive that rheo simulates: no lag, one kernel pass per step. In FMI 3.0, which
+// has no call for input derivatives, v is the route.
+void check_velocity(int fmi) {
+  if (!fmusim_available()) return;
+  const fs::path dir = rheo::test::scratch_directory(fmt::format("fmusim-velocity-fmi{}", fmi));
+  std::ofstream(dir / "model.rheo") << example("hydrobushing.rheo")
+                                    << "\nsimulate hydrobushing {\n  history file = \"linear.csv\", solver = fixed\n  output \"rheo.csv\"\n}\n";
+  REQUIRE(rheo::test::run_rheo(fmt::format("export {} --fmu {} --fmi {}", (dir / "model.rheo").string(), (dir / "m.fmu").string(), fmi)).code == 0);
+  {
+    std::ofstream in(dir / "in.csv"), linear(dir / "linear.csv");
+    in << "\"time\",\"u\",\"v\"\n";
+    linear << "time [s],displacement [mm]\n";
+    for (int n = 0; n <= kSteps; ++n) {
+      const double v = n < kSteps ? (displacement(n + 1) - displacement(n)) / kStep : 0.0;
+      in << fmt::format("{:.17g},{:.17g},{:.17g}\n", n * kStep, displacement(n), v);
+      linear << fmt::format("{:.17g},{:.17g}\n", n * kStep, displacement(n));
+    }
+  }
+  const std::string log = run(
+      fmt::format("cd {} && {} --interface-type cs --logging-on --log-level ok --input-file in.csv --output-interval {} "
+                  "--stop-time {} --output-variable F --output-file fmusim.csv m.fmu",
+                  dir.string(), FMUSIM_BINARY, kStep, kSteps * kStep));
+  CHECK(log.empty());
+  REQUIRE(rheo::test::run_rheo(fmt::format("simulate {}", (dir / "model.rheo").string())).code == 0);
+  const std::vector<double> fmu = column(dir / "fmusim.csv", 1), rheo = column(dir / "rheo.csv", 2);
+  REQUIRE(fmu.size() == static_cast<std::size_t>(kSteps + 1));
+  REQUIRE(rheo.size() == fmu.size());
+  double peak = 0.0, worst = 0.0;
+  for (std::size_t n = 0; n < fmu.size(); ++n) {
+    peak = std::max(peak, std::abs(rheo[n]));
+    worst = std::max(worst, std::abs(fmu[n] - rheo[n]));
+  }
+  MESSAGE(fmt::format("hydrobushing with v, FMI {}: max |F| {:.6g} N, max difference {:.3g} N ({:.2g} of it)", fmi, peak, worst, worst / peak));
+  CHECK(peak > 500.0);
+  CHECK(worst <= 1e-9 * peak);
+  fs::remove_all(dir);
+}
+
+}  // namespace
+
+TEST_CASE("fmusim runs specimen D's FMI 2.0 FMU: valid, silent, and rheo's force on the held history within 1e-7") { check_specimen_d(2); }
+TEST_CASE("fmusim runs specimen D's FMI 3.0 FMU: valid, silent, and rheo's force on the held history within 1e-7") { check_specimen_d(3); }
+
+TEST_CASE("fmusim runs the hydrobushing's FMI 2.0 FMU: valid, silent, and rheo's force on the held history within 1e-7") { check_hydrobushing(2); }
+TEST_CASE("fmusim runs the hydrobushing's FMI 3.0 FMU: valid, silent, and rheo's force on the held history within 1e-7") { check_hydrobushing(3); }
+
+TEST_CASE("fmusim runs a Bouc-Wen damper's FMI 2.0 FMU: valid, silent, and rheo's force on the held history within 1e-7") { check_bouc_wen(2); }
+TEST_CASE("fmusim runs a Bouc-Wen damper's FMI 3.0 FMU: valid, silent, and rheo's force on the held history within 1e-7") { check_bouc_wen(3); }
+
+TEST_CASE("fmusim continues an FMI 2.0 run from the FMU state another run saved, bit for bit as if it had not stopped") {
+  check_state_continuation(2);
+}
+TEST_CASE("fmusim continues an FMI 3.0 run from the FMU state another run saved, bit for bit as if it had not stopped") {
+  check_state_continuation(3);
+}
+
+TEST_CASE("fmusim drives the hydrobushing's FMI 2.0 FMU with its velocity input v: rheo's force on the linear history within 1e-9") {
+  check_velocity(2);
+}
+TEST_CASE("fmusim drives the hydrobushing's FMI 3.0 FMU with its velocity input v: rheo's force on the linear history within 1e-9") {
+  check_velocity(3);
 }

@@ -1,10 +1,15 @@
-// Candidates as models (candidate_model.hpp): a refitted gap written as a file can state it.
+// Candidates as models (candidate_model.hpp): a refitted gap written as a file can state it; a
+// fluid column and its limit without inertia, each started from the other.
 #include "runtime/diagnosis/candidate_model.hpp"
 
+#include "runtime/diagnosis/trial.hpp"
 #include "runtime/protocols/run_history.hpp"
 #include "support.hpp"
 
 #include <doctest/doctest.h>
+
+#include <cmath>
+#include <numbers>
 
 using namespace rheo;
 
@@ -33,4 +38,30 @@ TEST_CASE("a refitted gap centre beyond half the width is written at the edge of
   std::vector<double> negative = bounded.parameters();
   negative[static_cast<std::size_t>(test::parameter_index(bounded, "b.p.width"))] = 0.2;
   CHECK(runtime::diagnosis::with_gaps_in_play(bounded.with_parameters(negative)).parameter(test::parameter_index(bounded, "b.p.center")) == 0.5);
+}
+
+TEST_CASE("a capped Maxwell element's optimum restarts the fluid column it is the limit of, and that column's limit is it again") {
+  const runtime::Network limit = test::network_from(
+      "model m { spring s (k = 100 N/mm)  series c { slider cap (fy = 30 N in [0.1, 1000])  maxwell arm (k = 250 N/mm in [1, 1e4], tau = 4 ms in [0.01, 1000]) } }",
+      "m");
+  runtime::diagnosis::Trial column;
+  column.shape = runtime::diagnosis::Shape::capped_column, column.frequency = 20.0, column.damping_ratio = 0.3;
+  const auto restart = runtime::diagnosis::column_from_limit(column, limit.model(), limit, "c");
+  CHECK(restart.shape == runtime::diagnosis::Shape::capped_column);
+  CHECK(restart.stiffness == doctest::Approx(250.0).epsilon(1e-14));
+  CHECK(restart.slip * restart.stiffness == doctest::Approx(30.0).epsilon(1e-14));
+  CHECK(restart.frequency == 20.0);
+  CHECK(restart.damping_ratio == doctest::Approx(std::numbers::pi * 20.0 * 4e-3).epsilon(1e-14));  // zeta = pi f_r tau
+  // Written as a model, its chamber and channel are the arm's k and c = k tau, and its limit is the arm.
+  std::string text = "model m { spring s (k = 100 N/mm)\n";
+  for (const std::string& line : runtime::diagnosis::trial_statement(restart, "c", {250.0, 1.0})) text += line + "\n";
+  const runtime::Network columned = test::network_from(text + "}", "m");
+  CHECK(columned.parameter(test::parameter_index(columned, "c.column.channel.c")) == doctest::Approx(250.0 * 4e-3).epsilon(1e-9));
+  const double b = columned.parameter(test::parameter_index(columned, "c.column.mass.b"));
+  CHECK(std::sqrt(250.0 / b) / (2.0 * std::numbers::pi) == doctest::Approx(20.0).epsilon(1e-5));  // b written to 6 digits
+  const auto back = runtime::diagnosis::resonance_free_limit(restart, columned.model(), columned, "c");
+  CHECK(back.shape == runtime::diagnosis::Shape::capped_maxwell);
+  CHECK(back.stiffness == doctest::Approx(250.0).epsilon(1e-9));
+  CHECK(back.time == doctest::Approx(4e-3).epsilon(1e-9).scale(0));
+  CHECK(back.slip * back.stiffness == doctest::Approx(30.0).epsilon(1e-9));
 }

@@ -1,5 +1,5 @@
 // The FMU as a whole: which networks are refused (element and line:col), and what the archive
-// holds, read back with minizip's reader.
+// holds for FMI 2.0 and FMI 3.0, read back with minizip's reader.
 #include "runtime/export/fmu_export.hpp"
 
 #include "cli_support.hpp"
@@ -47,8 +47,9 @@ TEST_CASE("fmu export: the archive holds the description, the binary for linux64
   const auto model = test::model_from(source, "bushing_d");
   const auto files = unzipped(runtime::exporter::fmu_archive(model, {"bushing_d.rheo", source, "1.2.3"}));
   for (const char* name : {"modelDescription.xml", "binaries/linux64/bushing_d.so", "resources/model.rheo", "resources/model_name.txt",
-                           "documentation/licenses/fmi2-headers.txt"})
+                           "documentation/licenses/fmi2-headers.txt", "documentation/licenses/fmi3-headers.txt"})
     CHECK_MESSAGE(files.count(name) == 1, name);
+  CHECK(files.size() == 11);  // with the folders binaries/, binaries/linux64/, resources/, documentation/, documentation/licenses/
   CHECK(files.at("binaries/linux64/bushing_d.so") == runtime::exporter::fmu_binary());
   CHECK(files.at("resources/model.rheo") == source);
   CHECK(files.at("resources/model_name.txt") == "bushing_d\n");
@@ -56,6 +57,22 @@ TEST_CASE("fmu export: the archive holds the description, the binary for linux64
   CHECK(xml.find(fmt::format("guid=\"{}\"", runtime::fmu::fmu_guid("1.2.3", "bushing_d", source))) != std::string::npos);
   CHECK(xml.find("modelIdentifier=\"bushing_d\"") != std::string::npos);
   CHECK(xml.find("generationTool=\"rheo 1.2.3\"") != std::string::npos);
+}
+
+TEST_CASE("fmu export: an FMI 3.0 archive holds the FMI 3.0 description and the same binary, for x86_64-linux") {
+  const std::string source = test::read_file(std::string(RHEO_EXAMPLES_DIR) + "/bushing_d.rheo");
+  const auto model = test::model_from(source, "bushing_d");
+  const auto files = unzipped(runtime::exporter::fmu_archive(model, {"bushing_d.rheo", source, "1.2.3", runtime::fmu::FmiVersion::fmi3}));
+  for (const char* name : {"modelDescription.xml", "binaries/x86_64-linux/bushing_d.so", "resources/model.rheo", "resources/model_name.txt",
+                           "documentation/licenses/fmi2-headers.txt", "documentation/licenses/fmi3-headers.txt"})
+    CHECK_MESSAGE(files.count(name) == 1, name);
+  CHECK(files.count("binaries/linux64/bushing_d.so") == 0);
+  CHECK(files.at("binaries/x86_64-linux/bushing_d.so") == runtime::exporter::fmu_binary());
+  const std::string& xml = files.at("modelDescription.xml");
+  CHECK(xml.find("fmiVersion=\"3.0\"") != std::string::npos);
+  CHECK(xml.find(fmt::format("instantiationToken=\"{}\"", runtime::fmu::fmu_guid("1.2.3", "bushing_d", source))) != std::string::npos);
+  CHECK(files.at("documentation/licenses/fmi3-headers.txt").find("FMI 3.0 header files fmi3Functions.h") != std::string::npos);
+  CHECK(files.at("documentation/licenses/fmi3-headers.txt").find("2012-2023 Modelica Association Project") != std::string::npos);
 }
 
 TEST_CASE("fmu export: the embedded binary is the shared library this build made") {

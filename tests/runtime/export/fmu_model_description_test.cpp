@@ -1,6 +1,7 @@
 // modelDescription.xml's content: units in SI base units (closed forms of N, mm, s), every
 // variable with its attributes, and the escaping that keeps the source text intact in an
-// attribute. Its validity against the FMI 2.0 schema is checked by fmusim (tests/fmusim/).
+// attribute, in FMI 2.0's form and FMI 3.0's. Validity against the FMI 2.0 and 3.0 schemas is
+// checked by fmusim (tests/fmusim/).
 #include "runtime/export/fmu_model_description.hpp"
 
 #include "support.hpp"
@@ -13,6 +14,10 @@ namespace {
 
 std::string description_of(const std::string& source, const std::string& model) {
   return runtime::exporter::fmi2_model_description(test::model_from(source, model), {model, "{guid}", "0.0.1", "x.rheo", source});
+}
+
+std::string fmi3_description_of(const std::string& source, const std::string& model) {
+  return runtime::exporter::fmi3_model_description(test::model_from(source, model), {model, "{guid}", "0.0.1", "x.rheo", source});
 }
 
 bool has(const std::string& text, const std::string& part) { return text.find(part) != std::string::npos; }
@@ -64,4 +69,37 @@ TEST_CASE("fmu description: the source text and rheo's version stand in the desc
   const std::string xml = description_of(source, "m");
   CHECK(has(xml, "exported by rheo 0.0.1. Source text:&#10;# &quot;a&quot; &lt; b &amp; c&#10;model m {&#10;&#9;spring s (k = 1)&#10;}&#10;\""));
   CHECK(runtime::exporter::xml_attribute("a\rb\x01<") == "a&#13;b&#xFFFD;&lt;");
+}
+
+TEST_CASE("fmu description: FMI 3.0 declares every variable as a Float64, time as the independent one, and the structure by value reference") {
+  const std::string source = "model m { spring s (k = 20 N/mm in [1, 100]) maxwell m1 (k = 5 N/mm, tau = 2 ms) }";
+  const std::string xml = fmi3_description_of(source, "m");
+  CHECK(has(xml, "<fmiModelDescription fmiVersion=\"3.0\" modelName=\"m\" instantiationToken=\"{guid}\""));
+  CHECK_FALSE(has(xml, "guid="));
+  CHECK(has(xml,
+            "<Float64 name=\"u\" valueReference=\"0\" description=\"terminal displacement (the other terminal is ground)\" causality=\"input\" "
+            "variability=\"continuous\" unit=\"mm\" min=\"-1e+20\" max=\"1e+20\" start=\"0\"/>"));
+  CHECK(has(xml,
+            "<Float64 name=\"F\" valueReference=\"1\" description=\"terminal force at the communication point\" causality=\"output\" "
+            "variability=\"continuous\" initial=\"calculated\" unit=\"N\"/>"));
+  CHECK(has(xml, "causality=\"parameter\" variability=\"fixed\" initial=\"exact\" unit=\"N/mm\" min=\"1\" max=\"100\" start=\"20\"/>"));
+  CHECK(has(xml, "<Float64 name=\"m1.c\" valueReference=\"6\""));
+  // The independent variable: continuous, in s, with no start (FMI 3.0 section 2.4.7.4).
+  CHECK(has(xml,
+            "<Float64 name=\"time\" valueReference=\"7\" description=\"time at the last communication point\" causality=\"independent\" "
+            "variability=\"continuous\" unit=\"s\"/>"));
+  // Outputs and initial unknowns by value reference (FMI 2.0 counts positions from 1).
+  CHECK(has(xml,
+            "<ModelStructure>\n    <Output valueReference=\"1\" dependencies=\"\"/>\n    <InitialUnknown valueReference=\"1\"/>\n"
+            "    <InitialUnknown valueReference=\"6\"/>\n  </ModelStructure>"));
+  for (const char* attribute : {"canGetAndSetFMUState=\"true\"", "canSerializeFMUState=\"true\"", "providesIntermediateUpdate=\"false\"",
+                                "canHandleVariableCommunicationStepSize=\"true\"", "hasEventMode=\"false\"", "modelIdentifier=\"m\""})
+    CHECK_MESSAGE(has(xml, attribute), attribute);
+  // The units as FMI 2.0 writes them.
+  CHECK(has(xml, "<Unit name=\"N/mm\">\n      <BaseUnit kg=\"1\" s=\"-2\" factor=\"1000\"/>"));
+  CHECK(has(xml, "<Unit name=\"s\">\n      <BaseUnit s=\"1\"/>"));
+  // FMI 2.0 leaves time implicit.
+  const std::string fmi2 = description_of(source, "m");
+  CHECK_FALSE(has(fmi2, "independent"));
+  CHECK_FALSE(has(fmi2, "name=\"time\""));
 }

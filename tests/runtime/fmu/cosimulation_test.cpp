@@ -224,3 +224,35 @@ TEST_CASE("fmu: a step past the stop time, and parameters outside their bounds, 
   for (int n = 0; n < 10; ++n) c.do_step(n * 1e-3, 1e-3);
   CHECK_THROWS_WITH_AS(c.do_step(1e-2, 1e-3), doctest::Contains("past the stop time"), UsageError);
 }
+
+TEST_CASE("fmu: FMI 3.0 enters initialisation with the experiment's times in one call, and its messages name the fmi3 functions") {
+  CoSimulation c("test.rheo", "model m { spring s (k = 20 N/mm) }", "m", runtime::fmu::FmiVersion::fmi3);
+  CHECK_THROWS_WITH_AS(c.enter_initialization(0.0, -1.0), doctest::Contains("stop time -1 s lies before the start time 0 s"), DataError);
+  CHECK(c.phase() == runtime::fmu::Phase::instantiated);  // the failed call changed nothing
+  c.enter_initialization(0.5, 0.5 + 4e-3);
+  CHECK(c.phase() == runtime::fmu::Phase::initialization);
+  CHECK_THROWS_WITH_AS(c.enter_initialization(0.0, std::nullopt),
+                       doctest::Contains("fmi3EnterInitializationMode is called once after instantiation"), UsageError);
+  c.exit_initialization();
+  CHECK(c.time() == 0.5);
+  CHECK_THROWS_WITH_AS(c.do_step(0.0, 1e-3), doctest::Contains("restore an FMU state (fmi3SetFMUState)"), UsageError);
+  CHECK_THROWS_WITH_AS(c.set_real(reference_of(c, "s.k"), 25.0), doctest::Contains("set it before fmi3ExitInitializationMode"), UsageError);
+  for (int n = 0; n < 4; ++n) c.do_step(0.5 + n * 1e-3, 1e-3);
+  CHECK_THROWS_WITH_AS(c.do_step(0.504, 1e-3), doctest::Contains("s (fmi3EnterInitializationMode)"), UsageError);
+  // FMI 2.0 names its own.
+  CoSimulation two("test.rheo", "model m { spring s (k = 20 N/mm) }", "m");
+  CHECK_THROWS_WITH_AS(two.do_step(0.0, 1e-3),
+                       doctest::Contains("fmi2DoStep is called after initialisation, not instantiated (before fmi2EnterInitializationMode)"),
+                       UsageError);
+}
+
+TEST_CASE("fmu: the independent variable time reads the last communication point and cannot be set") {
+  CoSimulation c = started("model m { spring s (k = 20 N/mm) }", "m");
+  const unsigned time = reference_of(c, "time");
+  CHECK(time == c.variables().size() - 1);
+  CHECK(c.get_real(time) == 0.0);
+  for (int n = 0; n < 3; ++n) c.do_step(n * 0.25, 0.25);  // exact in binary
+  CHECK(c.get_real(time) == 0.75);
+  CHECK_THROWS_WITH_AS(c.set_real(time, 1.0), doctest::Contains("time is the independent variable"), UsageError);
+  CHECK(c.get_real(time) == 0.75);
+}

@@ -36,7 +36,7 @@ bool logged(const std::string& part) {
 
 }  // namespace
 
-TEST_CASE("fmi2 binary: it needs only the C library, libm and libgcc_s, and exports the fmi2 functions only") {
+TEST_CASE("fmi2 binary: it needs only the C library, libm and libgcc_s, and exports the FMI functions only") {
   if (!test::tool_installed("ldd", "libc-bin")) return;
   const test::BinaryRun ldd = [] {
     test::BinaryRun r;

@@ -24,13 +24,13 @@ const runtime::fmu::Variable& named(const std::vector<runtime::fmu::Variable>& v
 
 }  // namespace
 
-TEST_CASE("fmu variables: u, F and v first, then every parameter in the model's order, in internal units") {
+TEST_CASE("fmu variables: u, F and v first, then every parameter in the model's order, in internal units, then time") {
   const auto model = test::model_from(
       "model m {\n  maxwell m1 (k = 61.476 N/mm, tau = 4.335 ms)\n  friction f1 (k = 1 kN/mm in [0.1, 5], uy = 101.58 um)\n"
       "  springpot p (k = 10 N/mm, alpha = 0.3, tau = 1 s)\n  yeoh y (D10 = 300 N/mm, D20 = -2 N/mm^3, D30 = 0.1 N/mm^5)\n}",
       "m");
   const auto vs = runtime::fmu::fmu_variables(model);
-  REQUIRE(vs.size() == 3 + model.parameters.size());
+  REQUIRE(vs.size() == 4 + model.parameters.size());
   for (std::size_t i = 0; i < vs.size(); ++i) CHECK(vs[i].reference == i);
   CHECK(vs[0].name == "u");
   CHECK(vs[0].causality == Causality::input);
@@ -46,6 +46,10 @@ TEST_CASE("fmu variables: u, F and v first, then every parameter in the model's 
     CHECK(vs[i + 3].name == model.parameters[i].path);
     CHECK(vs[i + 3].start == model.parameters[i].value);
   }
+  CHECK(vs.back().name == "time");
+  CHECK(vs.back().causality == Causality::independent);
+  CHECK(vs.back().unit == "s");
+  CHECK(vs.back().parameter == -1);
   // Written units become internal ones: ms -> s, um -> mm, kN/mm -> N/mm.
   CHECK(named(vs, "m1.tau").unit == "s");
   CHECK(named(vs, "m1.tau").start == doctest::Approx(4.335e-3).epsilon(1e-15));
@@ -68,9 +72,13 @@ TEST_CASE("fmu variables: u, F and v first, then every parameter in the model's 
   CHECK(named(vs, "m1.k").description.find("stiffness of maxwell 'm1', line 2:") == 0);
 }
 
-TEST_CASE("fmu variables: a model-level parameter named u, F or v is refused, naming where it is written") {
+TEST_CASE("fmu variables: a model-level parameter named u, F, v or time is refused, naming where it is written") {
   const auto model = test::model_from("model m {\n  param u = 3 N/mm\n  spring s (k = u)\n}", "m");
   CHECK_THROWS_WITH_AS(runtime::fmu::fmu_variables(model), doctest::Contains("test.rheo:2:"), ModelError);
+  const auto timed = test::model_from("model m {\n  spring s (k = 1)\n  param time = 3 s\n  maxwell m1 (k = 1, tau = time)\n}", "m");
+  CHECK_THROWS_WITH_AS(runtime::fmu::fmu_variables(timed),
+                       doctest::Contains("test.rheo:3:16: error: parameter 'time' of model 'm' has the name of the FMU's independent variable time"),
+                       ModelError);
 }
 
 TEST_CASE("fmu guid: a 128-bit fingerprint of version, model and source, each of which changes it") {
