@@ -56,6 +56,8 @@ std::string header_columns(const Table& table);
 // STEP picks a TRIOS step (table_layout.hpp).
 Table read_table(const std::string& path, const lang::SourceLocation* named_at = nullptr, const std::string& step = "");
 Table parse_table(const std::string& path, const std::string& text, const std::string& step = "");
+// The message of a DataError for a table that cannot be read (FAILURE, ADVICE: lang::FileText).
+std::string unreadable_table(const std::string& path, const lang::SourceLocation* named_at, const std::string& failure, const char* advice);
 
 // A displacement history from a table with "time" and "displacement" columns: strictly
 // increasing time; its first displacement is where the network starts relaxed

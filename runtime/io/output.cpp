@@ -2,6 +2,7 @@
 
 #include "runtime/core/errors.hpp"
 
+#include <fmt/compile.h>
 #include <fmt/format.h>
 
 #include <algorithm>
@@ -93,17 +94,59 @@ std::string harmonic_json(const ResultHeader& header, const std::vector<Harmonic
   return j.dump(2) + "\n";
 }
 
-std::string history_csv(const ResultHeader& header, const History& h) {
+std::string history_csv_head(const ResultHeader& header, const std::vector<std::string>& element_paths) {
   std::string out = comment_lines(header);
   out += "time [s],displacement [mm],force [N]";
-  for (const auto& path : h.element_paths) out += fmt::format(",{0}.force [N],{0}.elongation [mm]", path);
+  for (const auto& path : element_paths) out += fmt::format(",{0}.force [N],{0}.elongation [mm]", path);
   out += "\n";
-  for (std::size_t k = 0; k < h.time.size(); ++k) {
-    out += fmt::format("{:.10g},{:.10g},{:.10g}", h.time[k], h.displacement[k], h.force[k]);
-    for (std::size_t i = 0; i < h.element_paths.size(); ++i)
-      out += fmt::format(",{:.10g},{:.10g}", h.element_force[i][k], h.element_elongation[i][k]);
-    out += "\n";
+  return out;
+}
+
+namespace {
+
+// V shortest-round-trip (fmt's "{}": Dragonbox; fixed notation for exponents -5 to 15) at P,
+// then SEPARATOR; returns the end.
+char* write_number(char* p, double v, char separator) {
+  p = fmt::format_to(p, FMT_COMPILE("{}"), v);
+  *p++ = separator;
+  return p;
+}
+
+}  // namespace
+
+std::size_t max_history_row_bytes(std::size_t elements) {
+  return 25 * (3 + 2 * elements);  // at most 24 characters a number ("-2.2250738585072014e-308") and its separator
+}
+
+char* write_history_row(char* p, const History& h, std::size_t k) {
+  const std::size_t elements = h.element_paths.size();
+  p = write_number(p, h.time[k], ',');
+  p = write_number(p, h.displacement[k], ',');
+  p = write_number(p, h.force[k], elements ? ',' : '\n');
+  for (std::size_t i = 0; i < elements; ++i) {
+    p = write_number(p, h.element_force[i][k], ',');
+    p = write_number(p, h.element_elongation[i][k], i + 1 < elements ? ',' : '\n');
   }
+  return p;
+}
+
+void append_history_rows(std::string& out, const History& h) {
+  const std::size_t widest = max_history_row_bytes(h.element_paths.size());
+  std::vector<char> rows(std::max<std::size_t>(widest, 1 << 16));
+  char* p = rows.data();
+  for (std::size_t k = 0; k < h.time.size(); ++k) {
+    if (static_cast<std::size_t>(rows.data() + rows.size() - p) < widest) {
+      out.append(rows.data(), p);
+      p = rows.data();
+    }
+    p = write_history_row(p, h, k);
+  }
+  out.append(rows.data(), p);
+}
+
+std::string history_csv(const ResultHeader& header, const History& h) {
+  std::string out = history_csv_head(header, h.element_paths);
+  append_history_rows(out, h);
   return out;
 }
 

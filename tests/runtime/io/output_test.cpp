@@ -86,3 +86,10 @@ TEST_CASE("writing to a symbolic link replaces the file it points to and keeps t
   CHECK_THROWS_WITH_AS(write_output((dir / "loop_a.csv").string(), "x"), doctest::Contains("too many levels of links"), DataError);
   fs::remove_all(dir);
 }
+
+TEST_CASE("history numbers are short where the double is: 1e-04 s as 0.0001, 2 mm as 2, -0 as -0") {
+  History h;
+  h.time = {0.0001, 1e-05, 1e16}, h.displacement = {2.0, 0.1 + 0.2, -0.0}, h.force = {1e15, 7.8475241592896845, 5e-324};
+  const std::string text = history_csv({"m", "m.rheo", "history"}, h);
+  CHECK(text.find("\n0.0001,2,1000000000000000\n1e-05,0.30000000000000004,7.8475241592896845\n1e+16,-0,5e-324\n") != std::string::npos);
+}
