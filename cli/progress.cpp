@@ -43,6 +43,19 @@ void Progress::evaluation(const runtime::SearchProgress& p) {
   }
 }
 
+void Progress::status(const std::string& line, double quiet) {
+  const auto now = std::chrono::steady_clock::now();
+  if (elapsed() < quiet || std::chrono::duration<double>(now - last_).count() < interval_) return;
+  last_ = now;
+  const std::string text = fmt::format("{}: {}, {:.0f} s", what_.empty() ? "running" : what_, line, elapsed());
+  if (live_) {
+    std::cerr << "\r  " << text << "   " << std::flush;
+    line_open_ = true;
+  } else {
+    std::cerr << "rheo: " << text << "\n" << std::flush;
+  }
+}
+
 void Progress::finish() {
   if (line_open_) std::cerr << "\r" << std::string(120, ' ') << "\r" << std::flush;
   line_open_ = false;

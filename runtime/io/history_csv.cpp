@@ -139,6 +139,12 @@ std::string unreadable_table(const std::string& path, const lang::SourceLocation
 
 Table read_table(const std::string& path, const lang::SourceLocation* named_at, const std::string& step) {
   lang::FileText table = lang::read_file_text(path, lang::max_table_bytes);
+  if (!table.failure.empty() && table.failure.rfind("it is larger than", 0) == 0)
+    throw DataError(unreadable_table(path, named_at,
+                                     fmt::format("it is larger than {} MiB, the most rheo holds as a whole table; `rheo simulate` streams a history "
+                                                 "file of any size when it writes the history as CSV on the fixed-step solver",
+                                                 lang::max_table_bytes >> 20),
+                                     table.advice()));
   if (!table.failure.empty()) throw DataError(unreadable_table(path, named_at, table.failure, table.advice()));
   return parse_utf8(path, text_as_utf8(path, std::move(table.text)), step);
 }

@@ -1,4 +1,4 @@
-// Result formats and atomic output.
+// Result formats (files are written by output_file.hpp).
 //
 // Harmonic CSV: the first four columns are exactly
 //   amplitude [mm],frequency [Hz],stiffness [N/mm],phase [deg]
@@ -7,15 +7,13 @@
 // History CSV: time [s],displacement [mm],force [N], then per element "PATH.force [N]" and
 // "PATH.elongation [mm]", each number shortest-round-trip. '#' lines before the header say what
 // produced the file.
-// Files are written to a temporary sibling and renamed, so a failed run never leaves a
-// half-written file and earlier outputs stay intact. Devices and pipes (/dev/null, FIFOs) are
-// written in place; a symbolic link is written through to its target and stays a link.
 #pragma once
 
 #include "lang/protocol_settings.hpp"
 #include "runtime/core/drive.hpp"
 #include "runtime/core/harmonic_point.hpp"
 #include "runtime/core/protocol_result.hpp"
+#include "runtime/io/output_file.hpp"
 
 #include <string>
 #include <vector>
@@ -37,14 +35,5 @@ char* write_history_row(char* p, const History& h, std::size_t k);
 std::string history_json(const ResultHeader& header, const History& history);
 // A protocol's result in FORMAT: one of the four above.
 std::string rendered(const ProtocolResult& result, lang::OutputFormat format);
-
-// Writes `content` to `path` atomically ("-" or empty: standard output). Throws DataError.
-void write_output(const std::string& path, const std::string& content);
-
-// DataError unless `path` ("-" or empty: standard output) can be written: a directory, a
-// parent directory that does not exist or is not writable, or a device or pipe that is not, is
-// named with advice. Called before long runs, so
-// that a fit does not end with its result unwritable.
-void check_output_destination(const std::string& path);
 
 }  // namespace rheo::runtime
