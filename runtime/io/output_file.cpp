@@ -2,6 +2,7 @@
 
 #include "runtime/core/errors.hpp"
 
+#include <fcntl.h>
 #include <fmt/format.h>
 #include <unistd.h>
 
@@ -34,6 +35,15 @@ bool is_device_or_pipe(const fs::path& target) {
   std::error_code status_error;
   const auto status = fs::status(target, status_error);
   return fs::exists(status) && !fs::is_regular_file(status);
+}
+
+// Copies FROM (from its start) to TO; false when a read or a write failed.
+bool copy_all(std::FILE* from, std::FILE* to) {
+  std::rewind(from);
+  char chunk[1 << 16];
+  for (std::size_t got; (got = std::fread(chunk, 1, sizeof chunk, from)) > 0;)
+    if (std::fwrite(chunk, 1, got, to) != got) return false;
+  return !std::ferror(from);
 }
 
 // A temporary sibling of TARGET, unique in this process.
@@ -115,7 +125,15 @@ PendingOutput::PendingOutput(const std::string& path) : path_(path) {
     return;
   }
   temporary_ = temporary_beside(target_);
-  file_ = std::fopen(temporary_.c_str(), "wb");
+  // Unnamed in the target's directory where the file system allows (O_TMPFILE): even a killed
+  // run leaves nothing; it is named temporary_ at commit, then renamed over the target.
+  const fs::path directory = target_.parent_path().empty() ? fs::path(".") : target_.parent_path();
+  if (const int fd = ::open(directory.c_str(), O_TMPFILE | O_WRONLY | O_CLOEXEC, 0666); fd >= 0) {
+    file_ = ::fdopen(fd, "wb");
+    if (!file_) ::close(fd);
+    unnamed_ = file_ != nullptr;
+  }
+  if (!file_) file_ = std::fopen(temporary_.c_str(), "wb");
   if (!file_)
     throw DataError(fmt::format("{}: error: cannot write output ({}); check that the directory exists and is writable", path, std::strerror(errno)));
 }
@@ -123,7 +141,7 @@ PendingOutput::PendingOutput(const std::string& path) : path_(path) {
 PendingOutput::~PendingOutput() {
   if (file_) std::fclose(file_);
   std::error_code ec;
-  if (!committed_ && !temporary_.empty()) fs::remove(temporary_, ec);
+  if (!committed_ && !unnamed_ && !temporary_.empty()) fs::remove(temporary_, ec);
 }
 
 void PendingOutput::failed_write() {
@@ -144,20 +162,17 @@ void PendingOutput::commit() {
   if (committed_) throw std::logic_error("PendingOutput committed twice");
   if (std::fflush(file_) != 0) failed_write();
   if (temporary_.empty()) {  // spooled: copied to standard output, the device or the pipe
-    std::rewind(file_);
     const bool standard = path_.empty() || path_ == "-";
     std::FILE* out = standard ? stdout : std::fopen(link_target(path_).c_str(), "wb");
     if (!out) throw DataError(fmt::format("{}: error: cannot write output ({})", path_, std::strerror(errno)));
     if (standard) std::cout << std::flush;
-    char chunk[1 << 16];
-    bool ok = true;
-    for (std::size_t got; ok && (got = std::fread(chunk, 1, sizeof chunk, file_)) > 0;) ok = std::fwrite(chunk, 1, got, out) == got;
-    ok = ok && !std::ferror(file_) && std::fflush(out) == 0;
+    bool ok = copy_all(file_, out) && std::fflush(out) == 0;
     if (!standard) ok = std::fclose(out) == 0 && ok;
     committed_ = true;
     if (!ok) throw DataError(fmt::format("{}: error: cannot write output ({})", standard ? "-" : path_, std::strerror(errno)));
     return;
   }
+  if (unnamed_) name_temporary();
   const bool closed = std::fclose(file_) == 0;
   file_ = nullptr;
   std::error_code ec;
@@ -171,6 +186,18 @@ void PendingOutput::commit() {
     throw DataError(fmt::format("{}: error: cannot replace the output file ({})", path_, ec.message()));
   }
   committed_ = true;
+}
+
+// The unnamed file gets the name temporary_ (linkat through /proc/self/fd), or, where that
+// fails (no /proc), its content is copied to a new file of that name.
+void PendingOutput::name_temporary() {
+  const std::string self = fmt::format("/proc/self/fd/{}", ::fileno(file_));
+  unnamed_ = false;
+  if (::linkat(AT_FDCWD, self.c_str(), AT_FDCWD, temporary_.c_str(), AT_SYMLINK_FOLLOW) == 0) return;
+  std::FILE* named = std::fopen(temporary_.c_str(), "wb");
+  const bool ok = named && copy_all(file_, named);
+  if (named && std::fclose(named) != 0 && ok) failed_write();
+  if (!ok) failed_write();
 }
 
 }  // namespace rheo::runtime

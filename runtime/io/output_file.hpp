@@ -21,10 +21,13 @@ void write_output(const std::string& path, const std::string& content);
 void check_output_destination(const std::string& path);
 
 // An output written as it is made (a streamed history, in constant memory) and put in place
-// only by commit(): a regular file (new or not, through its links) goes to a temporary sibling
-// renamed over it; standard output ("-" or empty), a device or a pipe gets an unnamed temporary
-// file (in the system's temporary directory) copied to it. Destroyed without commit(), it
-// leaves nothing behind. DataError where the output cannot be opened or written (disk full).
+// only by commit(): a regular file (new or not, through its links) goes to a temporary file in
+// its directory, unnamed until commit() names it and renames it over the file (a sibling named
+// from the start where the file system has no O_TMPFILE); standard output ("-" or empty), a
+// device or a pipe gets an unnamed temporary file (in the system's temporary directory) copied
+// to it. Destroyed without commit(), it leaves nothing behind; killed, nothing but a named
+// sibling where O_TMPFILE is missing. DataError where the output cannot be opened or written
+// (disk full).
 class PendingOutput {
  public:
   explicit PendingOutput(const std::string& path);
@@ -40,11 +43,13 @@ class PendingOutput {
 
  private:
   [[noreturn]] void failed_write();
+  void name_temporary();
 
   std::string path_;                 // as given, for messages
   std::filesystem::path target_;     // the file renamed over (links followed); empty when spooled
   std::filesystem::path temporary_;  // the sibling written; empty when spooled
   std::FILE* file_ = nullptr;
+  bool unnamed_ = false;  // file_ is an O_TMPFILE file, temporary_ not yet its name
   bool committed_ = false;
 };
 
