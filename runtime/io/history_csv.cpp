@@ -13,12 +13,9 @@
 #include <fmt/format.h>
 
 #include <algorithm>
-#include <charconv>
+#include <cctype>
 #include <cmath>
 #include <optional>
-#include <cctype>
-#include <limits>
-#include <utility>
 
 namespace rheo::runtime {
 namespace {
