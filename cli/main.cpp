@@ -32,7 +32,9 @@ int main(int argc, char** argv) {
   commands.emplace_back(diagnose, cli::add_diagnose_command(*diagnose));
   auto* refine = app.add_subcommand("refine", "Repeat diagnose, add and refit until nothing is missing; write the final model");
   commands.emplace_back(refine, cli::add_refine_command(*refine));
-  auto* exporter = app.add_subcommand("export", "Write a model for other tools: Abaqus and ANSYS viscoelastic material cards (Prony series)");
+  auto* exporter = app.add_subcommand(
+      "export",
+      "Write a model for other tools: a Functional Mock-up Unit for co-simulation (--fmu), Abaqus and ANSYS viscoelastic material cards (--abaqus, --ansys)");
   commands.emplace_back(exporter, cli::add_export_command(*exporter));
   try {
     app.parse(argc, argv);

@@ -30,6 +30,7 @@ const std::map<std::string, int>& ranks() {
       {"runtime/dae", 4},
       {"runtime/io", 4},
       {"runtime/protocols", 5},
+      {"runtime/fmu", 5},
       {"runtime/fit", 6},
       {"runtime/export", 6},
       {"runtime/report", 7},

@@ -37,6 +37,15 @@ std::vector<unsigned> first_primes(std::size_t count) {
   return primes;
 }
 
+// Uniform in [0, 1) from one output x of the engine: x / 2^64 (the double nearest x, scaled),
+// or the largest double below 1 where x rounds up to 2^64. The engine's outputs are specified
+// bit for bit, std::uniform_real_distribution's mapping is not (libc++ and MSVC differ from
+// libstdc++); this is libstdc++'s, so a seed samples the same shift with every standard library.
+double unit_interval(std::mt19937_64& random) {
+  const double u = static_cast<double>(random()) / 18446744073709551616.0;
+  return u < 1.0 ? u : std::nextafter(1.0, 0.0);
+}
+
 // SAMPLES points of the box a decade (log coordinates) or a quarter of the range (linear ones)
 // either side of START, within the bounds, on a Halton sequence shifted by SEED (Cranley-
 // Patterson rotation), each with its objective value (evaluated as one batch): best first,
@@ -46,11 +55,10 @@ std::vector<std::pair<double, std::vector<double>>> sample_box(Tracker& tracker,
                                                                unsigned long seed) {
   const std::size_t n = start.size();
   std::mt19937_64 random(seed);
-  std::uniform_real_distribution<double> unit(0.0, 1.0);
   const std::vector<unsigned> primes = first_primes(n);
   std::vector<double> shift(n), box_lo(n), box_hi(n);
   for (std::size_t j = 0; j < n; ++j) {
-    shift[j] = unit(random);
+    shift[j] = unit_interval(random);
     const double half = logarithmic[j] ? std::log(10.0) : 0.25 * (upper[j] - lower[j]);
     box_lo[j] = std::max(lower[j], start[j] - half);
     box_hi[j] = std::min(upper[j], start[j] + half);

@@ -15,14 +15,6 @@
 
 namespace {
 
-std::string read_text(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  REQUIRE(in);
-  std::stringstream text;
-  text << in.rdbuf();
-  return text.str();
-}
-
 std::vector<std::string> lines_of(const std::string& text) {
   std::vector<std::string> lines;
   std::istringstream in(text);
@@ -98,7 +90,7 @@ TEST_CASE("docs/cli.md: the parsing helpers read CLI11 help and the synopsis") {
 }
 
 TEST_CASE("docs/cli.md has a synopsis for every command of rheo --help") {
-  const std::string doc = read_text(std::string(RHEO_SOURCE_DIR) + "/docs/cli.md");
+  const std::string doc = rheo::test::read_required(std::string(RHEO_SOURCE_DIR) + "/docs/cli.md");
   const auto names = commands();
   REQUIRE(names.size() >= 4);
   for (const auto& command : names) {
@@ -108,7 +100,7 @@ TEST_CASE("docs/cli.md has a synopsis for every command of rheo --help") {
 }
 
 TEST_CASE("docs/cli.md documents every option of every command's --help") {
-  const std::string doc = read_text(std::string(RHEO_SOURCE_DIR) + "/docs/cli.md");
+  const std::string doc = rheo::test::read_required(std::string(RHEO_SOURCE_DIR) + "/docs/cli.md");
   for (const auto& command : commands()) {
     const auto run = rheo::test::run_rheo(command + " --help");
     REQUIRE(run.code == 0);

@@ -19,18 +19,10 @@ namespace fs = std::filesystem;
 
 namespace {
 
-std::string read_text(const fs::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  REQUIRE(in);
-  std::stringstream text;
-  text << in.rdbuf();
-  return text.str();
-}
-
 // The files `$ build/rheo ...` lines of TEXT write, relative to the repository root.
 std::vector<std::string> written_by_commands(const std::string& text) {
   static const std::regex command(R"((?:^|\n)\$ build/rheo ([^\n]*))");
-  static const std::regex destination(R"((?:-o|--output|--report|--plot|--abaqus|--ansys) ([^\s'`|]+))");
+  static const std::regex destination(R"((?:-o|--output|--report|--plot|--abaqus|--ansys|--fmu) ([^\s'`|]+))");
   std::vector<std::string> out;
   for (auto c = std::sregex_iterator(text.begin(), text.end(), command); c != std::sregex_iterator(); ++c) {
     const std::string line = (*c)[1];
@@ -53,7 +45,7 @@ TEST_CASE("every file the tutorial's commands and the examples' output lines wri
   }
   std::vector<std::string> outputs;
   for (const char* doc : {"docs/tutorial.md", "README.md"})
-    for (auto& path : written_by_commands(read_text(fs::path(RHEO_SOURCE_DIR) / doc))) outputs.push_back(std::move(path));
+    for (auto& path : written_by_commands(rheo::test::read_required(fs::path(RHEO_SOURCE_DIR) / doc))) outputs.push_back(std::move(path));
   CHECK(outputs.size() >= 10);
   for (const auto& path : outputs) {
     CAPTURE(path);
@@ -62,7 +54,7 @@ TEST_CASE("every file the tutorial's commands and the examples' output lines wri
   static const std::regex output_line(R"(\boutput "([^"]+)\")");
   for (const auto& entry : fs::directory_iterator(RHEO_EXAMPLES_DIR))
     if (entry.path().extension() == ".rheo") {
-      const std::string text = read_text(entry.path());
+      const std::string text = rheo::test::read_required(entry.path());
       for (auto m = std::sregex_iterator(text.begin(), text.end(), output_line); m != std::sregex_iterator(); ++m)
         outputs.push_back("examples/" + std::string((*m)[1]));
     }

@@ -25,14 +25,6 @@ using namespace rheo::test::transcripts;
 
 namespace {
 
-std::string read_text(const fs::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  REQUIRE(in);
-  std::stringstream text;
-  text << in.rdbuf();
-  return text.str();
-}
-
 std::string shell_output(const std::string& command) {
   std::string out;
   FILE* pipe = popen(command.c_str(), "r");
@@ -103,7 +95,7 @@ struct Part {
 // root; returns how many ran.
 int check_transcripts(const std::string& doc, Part part = {}) {
   std::vector<int> stray;
-  const auto all = parse(read_text(fs::path(RHEO_SOURCE_DIR) / doc), complete_shell, &stray);
+  const auto all = parse(rheo::test::read_required(fs::path(RHEO_SOURCE_DIR) / doc), complete_shell, &stray);
   for (const int line : stray) FAIL_CHECK(doc << ":" << line << ": a `$ ` command outside a ```sh transcript escapes this test");
   const fs::path root = scratch_root(fmt::format("{}-{}-{}{}", fs::path(doc).stem().string(), part.first, part.last, part.slow ? "-slow" : ""));
   int ran = 0;

@@ -17,6 +17,15 @@
 
 namespace rheo::test {
 
+// The bytes of a file the test needs (a document, an output); the test fails where it cannot be read.
+inline std::string read_required(const std::filesystem::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  REQUIRE_MESSAGE(in, "cannot read " << path.string());
+  std::stringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
+
 // True under CI (.ci/run exports CI=true): there every tool a test needs must be installed.
 inline bool in_ci() {
   const char* ci = std::getenv("CI");

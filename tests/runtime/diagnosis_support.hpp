@@ -6,12 +6,12 @@
 #include "runtime/diagnosis/diagnose.hpp"
 #include "runtime/protocols/harmonic.hpp"
 #include "runtime/protocols/run_history.hpp"
+#include "portable_random.hpp"
 #include "support.hpp"
 
 #include <algorithm>
 #include <cmath>
 #include <numbers>
-#include <random>
 #include <string>
 #include <vector>
 
@@ -31,15 +31,14 @@ inline rheo::runtime::HarmonicOptions simulation_options() {
 inline rheo::runtime::FitDataSet harmonic_measurement(const std::string& truth, unsigned seed, const std::vector<double>& amplitudes = kAmplitudes) {
   const rheo::runtime::Network network = network_from(truth, "truth");
   const auto points = rheo::runtime::simulate_harmonic_grid(network, amplitudes, kFrequencies, simulation_options());
-  std::mt19937 random(seed);
-  std::normal_distribution<double> normal(0.0, 1.0);
+  test::PortableRandom random(seed);
   rheo::runtime::HarmonicData d;
   d.path = "hidden.csv";
   for (const auto& p : points) {
     d.amplitude.push_back(p.amplitude);
     d.frequency.push_back(p.frequency);
-    d.stiffness.push_back(p.measures.stiffness * (1.0 + 0.01 * normal(random)));
-    d.phase.push_back(p.measures.phase + 0.15 * std::numbers::pi / 180.0 * normal(random));
+    d.stiffness.push_back(p.measures.stiffness * (1.0 + 0.01 * random.normal()));
+    d.phase.push_back(p.measures.phase + 0.15 * std::numbers::pi / 180.0 * random.normal());
     d.rows.push_back(static_cast<int>(d.rows.size()) + 2);
   }
   return {d.path, 1.0, d};
@@ -50,12 +49,11 @@ inline rheo::runtime::FitDataSet history_measurement(const std::string& truth, c
   const rheo::runtime::History h = rheo::runtime::run_history(network, drive, false, rheo::runtime::SolverChoice::fixed);
   double scale = 0.0;
   for (double f : h.force) scale = std::max(scale, std::abs(f));
-  std::mt19937 random(seed);
-  std::normal_distribution<double> normal(0.0, 1.0);
+  test::PortableRandom random(seed);
   rheo::runtime::HistoryData d;
   d.path = "hidden_history.csv";
   d.drive = drive;
-  for (double f : h.force) d.force.push_back(f + 0.003 * scale * normal(random)), d.rows.push_back(static_cast<int>(d.rows.size()) + 2);
+  for (double f : h.force) d.force.push_back(f + 0.003 * scale * random.normal()), d.rows.push_back(static_cast<int>(d.rows.size()) + 2);
   d.force_scale = 0.0;
   for (double f : d.force) d.force_scale = std::max(d.force_scale, std::abs(f));
   return {d.path, 1.0, d};

@@ -15,7 +15,6 @@
 
 #include <cmath>
 #include <numbers>
-#include <random>
 
 using namespace rheo;
 namespace dx = runtime::diagnosis;
@@ -115,14 +114,13 @@ TEST_CASE("diagnose, coupled bushing (#24): the refit finds the hidden arm's yie
   for (double f = 1.0; f <= 41.0; f += 2.0) frequencies.push_back(f);
   const runtime::Network network = test::network_from(truth, "truth");
   const auto points = runtime::simulate_harmonic_grid(network, {0.1, 0.2, 0.5, 0.8, 1.0, 1.5, 2.0}, frequencies, test::simulation_options());
-  std::mt19937 random(2411);
-  std::normal_distribution<double> normal(0.0, 1.0);
+  test::PortableRandom random(2411);
   runtime::HarmonicData h;
   h.path = "coupled.csv";
   for (const auto& p : points) {
     h.amplitude.push_back(p.amplitude), h.frequency.push_back(p.frequency);
-    h.stiffness.push_back(p.measures.stiffness * (1.0 + 0.01 * normal(random)));
-    h.phase.push_back(p.measures.phase + 0.15 * std::numbers::pi / 180.0 * normal(random));
+    h.stiffness.push_back(p.measures.stiffness * (1.0 + 0.01 * random.normal()));
+    h.phase.push_back(p.measures.phase + 0.15 * std::numbers::pi / 180.0 * random.normal());
     h.rows.push_back(static_cast<int>(h.rows.size()) + 2);
   }
   const dx::Diagnosis d = diagnose(start, {runtime::FitDataSet{h.path, 1.0, h}});
@@ -150,15 +148,14 @@ TEST_CASE("diagnose on an L of two sweeps: the interaction is not measured, and 
   std::vector<std::pair<double, double>> cells;  // (amplitude, frequency)
   for (double a : {0.05, 0.1, 0.2, 0.5, 1.0, 2.0}) cells.emplace_back(a, 9.0);
   for (double f : {1.0, 3.0, 5.0, 13.0, 21.0, 41.0}) cells.emplace_back(0.5, f);
-  std::mt19937 random(77);
-  std::normal_distribution<double> normal(0.0, 1.0);
+  test::PortableRandom random(77);
   runtime::HarmonicData h;
   h.path = "l_shape.csv";
   for (const auto& [a, f] : cells) {
     const auto p = runtime::simulate_harmonic_point(network, a, f, test::simulation_options());
     h.amplitude.push_back(a), h.frequency.push_back(f);
-    h.stiffness.push_back(p.measures.stiffness * (1.0 + 0.01 * normal(random)));
-    h.phase.push_back(p.measures.phase + 0.15 * std::numbers::pi / 180.0 * normal(random));
+    h.stiffness.push_back(p.measures.stiffness * (1.0 + 0.01 * random.normal()));
+    h.phase.push_back(p.measures.phase + 0.15 * std::numbers::pi / 180.0 * random.normal());
     h.rows.push_back(static_cast<int>(h.rows.size()) + 2);
   }
   const dx::Diagnosis d = diagnose(start, {runtime::FitDataSet{h.path, 1.0, h, {}}});

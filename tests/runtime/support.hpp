@@ -60,4 +60,11 @@ inline std::string read_file(const std::string& path) {
 inline double relative_error(double value, double reference) { return std::abs(value / reference - 1.0); }
 inline double degrees(double radians) { return radians * 180.0 / std::numbers::pi; }
 
+// The Yeoh force-displacement law, eq. 3.3 written out term by term: F = 2 D10 u + 4 D20 u^3 +
+// 6 D30 u^5 [N] for D10 [N/mm], D20 [N/mm^3], D30 [N/mm^5], u [mm]. The tests' own, so that a
+// closed form built on it does not call runtime::YeohLaw, the code under test.
+inline double yeoh_force(double d10, double d20, double d30, double u) {
+  return 2.0 * d10 * u + 4.0 * d20 * std::pow(u, 3) + 6.0 * d30 * std::pow(u, 5);
+}
+
 }  // namespace rheo::test

@@ -28,7 +28,8 @@ TEST_CASE("phasor composition rejects non-linear networks") {
 TEST_CASE("time stepping agrees with the phasor path on nested linear networks") {
   // Maxwell pairs written by hand (series spring + dashpot) are fused to exact updates;
   // a dashpot behind an internal node is integrated implicitly: first order in the step,
-  // so its tolerance is looser and it must improve when the step is halved.
+  // so its tolerance is looser and its error must halve with the step (time stepping forced:
+  // the default would take the closed form, exact, and the halving would test nothing).
   const auto exact = test::model_from(R"(
     model m {
       spring e (k = 90)
@@ -45,19 +46,24 @@ TEST_CASE("time stepping agrees with the phasor path on nested linear networks")
     stepping.steady_state = runtime::SteadyState::time_stepping;
     const auto point = runtime::simulate_harmonic_point(runtime::Network::compile(exact), 0.4, f, stepping);
     CHECK(point.converged);
-    CHECK(test::relative_error(point.measures.stiffness, std::abs(k)) < 1e-5);
-    CHECK(std::abs(test::degrees(point.measures.phase - std::arg(k))) < 1e-3);
+    // Second order at N = 2048 (harmonic_test.cpp): 5e-6 and 3e-4 deg; observed 5e-7, 9e-6 deg.
+    CHECK(test::relative_error(point.measures.stiffness, std::abs(k)) < 5e-6);
+    CHECK(std::abs(test::degrees(point.measures.phase - std::arg(k))) < 3e-4);
 
     std::vector<double> v2;
     for (const auto& p : implicit.parameters) v2.push_back(p.value);
     const auto k2 = *runtime::complex_stiffness(implicit, v2, f);
-    runtime::HarmonicOptions coarse, fine;
+    runtime::HarmonicOptions coarse;
+    coarse.steady_state = runtime::SteadyState::time_stepping;  // auto would take the closed form, exact
+    runtime::HarmonicOptions fine = coarse;
     fine.steps_per_cycle = 2 * coarse.steps_per_cycle;
     const auto net = runtime::Network::compile(implicit);
     const double e1 = test::relative_error(runtime::simulate_harmonic_point(net, 0.4, f, coarse).measures.stiffness, std::abs(k2));
     const double e2 = test::relative_error(runtime::simulate_harmonic_point(net, 0.4, f, fine).measures.stiffness, std::abs(k2));
-    CHECK(e1 < 2e-3);
-    CHECK(e2 < 0.6 * e1 + 1e-9);
+    MESSAGE("f = " << f << " Hz: nested exact updates " << test::relative_error(point.measures.stiffness, std::abs(k)) << ", "
+                   << std::abs(test::degrees(point.measures.phase - std::arg(k))) << " deg; implicit dashpot " << e1 << " -> " << e2);
+    CHECK(e1 < 1e-3);                                     // observed 2.7e-4 and 4.9e-5
+    CHECK(e2 / e1 == doctest::Approx(0.5).epsilon(0.1));  // first order
   }
 }
 

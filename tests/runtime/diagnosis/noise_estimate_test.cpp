@@ -3,13 +3,13 @@
 // noise, not the miss, and the verdict's test must tell the two apart.
 #include "runtime/diagnosis/noise_estimate.hpp"
 
+#include "portable_random.hpp"
 #include "support.hpp"
 
 #include <doctest/doctest.h>
 
 #include <cmath>
 #include <numbers>
-#include <random>
 
 using namespace rheo;
 namespace dx = runtime::diagnosis;
@@ -27,19 +27,18 @@ std::vector<double> frequencies() {                               // 1-41 Hz ste
 // whose phase (measured 2-20 deg, rising with f) the model misses by miss_p(a, f) + s_p N(0,1) [rad].
 template <class K, class P>
 std::pair<runtime::FitResult, std::vector<runtime::FitDataSet>> grid_fit(const K& miss_k, const P& miss_p, double s_k, double s_p, unsigned seed) {
-  std::mt19937 random(seed);
-  std::normal_distribution<double> normal(0.0, 1.0);
+  test::PortableRandom random(seed);
   runtime::HarmonicData d;
   runtime::DataSetFit set;
   for (double a : kA)
     for (double f : frequencies()) {
       const double measured = (2.0 + 18.0 * f / 41.0) * std::numbers::pi / 180.0;
-      const double model = measured + miss_p(a, f) + s_p * normal(random);
+      const double model = measured + miss_p(a, f) + s_p * random.normal();
       d.amplitude.push_back(a), d.frequency.push_back(f), d.stiffness.push_back(500.0), d.phase.push_back(measured);
       runtime::HarmonicPoint p;
       p.amplitude = a, p.frequency = f, p.measures.phase = model;
       set.prediction.points.push_back(p);
-      set.residuals.stiffness.push_back(miss_k(a, f) + s_k * normal(random));
+      set.residuals.stiffness.push_back(miss_k(a, f) + s_k * random.normal());
       set.residuals.damping.push_back(std::sin(model) / std::sin(measured) - 1.0);
     }
   runtime::FitResult fit{test::network_from("model m { spring s (k = 1 N/mm) }", "m")};
@@ -110,8 +109,7 @@ namespace {
 // measured one by miss(t) + s N(0,1) (relative to max|F_exp| = 1000 N).
 template <class M>
 std::pair<runtime::FitResult, std::vector<runtime::FitDataSet>> history_fit(const M& miss, double s, unsigned seed) {
-  std::mt19937 random(seed);
-  std::normal_distribution<double> normal(0.0, 1.0);
+  test::PortableRandom random(seed);
   runtime::HistoryData h;
   h.path = "loops.csv";
   runtime::DataSetFit set;
@@ -121,7 +119,7 @@ std::pair<runtime::FitResult, std::vector<runtime::FitDataSet>> history_fit(cons
     const double t = k / 400.0, u = 2.0 * std::sin(2.0 * std::numbers::pi * t);
     h.drive.time.push_back(t), h.drive.displacement.push_back(u);
     h.force.push_back(500.0 * u);
-    const double r = miss(t) + s * normal(random);
+    const double r = miss(t) + s * random.normal();
     set.prediction.force.push_back(500.0 * u + 1000.0 * r);
     sum += r * r;
   }

@@ -3,11 +3,12 @@
 // problem by enumeration.
 #include "runtime/fit/bounded_least_squares.hpp"
 
+#include "portable_random.hpp"
+
 #include <doctest/doctest.h>
 
 #include <cmath>
 #include <limits>
-#include <random>
 #include <stdexcept>
 
 using namespace rheo;
@@ -57,21 +58,19 @@ TEST_CASE("within a box that does not bind, the answer is the unconstrained leas
 }
 
 TEST_CASE("random boxed problems reach the enumerated global minimum, from any start") {
-  std::mt19937 rng(7);
-  std::normal_distribution<double> normal;
-  std::uniform_real_distribution<double> uniform(-1.0, 1.0);
+  test::PortableRandom rng(7);
   for (int trial = 0; trial < 200; ++trial) {
     const int n = 1 + trial % 5, m = n + 1 + trial % 7;
     Eigen::MatrixXd a(m, n);
     for (int i = 0; i < m; ++i)
-      for (int j = 0; j < n; ++j) a(i, j) = normal(rng);
+      for (int j = 0; j < n; ++j) a(i, j) = rng.normal();
     if (trial % 10 == 9 && n > 1) a.col(n - 1) = a.col(0);  // dependent columns
     Eigen::VectorXd b(m), lo(n), hi(n), start(n);
-    for (int i = 0; i < m; ++i) b(i) = 3.0 * normal(rng);
+    for (int i = 0; i < m; ++i) b(i) = 3.0 * rng.normal();
     for (int j = 0; j < n; ++j) {
-      lo(j) = uniform(rng);
-      hi(j) = lo(j) + 0.1 + std::abs(uniform(rng));
-      start(j) = 5.0 * uniform(rng);
+      lo(j) = rng.uniform(-1.0, 1.0);
+      hi(j) = lo(j) + 0.1 + std::abs(rng.uniform(-1.0, 1.0));
+      start(j) = 5.0 * rng.uniform(-1.0, 1.0);
     }
     const double want = enumerated_minimum(a, b, lo, hi);
     for (const Eigen::VectorXd& from : {Eigen::VectorXd(), start}) {

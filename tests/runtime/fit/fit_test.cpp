@@ -7,13 +7,13 @@
 #include "runtime/protocols/harmonic.hpp"
 
 #include "runtime/fit/objective.hpp"
-#include "runtime/network/leaf_kernels.hpp"
 #include "support.hpp"
 
 #include <doctest/doctest.h>
 #include <fmt/format.h>
 
 #include <fstream>
+#include <numbers>
 #include <sstream>
 
 using namespace rheo;
@@ -149,7 +149,7 @@ TEST_CASE("a history from a preloaded start: the relaxed start is fitted, every 
     drive.displacement.push_back(2.0 + 0.8 * std::sin(2.0 * std::numbers::pi * 2.0 * k * 1.25e-3));
   }
   const auto data = test::history_data_of(truth, drive);
-  CHECK(data.history().force.front() == doctest::Approx(runtime::YeohLaw{200, 1.5, 0.05}.force(2.0)).epsilon(1e-14));
+  CHECK(data.history().force.front() == doctest::Approx(test::yeoh_force(200, 1.5, 0.05, 2.0)).epsilon(1e-14));
   const auto result = runtime::fit(start, runtime::bounded_parameters(start), {data}, {});
   CHECK(result.datasets.at(0).err < 1e-7);
   check_recovered(result, truth);
@@ -198,4 +198,37 @@ TEST_CASE("specimens C and D: the default strategy from a generic start matches 
 TEST_CASE("a model without free parameters cannot be fitted, and says how to declare one") {
   const auto net = test::network_from("model z { spring e (k = 100) }", "z");
   CHECK_THROWS_WITH_AS(runtime::fit(net, {}, {}, {}), doctest::Contains("give bounds"), std::logic_error);
+}
+
+// err (6.1) as the fit reports it, over all harmonic files and per file, on residuals worked out
+// by hand: a spring bounded to [200, 300] N/mm against stiffnesses of 100-200 N/mm ends on its
+// lower bound (phi falls towards k = sum(1/K) / sum(1/K^2) = 135.5 N/mm), and its phase is 0.
+TEST_CASE("the fit's err (6.1): sqrt of the summed phi over the total number of points, per file and over both") {
+  const double deg = std::numbers::pi / 180.0;
+  auto table = [](const std::string& path, const std::vector<double>& stiffness, const std::vector<double>& phase) {
+    runtime::HarmonicData d;
+    d.path = path;
+    for (std::size_t i = 0; i < stiffness.size(); ++i) {
+      d.amplitude.push_back(0.5), d.frequency.push_back(static_cast<double>(i + 1));
+      d.stiffness.push_back(stiffness[i]), d.phase.push_back(phase[i]), d.rows.push_back(static_cast<int>(i) + 2);
+    }
+    return runtime::FitDataSet{path, 1.0, d};
+  };
+  // At k = 200: stiffness residuals 1, 0.6, 0.25, 0 and 0.25; damping sin(0)/sin(phase) - 1 = -1
+  // where the measured phase is positive, left out where it is 0.
+  const auto first = table("first.csv", {100.0, 125.0, 160.0, 200.0}, {10.0 * deg, 20.0 * deg, 0.0, 0.0});
+  const auto second = table("second.csv", {160.0}, {0.0});
+  const auto start = test::network_from("model s { spring e (k = 250 N/mm in [200, 300]) }", "s");
+  const auto result = runtime::fit(start, runtime::bounded_parameters(start), {first, second}, {});
+  REQUIRE(result.datasets.size() == 2);
+  CHECK(result.network.parameter(0) == doctest::Approx(200.0).epsilon(1e-9));
+  // first.csv: phi = 1 + 0.36 + 0.0625 + 0 + 1 + 1 = 3.4225, err = sqrt(3.4225) / 4 = 1.85 / 4 = 0.4625.
+  CHECK(result.datasets[0].phi == doctest::Approx(3.4225).epsilon(1e-8));
+  CHECK(result.datasets[0].err == doctest::Approx(0.4625).epsilon(1e-8));
+  // second.csv: phi = 0.0625, err = 0.25 / 1.
+  CHECK(result.datasets[1].err == doctest::Approx(0.25).epsilon(1e-8));
+  // Both: phi = 3.485 over n = 5 points, err = sqrt(3.485) / 5 = 0.373363; not the mean of the
+  // files' errs (0.35625), nor over n - 1 (0.466704), nor the root of phi / n (0.834865).
+  CHECK(result.phi == doctest::Approx(3.485).epsilon(1e-8));
+  CHECK(result.err == doctest::Approx(0.3733630940518894).epsilon(1e-8));
 }

@@ -8,6 +8,7 @@
 
 #include <cmath>
 #include <numbers>
+#include <vector>
 
 using namespace rheo;
 
@@ -32,6 +33,17 @@ TEST_CASE("err (6.1) of the Appendix D model of specimen D") {
   MESSAGE("err(6.1) of Appendix D on specimen_D_harmonic.csv: " << err);
   CHECK(err > 5e-4);
   CHECK(err < 2e-3);
+  // The same from the two files alone (eq. 6.1 written out here): the noise-free grid against the
+  // noisy one. The model departs from the clean file by at most 1e-5 in K and 2e-4 deg in phase
+  // (2e-5 in d at phases above 15 deg), each residual's share of an RMS residual of 1.4e-2 per
+  // term: err agrees within 2e-3 relative.
+  double floor_phi = 0.0;
+  for (std::size_t i = 0; i < noisy.size(); ++i) {
+    floor_phi += std::pow(clean.stiffness[i] / noisy.stiffness[i] - 1.0, 2);
+    if (noisy.phase[i] > 0.0) floor_phi += std::pow(std::sin(clean.phase[i]) / std::sin(noisy.phase[i]) - 1.0, 2);
+  }
+  const double floor = std::sqrt(floor_phi) / static_cast<double>(noisy.size());
+  CHECK(err == doctest::Approx(floor).epsilon(2e-3));
   CHECK(runtime::phi(r, 0.5, 0.5) == doctest::Approx(0.5 * runtime::phi(r, 1.0, 1.0)));
 }
 
@@ -70,4 +82,39 @@ TEST_CASE("a mass-dominated point written by simulate reads back and scores zero
   CHECK(std::abs(r.stiffness[0]) < 1e-9);
   CHECK(std::abs(r.stiffness[1]) < 1e-9);
   CHECK(std::abs(r.damping[1]) < 1e-9);
+}
+
+// Eq. 6.1 on residuals worked out by hand: err = sqrt(phi) / n with phi of eq. 5.1 and n the
+// number of measured points (thesis ch. 6: "n is the number of measured points").
+TEST_CASE("err (6.1) and phi (5.1, 5.38) on four hand-computed points, one with its damping term left out") {
+  const double deg = std::numbers::pi / 180.0;
+  runtime::HarmonicData data;
+  std::vector<runtime::HarmonicPoint> model(4);
+  auto add = [&](double k_exp, double phase_exp, double k_th, double phase_th) {
+    model[data.size()].measures.stiffness = k_th;
+    model[data.size()].measures.phase = phase_th;
+    data.amplitude.push_back(1.0), data.frequency.push_back(static_cast<double>(data.size() + 1));
+    data.stiffness.push_back(k_exp), data.phase.push_back(phase_exp), data.rows.push_back(static_cast<int>(data.size()) + 2);
+  };
+  //        K_exp  phase_exp         K_th   phase_th            K_th/K_exp - 1   d_th/d_exp - 1
+  add(100.0, 30.0 * deg, 103.0, std::asin(0.45));    // 0.03            0.45/0.5 - 1 = -0.1
+  add(200.0, 30.0 * deg, 196.0, 30.0 * deg);         // -0.02           0
+  add(50.0, std::asin(0.2), 50.0, std::asin(0.22));  // 0             0.22/0.2 - 1 = 0.1
+  add(400.0, -0.5 * deg, 404.0, 2.0 * deg);          // 0.01          left out (measured phase <= 0): 0
+  const auto r = runtime::relative_residuals(data, model);
+  const std::vector<double> stiffness{0.03, -0.02, 0.0, 0.01}, damping{-0.1, 0.0, 0.1, 0.0};
+  for (std::size_t i = 0; i < 4; ++i) {
+    CAPTURE(i);
+    CHECK(r.stiffness[i] == doctest::Approx(stiffness[i]).epsilon(1e-14).scale(1.0));
+    CHECK(r.damping[i] == doctest::Approx(damping[i]).epsilon(1e-14).scale(1.0));
+  }
+  // phi (5.1) = 0.03^2 + 0.1^2 + 0.02^2 + 0.1^2 + 0.01^2 = 0.0214.
+  CHECK(runtime::phi(r, 1.0, 1.0) == doctest::Approx(0.0214).epsilon(1e-13));
+  // err (6.1) = sqrt(0.0214) / 4 = 0.146287388 / 4 = 0.0365718471; the left-out damping term
+  // does not remove its point from n (its stiffness term counts). Wrong readings give
+  // sqrt(0.0214)/3 = 0.0488 (n - 1), 0.0214/4 = 0.00535 (no root), sqrt(0.0214/4) = 0.0731
+  // (an RMS), sqrt(0.0214)/8 = 0.0183 (n counting both terms of a point).
+  CHECK(runtime::thesis_err(r) == doctest::Approx(0.0365718470958195).epsilon(1e-12));
+  // Eq. 5.38 with k = 0.7: 0.7 (0.0009 + 0.0004 + 0.0001) + 0.3 (0.01 + 0.01) = 0.00698.
+  CHECK(runtime::phi(r, 0.7, 0.3) == doctest::Approx(0.00698).epsilon(1e-13));
 }
