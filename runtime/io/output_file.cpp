@@ -111,7 +111,7 @@ void write_output(const std::string& path, const std::string& content) {
   }
 }
 
-PendingOutput::PendingOutput(const std::string& path) : path_(path) {
+PendingOutput::PendingOutput(const std::string& path, Temporary temporary) : path_(path), link_unnamed_(temporary == Temporary::best) {
   const bool standard = path.empty() || path == "-";
   if (!standard) {
     check_output_destination(path);
@@ -126,13 +126,16 @@ PendingOutput::PendingOutput(const std::string& path) : path_(path) {
   }
   temporary_ = temporary_beside(target_);
   // Unnamed in the target's directory where the file system allows (O_TMPFILE): even a killed
-  // run leaves nothing; it is named temporary_ at commit, then renamed over the target.
+  // run leaves nothing; it is named temporary_ at commit, then renamed over the target. Open
+  // for reading too: naming it may copy it. A file system without O_TMPFILE fails the open
+  // (EOPNOTSUPP, or EISDIR on kernels before 3.11): a named sibling then.
   const fs::path directory = target_.parent_path().empty() ? fs::path(".") : target_.parent_path();
-  if (const int fd = ::open(directory.c_str(), O_TMPFILE | O_WRONLY | O_CLOEXEC, 0666); fd >= 0) {
-    file_ = ::fdopen(fd, "wb");
-    if (!file_) ::close(fd);
-    unnamed_ = file_ != nullptr;
-  }
+  if (temporary != Temporary::named_sibling)
+    if (const int fd = ::open(directory.c_str(), O_TMPFILE | O_RDWR | O_CLOEXEC, 0666); fd >= 0) {
+      file_ = ::fdopen(fd, "w+b");
+      if (!file_) ::close(fd);
+      unnamed_ = file_ != nullptr;
+    }
   if (!file_) file_ = std::fopen(temporary_.c_str(), "wb");
   if (!file_)
     throw DataError(fmt::format("{}: error: cannot write output ({}); check that the directory exists and is writable", path, std::strerror(errno)));
@@ -193,7 +196,7 @@ void PendingOutput::commit() {
 void PendingOutput::name_temporary() {
   const std::string self = fmt::format("/proc/self/fd/{}", ::fileno(file_));
   unnamed_ = false;
-  if (::linkat(AT_FDCWD, self.c_str(), AT_FDCWD, temporary_.c_str(), AT_SYMLINK_FOLLOW) == 0) return;
+  if (link_unnamed_ && ::linkat(AT_FDCWD, self.c_str(), AT_FDCWD, temporary_.c_str(), AT_SYMLINK_FOLLOW) == 0) return;
   std::FILE* named = std::fopen(temporary_.c_str(), "wb");
   const bool ok = named && copy_all(file_, named);
   if (named && std::fclose(named) != 0 && ok) failed_write();

@@ -30,7 +30,12 @@ void check_output_destination(const std::string& path);
 // (disk full).
 class PendingOutput {
  public:
-  explicit PendingOutput(const std::string& path);
+  // How a regular file's temporary is made. The default takes the best the system offers and
+  // falls back by itself (no O_TMPFILE: a named sibling; no /proc to name an unnamed file: its
+  // content copied to the sibling at commit); tests force each fallback.
+  enum class Temporary { best, unnamed_copied_at_commit, named_sibling };
+
+  explicit PendingOutput(const std::string& path, Temporary temporary = Temporary::best);
   ~PendingOutput();
   PendingOutput(const PendingOutput&) = delete;
   PendingOutput& operator=(const PendingOutput&) = delete;
@@ -49,7 +54,8 @@ class PendingOutput {
   std::filesystem::path target_;     // the file renamed over (links followed); empty when spooled
   std::filesystem::path temporary_;  // the sibling written; empty when spooled
   std::FILE* file_ = nullptr;
-  bool unnamed_ = false;  // file_ is an O_TMPFILE file, temporary_ not yet its name
+  bool unnamed_ = false;      // file_ is an O_TMPFILE file, temporary_ not yet its name
+  bool link_unnamed_ = true;  // name it through /proc/self/fd (else by copying it)
   bool committed_ = false;
 };
 

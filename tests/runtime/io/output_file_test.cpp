@@ -117,3 +117,36 @@ TEST_CASE("a pending output to a device is spooled and copied there at commit, a
   out.commit();
   CHECK(fs::is_character_file("/dev/null"));
 }
+
+TEST_CASE("a pending output falls back cleanly where the system has no O_TMPFILE or no /proc to name an unnamed file") {
+  const fs::path dir = fs::temp_directory_path() / fmt::format("rheo-pending-fallback-{}", ::getpid());
+  fs::create_directories(dir);
+  const fs::path target = dir / "out.csv";
+  // More than copy_all's 64 KiB chunk, so that a copy takes several rounds.
+  std::string content;
+  for (int i = 0; content.size() < 200000; ++i) content += fmt::format("{},{}\n", i, 0.5 * i);
+  for (const auto route : {PendingOutput::Temporary::unnamed_copied_at_commit, PendingOutput::Temporary::named_sibling}) {
+    CAPTURE(static_cast<int>(route));
+    std::ofstream(target) << "earlier result\n";
+    {
+      PendingOutput out(target.string(), route);
+      out.write(content);
+      CHECK(read(target) == "earlier result\n");
+      // Unnamed until commit where it can be; the named fallback is a hidden sibling.
+      CHECK(files_in(dir) == (route == PendingOutput::Temporary::named_sibling ? 2u : 1u));
+    }
+    CHECK(read(target) == "earlier result\n");  // abandoned: nothing behind
+    CHECK(files_in(dir) == 1);
+    {
+      PendingOutput out(target.string(), route);
+      out.write("discarded");
+      out.restart();
+      out.write(content.substr(0, 100000));
+      out.write(content.substr(100000));
+      out.commit();
+    }
+    CHECK(read(target) == content);
+    CHECK(files_in(dir) == 1);
+  }
+  fs::remove_all(dir);
+}
