@@ -3,6 +3,7 @@
 // round-trip), checked by an independent reader (strtod).
 #include "runtime/io/history_writer.hpp"
 
+#include "portable_random.hpp"
 #include "runtime/io/output.hpp"
 
 #include <doctest/doctest.h>
@@ -15,7 +16,6 @@
 #include <filesystem>
 #include <fstream>
 #include <limits>
-#include <random>
 #include <sstream>
 
 using namespace rheo::runtime;
@@ -24,17 +24,19 @@ namespace fs = std::filesystem;
 namespace {
 
 // Doubles of every kind: small and large exponents, subnormals, -0, integers, 17-digit values.
-History random_history(std::mt19937_64& random, std::size_t n, bool elements) {
-  std::uniform_real_distribution<double> unit(-1.0, 1.0);
-  std::uniform_int_distribution<int> exponent(-320, 300);
+// A whole number in [0, N) from RANDOM.
+std::size_t below(rheo::test::PortableRandom& random, std::size_t n) { return static_cast<std::size_t>(random.unit() * static_cast<double>(n)); }
+
+History random_history(rheo::test::PortableRandom& random, std::size_t n, bool elements) {
+  auto unit = [&] { return random.uniform(-1.0, 1.0); };
   auto any = [&]() {
-    switch (random() % 6) {
-      case 0: return unit(random) * std::pow(10.0, exponent(random));
-      case 1: return std::floor(unit(random) * 1e6);
+    switch (below(random, 6)) {
+      case 0: return unit() * std::pow(10.0, static_cast<double>(below(random, 621)) - 320.0);
+      case 1: return std::floor(unit() * 1e6);
       case 2: return -0.0;
-      case 3: return std::numeric_limits<double>::denorm_min() * static_cast<double>(random() % 1000);
-      case 4: return std::nextafter(1.0, 2.0) * unit(random);
-      default: return unit(random);
+      case 3: return std::numeric_limits<double>::denorm_min() * static_cast<double>(below(random, 1000));
+      case 4: return std::nextafter(1.0, 2.0) * unit();
+      default: return unit();
     }
   };
   History h;
@@ -70,7 +72,7 @@ std::string read(const fs::path& p) {
 }  // namespace
 
 TEST_CASE("a history written in pieces is history_csv's text, and every number reads back as the double written") {
-  std::mt19937_64 random(28);
+  rheo::test::PortableRandom random(28);
   const fs::path out = fs::temp_directory_path() / fmt::format("rheo-history-writer-{}.csv", ::getpid());
   const ResultHeader header{"m", "m.rheo", "history file=h.csv"};
   for (const bool elements : {false, true}) {
@@ -81,7 +83,7 @@ TEST_CASE("a history written in pieces is history_csv's text, and every number r
       HistoryCsvWriter writer(file);
       writer.begin(header, h.element_paths);
       for (std::size_t from = 0; from < h.time.size();) {
-        const std::size_t to = std::min(h.time.size(), from + 1 + random() % 5000);
+        const std::size_t to = std::min(h.time.size(), from + 1 + below(random, 5000));
         writer.write(slice(h, from, to));
         from = to;
       }
