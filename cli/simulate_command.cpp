@@ -12,6 +12,7 @@
 #include "runtime/io/output.hpp"
 #include "runtime/protocols/run_protocols.hpp"
 #include "runtime/protocols/stream_history.hpp"
+#include "runtime/report/history_digest.hpp"
 
 #include <fmt/format.h>
 
@@ -92,19 +93,24 @@ struct Job {
   lang::Protocol protocol;
 };
 
-// Histories stream where they are written as CSV and not drawn in a report: JSON holds whole
-// arrays and a report draws the whole history.
-bool streamed(const runtime::Network& network, const lang::Protocol& protocol, const Options& o) {
-  return runtime::streams(network, protocol) && lang::common(protocol.settings).format == lang::OutputFormat::csv && !o.report.any();
+// Histories stream where they are written as CSV (JSON holds whole arrays); a report draws
+// a streamed history from its digest (report/history_digest.hpp).
+bool streamed(const runtime::Network& network, const lang::Protocol& protocol) {
+  return runtime::streams(network, protocol) && lang::common(protocol.settings).format == lang::OutputFormat::csv;
 }
 
-Outcome run_streamed(const runtime::Network& network, const Job& job, const std::string& destination, const std::string& source_file) {
+// DIGEST, when not null, also receives the history, for a report.
+Outcome run_streamed(const runtime::Network& network, const Job& job, const std::string& destination, const std::string& source_file,
+                     runtime::HistorySink* digest) {
   Outcome outcome;
   outcome.pending = std::make_unique<runtime::PendingOutput>(destination);
   runtime::HistoryCsvWriter writer(*outcome.pending);
+  std::optional<runtime::TeeSink> both;
+  if (digest) both.emplace(writer, *digest);
+  runtime::HistorySink& sink = both ? static_cast<runtime::HistorySink&>(*both) : writer;
   const auto progress = Progress::start(false, std::nullopt);
   progress->label(fmt::format("history of model {}", job.model->name));
-  const runtime::StreamedHistory run = runtime::stream_history(network, job.protocol, source_file, writer, [&](const runtime::StreamStatus& s) {
+  const runtime::StreamedHistory run = runtime::stream_history(network, job.protocol, source_file, sink, [&](const runtime::StreamStatus& s) {
     progress->status(s.file_bytes > 0 ? fmt::format("{} samples, {:.0f} % of the file read", s.samples,
                                                     100.0 * static_cast<double>(s.bytes_read) / static_cast<double>(s.file_bytes))
                                       : fmt::format("{} samples", s.samples));
@@ -178,17 +184,18 @@ Command add_simulate_command(CLI::App& app) {
       auto& job = jobs[k];
       apply_overrides(job.protocol, *o);
       const runtime::Network network = runtime::Network::compile(*job.model);
-      if (streamed(network, job.protocol, *o)) {
-        outcomes.push_back(run_streamed(network, job, destinations[k], o->file));
+      const std::string label = fmt::format("{} protocol ({}:{})", lang::protocol_name(job.protocol.kind), job.protocol.where.file,
+                                            job.protocol.where.line);
+      if (o->report.any() && !report) report = runtime::report::report_for_model(network, o->file, "rheo simulate");
+      if (streamed(network, job.protocol)) {
+        std::optional<runtime::report::HistoryDigest> digest;
+        if (report) digest.emplace();
+        outcomes.push_back(run_streamed(network, job, destinations[k], o->file, digest ? &*digest : nullptr));
+        if (digest) report->histories.push_back(digest->comparison(label));
         continue;
       }
       runtime::ProtocolResult result = runtime::run_protocol(network, job.protocol, o->file, o->threads);
-      if (o->report.any()) {
-        if (!report) report = runtime::report::report_for_model(network, o->file, "rheo simulate");
-        runtime::report::add_simulation_result(
-            *report, fmt::format("{} protocol ({}:{})", lang::protocol_name(job.protocol.kind), job.protocol.where.file, job.protocol.where.line),
-            result);
-      }
+      if (report) runtime::report::add_simulation_result(*report, label, result);
       Outcome outcome;
       outcome.size = static_cast<std::uint64_t>(result.size());
       outcome.notes = result.notes;

@@ -24,4 +24,19 @@ class HistorySink {
   virtual void restart() = 0;
 };
 
+// Hands every call to FIRST, then to SECOND (a result file and a report's digest of it).
+class TeeSink : public HistorySink {
+ public:
+  TeeSink(HistorySink& first, HistorySink& second) : first_(first), second_(second) {}
+  void begin(const ResultHeader& header, const std::vector<std::string>& element_paths) override {
+    first_.begin(header, element_paths), second_.begin(header, element_paths);
+  }
+  void write(const History& piece) override { first_.write(piece), second_.write(piece); }
+  void restart() override { first_.restart(), second_.restart(); }
+
+ private:
+  HistorySink& first_;
+  HistorySink& second_;
+};
+
 }  // namespace rheo::runtime

@@ -83,3 +83,27 @@ TEST_CASE("a fault late in a streamed history: its row and column, exit 4, no ou
   for ([[maybe_unused]] const auto& entry : fs::directory_iterator(out)) ++files;
   CHECK(files == 2);
 }
+
+TEST_CASE("simulate --report on a streamed history draws the page of the history held whole, and a longer one in constant memory") {
+  write_history(dir() / "drawn.csv", 20000);
+  const fs::path model = dir() / "drawn.rheo";
+  std::ofstream(model) << kModel << "simulate {\n  history file = \"drawn.csv\"\n}\n";
+  // CSV streams (the report from the stream's digest); JSON is held whole (the report from the held history).
+  const auto streamed = run_rheo(
+      fmt::format("simulate '{}' -o '{}' --report '{}'", model.string(), (dir() / "drawn_out.csv").string(), (dir() / "streamed.html").string()));
+  CAPTURE(streamed.err);
+  REQUIRE(streamed.code == 0);
+  const auto held = run_rheo(fmt::format("simulate '{}' --json -o '{}' --report '{}'", model.string(), (dir() / "drawn_out.json").string(),
+                                         (dir() / "held.html").string()));
+  REQUIRE(held.code == 0);
+  const std::string page = read(dir() / "streamed.html");
+  CHECK(page.find("data-figure=\"hysteresis\"") != std::string::npos);
+  CHECK(page == read(dir() / "held.html"));
+  // Longer than the digest keeps whole (report/history_digest.hpp): a page all the same.
+  write_history(dir() / "drawn.csv", 150000);
+  const auto longer = run_rheo(
+      fmt::format("simulate '{}' -o '{}' --report '{}'", model.string(), (dir() / "drawn_out.csv").string(), (dir() / "longer.html").string()));
+  REQUIRE(longer.code == 0);
+  CHECK(read(dir() / "longer.html").find("data-figure=\"hysteresis\"") != std::string::npos);
+  CHECK(read(dir() / "drawn_out.csv").find("\n14.9999") != std::string::npos);  // the output is whole
+}
