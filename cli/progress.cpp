@@ -69,4 +69,12 @@ std::function<void(const std::string&)> Progress::stage_callback(const std::shar
   return [progress](const std::string& what) { progress->stage(what); };
 }
 
+std::function<void(const runtime::StreamStatus&)> Progress::stream_callback(const std::shared_ptr<Progress>& progress) {
+  return [progress](const runtime::StreamStatus& s) {
+    progress->status(s.file_bytes > 0 ? fmt::format("{} samples, {:.0f} % of the file read", s.samples,
+                                                    100.0 * static_cast<double>(s.bytes_read) / static_cast<double>(s.file_bytes))
+                                      : fmt::format("{} samples", s.samples));
+  };
+}
+
 }  // namespace rheo::cli

@@ -8,6 +8,7 @@
 #pragma once
 
 #include "runtime/fit/fit_search.hpp"
+#include "runtime/protocols/stream_history.hpp"
 
 #include <chrono>
 #include <functional>
@@ -41,6 +42,8 @@ class Progress {
   // The callbacks bound to THIS (shared: they may outlive the caller's copy).
   static std::function<void(const runtime::SearchProgress&)> evaluation_callback(const std::shared_ptr<Progress>& progress);
   static std::function<void(const std::string&)> stage_callback(const std::shared_ptr<Progress>& progress);
+  // For stream_history: status() lines "N samples, P % of the file read".
+  static std::function<void(const runtime::StreamStatus&)> stream_callback(const std::shared_ptr<Progress>& progress);
 
  private:
   Progress(bool live, double interval, std::optional<double> time_limit);

@@ -6,6 +6,7 @@
 #include "cli/commands.hpp"
 #include "cli/data_option.hpp"
 #include "cli/program_lookup.hpp"
+#include "cli/progress.hpp"
 #include "cli/report_files.hpp"
 #include "runtime/core/errors.hpp"
 #include "runtime/fit/fit_scoring.hpp"
@@ -72,7 +73,10 @@ void add_protocols(report::ReportContent& content, const runtime::Network& netwo
       const std::string label = fmt::format("{} protocol ({}:{})", lang::protocol_name(protocol.kind), protocol.where.file, protocol.where.line);
       if (runtime::streams(network, protocol)) {
         report::HistoryDigest digest;
-        runtime::stream_history(network, protocol, o.file, digest);
+        const auto progress = Progress::start(false, std::nullopt);
+        progress->label(fmt::format("history of model {}", network.model().name));
+        runtime::stream_history(network, protocol, o.file, digest, Progress::stream_callback(progress));
+        progress->finish();
         content.histories.push_back(digest.comparison(label));
         continue;
       }

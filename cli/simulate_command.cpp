@@ -110,11 +110,7 @@ Outcome run_streamed(const runtime::Network& network, const Job& job, const std:
   runtime::HistorySink& sink = both ? static_cast<runtime::HistorySink&>(*both) : writer;
   const auto progress = Progress::start(false, std::nullopt);
   progress->label(fmt::format("history of model {}", job.model->name));
-  const runtime::StreamedHistory run = runtime::stream_history(network, job.protocol, source_file, sink, [&](const runtime::StreamStatus& s) {
-    progress->status(s.file_bytes > 0 ? fmt::format("{} samples, {:.0f} % of the file read", s.samples,
-                                                    100.0 * static_cast<double>(s.bytes_read) / static_cast<double>(s.file_bytes))
-                                      : fmt::format("{} samples", s.samples));
-  });
+  const runtime::StreamedHistory run = runtime::stream_history(network, job.protocol, source_file, sink, Progress::stream_callback(progress));
   progress->finish();
   writer.finish();
   outcome.size = run.samples;
