@@ -11,7 +11,7 @@ void HistoryDigest::begin(const ResultHeader&, const std::vector<std::string>&) 
 
 void HistoryDigest::write(const History& piece) {
   for (std::size_t k = 0; k < piece.time.size(); ++k, ++seen_) {
-    if (seen_ % stride_ != 0) continue;
+    if ((seen_ & (stride_ - 1)) != 0) continue;  // stride_ is a power of two
     displacement_.push_back(piece.displacement[k]);
     force_.push_back(piece.force[k]);
     if (displacement_.size() <= kCapacity) continue;
