@@ -42,6 +42,7 @@ struct LoadingHalf {
   std::vector<double> slip_k, slip_fy, slip_theta;  // frictions with u0 > uy; theta_q where they start to slip
   std::vector<double> ends;                         // piece ends
   std::vector<const PwlPeriodicState*> branches;    // piecewise-linear subtrees, by events
+  std::vector<double> branch_slopes, one_branch;    // their dF/dtheta at a piece's samples
 
   void clear() {
     a = b = y1 = y3 = y5 = y2 = y4 = constant = 0.0;
@@ -71,12 +72,7 @@ struct LoadingHalf {
   }
   // dF/dtheta and d2F/dtheta2 at theta (with its sin and cos) inside a piece whose elastic frictions add `k_elastic` [N/mm].
   void derivatives(double theta, double s, double c, double k_elastic, double& first, double& second) const {
-    const double u = u0 * s, u2 = u * u;
-    const double dy = y1 + u2 * (3.0 * y3 + 5.0 * y5 * u2) + sign * u * (2.0 * y2 + 4.0 * y4 * u2);
-    const double d2y = u * (6.0 * y3 + 20.0 * y5 * u2) + sign * (2.0 * y2 + 12.0 * y4 * u2);
-    const double in_phase = a + u0 * (dy + k_elastic);
-    first = c * in_phase - b * s;
-    second = -s * in_phase + c * c * u0 * u0 * d2y - b * c;
+    closed_form_derivatives(s, c, k_elastic, first, second);
     for (const PwlPeriodicState* branch : branches) {
       double f1 = 0.0, f2 = 0.0;
       if (mirrored(*branch)) {
@@ -88,6 +84,27 @@ struct LoadingHalf {
       first += f1, second += f2;
     }
     first *= polarity, second *= polarity;
+  }
+  // The same without the event-driven branches and the polarity.
+  void closed_form_derivatives(double s, double c, double k_elastic, double& first, double& second) const {
+    const double u = u0 * s, u2 = u * u;
+    const double dy = y1 + u2 * (3.0 * y3 + 5.0 * y5 * u2) + sign * u * (2.0 * y2 + 4.0 * y4 * u2);
+    const double d2y = u * (6.0 * y3 + 20.0 * y5 * u2) + sign * (2.0 * y2 + 12.0 * y4 * u2);
+    const double in_phase = a + u0 * (dy + k_elastic);
+    first = c * in_phase - b * s;
+    second = -s * in_phase + c * c * u0 * u0 * d2y - b * c;
+  }
+  // The event-driven branches' dF/dtheta at theta_j = lo + j step, j = 0..count, summed into
+  // branch_slopes (each branch carried along its pieces by propagators: PwlPeriodicState::slopes).
+  void sample_branch_slopes(double lo, double step, int count) {
+    branch_slopes.assign(static_cast<std::size_t>(count) + 1, 0.0);
+    one_branch.resize(static_cast<std::size_t>(count) + 1);
+    for (const PwlPeriodicState* branch : branches) {
+      const bool mirror = mirrored(*branch);
+      branch->slopes(mirror ? lo + std::numbers::pi : lo, step, count, one_branch.data());
+      for (int j = 0; j <= count; ++j)
+        branch_slopes[static_cast<std::size_t>(j)] += mirror ? -one_branch[static_cast<std::size_t>(j)] : one_branch[static_cast<std::size_t>(j)];
+    }
   }
   // A lower bound of dF/du over |u| <= u0 without the frictions' share (>= 0); only for a
   // yeoh part without an even part (no preload).
@@ -148,13 +165,16 @@ double loading_half_maximum(LoadingHalf& h) {
     const double step = (hi - lo) / samples, cos_step = std::cos(step), sin_step = std::sin(step);
     double s = std::sin(lo), c = std::cos(lo);
     double previous_slope = 0.0, unused = 0.0;
-    h.derivatives(lo, s, c, k_elastic, previous_slope, unused);
+    h.sample_branch_slopes(lo, step, samples);
+    h.closed_form_derivatives(s, c, k_elastic, previous_slope, unused);
+    previous_slope = h.polarity * (previous_slope + h.branch_slopes[0]);
     for (int j = 1; j <= samples; ++j) {
       const double next_s = s * cos_step + c * sin_step;
       c = c * cos_step - s * sin_step;
       s = next_s;
       double slope = 0.0;
-      h.derivatives(lo + j * step, s, c, k_elastic, slope, unused);
+      h.closed_form_derivatives(s, c, k_elastic, slope, unused);
+      slope = h.polarity * (slope + h.branch_slopes[static_cast<std::size_t>(j)]);
       if (previous_slope > 0.0 && slope <= 0.0) {
         const double left = lo + (j - 1) * step, right = j == samples ? hi : lo + j * step;
         best = std::max(best, h.force(stationary_point(h, left, right, k_elastic)));

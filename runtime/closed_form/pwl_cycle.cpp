@@ -28,19 +28,18 @@ bool leaving(double g, double dg, double ddg, double tol, double dtol) {
 }  // namespace
 
 int PwlPeriodicState::Run::mode_index(const PwlModeCode& code) {
-  for (std::size_t i = 0; i < self.modes_.size(); ++i)
+  for (std::size_t i = 0; i < self.mode_count_; ++i)
     if (self.modes_[i].code == code) return static_cast<int>(i);
   PwlModeStructure* structure = nullptr;
   for (auto& [known, st] : self.structures_)
     if (known == code) structure = &st;
   if (structure == nullptr) structure = &self.structures_.emplace_back(code, PwlModeStructure{}).second;
-  // Built in place: a mode's fixed-capacity storage is tens of kilobytes.
-  if (!build_pwl_mode(branch, code, self.u0_, self.omega_, self.modes_.emplace_back(), structure)) {
-    self.modes_.pop_back();
-    return -1;
-  }
-  self.grid_step_.emplace_back();
-  return static_cast<int>(self.modes_.size()) - 1;
+  // Built in place, over a mode of an earlier solve where there is one: a mode's
+  // fixed-capacity storage is tens of kilobytes, not to be allocated and cleared per point.
+  if (self.mode_count_ == self.modes_.size()) self.modes_.emplace_back(), self.grid_step_.emplace_back();
+  if (!build_pwl_mode(branch, code, self.u0_, self.omega_, self.modes_[self.mode_count_], structure)) return -1;
+  self.grid_step_[self.mode_count_].resize(0, 0);
+  return static_cast<int>(self.mode_count_++);
 }
 
 const PwlPeriodicState::PwlGridStep& PwlPeriodicState::Run::grid_step(int m) {
@@ -77,7 +76,8 @@ int PwlPeriodicState::Run::settle(int m, const PwlVector& X, double t, PwlVector
     for (int i = 0; i < s.guards.rows() && violated < 0; ++i)
       if (leaves(m, static_cast<int>(i), w)) violated = static_cast<int>(i);
     if (violated < 0) return m;
-    PwlModeCode code = s.code;
+    PwlModeCode& code = self.settle_code_;
+    code = s.code;
     const PwlTransition& tr = s.transitions[static_cast<std::size_t>(violated)];
     code[static_cast<std::size_t>(tr.which)] = tr.to;
     m = mode_index(code);
@@ -164,7 +164,8 @@ double PwlPeriodicState::Run::first_crossing(int m, int i, const PwlVector& w0, 
 int PwlPeriodicState::Run::switch_at(int m, int i, double t, PwlVector& w, PwlMatrix* S) {
   const PwlModeSystem& old = self.modes_[static_cast<std::size_t>(m)];
   const PwlVector X = old.to_X * w;
-  PwlModeCode code = old.code;
+  PwlModeCode& code = self.switch_code_;
+  code = old.code;
   const PwlTransition& tr = old.transitions[static_cast<std::size_t>(i)];
   code[static_cast<std::size_t>(tr.which)] = tr.to;
   PwlVector w_new;

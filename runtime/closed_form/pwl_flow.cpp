@@ -103,7 +103,11 @@ void PwlModeSystem::decompose(PwlModeStructure& structure) {
   if (!structure.filled) decompose_state_block(A, nz, structure);
   if (!structure.modal) return;
   V = structure.V, V_inverse = structure.V_inverse, lambda = structure.lambda;
-  phi = V_inverse * A.block(0, nz, nz, nh + 1).cast<Complex>();
+  // Complex temporaries are cleared on construction (9 kB each): the product is formed from
+  // this thread's copy of the real block, without one.
+  thread_local PwlComplexMatrix held;
+  held = A.block(0, nz, nz, nh + 1).cast<Complex>();
+  phi.noalias() = V_inverse * held;
   const PwlComplexVector a_c = A.col(cosine()).head(nz).cast<Complex>(), a_s = A.col(sine()).head(nz).cast<Complex>();
   g_plus = 0.5 * (V_inverse * (a_c - Complex(0.0, 1.0) * a_s));
   g_minus = 0.5 * (V_inverse * (a_c + Complex(0.0, 1.0) * a_s));
@@ -146,12 +150,15 @@ void modal_factors(const PwlModeSystem& s, double tau, ModalFactors& f) {
 PwlVector PwlModeSystem::advance(double tau, const PwlVector& w) const {
   if (tau == 0.0) return w;
   if (!modal) return (A * tau).exp() * w;
-  ModalFactors f;
+  // Scratch of this thread: complex storage is cleared on construction, which would cost more
+  // than the flow itself.
+  thread_local ModalFactors f;
+  thread_local PwlComplexVector q;
   modal_factors(*this, tau, f);
   PwlVector out = w;
   const double s0 = w[sine()], c0 = w[cosine()];
   const Complex E(c0, s0);
-  PwlComplexVector q(nz);
+  q.resize(nz);
   for (int j = 0; j < nz; ++j) {
     Complex free{0.0, 0.0}, held{0.0, 0.0};
     for (int k = 0; k < nz; ++k) free += V_inverse(j, k) * w[k];
@@ -170,7 +177,7 @@ PwlVector PwlModeSystem::advance(double tau, const PwlVector& w) const {
 
 PwlMatrix PwlModeSystem::propagator(double tau) const {
   if (!modal) return (A * tau).exp();
-  ModalFactors f;
+  thread_local ModalFactors f;  // as in advance()
   modal_factors(*this, tau, f);
   PwlMatrix P = PwlMatrix::Identity(dim, dim);
   // Column k of the z rows: Re V diag(factor) (row k of the modal map), for the free block

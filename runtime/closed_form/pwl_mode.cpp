@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <memory>
 
 namespace rheo::runtime {
 namespace {
@@ -58,8 +59,10 @@ PwlVector PwlModeSystem::state_at(const PwlVector& X, double t, double u0, doubl
 }
 
 bool build_pwl_mode(const PwlBranch& branch, const PwlModeCode& code, double u0, double omega, PwlModeSystem& out, PwlModeStructure* structure) {
-  PwlModeStructure local;
-  PwlModeStructure& st = structure != nullptr ? *structure : local;
+  // A structure of its own only where none is given: its complex storage is cleared on construction (18 kB).
+  std::unique_ptr<PwlModeStructure> local;
+  if (structure == nullptr) local = std::make_unique<PwlModeStructure>();
+  PwlModeStructure& st = structure != nullptr ? *structure : *local;
   if (st.filled && !st.determinate) return false;
   const int n = branch.internal_nodes;
   MatrixXd K = MatrixXd::Zero(n, n), C = K, M = K;

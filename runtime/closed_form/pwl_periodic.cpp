@@ -13,6 +13,7 @@ namespace {
 
 constexpr int kMaxCycles = 60;
 constexpr double kPeriodicTolerance = 1e-11;
+constexpr std::size_t kMaxSolved = 2048;  // solves kept per branch (about 1.5 kB each)
 
 bool same_branch(const PwlBranch& a, const PwlBranch& b) {
   if (a.internal_nodes != b.internal_nodes || a.odd != b.odd || a.switches != b.switches || a.edges.size() != b.edges.size()) return false;
@@ -28,13 +29,61 @@ bool same_branch(const PwlBranch& a, const PwlBranch& b) {
 bool PwlPeriodicState::solve(const PwlBranch& branch, double u0, double omega) {
   u0_ = u0, omega_ = omega, period_ = 2.0 * std::numbers::pi / omega;
   half_wave_ = branch.odd;
-  if (!same_branch(branch, structures_branch_)) structures_.clear(), structures_branch_ = branch;
+  if (!same_branch(branch, structures_branch_)) structures_.clear(), structures_branch_ = branch, solved_count_ = 0;
   span_ = half_wave_ ? 0.5 * period_ : period_;
-  const double mirror = half_wave_ ? -1.0 : 1.0;  // the map is X0 -> mirror X(span)
   storage_ = loss_ = 0.0;
   cycles_ = 0;
-  modes_.clear(), grid_step_.clear(), pieces_.clear(), switch_phases_.clear();
+  mode_count_ = 0, pieces_.clear(), switch_phases_.clear();
   Run run{*this, branch, period_ / kPwlGridPerCycle};
+  for (std::size_t k = 0; k < solved_count_; ++k) {
+    const std::size_t i = (solved_next_ + k) % solved_count_;
+    if (solved_[i].u0 == u0 && solved_[i].omega == omega) {
+      solved_next_ = (i + 1) % solved_count_;
+      return restore(run, solved_[i]);
+    }
+  }
+  const bool ok = shoot(run);
+  remember(ok);
+  return ok;
+}
+
+bool PwlPeriodicState::restore(Run& run, const Solved& solved) {
+  cycles_ = solved.cycles;
+  if (!solved.ok) return false;
+  storage_ = solved.storage, loss_ = solved.loss;
+  switch_phases_ = solved.switch_phases;
+  pieces_ = solved.pieces;
+  thread_local std::vector<int> modes;
+  modes.clear();
+  for (const PwlModeCode& code : solved.codes) {
+    modes.push_back(run.mode_index(code));
+    if (modes.back() < 0) return false;  // not reached: the mode was built when the point was solved
+  }
+  for (Piece& piece : pieces_) piece.mode = modes[static_cast<std::size_t>(piece.mode)];
+  return true;
+}
+
+void PwlPeriodicState::remember(bool ok) {
+  if (solved_count_ == kMaxSolved) return;
+  if (solved_count_ == solved_.size()) solved_.emplace_back();
+  Solved& s = solved_[solved_count_++];
+  s.u0 = u0_, s.omega = omega_, s.ok = ok, s.cycles = cycles_;
+  s.storage = storage_, s.loss = loss_;
+  s.switch_phases = switch_phases_;
+  s.pieces = pieces_;
+  s.codes.clear();
+  for (Piece& piece : s.pieces) {
+    const PwlModeCode& code = modes_[static_cast<std::size_t>(piece.mode)].code;
+    const auto known = std::find(s.codes.begin(), s.codes.end(), code);
+    piece.mode = static_cast<int>(known - s.codes.begin());
+    if (known == s.codes.end()) s.codes.push_back(code);
+  }
+}
+
+bool PwlPeriodicState::shoot(Run& run) {
+  const PwlBranch& branch = run.branch;
+  const double u0 = u0_, omega = omega_;
+  const double mirror = half_wave_ ? -1.0 : 1.0;  // the map is X0 -> mirror X(span)
 
   const int n = branch.internal_nodes;
   PwlVector scale(2 * n);  // positions by u0, velocities by w u0
@@ -117,15 +166,45 @@ bool PwlPeriodicState::solve(const PwlBranch& branch, double u0, double omega) {
   return false;
 }
 
-PwlVector PwlPeriodicState::state_at_phase(double theta, int& mode, double& sign) const {
-  double t = std::fmod(theta / omega_, period_);
+std::size_t PwlPeriodicState::piece_at_phase(double theta, double& t, double& sign) const {
+  t = std::fmod(theta / omega_, period_);
   if (t < 0.0) t += period_;
   sign = 1.0;
   if (half_wave_ && t >= span_) t -= span_, sign = -1.0;
   auto it = std::upper_bound(pieces_.begin(), pieces_.end(), t, [](double value, const Piece& p) { return value < p.t; });
-  const Piece& piece = it == pieces_.begin() ? pieces_.front() : *std::prev(it);
+  return it == pieces_.begin() ? 0 : static_cast<std::size_t>(std::prev(it) - pieces_.begin());
+}
+
+PwlVector PwlPeriodicState::state_at_phase(double theta, int& mode, double& sign) const {
+  double t = 0.0;
+  const Piece& piece = pieces_[piece_at_phase(theta, t, sign)];
   mode = piece.mode;
   return modes_[static_cast<std::size_t>(mode)].advance(t - piece.t, piece.w);
+}
+
+void PwlPeriodicState::slopes(double theta0, double step, int count, double* first) const {
+  std::size_t current = pieces_.size();  // the piece w is in (none yet)
+  double current_sign = 0.0, current_t = 0.0;
+  int propagator_mode = -1;  // the mode P was built for
+  PwlVector w;
+  PwlRow slope_row;  // force A / omega of the current piece's mode
+  PwlMatrix P;       // that mode's propagator over step / omega
+  for (int j = 0; j <= count; ++j) {
+    double t = 0.0, sign = 1.0;
+    const std::size_t k = piece_at_phase(theta0 + j * step, t, sign);
+    const int mode = pieces_[k].mode;
+    const PwlModeSystem& s = modes_[static_cast<std::size_t>(mode)];
+    if (k == current && sign == current_sign && t > current_t) {
+      if (propagator_mode != mode) P = s.propagator(step / omega_), propagator_mode = mode;
+      w = P * w;
+    } else {
+      w = s.advance(t - pieces_[k].t, pieces_[k].w);
+      slope_row = (s.force * s.A) / omega_;
+      current = k, current_sign = sign;
+    }
+    current_t = t;
+    first[j] = sign * slope_row.dot(w);
+  }
 }
 
 double PwlPeriodicState::force(double theta) const {

@@ -49,7 +49,8 @@ class PwlPeriodicState {
  public:
   // False when the event-driven path cannot settle this branch: a mode that would be
   // indeterminate, more than 10000 switches in a cycle, or no fixed point after 60 cycles. The
-  // caller then time-steps the point.
+  // caller then time-steps the point. A solve of the same branch (every edge and value equal)
+  // at a drive solved before (up to 2048 drives) restores that result.
   bool solve(const PwlBranch& branch, double u0, double omega);
   // Whether the steady force is half-wave symmetric, F(theta + pi) = -F(theta), by
   // construction (an odd branch): then max F = -min F. Otherwise, a branch with uneven laws
@@ -63,6 +64,11 @@ class PwlPeriodicState {
   // At phase theta = w t [rad] of the steady cycle (any real theta): F [N], dF/dtheta, d2F/dtheta2.
   double force(double theta) const;
   void derivatives(double theta, double& first, double& second) const;
+  // dF/dtheta at theta_j = theta0 + j step for j = 0..count, into first[0..count]: the state is
+  // carried from sample to sample by one propagator of its piece (as derivatives(), to
+  // rounding), restarted where a piece or the half period ends. The force's maximum search
+  // samples its slope so (periodic_closed_form.cpp).
+  void slopes(double theta0, double step, int count, double* first) const;
   // Phases in [0, 2 pi) at which a slider or gap switches in the steady cycle (kinks of F).
   const std::vector<double>& switch_phases() const { return switch_phases_; }
 
@@ -73,26 +79,54 @@ class PwlPeriodicState {
     PwlVector w;
   };
   struct Run;
+  // A solve kept for its drive (u0, omega) while the branch stays the same: a fit's evaluation
+  // that changed only parameters outside this branch (the columns of a Jacobian) restores it,
+  // its pieces' modes rebuilt as they were, instead of shooting again; the same result to the
+  // last bit. Modes by index into codes.
+  struct Solved {
+    double u0 = 0.0, omega = 0.0;
+    bool ok = false;
+    int cycles = 0;
+    double storage = 0.0, loss = 0.0;
+    std::vector<Piece> pieces;
+    std::vector<PwlModeCode> codes;
+    std::vector<double> switch_phases;
+  };
 
   double u0_ = 0.0, omega_ = 0.0, period_ = 0.0;
   bool half_wave_ = false;  // an odd branch: the pieces cover [0, T/2), the rest is their mirror
   double span_ = 0.0;       // T/2 or T [s]
   double storage_ = 0.0, loss_ = 0.0;
   int cycles_ = 0;
-  std::deque<PwlModeSystem> modes_;  // visited; a deque, so references stay valid as modes are added
+  // The modes visited by this solve are the first mode_count_; the rest are storage kept from
+  // earlier solves, rebuilt in place (a deque, so references stay valid as modes are added).
+  std::deque<PwlModeSystem> modes_;
+  std::size_t mode_count_ = 0;
   // The drive-independent parts of every mode built for structures_branch_, kept across solves
   // (the points of a grid) until a solve is given another branch (new parameters).
   std::deque<std::pair<PwlModeCode, PwlModeStructure>> structures_;
   PwlBranch structures_branch_;
-  // Per mode, built when first needed: e^{A T/64} stacked over the guards and guard rates it leads to.
+  // Per mode (as modes_), built when first needed: e^{A T/64} stacked over the guards and
+  // guard rates it leads to; empty until then.
   using PwlGridStep = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, 3 * kPwlMaxDim, kPwlMaxDim>;
   std::vector<PwlGridStep> grid_step_;
   std::vector<Piece> pieces_;
   std::vector<double> switch_phases_;
+  PwlModeCode settle_code_, switch_code_;  // scratch of Run::settle and Run::switch_at (no allocation per event)
+  // Solves of structures_branch_, the first solved_count_ (storage beyond is reused); a lookup
+  // starts at solved_next_, after the last one found (a grid's points come in order).
+  std::vector<Solved> solved_;
+  std::size_t solved_count_ = 0, solved_next_ = 0;
+
+  bool shoot(Run& run);  // the periodic state by shooting (the solve proper)
+  bool restore(Run& run, const Solved& solved);
+  void remember(bool ok);
 
   // The state at phase theta, its mode, and the sign its force takes there (-1 in the
   // mirrored half of an odd branch).
   PwlVector state_at_phase(double theta, int& mode, double& sign) const;
+  // The piece holding phase theta, the time t [s] into the span there and the sign as above.
+  std::size_t piece_at_phase(double theta, double& t, double& sign) const;
 };
 
 }  // namespace rheo::runtime

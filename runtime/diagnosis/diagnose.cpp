@@ -1,5 +1,7 @@
 #include "runtime/diagnosis/diagnose.hpp"
 
+#include "runtime/diagnosis/criterion.hpp"
+
 #include "runtime/diagnosis/element_text.hpp"
 
 #include "lang/fitted_source.hpp"
@@ -33,16 +35,6 @@ Compiled compile(const ModelSource& source, const std::string& text) {
   const lang::CheckedModel* model = program->find_model(source.model);
   if (!model) throw std::logic_error(fmt::format("{} has no model '{}'", source.file, source.model));
   return {program, model};
-}
-
-int residual_terms(const std::vector<FitDataSet>& data) {
-  int n = 0;
-  for (const auto& set : data) n += set.is_harmonic() ? 2 * static_cast<int>(set.harmonic().size()) : static_cast<int>(set.history().force.size());
-  return n;
-}
-
-double criterion(const FitResult& r, int n) {
-  return n * std::log(std::max(r.objective, 1e-300)) + static_cast<double>(r.free.size()) * std::log(static_cast<double>(n));
 }
 
 // Whether candidate A is preferred to B: the one with fewer parameters when its gap is within
@@ -138,9 +130,10 @@ class Diagnoser {
     d_.time_limited = d_.before.time_limited;
     d_.gap_before = d_.gap_after = fit_gap(d_.before);
     d_.residual_terms = residual_terms(data_);
-    d_.criterion_before = criterion(d_.before, d_.residual_terms);
     d_.patterns = residual_patterns(d_.before, data_);
     d_.noise = estimate_noise(d_.before, data_);
+    d_.noise_weighted = noise_weighted(data_, d_.noise);
+    d_.criterion_before = criterion(d_.before, d_.residual_terms, d_.noise_weighted, d_.noise);
     d_.noise_ratio = noise_ratio(d_.gap_before, d_.noise, d_.residual_terms, static_cast<int>(d_.before.free.size()));
     fitted_text_ = lang::write_fitted_source(source_.text, source_.file, *base_.model, d_.before.network.parameters(), d_.before.free, {});
     d_.interrupted = d_.before.interrupted;
@@ -270,7 +263,7 @@ class Diagnoser {
     result.network = with_gaps_in_play(result.network);  // the same predictions, as a file can state them
     outcome.refitted = true;
     outcome.gap_after = fit_gap(result);
-    outcome.criterion = criterion(result, d_.residual_terms);
+    outcome.criterion = criterion(result, d_.residual_terms, d_.noise_weighted, d_.noise);
     outcome.parameters = static_cast<int>(result.free.size());
     outcome.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
     d_.interrupted = d_.interrupted || result.interrupted;

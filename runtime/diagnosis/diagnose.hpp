@@ -11,7 +11,9 @@
 //      searched locally from the best samples and the screened element, then every free
 //      parameter together from the best of those and from the screened element (refit.hpp).
 //   4. Choose by the Bayesian information criterion over the N residual terms of the fit,
-//        BIC = N ln(J) + p ln(N),   J the minimised objective, p the free parameters,
+//        BIC = -2 ln L + p ln(N),   p the free parameters (criterion.hpp): on harmonic data with
+//      a noise estimate, -2 ln L is the chi^2 of the residuals under the estimated stiffness and
+//      phase noise; else N ln(J), J the minimised objective, the noise's size profiled out;
 //      so that a larger model must earn its parameters: a candidate earns when its BIC is below
 //      the model's and it lowers the gap by at least `min_improvement`. Of those that earn, the
 //      one with fewer parameters wins if its gap is within `parsimony` of the other's, else the
@@ -58,9 +60,10 @@ struct DiagnoseSettings {
   int confirm = 3;                     // leading effects refitted
   double min_screen_gain = 0.01;       // effects screened below this are not refitted,
   double relative_screen_gain = 0.25;  // nor those below this share of the leading effect's gain
-  // Relative drop of the gap a chosen candidate must bring. BIC alone takes residuals as iid,
-  // but relative damping residuals at small phases are not: a narrow resonance (3 parameters)
-  // fitted noise at one frequency for a 13 % drop on data the model explained.
+  // Relative drop of the gap a chosen candidate must bring. BIC without a noise estimate takes
+  // the residuals as iid, but relative damping residuals at small phases are not: a narrow
+  // resonance (3 parameters) fitted noise at one frequency for a 13 % drop on data the model
+  // explained.
   double min_improvement = 0.25;
   double parsimony = 0.1;  // a candidate with fewer parameters wins if its gap is within this of another's
   // Budgets. A refit may spend `refit_work` time steps (refit.cpp evaluation_work: counted on
@@ -125,6 +128,7 @@ struct Diagnosis {
   std::string gap_name;                      // "err (6.1)" or "RMS force residual"
   double gap_before = 0.0, gap_after = 0.0;  // gap_after = gap_before for none
   int residual_terms = 0;                    // N of the criterion
+  bool noise_weighted = false;               // the criterion is chi^2 under `noise` (criterion.hpp)
   double criterion_before = 0.0;
   std::vector<CandidateOutcome> candidates;  // every screened effect, screening order
   std::string added_element;                 // name in the refined model; empty for none

@@ -11,7 +11,7 @@
 //   RHEO_DOCS_SLOW=1 is set.
 // - The transcripts of a document run in order from one scratch copy of the repository root, so
 //   a command may read what an earlier one wrote; the tutorial's run in parts by its numbered
-//   sections (`## N. ...`: 1-6, 7, 8-9) and the slow ones on their own, so a command may use only
+//   sections (`## N. ...`: 1-6, 7, 8-9, 10) and the slow ones on their own, so a command may use only
 //   the files written before it in its part.
 // - A line `...` (indented or not) stands for one or more lines left out; every other line must
 //   appear, in order and with no line between it and its neighbours.

@@ -52,7 +52,7 @@ bool generated(const fs::path& file) {
 }
 
 // A scratch repository root for DOC's commands: examples/ (its data and its sources, not what
-// commands wrote there) and build/rheo, the binary under test.
+// commands wrote there), build/rheo, the binary under test, and fmusim's source.
 fs::path scratch_root(const std::string& doc) {
   const fs::path root = rheo::test::scratch_directory("transcripts") / doc;
   fs::remove_all(root);
@@ -62,6 +62,8 @@ fs::path scratch_root(const std::string& doc) {
   for (const auto& entry : fs::directory_iterator(RHEO_EXAMPLES_DIR))
     if (entry.is_regular_file() && !generated(entry.path())) fs::copy_file(entry.path(), root / "examples" / entry.path().filename());
   fs::create_symlink(fs::absolute(RHEO_BINARY), root / "build" / "rheo");
+  fs::create_directories(root / "tests" / "third_party");  // fmusim's source, which the FMU section builds
+  fs::create_directory_symlink(fs::path(RHEO_SOURCE_DIR) / "tests" / "third_party" / "fmusim", root / "tests" / "third_party" / "fmusim");
   return root;
 }
 
@@ -190,6 +192,10 @@ TEST_CASE("docs transcripts: the commands of docs/tutorial.md section 7 print wh
 
 TEST_CASE("docs transcripts: the commands of docs/tutorial.md sections 8-9 print what it shows") {
   CHECK(check_transcripts("docs/tutorial.md", {8, 9}) >= 8);
+}
+
+TEST_CASE("docs transcripts: the commands of docs/tutorial.md section 10 (the FMU in fmusim) print what it shows") {
+  CHECK(check_transcripts("docs/tutorial.md", {10, 10}) >= 7);
 }
 
 TEST_CASE("docs transcripts: the slow commands of docs/tutorial.md print what it shows (with RHEO_DOCS_SLOW=1)") {

@@ -12,6 +12,8 @@
 #include <cmath>
 #include <algorithm>
 #include <numbers>
+#include <tuple>
+#include <vector>
 
 using namespace rheo;
 using runtime::HarmonicDefinition;
@@ -294,4 +296,76 @@ TEST_CASE("modes built once serve every point of a branch, and other parameters 
   };
   const double loss_one = same(one), loss_other = same(other);
   CHECK(std::abs(loss_one - loss_other) > 1e-3 * std::abs(loss_one));  // the cap slips at 25 N, not at 60 N
+}
+
+TEST_CASE("slopes carried by propagators equal the slope at each phase, across pieces and the half period") {
+  // PwlPeriodicState::slopes against derivatives() (a modal exponential per phase) at every
+  // sample, for odd branches on the half-period map and the same on the full one, over runs
+  // that cross switches, the half period and the period.
+  for (const char* model : kOddBranches) {
+    const auto net = test::network_from(model, "a");
+    runtime::PwlBranch half = branch_of(net), full = half;
+    full.odd = false;
+    for (const runtime::PwlBranch* branch : {&half, &full})
+      for (double u0 : {0.05, 0.5, 2.0})
+        for (double f : {0.5, 7.0, 40.0}) {
+          const std::string text = model;
+          CAPTURE(text);
+          CAPTURE(u0);
+          CAPTURE(f);
+          runtime::PwlPeriodicState s;
+          REQUIRE(s.solve(*branch, u0, 2.0 * std::numbers::pi * f));
+          for (const auto& [from, step, count] :
+               {std::tuple{-0.5 * std::numbers::pi, std::numbers::pi / 32.0, 32}, std::tuple{0.1, 0.37, 40}, std::tuple{-7.0, 0.05, 30}}) {
+            std::vector<double> first(static_cast<std::size_t>(count) + 1);
+            s.slopes(from, step, count, first.data());
+            double largest = 0.0, difference = 0.0;
+            for (int j = 0; j <= count; ++j) {
+              double expected = 0.0, second = 0.0;
+              s.derivatives(from + j * step, expected, second);
+              largest = std::max(largest, std::abs(expected));
+              difference = std::max(difference, std::abs(expected - first[static_cast<std::size_t>(j)]));
+            }
+            CHECK(difference <= 1e-10 * largest + 1e-13);
+          }
+        }
+  }
+}
+
+TEST_CASE("a solve of the same branch at a drive solved before restores that result to the last bit") {
+  // Solving at other drives in between, and a branch with other values (which drops what was
+  // kept), must not change what a repeated drive returns: the same storage, loss, cycles,
+  // switch phases and force as a state that never solved anything else.
+  const auto net = test::network_from(kOddBranches[0], "a");
+  const auto other_net = test::network_from(std::string(kOddBranches[0]).replace(std::string(kOddBranches[0]).find("60 N"), 4, "25 N"), "a");
+  const runtime::PwlBranch branch = branch_of(net), other = branch_of(other_net);
+  const double drives[][2] = {{0.05, 3.0}, {0.5, 11.0}, {2.0, 40.0}, {0.5, 3.0}};
+  runtime::PwlPeriodicState kept;
+  for (int round = 0; round < 3; ++round) {
+    if (round == 2) REQUIRE(kept.solve(other, 0.5, 2.0 * std::numbers::pi * 11.0));
+    for (const auto& d : drives) {
+      CAPTURE(round);
+      CAPTURE(d[0]);
+      CAPTURE(d[1]);
+      const double omega = 2.0 * std::numbers::pi * d[1];
+      runtime::PwlPeriodicState fresh;
+      REQUIRE(fresh.solve(branch, d[0], omega));
+      REQUIRE(kept.solve(branch, d[0], omega));
+      CHECK(kept.storage() == fresh.storage());
+      CHECK(kept.loss() == fresh.loss());
+      CHECK(kept.cycles() == fresh.cycles());
+      CHECK(kept.switch_phases() == fresh.switch_phases());
+      for (int k = 0; k < 16; ++k) {
+        const double theta = (k + 0.3) * std::numbers::pi / 8.0;
+        CHECK(kept.force(theta) == fresh.force(theta));
+      }
+    }
+  }
+  // The other branch's values give another result at the same drive (nothing stale is restored).
+  runtime::PwlPeriodicState fresh_other;
+  REQUIRE(fresh_other.solve(other, 0.5, 2.0 * std::numbers::pi * 11.0));
+  REQUIRE(kept.solve(other, 0.5, 2.0 * std::numbers::pi * 11.0));
+  CHECK(kept.loss() == fresh_other.loss());
+  REQUIRE(kept.solve(branch, 0.5, 2.0 * std::numbers::pi * 11.0));
+  CHECK(std::abs(kept.loss() - fresh_other.loss()) > 1e-3 * std::abs(kept.loss()));
 }

@@ -1,0 +1,88 @@
+// The information criterion of rheo diagnose (runtime/diagnosis/criterion.hpp): chi^2 under the
+// estimated noise against a hand computation and against its own noise model (pure noise gives
+// chi^2 ~ N, also with points near 90 deg), and the unweighted BIC where there is no estimate.
+#include "runtime/diagnosis/criterion.hpp"
+
+#include "portable_random.hpp"
+#include "support.hpp"
+
+#include <doctest/doctest.h>
+
+#include <cmath>
+#include <numbers>
+
+using namespace rheo;
+namespace dx = runtime::diagnosis;
+
+namespace {
+
+constexpr double kDeg = std::numbers::pi / 180.0;
+
+// A fit to harmonic points measured at PHASES [rad] with the given relative residuals.
+runtime::FitResult harmonic_fit(const std::vector<double>& phases, const std::vector<double>& r_k, const std::vector<double>& r_d) {
+  runtime::FitResult fit{test::network_from("model m { spring s (k = 1 N/mm in [0.1, 10]) }", "m")};
+  runtime::DataSetFit set;
+  set.measured_phase = phases;
+  set.measured_stiffness.assign(phases.size(), 100.0);
+  set.residuals.stiffness = r_k;
+  set.residuals.damping = r_d;
+  fit.datasets.push_back(set);
+  fit.free = {0};
+  return fit;
+}
+
+dx::NoiseEstimate noise_of(double stiffness, double phase) {
+  dx::NoiseEstimate n;
+  n.estimated = true, n.stiffness = stiffness, n.phase = phase;
+  return n;
+}
+
+}  // namespace
+
+TEST_CASE("diagnose criterion: chi^2 weighs each term by its noise, the damping term's by s_phi^2 cot^2 phi + s_phi^4/2") {
+  const double s_k = 0.01, s_phi = 0.002;
+  const auto fit = harmonic_fit({30.0 * kDeg, 90.0 * kDeg, 0.0}, {0.01, -0.02, 0.03}, {0.005, 0.001, 0.4});
+  // 30 deg: cot^2 = 3; 90 deg: cot = 0, only the second-order part; 0 deg: damping term left out.
+  const double expected = 1.0 + 4.0 + 9.0 + 0.005 * 0.005 / (s_phi * s_phi * 3.0 + 0.5 * std::pow(s_phi, 4)) +
+                          0.001 * 0.001 / (0.5 * std::pow(s_phi, 4));
+  CHECK(dx::noise_chi_square(fit, noise_of(s_k, s_phi)) == doctest::Approx(expected).epsilon(1e-12));
+  const int n = 6;
+  CHECK(dx::criterion(fit, n, true, noise_of(s_k, s_phi)) == doctest::Approx(expected + std::log(6.0)).epsilon(1e-12));
+}
+
+TEST_CASE("diagnose criterion: residuals drawn from the noise model give chi^2 within 4 standard deviations of N, also near 90 deg") {
+  const double s_k = 0.01, s_phi = 0.15 * kDeg;
+  for (const double top : {20.0, 89.9}) {  // phases from 0.5 deg up to TOP
+    test::PortableRandom random(7);
+    std::vector<double> phases, r_k, r_d;
+    for (int i = 0; i < 2000; ++i) {
+      const double phase = (0.5 + (top - 0.5) * i / 1999.0) * kDeg;
+      phases.push_back(phase);
+      r_k.push_back(s_k * random.normal());
+      r_d.push_back(std::sin(phase + s_phi * random.normal()) / std::sin(phase) - 1.0);
+    }
+    const double n = 2.0 * static_cast<double>(phases.size());
+    CAPTURE(top);
+    CHECK(std::abs(dx::noise_chi_square(harmonic_fit(phases, r_k, r_d), noise_of(s_k, s_phi)) - n) < 4.0 * std::sqrt(2.0 * n));
+    // The same noise judged 30 % smaller is far outside: the test can tell the variances apart.
+    CHECK(dx::noise_chi_square(harmonic_fit(phases, r_k, r_d), noise_of(0.7 * s_k, 0.7 * s_phi)) - n > 10.0 * std::sqrt(2.0 * n));
+  }
+}
+
+TEST_CASE("diagnose criterion: without a noise estimate or with histories, BIC = N ln J + p ln N") {
+  auto fit = harmonic_fit({0.1}, {0.01}, {0.02});
+  fit.objective = 0.25;
+  CHECK(dx::criterion(fit, 2, false, {}) == doctest::Approx(2.0 * std::log(0.25) + std::log(2.0)).epsilon(1e-12));
+  runtime::HarmonicData h;
+  h.amplitude = {1.0}, h.frequency = {1.0}, h.stiffness = {100.0}, h.phase = {0.1}, h.rows = {2};
+  const runtime::FitDataSet harmonic{"grid.csv", 1.0, h, {}};
+  CHECK(dx::residual_terms({harmonic}) == 2);
+  CHECK(dx::noise_weighted({harmonic}, noise_of(0.01, 0.002)));
+  CHECK_FALSE(dx::noise_weighted({harmonic}, dx::NoiseEstimate{}));  // not estimated
+  CHECK_FALSE(dx::noise_weighted({harmonic}, noise_of(0.01, 0.0)));
+  runtime::HistoryData history;
+  history.force = {1.0, 2.0, 3.0};
+  const runtime::FitDataSet samples{"history.csv", 1.0, history, {}};
+  CHECK(dx::residual_terms({harmonic, samples}) == 5);
+  CHECK_FALSE(dx::noise_weighted({harmonic, samples}, noise_of(0.01, 0.002)));
+}
