@@ -43,6 +43,19 @@ void Progress::evaluation(const runtime::SearchProgress& p) {
   }
 }
 
+void Progress::status(const std::string& line, double quiet) {
+  const auto now = std::chrono::steady_clock::now();
+  if (elapsed() < quiet || std::chrono::duration<double>(now - last_).count() < interval_) return;
+  last_ = now;
+  const std::string text = fmt::format("{}: {}, {:.0f} s", what_.empty() ? "running" : what_, line, elapsed());
+  if (live_) {
+    std::cerr << "\r  " << text << "   " << std::flush;
+    line_open_ = true;
+  } else {
+    std::cerr << "rheo: " << text << "\n" << std::flush;
+  }
+}
+
 void Progress::finish() {
   if (line_open_) std::cerr << "\r" << std::string(120, ' ') << "\r" << std::flush;
   line_open_ = false;
@@ -54,6 +67,14 @@ std::function<void(const runtime::SearchProgress&)> Progress::evaluation_callbac
 
 std::function<void(const std::string&)> Progress::stage_callback(const std::shared_ptr<Progress>& progress) {
   return [progress](const std::string& what) { progress->stage(what); };
+}
+
+std::function<void(const runtime::StreamStatus&)> Progress::stream_callback(const std::shared_ptr<Progress>& progress) {
+  return [progress](const runtime::StreamStatus& s) {
+    progress->status(s.file_bytes > 0 ? fmt::format("{} samples, {:.0f} % of the file read", s.samples,
+                                                    100.0 * static_cast<double>(s.bytes_read) / static_cast<double>(s.file_bytes))
+                                      : fmt::format("{} samples", s.samples));
+  };
 }
 
 }  // namespace rheo::cli

@@ -1,5 +1,6 @@
 // Progress of a long search on standard error: what runs, the evaluations so far, the best
-// objective and the time (of the time limit, when there is one). On a terminal one live line is
+// objective and the time (of the time limit, when there is one); or of a long streamed history
+// (status()). On a terminal one live line is
 // rewritten in place at most every 0.2 s; otherwise (a log file, a pipe, a CI job), or with
 // --progress, a whole line is written every few seconds (kLogInterval, or kRequestedInterval
 // with --progress, which also writes one at the first evaluation after each stage), so that a
@@ -7,6 +8,7 @@
 #pragma once
 
 #include "runtime/fit/fit_search.hpp"
+#include "runtime/protocols/stream_history.hpp"
 
 #include <chrono>
 #include <functional>
@@ -18,6 +20,7 @@ namespace rheo::cli {
 
 inline constexpr double kLogInterval = 5.0;        // [s] between lines when standard error is not a terminal
 inline constexpr double kRequestedInterval = 1.0;  // [s] between lines with --progress
+inline constexpr double kQuietStart = 3.0;         // [s] before the first status() line
 
 class Progress {
  public:
@@ -30,12 +33,17 @@ class Progress {
   void label(const std::string& what) { what_ = what; }
   // For FitSettings::progress: called after every evaluation of a search.
   void evaluation(const runtime::SearchProgress& p);
+  // A line of its own making (a streamed history's "N samples, P % of the file"), written as
+  // evaluation() writes its lines, none in the first QUIET seconds: a short run stays silent.
+  void status(const std::string& line, double quiet = kQuietStart);
   // Clears a live line before other output.
   void finish();
 
   // The callbacks bound to THIS (shared: they may outlive the caller's copy).
   static std::function<void(const runtime::SearchProgress&)> evaluation_callback(const std::shared_ptr<Progress>& progress);
   static std::function<void(const std::string&)> stage_callback(const std::shared_ptr<Progress>& progress);
+  // For stream_history: status() lines "N samples, P % of the file read".
+  static std::function<void(const runtime::StreamStatus&)> stream_callback(const std::shared_ptr<Progress>& progress);
 
  private:
   Progress(bool live, double interval, std::optional<double> time_limit);

@@ -6,11 +6,14 @@
 #include "cli/commands.hpp"
 #include "cli/data_option.hpp"
 #include "cli/program_lookup.hpp"
+#include "cli/progress.hpp"
 #include "cli/report_files.hpp"
 #include "runtime/core/errors.hpp"
 #include "runtime/fit/fit_scoring.hpp"
 #include "runtime/fit/objective.hpp"
 #include "runtime/protocols/run_protocols.hpp"
+#include "runtime/protocols/stream_history.hpp"
+#include "runtime/report/history_digest.hpp"
 
 #include <fmt/format.h>
 
@@ -59,15 +62,25 @@ void add_data(report::ReportContent& content, const runtime::Network& network, c
   }
 }
 
-// The results of the model's simulate protocols, whatever format they would be written in.
+// The results of the model's simulate protocols, whatever format they would be written in. A
+// history the fixed-step kernels run is streamed into a digest (report/history_digest.hpp): a
+// long one is drawn in constant memory, without the limits of a history held whole.
 void add_protocols(report::ReportContent& content, const runtime::Network& network, const lang::Program& program, const Options& o) {
   for (const auto& sim : program.simulations) {
     if (sim.model != network.model().name) continue;
     for (lang::Protocol protocol : sim.protocols) {
       lang::common(protocol.settings).elements = false;  // the report draws the whole network's force
-      const runtime::ProtocolResult result = runtime::run_protocol(network, protocol, o.file, o.threads);
-      report::add_simulation_result(
-          content, fmt::format("{} protocol ({}:{})", lang::protocol_name(protocol.kind), protocol.where.file, protocol.where.line), result);
+      const std::string label = fmt::format("{} protocol ({}:{})", lang::protocol_name(protocol.kind), protocol.where.file, protocol.where.line);
+      if (runtime::streams(network, protocol)) {
+        report::HistoryDigest digest;
+        const auto progress = Progress::start(false, std::nullopt);
+        progress->label(fmt::format("history of model {}", network.model().name));
+        runtime::stream_history(network, protocol, o.file, digest, Progress::stream_callback(progress));
+        progress->finish();
+        content.histories.push_back(digest.comparison(label));
+        continue;
+      }
+      report::add_simulation_result(content, label, runtime::run_protocol(network, protocol, o.file, o.threads));
     }
   }
 }

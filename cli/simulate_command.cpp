@@ -4,15 +4,20 @@
 #include "lang/protocol_schema.hpp"
 #include "lang/text_encoding.hpp"
 #include "cli/commands.hpp"
+#include "cli/progress.hpp"
 #include "cli/report_files.hpp"
 #include "runtime/core/errors.hpp"
 #include "runtime/network/network.hpp"
+#include "runtime/io/history_writer.hpp"
 #include "runtime/io/output.hpp"
 #include "runtime/protocols/run_protocols.hpp"
+#include "runtime/protocols/stream_history.hpp"
+#include "runtime/report/history_digest.hpp"
 
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <cstdint>
 #include <filesystem>
 #include <iostream>
 #include <memory>
@@ -74,6 +79,45 @@ runtime::UsageError nothing_to_run(const lang::Program& program, const Options& 
                                          o.model.empty() ? "" : fmt::format(" for model '{}'", o.model), lang::join(kinds)));
 }
 
+// A protocol's result, held (RESULT) or streamed to a file not yet in place (PENDING).
+struct Outcome {
+  std::optional<runtime::ProtocolResult> result;
+  std::unique_ptr<runtime::PendingOutput> pending;
+  std::uint64_t size = 0;  // points or samples
+  std::string notes;
+  int not_converged = 0;
+};
+
+struct Job {
+  const lang::CheckedModel* model;
+  lang::Protocol protocol;
+};
+
+// Histories stream where they are written as CSV (JSON holds whole arrays); a report draws
+// a streamed history from its digest (report/history_digest.hpp).
+bool streamed(const runtime::Network& network, const lang::Protocol& protocol) {
+  return runtime::streams(network, protocol) && lang::common(protocol.settings).format == lang::OutputFormat::csv;
+}
+
+// DIGEST, when not null, also receives the history, for a report.
+Outcome run_streamed(const runtime::Network& network, const Job& job, const std::string& destination, const std::string& source_file,
+                     runtime::HistorySink* digest) {
+  Outcome outcome;
+  outcome.pending = std::make_unique<runtime::PendingOutput>(destination);
+  runtime::HistoryCsvWriter writer(*outcome.pending);
+  std::optional<runtime::TeeSink> both;
+  if (digest) both.emplace(writer, *digest);
+  runtime::HistorySink& sink = both ? static_cast<runtime::HistorySink&>(*both) : writer;
+  const auto progress = Progress::start(false, std::nullopt);
+  progress->label(fmt::format("history of model {}", job.model->name));
+  const runtime::StreamedHistory run = runtime::stream_history(network, job.protocol, source_file, sink, Progress::stream_callback(progress));
+  progress->finish();
+  writer.finish();
+  outcome.size = run.samples;
+  outcome.notes = run.notes;
+  return outcome;
+}
+
 }  // namespace
 
 Command add_simulate_command(CLI::App& app) {
@@ -101,10 +145,6 @@ Command add_simulate_command(CLI::App& app) {
       "else to standard output.");
   return [o] {
     const lang::Program program = lang::load_program(o->file);
-    struct Job {
-      const lang::CheckedModel* model;
-      lang::Protocol protocol;
-    };
     std::vector<Job> jobs;
     for (const auto& sim : program.simulations) {
       if (!o->model.empty() && sim.model != o->model) continue;
@@ -122,8 +162,9 @@ Command add_simulate_command(CLI::App& app) {
           throw runtime::UsageError(fmt::format("--report and --plot show one model, but models {} and {} would run; select one with --model",
                                                 jobs.front().model->name, job.model->name));
     // Every destination is checked before anything runs, and every protocol runs before any
-    // output is written: a bad path, a later protocol's bad data file or a numerical failure
-    // leaves every earlier output intact.
+    // output is put in place: a bad path, a later protocol's bad data file or a numerical
+    // failure leaves every earlier output intact. A history streamed (stream_history.hpp) is
+    // written as it runs, to a PendingOutput that only the end puts in place.
     std::vector<std::string> destinations;
     for (const auto& job : jobs) {
       std::string destination = o->output;
@@ -134,30 +175,42 @@ Command add_simulate_command(CLI::App& app) {
     }
     check_report_targets(o->report);
     std::optional<runtime::report::ReportContent> report;
-    std::vector<runtime::ProtocolResult> results;
-    for (auto& job : jobs) {
+    std::vector<Outcome> outcomes;
+    for (std::size_t k = 0; k < jobs.size(); ++k) {
+      auto& job = jobs[k];
       apply_overrides(job.protocol, *o);
       const runtime::Network network = runtime::Network::compile(*job.model);
-      runtime::ProtocolResult result = runtime::run_protocol(network, job.protocol, o->file, o->threads);
-      if (o->report.any()) {
-        if (!report) report = runtime::report::report_for_model(network, o->file, "rheo simulate");
-        runtime::report::add_simulation_result(
-            *report, fmt::format("{} protocol ({}:{})", lang::protocol_name(job.protocol.kind), job.protocol.where.file, job.protocol.where.line),
-            result);
+      const std::string label = fmt::format("{} protocol ({}:{})", lang::protocol_name(job.protocol.kind), job.protocol.where.file,
+                                            job.protocol.where.line);
+      if (o->report.any() && !report) report = runtime::report::report_for_model(network, o->file, "rheo simulate");
+      if (streamed(network, job.protocol)) {
+        std::optional<runtime::report::HistoryDigest> digest;
+        if (report) digest.emplace();
+        outcomes.push_back(run_streamed(network, job, destinations[k], o->file, digest ? &*digest : nullptr));
+        if (digest) report->histories.push_back(digest->comparison(label));
+        continue;
       }
-      results.push_back(std::move(result));
+      runtime::ProtocolResult result = runtime::run_protocol(network, job.protocol, o->file, o->threads);
+      if (report) runtime::report::add_simulation_result(*report, label, result);
+      Outcome outcome;
+      outcome.size = static_cast<std::uint64_t>(result.size());
+      outcome.notes = result.notes;
+      outcome.not_converged = result.not_converged;
+      outcome.result = std::move(result);
+      outcomes.push_back(std::move(outcome));
     }
     int not_converged = 0;
     for (std::size_t k = 0; k < jobs.size(); ++k) {
       const auto& job = jobs[k];
-      const runtime::ProtocolResult& result = results[k];
+      Outcome& outcome = outcomes[k];
       const std::string& destination = destinations[k];
-      runtime::write_output(destination, runtime::rendered(result, lang::common(job.protocol.settings).format));
-      std::cerr << result.notes;
+      if (outcome.pending) outcome.pending->commit();
+      else runtime::write_output(destination, runtime::rendered(*outcome.result, lang::common(job.protocol.settings).format));
+      std::cerr << outcome.notes;
       if (!destination.empty() && destination != "-")
         std::cerr << fmt::format("rheo: {} of model {}: {} {} written to {}\n", lang::protocol_name(job.protocol.kind), job.model->name,
-                                 result.size(), job.protocol.kind == lang::ProtocolKind::harmonic ? "points" : "samples", destination);
-      not_converged += result.not_converged;
+                                 outcome.size, job.protocol.kind == lang::ProtocolKind::harmonic ? "points" : "samples", destination);
+      not_converged += outcome.not_converged;
     }
     if (report) write_report_files(*report, o->report);
     if (not_converged > 0) {

@@ -2,12 +2,23 @@
 
 #include <fmt/format.h>
 
+#include <cstdint>
+#include <cstring>
+
 namespace rheo::lang {
 namespace {
 constexpr std::string_view kReplacement = "\xEF\xBF\xBD";  // U+FFFD
 
 bool continuation(unsigned char c) { return (c & 0xC0) == 0x80; }
 bool control(unsigned char c) { return (c < 0x20 && c != '\t') || c == 0x7F; }
+
+// Whether the 8 bytes at P are ASCII and none is NUL: the common case, checked a word at a time.
+bool plain_ascii_word(const char* p) {
+  std::uint64_t w = 0;
+  std::memcpy(&w, p, sizeof w);
+  constexpr std::uint64_t ones = 0x0101010101010101u, highs = 0x8080808080808080u;
+  return ((w | ((w - ones) & ~w)) & highs) == 0;  // no high bit set, no zero byte
+}
 }  // namespace
 
 std::size_t utf8_length(std::string_view text, std::size_t offset) {
@@ -30,6 +41,10 @@ std::size_t utf8_length(std::string_view text, std::size_t offset) {
 
 std::optional<EncodingProblem> find_encoding_problem(std::string_view text) {
   for (std::size_t i = 0; i < text.size();) {
+    if (i + 8 <= text.size() && plain_ascii_word(text.data() + i)) {
+      i += 8;
+      continue;
+    }
     if (text[i] == '\0') return EncodingProblem{i, "found a NUL byte; the file must be text: remove it"};
     const std::size_t n = utf8_length(text, i);
     if (n == 0)

@@ -14,7 +14,7 @@ Prediction predict(const Network& network, const FitDataSet& set, FitMethod meth
                    const ThesisCorrection* correction, Offsets offsets) {
   Prediction p;
   if (!set.is_harmonic()) {
-    p.force = run_history(network, set.history().drive, false, harmonic.solver).force;
+    p.force = history_force(network, set.history().drive, harmonic.solver);
     p.force_offset = force_offset(set, p.force, offsets);
     for (double& f : p.force) f += p.force_offset;
     return p;

@@ -52,10 +52,14 @@ std::string header_error(const Table& table);
 std::string header_columns(const Table& table);
 
 // NAMED_AT, when given, is where a .rheo file names PATH: a file that cannot be read is then
-// reported there (file:line:col of the name), since that is where to fix it.
+// reported there (file:line:col of the name), since that is where to fix it. The table is held
+// whole, so its file may have at most lang::max_table_bytes (a history protocol's file is
+// streamed instead where it can be: history_stream.hpp).
 // STEP picks a TRIOS step (table_layout.hpp).
 Table read_table(const std::string& path, const lang::SourceLocation* named_at = nullptr, const std::string& step = "");
 Table parse_table(const std::string& path, const std::string& text, const std::string& step = "");
+// The message of a DataError for a table that cannot be read (FAILURE, ADVICE: lang::FileText).
+std::string unreadable_table(const std::string& path, const lang::SourceLocation* named_at, const std::string& failure, const char* advice);
 
 // A displacement history from a table with "time" and "displacement" columns: strictly
 // increasing time; its first displacement is where the network starts relaxed

@@ -2,6 +2,7 @@
 
 #include "runtime/core/errors.hpp"
 
+#include <fmt/compile.h>
 #include <fmt/format.h>
 
 #include <algorithm>
@@ -93,17 +94,59 @@ std::string harmonic_json(const ResultHeader& header, const std::vector<Harmonic
   return j.dump(2) + "\n";
 }
 
-std::string history_csv(const ResultHeader& header, const History& h) {
+std::string history_csv_head(const ResultHeader& header, const std::vector<std::string>& element_paths) {
   std::string out = comment_lines(header);
   out += "time [s],displacement [mm],force [N]";
-  for (const auto& path : h.element_paths) out += fmt::format(",{0}.force [N],{0}.elongation [mm]", path);
+  for (const auto& path : element_paths) out += fmt::format(",{0}.force [N],{0}.elongation [mm]", path);
   out += "\n";
-  for (std::size_t k = 0; k < h.time.size(); ++k) {
-    out += fmt::format("{:.10g},{:.10g},{:.10g}", h.time[k], h.displacement[k], h.force[k]);
-    for (std::size_t i = 0; i < h.element_paths.size(); ++i)
-      out += fmt::format(",{:.10g},{:.10g}", h.element_force[i][k], h.element_elongation[i][k]);
-    out += "\n";
+  return out;
+}
+
+namespace {
+
+// V shortest-round-trip (fmt's "{}": Dragonbox; fixed notation for exponents -5 to 15) at P,
+// then SEPARATOR; returns the end.
+char* write_number(char* p, double v, char separator) {
+  p = fmt::format_to(p, FMT_COMPILE("{}"), v);
+  *p++ = separator;
+  return p;
+}
+
+}  // namespace
+
+std::size_t max_history_row_bytes(std::size_t elements) {
+  return 25 * (3 + 2 * elements);  // at most 24 characters a number ("-2.2250738585072014e-308") and its separator
+}
+
+char* write_history_row(char* p, const History& h, std::size_t k) {
+  const std::size_t elements = h.element_paths.size();
+  p = write_number(p, h.time[k], ',');
+  p = write_number(p, h.displacement[k], ',');
+  p = write_number(p, h.force[k], elements ? ',' : '\n');
+  for (std::size_t i = 0; i < elements; ++i) {
+    p = write_number(p, h.element_force[i][k], ',');
+    p = write_number(p, h.element_elongation[i][k], i + 1 < elements ? ',' : '\n');
   }
+  return p;
+}
+
+void append_history_rows(std::string& out, const History& h) {
+  const std::size_t widest = max_history_row_bytes(h.element_paths.size());
+  std::vector<char> rows(std::max<std::size_t>(widest, 1 << 16));
+  char* p = rows.data();
+  for (std::size_t k = 0; k < h.time.size(); ++k) {
+    if (static_cast<std::size_t>(rows.data() + rows.size() - p) < widest) {
+      out.append(rows.data(), p);
+      p = rows.data();
+    }
+    p = write_history_row(p, h, k);
+  }
+  out.append(rows.data(), p);
+}
+
+std::string history_csv(const ResultHeader& header, const History& h) {
+  std::string out = history_csv_head(header, h.element_paths);
+  append_history_rows(out, h);
   return out;
 }
 
@@ -128,77 +171,6 @@ std::string history_json(const ResultHeader& header, const History& h) {
   for (std::size_t i = 0; i < h.element_paths.size(); ++i)
     elements.push_back({{"path", h.element_paths[i]}, {"force", h.element_force[i]}, {"elongation", h.element_elongation[i]}});
   return j.dump() + "\n";
-}
-
-void check_output_destination(const std::string& path) {
-  if (path.empty() || path == "-") return;
-  namespace fs = std::filesystem;
-  const fs::path target(path);
-  std::error_code ec;
-  if (fs::is_directory(target, ec))
-    throw DataError(fmt::format("{}: error: the output is a directory; name a file in it, e.g. {}", path, (target / "result.csv").string()));
-  const fs::path parent = target.parent_path().empty() ? fs::path(".") : target.parent_path();
-  if (!fs::is_directory(parent, ec))
-    throw DataError(fmt::format("{}: error: the output's directory {} does not exist; create it or choose another path", path, parent.string()));
-  // write_output writes a device or pipe in place, and a regular file (through its links) to a
-  // temporary sibling renamed over it: the first needs the file writable, the second its directory.
-  const auto status = fs::status(target, ec);
-  if (fs::exists(status) && !fs::is_regular_file(status)) {
-    if (::access(target.c_str(), W_OK) != 0)
-      throw DataError(fmt::format("{}: error: the output cannot be written ({}); choose another path", path, std::strerror(errno)));
-    return;
-  }
-  const fs::path resolved = fs::exists(status) ? fs::canonical(target, ec) : target;
-  const fs::path directory = ec || resolved.parent_path().empty() ? parent : resolved.parent_path();
-  if (::access(directory.c_str(), W_OK | X_OK) != 0)
-    throw DataError(fmt::format("{}: error: the output's directory {} is not writable ({}); choose another path", path, directory.string(),
-                                std::strerror(errno)));
-}
-
-void write_output(const std::string& path, const std::string& content) {
-  if (path.empty() || path == "-") {
-    std::cout << content << std::flush;
-    return;
-  }
-  check_output_destination(path);
-  namespace fs = std::filesystem;
-  // A symbolic link is written through: the file it points to (created if missing) is
-  // replaced, the link kept. Chains are followed as the kernel would, to a depth of 40.
-  fs::path target(path);
-  std::error_code link_error;
-  for (int depth = 0; fs::is_symlink(fs::symlink_status(target, link_error)); ++depth) {
-    const fs::path next = fs::read_symlink(target, link_error);
-    if (link_error || depth == 40)
-      throw DataError(fmt::format("{}: error: cannot follow the link ({}); write to its target instead", path,
-                                  link_error ? link_error.message() : "too many levels of links"));
-    target = next.is_absolute() ? next : target.parent_path() / next;
-  }
-  std::error_code status_error;
-  const auto status = fs::status(target, status_error);
-  if (fs::exists(status) && !fs::is_regular_file(status)) {
-    // A device or pipe (/dev/null, a FIFO): write in place; renaming over it would replace it.
-    std::FILE* stream = std::fopen(target.c_str(), "wb");
-    const bool ok = stream && std::fwrite(content.data(), 1, content.size(), stream) == content.size();
-    if (stream) std::fclose(stream);
-    if (!ok) throw DataError(fmt::format("{}: error: cannot write output ({})", path, std::strerror(errno)));
-    return;
-  }
-  const fs::path temporary = target.parent_path() / fmt::format(".{}.rheo-tmp-{}", target.filename().string(), ::getpid());
-  std::FILE* file = std::fopen(temporary.c_str(), "wb");
-  if (!file)
-    throw DataError(fmt::format("{}: error: cannot write output ({}); check that the directory exists and is writable", path, std::strerror(errno)));
-  const bool written = std::fwrite(content.data(), 1, content.size(), file) == content.size();
-  const bool closed = std::fclose(file) == 0;
-  std::error_code ec;
-  if (!written || !closed) {
-    fs::remove(temporary, ec);
-    throw DataError(fmt::format("{}: error: writing the output failed (disk full?); nothing was written", path));
-  }
-  fs::rename(temporary, target, ec);
-  if (ec) {
-    fs::remove(temporary, ec);
-    throw DataError(fmt::format("{}: error: cannot replace the output file ({})", path, ec.message()));
-  }
 }
 
 }  // namespace rheo::runtime

@@ -1,20 +1,19 @@
-// Result formats and atomic output.
+// Result formats (files are written by output_file.hpp).
 //
 // Harmonic CSV: the first four columns are exactly
 //   amplitude [mm],frequency [Hz],stiffness [N/mm],phase [deg]
 // (the format of the measured data, so a result can be fitted later), then
 //   damping [-],storage [N/mm],loss [N/mm],force_amplitude [N],energy [N*mm],cycles [-],converged [-]
 // History CSV: time [s],displacement [mm],force [N], then per element "PATH.force [N]" and
-// "PATH.elongation [mm]". '#' lines before the header say what produced the file.
-// Files are written to a temporary sibling and renamed, so a failed run never leaves a
-// half-written file and earlier outputs stay intact. Devices and pipes (/dev/null, FIFOs) are
-// written in place; a symbolic link is written through to its target and stays a link.
+// "PATH.elongation [mm]", each number shortest-round-trip. '#' lines before the header say what
+// produced the file.
 #pragma once
 
 #include "lang/protocol_settings.hpp"
 #include "runtime/core/drive.hpp"
 #include "runtime/core/harmonic_point.hpp"
 #include "runtime/core/protocol_result.hpp"
+#include "runtime/io/output_file.hpp"
 
 #include <string>
 #include <vector>
@@ -24,17 +23,17 @@ namespace rheo::runtime {
 std::string harmonic_csv(const ResultHeader& header, const std::vector<HarmonicPoint>& points, HarmonicDefinition definition);
 std::string harmonic_json(const ResultHeader& header, const std::vector<HarmonicPoint>& points, HarmonicDefinition definition);
 std::string history_csv(const ResultHeader& header, const History& history);
+// The parts of history_csv, for a history written piece by piece: the comment line and the
+// names row, and the rows of PIECE appended to OUT. Numbers are written shortest-round-trip
+// (fmt's "{}"): read back, each is the double that was written.
+std::string history_csv_head(const ResultHeader& header, const std::vector<std::string>& element_paths);
+void append_history_rows(std::string& out, const History& piece);
+// Row K of H written at P, which must have room for max_history_row_bytes(H's elements);
+// returns the end of the row (past its '\n').
+std::size_t max_history_row_bytes(std::size_t elements);
+char* write_history_row(char* p, const History& h, std::size_t k);
 std::string history_json(const ResultHeader& header, const History& history);
 // A protocol's result in FORMAT: one of the four above.
 std::string rendered(const ProtocolResult& result, lang::OutputFormat format);
-
-// Writes `content` to `path` atomically ("-" or empty: standard output). Throws DataError.
-void write_output(const std::string& path, const std::string& content);
-
-// DataError unless `path` ("-" or empty: standard output) can be written: a directory, a
-// parent directory that does not exist or is not writable, or a device or pipe that is not, is
-// named with advice. Called before long runs, so
-// that a fit does not end with its result unwritable.
-void check_output_destination(const std::string& path);
 
 }  // namespace rheo::runtime

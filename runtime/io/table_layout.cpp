@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <array>
 #include <cctype>
+#include <optional>
 
 namespace rheo::runtime {
 namespace {
@@ -16,10 +17,12 @@ namespace {
   throw DataError(fmt::format("{}:{}:{}: error: {}", path, row, column, message));
 }
 
+bool blank(char c) { return c == ' ' || c == '\t' || c == '\r'; }
+
 std::string_view trim(std::string_view s) {
-  const auto begin = s.find_first_not_of(" \t\r");
-  if (begin == std::string_view::npos) return {};
-  return s.substr(begin, s.find_last_not_of(" \t\r") - begin + 1);
+  while (!s.empty() && blank(s.front())) s.remove_prefix(1);
+  while (!s.empty() && blank(s.back())) s.remove_suffix(1);
+  return s;
 }
 
 std::string lower(std::string_view s) {
@@ -115,7 +118,7 @@ TableLayout trios_layout(const std::string& path, std::string_view text, const s
   std::vector<Step> steps;
   int bare_step_row = 0;  // a [step] line with nothing after it
   for (std::size_t i = 0; i < lines.size(); ++i)
-    if (lower(trim(text.substr(lines[i].begin, lines[i].end - lines[i].begin))) == "[step]") {
+    if (is_step_line(text.substr(lines[i].begin, lines[i].end - lines[i].begin))) {
       if (i + 1 >= lines.size()) {
         bare_step_row = lines[i].row;
         continue;
@@ -162,13 +165,19 @@ TableLayout trios_layout(const std::string& path, std::string_view text, const s
 
 }  // namespace
 
-std::string text_as_utf8(const std::string& path, std::string text) {
+void refuse_workbook(const std::string& path, std::string_view start) {
   constexpr std::string_view zip = "PK\x03\x04", ole = "\xD0\xCF\x11\xE0";
-  const bool workbook = text.rfind(zip, 0) == 0 || text.rfind(ole, 0) == 0;
+  const bool workbook = start.starts_with(zip) || start.starts_with(ole);
   if (workbook || has_suffix(path, ".xlsx") || has_suffix(path, ".xls") || has_suffix(path, ".xlsm") || has_suffix(path, ".ods"))
     fail(path, 1, 1,
          "this is a spreadsheet workbook, not a text table; export the sheet as CSV or text (in Excel: File > Save As > CSV UTF-8) and "
          "give that file");
+}
+
+bool is_utf16(std::string_view start) { return start.starts_with("\xFF\xFE") || start.starts_with("\xFE\xFF"); }
+
+std::string text_as_utf8(const std::string& path, std::string text) {
+  refuse_workbook(path, text);
   if (text.rfind("\xFF\xFE", 0) == 0) return utf16_to_utf8(std::string_view(text).substr(2), true);
   if (text.rfind("\xFE\xFF", 0) == 0) return utf16_to_utf8(std::string_view(text).substr(2), false);
   if (text.rfind("\xEF\xBB\xBF", 0) == 0) text.erase(0, 3);
@@ -192,58 +201,88 @@ char detect_delimiter(std::string_view names_row) {
   return delimiters[best];
 }
 
-std::vector<Cell> split_cells(std::string_view line, char delimiter) {
-  std::vector<Cell> cells;
+void split_cells(std::string_view line, char delimiter, std::vector<Cell>& cells, std::string& scratch) {
+  cells.clear();
+  scratch.clear();
+  scratch.reserve(line.size());  // unescaped text is never longer than its line: views into SCRATCH stay valid
   std::size_t start = 0;
   while (true) {
     std::size_t i = start;
     while (i < line.size() && (line[i] == ' ' || (line[i] == '\t' && delimiter != '\t'))) ++i;
-    std::string text;
+    std::string_view text;
     std::size_t end = i;
     if (i < line.size() && line[i] == '"') {  // a quoted cell: delimiters inside are text
       std::size_t j = i + 1;
-      while (j < line.size()) {
-        if (line[j] == '"' && j + 1 < line.size() && line[j + 1] == '"') {
-          text += '"';
-          j += 2;
-        } else if (line[j] == '"') {
-          ++j;
-          break;
-        } else {
-          text += line[j++];
+      const std::size_t close = line.find('"', j);
+      if (close == std::string_view::npos || close + 1 >= line.size() || line[close + 1] != '"') {
+        // No "" inside: the text between the quotes, as written.
+        text = line.substr(j, (close == std::string_view::npos ? line.size() : close) - j);
+        j = close == std::string_view::npos ? line.size() : close + 1;
+      } else {
+        const std::size_t first = scratch.size();
+        while (j < line.size()) {
+          if (line[j] == '"' && j + 1 < line.size() && line[j + 1] == '"') {
+            scratch += '"';
+            j += 2;
+          } else if (line[j] == '"') {
+            ++j;
+            break;
+          } else {
+            scratch += line[j++];
+          }
         }
+        text = std::string_view(scratch).substr(first);
       }
       end = line.find(delimiter, j);
       if (end == std::string_view::npos) end = line.size();
     } else {
-      end = line.find(delimiter, start);
-      if (end == std::string_view::npos) end = line.size();
-      text = std::string(trim(line.substr(start, end - start)));
+      end = start;  // cells are short: a loop, not memchr
+      while (end < line.size() && line[end] != delimiter) ++end;
+      text = trim(line.substr(start, end - start));
     }
     cells.push_back({text, static_cast<int>(start) + 1});
     if (end >= line.size()) break;
     start = end + 1;
   }
-  return cells;
+}
+
+bool is_step_line(std::string_view line) {
+  const std::string_view word = trim(line);
+  constexpr std::string_view step = "[step]";
+  if (word.size() != step.size()) return false;
+  for (std::size_t i = 0; i < step.size(); ++i)
+    if (std::tolower(static_cast<unsigned char>(word[i])) != step[i]) return false;
+  return true;
+}
+
+bool holds_layout(std::string_view line) {
+  const std::string_view content = trim(line);
+  return !content.empty() && content.front() != '#';
+}
+
+TableLayout plain_layout(std::string_view line) {
+  TableLayout layout;
+  layout.delimiter = detect_delimiter(trim(line));
+  layout.decimal_comma = layout.delimiter != ',';
+  return layout;
 }
 
 TableLayout find_layout(const std::string& path, std::string_view text, const std::string& step) {
-  const std::vector<Line> lines = lines_of(text);
-  for (const auto& line : lines)
-    if (lower(trim(text.substr(line.begin, line.end - line.begin))) == "[step]") return trios_layout(path, text, lines, step);
+  std::optional<std::string_view> first;  // the first line holding the layout
+  for (std::size_t start = 0; start < text.size();) {
+    std::size_t newline = text.find('\n', start);
+    if (newline == std::string_view::npos) newline = text.size();
+    const std::string_view line = text.substr(start, newline - start);
+    if (is_step_line(line)) return trios_layout(path, text, lines_of(text), step);
+    if (!first && holds_layout(line)) first = line;
+    start = newline + 1;
+  }
   if (!step.empty())
     fail(path, 1, 1,
          fmt::format("step = \"{}\" picks a step of a TRIOS export, but this file has no [step] sections; remove step from the data line",
                      lang::printable(step)));
-  TableLayout layout;
+  TableLayout layout = first ? plain_layout(*first) : TableLayout{};
   layout.end = text.size();
-  for (const auto& line : lines) {
-    const std::string_view content = trim(text.substr(line.begin, line.end - line.begin));
-    if (content.empty() || content.front() == '#') continue;
-    layout.delimiter = detect_delimiter(content);
-    break;
-  }
-  layout.decimal_comma = layout.delimiter != ',';
   return layout;
 }
 

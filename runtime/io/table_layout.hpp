@@ -31,19 +31,36 @@ struct TableLayout {
 // TEXT as UTF-8: converted from UTF-16 when it starts with a UTF-16 byte-order mark, its UTF-8
 // byte-order mark removed; an Excel workbook is a DataError.
 std::string text_as_utf8(const std::string& path, std::string text);
+// The parts of that for a file read piece by piece: a DataError for a workbook (PATH's
+// extension, or START, the file's first bytes (4 suffice), says so); whether START is a UTF-16
+// byte-order mark.
+void refuse_workbook(const std::string& path, std::string_view start);
+bool is_utf16(std::string_view start);
 
 // The layout of TEXT (the file PATH, for messages). STEP picks a TRIOS step: the step's name as
 // written or without its " - N" counter, case-insensitively; empty: the file's only step.
 TableLayout find_layout(const std::string& path, std::string_view text, const std::string& step);
+
+// A plain table's layout is read from its first line that, trimmed of spaces, tabs and CRs, is
+// neither empty nor a '#' comment (HOLDS_LAYOUT): the delimiter that line uses most, a decimal
+// comma unless that is ','. BEGIN and END are left to the caller.
+bool holds_layout(std::string_view line);
+TableLayout plain_layout(std::string_view line);
 
 // The delimiter a names row uses: the most frequent of tab, ';' and ',' outside quotes (ties
 // in that order); ',' when it has none.
 char detect_delimiter(std::string_view names_row);
 
 struct Cell {
-  std::string text;  // trimmed, surrounding double quotes removed ("" inside quotes is one ")
-  int column;        // 1-based byte column where the cell starts
+  std::string_view text;  // trimmed, surrounding double quotes removed ("" inside quotes is one ")
+  int column;             // 1-based byte column where the cell starts
 };
-std::vector<Cell> split_cells(std::string_view line, char delimiter);
+// The cells of LINE into CELLS (replacing what it held), without allocating once CELLS and
+// SCRATCH have grown to a line's size: a cell's text views LINE, or SCRATCH where a quoted cell
+// holds "" (SCRATCH is cleared). The views live as long as LINE and SCRATCH are unchanged.
+void split_cells(std::string_view line, char delimiter, std::vector<Cell>& cells, std::string& scratch);
+
+// Whether LINE, trimmed and in any case, is "[step]": a TRIOS export's section line.
+bool is_step_line(std::string_view line);
 
 }  // namespace rheo::runtime

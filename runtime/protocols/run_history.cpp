@@ -1,11 +1,8 @@
 #include "runtime/protocols/run_history.hpp"
 
 #include "runtime/dae/dae_protocols.hpp"
+#include "runtime/stepping/drive_stepper.hpp"
 #include "runtime/stepping/relaxed_state.hpp"
-#include "runtime/stepping/simulator.hpp"
-
-#include <cmath>
-#include <stdexcept>
 
 namespace rheo::runtime {
 
@@ -16,7 +13,7 @@ History run_history(const Network& network, const Drive& drive, bool elements, S
     const StartAtRest start = relaxed_start(network, relaxed_state(network, u0));
     return dae_history(network, drive, elements, nullptr, &start);
   }
-  const Simulator simulator(network);
+  DriveStepper stepper(network, elements);
   History h;
   const std::size_t n = drive.time.size();
   h.time = drive.time;
@@ -28,32 +25,23 @@ History run_history(const Network& network, const Drive& drive, bool elements, S
     h.element_force.assign(probes.size(), std::vector<double>(n, 0.0));
     h.element_elongation.assign(probes.size(), std::vector<double>(n, 0.0));
   }
-  State state = relaxed_state(network, u0), next = state;
-  h.force[0] = state.force;
-  if (elements && u0 != 0.0) {
-    const StartAtRest start = relaxed_start(network, state);
-    for (std::size_t i = 0; i < probes.size(); ++i) {
-      h.element_force[i][0] = start.element_force[i];
-      h.element_elongation[i][0] = start.element_elongation[i];
+  for (std::size_t k = 0; k < n; ++k) {
+    h.force[k] = k == 0 ? stepper.start(drive.time[0], u0) : stepper.step(drive.time[k], drive.displacement[k]);
+    for (std::size_t i = 0; elements && i < probes.size(); ++i) {
+      h.element_force[i][k] = stepper.element_force()[i];
+      h.element_elongation[i][k] = stepper.element_elongation()[i];
     }
-  }
-  StepPlan plan;
-  std::vector<double> f, e;
-  for (std::size_t k = 1; k < n; ++k) {
-    const double dt = drive.time[k] - drive.time[k - 1];
-    if (!(dt > 0.0)) throw std::logic_error("drive time must increase strictly");
-    if (plan.dt == 0.0 || std::abs(dt - plan.dt) > 1e-9 * dt) plan = StepPlan::make(network, dt);
-    h.force[k] = simulator.step(plan, state, drive.displacement[k], next, drive.time[k]);
-    if (elements) {
-      simulator.element_outputs(plan, state, next, f, e);
-      for (std::size_t i = 0; i < probes.size(); ++i) {
-        h.element_force[i][k] = f[i];
-        h.element_elongation[i][k] = e[i];
-      }
-    }
-    std::swap(state, next);
   }
   return h;
+}
+
+std::vector<double> history_force(const Network& network, const Drive& drive, SolverChoice solver) {
+  if (uses_sundials(network, solver)) return run_history(network, drive, false, solver).force;
+  DriveStepper stepper(network, false);
+  std::vector<double> force(drive.time.size());
+  for (std::size_t k = 0; k < force.size(); ++k)
+    force[k] = k == 0 ? stepper.start(drive.time[0], drive.displacement[0]) : stepper.step(drive.time[k], drive.displacement[k]);
+  return force;
 }
 
 }  // namespace rheo::runtime

@@ -12,5 +12,8 @@ namespace rheo::runtime {
 // from 0 that is the rest state); sample 0 is that state. With `elements`, records every
 // element's force and elongation.
 History run_history(const Network& network, const Drive& drive, bool elements, SolverChoice solver = SolverChoice::automatic);
+// Its force alone [N], one per drive sample, without copying the drive (fits score it at every
+// evaluation).
+std::vector<double> history_force(const Network& network, const Drive& drive, SolverChoice solver = SolverChoice::automatic);
 
 }  // namespace rheo::runtime

@@ -21,24 +21,6 @@ namespace {
 
 using lang::Protocol;
 
-// A yeoh in the root block follows the drive; past YeohLaw::softening_elongation its
-// tangent is negative: the force is still the law's, but the law is extrapolated.
-std::string yeoh_softening_note(const Network& network, double reach) {
-  std::string note;
-  for (const ElementProbe& probe : network.topology().probes) {
-    if (probe.source != ElementProbe::Source::root_yeoh) continue;
-    const auto& y = network.topology().yeohs[static_cast<std::size_t>(probe.index)];
-    const YeohLaw law{network.parameter(y[0]), network.parameter(y[1]), network.parameter(y[2])};
-    const double e = law.softening_elongation();
-    if (e < reach)
-      note += fmt::format(
-          "warning: yeoh '{}' softens to zero tangent stiffness at |e| = {:.6g} mm (eq. 3.3) and the drive reaches "
-          "{:g} mm: its force falls beyond that; {}\n",
-          probe.path, e, reach, YeohLaw::monotone_advice);
-  }
-  return note;
-}
-
 // The work limits of lang/limits.hpp, checked before a drive or grid is built.
 void require_within(double amount, long limit, const Protocol& p, const char* what, const char* advice) {
   if (!(amount <= static_cast<double>(limit)))
@@ -174,12 +156,11 @@ ProtocolResult run(RunContext& c, const lang::QuasistaticSettings& s) {
 }
 
 ProtocolResult run(RunContext& c, const lang::HistorySettings& s) {
-  std::filesystem::path file = s.file;
-  if (file.is_relative()) file = std::filesystem::path(c.source_file).parent_path() / file;
-  const Drive measured = drive_from_table(read_table(file.string(), &s.file_where), s.start == lang::HistoryStart::rest);
+  const std::string file = history_file(s, c.source_file);
+  const Drive measured = drive_from_table(read_table(file, &s.file_where), s.start == lang::HistoryStart::rest);
   require_within((static_cast<double>(measured.time.size()) - 1.0) * s.substeps + 1.0, lang::max_drive_samples, c.protocol,
                  "samples (rows x substeps)", "lower substeps or split the file");
-  return history_run(c, s, refine(measured, s.substeps), fmt::format("history file={}", file.string()));
+  return history_run(c, s, refine(measured, s.substeps), fmt::format("history file={}", file));
 }
 
 ProtocolResult run(RunContext& c, const lang::StepSettings& s) {
@@ -189,6 +170,30 @@ ProtocolResult run(RunContext& c, const lang::StepSettings& s) {
 }
 
 }  // namespace
+
+// A yeoh in the root block follows the drive; past YeohLaw::softening_elongation its
+// tangent is negative: the force is still the law's, but the law is extrapolated.
+std::string yeoh_softening_note(const Network& network, double reach) {
+  std::string note;
+  for (const ElementProbe& probe : network.topology().probes) {
+    if (probe.source != ElementProbe::Source::root_yeoh) continue;
+    const auto& y = network.topology().yeohs[static_cast<std::size_t>(probe.index)];
+    const YeohLaw law{network.parameter(y[0]), network.parameter(y[1]), network.parameter(y[2])};
+    const double e = law.softening_elongation();
+    if (e < reach)
+      note += fmt::format(
+          "warning: yeoh '{}' softens to zero tangent stiffness at |e| = {:.6g} mm (eq. 3.3) and the drive reaches "
+          "{:g} mm: its force falls beyond that; {}\n",
+          probe.path, e, reach, YeohLaw::monotone_advice);
+  }
+  return note;
+}
+
+std::string history_file(const lang::HistorySettings& s, const std::string& source_file) {
+  std::filesystem::path file = s.file;
+  if (file.is_relative()) file = std::filesystem::path(source_file).parent_path() / file;
+  return file.string();
+}
 
 ProtocolResult run_protocol(const Network& network, const Protocol& p, const std::string& source_file, int threads) {
   RunContext context{network, p, source_file, threads, {network.model().name, source_file, lang::protocol_name(p.kind)}};

@@ -16,4 +16,9 @@ namespace rheo::runtime {
 // `threads`: harmonic grid points simulated at once (HarmonicOptions::threads).
 ProtocolResult run_protocol(const Network& network, const lang::Protocol& protocol, const std::string& source_file, int threads = 1);
 
+// The parts of a history's result stream_history.hpp shares: the file a `history` protocol
+// reads, and the warnings for a drive reaching REACH [mm] (a root yeoh softening before it).
+std::string history_file(const lang::HistorySettings& settings, const std::string& source_file);
+std::string yeoh_softening_note(const Network& network, double reach);
+
 }  // namespace rheo::runtime

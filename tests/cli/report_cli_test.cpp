@@ -7,6 +7,7 @@
 #include <doctest/doctest.h>
 #include <fmt/format.h>
 
+#include <cmath>
 #include <fstream>
 
 using rheo::test::count;
@@ -163,4 +164,26 @@ TEST_CASE("rheo report scores fit-block data with the block's definition, as rhe
       run_rheo(fmt::format("report {} --data {} -o {}", (dir / "plain.rheo").string(), (dir / "truth.csv").string(), (dir / "plain.html").string())).code ==
       0);
   CHECK(err_on_page(rheo::test::read_file((dir / "plain.html").string())) > 1e-4);
+}
+
+TEST_CASE("rheo report draws a history protocol from its stream, the page of the history held whole") {
+  const auto dir = rheo::test::scratch_directory("report-stream");
+  std::string csv = "time [s],displacement [mm]\n";
+  for (int k = 0; k <= 4000; ++k) csv += fmt::format("{},{}\n", k * 1e-3, 1.5 * std::sin(k * 6.283185307179586e-3));
+  write_text((dir / "loop.csv").string(), csv);
+  write_text((dir / "loop.rheo").string(),
+             "model s {\n  spring k1 (k = 10 N/mm)\n  friction f1 (k = 50 N/mm, uy = 0.2 mm)\n}\n"
+             "simulate {\n  history file = \"loop.csv\"\n}\n");
+  const auto r = run_rheo(fmt::format("report {} -o {}", (dir / "loop.rheo").string(), (dir / "streamed.html").string()));
+  CAPTURE(r.err);
+  REQUIRE(r.code == 0);
+  // The history held whole: simulate --json (not streamed) draws the same page but for its origin.
+  const auto held = run_rheo(fmt::format("simulate {} --json -o {} --report {}", (dir / "loop.rheo").string(), (dir / "loop.json").string(),
+                                         (dir / "held.html").string()));
+  REQUIRE(held.code == 0);
+  std::string page = rheo::test::read_file((dir / "streamed.html").string());
+  CHECK(count(page, "data-figure=\"hysteresis\"") == 1);
+  CHECK(count(page, "rheo report") >= 1);
+  for (std::size_t at; (at = page.find("rheo report")) != std::string::npos;) page.replace(at, 11, "rheo simulate");
+  CHECK(page == rheo::test::read_file((dir / "held.html").string()));
 }

@@ -34,7 +34,9 @@ TEST_CASE("the delimiter is the one the names row uses most: tab, then semicolon
   CHECK(detect_delimiter("f [Hz];E' [MPa],x;y") == ';');
   CHECK(detect_delimiter("\"a;b\",c") == ',');  // inside quotes a delimiter is text
   CHECK(detect_delimiter("time") == ',');
-  const auto cells = split_cells("\"Storage, modulus\" , \"say \"\"hi\"\"\",3", ',');
+  std::vector<Cell> cells;
+  std::string scratch;
+  split_cells("\"Storage, modulus\" , \"say \"\"hi\"\"\",3", ',', cells, scratch);
   REQUIRE(cells.size() == 3);
   CHECK(cells[0].text == "Storage, modulus");
   CHECK(cells[1].text == "say \"hi\"");

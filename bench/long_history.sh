@@ -1,0 +1,65 @@
+#!/usr/bin/env bash
+# The long-history rows of docs/performance.md (#28), whole process: generates a displacement
+# history (a two-sine, 1.5 Hz 2 mm plus 23 Hz 0.1 mm, written as a rig writes it: time
+# shortest, displacement to 1 nm; the input of bench/stream_bench.cpp, byte for byte at 10 kHz)
+# and runs specimen D (examples/specimen_d.rheo) over it with `rheo simulate`, CSV in and out,
+# under /usr/bin/time -v (Debian's `time` package): wall and CPU time, peak memory (maximum
+# resident set).
+#
+#   bench/long_history.sh [--rows N] [--rate HZ] [--runs K] [--elements] [--rheo PATH]
+#
+# Defaults: 1e7 rows at 10 kHz, 3 runs, build/rheo. The 24 h durability log of #28 is
+# `--rows 86400000 --rate 1000`. Input and output go to ${TMPDIR:-/tmp}/rheo-bench-history/
+# (history-N-HZ.csv, generated once and kept; out.csv, removed at the end); N rows at 10 kHz
+# take about 19 bytes each in and 37 out, so the 1e7 rows need 0.6 GB free there.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+rows=10000000 rate=10000 runs=3 rheo=build/rheo elements=()
+while [ $# -gt 0 ]; do
+  case $1 in
+    --rows) rows=$2; shift 2 ;;
+    --rate) rate=$2; shift 2 ;;
+    --runs) runs=$2; shift 2 ;;
+    --rheo) rheo=$2; shift 2 ;;
+    --elements) elements=(--elements); shift ;;
+    -h|--help) sed -n '2,14p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
+    *) echo "bench/long_history.sh: unknown argument '$1' (see --help)" >&2; exit 2 ;;
+  esac
+done
+[ -x /usr/bin/time ] || { echo "bench/long_history.sh: needs /usr/bin/time (Debian package 'time')" >&2; exit 2; }
+[ -x "$rheo" ] || { echo "bench/long_history.sh: no rheo binary at $rheo; build it first (README)" >&2; exit 2; }
+
+dir=${TMPDIR:-/tmp}/rheo-bench-history
+mkdir -p "$dir"
+csv=$dir/history-$rows-$rate.csv
+trap 'rm -f "$csv.tmp"' EXIT  # an interrupted generation leaves no partial file
+if [ ! -e "$csv" ]; then
+  echo "generating $csv ($rows rows at $rate Hz)" >&2
+  # As bench/stream_bench.cpp writes it: t = k / rate shortest (%.10g is exact for these
+  # times), u = 2 sin(2 pi 1.5 t) + 0.1 sin(2 pi 23 t) to 6 decimals; pi = atan2(0, -1).
+  awk -v rows="$rows" -v rate="$rate" 'BEGIN {
+    pi = atan2(0, -1)
+    print "time [s],displacement [mm]"
+    for (k = 0; k < rows; ++k) {
+      t = k / rate
+      printf "%.10g,%.6f\n", t, 2.0 * sin(2 * pi * 1.5 * t) + 0.1 * sin(2 * pi * 23.0 * t)
+    }
+  }' >"$csv.tmp"
+  mv "$csv.tmp" "$csv"
+fi
+model=$dir/history-$rows-$rate.rheo
+# The model block of the example, then one history protocol over the generated file.
+{ sed -n '/^model /,/^}/p' examples/specimen_d.rheo
+  printf 'simulate {\n  history file = "%s"\n  output "out.csv"\n}\n' "$(basename "$csv")"; } >"$model"
+
+echo "rheo simulate $model${elements[*]:+ ${elements[*]}}: $(stat -c %s "$csv") bytes in, $rows rows, $runs run(s)"
+for ((run = 1; run <= runs; ++run)); do
+  /usr/bin/time -v "$rheo" simulate "$model" "${elements[@]}" 2>"$dir/time.log" >/dev/null ||
+    { cat "$dir/time.log" >&2; exit 1; }
+  awk -F': ' -v out="$(stat -c %s "$dir/out.csv")" '
+    /Elapsed \(wall clock\)/ { wall = $2 } /User time/ { user = $2 } /System time/ { sys = $2 }
+    /Maximum resident set size/ { rss = $2 }
+    END { printf "wall %s, CPU %.2f s (user %.2f + sys %.2f), peak memory %.1f MB, %d bytes out\n",
+          wall, user + sys, user, sys, rss / 1024, out }' "$dir/time.log"
+done
+rm -f "$dir/out.csv" "$dir/time.log"
