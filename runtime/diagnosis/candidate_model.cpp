@@ -80,12 +80,19 @@ std::string resolved_resonance(const Trial& trial, const lang::CheckedModel& mod
       resonance, scales.frequency_low, scales.frequency_high);
 }
 
+namespace {
+
+// The refitted value of ELEMENT's parameter PATH (e.g. "cap.fy"); a candidate model without it is a bug.
+double refitted_value(const lang::CheckedModel& model, const Network& refitted, const std::string& element, const std::string& path) {
+  const int i = parameter_index(model, element + "." + path);
+  if (i < 0) throw std::logic_error(fmt::format("diagnose: the candidate element '{}' lacks {}", element, path));
+  return refitted.parameter(i);
+}
+
+}  // namespace
+
 Trial resonance_free_limit(const Trial& column, const lang::CheckedModel& model, const Network& refitted, const std::string& element) {
-  auto value = [&](const std::string& path) {
-    const int i = parameter_index(model, element + "." + path);
-    if (i < 0) throw std::logic_error(fmt::format("diagnose: the fluid column '{}' lacks {}", element, path));
-    return refitted.parameter(i);
-  };
+  auto value = [&](const std::string& path) { return refitted_value(model, refitted, element, path); };
   Trial limit = column;
   limit.shape = Shape::capped_maxwell;
   limit.stiffness = value("chamber.k");
@@ -96,11 +103,7 @@ Trial resonance_free_limit(const Trial& column, const lang::CheckedModel& model,
 }
 
 Trial column_from_limit(const Trial& column, const lang::CheckedModel& model, const Network& refitted, const std::string& element) {
-  auto value = [&](const std::string& path) {
-    const int i = parameter_index(model, element + "." + path);
-    if (i < 0) throw std::logic_error(fmt::format("diagnose: the capped Maxwell element '{}' lacks {}", element, path));
-    return refitted.parameter(i);
-  };
+  auto value = [&](const std::string& path) { return refitted_value(model, refitted, element, path); };
   Trial restart = column;
   restart.shape = Shape::capped_column;
   restart.stiffness = value("arm.k");

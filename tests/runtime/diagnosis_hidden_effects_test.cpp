@@ -191,15 +191,17 @@ TEST_CASE("diagnose, harmonic: a mass moved past its resonance is inertia, and t
   CHECK(chosen->screened.trial.shape == dx::Shape::mass);
 }
 
-TEST_CASE("diagnose, harmonic: data the model already explains gives none") {
-  const std::string truth = "model truth { spring s (k = 700 N/mm)  maxwell m (k = 90 N/mm, tau = 6 ms)  friction f (k = 250 N/mm, uy = 60 um) }";
-  const std::string start = R"(model start {
+// A model with the structure of the data's: nothing is missing.
+const char* const kExplainedTruth = "model truth { spring s (k = 700 N/mm)  maxwell m (k = 90 N/mm, tau = 6 ms)  friction f (k = 250 N/mm, uy = 60 um) }";
+const char* const kExplainedStart = R"(model start {
   spring s (k = 500 N/mm in [10, 10000])
   maxwell m (k = 100 N/mm in [1, 10000], tau = 10 ms in [0.01, 10000])
   friction f (k = 100 N/mm in [1, 10000], uy = 20 um in [0.1, 10000])
 }
 )";
-  const dx::Diagnosis d = diagnose(start, {harmonic_measurement(truth, 8)});
+
+TEST_CASE("diagnose, harmonic: data the model already explains gives none") {
+  const dx::Diagnosis d = diagnose(kExplainedStart, {harmonic_measurement(kExplainedTruth, 8)});
   require_none(d);
   // The verdict none is the noise's: estimated near the injected 1 % and 0.15 deg, the gap at it.
   CHECK(d.verdict == dx::Verdict::none);
@@ -215,16 +217,9 @@ TEST_CASE("diagnose, harmonic: data the model already explains gives none") {
 // noise (4 of the 10 draws from seed 100 named an effect when the BIC was N ln(J) + p ln N).
 // Under the noise-weighted criterion (criterion.hpp) no draw earns anything.
 TEST_CASE("diagnose, harmonic: data the model already explains gives none over several noise draws") {
-  const std::string truth = "model truth { spring s (k = 700 N/mm)  maxwell m (k = 90 N/mm, tau = 6 ms)  friction f (k = 250 N/mm, uy = 60 um) }";
-  const std::string start = R"(model start {
-  spring s (k = 500 N/mm in [10, 10000])
-  maxwell m (k = 100 N/mm in [1, 10000], tau = 10 ms in [0.01, 10000])
-  friction f (k = 100 N/mm in [1, 10000], uy = 20 um in [0.1, 10000])
-}
-)";
   for (const unsigned seed : {100u, 101u, 102u}) {
     CAPTURE(seed);
-    const dx::Diagnosis d = diagnose(start, {harmonic_measurement(truth, seed)});
+    const dx::Diagnosis d = diagnose(kExplainedStart, {harmonic_measurement(kExplainedTruth, seed)});
     require_none(d);
     CHECK(d.noise_weighted);
   }
