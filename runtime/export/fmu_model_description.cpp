@@ -41,42 +41,39 @@ const char* causality_word(Causality c) {
   return "?";
 }
 
-std::string scalar_variable(const Variable& v) {
-  std::string attributes;
+// V's variability and initial attributes, the same in FMI 2.0 and 3.0.
+std::string variability_attributes(const Variable& v) {
   switch (v.causality) {
-    case Causality::input: attributes = " variability=\"continuous\""; break;
-    case Causality::output: attributes = " variability=\"continuous\" initial=\"calculated\""; break;
-    case Causality::parameter: attributes = " variability=\"fixed\" initial=\"exact\""; break;
-    case Causality::calculated_parameter: attributes = " variability=\"fixed\" initial=\"calculated\""; break;
-    case Causality::independent: attributes = " variability=\"continuous\""; break;
+    case Causality::input: return " variability=\"continuous\"";
+    case Causality::output: return " variability=\"continuous\" initial=\"calculated\"";
+    case Causality::parameter: return " variability=\"fixed\" initial=\"exact\"";
+    case Causality::calculated_parameter: return " variability=\"fixed\" initial=\"calculated\"";
+    case Causality::independent: return " variability=\"continuous\"";
   }
-  std::string real;
-  if (!v.unit.empty()) real += fmt::format(" unit=\"{}\"", xml_attribute(v.unit));
-  if (v.min) real += fmt::format(" min=\"{}\"", *v.min);
-  if (v.max) real += fmt::format(" max=\"{}\"", *v.max);
-  if (v.causality == Causality::input || v.causality == Causality::parameter) real += fmt::format(" start=\"{}\"", v.start);
+  return "";
+}
+
+// V's unit, bounds and start (inputs and parameters): FMI 2.0's <Real>, FMI 3.0's <Float64>.
+std::string value_attributes(const Variable& v) {
+  std::string out;
+  if (!v.unit.empty()) out += fmt::format(" unit=\"{}\"", xml_attribute(v.unit));
+  if (v.min) out += fmt::format(" min=\"{}\"", *v.min);
+  if (v.max) out += fmt::format(" max=\"{}\"", *v.max);
+  if (v.causality == Causality::input || v.causality == Causality::parameter) out += fmt::format(" start=\"{}\"", v.start);
+  return out;
+}
+
+std::string scalar_variable(const Variable& v) {
   return fmt::format(
       "    <ScalarVariable name=\"{}\" valueReference=\"{}\" description=\"{}\" causality=\"{}\"{}>\n      <Real{}/>\n    </ScalarVariable>\n",
-      xml_attribute(v.name), v.reference, xml_attribute(v.description), causality_word(v.causality), attributes, real);
+      xml_attribute(v.name), v.reference, xml_attribute(v.description), causality_word(v.causality), variability_attributes(v), value_attributes(v));
 }
 
 // <Float64> of V (FMI 3.0 section 2.4.7): the attributes of an FMI 2.0 <ScalarVariable> and its
 // <Real> in one element.
 std::string float64_variable(const Variable& v) {
-  std::string attributes;
-  switch (v.causality) {
-    case Causality::input: attributes = " variability=\"continuous\""; break;
-    case Causality::output: attributes = " variability=\"continuous\" initial=\"calculated\""; break;
-    case Causality::parameter: attributes = " variability=\"fixed\" initial=\"exact\""; break;
-    case Causality::calculated_parameter: attributes = " variability=\"fixed\" initial=\"calculated\""; break;
-    case Causality::independent: attributes = " variability=\"continuous\""; break;
-  }
-  if (!v.unit.empty()) attributes += fmt::format(" unit=\"{}\"", xml_attribute(v.unit));
-  if (v.min) attributes += fmt::format(" min=\"{}\"", *v.min);
-  if (v.max) attributes += fmt::format(" max=\"{}\"", *v.max);
-  if (v.causality == Causality::input || v.causality == Causality::parameter) attributes += fmt::format(" start=\"{}\"", v.start);
-  return fmt::format("    <Float64 name=\"{}\" valueReference=\"{}\" description=\"{}\" causality=\"{}\"{}/>\n", xml_attribute(v.name), v.reference,
-                     xml_attribute(v.description), causality_word(v.causality), attributes);
+  return fmt::format("    <Float64 name=\"{}\" valueReference=\"{}\" description=\"{}\" causality=\"{}\"{}{}/>\n", xml_attribute(v.name),
+                     v.reference, xml_attribute(v.description), causality_word(v.causality), variability_attributes(v), value_attributes(v));
 }
 
 std::string unit_definitions(const std::vector<Variable>& variables) {
