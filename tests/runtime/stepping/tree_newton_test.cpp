@@ -26,17 +26,32 @@
 #include <new>
 #include <numbers>
 
-// Every allocation of the test binary counted (the step loop must make none).
+// Every allocation of the test binary counted (the step loop must make none). Every unaligned
+// form of new and delete is replaced, so that each pair meets in malloc/free (a sanitizer that
+// supplies the forms left out would pair its own new with this free: alloc-dealloc-mismatch).
 namespace {
 std::atomic<long> allocations{0};
+void* counted(std::size_t size) noexcept {
+  ++allocations;
+  return std::malloc(size > 0 ? size : 1);
+}
 }  // namespace
 void* operator new(std::size_t size) {
-  ++allocations;
-  if (void* p = std::malloc(size > 0 ? size : 1)) return p;
+  if (void* p = counted(size)) return p;
   throw std::bad_alloc();
 }
+void* operator new[](std::size_t size) {
+  if (void* p = counted(size)) return p;
+  throw std::bad_alloc();
+}
+void* operator new(std::size_t size, const std::nothrow_t&) noexcept { return counted(size); }
+void* operator new[](std::size_t size, const std::nothrow_t&) noexcept { return counted(size); }
 void operator delete(void* p) noexcept { std::free(p); }
+void operator delete[](void* p) noexcept { std::free(p); }
 void operator delete(void* p, std::size_t) noexcept { std::free(p); }
+void operator delete[](void* p, std::size_t) noexcept { std::free(p); }
+void operator delete(void* p, const std::nothrow_t&) noexcept { std::free(p); }
+void operator delete[](void* p, const std::nothrow_t&) noexcept { std::free(p); }
 
 using namespace rheo;
 
