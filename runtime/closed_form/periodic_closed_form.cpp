@@ -138,8 +138,8 @@ double stationary_point(const LoadingHalf& h, double lo, double hi, double k_ela
 
 // max F over the loading half (as h.sign and h.polarity make it). When dF/dtheta >= 0 on
 // [-pi/2, 0] is guaranteed (every branch's in-phase stiffness non-negative, b >= 0), only
-// [0, pi/2] is searched.
-double loading_half_maximum(LoadingHalf& h) {
+// [0, pi/2] is searched. `at` receives the phase theta where the maximum lies.
+double loading_half_maximum(LoadingHalf& h, double& at) {
   const bool odd = h.y2 == 0.0 && h.y4 == 0.0;
   const double from = odd && h.polarity > 0.0 && h.branches.empty() && h.b >= 0.0 && h.least_in_phase() >= 0.0 ? 0.0 : -half_pi;
   h.ends.assign({from, half_pi});
@@ -155,10 +155,14 @@ double loading_half_maximum(LoadingHalf& h) {
     }
   std::sort(h.ends.begin(), h.ends.end());
   double best = h.force(from);
+  at = from;
+  auto consider = [&](double theta) {
+    if (const double f = h.force(theta); f > best) best = f, at = theta;
+  };
   for (std::size_t p = 0; p + 1 < h.ends.size(); ++p) {
     const double lo = h.ends[p], hi = h.ends[p + 1];
     if (!(hi > lo)) continue;
-    best = std::max(best, h.force(hi));
+    consider(hi);
     const double k_elastic = h.elastic_stiffness_on(0.5 * (lo + hi));
     const int samples = std::max(2, static_cast<int>(std::ceil(samples_per_half_cycle * (hi - lo) / std::numbers::pi)));
     // sin and cos along the piece by rotation: theta_j = lo + j step.
@@ -177,7 +181,7 @@ double loading_half_maximum(LoadingHalf& h) {
       slope = h.polarity * (slope + h.branch_slopes[static_cast<std::size_t>(j)]);
       if (previous_slope > 0.0 && slope <= 0.0) {
         const double left = lo + (j - 1) * step, right = j == samples ? hi : lo + j * step;
-        best = std::max(best, h.force(stationary_point(h, left, right, k_elastic)));
+        consider(stationary_point(h, left, right, k_elastic));
       }
       previous_slope = slope;
     }
@@ -251,7 +255,7 @@ HarmonicPoint closed_form_harmonic_point(const Network& network, double amplitud
 }
 
 std::optional<HarmonicPoint> try_closed_form_harmonic_point(const Network& network, double amplitude, double frequency,
-                                                            HarmonicDefinition definition, double preload) {
+                                                            HarmonicDefinition definition, double preload, double* peak_phase) {
   const Coefficients& c = network.coefficients();
   const double u0 = amplitude;
   const double omega = 2.0 * std::numbers::pi * frequency;
@@ -353,15 +357,16 @@ std::optional<HarmonicPoint> try_closed_form_harmonic_point(const Network& netwo
   // A sinusoidal force a sin + b cos (linear branches only) peaks at sqrt(a^2 + b^2) within the
   // loading half when b >= 0 (the loss of a passive network).
   const bool sinusoidal = h.slip_k.empty() && h.branches.empty() && h.constant == 0.0 && h.y1 == 0.0 && h.y3 == 0.0 && h.y5 == 0.0;
-  double force_amplitude = 0.0;
+  double force_amplitude = 0.0, at = std::numeric_limits<double>::quiet_NaN(), unused = 0.0;
   if (sinusoidal && h.b >= 0.0) {
     force_amplitude = std::hypot(h.a, h.b);
+    at = std::atan2(h.a, h.b);  // a sin + b cos = F^ sin(theta + atan2(b, a)) peaks there
   } else if (h.half_wave()) {
-    force_amplitude = loading_half_maximum(h);  // max F = -min F
-  } else if (h.branches.empty()) {              // (max F - min F) / 2, min F = -(max of the mirrored half)
-    const double loading = loading_half_maximum(h);
+    force_amplitude = loading_half_maximum(h, at);  // max F = -min F
+  } else if (h.branches.empty()) {                  // (max F - min F) / 2, min F = -(max of the mirrored half)
+    const double loading = loading_half_maximum(h, unused);
     h.sign = -1.0;
-    force_amplitude = 0.5 * (loading + loading_half_maximum(h));
+    force_amplitude = 0.5 * (loading + loading_half_maximum(h, unused));
   } else {
     // An uneven event-driven branch: its extrema may lie in either half, so max F and min F are
     // searched over both: max(F) = max(max of the loading half, -(max of -F's mirror)), ...
@@ -369,15 +374,16 @@ std::optional<HarmonicPoint> try_closed_form_harmonic_point(const Network& netwo
     for (double sign : {1.0, -1.0}) {
       h.sign = sign;
       h.polarity = 1.0;
-      const double up = loading_half_maximum(h);  // loading: max F; mirrored: -min F over the unloading half
+      const double up = loading_half_maximum(h, unused);  // loading: max F; mirrored: -min F over the unloading half
       h.polarity = -1.0;
-      const double down = loading_half_maximum(h);  // loading: -min F; mirrored: max F over the unloading half
+      const double down = loading_half_maximum(h, unused);  // loading: -min F; mirrored: max F over the unloading half
       max_f = std::max(max_f, sign > 0.0 ? up : down);
       min_f = std::min(min_f, sign > 0.0 ? -down : -up);
     }
     force_amplitude = 0.5 * (max_f - min_f);
   }
   point.measures = measures_from(force_amplitude, storage, loss, u0, definition);
+  if (peak_phase) *peak_phase = at;
   return point;
 }
 

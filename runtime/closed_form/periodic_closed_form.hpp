@@ -74,8 +74,11 @@ bool has_closed_form_periodic_state(const Network& network, bool event_driven = 
 // the odd part adds K' = y1 + (3/4) y3 u0^2 + (5/8) y5 u0^4 to K*_1 and the even part nothing to
 // K*_1 and U, but breaks the mirror symmetry: F^ = (max F - min F)/2 with min F searched on the
 // mirrored half.
+// PEAK_PHASE, where given, receives the phase theta in [-pi/2, pi/2] of the loading half where
+// F^ = max F is reached when the cycle is half-wave symmetric (F^ = max F = -min F), NaN
+// otherwise (closed_form_sensitivity.hpp differentiates F^ there).
 std::optional<HarmonicPoint> try_closed_form_harmonic_point(const Network& network, double amplitude, double frequency,
-                                                            HarmonicDefinition definition, double preload = 0.0);
+                                                            HarmonicDefinition definition, double preload = 0.0, double* peak_phase = nullptr);
 // The same, with a NumericalError where that returns nothing.
 HarmonicPoint closed_form_harmonic_point(const Network& network, double amplitude, double frequency, HarmonicDefinition definition,
                                          double preload = 0.0);

@@ -6,6 +6,7 @@
 #include "runtime/fit/fit_report.hpp"
 #include "runtime/fit/force_offset.hpp"
 #include "runtime/fit/force_scales.hpp"
+#include "runtime/fit/harmonic_jacobian.hpp"
 #include "runtime/fit/separable_fit.hpp"
 #include "runtime/fit/parameter_bounds.hpp"
 #include "runtime/fit/yeoh_mean_curve.hpp"
@@ -142,6 +143,8 @@ class StagedSearch {
         search.deadline = now + std::chrono::duration_cast<std::chrono::steady_clock::duration>((*search.deadline - now) * time_share);
     }
     search.extra_starts.insert(search.extra_starts.end(), extra_starts.begin(), extra_starts.end());
+    if (settings_.sensitivities && residual_jacobian_applies(coordinates_.network(from), data_, settings_.score, method))
+      search.jacobian = [this](const std::vector<double>& z) { return residual_jacobian(coordinates_, z, data_, settings_.score).jacobian; };
     const SearchResult found = search_least_squares(r, from, coordinates_.lower, coordinates_.upper, coordinates_.logarithmic, search,
                                                     settings_.progress, settings_.interrupt);
     result_.evaluations += found.evaluations;
@@ -341,7 +344,15 @@ FitResult fit(const Network& start, const std::vector<int>& free, const std::vec
                                        *settings.time_limit, result.evaluations));
   StatisticsWithOffsets statistics;
   if (!result.interrupted && settings.statistics) {
-    statistics = statistics_with_offsets(searches.predictions_for(final_method), data, score, z, coordinates.logarithmic);
+    if (settings.sensitivities && residual_jacobian_applies(result.network, data, score, final_method)) {  // harmonic only: no offsets
+      const ResidualsWithJacobian at = residual_jacobian(coordinates, z, data, score);
+      if (at.jacobian.cols() > 0)
+        statistics.parameters = parameter_statistics(
+            Eigen::Map<const Eigen::VectorXd>(at.residuals.data(), static_cast<Eigen::Index>(at.residuals.size())), at.jacobian, z,
+            coordinates.logarithmic);
+    }
+    if (statistics.parameters.residuals == 0)
+      statistics = statistics_with_offsets(searches.predictions_for(final_method), data, score, z, coordinates.logarithmic);
     result.statistics = statistics.parameters;
     if (!result.statistics.has_noise_estimate())
       result.notes.push_back(

@@ -46,6 +46,11 @@ struct FitSettings {
   // Exact method, where every prediction is affine in some free parameters (force_scales.hpp,
   // separable_fit.hpp): solve those exactly inside the search over the others.
   bool separable = true;
+  // Exact method, where every prediction is a closed-form harmonic point of a network with all
+  // its elements in the root block (harmonic_jacobian.hpp): Levenberg-Marquardt takes its
+  // Jacobians from the analytic sensitivities (one evaluation each) instead of n differenced
+  // evaluations.
+  bool sensitivities = true;
   // Standard errors and correlations at the optimum (a Jacobian: about 2 evaluations per free
   // parameter); off, FitResult::statistics stays empty.
   bool statistics = true;

@@ -100,6 +100,11 @@ std::string least_squares_local(Tracker& tracker, const std::vector<double>& fro
     for (const std::vector<double>& r : rs) out.emplace_back(Eigen::Map<const Eigen::VectorXd>(r.data(), static_cast<Eigen::Index>(r.size())));
     return out;
   };
+  if (tracker.has_jacobian())
+    problem.jacobian = [&](const Eigen::VectorXd& x, const Eigen::VectorXd&) {
+      if (tracker.evaluations() - first >= budget) throw LocalBudgetSpent{};
+      return tracker.jacobian(std::vector<double>(x.data(), x.data() + x.size()));
+    };
   LevenbergMarquardtSettings lm;
   lm.max_iterations = std::min(budget, kMaxLocalIterations);
   lm.step_tolerance = tolerance;

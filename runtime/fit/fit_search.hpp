@@ -30,6 +30,8 @@
 
 #include "runtime/fit/optimizer.hpp"
 
+#include <Eigen/Core>
+
 #include <atomic>
 #include <chrono>
 #include <functional>
@@ -38,6 +40,10 @@
 #include <vector>
 
 namespace rheo::runtime {
+
+// dr/dz of the residuals at z (residuals x coordinates), e.g. by sensitivities
+// (harmonic_jacobian.hpp); a matrix with no columns where it is not available there.
+using ResidualJacobian = std::function<Eigen::MatrixXd(const std::vector<double>& z)>;
 
 struct SearchSettings {
   std::optional<Algorithm> algorithm;  // nullopt: the default strategy above
@@ -54,6 +60,9 @@ struct SearchSettings {
   // on it. Above 1 the objective or residuals are called from several threads at once and must
   // be safe for that.
   int threads = 1;
+  // Optional, for search_least_squares: the Levenberg-Marquardt stages take their Jacobians from
+  // it instead of differencing n evaluations; each call counts as one evaluation.
+  ResidualJacobian jacobian;
 };
 
 struct SearchProgress {

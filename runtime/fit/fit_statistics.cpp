@@ -103,7 +103,17 @@ ParameterStatistics parameter_statistics(const std::function<std::vector<double>
     shifted[j] = z[j];
     jacobian.col(static_cast<Eigen::Index>(j)) = (r_up - r_down) / (up - down);
   }
+  return parameter_statistics(r0, jacobian, z, logarithmic);
+}
 
+ParameterStatistics parameter_statistics(const Eigen::VectorXd& r0, const Eigen::MatrixXd& jacobian, const std::vector<double>& z,
+                                         const std::vector<bool>& logarithmic) {
+  const std::size_t n = z.size(), m = static_cast<std::size_t>(r0.size());
+  if (n == 0 || logarithmic.size() != n || jacobian.rows() != r0.size() || jacobian.cols() != static_cast<Eigen::Index>(n) || m == 0)
+    throw std::logic_error(fmt::format("parameter_statistics: {} coordinates, {} log flags, {} residuals and a {} x {} Jacobian", n,
+                                       logarithmic.size(), m, jacobian.rows(), jacobian.cols()));
+  if (!r0.allFinite() || !jacobian.allFinite())
+    throw NumericalError("parameter_statistics: a residual or its derivative is not finite at the optimum, so no standard errors can be computed");
   const Eigen::JacobiSVD<Eigen::MatrixXd> svd(jacobian, Eigen::ComputeFullV);
   const Eigen::VectorXd& s = svd.singularValues();  // min(m, n) of them, decreasing
   const Eigen::MatrixXd& v = svd.matrixV();         // n x n; columns beyond min(m, n) span null directions

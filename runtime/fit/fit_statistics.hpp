@@ -29,6 +29,8 @@
 //   increasing maps above).
 #pragma once
 
+#include <Eigen/Core>
+
 #include <functional>
 #include <vector>
 
@@ -55,5 +57,9 @@ struct ParameterStatistics {
 // residual is not finite.
 ParameterStatistics parameter_statistics(const std::function<std::vector<double>(const std::vector<double>&)>& residuals,
                                          const std::vector<double>& z, const std::vector<bool>& logarithmic);
+// The same from the residuals r0 at z and their Jacobian dr/dz there (m x n), however found
+// (e.g. by sensitivities, harmonic_jacobian.hpp).
+ParameterStatistics parameter_statistics(const Eigen::VectorXd& r0, const Eigen::MatrixXd& jacobian, const std::vector<double>& z,
+                                         const std::vector<bool>& logarithmic);
 
 }  // namespace rheo::runtime

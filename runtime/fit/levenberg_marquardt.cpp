@@ -152,9 +152,9 @@ LevenbergMarquardtResult levenberg_marquardt(const LeastSquaresProblem& problem,
       return out;
     }
     bool complete = true;
-    const Eigen::MatrixXd j = problem.jacobian
-                                  ? problem.jacobian(out.x, out.residuals)
-                                  : difference_jacobian(problem, out.x, out.residuals, lower, upper, typical, settings.difference_step, complete);
+    Eigen::MatrixXd j;
+    if (problem.jacobian) j = problem.jacobian(out.x, out.residuals);
+    if (j.cols() == 0) j = difference_jacobian(problem, out.x, out.residuals, lower, upper, typical, settings.difference_step, complete);
     ++out.iterations;
     if (!j.allFinite()) {
       out.status = "NO_DESCENT";

@@ -52,7 +52,8 @@ struct LeastSquaresProblem {
   // would from the first point it is thrown for. It may evaluate the points at once; the search
   // is the same whatever it does. Empty: `residuals` on each in turn.
   std::function<std::vector<Eigen::VectorXd>(const std::vector<Eigen::VectorXd>& xs)> residuals_batch;
-  // Optional: dr/dx at x, where the residuals are r. Empty: forward differences.
+  // Optional: dr/dx at x, where the residuals are r; a matrix with no columns where it is not
+  // available at x. Empty, or no columns: forward differences.
   std::function<Eigen::MatrixXd(const Eigen::VectorXd& x, const Eigen::VectorXd& r)> jacobian;
 };
 

@@ -14,6 +14,7 @@ Tracker::Tracker(const Objective& objective, const Residuals* residuals, const s
                  const std::atomic<bool>* interrupt, const SearchSettings& settings)
     : objective_(objective),
       residuals_(residuals),
+      jacobian_(residuals ? settings.jacobian : ResidualJacobian{}),
       progress_(progress),
       interrupt_(interrupt),
       threads_(settings.threads),
@@ -73,6 +74,19 @@ double Tracker::operator()(const std::vector<double>& z) {
 const std::vector<double>& Tracker::residuals(const std::vector<double>& z) {
   (*this)(z);
   return last_residuals_;
+}
+
+Eigen::MatrixXd Tracker::jacobian(const std::vector<double>& z) {
+  if (const std::exception_ptr stop = stop_before(0, std::chrono::steady_clock::now())) std::rethrow_exception(stop);
+  Eigen::MatrixXd j;
+  try {
+    j = jacobian_(z);
+  } catch (const NumericalError&) {  // differenced instead
+    j.resize(0, 0);
+  }
+  ++evaluations_;
+  if (progress_) progress_({evaluations_, best_value_, stage_});
+  return j.allFinite() ? j : Eigen::MatrixXd();
 }
 
 std::vector<Tracker::Outcome> Tracker::batch(const std::vector<std::vector<double>>& zs) {

@@ -50,6 +50,10 @@ class Tracker {
   std::vector<std::vector<double>> residuals(const std::vector<std::vector<double>>& zs);
 
   bool has_residuals() const { return residuals_ != nullptr; }
+  bool has_jacobian() const { return static_cast<bool>(jacobian_); }
+  // The settings' Jacobian at z, counted as one evaluation (the stops as for an evaluation); a
+  // matrix with no columns where it throws NumericalError or is not finite.
+  Eigen::MatrixXd jacobian(const std::vector<double>& z);
   // With a deadline: caps the budget at the evaluations the time left affords at the mean cost
   // so far, less the reserve, so that the stages share what can actually run (or restores it
   // when the time left affords it all). True when that cap is below the budget given.
@@ -81,6 +85,7 @@ class Tracker {
 
   const Objective& objective_;
   const Residuals* residuals_;
+  ResidualJacobian jacobian_;
   std::vector<double> last_residuals_;
   const std::function<void(const SearchProgress&)>& progress_;
   const std::atomic<bool>* interrupt_;
