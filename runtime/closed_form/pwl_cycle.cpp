@@ -28,17 +28,19 @@ bool leaving(double g, double dg, double ddg, double tol, double dtol) {
 }  // namespace
 
 int PwlPeriodicState::Run::mode_index(const PwlModeCode& code) {
-  for (std::size_t i = 0; i < self.mode_count_; ++i)
-    if (self.modes_[i].code == code) return static_cast<int>(i);
+  for (int i : self.active_)
+    if (self.modes_[static_cast<std::size_t>(i)].code == code) return i;
   PwlModeStructure* structure = nullptr;
   for (auto& [known, st] : self.structures_)
     if (known == code) structure = &st;
   if (structure == nullptr) structure = &self.structures_.emplace_back(code, PwlModeStructure{}).second;
   // Built in place, over a mode of an earlier solve where there is one: a mode's
   // fixed-capacity storage is tens of kilobytes, not to be allocated and cleared per point.
-  if (self.mode_count_ == self.modes_.size()) self.modes_.emplace_back(), self.grid_step_.emplace_back();
-  if (!build_pwl_mode(branch, code, self.u0_, self.omega_, self.modes_[self.mode_count_], structure)) return -1;
+  if (self.mode_count_ == self.modes_.size()) self.modes_.emplace_back(), self.grid_step_.emplace_back(), self.mode_omega_.emplace_back();
+  if (!build_pwl_mode(branch, code, self.omega_, self.modes_[self.mode_count_], structure)) return -1;
   self.grid_step_[self.mode_count_].resize(0, 0);
+  self.mode_omega_[self.mode_count_] = self.omega_;
+  self.active_.push_back(static_cast<int>(self.mode_count_));
   return static_cast<int>(self.mode_count_++);
 }
 
@@ -55,7 +57,7 @@ const PwlPeriodicState::PwlGridStep& PwlPeriodicState::Run::grid_step(int m) {
 
 bool PwlPeriodicState::Run::leaves(int m, int i, const PwlVector& w) {
   const PwlModeSystem& s = self.modes_[static_cast<std::size_t>(m)];
-  const double tol = kGuardTolerance * s.transitions[static_cast<std::size_t>(i)].scale;
+  const double tol = kGuardTolerance * s.transitions[static_cast<std::size_t>(i)].size(self.u0_);
   const PwlRow G = s.guards.row(i);
   const double g = G.dot(w);
   if (g > tol) return false;
@@ -88,7 +90,7 @@ int PwlPeriodicState::Run::settle(int m, const PwlVector& X, double t, PwlVector
 double PwlPeriodicState::Run::first_crossing(int m, int i, const PwlVector& w0, const PwlVector& w1, double h, double g0, double g1) {
   const PwlModeSystem& s = self.modes_[static_cast<std::size_t>(m)];
   const PwlRow G = s.guards.row(i), dG = s.guard_rates.row(i);
-  const double tol = kGuardTolerance * s.transitions[static_cast<std::size_t>(i)].scale;
+  const double tol = kGuardTolerance * s.transitions[static_cast<std::size_t>(i)].size(self.u0_);
   auto value = [&](double tau) { return G.dot(advance(m, tau, w0)); };
   // The cubic through the values and slopes at both ends, c(x) = ((a3 x + a2) x + a1) x + g0
   // for tau = x h: within O(h^4) of the guard over a step of T/64, so it bounds a dip closely
@@ -224,7 +226,7 @@ bool PwlPeriodicState::Run::cycle(int& m, const PwlVector& X0, PwlVector& X_T, P
       double first = std::numeric_limits<double>::infinity();
       int fired = -1;
       for (int i = 0; i < g0.size(); ++i) {
-        const double tol = kGuardTolerance * s.transitions[static_cast<std::size_t>(i)].scale;
+        const double tol = kGuardTolerance * s.transitions[static_cast<std::size_t>(i)].size(self.u0_);
         if (g1[i] >= 0.0 && g0[i] > tol && dg0[i] >= 0.0) continue;  // no crossing and no dip
         const double tau = first_crossing(m, i, w, w1, h, g0[i], g1[i]);
         if (tau < first) first = tau, fired = i;

@@ -14,6 +14,7 @@ namespace {
 constexpr int kMaxCycles = 60;
 constexpr double kPeriodicTolerance = 1e-11;
 constexpr std::size_t kMaxSolved = 2048;  // solves kept per branch (about 1.5 kB each)
+constexpr std::size_t kMaxModes = 192;    // modes kept per branch (about 65 kB each, most of it capacity never touched)
 
 bool same_branch(const PwlBranch& a, const PwlBranch& b) {
   if (a.internal_nodes != b.internal_nodes || a.odd != b.odd || a.switches != b.switches || a.edges.size() != b.edges.size()) return false;
@@ -29,11 +30,15 @@ bool same_branch(const PwlBranch& a, const PwlBranch& b) {
 bool PwlPeriodicState::solve(const PwlBranch& branch, double u0, double omega) {
   u0_ = u0, omega_ = omega, period_ = 2.0 * std::numbers::pi / omega;
   half_wave_ = branch.odd;
-  if (!same_branch(branch, structures_branch_)) structures_.clear(), structures_branch_ = branch, solved_count_ = 0;
+  if (!same_branch(branch, structures_branch_)) structures_.clear(), structures_branch_ = branch, solved_count_ = 0, mode_count_ = 0;
+  if (mode_count_ >= kMaxModes) mode_count_ = 0;  // built again as needed: a mode is the same whenever it is built
+  active_.clear();
+  for (std::size_t i = 0; i < mode_count_; ++i)
+    if (mode_omega_[i] == omega) active_.push_back(static_cast<int>(i));
   span_ = half_wave_ ? 0.5 * period_ : period_;
   storage_ = loss_ = 0.0;
   cycles_ = 0;
-  mode_count_ = 0, pieces_.clear(), switch_phases_.clear();
+  pieces_.clear(), switch_phases_.clear();
   Run run{*this, branch, period_ / kPwlGridPerCycle};
   for (std::size_t k = 0; k < solved_count_; ++k) {
     const std::size_t i = (solved_next_ + k) % solved_count_;

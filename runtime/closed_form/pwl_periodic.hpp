@@ -98,10 +98,15 @@ class PwlPeriodicState {
   double span_ = 0.0;       // T/2 or T [s]
   double storage_ = 0.0, loss_ = 0.0;
   int cycles_ = 0;
-  // The modes visited by this solve are the first mode_count_; the rest are storage kept from
-  // earlier solves, rebuilt in place (a deque, so references stay valid as modes are added).
+  // The modes built for structures_branch_ are the first mode_count_, each for the frequency
+  // mode_omega_ holds (a mode serves every amplitude: pwl_mode.hpp), kept across solves (the
+  // points of a grid) up to kMaxModes; the rest are storage kept from earlier solves, rebuilt in
+  // place (a deque, so references stay valid as modes are added). active_ indexes those of this
+  // solve's frequency.
   std::deque<PwlModeSystem> modes_;
+  std::vector<double> mode_omega_;
   std::size_t mode_count_ = 0;
+  std::vector<int> active_;
   // The drive-independent parts of every mode built for structures_branch_, kept across solves
   // (the points of a grid) until a solve is given another branch (new parameters).
   std::deque<std::pair<PwlModeCode, PwlModeStructure>> structures_;
