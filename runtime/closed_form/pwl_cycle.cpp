@@ -66,7 +66,9 @@ bool PwlPeriodicState::Run::leaves(int m, int i, const PwlVector& w) {
   const double slope = G.dot(rate), curvature = G.dot(s.A * rate);
   const bool turning = g >= -tol && slope < 0.0 && slope + curvature * probe > 0.0;
   if (!turning && leaving(g, slope, curvature, tol, tol * self.omega_)) return true;
-  return G.dot(s.advance(probe, w)) < -tol;
+  PwlVector& ahead = self.probe_;
+  if (!s.nudge(probe, w, ahead)) ahead = s.advance(probe, w);
+  return G.dot(ahead) < -tol;
 }
 
 int PwlPeriodicState::Run::settle(int m, const PwlVector& X, double t, PwlVector& w) {
@@ -87,33 +89,44 @@ int PwlPeriodicState::Run::settle(int m, const PwlVector& X, double t, PwlVector
   return -1;
 }
 
-double PwlPeriodicState::Run::first_crossing(int m, int i, const PwlVector& w0, const PwlVector& w1, double h, double g0, double g1) {
+double PwlPeriodicState::Run::first_crossing(int m, int i, const PwlVector& w0, const PwlVector& w1, double h, double g0, double g1, double slope0,
+                                             double slope1, PwlVector& w_at) {
   const PwlModeSystem& s = self.modes_[static_cast<std::size_t>(m)];
-  const PwlRow G = s.guards.row(i), dG = s.guard_rates.row(i);
+  const auto G = s.guards.row(i), dG = s.guard_rates.row(i);
   const double tol = kGuardTolerance * s.transitions[static_cast<std::size_t>(i)].size(self.u0_);
-  auto value = [&](double tau) { return G.dot(advance(m, tau, w0)); };
+  constexpr double never = std::numeric_limits<double>::infinity();
+  // The state at tau into the step: nudged from the last state found (or from the step's end)
+  // where that is near enough (PwlModeSystem::nudge), else the flow from w0.
+  double known_t = 0.0;
+  PwlVector& known = self.known_;
+  known = w0;
+  auto at = [&](double tau) -> const PwlVector& {
+    const bool from_end = std::abs(tau - h) < std::abs(tau - known_t);
+    if (!s.nudge(from_end ? tau - h : tau - known_t, from_end ? w1 : known, w_at)) w_at = s.advance(tau, w0);
+    known_t = tau, known = w_at;
+    return w_at;
+  };
   // The cubic through the values and slopes at both ends, c(x) = ((a3 x + a2) x + a1) x + g0
   // for tau = x h: within O(h^4) of the guard over a step of T/64, so it bounds a dip closely
   // and its root starts Newton's method a few digits from the crossing.
-  const double slope0 = dG.dot(w0), slope1 = dG.dot(w1);
   const double a3 = 2.0 * (g0 - g1) + h * (slope0 + slope1), a2 = 3.0 * (g1 - g0) - h * (2.0 * slope0 + slope1), a1 = h * slope0;
   auto cubic = [&](double x) { return ((a3 * x + a2) * x + a1) * x + g0; };
-  double lo = 0.0, hi = h;
+  double lo = 0.0, hi = h, g_lo = g0, g_hi = g1;  // the guard is positive at lo, not at hi
   if (g1 >= 0.0) {
     // Both ends non-negative: a dip below zero needs the slope negative at 0 and positive at h;
     // only a dip the cubic brings within a tenth of the smaller end value is located.
-    if (!(slope0 < 0.0 && slope1 > 0.0)) return std::numeric_limits<double>::infinity();
+    if (!(slope0 < 0.0 && slope1 > 0.0)) return never;
     double lowest = std::min(g0, g1), x_lowest = 0.5;
     const double disc = a2 * a2 - 3.0 * a3 * a1;
     if (disc >= 0.0 && a3 != 0.0)
       for (double x : {(-a2 + std::sqrt(disc)) / (3.0 * a3), (-a2 - std::sqrt(disc)) / (3.0 * a3)})
         if (x > 0.0 && x < 1.0 && cubic(x) < lowest) lowest = cubic(x), x_lowest = x;
-    if (lowest > 0.1 * std::min(g0, g1)) return std::numeric_limits<double>::infinity();
+    if (lowest > 0.1 * std::min(g0, g1)) return never;
     // The minimum: the slope's root, by safeguarded Newton (curvature ddG w) from the cubic's.
     const PwlRow ddG = dG * s.A;
     double a = 0.0, b = h, tau = x_lowest * h;
     for (int it = 0; it < 60 && b - a > 1e-14 * h; ++it) {
-      const PwlVector w = advance(m, tau, w0);
+      const PwlVector& w = at(tau);
       const double slope = dG.dot(w), curvature = ddG.dot(w);
       (slope < 0.0 ? a : b) = tau;
       double next = curvature > 0.0 ? tau - slope / curvature : 0.5 * (a + b);
@@ -123,11 +136,14 @@ double PwlPeriodicState::Run::first_crossing(int m, int i, const PwlVector& w0, 
     }
     // The last iterate is the minimum where Newton converged from one side; b where the
     // bracket closed from both.
-    if (const double at_tau = value(tau); at_tau < 0.0) hi = tau;
-    else if (value(b) < 0.0) hi = b;
-    else return std::numeric_limits<double>::infinity();
+    if (const double v = G.dot(at(tau)); v < 0.0) hi = tau, g_hi = v;
+    else if (const double v_b = G.dot(at(b)); v_b < 0.0) hi = b, g_hi = v_b;
+    else return never;
   }
-  if (g0 <= tol && leaves(m, i, w0)) return 0.0;  // the switch is now
+  if (g0 <= tol && leaves(m, i, w0)) {
+    w_at = w0;
+    return 0.0;  // the switch is now
+  }
   double tau = std::numeric_limits<double>::quiet_NaN();
   if (g0 <= tol) {
     // On the guard and not leaving it (the mode was just entered): find a point where it is
@@ -135,31 +151,62 @@ double PwlPeriodicState::Run::first_crossing(int m, int i, const PwlVector& w0, 
     bool found = false;
     for (int j = 0; j < 16 && !found; ++j) {
       const double sample = j == 0 ? std::min(hi, 1e-7 * self.period_) : hi * j / 16.0;
-      const double v = value(sample);
-      if (v > tol) lo = sample, found = true;
-      else if (v < -tol) hi = sample, found = true;
+      const double v = G.dot(at(sample));
+      if (v > tol) lo = sample, g_lo = v, found = true;
+      else if (v < -tol) hi = sample, g_hi = v, found = true;
     }
-    if (!found) return std::numeric_limits<double>::infinity();
+    if (!found) return never;
   } else {
-    // The cubic's root in the bracket, by bisection (it is positive at lo, negative at hi).
+    // The cubic's root in the bracket, by Newton's method safeguarded by bisection (the cubic
+    // is positive at lo, negative at hi), from the chord's root.
     double a = lo / h, b = hi / h;
-    if (cubic(a) > 0.0 && cubic(b) < 0.0) {
-      for (int it = 0; it < 50 && b - a > 1e-13; ++it) (cubic(0.5 * (a + b)) > 0.0 ? a : b) = 0.5 * (a + b);
-      tau = 0.5 * (a + b) * h;
+    const double ca = cubic(a), cb = cubic(b);
+    if (ca > 0.0 && cb < 0.0) {
+      double x = a + (b - a) * ca / (ca - cb);
+      for (int it = 0; it < 60 && b - a > 1e-13; ++it) {
+        const double c = cubic(x), dc = (3.0 * a3 * x + 2.0 * a2) * x + a1;
+        (c > 0.0 ? a : b) = x;
+        double next = dc != 0.0 ? x - c / dc : 0.5 * (a + b);
+        if (!(next > a && next < b)) next = 0.5 * (a + b);
+        if (std::abs(next - x) <= 1e-13) {
+          x = next;
+          break;
+        }
+        x = next;
+      }
+      tau = x * h;
     }
   }
-  // Safeguarded Newton on the bracket [lo, hi] with g(lo) > 0 > g(hi).
+  // Newton's method safeguarded by the bracket [lo, hi] with g(lo) > 0 >= g(hi): a step that
+  // leaves it takes the chord's root instead (the crossing often lies at a bracket's end, a
+  // grid point such as the drive's turning point, where bisection would crawl; it is hi itself
+  // where the guard is 0 there), and where that is not inside either, the midpoint.
   if (!(tau > lo && tau < hi)) tau = 0.5 * (lo + hi);
   for (int it = 0; it < 100; ++it) {
-    const PwlVector w = advance(m, tau, w0);
+    const PwlVector& w = at(tau);
     const double g = G.dot(w), dg = dG.dot(w);
-    (g > 0.0 ? lo : hi) = tau;
+    if (g > 0.0) lo = tau, g_lo = g;
+    else hi = tau, g_hi = g;
     double next = dg != 0.0 ? tau - g / dg : 0.5 * (lo + hi);
+    if (!(next > lo && next < hi)) {
+      if (g_hi == 0.0) {  // hi is the crossing
+        at(hi);
+        return hi;
+      }
+      next = lo + (hi - lo) * (g_lo / (g_lo - g_hi));
+    }
     if (!(next > lo && next < hi)) next = 0.5 * (lo + hi);
-    if (std::abs(next - tau) <= 1e-15 * self.period_) return std::max(tau, next);
-    if (hi - lo <= 1e-15 * self.period_) return hi;
+    if (std::abs(next - tau) <= 1e-15 * self.period_) {
+      if (next > tau) at(next);
+      return std::max(tau, next);
+    }
+    if (hi - lo <= 1e-15 * self.period_) {
+      at(hi);
+      return hi;
+    }
     tau = next;
   }
+  at(hi);
   return hi;
 }
 
@@ -205,6 +252,7 @@ bool PwlPeriodicState::Run::cycle(int& m, const PwlVector& X0, PwlVector& X_T, P
   int switches = 0;
   double t = 0.0, piece_start = 0.0;
   PwlVector w1, g0, g1, dg0, dg1;  // the state a step on; the guards and their slopes at both ends
+  PwlVector w_cross, w_first;      // the state at a guard's crossing, and at the first one's
   Eigen::Matrix<double, Eigen::Dynamic, 1, 0, 3 * kPwlMaxDim, 1> stacked;
   bool g0_known = false;
   const int grid_steps = self.half_wave_ ? kPwlGridPerCycle / 2 : kPwlGridPerCycle;
@@ -226,10 +274,9 @@ bool PwlPeriodicState::Run::cycle(int& m, const PwlVector& X0, PwlVector& X_T, P
       double first = std::numeric_limits<double>::infinity();
       int fired = -1;
       for (int i = 0; i < g0.size(); ++i) {
-        const double tol = kGuardTolerance * s.transitions[static_cast<std::size_t>(i)].size(self.u0_);
-        if (g1[i] >= 0.0 && g0[i] > tol && dg0[i] >= 0.0) continue;  // no crossing and no dip
-        const double tau = first_crossing(m, i, w, w1, h, g0[i], g1[i]);
-        if (tau < first) first = tau, fired = i;
+        if (g1[i] >= 0.0 && !(dg0[i] < 0.0 && dg1[i] > 0.0)) continue;  // no crossing and no dip
+        const double tau = first_crossing(m, i, w, w1, h, g0[i], g1[i], dg0[i], dg1[i], w_cross);
+        if (tau < first) first = tau, fired = i, w_first = w_cross;
       }
       if (fired < 0) {
         w = w1;
@@ -237,7 +284,7 @@ bool PwlPeriodicState::Run::cycle(int& m, const PwlVector& X0, PwlVector& X_T, P
         t = t_end;
         break;
       }
-      w = advance(m, first, w);
+      w = w_first;
       t += first;
       if (Sp != nullptr) *Sp = s.propagator(t - piece_start) * *Sp, piece_start = t;
       g0_known = false;

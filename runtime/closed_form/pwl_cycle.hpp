@@ -33,8 +33,10 @@ struct PwlPeriodicState::Run {
   int settle(int m, const PwlVector& X, double t, PwlVector& w);
 
   // The first time in (0, h] at which guard row i of mode m crosses from positive to
-  // negative along w(tau) = e^{A tau} w0, or infinity.
-  double first_crossing(int m, int i, const PwlVector& w0, const PwlVector& w1, double h, double g0, double g1);
+  // negative along w(tau) = e^{A tau} w0, or infinity; W_AT the state there. w1 is the state at
+  // h, g0, g1 the guard's values and slope0, slope1 its slopes at 0 and h.
+  double first_crossing(int m, int i, const PwlVector& w0, const PwlVector& w1, double h, double g0, double g1, double slope0, double slope1,
+                        PwlVector& w_at);
 
   // Switches at time t from mode m (state w) through guard i; with sensitivities S (dw/dX0)
   // applies the saltation matrix. Returns the new mode or -1.

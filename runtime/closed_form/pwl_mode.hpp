@@ -107,11 +107,19 @@ struct PwlModeSystem {
   // exponential by Pade approximation with scaling and squaring.
   PwlMatrix propagator(double tau) const;
   PwlVector advance(double tau, const PwlVector& w) const;
+  // w(tau + delta) from w = w(tau) by the Taylor series of e^{A delta}, where it reaches
+  // rounding in a few terms (|delta| ||A^2||^(1/2) <= 0.05): the tail after term K is at most
+  // (x1 + x2) x2^K / ((K + 1)! (1 - x2)) of ||w|| (infinity norms, x1 = |delta| ||A||, x2 =
+  // |delta| ||A^2||^(1/2)), and K is the first that brings it below 1e-17. False (OUT
+  // untouched) where delta is too long for that. A Newton iteration's short steps from its
+  // last iterate so cost a few products instead of a flow's exponentials.
+  bool nudge(double delta, const PwlVector& w, PwlVector& out) const;
   std::complex<double> phased_force_integral(double h, const PwlVector& w0) const;
   // Sets the modal data below (called by build_pwl_mode), the eigendecomposition taken from
   // STRUCTURE where it is filled, and stored there otherwise.
   void decompose(PwlModeStructure& structure);
 
+  double reach = 0.0, reach_squared = 0.0;  // ||A|| and ||A^2||^(1/2) (infinity norms) [1/s]
   bool modal = false;
   double drive_omega = 0.0;                        // w [rad/s]
   PwlComplexMatrix V, V_inverse;                   // nz x nz

@@ -39,6 +39,7 @@ bool PwlPeriodicState::solve(const PwlBranch& branch, double u0, double omega) {
   storage_ = loss_ = 0.0;
   cycles_ = 0;
   pieces_.clear(), switch_phases_.clear();
+  last_piece_ = kNoPiece;
   Run run{*this, branch, period_ / kPwlGridPerCycle};
   for (std::size_t k = 0; k < solved_count_; ++k) {
     const std::size_t i = (solved_next_ + k) % solved_count_;
@@ -182,9 +183,15 @@ std::size_t PwlPeriodicState::piece_at_phase(double theta, double& t, double& si
 
 PwlVector PwlPeriodicState::state_at_phase(double theta, int& mode, double& sign) const {
   double t = 0.0;
-  const Piece& piece = pieces_[piece_at_phase(theta, t, sign)];
+  const std::size_t k = piece_at_phase(theta, t, sign);
+  const Piece& piece = pieces_[k];
   mode = piece.mode;
-  return modes_[static_cast<std::size_t>(mode)].advance(t - piece.t, piece.w);
+  const PwlModeSystem& s = modes_[static_cast<std::size_t>(mode)];
+  // Nudged from the last state asked for where it is in the same piece and near (the
+  // iterations of an extremum's search), else the flow from the piece's start.
+  if (k != last_piece_ || !s.nudge(t - last_t_, last_w_, last_w_)) last_w_ = s.advance(t - piece.t, piece.w);
+  last_piece_ = k, last_t_ = t;
+  return last_w_;
 }
 
 void PwlPeriodicState::slopes(double theta0, double step, int count, double* first) const {

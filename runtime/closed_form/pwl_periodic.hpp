@@ -118,6 +118,7 @@ class PwlPeriodicState {
   std::vector<Piece> pieces_;
   std::vector<double> switch_phases_;
   PwlModeCode settle_code_, switch_code_;  // scratch of Run::settle and Run::switch_at (no allocation per event)
+  PwlVector known_, probe_;                // scratch of Run::first_crossing and Run::leaves
   // Solves of structures_branch_, the first solved_count_ (storage beyond is reused); a lookup
   // starts at solved_next_, after the last one found (a grid's points come in order).
   std::vector<Solved> solved_;
@@ -130,6 +131,12 @@ class PwlPeriodicState {
   // The state at phase theta, its mode, and the sign its force takes there (-1 in the
   // mirrored half of an odd branch).
   PwlVector state_at_phase(double theta, int& mode, double& sign) const;
+  // The last state state_at_phase found: in piece last_piece_ at time last_t_ into the span
+  // (kNoPiece: none since the solve).
+  static constexpr std::size_t kNoPiece = static_cast<std::size_t>(-1);
+  mutable std::size_t last_piece_ = kNoPiece;
+  mutable double last_t_ = 0.0;
+  mutable PwlVector last_w_;
   // The piece holding phase theta, the time t [s] into the span there and the sign as above.
   std::size_t piece_at_phase(double theta, double& t, double& sign) const;
 };
