@@ -62,8 +62,8 @@ bool PwlPeriodicState::Run::leaves(int m, int i, const PwlVector& w) {
   const double g = G.dot(w);
   if (g > tol) return false;
   const double probe = 1e-7 * self.period_;
-  const PwlVector rate = s.A * w;
-  const double slope = G.dot(rate), curvature = G.dot(s.A * rate);
+  const PwlVector rate = s.A.lazyProduct(w);
+  const double slope = G.dot(rate), curvature = G.dot(s.A.lazyProduct(rate));
   const bool turning = g >= -tol && slope < 0.0 && slope + curvature * probe > 0.0;
   if (!turning && leaving(g, slope, curvature, tol, tol * self.omega_)) return true;
   PwlVector& ahead = self.probe_;
@@ -212,7 +212,7 @@ double PwlPeriodicState::Run::first_crossing(int m, int i, const PwlVector& w0, 
 
 int PwlPeriodicState::Run::switch_at(int m, int i, double t, PwlVector& w, PwlMatrix* S) {
   const PwlModeSystem& old = self.modes_[static_cast<std::size_t>(m)];
-  const PwlVector X = old.to_X * w;
+  const PwlVector X = old.to_X.lazyProduct(w);
   PwlModeCode& code = self.switch_code_;
   code = old.code;
   const PwlTransition& tr = old.transitions[static_cast<std::size_t>(i)];
@@ -223,7 +223,7 @@ int PwlPeriodicState::Run::switch_at(int m, int i, double t, PwlVector& w, PwlMa
   if (S != nullptr) {
     const PwlModeSystem& o = self.modes_[static_cast<std::size_t>(m)];
     const PwlModeSystem& n = self.modes_[static_cast<std::size_t>(next)];
-    const PwlVector rate_old = o.A * w;
+    const PwlVector rate_old = o.A.lazyProduct(w);
     const double slope = o.guards.row(i).dot(rate_old);
     PwlRow dt = PwlRow::Zero(S->cols());
     if (std::abs(slope) > 1e-300) dt = -(o.guards.row(i) * *S) / slope;
@@ -263,13 +263,13 @@ bool PwlPeriodicState::Run::cycle(int& m, const PwlVector& X0, PwlVector& X_T, P
       const double h = t_end - t;
       const bool full = std::abs(h - step) <= 1e-12 * step;
       const Eigen::Index dim = s.dim, guards = s.guards.rows();
-      if (!g0_known) g0.noalias() = s.guards * w, dg0.noalias() = s.guard_rates * w;
+      if (!g0_known) g0.noalias() = s.guards.lazyProduct(w), dg0.noalias() = s.guard_rates.lazyProduct(w);
       if (full) {
-        stacked.noalias() = grid_step(m) * w;
+        stacked.noalias() = grid_step(m).lazyProduct(w);
         w1 = stacked.head(dim), g1 = stacked.segment(dim, guards), dg1 = stacked.tail(guards);
       } else {
         w1 = advance(m, h, w);
-        g1.noalias() = s.guards * w1, dg1.noalias() = s.guard_rates * w1;
+        g1.noalias() = s.guards.lazyProduct(w1), dg1.noalias() = s.guard_rates.lazyProduct(w1);
       }
       double first = std::numeric_limits<double>::infinity();
       int fired = -1;
@@ -298,7 +298,7 @@ bool PwlPeriodicState::Run::cycle(int& m, const PwlVector& X0, PwlVector& X_T, P
     }
   }
   const PwlModeSystem& s = self.modes_[static_cast<std::size_t>(m)];
-  X_T = s.to_X * w;
+  X_T = s.to_X.lazyProduct(w);
   if (J != nullptr) *J = s.to_X * (s.propagator(self.span_ - piece_start) * S);
   return true;
 }

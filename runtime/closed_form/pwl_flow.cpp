@@ -182,10 +182,11 @@ bool PwlModeSystem::nudge(double delta, const PwlVector& w, PwlVector& out) cons
   int terms = 0;
   for (double bound = (x1 + x2) / (1.0 - x2); terms < 16 && bound > 1e-17; ++terms) bound *= x2 / (terms + 2.0);
   if (terms == 16) return false;
-  thread_local PwlVector term;
+  thread_local PwlVector term, next;
   out = w, term = w;
   for (int k = 1; k <= terms; ++k) {
-    term = (A * term) * (delta / k);
+    next.noalias() = A.lazyProduct(term);
+    term = next * (delta / k);
     out += term;
   }
   return true;

@@ -49,7 +49,7 @@ void split_by_eigenvalue(const MatrixXd& S, double reference, MatrixXd& range, M
 }  // namespace
 
 PwlVector PwlModeSystem::state_at(const PwlVector& X, double t, double u0, double omega) const {
-  PwlVector w = from_X * X;
+  PwlVector w = from_X.lazyProduct(X);
   const double s = u0 * std::sin(omega * t), c = u0 * std::cos(omega * t);
   w.segment(nz, nh) += held_drive * s;
   w[one()] = 1.0;

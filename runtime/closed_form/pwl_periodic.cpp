@@ -194,21 +194,22 @@ PwlVector PwlPeriodicState::state_at_phase(double theta, int& mode, double& sign
   return last_w_;
 }
 
-void PwlPeriodicState::slopes(double theta0, double step, int count, double* first) const {
+void PwlPeriodicState::slopes(const double* theta, int count, double offset, double* first) const {
+  const double grid = period_ / kPwlGridPerCycle;
   std::size_t current = pieces_.size();  // the piece w is in (none yet)
   double current_sign = 0.0, current_t = 0.0;
-  int propagator_mode = -1;  // the mode P was built for
-  PwlVector w;
+  PwlVector w, next;
   PwlRow slope_row;  // force A / omega of the current piece's mode
-  PwlMatrix P;       // that mode's propagator over step / omega
-  for (int j = 0; j <= count; ++j) {
+  for (int j = 0; j < count; ++j) {
     double t = 0.0, sign = 1.0;
-    const std::size_t k = piece_at_phase(theta0 + j * step, t, sign);
+    const std::size_t k = piece_at_phase(theta[j] + offset, t, sign);
     const int mode = pieces_[k].mode;
     const PwlModeSystem& s = modes_[static_cast<std::size_t>(mode)];
     if (k == current && sign == current_sign && t > current_t) {
-      if (propagator_mode != mode) P = s.propagator(step / omega_), propagator_mode = mode;
-      w = P * w;
+      const PwlGridStep& E = grid_step_[static_cast<std::size_t>(mode)];
+      const double gap = t - current_t;
+      if (E.size() != 0 && std::abs(gap - grid) <= 1e-9 * grid) next.noalias() = E.topRows(s.dim).lazyProduct(w), w = next;
+      else if (!s.nudge(gap, w, w)) w = s.advance(gap, w);
     } else {
       w = s.advance(t - pieces_[k].t, pieces_[k].w);
       slope_row = (s.force * s.A) / omega_;
@@ -231,9 +232,9 @@ void PwlPeriodicState::derivatives(double theta, double& first, double& second) 
   double sign = 1.0;
   const PwlVector w = state_at_phase(theta, m, sign);
   const PwlModeSystem& s = modes_[static_cast<std::size_t>(m)];
-  const PwlVector rate = s.A * w;
+  const PwlVector rate = s.A.lazyProduct(w);
   first = sign * s.force.dot(rate) / omega_;
-  second = sign * s.force.dot(s.A * rate) / (omega_ * omega_);
+  second = sign * s.force.dot(s.A.lazyProduct(rate)) / (omega_ * omega_);
 }
 
 }  // namespace rheo::runtime

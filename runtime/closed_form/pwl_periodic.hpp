@@ -64,11 +64,12 @@ class PwlPeriodicState {
   // At phase theta = w t [rad] of the steady cycle (any real theta): F [N], dF/dtheta, d2F/dtheta2.
   double force(double theta) const;
   void derivatives(double theta, double& first, double& second) const;
-  // dF/dtheta at theta_j = theta0 + j step for j = 0..count, into first[0..count]: the state is
-  // carried from sample to sample by one propagator of its piece (as derivatives(), to
-  // rounding), restarted where a piece or the half period ends. The force's maximum search
-  // samples its slope so (periodic_closed_form.cpp).
-  void slopes(double theta0, double step, int count, double* first) const;
+  // dF/dtheta at the phases theta[j] + offset, j < count, into first[j]: the state is carried
+  // from sample to sample within a piece (as derivatives(), to rounding), by the grid step's
+  // propagator where samples lie a grid step (T/64) apart and that propagator was built in the
+  // shooting, else by the flow, and restarted where a piece or the half period ends. The
+  // force's maximum search samples its slope so (periodic_closed_form.cpp).
+  void slopes(const double* theta, int count, double offset, double* first) const;
   // Phases in [0, 2 pi) at which a slider or gap switches in the steady cycle (kinks of F).
   const std::vector<double>& switch_phases() const { return switch_phases_; }
 
