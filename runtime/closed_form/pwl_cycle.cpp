@@ -36,9 +36,11 @@ int PwlPeriodicState::Run::mode_index(const PwlModeCode& code) {
   if (structure == nullptr) structure = &self.structures_.emplace_back(code, PwlModeStructure{}).second;
   // Built in place, over a mode of an earlier solve where there is one: a mode's
   // fixed-capacity storage is tens of kilobytes, not to be allocated and cleared per point.
-  if (self.mode_count_ == self.modes_.size()) self.modes_.emplace_back(), self.grid_step_.emplace_back(), self.mode_omega_.emplace_back();
+  if (self.mode_count_ == self.modes_.size())
+    self.modes_.emplace_back(), self.grid_step_.emplace_back(), self.mode_omega_.emplace_back(), self.linear_start_.emplace_back();
   if (!build_pwl_mode(branch, code, self.omega_, self.modes_[self.mode_count_], structure)) return -1;
   self.grid_step_[self.mode_count_].resize(0, 0);
+  self.linear_start_[self.mode_count_].resize(0);
   self.mode_omega_[self.mode_count_] = self.omega_;
   self.active_.push_back(static_cast<int>(self.mode_count_));
   return static_cast<int>(self.mode_count_++);
@@ -316,18 +318,24 @@ void PwlPeriodicState::Run::first_harmonic() {
   self.loss_ = scale * integral.real();
 }
 
-PwlVector PwlPeriodicState::Run::linear_periodic_state(int m, const PwlVector& scale) {
+PwlVector PwlPeriodicState::Run::linear_periodic_state(int m) {
+  PwlVector& unit = self.linear_start_[static_cast<std::size_t>(m)];
+  if (unit.size() != 0) return self.u0_ * unit;
   const PwlModeSystem& s = self.modes_[static_cast<std::size_t>(m)];
+  const int n = branch.internal_nodes;
+  PwlVector scale(2 * n);  // positions by u0 = 1, velocities by w u0
+  scale << PwlVector::Ones(n), PwlVector::Constant(n, self.omega_);
   const PwlVector X0 = PwlVector::Zero(scale.size());
   PwlMatrix from = s.from_X;
   from.bottomRows(3).setZero();
   const double mirror = self.half_wave_ ? -1.0 : 1.0;
   const PwlMatrix P = s.propagator(self.span_);
   const PwlMatrix J = mirror * (s.to_X * (P * from));
-  const PwlVector X_T = mirror * (s.to_X * (P * s.state_at(X0, 0.0, self.u0_, self.omega_)));
+  const PwlVector X_T = mirror * (s.to_X * (P * s.state_at(X0, 0.0, 1.0, self.omega_)));
   const PwlMatrix Js = scale.cwiseInverse().asDiagonal() * J * scale.asDiagonal();
   const PwlVector Xs = X0.cwiseQuotient(scale), Ys = X_T.cwiseQuotient(scale);
-  return scale.cwiseProduct(self.half_wave_ ? least_norm_fixed_point(Js, Xs, Ys) : affine_fixed_point(Js, Xs, Ys));
+  unit = scale.cwiseProduct(self.half_wave_ ? least_norm_fixed_point(Js, Xs, Ys) : affine_fixed_point(Js, Xs, Ys));
+  return self.u0_ * unit;
 }
 
 }  // namespace rheo::runtime

@@ -56,8 +56,9 @@ struct PwlPeriodicState::Run {
   // The periodic state of mode m followed without its guards (the linear state every point
   // starts from): the fixed point of X -> to_X e^{A T} w(X), by one propagator over the period
   // (of X -> -to_X e^{A T/2} w(X) for an odd branch: the symmetric state, whose stuck sliders
-  // hold no offset, as from rest).
-  PwlVector linear_periodic_state(int m, const PwlVector& scale);
+  // hold no offset, as from rest). It is proportional to the amplitude (the drive is the only
+  // forcing with every slider stuck and every gap open): kept per mode at u0 = 1.
+  PwlVector linear_periodic_state(int m);
 };
 
 }  // namespace rheo::runtime

@@ -99,7 +99,7 @@ bool PwlPeriodicState::shoot(Run& run) {
   // path starts from the same linear periodic state.
   int start_mode = run.mode_index(PwlModeCode(branch.switches.size(), 0));
   if (start_mode < 0) return false;
-  PwlVector X0 = run.linear_periodic_state(start_mode, scale), X_T, last_end;
+  PwlVector X0 = run.linear_periodic_state(start_mode), X_T, last_end;
   // Newton's method on X_T(X0) - X0 = 0 in scaled coordinates, globalised: a step that does not
   // lower the residual (the events moved under it) is halved once, and if that does not help
   // either, one plain cycle is taken from where the last one ended (a lightly damped fluid

@@ -116,6 +116,8 @@ class PwlPeriodicState {
   // guard rates it leads to; empty until then.
   using PwlGridStep = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, 3 * kPwlMaxDim, kPwlMaxDim>;
   std::vector<PwlGridStep> grid_step_;
+  // Per mode (as modes_): its linear periodic state at unit amplitude (Run::linear_periodic_state), empty until needed.
+  std::vector<PwlVector> linear_start_;
   std::vector<Piece> pieces_;
   std::vector<double> switch_phases_;
   PwlModeCode settle_code_, switch_code_;  // scratch of Run::settle and Run::switch_at (no allocation per event)
