@@ -151,6 +151,60 @@ double stationary_point(const LoadingHalf& h, double lo, double hi, double k_ela
   return x;
 }
 
+// The largest stationary value of F in the piece [lo, hi] (-inf where none): the slope sampled
+// and each sign change from + to - polished by stationary_point. Without event-driven
+// branches: at max(2, ceil(32 (hi - lo)/pi)) equal steps, sin and cos by rotation.
+double piece_maximum_rotated(const LoadingHalf& h, double lo, double hi, double k_elastic) {
+  double best = -std::numeric_limits<double>::infinity();
+  const int samples = std::max(2, static_cast<int>(std::ceil(samples_per_half_cycle * (hi - lo) / std::numbers::pi)));
+  const double step = (hi - lo) / samples, cos_step = std::cos(step), sin_step = std::sin(step);
+  double s = std::sin(lo), c = std::cos(lo);
+  double previous_slope = 0.0, unused = 0.0;
+  h.closed_form_derivatives(s, c, k_elastic, previous_slope, unused);
+  previous_slope *= h.polarity;
+  for (int j = 1; j <= samples; ++j) {
+    const double next_s = s * cos_step + c * sin_step;
+    c = c * cos_step - s * sin_step;
+    s = next_s;
+    double slope = 0.0;
+    h.closed_form_derivatives(s, c, k_elastic, slope, unused);
+    slope *= h.polarity;
+    if (previous_slope > 0.0 && slope <= 0.0) {
+      const double left = lo + (j - 1) * step, right = j == samples ? hi : lo + j * step;
+      best = std::max(best, h.force(stationary_point(h, left, right, k_elastic)));
+    }
+    previous_slope = slope;
+  }
+  return best;
+}
+
+// The same with event-driven branches: samples at the piece's ends and the points of the half
+// cycle's grid, theta_j = -pi/2 + j pi/32, between them (T/64 apart: the shooting's grid-step
+// propagators carry a branch from one to the next, and sin and cos are tabulated).
+double piece_maximum_on_grid(LoadingHalf& h, double lo, double hi, double k_elastic) {
+  double best = -std::numeric_limits<double>::infinity();
+  h.samples.assign(1, lo), h.sample_grid.assign(1, -1);  // grid index -1: a piece's end
+  for (int j = static_cast<int>(std::floor((lo + half_pi) / grid_step)) + 1; j < samples_per_half_cycle && grid_phase(j) < hi; ++j)
+    if (grid_phase(j) > lo) h.samples.push_back(grid_phase(j)), h.sample_grid.push_back(j);
+  h.samples.push_back(hi), h.sample_grid.push_back(-1);
+  h.sample_branch_slopes();
+  double previous_slope = 0.0, unused = 0.0;
+  h.closed_form_derivatives(std::sin(lo), std::cos(lo), k_elastic, previous_slope, unused);
+  previous_slope = h.polarity * (previous_slope + h.branch_slopes[0]);
+  for (std::size_t j = 1; j < h.samples.size(); ++j) {
+    const double theta = h.samples[j];
+    const int index = h.sample_grid[j];
+    const double s = index < 0 ? std::sin(theta) : grid_sine_cosine()[static_cast<std::size_t>(index)].first;
+    const double c = index < 0 ? std::cos(theta) : grid_sine_cosine()[static_cast<std::size_t>(index)].second;
+    double slope = 0.0;
+    h.closed_form_derivatives(s, c, k_elastic, slope, unused);
+    slope = h.polarity * (slope + h.branch_slopes[j]);
+    if (previous_slope > 0.0 && slope <= 0.0) best = std::max(best, h.force(stationary_point(h, h.samples[j - 1], theta, k_elastic)));
+    previous_slope = slope;
+  }
+  return best;
+}
+
 // max F over the loading half (as h.sign and h.polarity make it). When dF/dtheta >= 0 on
 // [-pi/2, 0] is guaranteed (every branch's in-phase stiffness non-negative, b >= 0), only
 // [0, pi/2] is searched.
@@ -175,28 +229,7 @@ double loading_half_maximum(LoadingHalf& h) {
     if (!(hi > lo)) continue;
     best = std::max(best, h.force(hi));
     const double k_elastic = h.elastic_stiffness_on(0.5 * (lo + hi));
-    // Samples: the piece's ends and the points of the half cycle's grid, theta_j = -pi/2 + j pi/32,
-    // between them (where the event path's grid-step propagators carry a branch from one to the
-    // next, and sin and cos are tabulated); grid index -1 for the ends.
-    h.samples.assign(1, lo), h.sample_grid.assign(1, -1);
-    for (int j = static_cast<int>(std::floor((lo + half_pi) / grid_step)) + 1; j < samples_per_half_cycle && grid_phase(j) < hi; ++j)
-      if (grid_phase(j) > lo) h.samples.push_back(grid_phase(j)), h.sample_grid.push_back(j);
-    h.samples.push_back(hi), h.sample_grid.push_back(-1);
-    h.sample_branch_slopes();
-    double previous_slope = 0.0, unused = 0.0;
-    h.closed_form_derivatives(std::sin(lo), std::cos(lo), k_elastic, previous_slope, unused);
-    previous_slope = h.polarity * (previous_slope + h.branch_slopes[0]);
-    for (std::size_t j = 1; j < h.samples.size(); ++j) {
-      const double theta = h.samples[j];
-      const int index = h.sample_grid[j];
-      const double s = index < 0 ? std::sin(theta) : grid_sine_cosine()[static_cast<std::size_t>(index)].first;
-      const double c = index < 0 ? std::cos(theta) : grid_sine_cosine()[static_cast<std::size_t>(index)].second;
-      double slope = 0.0;
-      h.closed_form_derivatives(s, c, k_elastic, slope, unused);
-      slope = h.polarity * (slope + h.branch_slopes[j]);
-      if (previous_slope > 0.0 && slope <= 0.0) best = std::max(best, h.force(stationary_point(h, h.samples[j - 1], theta, k_elastic)));
-      previous_slope = slope;
-    }
+    best = std::max(best, h.branches.empty() ? piece_maximum_rotated(h, lo, hi, k_elastic) : piece_maximum_on_grid(h, lo, hi, k_elastic));
   }
   return best;
 }
