@@ -7,6 +7,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 #include <complex>
@@ -18,6 +19,18 @@ namespace {
 
 constexpr double half_pi = 0.5 * std::numbers::pi;
 constexpr int samples_per_half_cycle = 32;
+constexpr double grid_step = std::numbers::pi / samples_per_half_cycle;  // T/64 in phase, the event path's grid step
+
+// Point j of the loading half's grid, and sin and cos there (j = 0..samples_per_half_cycle).
+double grid_phase(int j) { return -half_pi + j * grid_step; }
+const std::array<std::pair<double, double>, samples_per_half_cycle + 1>& grid_sine_cosine() {
+  static const auto table = [] {
+    std::array<std::pair<double, double>, samples_per_half_cycle + 1> t{};
+    for (int j = 0; j <= samples_per_half_cycle; ++j) t[static_cast<std::size_t>(j)] = {std::sin(grid_phase(j)), std::cos(grid_phase(j))};
+    return t;
+  }();
+  return table;
+}
 
 // The loading half of the steady cycle, theta in [-pi/2, pi/2], as the sum of
 //   a sin(theta) + b cos(theta) + Y_odd(u) + sign E(u) + constant + sum over slipping frictions,
@@ -42,7 +55,9 @@ struct LoadingHalf {
   std::vector<double> slip_k, slip_fy, slip_theta;  // frictions with u0 > uy; theta_q where they start to slip
   std::vector<double> ends;                         // piece ends
   std::vector<const PwlPeriodicState*> branches;    // piecewise-linear subtrees, by events
-  std::vector<double> branch_slopes, one_branch;    // their dF/dtheta at a piece's samples
+  std::vector<double> samples;                      // a piece's sample phases
+  std::vector<int> sample_grid;                     // their index on the half cycle's grid (-1: a piece's end)
+  std::vector<double> branch_slopes, one_branch;    // the branches' dF/dtheta there
 
   void clear() {
     a = b = y1 = y3 = y5 = y2 = y4 = constant = 0.0;
@@ -94,16 +109,16 @@ struct LoadingHalf {
     first = c * in_phase - b * s;
     second = -s * in_phase + c * c * u0 * u0 * d2y - b * c;
   }
-  // The event-driven branches' dF/dtheta at theta_j = lo + j step, j = 0..count, summed into
-  // branch_slopes (each branch carried along its pieces by propagators: PwlPeriodicState::slopes).
-  void sample_branch_slopes(double lo, double step, int count) {
-    branch_slopes.assign(static_cast<std::size_t>(count) + 1, 0.0);
-    one_branch.resize(static_cast<std::size_t>(count) + 1);
+  // The event-driven branches' dF/dtheta at the phases of `samples`, summed into
+  // branch_slopes (each branch carried along its pieces: PwlPeriodicState::slopes).
+  void sample_branch_slopes() {
+    const std::size_t count = samples.size();
+    branch_slopes.assign(count, 0.0);
+    one_branch.resize(count);
     for (const PwlPeriodicState* branch : branches) {
       const bool mirror = mirrored(*branch);
-      branch->slopes(mirror ? lo + std::numbers::pi : lo, step, count, one_branch.data());
-      for (int j = 0; j <= count; ++j)
-        branch_slopes[static_cast<std::size_t>(j)] += mirror ? -one_branch[static_cast<std::size_t>(j)] : one_branch[static_cast<std::size_t>(j)];
+      branch->slopes(samples.data(), static_cast<int>(count), mirror ? std::numbers::pi : 0.0, one_branch.data());
+      for (std::size_t j = 0; j < count; ++j) branch_slopes[j] += mirror ? -one_branch[j] : one_branch[j];
     }
   }
   // A lower bound of dF/du over |u| <= u0 without the frictions' share (>= 0); only for a
@@ -136,6 +151,63 @@ double stationary_point(const LoadingHalf& h, double lo, double hi, double k_ela
   return x;
 }
 
+// Raises `best` to the largest stationary value of F in the piece [lo, hi], and sets `at` to its
+// phase, if that is larger: the slope sampled and each sign change from + to - polished by
+// stationary_point. Without event-driven branches: at max(2, ceil(32 (hi - lo)/pi)) equal
+// steps, sin and cos by rotation.
+void piece_maximum_rotated(const LoadingHalf& h, double lo, double hi, double k_elastic, double& best, double& at) {
+  auto consider = [&](double theta) {
+    if (const double f = h.force(theta); f > best) best = f, at = theta;
+  };
+  const int samples = std::max(2, static_cast<int>(std::ceil(samples_per_half_cycle * (hi - lo) / std::numbers::pi)));
+  const double step = (hi - lo) / samples, cos_step = std::cos(step), sin_step = std::sin(step);
+  double s = std::sin(lo), c = std::cos(lo);
+  double previous_slope = 0.0, unused = 0.0;
+  h.closed_form_derivatives(s, c, k_elastic, previous_slope, unused);
+  previous_slope *= h.polarity;
+  for (int j = 1; j <= samples; ++j) {
+    const double next_s = s * cos_step + c * sin_step;
+    c = c * cos_step - s * sin_step;
+    s = next_s;
+    double slope = 0.0;
+    h.closed_form_derivatives(s, c, k_elastic, slope, unused);
+    slope *= h.polarity;
+    if (previous_slope > 0.0 && slope <= 0.0) {
+      const double left = lo + (j - 1) * step, right = j == samples ? hi : lo + j * step;
+      consider(stationary_point(h, left, right, k_elastic));
+    }
+    previous_slope = slope;
+  }
+}
+
+// The same with event-driven branches: samples at the piece's ends and the points of the half
+// cycle's grid, theta_j = -pi/2 + j pi/32, between them (T/64 apart: the shooting's grid-step
+// propagators carry a branch from one to the next, and sin and cos are tabulated).
+void piece_maximum_on_grid(LoadingHalf& h, double lo, double hi, double k_elastic, double& best, double& at) {
+  auto consider = [&](double theta) {
+    if (const double f = h.force(theta); f > best) best = f, at = theta;
+  };
+  h.samples.assign(1, lo), h.sample_grid.assign(1, -1);  // grid index -1: a piece's end
+  for (int j = static_cast<int>(std::floor((lo + half_pi) / grid_step)) + 1; j < samples_per_half_cycle && grid_phase(j) < hi; ++j)
+    if (grid_phase(j) > lo) h.samples.push_back(grid_phase(j)), h.sample_grid.push_back(j);
+  h.samples.push_back(hi), h.sample_grid.push_back(-1);
+  h.sample_branch_slopes();
+  double previous_slope = 0.0, unused = 0.0;
+  h.closed_form_derivatives(std::sin(lo), std::cos(lo), k_elastic, previous_slope, unused);
+  previous_slope = h.polarity * (previous_slope + h.branch_slopes[0]);
+  for (std::size_t j = 1; j < h.samples.size(); ++j) {
+    const double theta = h.samples[j];
+    const int index = h.sample_grid[j];
+    const double s = index < 0 ? std::sin(theta) : grid_sine_cosine()[static_cast<std::size_t>(index)].first;
+    const double c = index < 0 ? std::cos(theta) : grid_sine_cosine()[static_cast<std::size_t>(index)].second;
+    double slope = 0.0;
+    h.closed_form_derivatives(s, c, k_elastic, slope, unused);
+    slope = h.polarity * (slope + h.branch_slopes[j]);
+    if (previous_slope > 0.0 && slope <= 0.0) consider(stationary_point(h, h.samples[j - 1], theta, k_elastic));
+    previous_slope = slope;
+  }
+}
+
 // max F over the loading half (as h.sign and h.polarity make it). When dF/dtheta >= 0 on
 // [-pi/2, 0] is guaranteed (every branch's in-phase stiffness non-negative, b >= 0), only
 // [0, pi/2] is searched. `at` receives the phase theta where the maximum lies.
@@ -164,27 +236,8 @@ double loading_half_maximum(LoadingHalf& h, double& at) {
     if (!(hi > lo)) continue;
     consider(hi);
     const double k_elastic = h.elastic_stiffness_on(0.5 * (lo + hi));
-    const int samples = std::max(2, static_cast<int>(std::ceil(samples_per_half_cycle * (hi - lo) / std::numbers::pi)));
-    // sin and cos along the piece by rotation: theta_j = lo + j step.
-    const double step = (hi - lo) / samples, cos_step = std::cos(step), sin_step = std::sin(step);
-    double s = std::sin(lo), c = std::cos(lo);
-    double previous_slope = 0.0, unused = 0.0;
-    h.sample_branch_slopes(lo, step, samples);
-    h.closed_form_derivatives(s, c, k_elastic, previous_slope, unused);
-    previous_slope = h.polarity * (previous_slope + h.branch_slopes[0]);
-    for (int j = 1; j <= samples; ++j) {
-      const double next_s = s * cos_step + c * sin_step;
-      c = c * cos_step - s * sin_step;
-      s = next_s;
-      double slope = 0.0;
-      h.closed_form_derivatives(s, c, k_elastic, slope, unused);
-      slope = h.polarity * (slope + h.branch_slopes[static_cast<std::size_t>(j)]);
-      if (previous_slope > 0.0 && slope <= 0.0) {
-        const double left = lo + (j - 1) * step, right = j == samples ? hi : lo + j * step;
-        consider(stationary_point(h, left, right, k_elastic));
-      }
-      previous_slope = slope;
-    }
+    if (h.branches.empty()) piece_maximum_rotated(h, lo, hi, k_elastic, best, at);
+    else piece_maximum_on_grid(h, lo, hi, k_elastic, best, at);
   }
   return best;
 }

@@ -28,17 +28,21 @@ bool leaving(double g, double dg, double ddg, double tol, double dtol) {
 }  // namespace
 
 int PwlPeriodicState::Run::mode_index(const PwlModeCode& code) {
-  for (std::size_t i = 0; i < self.mode_count_; ++i)
-    if (self.modes_[i].code == code) return static_cast<int>(i);
+  for (int i : self.active_)
+    if (self.modes_[static_cast<std::size_t>(i)].code == code) return i;
   PwlModeStructure* structure = nullptr;
   for (auto& [known, st] : self.structures_)
     if (known == code) structure = &st;
   if (structure == nullptr) structure = &self.structures_.emplace_back(code, PwlModeStructure{}).second;
   // Built in place, over a mode of an earlier solve where there is one: a mode's
   // fixed-capacity storage is tens of kilobytes, not to be allocated and cleared per point.
-  if (self.mode_count_ == self.modes_.size()) self.modes_.emplace_back(), self.grid_step_.emplace_back();
-  if (!build_pwl_mode(branch, code, self.u0_, self.omega_, self.modes_[self.mode_count_], structure)) return -1;
+  if (self.mode_count_ == self.modes_.size())
+    self.modes_.emplace_back(), self.grid_step_.emplace_back(), self.mode_omega_.emplace_back(), self.linear_start_.emplace_back();
+  if (!build_pwl_mode(branch, code, self.omega_, self.modes_[self.mode_count_], structure)) return -1;
   self.grid_step_[self.mode_count_].resize(0, 0);
+  self.linear_start_[self.mode_count_].resize(0);
+  self.mode_omega_[self.mode_count_] = self.omega_;
+  self.active_.push_back(static_cast<int>(self.mode_count_));
   return static_cast<int>(self.mode_count_++);
 }
 
@@ -55,16 +59,18 @@ const PwlPeriodicState::PwlGridStep& PwlPeriodicState::Run::grid_step(int m) {
 
 bool PwlPeriodicState::Run::leaves(int m, int i, const PwlVector& w) {
   const PwlModeSystem& s = self.modes_[static_cast<std::size_t>(m)];
-  const double tol = kGuardTolerance * s.transitions[static_cast<std::size_t>(i)].scale;
+  const double tol = kGuardTolerance * s.transitions[static_cast<std::size_t>(i)].size(self.u0_);
   const PwlRow G = s.guards.row(i);
   const double g = G.dot(w);
   if (g > tol) return false;
   const double probe = 1e-7 * self.period_;
-  const PwlVector rate = s.A * w;
-  const double slope = G.dot(rate), curvature = G.dot(s.A * rate);
+  const PwlVector rate = s.A.lazyProduct(w);
+  const double slope = G.dot(rate), curvature = G.dot(s.A.lazyProduct(rate));
   const bool turning = g >= -tol && slope < 0.0 && slope + curvature * probe > 0.0;
   if (!turning && leaving(g, slope, curvature, tol, tol * self.omega_)) return true;
-  return G.dot(s.advance(probe, w)) < -tol;
+  PwlVector& ahead = self.probe_;
+  if (!s.nudge(probe, w, ahead)) ahead = s.advance(probe, w);
+  return G.dot(ahead) < -tol;
 }
 
 int PwlPeriodicState::Run::settle(int m, const PwlVector& X, double t, PwlVector& w) {
@@ -85,33 +91,44 @@ int PwlPeriodicState::Run::settle(int m, const PwlVector& X, double t, PwlVector
   return -1;
 }
 
-double PwlPeriodicState::Run::first_crossing(int m, int i, const PwlVector& w0, const PwlVector& w1, double h, double g0, double g1) {
+double PwlPeriodicState::Run::first_crossing(int m, int i, const PwlVector& w0, const PwlVector& w1, double h, double g0, double g1, double slope0,
+                                             double slope1, PwlVector& w_at) {
   const PwlModeSystem& s = self.modes_[static_cast<std::size_t>(m)];
-  const PwlRow G = s.guards.row(i), dG = s.guard_rates.row(i);
-  const double tol = kGuardTolerance * s.transitions[static_cast<std::size_t>(i)].scale;
-  auto value = [&](double tau) { return G.dot(advance(m, tau, w0)); };
+  const auto G = s.guards.row(i), dG = s.guard_rates.row(i);
+  const double tol = kGuardTolerance * s.transitions[static_cast<std::size_t>(i)].size(self.u0_);
+  constexpr double never = std::numeric_limits<double>::infinity();
+  // The state at tau into the step: nudged from the last state found (or from the step's end)
+  // where that is near enough (PwlModeSystem::nudge), else the flow from w0.
+  double known_t = 0.0;
+  PwlVector& known = self.known_;
+  known = w0;
+  auto at = [&](double tau) -> const PwlVector& {
+    const bool from_end = std::abs(tau - h) < std::abs(tau - known_t);
+    if (!s.nudge(from_end ? tau - h : tau - known_t, from_end ? w1 : known, w_at)) w_at = s.advance(tau, w0);
+    known_t = tau, known = w_at;
+    return w_at;
+  };
   // The cubic through the values and slopes at both ends, c(x) = ((a3 x + a2) x + a1) x + g0
   // for tau = x h: within O(h^4) of the guard over a step of T/64, so it bounds a dip closely
   // and its root starts Newton's method a few digits from the crossing.
-  const double slope0 = dG.dot(w0), slope1 = dG.dot(w1);
   const double a3 = 2.0 * (g0 - g1) + h * (slope0 + slope1), a2 = 3.0 * (g1 - g0) - h * (2.0 * slope0 + slope1), a1 = h * slope0;
   auto cubic = [&](double x) { return ((a3 * x + a2) * x + a1) * x + g0; };
-  double lo = 0.0, hi = h;
+  double lo = 0.0, hi = h, g_lo = g0, g_hi = g1;  // the guard is positive at lo, not at hi
   if (g1 >= 0.0) {
     // Both ends non-negative: a dip below zero needs the slope negative at 0 and positive at h;
     // only a dip the cubic brings within a tenth of the smaller end value is located.
-    if (!(slope0 < 0.0 && slope1 > 0.0)) return std::numeric_limits<double>::infinity();
+    if (!(slope0 < 0.0 && slope1 > 0.0)) return never;
     double lowest = std::min(g0, g1), x_lowest = 0.5;
     const double disc = a2 * a2 - 3.0 * a3 * a1;
     if (disc >= 0.0 && a3 != 0.0)
       for (double x : {(-a2 + std::sqrt(disc)) / (3.0 * a3), (-a2 - std::sqrt(disc)) / (3.0 * a3)})
         if (x > 0.0 && x < 1.0 && cubic(x) < lowest) lowest = cubic(x), x_lowest = x;
-    if (lowest > 0.1 * std::min(g0, g1)) return std::numeric_limits<double>::infinity();
+    if (lowest > 0.1 * std::min(g0, g1)) return never;
     // The minimum: the slope's root, by safeguarded Newton (curvature ddG w) from the cubic's.
     const PwlRow ddG = dG * s.A;
     double a = 0.0, b = h, tau = x_lowest * h;
     for (int it = 0; it < 60 && b - a > 1e-14 * h; ++it) {
-      const PwlVector w = advance(m, tau, w0);
+      const PwlVector& w = at(tau);
       const double slope = dG.dot(w), curvature = ddG.dot(w);
       (slope < 0.0 ? a : b) = tau;
       double next = curvature > 0.0 ? tau - slope / curvature : 0.5 * (a + b);
@@ -121,11 +138,14 @@ double PwlPeriodicState::Run::first_crossing(int m, int i, const PwlVector& w0, 
     }
     // The last iterate is the minimum where Newton converged from one side; b where the
     // bracket closed from both.
-    if (const double at_tau = value(tau); at_tau < 0.0) hi = tau;
-    else if (value(b) < 0.0) hi = b;
-    else return std::numeric_limits<double>::infinity();
+    if (const double v = G.dot(at(tau)); v < 0.0) hi = tau, g_hi = v;
+    else if (const double v_b = G.dot(at(b)); v_b < 0.0) hi = b, g_hi = v_b;
+    else return never;
   }
-  if (g0 <= tol && leaves(m, i, w0)) return 0.0;  // the switch is now
+  if (g0 <= tol && leaves(m, i, w0)) {
+    w_at = w0;
+    return 0.0;  // the switch is now
+  }
   double tau = std::numeric_limits<double>::quiet_NaN();
   if (g0 <= tol) {
     // On the guard and not leaving it (the mode was just entered): find a point where it is
@@ -133,37 +153,68 @@ double PwlPeriodicState::Run::first_crossing(int m, int i, const PwlVector& w0, 
     bool found = false;
     for (int j = 0; j < 16 && !found; ++j) {
       const double sample = j == 0 ? std::min(hi, 1e-7 * self.period_) : hi * j / 16.0;
-      const double v = value(sample);
-      if (v > tol) lo = sample, found = true;
-      else if (v < -tol) hi = sample, found = true;
+      const double v = G.dot(at(sample));
+      if (v > tol) lo = sample, g_lo = v, found = true;
+      else if (v < -tol) hi = sample, g_hi = v, found = true;
     }
-    if (!found) return std::numeric_limits<double>::infinity();
+    if (!found) return never;
   } else {
-    // The cubic's root in the bracket, by bisection (it is positive at lo, negative at hi).
+    // The cubic's root in the bracket, by Newton's method safeguarded by bisection (the cubic
+    // is positive at lo, negative at hi), from the chord's root.
     double a = lo / h, b = hi / h;
-    if (cubic(a) > 0.0 && cubic(b) < 0.0) {
-      for (int it = 0; it < 50 && b - a > 1e-13; ++it) (cubic(0.5 * (a + b)) > 0.0 ? a : b) = 0.5 * (a + b);
-      tau = 0.5 * (a + b) * h;
+    const double ca = cubic(a), cb = cubic(b);
+    if (ca > 0.0 && cb < 0.0) {
+      double x = a + (b - a) * ca / (ca - cb);
+      for (int it = 0; it < 60 && b - a > 1e-13; ++it) {
+        const double c = cubic(x), dc = (3.0 * a3 * x + 2.0 * a2) * x + a1;
+        (c > 0.0 ? a : b) = x;
+        double next = dc != 0.0 ? x - c / dc : 0.5 * (a + b);
+        if (!(next > a && next < b)) next = 0.5 * (a + b);
+        if (std::abs(next - x) <= 1e-13) {
+          x = next;
+          break;
+        }
+        x = next;
+      }
+      tau = x * h;
     }
   }
-  // Safeguarded Newton on the bracket [lo, hi] with g(lo) > 0 > g(hi).
+  // Newton's method safeguarded by the bracket [lo, hi] with g(lo) > 0 >= g(hi): a step that
+  // leaves it takes the chord's root instead (the crossing often lies at a bracket's end, a
+  // grid point such as the drive's turning point, where bisection would crawl; it is hi itself
+  // where the guard is 0 there), and where that is not inside either, the midpoint.
   if (!(tau > lo && tau < hi)) tau = 0.5 * (lo + hi);
   for (int it = 0; it < 100; ++it) {
-    const PwlVector w = advance(m, tau, w0);
+    const PwlVector& w = at(tau);
     const double g = G.dot(w), dg = dG.dot(w);
-    (g > 0.0 ? lo : hi) = tau;
+    if (g > 0.0) lo = tau, g_lo = g;
+    else hi = tau, g_hi = g;
     double next = dg != 0.0 ? tau - g / dg : 0.5 * (lo + hi);
+    if (!(next > lo && next < hi)) {
+      if (g_hi == 0.0) {  // hi is the crossing
+        at(hi);
+        return hi;
+      }
+      next = lo + (hi - lo) * (g_lo / (g_lo - g_hi));
+    }
     if (!(next > lo && next < hi)) next = 0.5 * (lo + hi);
-    if (std::abs(next - tau) <= 1e-15 * self.period_) return std::max(tau, next);
-    if (hi - lo <= 1e-15 * self.period_) return hi;
+    if (std::abs(next - tau) <= 1e-15 * self.period_) {
+      if (next > tau) at(next);
+      return std::max(tau, next);
+    }
+    if (hi - lo <= 1e-15 * self.period_) {
+      at(hi);
+      return hi;
+    }
     tau = next;
   }
+  at(hi);
   return hi;
 }
 
 int PwlPeriodicState::Run::switch_at(int m, int i, double t, PwlVector& w, PwlMatrix* S) {
   const PwlModeSystem& old = self.modes_[static_cast<std::size_t>(m)];
-  const PwlVector X = old.to_X * w;
+  const PwlVector X = old.to_X.lazyProduct(w);
   PwlModeCode& code = self.switch_code_;
   code = old.code;
   const PwlTransition& tr = old.transitions[static_cast<std::size_t>(i)];
@@ -174,7 +225,7 @@ int PwlPeriodicState::Run::switch_at(int m, int i, double t, PwlVector& w, PwlMa
   if (S != nullptr) {
     const PwlModeSystem& o = self.modes_[static_cast<std::size_t>(m)];
     const PwlModeSystem& n = self.modes_[static_cast<std::size_t>(next)];
-    const PwlVector rate_old = o.A * w;
+    const PwlVector rate_old = o.A.lazyProduct(w);
     const double slope = o.guards.row(i).dot(rate_old);
     PwlRow dt = PwlRow::Zero(S->cols());
     if (std::abs(slope) > 1e-300) dt = -(o.guards.row(i) * *S) / slope;
@@ -203,6 +254,7 @@ bool PwlPeriodicState::Run::cycle(int& m, const PwlVector& X0, PwlVector& X_T, P
   int switches = 0;
   double t = 0.0, piece_start = 0.0;
   PwlVector w1, g0, g1, dg0, dg1;  // the state a step on; the guards and their slopes at both ends
+  PwlVector w_cross, w_first;      // the state at a guard's crossing, and at the first one's
   Eigen::Matrix<double, Eigen::Dynamic, 1, 0, 3 * kPwlMaxDim, 1> stacked;
   bool g0_known = false;
   const int grid_steps = self.half_wave_ ? kPwlGridPerCycle / 2 : kPwlGridPerCycle;
@@ -213,21 +265,20 @@ bool PwlPeriodicState::Run::cycle(int& m, const PwlVector& X0, PwlVector& X_T, P
       const double h = t_end - t;
       const bool full = std::abs(h - step) <= 1e-12 * step;
       const Eigen::Index dim = s.dim, guards = s.guards.rows();
-      if (!g0_known) g0.noalias() = s.guards * w, dg0.noalias() = s.guard_rates * w;
+      if (!g0_known) g0.noalias() = s.guards.lazyProduct(w), dg0.noalias() = s.guard_rates.lazyProduct(w);
       if (full) {
-        stacked.noalias() = grid_step(m) * w;
+        stacked.noalias() = grid_step(m).lazyProduct(w);
         w1 = stacked.head(dim), g1 = stacked.segment(dim, guards), dg1 = stacked.tail(guards);
       } else {
         w1 = advance(m, h, w);
-        g1.noalias() = s.guards * w1, dg1.noalias() = s.guard_rates * w1;
+        g1.noalias() = s.guards.lazyProduct(w1), dg1.noalias() = s.guard_rates.lazyProduct(w1);
       }
       double first = std::numeric_limits<double>::infinity();
       int fired = -1;
       for (int i = 0; i < g0.size(); ++i) {
-        const double tol = kGuardTolerance * s.transitions[static_cast<std::size_t>(i)].scale;
-        if (g1[i] >= 0.0 && g0[i] > tol && dg0[i] >= 0.0) continue;  // no crossing and no dip
-        const double tau = first_crossing(m, i, w, w1, h, g0[i], g1[i]);
-        if (tau < first) first = tau, fired = i;
+        if (g1[i] >= 0.0 && !(dg0[i] < 0.0 && dg1[i] > 0.0)) continue;  // no crossing and no dip
+        const double tau = first_crossing(m, i, w, w1, h, g0[i], g1[i], dg0[i], dg1[i], w_cross);
+        if (tau < first) first = tau, fired = i, w_first = w_cross;
       }
       if (fired < 0) {
         w = w1;
@@ -235,7 +286,7 @@ bool PwlPeriodicState::Run::cycle(int& m, const PwlVector& X0, PwlVector& X_T, P
         t = t_end;
         break;
       }
-      w = advance(m, first, w);
+      w = w_first;
       t += first;
       if (Sp != nullptr) *Sp = s.propagator(t - piece_start) * *Sp, piece_start = t;
       g0_known = false;
@@ -249,7 +300,7 @@ bool PwlPeriodicState::Run::cycle(int& m, const PwlVector& X0, PwlVector& X_T, P
     }
   }
   const PwlModeSystem& s = self.modes_[static_cast<std::size_t>(m)];
-  X_T = s.to_X * w;
+  X_T = s.to_X.lazyProduct(w);
   if (J != nullptr) *J = s.to_X * (s.propagator(self.span_ - piece_start) * S);
   return true;
 }
@@ -267,18 +318,24 @@ void PwlPeriodicState::Run::first_harmonic() {
   self.loss_ = scale * integral.real();
 }
 
-PwlVector PwlPeriodicState::Run::linear_periodic_state(int m, const PwlVector& scale) {
+PwlVector PwlPeriodicState::Run::linear_periodic_state(int m) {
+  PwlVector& unit = self.linear_start_[static_cast<std::size_t>(m)];
+  if (unit.size() != 0) return self.u0_ * unit;
   const PwlModeSystem& s = self.modes_[static_cast<std::size_t>(m)];
+  const int n = branch.internal_nodes;
+  PwlVector scale(2 * n);  // positions by u0 = 1, velocities by w u0
+  scale << PwlVector::Ones(n), PwlVector::Constant(n, self.omega_);
   const PwlVector X0 = PwlVector::Zero(scale.size());
   PwlMatrix from = s.from_X;
   from.bottomRows(3).setZero();
   const double mirror = self.half_wave_ ? -1.0 : 1.0;
   const PwlMatrix P = s.propagator(self.span_);
   const PwlMatrix J = mirror * (s.to_X * (P * from));
-  const PwlVector X_T = mirror * (s.to_X * (P * s.state_at(X0, 0.0, self.u0_, self.omega_)));
+  const PwlVector X_T = mirror * (s.to_X * (P * s.state_at(X0, 0.0, 1.0, self.omega_)));
   const PwlMatrix Js = scale.cwiseInverse().asDiagonal() * J * scale.asDiagonal();
   const PwlVector Xs = X0.cwiseQuotient(scale), Ys = X_T.cwiseQuotient(scale);
-  return scale.cwiseProduct(self.half_wave_ ? least_norm_fixed_point(Js, Xs, Ys) : affine_fixed_point(Js, Xs, Ys));
+  unit = scale.cwiseProduct(self.half_wave_ ? least_norm_fixed_point(Js, Xs, Ys) : affine_fixed_point(Js, Xs, Ys));
+  return self.u0_ * unit;
 }
 
 }  // namespace rheo::runtime

@@ -33,8 +33,10 @@ struct PwlPeriodicState::Run {
   int settle(int m, const PwlVector& X, double t, PwlVector& w);
 
   // The first time in (0, h] at which guard row i of mode m crosses from positive to
-  // negative along w(tau) = e^{A tau} w0, or infinity.
-  double first_crossing(int m, int i, const PwlVector& w0, const PwlVector& w1, double h, double g0, double g1);
+  // negative along w(tau) = e^{A tau} w0, or infinity; W_AT the state there. w1 is the state at
+  // h, g0, g1 the guard's values and slope0, slope1 its slopes at 0 and h.
+  double first_crossing(int m, int i, const PwlVector& w0, const PwlVector& w1, double h, double g0, double g1, double slope0, double slope1,
+                        PwlVector& w_at);
 
   // Switches at time t from mode m (state w) through guard i; with sensitivities S (dw/dX0)
   // applies the saltation matrix. Returns the new mode or -1.
@@ -54,8 +56,9 @@ struct PwlPeriodicState::Run {
   // The periodic state of mode m followed without its guards (the linear state every point
   // starts from): the fixed point of X -> to_X e^{A T} w(X), by one propagator over the period
   // (of X -> -to_X e^{A T/2} w(X) for an odd branch: the symmetric state, whose stuck sliders
-  // hold no offset, as from rest).
-  PwlVector linear_periodic_state(int m, const PwlVector& scale);
+  // hold no offset, as from rest). It is proportional to the amplitude (the drive is the only
+  // forcing with every slider stuck and every gap open): kept per mode at u0 = 1.
+  PwlVector linear_periodic_state(int m);
 };
 
 }  // namespace rheo::runtime

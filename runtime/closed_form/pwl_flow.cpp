@@ -175,6 +175,23 @@ PwlVector PwlModeSystem::advance(double tau, const PwlVector& w) const {
   return out;
 }
 
+bool PwlModeSystem::nudge(double delta, const PwlVector& w, PwlVector& out) const {
+  const double x1 = reach * std::abs(delta), x2 = reach_squared * std::abs(delta);
+  if (!(x2 <= 0.05)) return false;
+  // Terms k = 1..K: ||A^k|| |delta|^k <= x2^(k-1) max(x1, x2) (||A^2m|| <= ||A^2||^m).
+  int terms = 0;
+  for (double bound = (x1 + x2) / (1.0 - x2); terms < 16 && bound > 1e-17; ++terms) bound *= x2 / (terms + 2.0);
+  if (terms == 16) return false;
+  thread_local PwlVector term, next;
+  out = w, term = w;
+  for (int k = 1; k <= terms; ++k) {
+    next.noalias() = A.lazyProduct(term);
+    term = next * (delta / k);
+    out += term;
+  }
+  return true;
+}
+
 PwlMatrix PwlModeSystem::propagator(double tau) const {
   if (!modal) return (A * tau).exp();
   thread_local ModalFactors f;  // as in advance()

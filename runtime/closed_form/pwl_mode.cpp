@@ -49,16 +49,16 @@ void split_by_eigenvalue(const MatrixXd& S, double reference, MatrixXd& range, M
 }  // namespace
 
 PwlVector PwlModeSystem::state_at(const PwlVector& X, double t, double u0, double omega) const {
-  PwlVector w = from_X * X;
-  const double s = std::sin(omega * t), c = std::cos(omega * t);
-  w.segment(nz, nh) += held_drive * (u0 * s);
+  PwlVector w = from_X.lazyProduct(X);
+  const double s = u0 * std::sin(omega * t), c = u0 * std::cos(omega * t);
+  w.segment(nz, nh) += held_drive * s;
   w[one()] = 1.0;
   w[sine()] = s;
   w[cosine()] = c;
   return w;
 }
 
-bool build_pwl_mode(const PwlBranch& branch, const PwlModeCode& code, double u0, double omega, PwlModeSystem& out, PwlModeStructure* structure) {
+bool build_pwl_mode(const PwlBranch& branch, const PwlModeCode& code, double omega, PwlModeSystem& out, PwlModeStructure* structure) {
   // A structure of its own only where none is given: its complex storage is cleared on construction (18 kB).
   std::unique_ptr<PwlModeStructure> local;
   if (structure == nullptr) local = std::make_unique<PwlModeStructure>();
@@ -131,12 +131,13 @@ bool build_pwl_mode(const PwlBranch& branch, const PwlModeCode& code, double u0,
   const int dim = out.dim, iz_m = nd, iz_v = nd + nm, ih = out.nz, i1 = out.one(), is = out.sine(), ic = out.cosine();
 
   // Generalised force on y as a functional of w: N^T [ (K P rho - k_T) u + (C P rho - c_T) u'
-  // + (M P rho - m_T) u'' - f_slip - K P h ], with u = u0 s, u' = u0 w c, u'' = -u0 w^2 s.
+  // + (M P rho - m_T) u'' - f_slip - K P h ], with u = u0 s, u' = w u0 c, u'' = -w^2 u0 s (u0 s
+  // and u0 c the drive's entries of w).
   MatrixXd Fy = MatrixXd::Zero(nq, dim);
   Fy.middleCols(ih, r) = -N.transpose() * K * P;
   Fy.col(i1) = -N.transpose() * f_slip;
-  Fy.col(is) = u0 * N.transpose() * ((K * P * rho - kT) - omega * omega * (M * P * rho - mT));
-  Fy.col(ic) = u0 * omega * N.transpose() * (C * P * rho - cT);
+  Fy.col(is) = N.transpose() * ((K * P * rho - kT) - omega * omega * (M * P * rho - mT));
+  Fy.col(ic) = omega * N.transpose() * (C * P * rho - cT);
 
   // Selections of eta_d, eta_m, v_m from w.
   MatrixXd Sd = MatrixXd::Zero(nd, dim), Sm = MatrixXd::Zero(nm, dim), Sv = MatrixXd::Zero(nm, dim);
@@ -178,7 +179,7 @@ bool build_pwl_mode(const PwlBranch& branch, const PwlModeCode& code, double u0,
   // Positions and velocities.
   MatrixXd Lx = N * Y;
   Lx.middleCols(ih, r) += P;
-  Lx.col(is) -= u0 * P * rho;
+  Lx.col(is) -= P * rho;
   const MatrixXd Lv = Lx * out.A, La = Lv * out.A;
   out.to_X.resize(2 * n, dim);
   out.to_X << Lx, Lv;
@@ -194,8 +195,8 @@ bool build_pwl_mode(const PwlBranch& branch, const PwlModeCode& code, double u0,
   MatrixXd lambda = MatrixXd::Zero(r, dim);
   if (r > 0) {
     MatrixXd residual = M * La + C * Lv + K * Lx;
-    residual.col(is) += u0 * kT - u0 * omega * omega * mT;
-    residual.col(ic) += u0 * omega * cT;
+    residual.col(is) += kT - omega * omega * mT;
+    residual.col(ic) += omega * cT;
     residual.col(i1) += f_slip;
     lambda = -(R * R.transpose()).inverse() * R * residual;
   }
@@ -205,18 +206,17 @@ bool build_pwl_mode(const PwlBranch& branch, const PwlModeCode& code, double u0,
   out.guards.resize(0, dim);
   out.transitions.clear();
   std::vector<RowVectorXd> guard_rows;
-  auto guard = [&](const RowVectorXd& row, int which, std::int8_t to, double scale) {
+  auto guard = [&](const RowVectorXd& row, int which, std::int8_t to, double scale, double per_amplitude) {
     guard_rows.push_back(row);
-    out.transitions.push_back({which, to, scale});
+    out.transitions.push_back({which, to, scale, per_amplitude});
   };
-  const double rate_scale = u0 * omega, force_scale = std::max(largest_k * u0, 1e-300);
   int rigid_index = 0;
   std::size_t switch_index = 0;
   for (std::size_t i = 0; i < branch.edges.size(); ++i) {
     const PwlEdge& e = branch.edges[i];
     const Incidence in = incidence(e, n);
     RowVectorXd elongation = in.d.transpose() * Lx;
-    elongation[is] += in.terminal * u0;
+    elongation[is] += in.terminal;
     RowVectorXd force = RowVectorXd::Zero(dim);
     const bool is_switch = switch_index < branch.switches.size() && branch.switches[switch_index] == static_cast<int>(i);
     const int which = static_cast<int>(switch_index);
@@ -230,22 +230,22 @@ bool build_pwl_mode(const PwlBranch& branch, const PwlModeCode& code, double u0,
           force = lambda.row(rigid_index++);
           RowVectorXd upper = -force, lower = force;  // fy+ - F >= 0, F + fy- >= 0
           upper[i1] += e.value, lower[i1] += e.cap_neg;
-          guard(upper, which, 1, e.value);
-          guard(lower, which, -1, e.cap_neg);
+          guard(upper, which, 1, e.value, 0.0);
+          guard(lower, which, -1, e.cap_neg, 0.0);
         } else {
           force[i1] = e.slip_force(state);
-          guard(state * elongation * out.A, which, 0, rate_scale);
+          guard(state * elongation * out.A, which, 0, 0.0, omega);  // u0 w
         }
         break;
       case PwlEdgeKind::gap:
         if (state == 0) {
           RowVectorXd upper = -elongation, lower = elongation;  // c + w/2 - e >= 0, e - (c - w/2) >= 0
           upper[i1] += e.center + e.value, lower[i1] += e.value - e.center;
-          guard(upper, which, 1, std::max(e.value, 1e-9 * u0));
-          guard(lower, which, -1, std::max(e.value, 1e-9 * u0));
+          guard(upper, which, 1, e.value, 1e-9);
+          guard(lower, which, -1, e.value, 1e-9);
         } else {
           force = lambda.row(rigid_index++);
-          guard(state * force, which, 0, force_scale);
+          guard(state * force, which, 0, 1e-300, largest_k);  // k u0
         }
         break;
     }
@@ -254,6 +254,8 @@ bool build_pwl_mode(const PwlBranch& branch, const PwlModeCode& code, double u0,
   out.guards.resize(static_cast<Eigen::Index>(guard_rows.size()), dim);
   for (std::size_t g = 0; g < guard_rows.size(); ++g) out.guards.row(static_cast<Eigen::Index>(g)) = guard_rows[g];
   out.guard_rates = out.guards * out.A;
+  out.reach = out.A.cwiseAbs().rowwise().sum().maxCoeff();
+  out.reach_squared = std::sqrt((out.A * out.A).cwiseAbs().rowwise().sum().maxCoeff());
   out.decompose(st);
   st.filled = true;
   return true;

@@ -1,8 +1,10 @@
 // One mode of a piecewise-linear branch (pwl_branch.hpp) under the drive u = u0 sin(w t): every
 // slider stuck or slipping, every gap open or closed. In a mode the branch is a linear system
 // with constant coefficients, written as the augmented linear ODE
-//   w' = A w,   w = (z, h, 1, s, c),   s = sin(w t), c = cos(w t)   (s' = w c, c' = -w s),
-// which its matrix exponential solves exactly: w(t + tau) = e^{A tau} w(t).
+//   w' = A w,   w = (z, h, 1, s, c),   s = u0 sin(w t), c = u0 cos(w t)   (s' = w c, c' = -w s),
+// which its matrix exponential solves exactly: w(t + tau) = e^{A tau} w(t). The amplitude is
+// carried by the drive's entries of w, so A (and everything built from it) depends on the
+// frequency only: one build of a mode serves every amplitude of a frequency.
 //
 // Derivation (node positions x [mm] of the internal nodes, N of them): edge laws in node
 // equilibrium give the second-order system
@@ -30,6 +32,7 @@
 
 #include <Eigen/Dense>
 
+#include <algorithm>
 #include <complex>
 #include <cstdint>
 #include <vector>
@@ -54,7 +57,9 @@ using PwlModeCode = std::vector<std::int8_t>;
 struct PwlTransition {
   int which = 0;
   std::int8_t to = 0;
-  double scale = 1.0;  // the size of the guarded quantity (N, mm or mm/s), for tolerances
+  // The size of the guarded quantity (N, mm or mm/s), for tolerances: max(scale, per_amplitude u0).
+  double scale = 1.0, per_amplitude = 0.0;
+  double size(double u0) const { return std::max(scale, per_amplitude * u0); }
 };
 
 // What building a mode computes that depends on neither the amplitude nor the frequency (only
@@ -88,7 +93,7 @@ struct PwlModeSystem {
   PwlMatrix guard_rates;                   // guards A: their time derivatives
   std::vector<PwlTransition> transitions;  // one per guard row
 
-  // The augmented state at time t [s] of node positions and velocities X.
+  // The augmented state at time t [s] of node positions and velocities X under the drive u0 sin(w t).
   PwlVector state_at(const PwlVector& X, double t, double u0, double omega) const;
 
   // The exact flow of the mode (pwl_flow.cpp): e^{A tau}, its action on a state, and
@@ -102,11 +107,19 @@ struct PwlModeSystem {
   // exponential by Pade approximation with scaling and squaring.
   PwlMatrix propagator(double tau) const;
   PwlVector advance(double tau, const PwlVector& w) const;
+  // w(tau + delta) from w = w(tau) by the Taylor series of e^{A delta}, where it reaches
+  // rounding in a few terms (|delta| ||A^2||^(1/2) <= 0.05): the tail after term K is at most
+  // (x1 + x2) x2^K / ((K + 1)! (1 - x2)) of ||w|| (infinity norms, x1 = |delta| ||A||, x2 =
+  // |delta| ||A^2||^(1/2)), and K is the first that brings it below 1e-17. False (OUT
+  // untouched) where delta is too long for that. A Newton iteration's short steps from its
+  // last iterate so cost a few products instead of a flow's exponentials.
+  bool nudge(double delta, const PwlVector& w, PwlVector& out) const;
   std::complex<double> phased_force_integral(double h, const PwlVector& w0) const;
   // Sets the modal data below (called by build_pwl_mode), the eigendecomposition taken from
   // STRUCTURE where it is filled, and stored there otherwise.
   void decompose(PwlModeStructure& structure);
 
+  double reach = 0.0, reach_squared = 0.0;  // ||A|| and ||A^2||^(1/2) (infinity norms) [1/s]
   bool modal = false;
   double drive_omega = 0.0;                        // w [rad/s]
   PwlComplexMatrix V, V_inverse;                   // nz x nz
@@ -117,12 +130,11 @@ struct PwlModeSystem {
   PwlComplexVector gap_zero, gap_plus, gap_minus;  // 1/(mu - lambda_j) for mu = 0, i w, -i w (0 where mu = lambda_j)
 };
 
-// Builds the mode `code` of `branch` for amplitude u0 [mm] and angular frequency omega
-// [rad/s]. False when the mode is indeterminate (a node or direction that nothing but
+// Builds the mode `code` of `branch` for angular frequency omega [rad/s] (every amplitude: the
+// drive's entries of w carry it). False when the mode is indeterminate (a node or direction that nothing but
 // slipping sliders and open gaps holds): such a mode cannot be physical, and the caller
 // treats reaching it as a failure of the event-driven path. STRUCTURE, when given, is used if
 // filled (it must come from the same branch and code) and filled otherwise.
-bool build_pwl_mode(const PwlBranch& branch, const PwlModeCode& code, double u0, double omega, PwlModeSystem& out,
-                    PwlModeStructure* structure = nullptr);
+bool build_pwl_mode(const PwlBranch& branch, const PwlModeCode& code, double omega, PwlModeSystem& out, PwlModeStructure* structure = nullptr);
 
 }  // namespace rheo::runtime

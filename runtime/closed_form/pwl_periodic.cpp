@@ -14,6 +14,7 @@ namespace {
 constexpr int kMaxCycles = 60;
 constexpr double kPeriodicTolerance = 1e-11;
 constexpr std::size_t kMaxSolved = 2048;  // solves kept per branch (about 1.5 kB each)
+constexpr std::size_t kMaxModes = 192;    // modes kept per branch (about 65 kB each, most of it capacity never touched)
 
 bool same_branch(const PwlBranch& a, const PwlBranch& b) {
   if (a.internal_nodes != b.internal_nodes || a.odd != b.odd || a.switches != b.switches || a.edges.size() != b.edges.size()) return false;
@@ -29,11 +30,16 @@ bool same_branch(const PwlBranch& a, const PwlBranch& b) {
 bool PwlPeriodicState::solve(const PwlBranch& branch, double u0, double omega) {
   u0_ = u0, omega_ = omega, period_ = 2.0 * std::numbers::pi / omega;
   half_wave_ = branch.odd;
-  if (!same_branch(branch, structures_branch_)) structures_.clear(), structures_branch_ = branch, solved_count_ = 0;
+  if (!same_branch(branch, structures_branch_)) structures_.clear(), structures_branch_ = branch, solved_count_ = 0, mode_count_ = 0;
+  if (mode_count_ >= kMaxModes) mode_count_ = 0;  // built again as needed: a mode is the same whenever it is built
+  active_.clear();
+  for (std::size_t i = 0; i < mode_count_; ++i)
+    if (mode_omega_[i] == omega) active_.push_back(static_cast<int>(i));
   span_ = half_wave_ ? 0.5 * period_ : period_;
   storage_ = loss_ = 0.0;
   cycles_ = 0;
-  mode_count_ = 0, pieces_.clear(), switch_phases_.clear();
+  pieces_.clear(), switch_phases_.clear();
+  last_piece_ = kNoPiece;
   Run run{*this, branch, period_ / kPwlGridPerCycle};
   for (std::size_t k = 0; k < solved_count_; ++k) {
     const std::size_t i = (solved_next_ + k) % solved_count_;
@@ -93,7 +99,7 @@ bool PwlPeriodicState::shoot(Run& run) {
   // path starts from the same linear periodic state.
   int start_mode = run.mode_index(PwlModeCode(branch.switches.size(), 0));
   if (start_mode < 0) return false;
-  PwlVector X0 = run.linear_periodic_state(start_mode, scale), X_T, last_end;
+  PwlVector X0 = run.linear_periodic_state(start_mode), X_T, last_end;
   // Newton's method on X_T(X0) - X0 = 0 in scaled coordinates, globalised: a step that does not
   // lower the residual (the events moved under it) is halved once, and if that does not help
   // either, one plain cycle is taken from where the last one ended (a lightly damped fluid
@@ -177,26 +183,33 @@ std::size_t PwlPeriodicState::piece_at_phase(double theta, double& t, double& si
 
 PwlVector PwlPeriodicState::state_at_phase(double theta, int& mode, double& sign) const {
   double t = 0.0;
-  const Piece& piece = pieces_[piece_at_phase(theta, t, sign)];
+  const std::size_t k = piece_at_phase(theta, t, sign);
+  const Piece& piece = pieces_[k];
   mode = piece.mode;
-  return modes_[static_cast<std::size_t>(mode)].advance(t - piece.t, piece.w);
+  const PwlModeSystem& s = modes_[static_cast<std::size_t>(mode)];
+  // Nudged from the last state asked for where it is in the same piece and near (the
+  // iterations of an extremum's search), else the flow from the piece's start.
+  if (k != last_piece_ || !s.nudge(t - last_t_, last_w_, last_w_)) last_w_ = s.advance(t - piece.t, piece.w);
+  last_piece_ = k, last_t_ = t;
+  return last_w_;
 }
 
-void PwlPeriodicState::slopes(double theta0, double step, int count, double* first) const {
+void PwlPeriodicState::slopes(const double* theta, int count, double offset, double* first) const {
+  const double grid = period_ / kPwlGridPerCycle;
   std::size_t current = pieces_.size();  // the piece w is in (none yet)
   double current_sign = 0.0, current_t = 0.0;
-  int propagator_mode = -1;  // the mode P was built for
-  PwlVector w;
+  PwlVector w, next;
   PwlRow slope_row;  // force A / omega of the current piece's mode
-  PwlMatrix P;       // that mode's propagator over step / omega
-  for (int j = 0; j <= count; ++j) {
+  for (int j = 0; j < count; ++j) {
     double t = 0.0, sign = 1.0;
-    const std::size_t k = piece_at_phase(theta0 + j * step, t, sign);
+    const std::size_t k = piece_at_phase(theta[j] + offset, t, sign);
     const int mode = pieces_[k].mode;
     const PwlModeSystem& s = modes_[static_cast<std::size_t>(mode)];
     if (k == current && sign == current_sign && t > current_t) {
-      if (propagator_mode != mode) P = s.propagator(step / omega_), propagator_mode = mode;
-      w = P * w;
+      const PwlGridStep& E = grid_step_[static_cast<std::size_t>(mode)];
+      const double gap = t - current_t;
+      if (E.size() != 0 && std::abs(gap - grid) <= 1e-9 * grid) next.noalias() = E.topRows(s.dim).lazyProduct(w), w = next;
+      else if (!s.nudge(gap, w, w)) w = s.advance(gap, w);
     } else {
       w = s.advance(t - pieces_[k].t, pieces_[k].w);
       slope_row = (s.force * s.A) / omega_;
@@ -219,9 +232,9 @@ void PwlPeriodicState::derivatives(double theta, double& first, double& second) 
   double sign = 1.0;
   const PwlVector w = state_at_phase(theta, m, sign);
   const PwlModeSystem& s = modes_[static_cast<std::size_t>(m)];
-  const PwlVector rate = s.A * w;
+  const PwlVector rate = s.A.lazyProduct(w);
   first = sign * s.force.dot(rate) / omega_;
-  second = sign * s.force.dot(s.A * rate) / (omega_ * omega_);
+  second = sign * s.force.dot(s.A.lazyProduct(rate)) / (omega_ * omega_);
 }
 
 }  // namespace rheo::runtime

@@ -64,11 +64,12 @@ class PwlPeriodicState {
   // At phase theta = w t [rad] of the steady cycle (any real theta): F [N], dF/dtheta, d2F/dtheta2.
   double force(double theta) const;
   void derivatives(double theta, double& first, double& second) const;
-  // dF/dtheta at theta_j = theta0 + j step for j = 0..count, into first[0..count]: the state is
-  // carried from sample to sample by one propagator of its piece (as derivatives(), to
-  // rounding), restarted where a piece or the half period ends. The force's maximum search
-  // samples its slope so (periodic_closed_form.cpp).
-  void slopes(double theta0, double step, int count, double* first) const;
+  // dF/dtheta at the phases theta[j] + offset, j < count, into first[j]: the state is carried
+  // from sample to sample within a piece (as derivatives(), to rounding), by the grid step's
+  // propagator where samples lie a grid step (T/64) apart and that propagator was built in the
+  // shooting, else by the flow, and restarted where a piece or the half period ends. The
+  // force's maximum search samples its slope so (periodic_closed_form.cpp).
+  void slopes(const double* theta, int count, double offset, double* first) const;
   // Phases in [0, 2 pi) at which a slider or gap switches in the steady cycle (kinks of F).
   const std::vector<double>& switch_phases() const { return switch_phases_; }
 
@@ -98,10 +99,15 @@ class PwlPeriodicState {
   double span_ = 0.0;       // T/2 or T [s]
   double storage_ = 0.0, loss_ = 0.0;
   int cycles_ = 0;
-  // The modes visited by this solve are the first mode_count_; the rest are storage kept from
-  // earlier solves, rebuilt in place (a deque, so references stay valid as modes are added).
+  // The modes built for structures_branch_ are the first mode_count_, each for the frequency
+  // mode_omega_ holds (a mode serves every amplitude: pwl_mode.hpp), kept across solves (the
+  // points of a grid) up to kMaxModes; the rest are storage kept from earlier solves, rebuilt in
+  // place (a deque, so references stay valid as modes are added). active_ indexes those of this
+  // solve's frequency.
   std::deque<PwlModeSystem> modes_;
+  std::vector<double> mode_omega_;
   std::size_t mode_count_ = 0;
+  std::vector<int> active_;
   // The drive-independent parts of every mode built for structures_branch_, kept across solves
   // (the points of a grid) until a solve is given another branch (new parameters).
   std::deque<std::pair<PwlModeCode, PwlModeStructure>> structures_;
@@ -110,9 +116,12 @@ class PwlPeriodicState {
   // guard rates it leads to; empty until then.
   using PwlGridStep = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, 3 * kPwlMaxDim, kPwlMaxDim>;
   std::vector<PwlGridStep> grid_step_;
+  // Per mode (as modes_): its linear periodic state at unit amplitude (Run::linear_periodic_state), empty until needed.
+  std::vector<PwlVector> linear_start_;
   std::vector<Piece> pieces_;
   std::vector<double> switch_phases_;
   PwlModeCode settle_code_, switch_code_;  // scratch of Run::settle and Run::switch_at (no allocation per event)
+  PwlVector known_, probe_;                // scratch of Run::first_crossing and Run::leaves
   // Solves of structures_branch_, the first solved_count_ (storage beyond is reused); a lookup
   // starts at solved_next_, after the last one found (a grid's points come in order).
   std::vector<Solved> solved_;
@@ -125,6 +134,12 @@ class PwlPeriodicState {
   // The state at phase theta, its mode, and the sign its force takes there (-1 in the
   // mirrored half of an odd branch).
   PwlVector state_at_phase(double theta, int& mode, double& sign) const;
+  // The last state state_at_phase found: in piece last_piece_ at time last_t_ into the span
+  // (kNoPiece: none since the solve).
+  static constexpr std::size_t kNoPiece = static_cast<std::size_t>(-1);
+  mutable std::size_t last_piece_ = kNoPiece;
+  mutable double last_t_ = 0.0;
+  mutable PwlVector last_w_;
   // The piece holding phase theta, the time t [s] into the span there and the sign as above.
   std::size_t piece_at_phase(double theta, double& t, double& sign) const;
 };

@@ -188,17 +188,18 @@ class Diagnoser {
           "element, tau = c/k = {:.4g} ms){}",
           limit->time * 1e3, outcome.unresolved.empty() ? "" : ", whose resonance the data cannot place");
       const std::optional<Trial> restart = refit_candidate(*limit, limit_outcome, 1.0 / (to_refit - refitted + 2), &trial);
-      // The column holds its limit (b -> 0): a column refit that ends above the limit's gap
-      // stopped outside its basin, and searches again from the limit's optimum.
+      // The column holds its limit (b -> 0): a column refit that does not end clearly below the
+      // limit's gap (by more than the parsimony that would choose the limit) stopped outside
+      // its basin, or found no use for its inertia, and searches again from the limit's optimum.
       const double column_gap = d_.candidates[column_at].gap_after, limit_gap = d_.candidates.back().gap_after;
-      if (!restart || stopped() || !(limit_gap < column_gap)) continue;
+      if (!restart || stopped() || !(limit_gap <= (1.0 + s_.parsimony) * column_gap)) continue;
       CandidateOutcome again;
       again.screened = screened;
       again.screened.trial = *restart;
       again.element = outcome.element;
       again.limit_of = fmt::format(
-          "the fluid column again, started from its limit's optimum (its first refit stopped at {:.4g}, above the limit's {:.4g})", column_gap,
-          limit_gap);
+          "the fluid column again, started from its limit's optimum (its first refit stopped at {:.4g}, {} the limit's {:.4g})", column_gap,
+          limit_gap < column_gap ? "above" : "not clearly below", limit_gap);
       refit_candidate(*restart, again, 1.0 / (to_refit - refitted + 2));
     }
   }

@@ -103,7 +103,7 @@ TEST_CASE("a slider in series with a Maxwell arm: the slipping mode drifts (a ze
   runtime::PwlBranch branch;
   REQUIRE(runtime::PwlBranch::build(net, net.topology().subtrees[0], branch));
   runtime::PwlModeSystem slipping;
-  REQUIRE(runtime::build_pwl_mode(branch, runtime::PwlModeCode{1}, 1.0, 10.0, slipping));
+  REQUIRE(runtime::build_pwl_mode(branch, runtime::PwlModeCode{1}, 10.0, slipping));
   CHECK(slipping.modal);  // the drift is the modal closed form at lambda = 0
   for (double u0 : {0.05, 0.3, 1.5})
     for (double f : {0.5, 5.0, 40.0}) check_against_time_stepping(net, u0, f, 2, 1e-6);
@@ -298,7 +298,7 @@ TEST_CASE("modes built once serve every point of a branch, and other parameters 
   CHECK(std::abs(loss_one - loss_other) > 1e-3 * std::abs(loss_one));  // the cap slips at 25 N, not at 60 N
 }
 
-TEST_CASE("slopes carried by propagators equal the slope at each phase, across pieces and the half period") {
+TEST_CASE("slopes carried from sample to sample equal the slope at each phase, across pieces and the half period") {
   // PwlPeriodicState::slopes against derivatives() (a modal exponential per phase) at every
   // sample, for odd branches on the half-period map and the same on the full one, over runs
   // that cross switches, the half period and the period.
@@ -315,14 +315,17 @@ TEST_CASE("slopes carried by propagators equal the slope at each phase, across p
           CAPTURE(f);
           runtime::PwlPeriodicState s;
           REQUIRE(s.solve(*branch, u0, 2.0 * std::numbers::pi * f));
-          for (const auto& [from, step, count] :
-               {std::tuple{-0.5 * std::numbers::pi, std::numbers::pi / 32.0, 32}, std::tuple{0.1, 0.37, 40}, std::tuple{-7.0, 0.05, 30}}) {
-            std::vector<double> first(static_cast<std::size_t>(count) + 1);
-            s.slopes(from, step, count, first.data());
+          // On the half cycle's grid (the grid step's propagator), off it, and with an offset.
+          for (const auto& [from, step, count, offset] :
+               {std::tuple{-0.5 * std::numbers::pi, std::numbers::pi / 32.0, 32, 0.0}, std::tuple{0.1, 0.37, 40, 0.0},
+                std::tuple{-7.0, 0.05, 30, 0.0}, std::tuple{-0.5 * std::numbers::pi, std::numbers::pi / 32.0, 40, std::numbers::pi}}) {
+            std::vector<double> first(static_cast<std::size_t>(count) + 1), phases;
+            for (int j = 0; j <= count; ++j) phases.push_back(from + j * step);
+            s.slopes(phases.data(), count + 1, offset, first.data());
             double largest = 0.0, difference = 0.0;
             for (int j = 0; j <= count; ++j) {
               double expected = 0.0, second = 0.0;
-              s.derivatives(from + j * step, expected, second);
+              s.derivatives(from + j * step + offset, expected, second);
               largest = std::max(largest, std::abs(expected));
               difference = std::max(difference, std::abs(expected - first[static_cast<std::size_t>(j)]));
             }
