@@ -1,6 +1,6 @@
 // The variable-step (IDA) backend against closed forms: a linear network with an internal mass,
 // rate-independent elements under monotone loading, the free play of a gap, the energy of a
-// quadratic dashpot, and Maxwell relaxation.
+// quadratic dashpot, Maxwell relaxation, and a weak slider's first step from rest.
 #include "runtime/dae/dae_integrator.hpp"
 #include "runtime/protocols/run_history.hpp"
 #include "runtime/protocols/harmonic.hpp"
@@ -101,6 +101,28 @@ TEST_CASE("Maxwell relaxation after a ramp matches the exact fixed-step update t
   const auto dae = history(source, drive);
   const auto exact = runtime::run_history(test::network_from(source, "m"), drive, false, runtime::SolverChoice::fixed);
   for (std::size_t i = 0; i < drive.time.size(); ++i) CHECK(std::abs(dae.force[i] - exact.force[i]) < 1e-6 * 55.0);
+}
+
+// A stiff spring, a weak slider and a dashpot in series (issue 26, differential test): at the
+// start the stuck slider's force rises at k du/dt = 5.5e4 N/s, a rate IDACalcIC leaves at 0,
+// and IDA's error test on that force (absolute tolerance 1e-8 fy) failed down to h = 4e-12 s.
+// Closed form on a ramp u = v t: stuck, a Maxwell element, F = c v (1 - exp(-k t / c)), until
+// F = fy; then the slider slips at F = fy.
+TEST_CASE("a stiff spring before a weak slider and a dashpot: F = c v (1 - exp(-k t/c)) up to fy, then fy") {
+  const double k = 1824.8, fy = 1.32, c = 6.66, v = 30.0;       // N/mm, N, N*s/mm, mm/s
+  const double slip = -(c / k) * std::log(1.0 - fy / (c * v));  // s, about 2.4e-5
+  // 1 ms samples (the differential test's; the one that failed), and 5 us samples through the slip.
+  for (const auto& [duration, samples] : {std::pair{0.1, 100}, std::pair{2e-4, 40}}) {
+    CAPTURE(duration);
+    const auto h = history("model m { series { spring (k = 1824.8 N/mm)\n slider (fy = 1.32 N)\n dashpot (c = 6.66 N*s/mm) } }",
+                           ramp(v * duration, duration, samples));
+    for (std::size_t j = 1; j < h.time.size(); ++j) {
+      CAPTURE(h.time[j]);
+      const double t = h.time[j];
+      const double exact = t < slip ? c * v * (1.0 - std::exp(-k * t / c)) : fy;
+      CHECK(h.force[j] == doctest::Approx(exact).epsilon(1e-6));
+    }
+  }
 }
 
 TEST_CASE("a failing SUNDIALS call is reported with the call and the flag name") {
