@@ -13,6 +13,7 @@
 #include <fstream>
 #include <sstream>
 #include <string>
+#include <tuple>
 #include <vector>
 
 namespace fs = std::filesystem;
@@ -201,6 +202,34 @@ TEST_CASE("repro backends 08: a lone dashpot's forces agree sample for sample be
 
 TEST_CASE("repro backends 09: the undamped mass behind a slider runs its history on both integrators") {
   CHECK(difference(history("09_undamped_inerter_harmonic", "fixed"), history("09_undamped_inerter_harmonic", "sundials")) < 2e-3);
+}
+
+// 05 on fixed steps and 09 on IDA: an undamped oscillation has no unique periodic state (05: the
+// internal mass inside the gap's play at 0.05 mm; 09 at 2 Hz: the mass behind the stuck slider,
+// from rest on IDA; fixed steps start 09 at a periodic state without free oscillation). Those
+// points end unconverged (exit 5, results written) with a warning that names the cause instead
+// of advising more cycles; the others converge.
+TEST_CASE("repro backends 05 and 09: harmonic points of an undamped oscillation are reported as not settling, naming why") {
+  for (const auto& [name, solver, stalled_amplitude] :
+       {std::tuple{"05_fixed_slow_gap_boucwen_inerter", "fixed", 0.05}, std::tuple{"09_undamped_inerter_harmonic", "sundials", -1.0}}) {
+    CAPTURE(name);
+    const BinaryRun run = bounded(name, "harmonic", solver, 120);
+    INFO(run.err);
+    REQUIRE(run.code == 5);
+    CHECK(contains(run.err, "2 harmonic point(s) did not reach steady state"));
+    CHECK(contains(run.err, "not falling"));
+    CHECK(contains(run.err, "an undamped free oscillation"));
+    CHECK_FALSE(contains(run.err, "raise cycles_max or loosen tolerance"));
+    const auto rows = harmonic_of(run);
+    REQUIRE(rows.size() == 4);
+    for (const auto& row : rows) {
+      const bool stalls = stalled_amplitude > 0 ? row[0] == stalled_amplitude : row[1] == 2.0;  // 05: 0.05 mm; 09: 2 Hz
+      CAPTURE(row[0]);
+      CAPTURE(row[1]);
+      CHECK(row.back() == (stalls ? 0.0 : 1.0));
+      CHECK(std::isfinite(row[2]));
+    }
+  }
 }
 
 // Issue 26 item 3: a bouc_wen inside a block of a chain cost the nested solve 30-40 ms a step
