@@ -150,7 +150,7 @@ DaeIntegrator::DaeIntegrator(const DaeGraph& graph, const DaeOptions& options) :
   solver_->jacobian.reset(owned(SUNDenseMatrix(n, n, ctx), "SUNDenseMatrix"));
   solver_->linear_solver.reset(owned(SUNLinSol_Dense(solver_->y.get(), solver_->jacobian.get(), ctx), "SUNLinSol_Dense"));
   check_ida(IDASetLinearSolver(mem, solver_->linear_solver.get(), solver_->jacobian.get()), "IDASetLinearSolver");
-  check_ida(IDASetJacFn(mem, Callbacks::jacobian), "IDASetJacFn");
+  use_own_jacobian(true);
   check_ida(IDASetNonlinConvCoef(mem, options_.newton_tolerance), "IDASetNonlinConvCoef");
   if (layout_.switch_forces > 0) {
     check_ida(IDARootInit(mem, 2 * layout_.switch_forces, Callbacks::roots), "IDARootInit");
@@ -269,6 +269,10 @@ void DaeIntegrator::residual(double t, const double* y, const double* yp, double
     const double loading = z * rate > 0.0 ? 1.0 : 0.0;
     r[z0 + b] = yp[z0 + b] - (k / fy) * rate * (1.0 - std::pow(std::abs(z), n) * loading);
   }
+}
+
+void DaeIntegrator::use_own_jacobian(bool own) {
+  sundials::check_ida(IDASetJacFn(solver_->ida.get(), own ? Callbacks::jacobian : nullptr), "IDASetJacFn");
 }
 
 // J = dr/dy + cj dr/dy' by differences, each part with its own increment. IDA's built-in

@@ -127,6 +127,8 @@ class DaeIntegrator {
   double solve_to(double t_stop);
   void collect_statistics();
   void stick_reversed_sliders();
+  // IDA's Newton matrix from jacobian() (true), or from IDA's own difference quotient (false).
+  void use_own_jacobian(bool own);
 
   const DaeGraph& graph_;
   DaeOptions options_;
