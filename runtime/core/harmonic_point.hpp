@@ -3,6 +3,9 @@
 // that finds it is protocols/harmonic.hpp.
 #pragma once
 
+#include <algorithm>
+#include <cmath>
+
 #include "runtime/core/cycle_measures.hpp"
 #include "lang/protocol_settings.hpp"
 
@@ -36,6 +39,27 @@ struct HarmonicPoint {
   int cycles = 0;  // simulated cycles (0: closed form; event-driven branches: the cycles their shooting followed)
   bool converged = false;
   double residual = 0.0;  // estimated relative distance from the periodic state
+  // Not converged, and the state's change over a cycle, over the last quarter of the cycles, is
+  // at least half what it was over the second quarter (StallWatch): the state is
+  // not approaching a periodic one within reach (an undamped free oscillation, which has no
+  // unique periodic state, or a mode far slower than cycles_max periods).
+  bool stalled = false;
+};
+
+// Watches the state's change over each cycle of a point for `stalled` (at least 4 cycles): the
+// geometric means of the changes over the second and over the last quarter of the cycles (a
+// mean of logarithms, so that the jump of a skipped geometric tail does not dominate).
+struct StallWatch {
+  double second_quarter = 0.0, last_quarter = 0.0;  // sums of ln(change)
+  int second_count = 0, last_count = 0;
+  void add(int cycle, int max_cycles, double change) {
+    const double log_change = std::log(std::max(change, 1e-300));
+    if (4 * cycle > max_cycles && 2 * cycle <= max_cycles) second_quarter += log_change, ++second_count;
+    if (4 * cycle > 3 * max_cycles) last_quarter += log_change, ++last_count;
+  }
+  bool stalled(int max_cycles) const {
+    return max_cycles >= 4 && second_count > 0 && last_count > 0 && last_quarter / last_count >= std::log(0.5) + second_quarter / second_count;
+  }
 };
 
 }  // namespace rheo::runtime

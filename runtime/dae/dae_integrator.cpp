@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <stdexcept>
 #include <utility>
 
@@ -22,6 +23,8 @@ namespace {
 struct Callbacks {
   static int residual(realtype t, N_Vector y, N_Vector yp, N_Vector r, void* data) noexcept;
   static int roots(realtype t, N_Vector y, N_Vector yp, realtype* g, void* data) noexcept;
+  static int jacobian(realtype t, realtype cj, N_Vector y, N_Vector yp, N_Vector r, SUNMatrix jacobian, void* data, N_Vector, N_Vector,
+                      N_Vector) noexcept;
 };
 
 }  // namespace
@@ -60,6 +63,17 @@ int Callbacks::residual(realtype t, N_Vector y, N_Vector yp, N_Vector r, void* d
   }
 }
 
+int Callbacks::jacobian(realtype t, realtype cj, N_Vector y, N_Vector yp, N_Vector r, SUNMatrix jacobian, void* data, N_Vector, N_Vector,
+                        N_Vector) noexcept {
+  try {
+    self(data)->jacobian(t, cj, N_VGetArrayPointer(y), N_VGetArrayPointer(yp), N_VGetArrayPointer(r), SUNDenseMatrix_Data(jacobian));
+    return 0;
+  } catch (...) {
+    self(data)->store_error(std::current_exception());
+    return -1;
+  }
+}
+
 int Callbacks::roots(realtype t, N_Vector y, N_Vector yp, realtype* g, void* data) noexcept {
   try {
     self(data)->roots(t, N_VGetArrayPointer(y), N_VGetArrayPointer(yp), g);
@@ -90,6 +104,10 @@ DaeIntegrator::DaeIntegrator(const DaeGraph& graph, const DaeOptions& options) :
   y_saved_ = y_;
   yp_saved_ = y_;
   root_values_.assign(roots, 0.0);
+  y_probe_ = y_;
+  yp_probe_ = y_;
+  r_probe_ = y_;
+  scale_ = y_;
   root_direction_.assign(roots, 0);
   roots_found_.assign(roots, 0);
   if (n == 0) return;  // purely algebraic: forces follow the drive directly
@@ -119,6 +137,7 @@ DaeIntegrator::DaeIntegrator(const DaeGraph& graph, const DaeOptions& options) :
       case DaeLayout::Block::bouc_wen_state: break;
     }
     atol[i] = rtol * scale;
+    at(scale_, i) = scale;
   }
   solver_->ida.reset(owned(IDACreate(ctx), "IDACreate"));
   void* mem = solver_->ida.get();
@@ -131,6 +150,7 @@ DaeIntegrator::DaeIntegrator(const DaeGraph& graph, const DaeOptions& options) :
   solver_->jacobian.reset(owned(SUNDenseMatrix(n, n, ctx), "SUNDenseMatrix"));
   solver_->linear_solver.reset(owned(SUNLinSol_Dense(solver_->y.get(), solver_->jacobian.get(), ctx), "SUNLinSol_Dense"));
   check_ida(IDASetLinearSolver(mem, solver_->linear_solver.get(), solver_->jacobian.get()), "IDASetLinearSolver");
+  use_own_jacobian(true);
   check_ida(IDASetNonlinConvCoef(mem, options_.newton_tolerance), "IDASetNonlinConvCoef");
   if (layout_.switch_forces > 0) {
     check_ida(IDARootInit(mem, 2 * layout_.switch_forces, Callbacks::roots), "IDARootInit");
@@ -248,6 +268,44 @@ void DaeIntegrator::residual(double t, const double* y, const double* yp, double
     const double rate = elongation_rate(yp, drive, edge);
     const double loading = z * rate > 0.0 ? 1.0 : 0.0;
     r[z0 + b] = yp[z0 + b] - (k / fy) * rate * (1.0 - std::pow(std::abs(z), n) * loading);
+  }
+}
+
+void DaeIntegrator::use_own_jacobian(bool own) {
+  sundials::check_ida(IDASetJacFn(solver_->ida.get(), own ? Callbacks::jacobian : nullptr), "IDASetJacFn");
+}
+
+// J = dr/dy + cj dr/dy' by differences, each part with its own increment. IDA's built-in
+// difference quotient moves y_j by s and y'_j by cj s together, and cj = alpha/h grows as the
+// step shrinks: y'_j then moves by far more than a rate's own size, and a law that is non-linear
+// in a rate (the quadratic dashpot, whose tangent 2 cq |v| falls to cq v_eps at a reversal) gets
+// the slope of a long secant. With that matrix the corrector converged ever slower as h fell,
+// down to h = 1e-25 s (tests/corpus/repro/backends 04). Increments: sqrt(eps) times the
+// unknown's size or its tolerance scale, and for y' that scale over the drive's time scale.
+void DaeIntegrator::jacobian(double t, double cj, const double* y, const double* yp, const double* r, double* matrix) {
+  const int n = layout_.size();
+  const double root_eps = std::sqrt(std::numeric_limits<double>::epsilon());
+  const double per_second = options_.velocity_scale / options_.length_scale;  // 1/s: omega, or 1 / the history's duration
+  std::copy(y, y + n, y_probe_.begin());
+  std::copy(yp, yp + n, yp_probe_.begin());
+  for (int j = 0; j < n; ++j) {
+    double* column = matrix + static_cast<std::ptrdiff_t>(j) * n;
+    const double scale = at(scale_, j);
+    double& yj = at(y_probe_, j);
+    yj = y[j] + root_eps * std::max(std::abs(y[j]), scale);
+    const double dy = yj - y[j];
+    residual(t, y_probe_.data(), yp_probe_.data(), r_probe_.data());
+    for (int i = 0; i < n; ++i) column[i] = (at(r_probe_, i) - r[i]) / dy;
+    yj = y[j];
+    // Rates of switch forces appear in no residual; those of positions only in Bouc-Wen laws.
+    const DaeLayout::Block block = layout_.block_of(j);
+    if (block == DaeLayout::Block::switch_force || (block == DaeLayout::Block::position && layout_.bouc_wen_states == 0)) continue;
+    double& ypj = at(yp_probe_, j);
+    ypj = yp[j] + root_eps * std::max(std::abs(yp[j]), scale * per_second);
+    const double dyp = ypj - yp[j];
+    residual(t, y_probe_.data(), yp_probe_.data(), r_probe_.data());
+    for (int i = 0; i < n; ++i) column[i] += cj * (at(r_probe_, i) - r[i]) / dyp;
+    ypj = yp[j];
   }
 }
 

@@ -102,6 +102,9 @@ class DaeIntegrator {
   // Residual and root functions, called by the C trampolines.
   void residual(double t, const double* y, const double* yp, double* r);
   void roots(double t, const double* y, const double* yp, double* g);
+  // The Newton matrix dr/dy + cj dr/dy' at (t, y, y') with residual r there, into MATRIX (n x n,
+  // column-major, n = the number of unknowns).
+  void jacobian(double t, double cj, const double* y, const double* yp, const double* r, double* matrix);
   // Keeps an exception thrown inside a callback until the C call returns.
   void store_error(std::exception_ptr error) { error_ = std::move(error); }
 
@@ -124,6 +127,8 @@ class DaeIntegrator {
   double solve_to(double t_stop);
   void collect_statistics();
   void stick_reversed_sliders();
+  // IDA's Newton matrix from jacobian() (true), or from IDA's own difference quotient (false).
+  void use_own_jacobian(bool own);
 
   const DaeGraph& graph_;
   DaeOptions options_;
@@ -140,8 +145,11 @@ class DaeIntegrator {
   std::vector<double> y_, yp_;
   mutable std::vector<double> rate_, acceleration_, force_;  // scratch per residual call
   std::vector<double> y_saved_, yp_saved_, root_values_;     // scratch of stick_reversed_sliders
+  std::vector<double> y_probe_, yp_probe_, r_probe_;         // scratch of jacobian
+  std::vector<double> scale_;                                // each unknown's scale (its absolute tolerance / rtol)
   std::vector<int> root_direction_, roots_found_;            // scratch of restart and solve_to
   double time_ = 0.0;
+  bool first_step_ = false;  // the next IDA step is the first since a restart (solve_to)
   long events_ = 0;
   DaeStatistics totals_;  // steps and residual evaluations before the last re-initialisation
   std::exception_ptr error_;

@@ -143,6 +143,7 @@ HarmonicPoint harmonic_point(const Network& network, double amplitude, double fr
   point.amplitude = amplitude;
   point.frequency = frequency;
   double previous_change = std::numeric_limits<double>::infinity();
+  StallWatch stall;
   for (int cycle = 1; cycle <= options.max_cycles; ++cycle) {
     cycle_start = integrator.state();  // reuses the capacity
     const double t0 = (cycle - 1) * period;
@@ -165,6 +166,8 @@ HarmonicPoint harmonic_point(const Network& network, double amplitude, double fr
       point.converged = true;
       break;
     }
+    stall.add(cycle, options.max_cycles, change);
+    point.stalled = cycle == options.max_cycles && stall.stalled(options.max_cycles);
   }
   if (statistics) *statistics = integrator.statistics();
   return point;

@@ -132,6 +132,7 @@ HarmonicPoint steady_point(const Network& network, double amplitude, double freq
   point.frequency = frequency;
   double previous_change = std::numeric_limits<double>::infinity();
   double previous_rate = 0.0;
+  StallWatch stall;
   int first_check = 1;  // cycles after a skip that end before this one neither converge nor skip
   for (int cycle = 1; cycle <= options.max_cycles; ++cycle) {
     cycle_start.values = state.values;
@@ -168,6 +169,8 @@ HarmonicPoint steady_point(const Network& network, double amplitude, double freq
       point.converged = true;
       break;
     }
+    if (cycle >= first_check) stall.add(cycle, options.max_cycles, change);  // not the cycle a skip ended
+    point.stalled = cycle == options.max_cycles && stall.stalled(options.max_cycles);
     if (cycle >= first_check && steady_contraction(rate, previous_rate)) {
       skip_geometric_tail(cycle_start.values, rate, state.values);
       first_check = cycle + 2;

@@ -89,7 +89,14 @@ std::string harmonic_method(const Network& network, const HarmonicOptions& optio
 std::string harmonic_notes(const Network& network, const std::vector<HarmonicPoint>& points, const std::vector<double>& amplitudes) {
   std::string notes;
   for (const auto& point : points)
-    if (!point.converged)
+    if (!point.converged && point.stalled)
+      notes += fmt::format(
+          "warning: amplitude {:g} mm, frequency {:g} Hz did not reach steady state in {} cycles (residual {:.2e}, not falling: the "
+          "state's change over a cycle did not halve from the second to the last quarter of the cycles); an undamped free oscillation, "
+          "such as a mass on springs with no dashpot or slipping friction in its loop, has no unique periodic state: add damping to it, "
+          "or raise cycles_max if a mode is that slow\n",
+          point.amplitude, point.frequency, point.cycles, point.residual);
+    else if (!point.converged)
       notes += fmt::format(
           "warning: amplitude {:g} mm, frequency {:g} Hz did not reach steady state in {} cycles (residual {:.2e}); "
           "raise cycles_max or loosen tolerance\n",

@@ -10,8 +10,10 @@
 #include <cctype>
 #include <cmath>
 #include <filesystem>
+#include <fstream>
 #include <sstream>
 #include <string>
+#include <tuple>
 #include <vector>
 
 namespace fs = std::filesystem;
@@ -132,6 +134,53 @@ TEST_CASE("repro backends 05 and 06: check refuses where the run would use IDA, 
   check_refused_on_ida("06_fixed_slow_boucwen_yeoh_friction", "sits inside a block of a network with sliders, gaps or friction elements");
 }
 
+// 04: IDA's own difference-quotient Newton matrix moved the dashpot's rate by cj s, far beyond
+// the rate itself once steps shrank at a reversal, and its corrector failed down to h = 1e-25 s
+// (dae_integrator.cpp, jacobian). The reference: fixed steps on the same piecewise-linear drive
+// at 16 and 32 steps per sample, extrapolated as 2 F(32) - F(16) (the quadratic dashpot's
+// constant-rate step is first order; at the file's 1 ms samples fixed steps differ by 3e-2 of
+// max |F|). Observed: 1.2e-4 of max |F| (3.9e-5 from 32 and 64).
+TEST_CASE("repro backends 04: a spring in series with a quadratic_dashpot runs on IDA through rate reversals") {
+  const BinaryRun ida = bounded("04_spring_quadratic_dashpot_sundials", "history", "sundials", 30);
+  INFO(ida.err);
+  REQUIRE(ida.code == 0);
+  const Rows a = history_of(ida);
+  REQUIRE(a.force.size() == 1001);
+  for (double f : a.force) REQUIRE(std::isfinite(f));
+  const auto dir = rheo::test::scratch_directory("repro04");
+  auto fixed = [&](int r) {
+    const auto drive = dir / fmt::format("drive_{}.csv", r);
+    {
+      std::ofstream out(drive);
+      out << "time [s],displacement [mm]\n" << fmt::format("{},{}\n", a.time[0], a.displacement[0]);
+      for (std::size_t k = 1; k < a.time.size(); ++k)
+        for (int j = 1; j <= r; ++j)
+          out << fmt::format("{},{}\n", a.time[k - 1] + (a.time[k] - a.time[k - 1]) * j / r,
+                             a.displacement[k - 1] + (a.displacement[k] - a.displacement[k - 1]) * j / r);
+    }
+    const auto model = dir / fmt::format("m_{}.rheo", r);
+    std::ofstream(model) << fmt::format(
+        "model m {{\n  series {{\n    spring (k = 25.5412 N/mm)\n    quadratic_dashpot (cq = 0.00625861 N*s^2/mm^2)\n  }}\n}}\n"
+        "simulate {{\n  history file = \"{}\"\n}}\n",
+        drive.string());
+    const BinaryRun run = run_rheo(fmt::format("simulate {} --solver fixed -o -", model.string()));
+    INFO(run.err);
+    REQUIRE(run.code == 0);
+    Rows rows = history_of(run);
+    REQUIRE(rows.force.size() == 1000 * static_cast<std::size_t>(r) + 1);
+    return rows;
+  };
+  const Rows coarse = fixed(16), fine = fixed(32);
+  double scale = 0.0, worst = 0.0;
+  for (std::size_t k = 0; k < a.force.size(); ++k) {
+    const double reference = 2.0 * fine.force[32 * k] - coarse.force[16 * k];
+    scale = std::max(scale, std::abs(a.force[k]));
+    worst = std::max(worst, std::abs(a.force[k] - reference));
+  }
+  CHECK(worst / scale < 5e-4);
+  std::filesystem::remove_all(dir);
+}
+
 // Fixed steps are first order in nested dashpots at the file's 1 ms samples: observed 3.4e-4
 // (07), 1.3e-4 (10) and 3.5e-4 (09) of max |F|.
 TEST_CASE("repro backends 07 and 10: the histories of bouc_wen + Maxwell and of depth-8 nesting agree between the integrators") {
@@ -153,6 +202,34 @@ TEST_CASE("repro backends 08: a lone dashpot's forces agree sample for sample be
 
 TEST_CASE("repro backends 09: the undamped mass behind a slider runs its history on both integrators") {
   CHECK(difference(history("09_undamped_inerter_harmonic", "fixed"), history("09_undamped_inerter_harmonic", "sundials")) < 2e-3);
+}
+
+// 05 on fixed steps and 09 on IDA: an undamped oscillation has no unique periodic state (05: the
+// internal mass inside the gap's play at 0.05 mm; 09 at 2 Hz: the mass behind the stuck slider,
+// from rest on IDA; fixed steps start 09 at a periodic state without free oscillation). Those
+// points end unconverged (exit 5, results written) with a warning that names the cause instead
+// of advising more cycles; the others converge.
+TEST_CASE("repro backends 05 and 09: harmonic points of an undamped oscillation are reported as not settling, naming why") {
+  for (const auto& [name, solver, stalled_amplitude] :
+       {std::tuple{"05_fixed_slow_gap_boucwen_inerter", "fixed", 0.05}, std::tuple{"09_undamped_inerter_harmonic", "sundials", -1.0}}) {
+    CAPTURE(name);
+    const BinaryRun run = bounded(name, "harmonic", solver, 120);
+    INFO(run.err);
+    REQUIRE(run.code == 5);
+    CHECK(contains(run.err, "2 harmonic point(s) did not reach steady state"));
+    CHECK(contains(run.err, "not falling"));
+    CHECK(contains(run.err, "an undamped free oscillation"));
+    CHECK_FALSE(contains(run.err, "raise cycles_max or loosen tolerance"));
+    const auto rows = harmonic_of(run);
+    REQUIRE(rows.size() == 4);
+    for (const auto& row : rows) {
+      const bool stalls = stalled_amplitude > 0 ? row[0] == stalled_amplitude : row[1] == 2.0;  // 05: 0.05 mm; 09: 2 Hz
+      CAPTURE(row[0]);
+      CAPTURE(row[1]);
+      CHECK(row.back() == (stalls ? 0.0 : 1.0));
+      CHECK(std::isfinite(row[2]));
+    }
+  }
 }
 
 // Issue 26 item 3: a bouc_wen inside a block of a chain cost the nested solve 30-40 ms a step

@@ -1,6 +1,6 @@
 // The variable-step (IDA) backend against closed forms: a linear network with an internal mass,
 // rate-independent elements under monotone loading, the free play of a gap, the energy of a
-// quadratic dashpot, and Maxwell relaxation.
+// quadratic dashpot, Maxwell relaxation, and a weak slider's first step from rest.
 #include "runtime/dae/dae_integrator.hpp"
 #include "runtime/protocols/run_history.hpp"
 #include "runtime/protocols/harmonic.hpp"
@@ -101,6 +101,81 @@ TEST_CASE("Maxwell relaxation after a ramp matches the exact fixed-step update t
   const auto dae = history(source, drive);
   const auto exact = runtime::run_history(test::network_from(source, "m"), drive, false, runtime::SolverChoice::fixed);
   for (std::size_t i = 0; i < drive.time.size(); ++i) CHECK(std::abs(dae.force[i] - exact.force[i]) < 1e-6 * 55.0);
+}
+
+// A stiff spring, a weak slider and a dashpot in series (issue 26, differential test): at the
+// start the stuck slider's force rises at k du/dt = 5.5e4 N/s, a rate IDACalcIC leaves at 0,
+// and IDA's error test on that force (absolute tolerance 1e-8 fy) failed down to h = 4e-12 s.
+// Closed form on a ramp u = v t: stuck, a Maxwell element, F = c v (1 - exp(-k t / c)), until
+// F = fy; then the slider slips at F = fy.
+TEST_CASE("a stiff spring before a weak slider and a dashpot: F = c v (1 - exp(-k t/c)) up to fy, then fy") {
+  const double k = 1824.8, fy = 1.32, c = 6.66, v = 30.0;       // N/mm, N, N*s/mm, mm/s
+  const double slip = -(c / k) * std::log(1.0 - fy / (c * v));  // s, about 2.4e-5
+  // 1 ms samples (the differential test's; the one that failed), and 5 us samples through the slip.
+  for (const auto& [duration, samples] : {std::pair{0.1, 100}, std::pair{2e-4, 40}}) {
+    CAPTURE(duration);
+    const auto h = history("model m { series { spring (k = 1824.8 N/mm)\n slider (fy = 1.32 N)\n dashpot (c = 6.66 N*s/mm) } }",
+                           ramp(v * duration, duration, samples));
+    for (std::size_t j = 1; j < h.time.size(); ++j) {
+      CAPTURE(h.time[j]);
+      const double t = h.time[j];
+      const double exact = t < slip ? c * v * (1.0 - std::exp(-k * t / c)) : fy;
+      CHECK(h.force[j] == doctest::Approx(exact).epsilon(1e-6));
+    }
+  }
+}
+
+// A quadratic dashpot in series with a stiff spring, driven from rest at a constant rate v: its
+// rate w rises from 0 like sqrt(t), and Newton from the tangent cq v_eps at rest overshoots
+// (issue 26: IDA failed at t = 1e-9 s with rheo's own Newton matrix; it falls back to IDA's
+// secant). Closed form: F = cq w^2 and 2 cq w w' = k (v - w), so
+// t(w) = (2 cq / k) (-w - v ln(1 - w/v)), inverted by bisection.
+TEST_CASE("a quadratic dashpot behind a stiff spring from rest: t(w) = (2 cq/k) (-w - v ln(1 - w/v)), F = cq w^2") {
+  const double k = 4163.22, cq = 0.00913203, v = 30.0;  // N/mm, N*s^2/mm^2, mm/s
+  const auto h = history("model m { series { quadratic_dashpot (cq = 0.00913203 N*s^2/mm^2)\n spring (k = 4163.22 N/mm) } }",
+                         ramp(v * 0.1, 0.1, 100));
+  const auto time_at = [&](double w) { return 2.0 * cq / k * (-w - v * std::log1p(-w / v)); };
+  for (std::size_t j = 1; j < h.time.size(); ++j) {
+    double lo = 0.0, hi = v;
+    for (int i = 0; i < 200; ++i) (time_at(0.5 * (lo + hi)) < h.time[j] ? lo : hi) = 0.5 * (lo + hi);
+    const double w = 0.5 * (lo + hi);
+    CAPTURE(h.time[j]);
+    CHECK(h.force[j] == doctest::Approx(cq * w * w).epsilon(1e-5));  // observed 3.4e-6 (IDA's rtol 1e-8, global)
+  }
+}
+
+// The same chain on the differential test's two-tone drive (from rest at 30 mm/s, 1 ms
+// samples), where rheo's own Newton matrix failed at t = 1e-9 s and the fallback to IDA's
+// secant runs it: against fixed steps at 64 and 128 steps per sample, extrapolated (2 F(128) -
+// F(64); the quadratic dashpot's constant-rate step is first order). Observed 1.6e-5 of max |F|.
+TEST_CASE("a quadratic dashpot behind a stiff spring on a two-tone drive from rest agrees with extrapolated fixed steps") {
+  const std::string source = "model m { series { quadratic_dashpot (cq = 0.00913203 N*s^2/mm^2)\n spring (k = 4163.22 N/mm) } }";
+  const auto network = test::network_from(source, "m");
+  runtime::Drive samples{{0.0}, {0.0}};
+  for (int k = 1; k <= 100; ++k) {
+    const double t = 1e-3 * k;
+    samples.time.push_back(t);
+    samples.displacement.push_back(0.3 * std::sin(2 * std::numbers::pi * 10 * t) + 0.05 * std::sin(2 * std::numbers::pi * 37 * t));
+  }
+  auto drive = [&](int r) {  // the same piecewise-linear drive, r samples per interval
+    if (r == 1) return samples;
+    runtime::Drive d{{0.0}, {0.0}};
+    for (std::size_t k = 1; k < samples.time.size(); ++k)
+      for (int i = 1; i <= r; ++i) {
+        d.time.push_back(samples.time[k - 1] + 1e-3 * i / r);
+        d.displacement.push_back(samples.displacement[k - 1] + (samples.displacement[k] - samples.displacement[k - 1]) * i / r);
+      }
+    return d;
+  };
+  const auto ida = history(source, drive(1));
+  const auto coarse = runtime::run_history(network, drive(64), false, runtime::SolverChoice::fixed);
+  const auto fine = runtime::run_history(network, drive(128), false, runtime::SolverChoice::fixed);
+  double scale = 0.0, worst = 0.0;
+  for (std::size_t j = 0; j < ida.time.size(); ++j) {
+    scale = std::max(scale, std::abs(ida.force[j]));
+    worst = std::max(worst, std::abs(ida.force[j] - (2.0 * fine.force[128 * j] - coarse.force[64 * j])));
+  }
+  CHECK(worst / scale < 1e-4);
 }
 
 TEST_CASE("a failing SUNDIALS call is reported with the call and the flag name") {

@@ -132,3 +132,32 @@ TEST_CASE("IDA failing on a yeoh that softens in series names the yeoh and its l
   const auto fixed = runtime::simulate_harmonic_point(network, 0.5, 1.0, options);
   CHECK(dae.measures.stiffness == doctest::Approx(fixed.measures.stiffness).epsilon(1e-5));
 }
+
+// Reproducer 09 of tests/corpus/repro/backends (issue 26): an undamped mass behind a slider. At
+// 2 Hz the slider sticks and the mass swings on its spring; IDA starts from rest, the free
+// oscillation never decays, and a periodic state that is unique does not exist. The point ends
+// unconverged and `stalled` (its change over a cycle does not halve); a Maxwell arm settling
+// geometrically (e^(-T/tau) = 0.61 a cycle) but short of its cycles is not stalled.
+TEST_CASE("IDA harmonic point: an undamped free oscillation is stalled, a slow geometric settling is not") {
+  runtime::HarmonicOptions options;
+  options.solver = runtime::SolverChoice::sundials;
+  options.steps_per_cycle = 64;
+  options.max_cycles = 40;
+  const auto undamped = test::network_from(
+      "model m { maxwell (k = 123.874 N/mm, tau = 20.4112 ms)\n series { slider (fy = 1.67762 N)\n"
+      " series { spring (k = 115086 N/m)\n inerter (b = 11.7486 kg) } } }",
+      "m");
+  const auto swinging = runtime::simulate_harmonic_point(undamped, 0.4, 2.0, options);
+  CHECK_FALSE(swinging.converged);
+  CHECK(swinging.stalled);
+  CHECK(swinging.residual > 1e-2);
+  const auto slow = test::network_from("model m { spring (k = 10 N/mm)\n maxwell (k = 100 N/mm, tau = 100 ms) }", "m");
+  options.max_cycles = 8;
+  const auto settling = runtime::simulate_harmonic_point(slow, 0.4, 20.0, options);
+  CHECK_FALSE(settling.converged);
+  CHECK_FALSE(settling.stalled);
+  options.max_cycles = 200;
+  const auto settled = runtime::simulate_harmonic_point(slow, 0.4, 20.0, options);
+  CHECK(settled.converged);
+  CHECK_FALSE(settled.stalled);
+}

@@ -374,3 +374,25 @@ TEST_CASE("time stepping at 16 steps per cycle: a Zener model's first harmonic i
     CHECK(std::abs(ke + k * iwt / (1.0 + iwt) - sampled) > 1e-4 * std::abs(sampled));
   }
 }
+
+// Reproducer 05 of tests/corpus/repro/backends (issue 26) on fixed steps: within the gap's play
+// at 0.05 mm the internal mass swings on the spring and a bouc_wen whose loop closes at small
+// amplitude, undamped: the point ends unconverged and `stalled`; at 0.4 mm the gap closes, the
+// bouc_wen dissipates, and the point converges.
+TEST_CASE("fixed steps: an undamped swing inside a gap's play is stalled, not short of cycles") {
+  const auto network = test::network_from(
+      "model m { series { parallel { spring (k = 174.508 N/mm)\n"
+      " series { bouc_wen (k = 192.416 N/mm, n = 4.07668, uy = 53.6044 um)\n inerter (b = 1.22431 kg) } }\n"
+      " gap (width = 0.0799136 mm) } }",
+      "m");
+  HarmonicOptions options;
+  options.solver = runtime::SolverChoice::fixed;
+  options.steps_per_cycle = 256;
+  options.max_cycles = 60;
+  const auto swinging = runtime::simulate_harmonic_point(network, 0.05, 2.0, options);
+  CHECK_FALSE(swinging.converged);
+  CHECK(swinging.stalled);
+  const auto settled = runtime::simulate_harmonic_point(network, 0.4, 20.0, options);
+  CHECK(settled.converged);
+  CHECK_FALSE(settled.stalled);
+}
