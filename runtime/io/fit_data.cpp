@@ -33,7 +33,17 @@ HistoryData history_data_from_table(const Table& table, const DataReading& readi
 }
 
 FitDataSet read_fit_data(const std::string& path, double weight, const lang::SourceLocation* named_at, const DataReading& reading) {
-  if (is_hdf5_name(path)) return {path, weight, read_hdf5_history(path, named_at, reading.columns), {}, reading.force_offset};
+  if (is_hdf5_name(path)) {
+    const char* unused = !reading.step.empty()                                  ? "step (of a TRIOS export)"
+                         : reading.columns.area || reading.columns.height       ? "area and height (of material data)"
+                         : reading.amplitude || reading.strain_amplitude        ? "amplitude (of a harmonic table)"
+                         : reading.duplicates != lang::DuplicatePoints::average ? "duplicates (of a harmonic table)"
+                                                                                : nullptr;
+    if (unused)
+      throw DataError(fmt::format("{}: error: an HDF5 file is read as a history, so the data line's {} does not apply; remove it",
+                                  lang::printable(path), unused));
+    return {path, weight, read_hdf5_history(path, named_at, reading.columns), {}, reading.force_offset};
+  }
   const Table table = read_table(path, named_at, reading.step);
   FitDataSet set{path, weight, HarmonicData{}, {table.step, false, {}, {}}, reading.force_offset};
   const bool amplitude = find_role(table, Role::amplitude, reading.columns) >= 0 || reading.amplitude || reading.strain_amplitude;

@@ -69,7 +69,7 @@ TEST_CASE("check_protocol: duplicates and missing required settings") {
   CHECK(errors[1].message.find("harmonic requires the setting 'frequency'") != std::string::npos);
 }
 
-TEST_CASE("a history's columns: time and displacement by name or HDF5 path, decoded; other roles and malformed pairs refused") {
+TEST_CASE("a history's columns: time and displacement by name or HDF5 path, decoded: other roles and malformed pairs refused") {
   std::vector<Diagnostic> errors;
   const auto columns = check(ProtocolKind::history, "columns = \"time = /rig/t [ms], displacement = weg\"", errors);
   REQUIRE(columns);

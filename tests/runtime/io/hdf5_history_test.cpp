@@ -110,7 +110,7 @@ TEST_CASE("an HDF5 history at named paths, float32, integers, N x 1, chunked or 
   }
 }
 
-TEST_CASE("units on the line stand in for missing attributes; without either, an error with advice") {
+TEST_CASE("units on the line stand in for missing attributes: without either, an error with advice") {
   const auto file = (scratch() / "bare.h5").string();
   write_file(file, {{.path = "/t", .values = ramp(10, 0.1)}, {.path = "/u", .values = wave(10)}});
   const Read r = read_all(file, named({{Role::time, "/t [s]"}, {Role::displacement, "/u [cm]"}}), false, 4);
