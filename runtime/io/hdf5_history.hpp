@@ -4,7 +4,7 @@
 // vector), read in pieces of at most kPieceSamples (hyperslabs): memory does not grow with the
 // history's length.
 //
-// Which datasets: those the reading names for a role (`columns = "time = /rig/t"`: a path, from
+// Which datasets (found by hdf5_layout.hpp): those the reading names for a role (`columns = "time = /rig/t"`: a path, from
 // the root when it does not start with '/'), else the first dataset of the root group whose name
 // is one of the role's usual names (column_roles.hpp) and whose unit suits it: rheo's own result
 // (/time, /displacement, /force) reads back. The unit of each: written after the path on the
@@ -23,6 +23,7 @@
 #include "lang/source_location.hpp"
 #include "runtime/io/column_roles.hpp"
 #include "runtime/io/fit_data.hpp"
+#include "runtime/io/hdf5_layout.hpp"
 #include "runtime/io/hdf5_owners.hpp"
 #include "runtime/io/history_stream.hpp"
 
@@ -62,15 +63,14 @@ class Hdf5HistoryReader {
   std::uint64_t file_size() const { return file_bytes_; }
 
  private:
-  struct Column;
-  void read(Column& column, std::uint64_t start, std::size_t count, std::vector<double>& out);
-  [[noreturn]] void value_fault(const Column& column, std::uint64_t index, const std::string& what, const std::string& advice);
+  void read(Hdf5Column& column, std::uint64_t start, std::size_t count, std::vector<double>& out);
+  [[noreturn]] void value_fault(const Hdf5Column& column, std::uint64_t index, const std::string& what, const std::string& advice);
 
   std::string path_;
   bool from_rest_;
   std::size_t piece_samples_;
   hdf5::File file_;
-  std::vector<std::unique_ptr<Column>> columns_;  // time, displacement[, force]
+  std::vector<Hdf5Column> columns_;  // time, displacement[, force]
   std::uint64_t samples_ = 0, next_ = 0, file_bytes_ = 0;
   double t0_ = 0.0, u0_ = 0.0, last_t_ = 0.0, largest_ = 0.0;
   bool force_seen_ = false;  // a nonzero force
