@@ -160,6 +160,11 @@ void Hdf5HistoryReader::drain() {
 
 Drive read_hdf5_drive(const std::string& path, const lang::SourceLocation* named_at, const ColumnReading& reading, bool from_rest) {
   Hdf5HistoryReader reader(path, named_at, reading, false, from_rest);
+  if (reader.samples() > static_cast<std::uint64_t>(lang::max_drive_samples))
+    throw DataError(
+        fmt::format("{}: error: the history has {} samples, more than the {} rheo holds whole (SUNDIALS, JSON output); write it as "
+                    "CSV or HDF5 on the fixed-step solver, which streams it, or split the file",
+                    lang::printable(path), reader.samples(), lang::max_drive_samples));
   Drive drive;
   drive.time.reserve(reader.samples()), drive.displacement.reserve(reader.samples());
   DrivePiece piece;
@@ -172,6 +177,12 @@ Drive read_hdf5_drive(const std::string& path, const lang::SourceLocation* named
 
 HistoryData read_hdf5_history(const std::string& path, const lang::SourceLocation* named_at, const ColumnReading& reading) {
   Hdf5HistoryReader reader(path, named_at, reading, true, false);
+  const std::uint64_t most = lang::max_table_bytes / kHeldSampleBytes;
+  if (reader.samples() > most)
+    throw DataError(
+        fmt::format("{}: error: the history has {} samples, more than the {} a fit or report holds ({} MiB at {} bytes a sample); "
+                    "fit a part of it, or resample it",
+                    lang::printable(path), reader.samples(), most, lang::max_table_bytes >> 20, kHeldSampleBytes));
   HistoryData h;
   h.path = path;
   const auto n = static_cast<std::size_t>(reader.samples());
