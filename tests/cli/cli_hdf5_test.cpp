@@ -194,4 +194,10 @@ TEST_CASE("rheo fit fits an HDF5 history as it fits the same history as CSV") {
   const auto from_csv = fit("measured.csv"), from_h5 = fit("measured.h5");
   CHECK(from_csv["err"].get<double>() == from_h5["err"].get<double>());
   CHECK(from_csv["parameters"] == from_h5["parameters"]);
+  // rheo report draws it, as it draws the CSV.
+  const auto report = run_rheo(fmt::format("report '{}' --data '{}' -o '{}'", (dir() / "start.rheo").string(), (dir() / "measured.h5").string(),
+                                           (dir() / "measured.html").string()));
+  CAPTURE(report.err);
+  CHECK(report.code == 0);
+  CHECK(read(dir() / "measured.html").find("measured.h5") != std::string::npos);
 }
