@@ -6,7 +6,11 @@
 # under /usr/bin/time -v (Debian's `time` package): wall and CPU time, peak memory (maximum
 # resident set).
 #
-#   bench/long_history.sh [--rows N] [--rate HZ] [--runs K] [--elements] [--rheo PATH]
+#   bench/long_history.sh [--rows N] [--rate HZ] [--runs K] [--elements] [--hdf5] [--rheo PATH]
+#
+# --hdf5: HDF5 in and out instead (docs/data-formats.md, "HDF5 files"): the input is the CSV
+# history simulated once by rheo into history-N-HZ.h5 (kept; rheo's result holds /time and
+# /displacement, its default layout), the output out.h5.
 #
 # Defaults: 1e7 rows at 10 kHz, 3 runs, build/rheo. The 24 h durability log of #28 is
 # `--rows 86400000 --rate 1000`. Input and output go to ${TMPDIR:-/tmp}/rheo-bench-history/
@@ -14,7 +18,7 @@
 # take about 19 bytes each in and 37 out, so the 1e7 rows need 0.6 GB free there.
 set -euo pipefail
 cd "$(dirname "$0")/.."
-rows=10000000 rate=10000 runs=3 rheo=build/rheo elements=()
+rows=10000000 rate=10000 runs=3 rheo=build/rheo elements=() format=csv
 while [ $# -gt 0 ]; do
   case $1 in
     --rows) rows=$2; shift 2 ;;
@@ -22,7 +26,8 @@ while [ $# -gt 0 ]; do
     --runs) runs=$2; shift 2 ;;
     --rheo) rheo=$2; shift 2 ;;
     --elements) elements=(--elements); shift ;;
-    -h|--help) sed -n '2,14p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
+    --hdf5) format=h5; shift ;;
+    -h|--help) sed -n '2,18p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
     *) echo "bench/long_history.sh: unknown argument '$1' (see --help)" >&2; exit 2 ;;
   esac
 done
@@ -48,18 +53,28 @@ if [ ! -e "$csv" ]; then
   mv "$csv.tmp" "$csv"
 fi
 model=$dir/history-$rows-$rate.rheo
+input=$csv
+if [ "$format" = h5 ]; then
+  input=$dir/history-$rows-$rate.h5
+  if [ ! -e "$input" ]; then
+    echo "converting $csv to $input (rheo simulate, CSV in, HDF5 out)" >&2
+    { sed -n '/^model /,/^}/p' examples/specimen_d.rheo
+      printf 'simulate {\n  history file = "%s"\n}\n' "$(basename "$csv")"; } >"$model"
+    "$rheo" simulate "$model" -o "$input"
+  fi
+fi
 # The model block of the example, then one history protocol over the generated file.
 { sed -n '/^model /,/^}/p' examples/specimen_d.rheo
-  printf 'simulate {\n  history file = "%s"\n  output "out.csv"\n}\n' "$(basename "$csv")"; } >"$model"
+  printf 'simulate {\n  history file = "%s"\n  output "out.%s"\n}\n' "$(basename "$input")" "$format"; } >"$model"
 
-echo "rheo simulate $model${elements[*]:+ ${elements[*]}}: $(stat -c %s "$csv") bytes in, $rows rows, $runs run(s)"
+echo "rheo simulate $model${elements[*]:+ ${elements[*]}}: $(stat -c %s "$input") bytes in, $rows rows, $runs run(s)"
 for ((run = 1; run <= runs; ++run)); do
   /usr/bin/time -v "$rheo" simulate "$model" "${elements[@]}" 2>"$dir/time.log" >/dev/null ||
     { cat "$dir/time.log" >&2; exit 1; }
-  awk -F': ' -v out="$(stat -c %s "$dir/out.csv")" '
+  awk -F': ' -v out="$(stat -c %s "$dir/out.$format")" '
     /Elapsed \(wall clock\)/ { wall = $2 } /User time/ { user = $2 } /System time/ { sys = $2 }
     /Maximum resident set size/ { rss = $2 }
     END { printf "wall %s, CPU %.2f s (user %.2f + sys %.2f), peak memory %.1f MB, %d bytes out\n",
           wall, user + sys, user, sys, rss / 1024, out }' "$dir/time.log"
 done
-rm -f "$dir/out.csv" "$dir/time.log"
+rm -f "$dir/out.$format" "$dir/time.log"

@@ -8,6 +8,8 @@
 #include "cli/report_files.hpp"
 #include "runtime/core/errors.hpp"
 #include "runtime/network/network.hpp"
+#include "runtime/io/hdf5_history.hpp"
+#include "runtime/io/hdf5_writer.hpp"
 #include "runtime/io/history_writer.hpp"
 #include "runtime/io/output.hpp"
 #include "runtime/protocols/run_protocols.hpp"
@@ -79,10 +81,12 @@ runtime::UsageError nothing_to_run(const lang::Program& program, const Options& 
                                          o.model.empty() ? "" : fmt::format(" for model '{}'", o.model), lang::join(kinds)));
 }
 
-// A protocol's result, held (RESULT) or streamed to a file not yet in place (PENDING).
+// A protocol's result, held (RESULT) or written to a file not yet in place: streamed as CSV
+// (PENDING), or as HDF5 (HDF5, streamed or from RESULT).
 struct Outcome {
   std::optional<runtime::ProtocolResult> result;
   std::unique_ptr<runtime::PendingOutput> pending;
+  std::unique_ptr<runtime::Hdf5HistoryWriter> hdf5;
   std::uint64_t size = 0;  // points or samples
   std::string notes;
   int not_converged = 0;
@@ -93,18 +97,27 @@ struct Job {
   lang::Protocol protocol;
 };
 
-// Histories stream where they are written as CSV (JSON holds whole arrays); a report draws
-// a streamed history from its digest (report/history_digest.hpp).
-bool streamed(const runtime::Network& network, const lang::Protocol& protocol) {
-  return runtime::streams(network, protocol) && lang::common(protocol.settings).format == lang::OutputFormat::csv;
+// Whether the result goes to an HDF5 file (by the destination's extension, runtime/io/hdf5_writer.hpp).
+bool hdf5_destination(const std::string& destination) { return runtime::is_hdf5_name(destination); }
+
+// Histories stream where they are written as CSV or HDF5 (JSON holds whole arrays); a report
+// draws a streamed history from its digest (report/history_digest.hpp).
+bool streamed(const runtime::Network& network, const lang::Protocol& protocol, const std::string& destination) {
+  return runtime::streams(network, protocol) && (lang::common(protocol.settings).format == lang::OutputFormat::csv || hdf5_destination(destination));
 }
 
 // DIGEST, when not null, also receives the history, for a report.
 Outcome run_streamed(const runtime::Network& network, const Job& job, const std::string& destination, const std::string& source_file,
                      runtime::HistorySink* digest) {
   Outcome outcome;
-  outcome.pending = std::make_unique<runtime::PendingOutput>(destination);
-  runtime::HistoryCsvWriter writer(*outcome.pending);
+  std::optional<runtime::HistoryCsvWriter> csv;
+  if (hdf5_destination(destination)) {
+    outcome.hdf5 = std::make_unique<runtime::Hdf5HistoryWriter>(destination);
+  } else {
+    outcome.pending = std::make_unique<runtime::PendingOutput>(destination);
+    csv.emplace(*outcome.pending);
+  }
+  runtime::HistorySink& writer = csv ? static_cast<runtime::HistorySink&>(*csv) : *outcome.hdf5;
   std::optional<runtime::TeeSink> both;
   if (digest) both.emplace(writer, *digest);
   runtime::HistorySink& sink = both ? static_cast<runtime::HistorySink&>(*both) : writer;
@@ -112,7 +125,7 @@ Outcome run_streamed(const runtime::Network& network, const Job& job, const std:
   progress->label(fmt::format("history of model {}", job.model->name));
   const runtime::StreamedHistory run = runtime::stream_history(network, job.protocol, source_file, sink, Progress::stream_callback(progress));
   progress->finish();
-  writer.finish();
+  if (csv) csv->finish();
   outcome.size = run.samples;
   outcome.notes = run.notes;
   return outcome;
@@ -171,6 +184,16 @@ Command add_simulate_command(CLI::App& app) {
       if (destination.empty() && !job.protocol.output.empty())
         destination = (std::filesystem::path(o->file).parent_path() / job.protocol.output).string();
       runtime::check_output_destination(destination);
+      if (hdf5_destination(destination) && job.protocol.kind == lang::ProtocolKind::harmonic)
+        throw runtime::UsageError(
+            fmt::format("{}: an HDF5 output holds a time history; write the harmonic protocol's result as CSV or JSON "
+                        "(e.g. -o result.csv)",
+                        destination));
+      if (hdf5_destination(destination) && (o->json || lang::common(job.protocol.settings).format == lang::OutputFormat::json))
+        throw runtime::UsageError(
+            fmt::format("{}: the output is HDF5 (its name ends in .h5) but JSON is asked for (--json or format = json); "
+                        "drop one",
+                        destination));
       destinations.push_back(std::move(destination));
     }
     check_report_targets(o->report);
@@ -183,7 +206,7 @@ Command add_simulate_command(CLI::App& app) {
       const std::string label = fmt::format("{} protocol ({}:{})", lang::protocol_name(job.protocol.kind), job.protocol.where.file,
                                             job.protocol.where.line);
       if (o->report.any() && !report) report = runtime::report::report_for_model(network, o->file, "rheo simulate");
-      if (streamed(network, job.protocol)) {
+      if (streamed(network, job.protocol, destinations[k])) {
         std::optional<runtime::report::HistoryDigest> digest;
         if (report) digest.emplace();
         outcomes.push_back(run_streamed(network, job, destinations[k], o->file, digest ? &*digest : nullptr));
@@ -193,6 +216,12 @@ Command add_simulate_command(CLI::App& app) {
       runtime::ProtocolResult result = runtime::run_protocol(network, job.protocol, o->file, o->threads);
       if (report) runtime::report::add_simulation_result(*report, label, result);
       Outcome outcome;
+      if (hdf5_destination(destinations[k])) {  // a history held whole (SUNDIALS), written now, put in place at the end
+        const auto& history = std::get<runtime::History>(result.data);
+        outcome.hdf5 = std::make_unique<runtime::Hdf5HistoryWriter>(destinations[k]);
+        outcome.hdf5->begin(result.header, history.element_paths);
+        outcome.hdf5->write(history);
+      }
       outcome.size = static_cast<std::uint64_t>(result.size());
       outcome.notes = result.notes;
       outcome.not_converged = result.not_converged;
@@ -204,7 +233,8 @@ Command add_simulate_command(CLI::App& app) {
       const auto& job = jobs[k];
       Outcome& outcome = outcomes[k];
       const std::string& destination = destinations[k];
-      if (outcome.pending) outcome.pending->commit();
+      if (outcome.hdf5) outcome.hdf5->commit();
+      else if (outcome.pending) outcome.pending->commit();
       else runtime::write_output(destination, runtime::rendered(*outcome.result, lang::common(job.protocol.settings).format));
       std::cerr << outcome.notes;
       if (!destination.empty() && destination != "-")

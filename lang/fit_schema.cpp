@@ -86,38 +86,6 @@ std::string trimmed(std::string_view s) {
   return std::string(s.substr(begin, s.find_last_not_of(" \t") - begin + 1));
 }
 
-// `columns = "frequency = f, storage = E_stor"`: ROLE = NAME pairs, each role once.
-std::vector<ColumnName> check_columns(const Setting& s, std::vector<Diagnostic>& errors) {
-  std::vector<ColumnName> out;
-  const std::string example = "e.g. columns = \"frequency = f, storage = E_stor, loss = E_loss\"";
-  std::size_t start = 0;
-  while (start <= s.text.size()) {
-    auto comma = s.text.find(',', start);
-    if (comma == std::string::npos) comma = s.text.size();
-    const std::string pair = s.text.substr(start, comma - start);
-    start = comma + 1;
-    const auto equals = pair.find('=');
-    const std::string role = trimmed(pair.substr(0, equals)), name = equals == std::string::npos ? "" : trimmed(pair.substr(equals + 1));
-    if (equals == std::string::npos || role.empty() || name.empty()) {
-      errors.push_back({s.where, fmt::format("columns takes 'role = column name' pairs separated by commas, {}; '{}' is not one", example,
-                                             printable(trimmed(pair)))});
-      return {};
-    }
-    const auto& roles = data_column_roles();
-    if (std::find(roles.begin(), roles.end(), role) == roles.end()) {
-      errors.push_back({s.where, fmt::format("columns: '{}' is not a role rheo reads; use {}", printable(role), join(roles))});
-      return {};
-    }
-    for (const auto& earlier : out)
-      if (earlier.role == role) {
-        errors.push_back({s.where, fmt::format("columns names the '{}' column twice; name it once", role)});
-        return {};
-      }
-    out.push_back({role, name});
-  }
-  return out;
-}
-
 // `k = 61.476 N/mm in [6.1476, 614.76]`: P's value in its unit with bounds a decade either side.
 std::string bounded_example(const Parameter& p) {
   auto unit = parse_unit(p.unit);
@@ -267,7 +235,7 @@ FitData check_data_line(const ast::FitLine& line, std::vector<Diagnostic>& error
     const auto s = check_keyed_setting(data_schema(), "a data line", node, errors);
     if (!s) continue;
     if (s->key == "weight") out.weight = s->values.at(0);
-    else if (s->key == "columns") out.columns = check_columns(*s, errors);
+    else if (s->key == "columns") out.columns = check_columns(*s, data_column_roles(), errors);
     else if (s->key == "step") out.step = s->text;
     else if (s->key == "area") out.area = s->values.at(0);
     else if (s->key == "height") out.height = s->values.at(0);
@@ -282,6 +250,38 @@ std::optional<Setting> check_fit_setting(const ast::SettingNode& node, std::vect
     return std::nullopt;
   }
   return check_keyed_setting(fit_schema(), "fit", node, errors);
+}
+
+// `columns = "frequency = f, storage = E_stor"`: ROLE = NAME pairs, each role once, of ROLES.
+std::vector<ColumnName> check_columns(const Setting& s, const std::vector<std::string>& roles, std::vector<Diagnostic>& errors) {
+  std::vector<ColumnName> out;
+  const std::string example = roles.size() == 2 ? "e.g. columns = \"time = t, displacement = s\""
+                                                : "e.g. columns = \"frequency = f, storage = E_stor, loss = E_loss\"";
+  std::size_t start = 0;
+  while (start <= s.text.size()) {
+    auto comma = s.text.find(',', start);
+    if (comma == std::string::npos) comma = s.text.size();
+    const std::string pair = s.text.substr(start, comma - start);
+    start = comma + 1;
+    const auto equals = pair.find('=');
+    const std::string role = trimmed(pair.substr(0, equals)), name = equals == std::string::npos ? "" : trimmed(pair.substr(equals + 1));
+    if (equals == std::string::npos || role.empty() || name.empty()) {
+      errors.push_back({s.where, fmt::format("columns takes 'role = column name' pairs separated by commas, {}; '{}' is not one", example,
+                                             printable(trimmed(pair)))});
+      return {};
+    }
+    if (std::find(roles.begin(), roles.end(), role) == roles.end()) {
+      errors.push_back({s.where, fmt::format("columns: '{}' is not a role rheo reads; use {}", printable(role), join(roles))});
+      return {};
+    }
+    for (const auto& earlier : out)
+      if (earlier.role == role) {
+        errors.push_back({s.where, fmt::format("columns names the '{}' column twice; name it once", role)});
+        return {};
+      }
+    out.push_back({role, name});
+  }
+  return out;
 }
 
 const std::vector<std::string>& data_column_roles() {

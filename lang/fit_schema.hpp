@@ -27,6 +27,10 @@ FitData check_data_line(const ast::FitLine& line, std::vector<Diagnostic>& error
 // The roles a data line's `columns` setting may name a column for (runtime/io/column_roles.hpp).
 const std::vector<std::string>& data_column_roles();
 
+// A `columns` setting's ROLE = NAME pairs (a data line's, a history protocol's), each role one of
+// ROLES and named once; empty, with an error at S, when they are not.
+std::vector<ColumnName> check_columns(const Setting& s, const std::vector<std::string>& roles, std::vector<Diagnostic>& errors);
+
 // Every key a fit settings line accepts, in schema order.
 std::vector<std::string> fit_setting_keys();
 

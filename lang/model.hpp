@@ -129,12 +129,6 @@ struct SimulateDirective {
   SourceLocation where;
 };
 
-// A header column named for a role: `columns = "frequency = f"` (docs/data-formats.md).
-struct ColumnName {
-  std::string role;  // one of data_column_roles() (fit_schema.hpp)
-  std::string name;  // the header's name, as written
-};
-
 // A data line's `force_offset`: a constant the measured force carries (a load cell's zero),
 // measured force = network force + offset.
 struct ForceOffsetSetting {

@@ -1,5 +1,6 @@
 #include "lang/protocol_schema.hpp"
 
+#include "lang/fit_schema.hpp"
 #include "lang/limits.hpp"
 #include "lang/setting_values.hpp"
 
@@ -73,6 +74,7 @@ const std::vector<ProtocolSpec>& schema() {
       {ProtocolKind::history,
        "history",
        {{"file", Shape::string, dim::none, true},
+        {"columns", Shape::text, dim::none},
         whole("substeps", 1, max_substeps),
         {"start", Shape::identifier, dim::none, false, false, 0, 0, history_start_words()},
         elements,
@@ -119,8 +121,16 @@ std::vector<std::string> protocol_setting_keys(ProtocolKind kind) {
   return out;
 }
 
+// The roles a history protocol's `columns` names.
+static const std::vector<std::string>& history_column_roles() {
+  static const std::vector<std::string> roles{"time", "displacement"};
+  return roles;
+}
+
 std::optional<Setting> check_setting(ProtocolKind kind, const ast::SettingNode& node, std::vector<Diagnostic>& errors) {
-  return check_keyed_setting(spec(kind).settings, spec(kind).name, node, errors);
+  auto s = check_keyed_setting(spec(kind).settings, spec(kind).name, node, errors);
+  if (s && s->key == "columns" && check_columns(*s, history_column_roles(), errors).empty()) return std::nullopt;
+  return s;
 }
 
 Protocol check_protocol(ProtocolKind kind, const std::vector<ast::SettingNode>& settings, const SourceLocation& where,
@@ -228,6 +238,10 @@ ProtocolSettings decode_protocol_settings(ProtocolKind kind, const std::vector<S
       HistorySettings h;
       w.get_common(h);
       if (const Setting* file = w.find("file")) h.file = file->text, h.file_where = file->where;
+      if (const Setting* columns = w.find("columns")) {
+        std::vector<Diagnostic> checked_before;  // check_setting reported any fault
+        h.columns = check_columns(*columns, history_column_roles(), checked_before);
+      }
       w.get("substeps", h.substeps);
       w.get("start", h.start, history_start_named);
       return h;

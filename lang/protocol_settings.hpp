@@ -24,6 +24,14 @@ enum class SolverChoice { automatic, fixed, sundials };            // `solver` (
 enum class OutputFormat { csv, json };                             // `format`
 enum class HistoryStart { relaxed, rest };                         // `start` of a history (runtime/stepping/relaxed_state.hpp)
 
+// A header column named for a role: `columns = "frequency = f"` (docs/data-formats.md); in an
+// HDF5 file a dataset's path, optionally with its unit: `time = /rig/t [ms]`.
+struct ColumnName {
+  std::string role;  // one of data_column_roles() (fit_schema.hpp)
+  std::string name;  // the header's name, as written
+  bool operator==(const ColumnName&) const = default;
+};
+
 std::string_view word_of(HarmonicDefinition value);
 std::string_view word_of(SteadyState value);
 std::string_view word_of(SolverChoice value);
@@ -83,9 +91,10 @@ struct QuasistaticSettings : CommonSettings {
 
 // `history`: a displacement history read from a table.
 struct HistorySettings : CommonSettings {
-  std::string file;           // as written: relative to the .rheo file (required)
-  SourceLocation file_where;  // of the file name, for the reader's errors
-  int substeps = 1;           // each sample interval cut into this many linear parts
+  std::string file;                 // as written: relative to the .rheo file (required)
+  SourceLocation file_where;        // of the file name, for the reader's errors
+  std::vector<ColumnName> columns;  // `columns`: the time and displacement columns (HDF5: datasets)
+  int substeps = 1;                 // each sample interval cut into this many linear parts
   // relaxed: the network starts relaxed at the first sample's displacement; rest: from rest,
   // which needs displacement 0 in the first row.
   HistoryStart start = HistoryStart::relaxed;

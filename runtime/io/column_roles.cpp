@@ -125,6 +125,20 @@ std::optional<Role> role_named(std::string_view name) {
   return std::nullopt;
 }
 
+lang::Dimension role_dimension(Role role) { return spec_of(role).dimension; }
+const char* role_unit_kind(Role role) { return spec_of(role).kind; }
+const char* role_unit_example(Role role) { return spec_of(role).example; }
+
+ColumnReading column_reading(const std::vector<lang::ColumnName>& columns) {
+  ColumnReading reading;
+  for (const auto& named : columns) {
+    const auto role = role_named(named.role);
+    if (!role) throw std::logic_error("column_reading: the checker passed an unknown column role '" + named.role + "'");
+    reading.columns.emplace_back(*role, named.name);
+  }
+  return reading;
+}
+
 bool role_suits(const Table& t, int c, Role role) {
   const RoleSpec& s = spec_of(role);
   const auto i = static_cast<std::size_t>(c);

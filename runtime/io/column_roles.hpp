@@ -31,6 +31,15 @@ struct ColumnReading {
   std::optional<double> height;                       // mm
 };
 
+// ROLE's quantity in the component's terms, the kind of unit it needs ("time (s)") and an
+// example of one ("s"), for readers that check units themselves (hdf5_history.hpp).
+lang::Dimension role_dimension(Role role);
+const char* role_unit_kind(Role role);
+const char* role_unit_example(Role role);
+
+// The ROLE = NAME pairs of a `columns` setting, checked by the language (lang/fit_schema.hpp).
+ColumnReading column_reading(const std::vector<lang::ColumnName>& columns);
+
 // The column giving ROLE, or -1. A column READING names that the header lacks is a DataError
 // at the header listing its columns.
 int find_role(const Table& table, Role role, const ColumnReading& reading);

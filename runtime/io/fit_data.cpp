@@ -2,6 +2,7 @@
 
 #include "lang/text_encoding.hpp"
 #include "runtime/core/errors.hpp"
+#include "runtime/io/hdf5_history.hpp"
 
 #include <fmt/format.h>
 
@@ -32,6 +33,17 @@ HistoryData history_data_from_table(const Table& table, const DataReading& readi
 }
 
 FitDataSet read_fit_data(const std::string& path, double weight, const lang::SourceLocation* named_at, const DataReading& reading) {
+  if (is_hdf5_name(path)) {
+    const char* unused = !reading.step.empty()                                  ? "step (of a TRIOS export)"
+                         : reading.columns.area || reading.columns.height       ? "area and height (of material data)"
+                         : reading.amplitude || reading.strain_amplitude        ? "amplitude (of a harmonic table)"
+                         : reading.duplicates != lang::DuplicatePoints::average ? "duplicates (of a harmonic table)"
+                                                                                : nullptr;
+    if (unused)
+      throw DataError(fmt::format("{}: error: an HDF5 file is read as a history, so the data line's {} does not apply; remove it",
+                                  lang::printable(path), unused));
+    return {path, weight, read_hdf5_history(path, named_at, reading.columns), {}, reading.force_offset};
+  }
   const Table table = read_table(path, named_at, reading.step);
   FitDataSet set{path, weight, HarmonicData{}, {table.step, false, {}, {}}, reading.force_offset};
   const bool amplitude = find_role(table, Role::amplitude, reading.columns) >= 0 || reading.amplitude || reading.strain_amplitude;
@@ -55,11 +67,7 @@ FitDataSet read_fit_data(const std::string& path, double weight, const lang::Sou
 
 DataReading reading_of(const lang::FitData& line) {
   DataReading reading;
-  for (const auto& named : line.columns) {
-    const auto role = role_named(named.role);
-    if (!role) throw std::logic_error("reading_of: the checker passed an unknown column role '" + named.role + "'");
-    reading.columns.columns.emplace_back(*role, named.name);
-  }
+  reading.columns = column_reading(line.columns);
   reading.columns.area = line.area;
   reading.columns.height = line.height;
   reading.step = line.step;

@@ -139,7 +139,7 @@ Table read_table(const std::string& path, const lang::SourceLocation* named_at, 
   if (!table.failure.empty() && table.failure.rfind("it is larger than", 0) == 0)
     throw DataError(unreadable_table(path, named_at,
                                      fmt::format("it is larger than {} MiB, the most rheo holds as a whole table; `rheo simulate` streams a history "
-                                                 "file of any size when it writes the history as CSV on the fixed-step solver",
+                                                 "file of any size when it writes the history as CSV or HDF5 on the fixed-step solver",
                                                  lang::max_table_bytes >> 20),
                                      table.advice()));
   if (!table.failure.empty()) throw DataError(unreadable_table(path, named_at, table.failure, table.advice()));

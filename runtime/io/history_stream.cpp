@@ -127,12 +127,12 @@ void HistoryStream::check_rows(DrivePiece* piece) {
   if (n == 0) return;
   if (!columns_checked_) {
     columns_checked_ = true;
-    t_ = find_role(table_, Role::time, ColumnReading{});
-    u_ = find_role(table_, Role::displacement, ColumnReading{});
     try {
+      t_ = find_role(table_, Role::time, reading_);  // a column reading_ names that the header lacks: DataError
+      u_ = find_role(table_, Role::displacement, reading_);
       if (t_ < 0 || u_ < 0) throw DataError(drive_faults::missing_columns(table_));
-      (void)role_values(table_, t_, Role::time, ColumnReading{});  // its units (and cells)
-      (void)role_values(table_, u_, Role::displacement, ColumnReading{});
+      (void)role_values(table_, t_, Role::time, reading_);  // its units (and cells)
+      (void)role_values(table_, u_, Role::displacement, reading_);
     } catch (const DataError&) {
       faulty_ = true;
     }
@@ -177,10 +177,10 @@ void HistoryStream::settle() {
   if (!encoding_fault_.empty()) throw DataError(encoding_fault_);
   if (!width_fault_.empty()) throw DataError(width_fault_);
   rows_.finish(data_rows_);
-  const int t = find_role(table_, Role::time, ColumnReading{}), u = find_role(table_, Role::displacement, ColumnReading{});
+  const int t = find_role(table_, Role::time, reading_), u = find_role(table_, Role::displacement, reading_);
   if (t < 0 || u < 0) throw DataError(drive_faults::missing_columns(table_));
-  (void)role_values(table_, t, Role::time, ColumnReading{});
-  (void)role_values(table_, u, Role::displacement, ColumnReading{});
+  (void)role_values(table_, t, Role::time, reading_);
+  (void)role_values(table_, u, Role::displacement, reading_);
   if (data_rows_ < 2) throw DataError(drive_faults::too_few_rows(path_, first_row_));
   if (from_rest_ && !drive_faults::starts_at_rest(u0_, largest_))
     throw DataError(drive_faults::not_at_rest(path_, first_row_, first_u_column_, u0_));

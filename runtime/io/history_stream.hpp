@@ -21,6 +21,7 @@
 #pragma once
 
 #include "lang/source_location.hpp"
+#include "runtime/io/column_roles.hpp"
 #include "runtime/io/history_csv.hpp"
 #include "runtime/io/table_layout.hpp"
 #include "runtime/io/table_rows.hpp"
@@ -60,6 +61,9 @@ class HistoryStream {
   HistoryStream(const HistoryStream&) = delete;
   HistoryStream& operator=(const HistoryStream&) = delete;
 
+  // The columns a history protocol's `columns` names (column_roles.hpp); before the first next().
+  void read_columns(ColumnReading reading) { reading_ = std::move(reading); }
+
   // The next samples into PIECE (replacing what it held; at least one): true; false at the end
   // of a file that passed every check. DataError at a fault (see above), NotStreamable.
   bool next(DrivePiece& piece);
@@ -96,6 +100,7 @@ class HistoryStream {
   bool layout_found_ = false;
   TableRows rows_{table_, layout_};
 
+  ColumnReading reading_;
   int t_ = -1, u_ = -1;  // the time and displacement columns, once a data row is read
   bool columns_checked_ = false;
   std::size_t data_rows_ = 0;

@@ -12,12 +12,9 @@
 #include <iostream>
 
 namespace rheo::runtime {
-namespace {
 
 namespace fs = std::filesystem;
 
-// PATH with its symbolic links followed, as the kernel would, to a depth of 40: the file that
-// is written (created if missing).
 fs::path link_target(const std::string& path) {
   fs::path target(path);
   std::error_code link_error;
@@ -30,6 +27,8 @@ fs::path link_target(const std::string& path) {
   }
   return target;
 }
+
+namespace {
 
 bool is_device_or_pipe(const fs::path& target) {
   std::error_code status_error;
@@ -46,13 +45,12 @@ bool copy_all(std::FILE* from, std::FILE* to) {
   return !std::ferror(from);
 }
 
-// A temporary sibling of TARGET, unique in this process.
+}  // namespace
+
 fs::path temporary_beside(const fs::path& target) {
   static std::atomic<unsigned> count{0};
   return target.parent_path() / fmt::format(".{}.rheo-tmp-{}-{}", target.filename().string(), ::getpid(), count++);
 }
-
-}  // namespace
 
 void check_output_destination(const std::string& path) {
   if (path.empty() || path == "-") return;

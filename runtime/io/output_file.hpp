@@ -11,6 +11,12 @@
 
 namespace rheo::runtime {
 
+// PATH with its symbolic links followed, as the kernel would, to a depth of 40: the file that
+// is written (created if missing). DataError when a link cannot be followed.
+std::filesystem::path link_target(const std::string& path);
+// A temporary sibling of TARGET, unique in this process: ".NAME.rheo-tmp-PID-N".
+std::filesystem::path temporary_beside(const std::filesystem::path& target);
+
 // Writes `content` to `path` atomically ("-" or empty: standard output). Throws DataError.
 void write_output(const std::string& path, const std::string& content);
 

@@ -166,7 +166,11 @@ TableLayout trios_layout(const std::string& path, std::string_view text, const s
 }  // namespace
 
 void refuse_workbook(const std::string& path, std::string_view start) {
-  constexpr std::string_view zip = "PK\x03\x04", ole = "\xD0\xCF\x11\xE0";
+  constexpr std::string_view zip = "PK\x03\x04", ole = "\xD0\xCF\x11\xE0", hdf5 = "\x89HDF";
+  if (start.starts_with(hdf5))
+    fail(path, 1, 1,
+         "this is an HDF5 file, not a text table; rheo reads HDF5 histories from files named .h5 or .hdf5: rename it (docs/data-formats.md, "
+         "\"HDF5 files\")");
   const bool workbook = start.starts_with(zip) || start.starts_with(ole);
   if (workbook || has_suffix(path, ".xlsx") || has_suffix(path, ".xls") || has_suffix(path, ".xlsm") || has_suffix(path, ".ods"))
     fail(path, 1, 1,

@@ -29,9 +29,9 @@ struct TableLayout {
 };
 
 // TEXT as UTF-8: converted from UTF-16 when it starts with a UTF-16 byte-order mark, its UTF-8
-// byte-order mark removed; an Excel workbook is a DataError.
+// byte-order mark removed; an Excel workbook or an HDF5 file is a DataError.
 std::string text_as_utf8(const std::string& path, std::string text);
-// The parts of that for a file read piece by piece: a DataError for a workbook (PATH's
+// The parts of that for a file read piece by piece: a DataError for an HDF5 file or a workbook (PATH's
 // extension, or START, the file's first bytes (4 suffice), says so); whether START is a UTF-16
 // byte-order mark.
 void refuse_workbook(const std::string& path, std::string_view start);

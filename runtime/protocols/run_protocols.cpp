@@ -6,6 +6,8 @@
 #include "runtime/core/errors.hpp"
 #include "runtime/dae/dae_protocols.hpp"
 #include "runtime/protocols/harmonic.hpp"
+#include "runtime/io/column_roles.hpp"
+#include "runtime/io/hdf5_history.hpp"
 #include "runtime/io/history_csv.hpp"
 #include "runtime/network/leaf_kernels.hpp"
 #include "runtime/closed_form/periodic_closed_form.hpp"
@@ -164,7 +166,10 @@ ProtocolResult run(RunContext& c, const lang::QuasistaticSettings& s) {
 
 ProtocolResult run(RunContext& c, const lang::HistorySettings& s) {
   const std::string file = history_file(s, c.source_file);
-  const Drive measured = drive_from_table(read_table(file, &s.file_where), s.start == lang::HistoryStart::rest);
+  const bool from_rest = s.start == lang::HistoryStart::rest;
+  const ColumnReading reading = column_reading(s.columns);
+  const Drive measured = is_hdf5_name(file) ? read_hdf5_drive(file, &s.file_where, reading, from_rest)
+                                            : drive_from_table(read_table(file, &s.file_where), reading, from_rest);
   require_within((static_cast<double>(measured.time.size()) - 1.0) * s.substeps + 1.0, lang::max_drive_samples, c.protocol,
                  "samples (rows x substeps)", "lower substeps or split the file");
   return history_run(c, s, refine(measured, s.substeps), fmt::format("history file={}", file));

@@ -1,6 +1,7 @@
 #include "runtime/protocols/stream_history.hpp"
 
 #include "lang/protocol_schema.hpp"
+#include "runtime/io/hdf5_history.hpp"
 #include "runtime/io/history_stream.hpp"
 #include "runtime/protocols/run_protocols.hpp"
 #include "runtime/protocols/solver_choice.hpp"
@@ -64,10 +65,11 @@ class Block {
   double reach_ = 0.0;  // largest |u| [mm]
 };
 
-// The streamed run proper; NotStreamable when the file is to be read whole.
-StreamedHistory streamed(const Network& network, const lang::HistorySettings& s, const ResultHeader& header, const std::string& file,
-                         HistorySink& sink, const std::function<void(const StreamStatus&)>& progress) {
-  HistoryStream stream(file, &s.file_where, s.start == lang::HistoryStart::rest);
+// The streamed run proper, from STREAM (a HistoryStream or an Hdf5HistoryReader); NotStreamable
+// when the file is to be read whole.
+template <class Stream>
+StreamedHistory streamed(const Network& network, const lang::HistorySettings& s, const ResultHeader& header, Stream& stream, HistorySink& sink,
+                         const std::function<void(const StreamStatus&)>& progress) {
   DriveStepper stepper(network, s.elements);
   Block block(network, s.elements);
   sink.begin(header, block.element_paths());
@@ -117,8 +119,15 @@ StreamedHistory stream_history(const Network& network, const lang::Protocol& pro
   const auto& s = std::get<lang::HistorySettings>(protocol.settings);
   const std::string file = history_file(s, source_file);
   const ResultHeader header{network.model().name, source_file, fmt::format("history file={}", file)};
+  const bool from_rest = s.start == lang::HistoryStart::rest;
+  if (is_hdf5_name(file)) {
+    Hdf5HistoryReader stream(file, &s.file_where, column_reading(s.columns), false, from_rest);
+    return streamed(network, s, header, stream, sink, progress);
+  }
   try {
-    return streamed(network, s, header, file, sink, progress);
+    HistoryStream stream(file, &s.file_where, from_rest);
+    stream.read_columns(column_reading(s.columns));
+    return streamed(network, s, header, stream, sink, progress);
   } catch (const NotStreamable&) {}
   sink.restart();
   ProtocolResult whole = run_protocol(network, protocol, source_file);

@@ -68,3 +68,22 @@ TEST_CASE("check_protocol: duplicates and missing required settings") {
   CHECK(errors[0].message.find("duplicate setting 'amplitude'") != std::string::npos);
   CHECK(errors[1].message.find("harmonic requires the setting 'frequency'") != std::string::npos);
 }
+
+TEST_CASE("a history's columns: time and displacement by name or HDF5 path, decoded: other roles and malformed pairs refused") {
+  std::vector<Diagnostic> errors;
+  const auto columns = check(ProtocolKind::history, "columns = \"time = /rig/t [ms], displacement = weg\"", errors);
+  REQUIRE(columns);
+  CHECK(errors.empty());
+  const auto settings = decode_protocol_settings(ProtocolKind::history, {*columns});
+  CHECK(std::get<HistorySettings>(settings).columns == std::vector<ColumnName>{{"time", "/rig/t [ms]"}, {"displacement", "weg"}});
+  CHECK_FALSE(check(ProtocolKind::history, "columns = \"force = F\"", errors));
+  REQUIRE(errors.size() == 1);
+  CHECK(errors[0].message == "columns: 'force' is not a role rheo reads; use time, displacement");
+  errors.clear();
+  CHECK_FALSE(check(ProtocolKind::history, "columns = \"time\"", errors));
+  REQUIRE(errors.size() == 1);
+  CHECK(errors[0].message.find("columns takes 'role = column name' pairs separated by commas, e.g. columns = \"time = t, displacement = s\"") == 0);
+  errors.clear();
+  CHECK_FALSE(check(ProtocolKind::harmonic, "columns = \"time = t\"", errors));  // histories only
+  CHECK(errors.size() == 1);
+}

@@ -3,6 +3,7 @@
 // all-zero force are DataErrors that name the file (and row) and say what is needed.
 #include "runtime/io/fit_data.hpp"
 
+#include "hdf5_support.hpp"
 #include "runtime/core/errors.hpp"
 
 #include <doctest/doctest.h>
@@ -120,4 +121,27 @@ TEST_CASE("a harmonic table lacking a needed column says so at the header, a his
 TEST_CASE("a missing file is a DataError naming it") {
   const std::string message = data_error("/nonexistent/rheo/fit-data.csv");
   CHECK(message.rfind("/nonexistent/rheo/fit-data.csv: error:", 0) == 0);
+}
+
+TEST_CASE("an HDF5 file is a measured history, the same as its CSV twin: settings of other kinds are refused") {
+  const std::string csv = write("twin.csv", "time [ms],displacement [um],force [kN]\n0,0,0\n1,100,0.5\n2,300,1.25\n");
+  const std::string h5 = fs::path(csv).replace_extension(".h5").string();
+  rheo::test::hdf5::write_file(h5, {{"/rig/t", {0, 1, 2}, H5T_STD_I16LE, "ms"},
+                                    {"/rig/u", {0, 100, 300}, H5T_IEEE_F32LE, "um"},
+                                    {"/rig/F", {0, 0.5, 1.25}, H5T_IEEE_F64LE, "kN"}});
+  runtime::DataReading reading;
+  reading.columns.columns = {{runtime::Role::time, "rig/t"}, {runtime::Role::displacement, "/rig/u"}, {runtime::Role::force, "/rig/F"}};
+  const auto from_h5 = runtime::read_fit_data(h5, 0.5, nullptr, reading);
+  const auto from_csv = runtime::read_fit_data(csv, 0.5);
+  REQUIRE_FALSE(from_h5.is_harmonic());
+  CHECK(from_h5.weight == 0.5);
+  CHECK(from_h5.history().drive.time == from_csv.history().drive.time);
+  CHECK(from_h5.history().drive.displacement == from_csv.history().drive.displacement);
+  CHECK(from_h5.history().force == from_csv.history().force);
+  CHECK(from_h5.history().force_scale == 1250.0);
+  reading.step = "Ramp";
+  CHECK_THROWS_WITH_AS(
+      runtime::read_fit_data(h5, 1.0, nullptr, reading),
+      (h5 + ": error: an HDF5 file is read as a history, so the data line's step (of a TRIOS export) does not apply; remove it").c_str(),
+      runtime::DataError);
 }

@@ -112,6 +112,10 @@ TEST_CASE("spreadsheet workbooks are refused with what to do, UTF-16 text is rea
         0);
   CHECK(error_of("\xD0\xCF\x11\xE0 rest"s, "old.dat").find("old.dat:1:1: error: this is a spreadsheet workbook") == 0);
   CHECK(error_of("time [s]\n0\n", "sweep.xlsx").find("sweep.xlsx:1:1: error: this is a spreadsheet workbook") == 0);
+  // An HDF5 file under a text table's name: said so, with the name rheo reads HDF5 by.
+  CHECK(error_of("\x89HDF\r\n\x1a\n\0\0"s, "run.csv")
+            .find("run.csv:1:1: error: this is an HDF5 file, not a text table; rheo reads HDF5 histories from "
+                  "files named .h5 or .hdf5: rename it") == 0);
   std::string utf16 = "\xFF\xFE"s;
   for (char c : "time [\xC2\xB5s],displacement [mm]\n0,0\n1,2\n"s) {
     if (c == '\xC2') continue;
