@@ -7,7 +7,9 @@
 //           kernel pass where every element is in the model's body (specimen D), a ramp of h/2^10
 //           and the rest of the step, two passes, into a subtree (the hydrobushing's fluid branch);
 //   _Ramp:  the host passes du/dt = (u_{n+1} - u_n)/h (fmi2SetRealInputDerivatives): the path is
-//           rheo's piecewise-linear drive, one kernel pass per step.
+//           rheo's piecewise-linear drive, one kernel pass per step. The host's derivatives are
+//           computed before the timed loop, as its inputs are: the host's arithmetic (a division
+//           a step, on the step's path) is not the FMU's.
 #include "bench_support.hpp"
 #include "fmi2Functions.h"
 #include "runtime/fmu/fmu_resources.hpp"
