@@ -123,12 +123,7 @@ void CoSimulation::reset() {
   plans_ = Plans{};
 }
 
-void CoSimulation::set_real(unsigned reference, double value) {
-  // The input, between steps: what a host sets every step.
-  if (reference == kInputU && now_.phase == Phase::stepping && std::abs(value) <= lang::max_amplitude) {
-    now_.input = value;
-    return;
-  }
+void CoSimulation::set_real_checked(unsigned reference, double value) {
   const Variable& v = variable(reference);
   switch (v.causality) {
     case Causality::output: throw UsageError(fmt::format("{} is the FMU's output: it cannot be set", v.name));
@@ -155,9 +150,8 @@ void CoSimulation::set_real(unsigned reference, double value) {
   else now_.parameters[static_cast<std::size_t>(v.parameter)] = value;
 }
 
-double CoSimulation::get_real(unsigned reference) const {
+double CoSimulation::get_real_checked(unsigned reference) const {
   const bool started = now_.phase == Phase::stepping || now_.phase == Phase::terminated;
-  if (reference == kOutputF && started) return now_.state.force;  // what a host reads every step
   const Variable& v = variable(reference);
   switch (v.causality) {
     case Causality::input: return reference == kInputU ? now_.input : now_.input_velocity;
@@ -173,12 +167,7 @@ double CoSimulation::get_real(unsigned reference) const {
   return now_.parameters[static_cast<std::size_t>(v.parameter)];
 }
 
-void CoSimulation::set_input_derivative(unsigned reference, int order, double value) {
-  if (reference == kInputU && order == 1 && now_.phase == Phase::stepping && std::isfinite(value)) {  // every step, with ramps
-    now_.input_rate = value;
-    now_.rate_set = true;
-    return;
-  }
+void CoSimulation::set_input_derivative_checked(unsigned reference, int order, double value) {
   const Variable& v = variable(reference);
   if (reference != kInputU) throw UsageError(fmt::format("{} is not the input u: only u takes input derivatives", v.name));
   if (order != 1)
@@ -224,7 +213,8 @@ void CoSimulation::refuse_step(double t, double h) const {
 
 void CoSimulation::do_step(double t, double h) {
   const double u = now_.input, rate = now_.rate_set ? now_.input_rate : now_.input_velocity, target = u + rate * h;
-  const bool ok = now_.phase == Phase::stepping && h > 0.0 && h <= std::numeric_limits<double>::max() && same_time(t, now_.time, h) && t + h > t &&
+  const bool ok = now_.phase == Phase::stepping && h > 0.0 && h <= std::numeric_limits<double>::max() &&
+                  (t == now_.time || same_time(t, now_.time, h)) && t + h > t &&
                   (!stop_time_ || t + h <= *stop_time_ || same_time(t + h, *stop_time_, h)) && std::abs(target) <= lang::max_amplitude;
   if (!ok) refuse_step(t, h);
   if (plans_.h == 0.0 || std::abs(h - plans_.h) > 1e-9 * h) prepare_plans(h);  // the tolerance of run_history.cpp

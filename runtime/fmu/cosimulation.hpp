@@ -33,11 +33,13 @@
 //   NumericalError  a step whose solve fails (tree_solver.hpp), named by its time.
 #pragma once
 
+#include "lang/limits.hpp"
 #include "lang/model.hpp"
 #include "runtime/fmu/fmu_variables.hpp"
 #include "runtime/network/network.hpp"
 #include "runtime/stepping/simulator.hpp"
 
+#include <cmath>
 #include <memory>
 #include <optional>
 #include <string>
@@ -88,10 +90,39 @@ class CoSimulation {
   void terminate();
   void reset();  // back to instantiated, every variable at its start value
 
-  void set_real(unsigned reference, double value);
-  double get_real(unsigned reference) const;
+  void set_real(unsigned reference, double value) {
+    if (!set_input_fast(reference, value)) set_real_checked(reference, value);
+  }
+  double get_real(unsigned reference) const {
+    double value = 0.0;
+    return get_output_fast(reference, value) ? value : get_real_checked(reference);
+  }
   // ORDER 1: du/dt [mm/s] of u for the next step, in place of v (higher orders: UsageError).
-  void set_input_derivative(unsigned reference, int order, double value);
+  void set_input_derivative(unsigned reference, int order, double value) {
+    if (!set_rate_fast(reference, order, value)) set_input_derivative_checked(reference, order, value);
+  }
+  // The calls a host makes every step, as they usually come: u or v set while stepping, F read
+  // once stepping has begun, du/dt of u set while stepping. Each does what the call above does
+  // and returns true, or changes nothing and returns false (the call above then decides, and
+  // names what is wrong). The entry points try them before their guard (fmi2_entry_points.cpp).
+  bool set_input_fast(unsigned reference, double value) noexcept {
+    if (now_.phase != Phase::stepping) return false;
+    if (reference == kInputU && std::abs(value) <= lang::max_amplitude) now_.input = value;
+    else if (reference == kInputV && std::isfinite(value)) now_.input_velocity = value;
+    else return false;
+    return true;
+  }
+  bool get_output_fast(unsigned reference, double& value) const noexcept {
+    if (reference != kOutputF || (now_.phase != Phase::stepping && now_.phase != Phase::terminated)) return false;
+    value = now_.state.force;
+    return true;
+  }
+  bool set_rate_fast(unsigned reference, int order, double value) noexcept {
+    if (reference != kInputU || order != 1 || now_.phase != Phase::stepping || !std::isfinite(value)) return false;
+    now_.input_rate = value;
+    now_.rate_set = true;
+    return true;
+  }
   void do_step(double t, double h);
 
   Snapshot snapshot() const { return now_; }
@@ -107,6 +138,9 @@ class CoSimulation {
     StepPlan whole, jump, rest, held;
   };
 
+  void set_real_checked(unsigned reference, double value);
+  double get_real_checked(unsigned reference) const;
+  void set_input_derivative_checked(unsigned reference, int order, double value);
   const Variable& variable(unsigned reference) const;
   Network network_with(const std::vector<double>& parameters) const;
   void prepare_plans(double h);

@@ -56,6 +56,10 @@ fmi3Status guarded(fmi3Instance c, const char* function, Body&& body) {
   return fmi3Error;
 }
 
+// The co-simulation of the instance C (non-null), for the fast paths of the calls a host makes
+// every step (cosimulation.hpp), tried before the guard: taken, they cannot fail.
+rheo::runtime::fmu::CoSimulation& cosimulation(fmi3Instance c) { return *static_cast<Instance*>(c)->cosimulation; }
+
 // fmi3Error for FUNCTION, which the FMU does not serve: WHY is logged.
 fmi3Status unsupported(fmi3Instance c, const char* function, const char* why) {
   return guarded(c, function, [why](Instance&) { throw rheo::UsageError(why); });
@@ -155,6 +159,8 @@ fmi3Status fmi3Reset(fmi3Instance c) {
 }
 
 fmi3Status fmi3GetFloat64(fmi3Instance c, const fmi3ValueReference valueReferences[], size_t nValueReferences, fmi3Float64 values[], size_t nValues) {
+  if (c && nValueReferences == 1 && nValues == 1 && valueReferences && values && cosimulation(c).get_output_fast(valueReferences[0], values[0]))
+    return fmi3OK;
   return guarded(c, "fmi3GetFloat64", [&](Instance& i) {
     require_scalars(nValueReferences, nValues);
     require_array(valueReferences, nValueReferences, "valueReferences");
@@ -164,6 +170,14 @@ fmi3Status fmi3GetFloat64(fmi3Instance c, const fmi3ValueReference valueReferenc
 }
 fmi3Status fmi3SetFloat64(fmi3Instance c, const fmi3ValueReference valueReferences[], size_t nValueReferences, const fmi3Float64 values[],
                           size_t nValues) {
+  // u, or u and v: what a host sets every step. Where one of them is not taken fast, the guarded
+  // call sets them all again and names what is wrong.
+  if (c && nValueReferences == nValues && (nValues == 1 || nValues == 2) && valueReferences && values) {
+    auto& cosimulation_c = cosimulation(c);
+    bool taken = cosimulation_c.set_input_fast(valueReferences[0], values[0]);
+    if (taken && nValues == 2) taken = cosimulation_c.set_input_fast(valueReferences[1], values[1]);
+    if (taken) return fmi3OK;
+  }
   return guarded(c, "fmi3SetFloat64", [&](Instance& i) {
     require_scalars(nValueReferences, nValues);
     require_array(valueReferences, nValueReferences, "valueReferences");

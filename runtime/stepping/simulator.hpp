@@ -4,8 +4,8 @@
 // u_{n+1} at constant rate. Under that drive every kernel is exact: springs and Yeoh springs
 // are algebraic, Maxwell elements use the exact exponential update (leaf_kernels.hpp), friction
 // elements and sliders the return mapping (sec. 2.4), quadratic dashpots the constant-rate
-// force, gaps their stops, bouc_wen elements their loading law (closed form for n = 1, RK4
-// otherwise: bouc_wen.hpp); subtrees with internal nodes are solved implicitly
+// force, gaps their stops, bouc_wen elements their loading law (closed form for n = 1, an
+// order-5 Taylor series otherwise: bouc_wen.hpp); subtrees with internal nodes are solved implicitly
 // (tree_solver.hpp). Stable for any ratio of step to relaxation time. Inerters, whose force
 // is impulsive under a piecewise-linear drive, are second order (leaf_kernels.hpp).
 //
