@@ -298,13 +298,14 @@ class Diagnoser {
     return next;
   }
 
-  // Step 5: BOBYQA over every free parameter of the chosen model again, kept when no worse; its
+  // Step 5: Levenberg-Marquardt over every free parameter of the chosen model again (refit.hpp
+  // local_search), kept when no worse; its
   // gaps' centres written within their play (candidate_model.hpp with_gaps_in_play).
   void polish() {
     if (stopped()) return;
     stage("polishing the refined model");
     const int n = static_cast<int>(chosen_->result.free.size());
-    FitSettings settings = local_search(within(1.0).fit, affordable_evaluations(chosen_->result.network, data_, s_, 2 * n + 1 + 20 * n));
+    FitSettings settings = local_search(within(1.0).fit, affordable_evaluations(chosen_->result.network, data_, s_, kLocalJacobians * (n + 1)));
     settings.statistics = settings_.standard_errors;
     FitResult polished = fit(chosen_->result.network, chosen_->result.free, data_, settings);
     d_.interrupted = polished.interrupted;

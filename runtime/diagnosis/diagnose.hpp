@@ -26,8 +26,9 @@
 //      is `none` when the gap is indistinguishable from the measurement noise estimated from the
 //      residual (noise_estimate.hpp), else `unexplained`, with the residual's shape
 //      (unexplained.hpp) and the best candidate's numbers.
-//   5. Polish the chosen model: BOBYQA over every free parameter again with the refit's budget;
-//      gap_after is the polished model's (with its standard errors when `standard_errors`).
+//   5. Polish the chosen model: Levenberg-Marquardt over every free parameter again with the
+//      refit's budget, at least 10 Jacobians (refit.hpp kLocalJacobians); gap_after is the
+//      polished model's (with its standard errors when `standard_errors`).
 // The gap is err (eq. 6.1) over the harmonic points when there are any, else the RMS over the
 // history files of their RMS force residual relative to max|F_exp|.
 #pragma once
@@ -71,11 +72,12 @@ struct DiagnoseSettings {
   // first looks over the range the data support for the new parameters (global_look.hpp):
   // `global_samples` points per new parameter, up to four times that where the work budget
   // affords a quarter of it; then Levenberg-Marquardt over the new parameters from the screened
-  // element and the `global_starts` - 1 best points, the best result kept. Stage 2 runs Levenberg-Marquardt over every free parameter from the best of
-  // stage 1 and from the screened element as sized, each with a quarter of the budget (at least
-  // 2 n + 1 + 4 n). Where the budget affords `thorough_evaluations` per parameter of both
-  // stages, the local searches of stage 1 share half of it, else each gets 2 n + 1 + 15 n for n
-  // new parameters. The polish gets the refit's budget, at least 2 n + 1 + 20 n.
+  // element and the `global_starts` - 1 best points, the best result kept. Stage 2 runs
+  // Levenberg-Marquardt over every free parameter from the best of stage 1 and from the
+  // screened element as sized, each with a quarter of the budget, at least 10 Jacobians
+  // (10 (n + 1) evaluations). Where the budget affords `thorough_evaluations` per parameter of
+  // both stages, the local searches of stage 1 share half of it, else each gets 10 (n + 1) for n
+  // new parameters. The polish gets the refit's budget, at least 10 (n + 1).
   double refit_work = 1e7;
   int max_evaluations = 20000;
   int thorough_evaluations = 100;

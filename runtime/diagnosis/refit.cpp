@@ -56,7 +56,7 @@ FitSettings local_search(const FitSettings& base, int evaluations) {
   FitSettings f = base;
   f.yeoh_start_from_history = false;
   f.statistics = false;
-  f.search.algorithm = Algorithm::bobyqa;
+  f.search.algorithm.reset();
   f.search.starts = 1;
   f.search.samples = 0;
   f.search.extra_starts.clear();
@@ -74,12 +74,11 @@ FitResult staged_refit(const Network& start, const std::vector<int>& kept, const
   // Stage 1: the global look, then a local search of the new parameters from each of its best points.
   const int samples = std::max(settings.global_samples * n_added, std::min(affordable / 4, 4 * settings.global_samples * n_added));
   const std::vector<SampledStart> starts = global_look(start, added, data, settings.fit.score, samples, settings.global_starts);
-  const int per_start = thorough ? affordable / (2 * static_cast<int>(starts.size())) : 2 * n_added + 1 + 15 * n_added;
+  const int per_start = thorough ? affordable / (2 * static_cast<int>(starts.size())) : kLocalJacobians * (n_added + 1);
   std::optional<FitResult> stage1;
   int evaluations = samples + 1, non_finite = 0;
   for (std::size_t k = 0; k < starts.size(); ++k) {
     FitSettings first = local_search(settings.fit, per_start);
-    first.search.algorithm.reset(), first.search.samples = 0;  // Levenberg-Marquardt from the point, then a polish
     if (settings.fit.time_limit) {
       first.time_limit = (*settings.fit.time_limit / 2.0 - seconds()) / static_cast<double>(starts.size() - k);  // stage 2 gets half
       if (*first.time_limit <= 0.0 && stage1) break;
@@ -106,8 +105,7 @@ FitResult staged_refit(const Network& start, const std::vector<int>& kept, const
   std::optional<FitResult> stage2;
   const std::vector<Network> froms{stage1->network, start};
   for (std::size_t k = 0; k < froms.size(); ++k) {
-    FitSettings second = local_search(settings.fit, std::max(affordable / 4, 2 * n_all + 1 + 4 * n_all));
-    if (k == 1) second.search.algorithm.reset(), second.search.samples = 0;  // Levenberg-Marquardt, then a polish
+    FitSettings second = local_search(settings.fit, std::max(affordable / 4, kLocalJacobians * (n_all + 1)));
     if (settings.fit.time_limit) {
       second.time_limit = (*settings.fit.time_limit - seconds()) / static_cast<double>(froms.size() - k);
       if (*second.time_limit <= 0.0 && stage2) break;

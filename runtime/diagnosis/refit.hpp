@@ -13,14 +13,25 @@ namespace rheo::runtime::diagnosis {
 // [floor, max_evaluations].
 int affordable_evaluations(const Network& network, const std::vector<FitDataSet>& data, const DiagnoseSettings& s, int floor);
 
-// BASE as one local BOBYQA search of at most EVALUATIONS, without statistics or a Yeoh start.
+// Jacobians a Levenberg-Marquardt search of n parameters gets where the work budget affords
+// fewer: each costs n + 1 evaluations (n differenced columns and the step). Diagnose's local
+// searches of 4 to 17 parameters on the hydrobushing converge, or crawl by less than 1e-4 of
+// their objective a Jacobian, within about ten (docs/performance.md, 2026-11-27).
+inline constexpr int kLocalJacobians = 10;
+
+// BASE as one local search of at most EVALUATIONS from its start, without statistics or a Yeoh
+// start: Levenberg-Marquardt on the residual vector (rheo fit's default local method,
+// fit_search.hpp: half the budget, then a polish from the best point with the rest), BOBYQA
+// where the objective has no residual vector.
 FitSettings local_search(const FitSettings& base, int evaluations);
 
 // Stage 1: the ADDED parameters sampled over the range the data support (global_look.hpp), then
 // searched by Levenberg-Marquardt from START and the best samples;
 // stage 2: every free parameter (KEPT and ADDED) by Levenberg-Marquardt from the best of stage
 // 1 and from START, the better kept (DiagnoseSettings budgets; a time limit in
-// settings.fit.time_limit is shared: half to stage 1). The result counts the evaluations of both.
+// settings.fit.time_limit is shared: half to stage 1). Both starts of stage 2 descend the
+// residuals with the same budget, so that the result does not hang on which of the model's
+// equally good fits START holds (refit_test.cpp). The result counts the evaluations of both.
 FitResult staged_refit(const Network& start, const std::vector<int>& kept, const std::vector<int>& added, const std::vector<FitDataSet>& data,
                        const DiagnoseSettings& settings);
 
