@@ -107,7 +107,10 @@ DaeIntegrator::DaeIntegrator(const DaeGraph& graph, const DaeOptions& options) :
   y_probe_ = y_;
   yp_probe_ = y_;
   r_probe_ = y_;
+  y_probe_initial_ = y_;
+  r_initial_ = y_;
   scale_ = y_;
+  for (int e : graph.bouc_wen_edges) nested_bouc_wen_ |= at(graph.edges, e).a >= 0 || at(graph.edges, e).b >= 0;
   root_direction_.assign(roots, 0);
   roots_found_.assign(roots, 0);
   if (n == 0) return;  // purely algebraic: forces follow the drive directly
@@ -151,6 +154,8 @@ DaeIntegrator::DaeIntegrator(const DaeGraph& graph, const DaeOptions& options) :
   solver_->linear_solver.reset(owned(SUNLinSol_Dense(solver_->y.get(), solver_->jacobian.get(), ctx), "SUNLinSol_Dense"));
   check_ida(IDASetLinearSolver(mem, solver_->linear_solver.get(), solver_->jacobian.get()), "IDASetLinearSolver");
   use_own_jacobian(true);
+  solver_->euler_matrix.assign(static_cast<std::size_t>(n) * static_cast<std::size_t>(n), 0.0);
+  solver_->euler_lu = Eigen::PartialPivLU<Eigen::MatrixXd>(n);
   check_ida(IDASetNonlinConvCoef(mem, options_.newton_tolerance), "IDASetNonlinConvCoef");
   if (layout_.switch_forces > 0) {
     check_ida(IDARootInit(mem, 2 * layout_.switch_forces, Callbacks::roots), "IDARootInit");

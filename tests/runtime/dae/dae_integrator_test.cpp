@@ -127,8 +127,8 @@ TEST_CASE("a stiff spring before a weak slider and a dashpot: F = c v (1 - exp(-
 
 // A quadratic dashpot in series with a stiff spring, driven from rest at a constant rate v: its
 // rate w rises from 0 like sqrt(t), and Newton from the tangent cq v_eps at rest overshoots
-// (issue 26: IDA failed at t = 1e-9 s with rheo's own Newton matrix; it falls back to IDA's
-// secant). Closed form: F = cq w^2 and 2 cq w w' = k (v - w), so
+// (issue 26: IDA failed at t = 1e-9 s with rheo's own Newton matrix; a backward-Euler step by
+// full Newton now moves the rate off 0 first, dae_events.cpp). Closed form: F = cq w^2 and 2 cq w w' = k (v - w), so
 // t(w) = (2 cq / k) (-w - v ln(1 - w/v)), inverted by bisection.
 TEST_CASE("a quadratic dashpot behind a stiff spring from rest: t(w) = (2 cq/k) (-w - v ln(1 - w/v)), F = cq w^2") {
   const double k = 4163.22, cq = 0.00913203, v = 30.0;  // N/mm, N*s^2/mm^2, mm/s
@@ -145,8 +145,8 @@ TEST_CASE("a quadratic dashpot behind a stiff spring from rest: t(w) = (2 cq/k) 
 }
 
 // The same chain on the differential test's two-tone drive (from rest at 30 mm/s, 1 ms
-// samples), where rheo's own Newton matrix failed at t = 1e-9 s and the fallback to IDA's
-// secant runs it: against fixed steps at 64 and 128 steps per sample, extrapolated (2 F(128) -
+// samples), where rheo's own Newton matrix failed at t = 1e-9 s (now a backward-Euler step
+// starts it): against fixed steps at 64 and 128 steps per sample, extrapolated (2 F(128) -
 // F(64); the quadratic dashpot's constant-rate step is first order). Observed 1.6e-5 of max |F|.
 TEST_CASE("a quadratic dashpot behind a stiff spring on a two-tone drive from rest agrees with extrapolated fixed steps") {
   const std::string source = "model m { series { quadratic_dashpot (cq = 0.00913203 N*s^2/mm^2)\n spring (k = 4163.22 N/mm) } }";
