@@ -79,18 +79,34 @@ void DaeIntegrator::restart(double t, bool modes_changed) {
     first_step_ = true;
     if (nested_bouc_wen_) return;
     int flag = IDACalcIC(mem, IDA_YA_YDP_INIT, t + horizon);
-    if (flag == IDA_LINESEARCH_FAIL && !error_) {
+    if ((flag == IDA_LINESEARCH_FAIL || flag == IDA_CONV_FAIL) && !error_) {
       // IDACalcIC's line search judges a step by the Newton step that the matrix of the start
       // predicts from the new point. From rest a quadratic dashpot's tangent there is cq v_eps,
       // far below what its rate reaches, so every full step looks like no progress (two quadratic
-      // dashpots in series, whose rates the drive sets at once, failed at t = 0). Plain Newton
-      // overshoots and comes back down the convex law; it is tried once from the same start.
+      // dashpots in series, whose rates the drive sets at once, failed at t = 0; a quadratic
+      // dashpot and a dashpot behind a gap that closes, IDA_CONV_FAIL). Plain Newton overshoots
+      // and comes back down the convex law; it is tried once from the same start.
       std::copy(y_.begin(), y_.end(), N_VGetArrayPointer(solver_->y.get()));
       std::copy(yp_.begin(), yp_.end(), N_VGetArrayPointer(solver_->yp.get()));
       sundials::check_ida(IDAReInit(mem, t, solver_->y.get(), solver_->yp.get()), "IDAReInit");
       sundials::check_ida(IDASetLineSearchOffIC(mem, SUNTRUE), "IDASetLineSearchOffIC");
       flag = IDACalcIC(mem, IDA_YA_YDP_INIT, t + horizon);
       sundials::check_ida(IDASetLineSearchOffIC(mem, SUNFALSE), "IDASetLineSearchOffIC");
+    }
+    if ((flag == IDA_LINESEARCH_FAIL || flag == IDA_CONV_FAIL) && !error_) {
+      // Where a switch makes rate elements share the drive's rate at once (a quadratic dashpot
+      // and a dashpot behind a gap that closes, or beside a slider that starts to slip), neither
+      // finds the rates from the stale ones. They are started from those of a backward-Euler step
+      // of 1e-3 of IDACalcIC's horizon (euler_rates: Newton with the matrix recomputed at every
+      // iterate; the step makes the algebraic unknowns consistent at its end, so its differential
+      // rates are those of a consistent state to O(h)).
+      euler_rates(t, 1e-3 * horizon);
+      for (int i = 0; i < layout_.size(); ++i)
+        if (!layout_.differential(i)) at(yp_, i) = 0.0;
+      std::copy(y_.begin(), y_.end(), N_VGetArrayPointer(solver_->y.get()));
+      std::copy(yp_.begin(), yp_.end(), N_VGetArrayPointer(solver_->yp.get()));
+      sundials::check_ida(IDAReInit(mem, t, solver_->y.get(), solver_->yp.get()), "IDAReInit");
+      flag = IDACalcIC(mem, IDA_YA_YDP_INIT, t + horizon);
     }
     if (flag < 0) {
       if (error_) std::rethrow_exception(std::exchange(error_, nullptr));
