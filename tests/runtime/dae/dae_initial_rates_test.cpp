@@ -134,3 +134,22 @@ TEST_CASE("a quadratic dashpot behind a very stiff spring on a two-tone drive fr
   }
   CHECK(worst / scale < 1e-6);  // observed 6.9e-10
 }
+
+// A quadratic dashpot and a dashpot behind a gap, driven at a constant rate v from rest: no force
+// while the gap is open; once it closes, the two share the rate, cq v1^2 = c (v - v1), so
+// F = c (v - v1), v1 = (sqrt(c^2 + 4 cq c v) - c) / (2 cq). At the contact IDACalcIC started
+// from the rates of the open gap (the quadratic dashpot's at 0) and failed (IDA_CONV_FAIL); it
+// now starts from those of a backward-Euler step.
+TEST_CASE("a quadratic dashpot and a dashpot behind a gap that closes at a constant rate: F = c (v - v1)") {
+  const double cq = 0.00737205, c = 0.312161, v = 30.0, contact = (-0.00858415 + 0.5 * 0.0259998) / v;  // s
+  const double v1 = (std::sqrt(c * c + 4.0 * cq * c * v) - c) / (2.0 * cq);
+  const auto h = history(
+      "model m { series { quadratic_dashpot (cq = 0.00737205 N*s^2/mm^2)\n gap (width = 0.0259998 mm, center = -0.00858415 mm)\n"
+      " dashpot (c = 0.312161 N*s/mm) } }",
+      corners({{0.01, v * 0.01}}, 1e-4));
+  for (std::size_t j = 0; j < h.time.size(); ++j) {
+    CAPTURE(h.time[j]);
+    if (h.time[j] < contact) CHECK(std::abs(h.force[j]) < 1e-9);
+    else CHECK(h.force[j] == doctest::Approx(c * (v - v1)).epsilon(1e-6));
+  }
+}
