@@ -30,7 +30,7 @@ using namespace rheo;
 
 namespace {
 
-// In the suite: 100 models take about 30 s of CPU in Release (docs/numerics.md). The sanitizer
+// In the suite: 100 models take about 20 s of CPU in Release (docs/numerics.md). The sanitizer
 // build (ASan + UBSan, RelWithDebInfo) runs a quarter of them, each several times slower.
 #if defined(__SANITIZE_ADDRESS__)
 constexpr int kModels = 25;

@@ -178,6 +178,31 @@ TEST_CASE("a quadratic dashpot behind a stiff spring on a two-tone drive from re
   CHECK(worst / scale < 1e-4);
 }
 
+// A quadratic dashpot behind a stuck slider and a stiff spring carries 3.5e-3 N at 0.3 mm and
+// 2 Hz, 3400 times below the slider's yield force: with the slider's force held to 1e-8 of the
+// network's force scale IDA took 2e7 steps a cycle (about 100 s a point); its force's tolerance
+// now scales with its yield force. Against fixed steps at 2048 and 4096 steps per cycle,
+// extrapolated (observed 1.5e-6 in K, 5e-7 in d).
+TEST_CASE("a quadratic dashpot behind a stuck slider and a stiff spring: IDA's harmonic point agrees with extrapolated fixed steps") {
+  const auto network = test::network_from(
+      "model m { series { quadratic_dashpot (cq = 0.000247703 N*s^2/mm^2)\n slider (fy_pos = 23.1472 N, fy_neg = 0.855984 N)\n"
+      " spring (k = 16089.8 N/mm) } }",
+      "m");
+  runtime::HarmonicOptions options;
+  options.steady_state = runtime::SteadyState::time_stepping;
+  options.steps_per_cycle = 256;
+  options.solver = runtime::SolverChoice::sundials;
+  const auto ida = runtime::simulate_harmonic_point(network, 0.3, 2.0, options);
+  options.solver = runtime::SolverChoice::fixed;
+  options.steps_per_cycle = 2048;
+  const auto coarse = runtime::simulate_harmonic_point(network, 0.3, 2.0, options);
+  options.steps_per_cycle = 4096;
+  const auto fine = runtime::simulate_harmonic_point(network, 0.3, 2.0, options);
+  REQUIRE(ida.converged);
+  CHECK(test::relative_error(ida.measures.stiffness, 2.0 * fine.measures.stiffness - coarse.measures.stiffness) < 1e-5);
+  CHECK(std::abs(ida.measures.damping - (2.0 * fine.measures.damping - coarse.measures.damping)) < 1e-5);
+}
+
 TEST_CASE("a failing SUNDIALS call is reported with the call and the flag name") {
   CHECK_THROWS_WITH_AS(runtime::sundials::check_ida(IDA_TOO_MUCH_WORK, "IDASolve", "model 'm' at t = 1 s"),
                        "SUNDIALS IDASolve failed: IDA_TOO_MUCH_WORK: model 'm' at t = 1 s", runtime::NumericalError);
