@@ -69,13 +69,45 @@ void DaeIntegrator::restart(double t, bool modes_changed) {
   void* mem = solver_->ida.get();
   for (int attempt = 0;; ++attempt) {
     if (modes_changed) rechoose_coordinates(t);
+    const double horizon = drive_.kind == DriveSignal::Kind::sine ? 1e-3 / std::max(drive_.omega, std::numeric_limits<double>::min())
+                                                                  : 1e-3 * (drive_.samples->time.back() - drive_.samples->time.front());
+    if (nested_bouc_wen_) initial_rates_by_euler_step(t, horizon);  // no sliders or gaps: y is consistent
     std::copy(y_.begin(), y_.end(), N_VGetArrayPointer(solver_->y.get()));
     std::copy(yp_.begin(), yp_.end(), N_VGetArrayPointer(solver_->yp.get()));
     collect_statistics();  // IDAReInit zeroes IDA's counters
     sundials::check_ida(IDAReInit(mem, t, solver_->y.get(), solver_->yp.get()), "IDAReInit");
-    const double horizon = drive_.kind == DriveSignal::Kind::sine ? 1e-3 / std::max(drive_.omega, std::numeric_limits<double>::min())
-                                                                  : 1e-3 * (drive_.samples->time.back() - drive_.samples->time.front());
-    const int flag = IDACalcIC(mem, IDA_YA_YDP_INIT, t + horizon);
+    first_step_ = true;
+    if (nested_bouc_wen_) return;
+    int flag = IDACalcIC(mem, IDA_YA_YDP_INIT, t + horizon);
+    if ((flag == IDA_LINESEARCH_FAIL || flag == IDA_CONV_FAIL) && !error_) {
+      // IDACalcIC's line search judges a step by the Newton step that the matrix of the start
+      // predicts from the new point. From rest a quadratic dashpot's tangent there is cq v_eps,
+      // far below what its rate reaches, so every full step looks like no progress (two quadratic
+      // dashpots in series, whose rates the drive sets at once, failed at t = 0; a quadratic
+      // dashpot and a dashpot behind a gap that closes, IDA_CONV_FAIL). Plain Newton overshoots
+      // and comes back down the convex law; it is tried once from the same start.
+      std::copy(y_.begin(), y_.end(), N_VGetArrayPointer(solver_->y.get()));
+      std::copy(yp_.begin(), yp_.end(), N_VGetArrayPointer(solver_->yp.get()));
+      sundials::check_ida(IDAReInit(mem, t, solver_->y.get(), solver_->yp.get()), "IDAReInit");
+      sundials::check_ida(IDASetLineSearchOffIC(mem, SUNTRUE), "IDASetLineSearchOffIC");
+      flag = IDACalcIC(mem, IDA_YA_YDP_INIT, t + horizon);
+      sundials::check_ida(IDASetLineSearchOffIC(mem, SUNFALSE), "IDASetLineSearchOffIC");
+    }
+    if ((flag == IDA_LINESEARCH_FAIL || flag == IDA_CONV_FAIL) && !error_) {
+      // Where a switch makes rate elements share the drive's rate at once (a quadratic dashpot
+      // and a dashpot behind a gap that closes, or beside a slider that starts to slip), neither
+      // finds the rates from the stale ones. They are started from those of a backward-Euler step
+      // of 1e-3 of IDACalcIC's horizon (euler_rates: Newton with the matrix recomputed at every
+      // iterate; the step makes the algebraic unknowns consistent at its end, so its differential
+      // rates are those of a consistent state to O(h)).
+      euler_rates(t, 1e-3 * horizon);
+      for (int i = 0; i < layout_.size(); ++i)
+        if (!layout_.differential(i)) at(yp_, i) = 0.0;
+      std::copy(y_.begin(), y_.end(), N_VGetArrayPointer(solver_->y.get()));
+      std::copy(yp_.begin(), yp_.end(), N_VGetArrayPointer(solver_->yp.get()));
+      sundials::check_ida(IDAReInit(mem, t, solver_->y.get(), solver_->yp.get()), "IDAReInit");
+      flag = IDACalcIC(mem, IDA_YA_YDP_INIT, t + horizon);
+    }
     if (flag < 0) {
       if (error_) std::rethrow_exception(std::exchange(error_, nullptr));
       sundials::check_ida(
@@ -83,7 +115,6 @@ void DaeIntegrator::restart(double t, bool modes_changed) {
           fmt::format("no consistent state of model '{}' at t = {:g} s after an element switched; {}", graph_.model, t, last_message_));
     }
     sundials::check_ida(IDAGetConsistentIC(mem, solver_->y.get(), solver_->yp.get()), "IDAGetConsistentIC");
-    first_step_ = true;
     copy_from_solver();
     if (switch_inconsistent_modes()) return;
     if (attempt > 2 * layout_.switch_forces + 2)
@@ -146,6 +177,25 @@ double DaeIntegrator::solve_to(double t_stop) {
     if (suppress) sundials::check_ida(IDASetSuppressAlg(mem, SUNFALSE), "IDASetSuppressAlg");
   }
   if (flag == IDA_SUCCESS && t_reached < t_stop) flag = IDASolve(mem, t_stop, &t_reached, solver_->y.get(), solver_->yp.get(), IDA_NORMAL);
+  if (flag == IDA_CONV_FAIL && !error_) {
+    // The corrector failed with jacobian()'s tangents. A quadratic dashpot behind a spring whose
+    // rate starts at 0 (from rest, or at a reversal) reaches v ~ sqrt(k u' t / cq): IDA's error
+    // test wants steps so short that its Newton matrix, the tangent cq v_eps of the predictor at
+    // v = 0, is far below the law's slope at the step's rate, and the corrector overshoots by that
+    // ratio at every h (a 16090 N/mm spring and cq = 2.5e-4 N s^2/mm^2 at 30 mm/s). One
+    // backward-Euler step of 1e-6 of the drive's time scale, by Newton with the matrix
+    // recomputed at each iterate (euler_step), moves the rate off 0, and IDA restarts there from
+    // tangents that hold along its steps.
+    copy_from_solver();
+    time_ = t_reached;
+    const double horizon = drive_.kind == DriveSignal::Kind::sine ? 1e-3 / std::max(drive_.omega, std::numeric_limits<double>::min())
+                                                                  : 1e-3 * (drive_.samples->time.back() - drive_.samples->time.front());
+    euler_step(time_, std::min(1e-3 * horizon, 0.5 * (t_stop - time_)));
+    restart(time_, false);
+    first_step_ = false;
+    sundials::check_ida(IDASetStopTime(mem, t_stop), "IDASetStopTime");
+    flag = IDASolve(mem, t_stop, &t_reached, solver_->y.get(), solver_->yp.get(), IDA_NORMAL);
+  }
   if (flag == IDA_CONV_FAIL && !error_) {
     // The corrector failed with jacobian()'s tangents: restart from the last step reached with
     // IDA's own Newton matrix, whose slope of a rate law is a secant over a rate increment of

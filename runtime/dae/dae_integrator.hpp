@@ -120,6 +120,13 @@ class DaeIntegrator {
   double terminal_force(const double* force) const;
   const Edge& switch_edge(int l) const;
   void restart(double t, bool modes_changed);
+  // Consistent rates yp_ at t for the current y_ (consistent there) from one backward-Euler step
+  // of 1e-3 HORIZON [s], where IDACalcIC cannot find them (dae_initial_rates.cpp).
+  void initial_rates_by_euler_step(double t, double horizon);
+  // yp_ := the rates v of one backward-Euler step of H [s] from (T, y_): F(t + h, y_ + h v, v) = 0.
+  void euler_rates(double t, double h);
+  // y_ := y_ + H v and time_ := T + H, v from euler_rates.
+  void euler_step(double t, double h);
   void rechoose_coordinates(double t);
   bool switch_inconsistent_modes();
   void copy_from_solver();
@@ -146,8 +153,12 @@ class DaeIntegrator {
   mutable std::vector<double> rate_, acceleration_, force_;  // scratch per residual call
   std::vector<double> y_saved_, yp_saved_, root_values_;     // scratch of stick_reversed_sliders
   std::vector<double> y_probe_, yp_probe_, r_probe_;         // scratch of jacobian
-  std::vector<double> scale_;                                // each unknown's scale (its absolute tolerance / rtol)
-  std::vector<int> root_direction_, roots_found_;            // scratch of restart and solve_to
+  std::vector<double> y_probe_initial_, r_initial_;          // scratch of initial_rates_by_euler_step
+  // A bouc_wen between internal nodes: its law reads positions' rates, which IDACalcIC holds
+  // fixed, so restarts take initial_rates_by_euler_step instead (no sliders or gaps then).
+  bool nested_bouc_wen_ = false;
+  std::vector<double> scale_;                      // each unknown's scale (its absolute tolerance / rtol)
+  std::vector<int> root_direction_, roots_found_;  // scratch of restart and solve_to
   double time_ = 0.0;
   bool first_step_ = false;  // the next IDA step is the first since a restart (solve_to)
   long events_ = 0;

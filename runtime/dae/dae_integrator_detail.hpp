@@ -5,6 +5,8 @@
 #include "runtime/dae/dae_integrator.hpp"
 #include "runtime/dae/sundials_owners.hpp"
 
+#include <Eigen/Dense>
+
 #include <cstddef>
 #include <vector>
 
@@ -28,6 +30,8 @@ struct DaeIntegrator::Solver {
   sundials::Matrix jacobian;
   sundials::LinearSolver linear_solver;
   sundials::IdaMemory ida;
+  std::vector<double> euler_matrix;               // n x n, column-major: initial_rates_by_euler_step
+  Eigen::PartialPivLU<Eigen::MatrixXd> euler_lu;  // sized once
 };
 
 // Element I of V, for the int indices the graph and the layout use.

@@ -87,7 +87,8 @@ runtime::Drive refined(const runtime::Drive& d, int r) {
 struct Worst {
   double history = 0.0, stiffness = 0.0, damping = 0.0;
   int harmonic_compared = 0, harmonic_points = 0;
-  std::string timing;  // of the last model: CPU seconds of each part, and each harmonic point's cycles (! not periodic)
+  int refined_histories = 0, refined_points = 0;  // compared again at finer fixed steps
+  std::string timing;                             // of the last model: CPU seconds of each part, and each harmonic point's cycles (! not periodic)
 };
 
 double cpu_seconds() { return static_cast<double>(std::clock()) / CLOCKS_PER_SEC; }
@@ -107,20 +108,29 @@ void compare(const std::string& source, double fastest_mass, Worst& worst) {
   const runtime::History ida = runtime::run_history(network, drive, false, runtime::SolverChoice::sundials);
   const double ida_done = cpu_seconds();
   // Fixed steps are first order where nested dashpots are: extrapolated from r and 2r steps per
-  // sample (Richardson), 2 F(2r) - F(r).
-  const runtime::History coarse = runtime::run_history(network, refined(drive, refine), false, runtime::SolverChoice::fixed);
-  const runtime::History fine = runtime::run_history(network, refined(drive, 2 * refine), false, runtime::SolverChoice::fixed);
-  worst.timing = fmt::format("history: IDA {:.2f} s, fixed {:.2f} s ({} steps per sample)", ida_done - started, cpu_seconds() - ida_done, refine);
-  double scale = 0.0, difference = 0.0;
-  for (std::size_t k = 0; k < drive.time.size(); ++k) {
-    const double a = ida.force[k],
-                 b = 2.0 * fine.force[2 * k * static_cast<std::size_t>(refine)] - coarse.force[k * static_cast<std::size_t>(refine)];
-    REQUIRE(std::isfinite(a));
-    REQUIRE(std::isfinite(b));
-    scale = std::max(scale, std::abs(a));
-    difference = std::max(difference, std::abs(a - b));
+  // sample (Richardson), 2 F(2r) - F(r). Where a slider or gap switches inside steps the error is
+  // not yet smooth in the step at r = 4 (seed 2026, model 50: 3.1e-2 of max |F| extrapolated from
+  // 4 and 8, 4.6e-5 from 64 steps per sample alone): a model outside the tolerance is compared
+  // again at 4, then 16 times the steps (counted in Worst::refined_histories), and judged on the first
+  // comparison within the tolerance, or the last.
+  double history = 0.0;
+  for (int more = 1; more <= 16; more *= 4) {
+    const int r = refine * more;
+    const runtime::History coarse = runtime::run_history(network, refined(drive, r), false, runtime::SolverChoice::fixed);
+    const runtime::History fine = runtime::run_history(network, refined(drive, 2 * r), false, runtime::SolverChoice::fixed);
+    worst.timing = fmt::format("history: IDA {:.2f} s, fixed {:.2f} s ({} steps per sample)", ida_done - started, cpu_seconds() - ida_done, r);
+    double scale = 0.0, difference = 0.0;
+    for (std::size_t k = 0; k < drive.time.size(); ++k) {
+      const double a = ida.force[k], b = 2.0 * fine.force[2 * k * static_cast<std::size_t>(r)] - coarse.force[k * static_cast<std::size_t>(r)];
+      REQUIRE(std::isfinite(a));
+      REQUIRE(std::isfinite(b));
+      scale = std::max(scale, std::abs(a));
+      difference = std::max(difference, std::abs(a - b));
+    }
+    history = difference / std::max(scale, 1e-9);
+    if (history <= kHistoryTolerance) break;
+    if (more == 1) ++worst.refined_histories;
   }
-  const double history = difference / std::max(scale, 1e-9);
   CHECK_MESSAGE(history <= kHistoryTolerance, "history forces differ by ", history, " of max |F|");
   worst.history = std::max(worst.history, history);
 
@@ -142,22 +152,37 @@ void compare(const std::string& source, double fastest_mass, Worst& worst) {
     const runtime::HarmonicPoint a = ida_harmonic ? runtime::simulate_harmonic_point(network, amplitude, frequency, options)
                                                   : runtime::HarmonicPoint{};
     const double between = cpu_seconds();
+    // Extrapolated from N and 2N fixed steps per cycle; outside the tolerances (a gap or slider
+    // switching inside steps, as for the history) compared again at 4N and 16N, and judged on
+    // the first comparison within them, or the last.
     options.solver = runtime::SolverChoice::fixed;
-    const runtime::HarmonicPoint b_fine = runtime::simulate_harmonic_point(network, amplitude, frequency, options);
-    options.steps_per_cycle = kStepsPerCycle;
-    const runtime::HarmonicPoint b_coarse = runtime::simulate_harmonic_point(network, amplitude, frequency, options);
-    worst.timing += fmt::format("; {} Hz: IDA {:.2f} s ({} cycles), fixed {:.2f} s ({} and {} cycles)", frequency, between - before, cycles(a),
-                                cpu_seconds() - between, cycles(b_fine), cycles(b_coarse));
-    for (const auto* p : {&a, &b_fine, &b_coarse}) REQUIRE(std::isfinite(p->measures.stiffness));
+    double stiffness = 0.0, damping = 0.0;
+    bool compared = false;
+    for (int more = 1; more <= 16; more *= 4) {
+      options.steps_per_cycle = 2 * kStepsPerCycle * more;
+      const runtime::HarmonicPoint b_fine = runtime::simulate_harmonic_point(network, amplitude, frequency, options);
+      options.steps_per_cycle = kStepsPerCycle * more;
+      const runtime::HarmonicPoint b_coarse = runtime::simulate_harmonic_point(network, amplitude, frequency, options);
+      if (more == 1)
+        worst.timing += fmt::format("; {} Hz: IDA {:.2f} s ({} cycles), fixed {:.2f} s ({} and {} cycles)", frequency, between - before, cycles(a),
+                                    cpu_seconds() - between, cycles(b_fine), cycles(b_coarse));
+      for (const auto* p : {&a, &b_fine, &b_coarse}) REQUIRE(std::isfinite(p->measures.stiffness));
+      if (!ida_harmonic || !a.converged || !b_fine.converged || !b_coarse.converged) break;
+      // A point inside a gap's play carries no force on either side: it has no phase to compare.
+      if (a.measures.force_amplitude == 0.0 && b_fine.measures.force_amplitude == 0.0 && b_coarse.measures.force_amplitude == 0.0) break;
+      compared = true;
+      const double b_stiffness = 2.0 * b_fine.measures.stiffness - b_coarse.measures.stiffness;
+      const double b_damping = 2.0 * b_fine.measures.damping - b_coarse.measures.damping;
+      stiffness = test::relative_error(b_stiffness, a.measures.stiffness);
+      // The damping d = sin(phase), not the phase: near 90 deg asin turns 1e-4 in d into 0.8 deg.
+      damping = std::abs(b_damping - a.measures.damping);
+      if (stiffness <= kStiffnessTolerance && damping <= kDampingTolerance) break;
+      if (more == 1) ++worst.refined_points;
+    }
     if (!ida_harmonic) continue;
     ++worst.harmonic_points;
-    if (!a.converged || !b_fine.converged || !b_coarse.converged) continue;
+    if (!compared) continue;
     ++worst.harmonic_compared;
-    const double b_stiffness = 2.0 * b_fine.measures.stiffness - b_coarse.measures.stiffness;
-    const double b_damping = 2.0 * b_fine.measures.damping - b_coarse.measures.damping;
-    const double stiffness = test::relative_error(b_stiffness, a.measures.stiffness);
-    // The damping d = sin(phase), not the phase: near 90 deg asin turns 1e-4 in d into 0.8 deg.
-    const double damping = std::abs(b_damping - a.measures.damping);
     CHECK(stiffness <= kStiffnessTolerance);
     CHECK(damping <= kDampingTolerance);
     worst.stiffness = std::max(worst.stiffness, stiffness);
@@ -181,9 +206,7 @@ bool refuses(const std::string& source) {
 TEST_CASE("differential: random networks to depth 6 agree between fixed steps and IDA") {
   const long models = environment("RHEO_DIFFERENTIAL_MODELS", kModels);
   const auto seed = static_cast<std::uint64_t>(environment("RHEO_DIFFERENTIAL_SEED", static_cast<long>(kSeed)));
-  const char* all_valid = std::getenv("RHEO_DIFFERENTIAL_ALL_VALID");
-  test::RandomNetwork generator(seed, kMaxDepth,
-                                all_valid && *all_valid ? test::RandomNetwork::Placements::all_valid : test::RandomNetwork::Placements::known_good);
+  test::RandomNetwork generator(seed, kMaxDepth);
   const char* verbose_setting = std::getenv("RHEO_DIFFERENTIAL_VERBOSE");
   const bool verbose = verbose_setting && *verbose_setting;
   Worst worst;
@@ -210,7 +233,8 @@ TEST_CASE("differential: random networks to depth 6 agree between fixed steps an
   }
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   MESSAGE(models, " models (seed ", seed, ") in ", seconds, " s; worst: history ", worst.history, " of max |F|, stiffness ", worst.stiffness,
-          ", damping ", worst.damping, "; harmonic points compared ", worst.harmonic_compared, " of ", worst.harmonic_points, "; ", refused,
+          ", damping ", worst.damping, "; ", worst.refined_histories, " histories and ", worst.refined_points,
+          " harmonic points refined; harmonic points compared ", worst.harmonic_compared, " of ", worst.harmonic_points, "; ", refused,
           " models drawn again");
   // Few models are drawn again, and a fair share of points reach their periodic state within
   // the cycle budget: the comparison is not vacuous.
@@ -219,8 +243,7 @@ TEST_CASE("differential: random networks to depth 6 agree between fixed steps an
 }
 
 TEST_CASE("differential: the generator is deterministic and covers every element kind") {
-  const auto all = test::RandomNetwork::Placements::all_valid;
-  test::RandomNetwork a(7, kMaxDepth, all), b(7, kMaxDepth, all);
+  test::RandomNetwork a(7, kMaxDepth), b(7, kMaxDepth);
   std::string text;
   for (int i = 0; i < 60; ++i) {
     const std::string model = a.model("m");

@@ -30,16 +30,8 @@ namespace rheo::test {
 
 class RandomNetwork {
  public:
-  // Which placements the generator uses. `known_good`: those both integrators are known to
-  // handle within the differential test's time (the suite); `all_valid`: every placement
-  // `check` accepts, including the open cases of issue 26 (a quadratic_dashpot or bouc_wen inside
-  // a block: IDA fails on some, at t = 0 or at a restart: 9 of 60 models of seed 2026;
-  // tests/corpus/repro/backends/README.md).
-  enum class Placements { known_good, all_valid };
-
   // Blocks nest at most max_depth below the model's body.
-  RandomNetwork(std::uint64_t seed, int max_depth, Placements placements = Placements::known_good)
-      : bits_(seed), max_depth_(max_depth), all_valid_(placements == Placements::all_valid) {}
+  RandomNetwork(std::uint64_t seed, int max_depth) : bits_(seed), max_depth_(max_depth) {}
 
   // The largest natural frequency sqrt(k/b) [rad/s] of the damped internal masses of the last
   // model (0 without one): what a fixed step must resolve (differential_test.cpp).
@@ -142,9 +134,7 @@ class RandomNetwork {
           return fmt::format("poly_spring (k1 = {} N/mm, k2 = {} N/mm^2, k3 = {} N/mm^3)", num(k1), num(k2), num(k3));
         }
         case 3: return fmt::format("dashpot (c = {} N*s/mm)", num(log_uniform(0.01, 10)));
-        case 4:
-          if (nested && !all_valid_) continue;
-          return fmt::format("quadratic_dashpot (cq = {} N*s^2/mm^2)", num(log_uniform(1e-4, 0.1)));
+        case 4: return fmt::format("quadratic_dashpot (cq = {} N*s^2/mm^2)", num(log_uniform(1e-4, 0.1)));
         case 5: {
           const double k = log_uniform(1, 1e4), tau = log_uniform(0.5e-3, 0.3);  // s: slower modes need hundreds of cycles
           if (unit() < 0.5) return fmt::format("maxwell (k = {} N/mm, tau = {} ms)", num(k), num(1e3 * tau));
@@ -165,7 +155,7 @@ class RandomNetwork {
             return fmt::format("springpot (k = {} N/mm, alpha = {}, tau = {} ms, f_low = 1 Hz, f_high = 100 Hz)", num(k), num(alpha), num(tau));
           }
         default:  // 8 and 9: bouc_wen (twice as often: its laws and placements vary most)
-          if (nested && (switches_ || !all_valid_)) continue;
+          if (nested && switches_) continue;
           {
             const bool force = unit() < 0.5;
             const double k = log_uniform(10, 1e3), n = between(1, 4), cap = force ? log_uniform(0.5, 20) : log_uniform(10, 200);
@@ -178,7 +168,6 @@ class RandomNetwork {
 
   std::mt19937_64 bits_;
   int max_depth_;
-  bool all_valid_;
   bool switches_ = false;
   double fastest_mass_ = 0.0;
   bool springpot_ = false;  // one springpot per model: each is a chain of 22 Maxwell modes (44 unknowns of IDA's dense Newton matrix)

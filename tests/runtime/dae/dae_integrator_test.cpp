@@ -127,8 +127,8 @@ TEST_CASE("a stiff spring before a weak slider and a dashpot: F = c v (1 - exp(-
 
 // A quadratic dashpot in series with a stiff spring, driven from rest at a constant rate v: its
 // rate w rises from 0 like sqrt(t), and Newton from the tangent cq v_eps at rest overshoots
-// (issue 26: IDA failed at t = 1e-9 s with rheo's own Newton matrix; it falls back to IDA's
-// secant). Closed form: F = cq w^2 and 2 cq w w' = k (v - w), so
+// (issue 26: IDA failed at t = 1e-9 s with rheo's own Newton matrix; a backward-Euler step by
+// full Newton now moves the rate off 0 first, dae_events.cpp). Closed form: F = cq w^2 and 2 cq w w' = k (v - w), so
 // t(w) = (2 cq / k) (-w - v ln(1 - w/v)), inverted by bisection.
 TEST_CASE("a quadratic dashpot behind a stiff spring from rest: t(w) = (2 cq/k) (-w - v ln(1 - w/v)), F = cq w^2") {
   const double k = 4163.22, cq = 0.00913203, v = 30.0;  // N/mm, N*s^2/mm^2, mm/s
@@ -145,8 +145,8 @@ TEST_CASE("a quadratic dashpot behind a stiff spring from rest: t(w) = (2 cq/k) 
 }
 
 // The same chain on the differential test's two-tone drive (from rest at 30 mm/s, 1 ms
-// samples), where rheo's own Newton matrix failed at t = 1e-9 s and the fallback to IDA's
-// secant runs it: against fixed steps at 64 and 128 steps per sample, extrapolated (2 F(128) -
+// samples), where rheo's own Newton matrix failed at t = 1e-9 s (now a backward-Euler step
+// starts it): against fixed steps at 64 and 128 steps per sample, extrapolated (2 F(128) -
 // F(64); the quadratic dashpot's constant-rate step is first order). Observed 1.6e-5 of max |F|.
 TEST_CASE("a quadratic dashpot behind a stiff spring on a two-tone drive from rest agrees with extrapolated fixed steps") {
   const std::string source = "model m { series { quadratic_dashpot (cq = 0.00913203 N*s^2/mm^2)\n spring (k = 4163.22 N/mm) } }";
@@ -176,6 +176,31 @@ TEST_CASE("a quadratic dashpot behind a stiff spring on a two-tone drive from re
     worst = std::max(worst, std::abs(ida.force[j] - (2.0 * fine.force[128 * j] - coarse.force[64 * j])));
   }
   CHECK(worst / scale < 1e-4);
+}
+
+// A quadratic dashpot behind a stuck slider and a stiff spring carries 3.5e-3 N at 0.3 mm and
+// 2 Hz, 3400 times below the slider's yield force: with the slider's force held to 1e-8 of the
+// network's force scale IDA took 2e7 steps a cycle (about 100 s a point); its force's tolerance
+// now scales with its yield force. Against fixed steps at 2048 and 4096 steps per cycle,
+// extrapolated (observed 1.5e-6 in K, 5e-7 in d).
+TEST_CASE("a quadratic dashpot behind a stuck slider and a stiff spring: IDA's harmonic point agrees with extrapolated fixed steps") {
+  const auto network = test::network_from(
+      "model m { series { quadratic_dashpot (cq = 0.000247703 N*s^2/mm^2)\n slider (fy_pos = 23.1472 N, fy_neg = 0.855984 N)\n"
+      " spring (k = 16089.8 N/mm) } }",
+      "m");
+  runtime::HarmonicOptions options;
+  options.steady_state = runtime::SteadyState::time_stepping;
+  options.steps_per_cycle = 256;
+  options.solver = runtime::SolverChoice::sundials;
+  const auto ida = runtime::simulate_harmonic_point(network, 0.3, 2.0, options);
+  options.solver = runtime::SolverChoice::fixed;
+  options.steps_per_cycle = 2048;
+  const auto coarse = runtime::simulate_harmonic_point(network, 0.3, 2.0, options);
+  options.steps_per_cycle = 4096;
+  const auto fine = runtime::simulate_harmonic_point(network, 0.3, 2.0, options);
+  REQUIRE(ida.converged);
+  CHECK(test::relative_error(ida.measures.stiffness, 2.0 * fine.measures.stiffness - coarse.measures.stiffness) < 1e-5);
+  CHECK(std::abs(ida.measures.damping - (2.0 * fine.measures.damping - coarse.measures.damping)) < 1e-5);
 }
 
 TEST_CASE("a failing SUNDIALS call is reported with the call and the flag name") {
