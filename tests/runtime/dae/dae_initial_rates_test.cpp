@@ -7,6 +7,7 @@
 #include "runtime/dae/dae_protocols.hpp"
 #include "runtime/protocols/run_history.hpp"
 #include "support.hpp"
+#include "two_tone_reference.hpp"
 
 #include <doctest/doctest.h>
 
@@ -114,25 +115,8 @@ TEST_CASE("two quadratic dashpots in series at a constant rate: F = v^2 / (1/sqr
 TEST_CASE("a quadratic dashpot behind a very stiff spring on a two-tone drive from rest agrees with extrapolated fixed steps") {
   const std::string source = "model m { series { quadratic_dashpot (cq = 0.000247703 N*s^2/mm^2)\n spring (k = 16089.8 N/mm) } }";
   const auto network = test::network_from(source, "m");
-  auto drive = [](int r) {  // 0.1 s at 1 kHz, r steps per sample (the same piecewise-linear drive)
-    runtime::Drive d{{0.0}, {0.0}};
-    const auto u = [](int k) { return 0.3 * std::sin(2 * std::numbers::pi * 10e-3 * k) + 0.05 * std::sin(2 * std::numbers::pi * 37e-3 * k); };
-    for (int k = 1; k <= 100; ++k)
-      for (int i = 1; i <= r; ++i) {
-        d.time.push_back(1e-3 * (k - 1) + 1e-3 * i / r);
-        d.displacement.push_back(u(k - 1) + (u(k) - u(k - 1)) * i / r);
-      }
-    return d;
-  };
-  const auto ida = runtime::dae_history(network, drive(1), false);
-  const auto coarse = runtime::run_history(network, drive(64), false, runtime::SolverChoice::fixed);
-  const auto fine = runtime::run_history(network, drive(128), false, runtime::SolverChoice::fixed);
-  double scale = 0.0, worst = 0.0;
-  for (std::size_t j = 0; j < ida.time.size(); ++j) {
-    scale = std::max(scale, std::abs(ida.force[j]));
-    worst = std::max(worst, std::abs(ida.force[j] - (2.0 * fine.force[128 * j] - coarse.force[64 * j])));
-  }
-  CHECK(worst / scale < 1e-6);  // observed 6.9e-10
+  const auto ida = runtime::dae_history(network, test::two_tone_drive(1), false);
+  CHECK(test::gap_to_extrapolated_fixed_steps(network, ida.force) < 1e-6);  // observed 6.9e-10
 }
 
 // A quadratic dashpot and a dashpot behind a gap, driven at a constant rate v from rest: no force

@@ -7,6 +7,7 @@
 #include "runtime/dae/dae_protocols.hpp"
 #include "runtime/dae/sundials_owners.hpp"
 #include "support.hpp"
+#include "two_tone_reference.hpp"
 
 #include <doctest/doctest.h>
 
@@ -151,31 +152,8 @@ TEST_CASE("a quadratic dashpot behind a stiff spring from rest: t(w) = (2 cq/k) 
 TEST_CASE("a quadratic dashpot behind a stiff spring on a two-tone drive from rest agrees with extrapolated fixed steps") {
   const std::string source = "model m { series { quadratic_dashpot (cq = 0.00913203 N*s^2/mm^2)\n spring (k = 4163.22 N/mm) } }";
   const auto network = test::network_from(source, "m");
-  runtime::Drive samples{{0.0}, {0.0}};
-  for (int k = 1; k <= 100; ++k) {
-    const double t = 1e-3 * k;
-    samples.time.push_back(t);
-    samples.displacement.push_back(0.3 * std::sin(2 * std::numbers::pi * 10 * t) + 0.05 * std::sin(2 * std::numbers::pi * 37 * t));
-  }
-  auto drive = [&](int r) {  // the same piecewise-linear drive, r samples per interval
-    if (r == 1) return samples;
-    runtime::Drive d{{0.0}, {0.0}};
-    for (std::size_t k = 1; k < samples.time.size(); ++k)
-      for (int i = 1; i <= r; ++i) {
-        d.time.push_back(samples.time[k - 1] + 1e-3 * i / r);
-        d.displacement.push_back(samples.displacement[k - 1] + (samples.displacement[k] - samples.displacement[k - 1]) * i / r);
-      }
-    return d;
-  };
-  const auto ida = history(source, drive(1));
-  const auto coarse = runtime::run_history(network, drive(64), false, runtime::SolverChoice::fixed);
-  const auto fine = runtime::run_history(network, drive(128), false, runtime::SolverChoice::fixed);
-  double scale = 0.0, worst = 0.0;
-  for (std::size_t j = 0; j < ida.time.size(); ++j) {
-    scale = std::max(scale, std::abs(ida.force[j]));
-    worst = std::max(worst, std::abs(ida.force[j] - (2.0 * fine.force[128 * j] - coarse.force[64 * j])));
-  }
-  CHECK(worst / scale < 1e-4);
+  const auto ida = history(source, test::two_tone_drive(1));
+  CHECK(test::gap_to_extrapolated_fixed_steps(network, ida.force) < 1e-4);
 }
 
 // A quadratic dashpot behind a stuck slider and a stiff spring carries 3.5e-3 N at 0.3 mm and

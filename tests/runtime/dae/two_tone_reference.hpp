@@ -1,0 +1,45 @@
+// The differential test's two-tone drive and the fixed-step reference the IDA tests hold a
+// history on it to.
+#pragma once
+
+#include "runtime/core/drive.hpp"
+#include "runtime/network/network.hpp"
+#include "runtime/protocols/run_history.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+#include <vector>
+
+namespace rheo::test {
+
+// From rest, 100 samples 1 ms apart of u(t) = 0.3 sin(2 pi 10 t) + 0.05 sin(2 pi 37 t) [mm]
+// (30 mm/s at once), each interval cut into `steps` equal ones: the same piecewise-linear drive.
+inline runtime::Drive two_tone_drive(int steps) {
+  runtime::Drive d{{0.0}, {0.0}};
+  const auto u = [](double t) { return 0.3 * std::sin(2 * std::numbers::pi * 10 * t) + 0.05 * std::sin(2 * std::numbers::pi * 37 * t); };
+  for (int k = 1; k <= 100; ++k)
+    for (int i = 1; i <= steps; ++i) {
+      const double previous = u(1e-3 * (k - 1)), next = u(1e-3 * k);
+      d.time.push_back(1e-3 * (k - 1) + 1e-3 * i / steps);
+      d.displacement.push_back(previous + (next - previous) * i / steps);
+    }
+  return d;
+}
+
+// max_j |F_j - F*_j| / max_j |F_j| over the samples of two_tone_drive(1), where F holds the
+// forces at those samples and F* = 2 F(128) - F(64) extrapolates fixed steps at 128 and 64
+// steps per sample (their error is first order in the step where a quadratic dashpot's rate
+// is held constant over a step).
+inline double gap_to_extrapolated_fixed_steps(const runtime::Network& network, const std::vector<double>& force) {
+  const auto coarse = runtime::run_history(network, two_tone_drive(64), false, runtime::SolverChoice::fixed);
+  const auto fine = runtime::run_history(network, two_tone_drive(128), false, runtime::SolverChoice::fixed);
+  double scale = 0.0, worst = 0.0;
+  for (std::size_t j = 0; j < force.size(); ++j) {
+    scale = std::max(scale, std::abs(force[j]));
+    worst = std::max(worst, std::abs(force[j] - (2.0 * fine.force[128 * j] - coarse.force[64 * j])));
+  }
+  return worst / scale;
+}
+
+}  // namespace rheo::test
