@@ -60,10 +60,6 @@ void DaeIntegrator::euler_rates(double t, double h) {
                                    graph_.model, t, h));
 }
 
-}  // namespace rheo::runtime
-
-namespace rheo::runtime {
-
 // One backward-Euler step of length h from (t, y_): see solve_to, where IDA's corrector fails
 // at the start of an interval.
 void DaeIntegrator::euler_step(double t, double h) {
