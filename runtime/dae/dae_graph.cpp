@@ -148,6 +148,24 @@ DaeGraph DaeGraph::build(const Network& network) {
                       "rate follows node rates that jump when they switch, and IDA finds no consistent state there; use solver = fixed",
                       error_at(edge.where), edge.path, graph.model));
     }
+  // Sliders in parallel (between the same two nodes) share one elongation: while both stick,
+  // how they share the load is undetermined, so the mode's matrix is singular (IDACalcIC:
+  // IDA_NO_RECOVERY). They act as one slider whose yield forces are their sums.
+  for (std::size_t i = 0; i < graph.switch_edges.size(); ++i)
+    for (std::size_t j = 0; j < i; ++j) {
+      const Edge& first = graph.edges[static_cast<std::size_t>(graph.switch_edges[j])];
+      const Edge& second = graph.edges[static_cast<std::size_t>(graph.switch_edges[i])];
+      if (first.kind != EdgeKind::slider || second.kind != EdgeKind::slider) continue;
+      if (!((first.a == second.a && first.b == second.b) || (first.a == second.b && first.b == second.a))) continue;
+      const bool aligned = first.a == second.a;  // else the second's tension is the first's compression
+      const double pos = first.p[0] + (aligned ? second.p[0] : second.p[1]), neg = first.p[1] + (aligned ? second.p[1] : second.p[0]);
+      const std::string merged = pos == neg ? fmt::format("fy = {:g} N", pos) : fmt::format("fy_pos = {:g} N, fy_neg = {:g} N", pos, neg);
+      throw ModelError(
+          fmt::format("{}slider '{}' of model '{}' sits in parallel with slider '{}': while both stick, how they share the "
+                      "force is undetermined, and IDA finds no consistent state; merge the sliders into one ({}), put a "
+                      "spring in series with one of them (a friction element), or use solver = fixed",
+                      error_at(second.where), second.path, graph.model, first.path, merged));
+    }
   for (const Edge& edge : graph.edges)
     for (int node : {edge.a, edge.b})
       if (node >= 0 && !held[static_cast<std::size_t>(node)])

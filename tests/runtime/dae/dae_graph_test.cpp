@@ -43,6 +43,26 @@ TEST_CASE("refused: an inerter between terminal and ground, and sliders meeting 
       doctest::Contains("merge the sliders or put a spring between them"), runtime::ModelError);
 }
 
+TEST_CASE("refused: sliders in parallel, with the one slider they act as") {
+  // While both stick their shares of the force are undetermined (IDACalcIC: IDA_NO_RECOVERY).
+  const std::string symmetric =
+      "model m { series c { spring k (k = 100 N/mm)\n parallel p { spring s (k = 10 N/mm)\n slider a (fy = 10 N)\n "
+      "slider b (fy = 20 N) } } }";
+  CHECK_THROWS_WITH_AS(runtime::DaeGraph::build(test::network_from(symmetric, "m")),
+                       doctest::Contains("slider 'c.p.b' of model 'm' sits in parallel with slider 'c.p.a'"), runtime::ModelError);
+  CHECK_THROWS_WITH_AS(runtime::DaeGraph::build(test::network_from(symmetric, "m")), doctest::Contains("merge the sliders into one (fy = 30 N)"),
+                       runtime::ModelError);
+  const std::string asymmetric =
+      "model m { series c { spring k (k = 100 N/mm)\n parallel p { slider a (fy_pos = 10 N, fy_neg = 4 N)\n "
+      "slider b (fy = 20 N) } } }";
+  CHECK_THROWS_WITH_AS(runtime::DaeGraph::build(test::network_from(asymmetric, "m")),
+                       doctest::Contains("merge the sliders into one (fy_pos = 30 N, fy_neg = 24 N)"), runtime::ModelError);
+  // Friction elements in parallel are sliders behind springs of their own: accepted.
+  CHECK_NOTHROW(runtime::DaeGraph::build(test::network_from(
+      "model m { series c { spring k (k = 100 N/mm)\n parallel p { friction a (k = 5 N/mm, fy = 10 N)\n friction b (k = 7 N/mm, fy = 20 N) } } }",
+      "m")));
+}
+
 TEST_CASE("refused: a slider between terminal and ground (issue 26 reproducer 01)") {
   CHECK_THROWS_WITH_AS(runtime::DaeGraph::build(test::network_from("model m { spring k (k = 100 N/mm)\n slider s (fy = 5 N) }", "m")),
                        doctest::Contains("slider 's' of model 'm' sits directly between the terminal and ground"), runtime::ModelError);
