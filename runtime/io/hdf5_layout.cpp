@@ -185,17 +185,24 @@ Hdf5Column open_column(hid_t file_id, const std::string& file, Role role, const 
 }  // namespace
 
 std::vector<Hdf5Column> hdf5_columns(hid_t file_id, const std::string& file, const std::vector<Role>& roles, const ColumnReading& reading) {
-  // The root's datasets as a table's header, for the roles the reading does not name.
+  // The root's datasets as a table's header, for the roles the reading does not name; read only
+  // where one is not named, so that a file whose every role is named is not held to the root's
+  // other datasets (their units attributes).
   Table root;
   root.path = file;
-  const std::vector<std::string> root_members = members(file_id, file, "/");
-  for (const auto& name : root_members) {
-    if (object_type(file_id, "/" + name, file) != H5I_DATASET) continue;
-    hdf5::Dataset dataset(H5Dopen2(file_id, ("/" + name).c_str(), H5P_DEFAULT), file, "H5Dopen2", "/" + name);
-    const std::string unit = string_attribute(dataset.get(), "units", file, "/" + name).value_or("");
-    root.names.push_back(name), root.units.push_back(unit), root.parsed.push_back(unit.empty() ? std::nullopt : table_unit(unit));
-    root.unit_columns.push_back(1), root.problems.emplace_back(), root.columns.emplace_back();
-  }
+  std::vector<std::string> root_members;
+  bool root_read = false;
+  const auto read_root = [&] {
+    if (std::exchange(root_read, true)) return;
+    root_members = members(file_id, file, "/");
+    for (const auto& name : root_members) {
+      if (object_type(file_id, "/" + name, file) != H5I_DATASET) continue;
+      hdf5::Dataset dataset(H5Dopen2(file_id, ("/" + name).c_str(), H5P_DEFAULT), file, "H5Dopen2", "/" + name);
+      const std::string unit = string_attribute(dataset.get(), "units", file, "/" + name).value_or("");
+      root.names.push_back(name), root.units.push_back(unit), root.parsed.push_back(unit.empty() ? std::nullopt : table_unit(unit));
+      root.unit_columns.push_back(1), root.problems.emplace_back(), root.columns.emplace_back();
+    }
+  };
   std::vector<Hdf5Column> columns;
   for (const Role role : roles) {
     const std::string role_text(role_name(role));
@@ -209,6 +216,7 @@ std::vector<Hdf5Column> hdf5_columns(hid_t file_id, const std::string& file, con
       columns.push_back(open_column(file_id, file, role, path, unit));
       continue;
     }
+    read_root();
     const int c = find_role(root, role, reading);
     if (c < 0)
       throw DataError(

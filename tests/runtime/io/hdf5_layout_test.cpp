@@ -160,6 +160,27 @@ TEST_CASE("named paths through groups, and a unit on the line overriding or stan
         file + ": error: /rig/t (time) has unit 'mm' (on the line), a length (mm); time needs a unit of time (s), e.g. \"s\"");
 }
 
+TEST_CASE("with every role named, the root's other datasets are not read: an integer 'units' there is no fault") {
+  const auto file = written("named_only.h5", {{"/rig/t", kSix, H5T_IEEE_F64LE, "s"}, {"/rig/u", kSix, H5T_IEEE_F64LE, "mm"}});
+  add_dataset(file, "/notes", H5T_NATIVE_INT, {3});
+  {
+    const hid_t f = H5Fopen(file.c_str(), H5F_ACC_RDWR, H5P_DEFAULT);
+    const hid_t dataset = H5Dopen2(f, "/notes", H5P_DEFAULT);
+    const hid_t space = H5Screate(H5S_SCALAR);
+    const hid_t attribute = H5Acreate2(dataset, "units", H5T_NATIVE_INT, space, H5P_DEFAULT, H5P_DEFAULT);
+    const int value = 7;
+    REQUIRE(H5Awrite(attribute, H5T_NATIVE_INT, &value) >= 0);
+    H5Aclose(attribute), H5Sclose(space), H5Dclose(dataset);
+    REQUIRE(H5Fclose(f) >= 0);
+  }
+  with_columns(file, kDrive, named({{Role::time, "/rig/t"}, {Role::displacement, "/rig/u"}}), [](const std::vector<Hdf5Column>& c) {
+    CHECK(c[0].path == "/rig/t");
+    CHECK(c[1].path == "/rig/u");
+  });
+  // Where a role falls to the default layout, the root is read and its fault named.
+  CHECK(error_of(file, kDrive, named({{Role::displacement, "/rig/u"}})).find("is not a string") != std::string::npos);
+}
+
 TEST_CASE("a vector's axis and length: rank 1, N x 1 and 1 x N") {
   const auto file = written("shapes.h5", {{"/line", {1.0, 2.0, 3.0, 4.0, 5.0, 6.0, 7.0}, H5T_IEEE_F64LE, "s"},
                                           {"/column", {1.0, 2.0, 3.0, 4.0, 5.0}, H5T_IEEE_F64LE, "mm", false, true}});
