@@ -128,6 +128,11 @@ std::optional<Role> role_named(std::string_view name) {
 lang::Dimension role_dimension(Role role) { return spec_of(role).dimension; }
 const char* role_unit_kind(Role role) { return spec_of(role).kind; }
 const char* role_unit_example(Role role) { return spec_of(role).example; }
+std::string role_usual_names(Role role) {
+  std::string out;
+  for (const auto& name : spec_of(role).usual) out += (out.empty() ? "" : ", ") + std::string(name);
+  return out;
+}
 
 ColumnReading column_reading(const std::vector<lang::ColumnName>& columns) {
   ColumnReading reading;

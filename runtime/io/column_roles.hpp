@@ -36,6 +36,8 @@ struct ColumnReading {
 lang::Dimension role_dimension(Role role);
 const char* role_unit_kind(Role role);
 const char* role_unit_example(Role role);
+// ROLE's usual names, as messages list them: "time, t, test time, elapsed time".
+std::string role_usual_names(Role role);
 
 // The ROLE = NAME pairs of a `columns` setting, checked by the language (lang/fit_schema.hpp).
 ColumnReading column_reading(const std::vector<lang::ColumnName>& columns);

@@ -21,14 +21,6 @@ std::pair<std::string, std::optional<std::string>> path_and_unit(const std::stri
   return {path, named.substr(open + 1, named.size() - open - 2)};
 }
 
-std::string usual_names(Role role) {
-  switch (role) {
-    case Role::time: return "time, t";
-    case Role::force: return "force, load";
-    default: return "displacement, position, disp";
-  }
-}
-
 std::string absolute(const std::string& path) { return path.starts_with('/') ? path : "/" + path; }
 
 herr_t collect_name(hid_t, const char* name, const H5L_info_t*, void* out) {
@@ -222,7 +214,7 @@ std::vector<Hdf5Column> hdf5_columns(hid_t file_id, const std::string& file, con
       throw DataError(
           fmt::format("{}: error: no {} dataset: the root group has none named as usual ({}); name the one that holds it: "
                       "columns = \"{} = /group/dataset\" (the root group holds {})",
-                      lang::printable(file), role_text, usual_names(role), role_text, listed(root_members)));
+                      lang::printable(file), role_text, role_usual_names(role), role_text, listed(root_members)));
     columns.push_back(open_column(file_id, file, role, "/" + root.names[static_cast<std::size_t>(c)], std::nullopt));
   }
   return columns;

@@ -36,6 +36,12 @@ TEST_CASE("every role the language accepts in `columns` is one the readers know,
           rheo::lang::data_column_roles().end());
 }
 
+TEST_CASE("a role's usual names listed for messages, in order of preference") {
+  CHECK(role_usual_names(Role::time) == "time, t, test time, elapsed time");
+  CHECK(role_usual_names(Role::displacement) == "displacement, position, stroke, travel, deflection, disp");
+  CHECK(role_usual_names(Role::force) == "force, load, standard force, reaction force");
+}
+
 TEST_CASE("usual names in any case and spacing, unused columns may hold anything") {
   const Table t = parse_table("h.csv",
                               "Temperature [degC],Amplitude [mm],FREQUENCY [Hz],Dynamic  Stiffness [N/mm],Phase Angle [\xC2\xB0],Comment\n"

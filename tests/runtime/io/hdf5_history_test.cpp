@@ -143,7 +143,7 @@ TEST_CASE("HDF5 history faults name the file, the dataset and the index, with ad
           file + ": error: no dataset /bench/t for time: there is no /bench; the root group holds rig");
     CHECK(error_of(file, named({{Role::time, "/rig"}, {Role::displacement, "/rig/u"}})) ==
           file + ": error: /rig (time) is a group, not a dataset; name a dataset in it: it holds t, u");
-    CHECK(error_of(file).find(file + ": error: no time dataset: the root group has none named as usual (time, t)") == 0);
+    CHECK(error_of(file).find(file + ": error: no time dataset: the root group has none named as usual (time, t, test time, elapsed time)") == 0);
   }
   SUBCASE("rank and type") {
     const auto file = faulty("rank.h5", {{"/time", t, H5T_IEEE_F64LE, "s"}, {"/displacement", u, H5T_IEEE_F64LE, "mm"}});

@@ -131,9 +131,10 @@ TEST_CASE("the default layout takes, of several datasets named as usual, the fir
         none + ": error: /t (time) has unit 'N' (its 'units' attribute), a force (N); time needs a unit of time (s), e.g. \"s\"");
   // A group of a usual name is not a candidate; the message lists what the root holds.
   const auto group = written("group.h5", {{"/time/values", kSix, H5T_IEEE_F64LE, "s"}, {"/displacement", kSix, H5T_IEEE_F64LE, "mm"}});
-  CHECK(error_of(group, kDrive) == group +
-                                       ": error: no time dataset: the root group has none named as usual (time, t); name the one that holds "
-                                       "it: columns = \"time = /group/dataset\" (the root group holds displacement, time)");
+  CHECK(error_of(group, kDrive) ==
+        group +
+            ": error: no time dataset: the root group has none named as usual (time, t, test time, elapsed time); name the one that holds "
+            "it: columns = \"time = /group/dataset\" (the root group holds displacement, time)");
 }
 
 TEST_CASE("named paths through groups, and a unit on the line overriding or standing in for the 'units' attribute") {
@@ -246,10 +247,11 @@ TEST_CASE("layout faults are DataErrors naming the file and the dataset, with wh
     CHECK(displacement_at("/rig") == file + ": error: /rig (displacement) is a group, not a dataset; name a dataset in it: it holds t, u");
   }
   SUBCASE("no dataset named as usual in the root") {
-    CHECK(error_of(file, {Role::force}) == file +
-                                               ": error: no force dataset: the root group has none named as usual (force, load); name the one "
-                                               "that holds it: columns = \"force = /group/dataset\" (the root group holds bare, cube, "
-                                               "labels, matrix, odd, rig)");
+    CHECK(error_of(file, {Role::force}) ==
+          file +
+              ": error: no force dataset: the root group has none named as usual (force, load, standard force, reaction force); name the one "
+              "that holds it: columns = \"force = /group/dataset\" (the root group holds bare, cube, "
+              "labels, matrix, odd, rig)");
   }
   SUBCASE("a matrix, not a vector") {
     CHECK(displacement_at("/matrix") ==
