@@ -20,6 +20,10 @@ namespace rheo::runtime {
 void DaeIntegrator::rechoose_coordinates(double t) {
   const DriveState drive = drive_at(t);
   edge_forces(drive, y_.data(), yp_.data(), force_.data());  // rate_: every rate edge's, old coordinates
+  if (!start_rates_.empty()) {
+    std::copy(start_rates_.begin(), start_rates_.end(), rate_.begin());
+    start_rates_.clear();
+  }
   kinematics_ = ModeKinematics::make(graph_, modes_);
   const int s0 = layout_.rate_coordinate(0), w0 = layout_.inerter_velocity(0);
   std::fill(y_.begin() + s0, y_.begin() + layout_.bouc_wen_state(0), 0.0);

@@ -372,6 +372,12 @@ void DaeIntegrator::start(const DriveSignal& drive, const std::vector<double>* p
   restart(time_, true);
 }
 
+void DaeIntegrator::start(const DriveSignal& drive, const DaeLinearStart& linear) {
+  if (linear.rate_edge_rates.size() != graph_.rate_edges.size()) throw std::logic_error("DaeIntegrator::start: one rate per rate edge");
+  start_rates_ = linear.rate_edge_rates;
+  start(drive, &linear.positions);
+}
+
 double DaeIntegrator::advance(double t) {
   const bool samples = drive_.kind == DriveSignal::Kind::samples;
   if (rate_jump_pending_) {  // the last advance ended on a sample; the next piece starts here

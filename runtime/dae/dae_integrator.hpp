@@ -19,6 +19,7 @@
 #pragma once
 
 #include "runtime/dae/dae_graph.hpp"
+#include "runtime/dae/dae_linear_start.hpp"
 #include "runtime/dae/dae_modes.hpp"
 #include "runtime/core/drive.hpp"
 
@@ -83,6 +84,9 @@ class DaeIntegrator {
   // zero), or with POSITIONS (one per internal node, mm) from that configuration at rest (rates
   // zero): sliders stuck where they are, gaps closed where an elongation is at a stop.
   void start(const DriveSignal& drive, const std::vector<double>* positions = nullptr);
+  // Starts a sine drive from START's positions and rate-edge rates (dae_linear_start.hpp): the
+  // periodic state of the network's linearisation; sliders stuck where they are.
+  void start(const DriveSignal& drive, const DaeLinearStart& start);
   // Integrates to time t [s] (> the current time); returns the terminal force [N] at t. On a
   // sampled drive the force at a sample time is its left limit: rates are those of the piece
   // ending there (the fixed-step convention, run_history.hpp), as are element_outputs().
@@ -128,6 +132,9 @@ class DaeIntegrator {
   // y_ := y_ + H v and time_ := T + H, v from euler_rates.
   void euler_step(double t, double h);
   void rechoose_coordinates(double t);
+  // The rates of the rate edges' elongations the next rechoose_coordinates takes instead of those
+  // of the current coordinates (a start from a moving state); empty otherwise.
+  std::vector<double> start_rates_;
   bool switch_inconsistent_modes();
   void copy_from_solver();
   void switch_modes(double t, const std::vector<int>& found);

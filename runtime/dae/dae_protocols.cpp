@@ -10,6 +10,7 @@
 #include <cmath>
 #include <limits>
 #include <numbers>
+#include <optional>
 
 namespace rheo::runtime {
 
@@ -129,6 +130,8 @@ HarmonicPoint harmonic_point(const Network& network, double amplitude, double fr
     if (!start) throw std::logic_error("dae_harmonic_point: a preload needs the relaxed start");
     const std::vector<double> positions = start_positions(network, graph, preload, *start);
     integrator.start(signal, &positions);
+  } else if (const std::optional<DaeLinearStart> linear = dae_linear_periodic_start(graph, amplitude, omega)) {
+    integrator.start(signal, *linear);
   } else {
     integrator.start(signal);
   }
