@@ -13,7 +13,7 @@
 #include <fstream>
 #include <sstream>
 #include <string>
-#include <tuple>
+#include <utility>
 #include <vector>
 
 namespace fs = std::filesystem;
@@ -229,16 +229,26 @@ TEST_CASE("repro backends 05: harmonic points of an undamped oscillation are rep
 // the linearisation, IDA at the continuous one (dae_linear_start.hpp; from rest its 2 Hz points,
 // where the slider sticks, kept the mass's free oscillation and never settled): every point
 // converges on both, to the same stiffness and phase.
-TEST_CASE("repro backends 09: the harmonic grid of the undamped mass behind a slider settles on both integrators, and they agree") {
-  const BinaryRun fixed = bounded("09_undamped_inerter_harmonic", "harmonic", "fixed", 120);
-  const BinaryRun ida = bounded("09_undamped_inerter_harmonic", "harmonic", "sundials", 120);
+namespace {
+
+// The 2 x 2 harmonic grids of reproducer NAME on fixed steps and on IDA, each run within its bound [s].
+std::pair<std::vector<std::vector<double>>, std::vector<std::vector<double>>> grids_on_both(const char* name, int fixed_seconds, int ida_seconds) {
+  const BinaryRun fixed = bounded(name, "harmonic", "fixed", fixed_seconds);
+  const BinaryRun ida = bounded(name, "harmonic", "sundials", ida_seconds);
   INFO(fixed.err);
   INFO(ida.err);
   REQUIRE(fixed.code == 0);
   REQUIRE(ida.code == 0);
-  const auto a = harmonic_of(fixed), b = harmonic_of(ida);
-  REQUIRE(a.size() == 4);
-  REQUIRE(b.size() == 4);
+  auto grids = std::pair{harmonic_of(fixed), harmonic_of(ida)};
+  REQUIRE(grids.first.size() == 4);
+  REQUIRE(grids.second.size() == 4);
+  return grids;
+}
+
+}  // namespace
+
+TEST_CASE("repro backends 09: the harmonic grid of the undamped mass behind a slider settles on both integrators, and they agree") {
+  const auto [a, b] = grids_on_both("09_undamped_inerter_harmonic", 120, 120);
   for (std::size_t i = 0; i < a.size(); ++i) {
     CAPTURE(a[i][0]);
     CAPTURE(a[i][1]);
@@ -281,13 +291,7 @@ TEST_CASE("repro backends 03, 05, 06 and 07: nested bouc_wen on fixed steps, his
 // 07 (bouc_wen + Maxwell in series) is the one of them IDA integrates: its harmonic grid, an
 // independent path, agrees (observed 5e-6 in stiffness, 5e-6 in damping).
 TEST_CASE("repro backends 07: the fixed-step harmonic grid of bouc_wen + Maxwell agrees with IDA's") {
-  const BinaryRun fixed = bounded("07_fixed_harmonic_noconv_boucwen_maxwell", "harmonic", "fixed", 20);
-  const BinaryRun ida = bounded("07_fixed_harmonic_noconv_boucwen_maxwell", "harmonic", "sundials", 60);
-  REQUIRE(fixed.code == 0);
-  REQUIRE(ida.code == 0);
-  const auto a = harmonic_of(fixed), b = harmonic_of(ida);
-  REQUIRE(a.size() == 4);
-  REQUIRE(b.size() == 4);
+  const auto [a, b] = grids_on_both("07_fixed_harmonic_noconv_boucwen_maxwell", 20, 60);
   for (std::size_t i = 0; i < a.size(); ++i) {
     CAPTURE(i);
     CHECK(a[i][2] == doctest::Approx(b[i][2]).epsilon(1e-4));  // stiffness
