@@ -111,13 +111,21 @@ struct LoadingHalf {
   }
   // The event-driven branches' dF/dtheta at the phases of `samples`, summed into
   // branch_slopes (each branch carried along its pieces: PwlPeriodicState::slopes).
+  // On the grid (sample_grid[j] >= 0) the slopes the shooting recorded as its steady cycle
+  // passed there (PwlPeriodicState::grid_slope; the loading half's grid point j is the cycle's
+  // j - 16, or j + 16 for a mirrored branch); at a piece's ends by the branch's own flow.
   void sample_branch_slopes() {
     const std::size_t count = samples.size();
     branch_slopes.assign(count, 0.0);
     one_branch.resize(count);
     for (const PwlPeriodicState* branch : branches) {
       const bool mirror = mirrored(*branch);
-      branch->slopes(samples.data(), static_cast<int>(count), mirror ? std::numbers::pi : 0.0, one_branch.data());
+      const double offset = mirror ? std::numbers::pi : 0.0;
+      for (std::size_t j = 0; j < count; ++j) {
+        const int index = sample_grid[j];
+        if (index >= 0) one_branch[j] = branch->grid_slope(index - samples_per_half_cycle / 2 + (mirror ? samples_per_half_cycle : 0));
+        else branch->slopes(&samples[j], 1, offset, &one_branch[j]);
+      }
       for (std::size_t j = 0; j < count; ++j) branch_slopes[j] += mirror ? -one_branch[j] : one_branch[j];
     }
   }
@@ -135,9 +143,10 @@ struct LoadingHalf {
   }
 };
 
-// Root of dF/dtheta in [lo, hi] with dF(lo) > 0 >= dF(hi): Newton, bisecting whenever a step leaves the bracket.
-double stationary_point(const LoadingHalf& h, double lo, double hi, double k_elastic) {
-  double x = 0.5 * (lo + hi);
+// Root of dF/dtheta in [lo, hi] with dF(lo) > 0 >= dF(hi): Newton from `start` (the midpoint
+// where it is not inside), bisecting whenever a step leaves the bracket.
+double stationary_point(const LoadingHalf& h, double lo, double hi, double k_elastic, double start = std::numeric_limits<double>::quiet_NaN()) {
+  double x = start > lo && start < hi ? start : 0.5 * (lo + hi);
   for (int iteration = 0; iteration < 100 && hi - lo > 1e-15; ++iteration) {
     double first = 0.0, second = 0.0;
     h.derivatives(x, std::sin(x), std::cos(x), k_elastic, first, second);
@@ -203,7 +212,11 @@ void piece_maximum_on_grid(LoadingHalf& h, double lo, double hi, double k_elasti
     double slope = 0.0;
     h.closed_form_derivatives(s, c, k_elastic, slope, unused);
     slope = h.polarity * (slope + h.branch_slopes[j]);
-    if (previous_slope > 0.0 && slope <= 0.0) consider(stationary_point(h, h.samples[j - 1], theta, k_elastic));
+    if (previous_slope > 0.0 && slope <= 0.0) {
+      // Newton from the chord's root of the slope (a grid step apart, it is a few digits from the stationary point).
+      const double left = h.samples[j - 1];
+      consider(stationary_point(h, left, theta, k_elastic, left + (theta - left) * (previous_slope / (previous_slope - slope))));
+    }
     previous_slope = slope;
   }
 }
