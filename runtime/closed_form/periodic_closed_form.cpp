@@ -143,10 +143,10 @@ struct LoadingHalf {
   }
 };
 
-// Root of dF/dtheta in [lo, hi] with dF(lo) > 0 >= dF(hi): Newton from `start` (the midpoint
-// where it is not inside), bisecting whenever a step leaves the bracket.
-double stationary_point(const LoadingHalf& h, double lo, double hi, double k_elastic, double start = std::numeric_limits<double>::quiet_NaN()) {
-  double x = start > lo && start < hi ? start : 0.5 * (lo + hi);
+// Root of dF/dtheta in [lo, hi] with dF(lo) > 0 >= dF(hi): Newton from the midpoint,
+// bisecting whenever a step leaves the bracket.
+double stationary_point(const LoadingHalf& h, double lo, double hi, double k_elastic) {
+  double x = 0.5 * (lo + hi);
   for (int iteration = 0; iteration < 100 && hi - lo > 1e-15; ++iteration) {
     double first = 0.0, second = 0.0;
     h.derivatives(x, std::sin(x), std::cos(x), k_elastic, first, second);
@@ -154,6 +154,43 @@ double stationary_point(const LoadingHalf& h, double lo, double hi, double k_ela
     else hi = x;
     const double newton = second < 0.0 ? x - first / second : lo - 1.0;
     const double next = (newton > lo && newton < hi) ? newton : 0.5 * (lo + hi);
+    if (std::abs(next - x) <= 1e-16 * (1.0 + std::abs(x))) return next;
+    x = next;
+  }
+  return x;
+}
+
+// The same with event-driven branches, between two samples of the slope, slope_lo > 0 >=
+// slope_hi, the latter taken after hi where a piece ends there (a switch). Newton from the
+// chord's root; a step that leaves the bracket takes the chord's root instead (bisection would
+// crawl to a root on the bracket's end: the drive's turning point, where the slope reaches 0
+// linearly, or a kink), and hi itself where the slope there is 0. The first time a step raises
+// lo without Newton, the slope just inside hi (1e-9 of the bracket) is looked at: where F
+// still rises there, hi is a kink (a slider starting to slip, a gap opening) and the answer.
+double stationary_point_between(const LoadingHalf& h, double lo, double hi, double slope_lo, double slope_hi, double k_elastic) {
+  auto chord = [&] { return lo + (hi - lo) * (slope_lo / (slope_lo - slope_hi)); };
+  double x = chord();
+  bool probe = true;
+  for (int iteration = 0; iteration < 100 && hi - lo > 1e-15; ++iteration) {
+    if (!(x > lo && x < hi)) x = 0.5 * (lo + hi);
+    double first = 0.0, second = 0.0;
+    h.derivatives(x, std::sin(x), std::cos(x), k_elastic, first, second);
+    if (first > 0.0) lo = x, slope_lo = first;
+    else hi = x, slope_hi = first;
+    double next = second < 0.0 ? x - first / second : lo - 1.0;
+    if (!(next > lo && next < hi)) {
+      if (probe && first > 0.0) {
+        probe = false;
+        const double near_end = hi - 1e-9 * (hi - lo);
+        double rise = 0.0, unused = 0.0;
+        h.derivatives(near_end, std::sin(near_end), std::cos(near_end), k_elastic, rise, unused);
+        if (rise > 0.0) return hi;
+        if (near_end > lo) hi = near_end, slope_hi = rise;
+      }
+      if (slope_hi == 0.0) return hi;
+      next = chord();
+    }
+    if (!(next > lo && next < hi)) next = 0.5 * (lo + hi);
     if (std::abs(next - x) <= 1e-16 * (1.0 + std::abs(x))) return next;
     x = next;
   }
@@ -212,11 +249,7 @@ void piece_maximum_on_grid(LoadingHalf& h, double lo, double hi, double k_elasti
     double slope = 0.0;
     h.closed_form_derivatives(s, c, k_elastic, slope, unused);
     slope = h.polarity * (slope + h.branch_slopes[j]);
-    if (previous_slope > 0.0 && slope <= 0.0) {
-      // Newton from the chord's root of the slope (a grid step apart, it is a few digits from the stationary point).
-      const double left = h.samples[j - 1];
-      consider(stationary_point(h, left, theta, k_elastic, left + (theta - left) * (previous_slope / (previous_slope - slope))));
-    }
+    if (previous_slope > 0.0 && slope <= 0.0) consider(stationary_point_between(h, h.samples[j - 1], theta, previous_slope, slope, k_elastic));
     previous_slope = slope;
   }
 }
