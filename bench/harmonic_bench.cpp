@@ -3,10 +3,11 @@
 // hydrobushing grid (147 points) of the coupled model of examples/hydrobushing_fit.rheo at its
 // start values (a slider-capped fluid column beside the rubber), by the exact event-driven
 // periodic state (solver = auto) and time-stepped as that fit block asks (fixed, 128 steps per
-// cycle, periodicity 1e-6; an approximation).
+// cycle, periodicity 1e-6; an approximation); and one trial of diagnose's backlash screen.
 #include "bench_support.hpp"
 #include "runtime/fit/fit_scoring.hpp"
 #include "runtime/fit/objective.hpp"
+#include "lang/frontend.hpp"
 
 #include <benchmark/benchmark.h>
 
@@ -71,6 +72,34 @@ void BM_Hydrobushing_CoupledGrid_EventDriven_OtherParameter(benchmark::State& st
 }
 void BM_Hydrobushing_CoupledGrid_Fixed128(benchmark::State& state) { hydrobushing(state, runtime::SolverChoice::fixed); }
 
+// One trial of `rheo diagnose`'s backlash screen: free play (0.2 mm) in front of a friction
+// element (arg 0) or a Maxwell element (arg 1), alone, on the hydrobushing grid (147 points) by
+// the event path, the play's width changed each evaluation (by 1e-6 relative) as from trial to
+// trial, so nothing kept for the branch serves the next.
+void BM_Backlash_Trial_Grid(benchmark::State& state) {
+  std::vector<runtime::Network> networks;
+  for (int k = 0; k < 16; ++k) {
+    const std::string w = std::to_string(0.2 * (1.0 + 1e-6 * k));
+    const std::string text = state.range(0) == 0 ? "model probe {\nseries added {\ngap play (width = " + w +
+                                                       " mm, center = 0 mm)\nfriction f (k = 100 N/mm, uy = 50 um)\n}\n}\n"
+                                                 : "model probe {\nseries added {\ngap play (width = " + w +
+                                                       " mm, center = 0 mm)\nmaxwell m (k = 100 N/mm, tau = 3 ms)\n}\n}\n";
+    const lang::Program program = lang::compile_source("<probe>", text);
+    networks.push_back(runtime::Network::compile(program.models.front()));
+  }
+  const auto data = bench::example_data("hydrobushing_harmonic.csv");
+  runtime::HarmonicOptions options;
+  std::vector<runtime::HarmonicPoint> points;
+  std::size_t next = 0;
+  for (auto _ : state) {
+    benchmark::DoNotOptimize(points = runtime::simulate_at(networks[next], data.harmonic(), options));
+    next = (next + 1) % networks.size();
+  }
+  double cycles = 0.0;
+  for (const auto& p : points) cycles += p.cycles;
+  state.counters["cycles_per_point"] = cycles / static_cast<double>(points.size());
+}
+
 }  // namespace
 
 BENCHMARK(BM_Hydrobushing_CoupledGrid_EventDriven)->Unit(benchmark::kMillisecond);
@@ -78,3 +107,4 @@ BENCHMARK(BM_Hydrobushing_CoupledGrid_EventDriven_OtherParameter)->Unit(benchmar
 BENCHMARK(BM_Hydrobushing_CoupledGrid_Fixed128)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_SpecimenD_Grid_ClosedForm)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_SpecimenD_Grid_TimeStepping2048)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_Backlash_Trial_Grid)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond);

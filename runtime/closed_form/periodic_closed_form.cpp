@@ -111,13 +111,21 @@ struct LoadingHalf {
   }
   // The event-driven branches' dF/dtheta at the phases of `samples`, summed into
   // branch_slopes (each branch carried along its pieces: PwlPeriodicState::slopes).
+  // On the grid (sample_grid[j] >= 0) the slopes the shooting recorded as its steady cycle
+  // passed there (PwlPeriodicState::grid_slope; the loading half's grid point j is the cycle's
+  // j - 16, or j + 16 for a mirrored branch); at a piece's ends by the branch's own flow.
   void sample_branch_slopes() {
     const std::size_t count = samples.size();
     branch_slopes.assign(count, 0.0);
     one_branch.resize(count);
     for (const PwlPeriodicState* branch : branches) {
       const bool mirror = mirrored(*branch);
-      branch->slopes(samples.data(), static_cast<int>(count), mirror ? std::numbers::pi : 0.0, one_branch.data());
+      const double offset = mirror ? std::numbers::pi : 0.0;
+      for (std::size_t j = 0; j < count; ++j) {
+        const int index = sample_grid[j];
+        if (index >= 0) one_branch[j] = branch->grid_slope(index - samples_per_half_cycle / 2 + (mirror ? samples_per_half_cycle : 0));
+        else branch->slopes(&samples[j], 1, offset, &one_branch[j]);
+      }
       for (std::size_t j = 0; j < count; ++j) branch_slopes[j] += mirror ? -one_branch[j] : one_branch[j];
     }
   }
@@ -135,7 +143,8 @@ struct LoadingHalf {
   }
 };
 
-// Root of dF/dtheta in [lo, hi] with dF(lo) > 0 >= dF(hi): Newton, bisecting whenever a step leaves the bracket.
+// Root of dF/dtheta in [lo, hi] with dF(lo) > 0 >= dF(hi): Newton from the midpoint,
+// bisecting whenever a step leaves the bracket.
 double stationary_point(const LoadingHalf& h, double lo, double hi, double k_elastic) {
   double x = 0.5 * (lo + hi);
   for (int iteration = 0; iteration < 100 && hi - lo > 1e-15; ++iteration) {
@@ -145,6 +154,43 @@ double stationary_point(const LoadingHalf& h, double lo, double hi, double k_ela
     else hi = x;
     const double newton = second < 0.0 ? x - first / second : lo - 1.0;
     const double next = (newton > lo && newton < hi) ? newton : 0.5 * (lo + hi);
+    if (std::abs(next - x) <= 1e-16 * (1.0 + std::abs(x))) return next;
+    x = next;
+  }
+  return x;
+}
+
+// The same with event-driven branches, between two samples of the slope, slope_lo > 0 >=
+// slope_hi, the latter taken after hi where a piece ends there (a switch). Newton from the
+// chord's root; a step that leaves the bracket takes the chord's root instead (bisection would
+// crawl to a root on the bracket's end: the drive's turning point, where the slope reaches 0
+// linearly, or a kink), and hi itself where the slope there is 0. The first time a step raises
+// lo without Newton, the slope just inside hi (1e-9 of the bracket) is looked at: where F
+// still rises there, hi is a kink (a slider starting to slip, a gap opening) and the answer.
+double stationary_point_between(const LoadingHalf& h, double lo, double hi, double slope_lo, double slope_hi, double k_elastic) {
+  auto chord = [&] { return lo + (hi - lo) * (slope_lo / (slope_lo - slope_hi)); };
+  double x = chord();
+  bool probe = true;
+  for (int iteration = 0; iteration < 100 && hi - lo > 1e-15; ++iteration) {
+    if (!(x > lo && x < hi)) x = 0.5 * (lo + hi);
+    double first = 0.0, second = 0.0;
+    h.derivatives(x, std::sin(x), std::cos(x), k_elastic, first, second);
+    if (first > 0.0) lo = x, slope_lo = first;
+    else hi = x, slope_hi = first;
+    double next = second < 0.0 ? x - first / second : lo - 1.0;
+    if (!(next > lo && next < hi)) {
+      if (probe && first > 0.0) {
+        probe = false;
+        const double near_end = hi - 1e-9 * (hi - lo);
+        double rise = 0.0, unused = 0.0;
+        h.derivatives(near_end, std::sin(near_end), std::cos(near_end), k_elastic, rise, unused);
+        if (rise > 0.0) return hi;
+        if (near_end > lo) hi = near_end, slope_hi = rise;
+      }
+      if (slope_hi == 0.0) return hi;
+      next = chord();
+    }
+    if (!(next > lo && next < hi)) next = 0.5 * (lo + hi);
     if (std::abs(next - x) <= 1e-16 * (1.0 + std::abs(x))) return next;
     x = next;
   }
@@ -203,7 +249,7 @@ void piece_maximum_on_grid(LoadingHalf& h, double lo, double hi, double k_elasti
     double slope = 0.0;
     h.closed_form_derivatives(s, c, k_elastic, slope, unused);
     slope = h.polarity * (slope + h.branch_slopes[j]);
-    if (previous_slope > 0.0 && slope <= 0.0) consider(stationary_point(h, h.samples[j - 1], theta, k_elastic));
+    if (previous_slope > 0.0 && slope <= 0.0) consider(stationary_point_between(h, h.samples[j - 1], theta, previous_slope, slope, k_elastic));
     previous_slope = slope;
   }
 }

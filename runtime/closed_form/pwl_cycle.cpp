@@ -29,15 +29,17 @@ bool leaving(double g, double dg, double ddg, double tol, double dtol) {
 
 int PwlPeriodicState::Run::mode_index(const PwlModeCode& code) {
   for (int i : self.active_)
-    if (self.modes_[static_cast<std::size_t>(i)].code == code) return i;
+    if (self.system(i).code == code) return i;
   PwlModeStructure* structure = nullptr;
   for (auto& [known, st] : self.structures_)
     if (known == code) structure = &st;
   if (structure == nullptr) structure = &self.structures_.emplace_back(code, PwlModeStructure{}).second;
   // Built in place, over a mode of an earlier solve where there is one: a mode's
   // fixed-capacity storage is tens of kilobytes, not to be allocated and cleared per point.
-  if (self.mode_count_ == self.modes_.size())
+  if (self.mode_count_ == self.modes_.size()) {
     self.modes_.emplace_back(), self.grid_step_.emplace_back(), self.mode_omega_.emplace_back(), self.linear_start_.emplace_back();
+    self.systems_.push_back(&self.modes_.back());
+  }
   if (!build_pwl_mode(branch, code, self.omega_, self.modes_[self.mode_count_], structure)) return -1;
   self.grid_step_[self.mode_count_].resize(0, 0);
   self.linear_start_[self.mode_count_].resize(0);
@@ -49,7 +51,7 @@ int PwlPeriodicState::Run::mode_index(const PwlModeCode& code) {
 const PwlPeriodicState::PwlGridStep& PwlPeriodicState::Run::grid_step(int m) {
   PwlGridStep& stacked = self.grid_step_[static_cast<std::size_t>(m)];
   if (stacked.size() == 0) {
-    const PwlModeSystem& s = self.modes_[static_cast<std::size_t>(m)];
+    const PwlModeSystem& s = self.system(m);
     const PwlMatrix E = s.propagator(step);
     stacked.resize(s.dim + 2 * s.guards.rows(), s.dim);
     stacked << E, s.guards * E, s.guard_rates * E;
@@ -58,7 +60,7 @@ const PwlPeriodicState::PwlGridStep& PwlPeriodicState::Run::grid_step(int m) {
 }
 
 bool PwlPeriodicState::Run::leaves(int m, int i, const PwlVector& w) {
-  const PwlModeSystem& s = self.modes_[static_cast<std::size_t>(m)];
+  const PwlModeSystem& s = self.system(m);
   const double tol = kGuardTolerance * s.transitions[static_cast<std::size_t>(i)].size(self.u0_);
   const PwlRow G = s.guards.row(i);
   const double g = G.dot(w);
@@ -76,7 +78,7 @@ bool PwlPeriodicState::Run::leaves(int m, int i, const PwlVector& w) {
 int PwlPeriodicState::Run::settle(int m, const PwlVector& X, double t, PwlVector& w) {
   for (int attempt = 0; attempt <= 2 * static_cast<int>(branch.switches.size()) + 2; ++attempt) {
     if (m < 0) return -1;
-    const PwlModeSystem& s = self.modes_[static_cast<std::size_t>(m)];
+    const PwlModeSystem& s = self.system(m);
     w = s.state_at(X, t, self.u0_, self.omega_);
     int violated = -1;
     for (int i = 0; i < s.guards.rows() && violated < 0; ++i)
@@ -93,7 +95,7 @@ int PwlPeriodicState::Run::settle(int m, const PwlVector& X, double t, PwlVector
 
 double PwlPeriodicState::Run::first_crossing(int m, int i, const PwlVector& w0, const PwlVector& w1, double h, double g0, double g1, double slope0,
                                              double slope1, PwlVector& w_at) {
-  const PwlModeSystem& s = self.modes_[static_cast<std::size_t>(m)];
+  const PwlModeSystem& s = self.system(m);
   const auto G = s.guards.row(i), dG = s.guard_rates.row(i);
   const double tol = kGuardTolerance * s.transitions[static_cast<std::size_t>(i)].size(self.u0_);
   constexpr double never = std::numeric_limits<double>::infinity();
@@ -213,7 +215,7 @@ double PwlPeriodicState::Run::first_crossing(int m, int i, const PwlVector& w0, 
 }
 
 int PwlPeriodicState::Run::switch_at(int m, int i, double t, PwlVector& w, PwlMatrix* S) {
-  const PwlModeSystem& old = self.modes_[static_cast<std::size_t>(m)];
+  const PwlModeSystem& old = self.system(m);
   const PwlVector X = old.to_X.lazyProduct(w);
   PwlModeCode& code = self.switch_code_;
   code = old.code;
@@ -223,8 +225,8 @@ int PwlPeriodicState::Run::switch_at(int m, int i, double t, PwlVector& w, PwlMa
   const int next = settle(mode_index(code), X, t, w_new);
   if (next < 0) return -1;
   if (S != nullptr) {
-    const PwlModeSystem& o = self.modes_[static_cast<std::size_t>(m)];
-    const PwlModeSystem& n = self.modes_[static_cast<std::size_t>(next)];
+    const PwlModeSystem& o = self.system(m);
+    const PwlModeSystem& n = self.system(next);
     const PwlVector rate_old = o.A.lazyProduct(w);
     const double slope = o.guards.row(i).dot(rate_old);
     PwlRow dt = PwlRow::Zero(S->cols());
@@ -246,22 +248,27 @@ bool PwlPeriodicState::Run::cycle(int& m, const PwlVector& X0, PwlVector& X_T, P
   PwlMatrix S;
   PwlMatrix* Sp = nullptr;
   if (J != nullptr) {
-    S = self.modes_[static_cast<std::size_t>(m)].from_X;
+    S = self.system(m).from_X;
     S.bottomRows(3).setZero();
     Sp = &S;
   }
-  if (record) self.pieces_.assign(1, {0.0, m, w}), self.switch_phases_.clear();
+  const int grid_steps = self.half_wave_ ? kPwlGridPerCycle / 2 : kPwlGridPerCycle;
+  auto grid_slope = [&] { return self.system(m).force_rate.dot(w); };
+  if (record) {
+    self.pieces_.assign(1, {0.0, m, w}), self.switch_phases_.clear();
+    self.grid_slopes_.resize(static_cast<std::size_t>(grid_steps) + 1);
+    self.grid_slopes_[0] = grid_slope();
+  }
   int switches = 0;
   double t = 0.0, piece_start = 0.0;
   PwlVector w1, g0, g1, dg0, dg1;  // the state a step on; the guards and their slopes at both ends
   PwlVector w_cross, w_first;      // the state at a guard's crossing, and at the first one's
   Eigen::Matrix<double, Eigen::Dynamic, 1, 0, 3 * kPwlMaxDim, 1> stacked;
   bool g0_known = false;
-  const int grid_steps = self.half_wave_ ? kPwlGridPerCycle / 2 : kPwlGridPerCycle;
   for (int k = 0; k < grid_steps; ++k) {
     const double t_end = k + 1 == grid_steps ? self.span_ : (k + 1) * step;
     while (t < t_end) {
-      const PwlModeSystem& s = self.modes_[static_cast<std::size_t>(m)];
+      const PwlModeSystem& s = self.system(m);
       const double h = t_end - t;
       const bool full = std::abs(h - step) <= 1e-12 * step;
       const Eigen::Index dim = s.dim, guards = s.guards.rows();
@@ -298,8 +305,9 @@ bool PwlPeriodicState::Run::cycle(int& m, const PwlVector& X0, PwlVector& X_T, P
         self.switch_phases_.push_back(std::fmod(self.omega_ * t, 2.0 * std::numbers::pi));
       }
     }
+    if (record) self.grid_slopes_[static_cast<std::size_t>(k) + 1] = grid_slope();
   }
-  const PwlModeSystem& s = self.modes_[static_cast<std::size_t>(m)];
+  const PwlModeSystem& s = self.system(m);
   X_T = s.to_X.lazyProduct(w);
   if (J != nullptr) *J = s.to_X * (s.propagator(self.span_ - piece_start) * S);
   return true;
@@ -310,8 +318,7 @@ void PwlPeriodicState::Run::first_harmonic() {
   for (std::size_t k = 0; k < self.pieces_.size(); ++k) {
     const Piece& piece = self.pieces_[k];
     const double end = k + 1 < self.pieces_.size() ? self.pieces_[k + 1].t : self.span_;
-    integral += std::exp(Complex(0.0, self.omega_ * piece.t)) *
-                self.modes_[static_cast<std::size_t>(piece.mode)].phased_force_integral(end - piece.t, piece.w);
+    integral += std::exp(Complex(0.0, self.omega_ * piece.t)) * self.system(piece.mode).phased_force_integral(end - piece.t, piece.w);
   }
   const double scale = (self.half_wave_ ? 2.0 : 1.0) * self.omega_ / (std::numbers::pi * self.u0_);
   self.storage_ = scale * integral.imag();
@@ -321,7 +328,7 @@ void PwlPeriodicState::Run::first_harmonic() {
 PwlVector PwlPeriodicState::Run::linear_periodic_state(int m) {
   PwlVector& unit = self.linear_start_[static_cast<std::size_t>(m)];
   if (unit.size() != 0) return self.u0_ * unit;
-  const PwlModeSystem& s = self.modes_[static_cast<std::size_t>(m)];
+  const PwlModeSystem& s = self.system(m);
   const int n = branch.internal_nodes;
   PwlVector scale(2 * n);  // positions by u0 = 1, velocities by w u0
   scale << PwlVector::Ones(n), PwlVector::Constant(n, self.omega_);

@@ -30,7 +30,12 @@ PwlVector affine_fixed_point(const PwlMatrix& J, const PwlVector& X0, const PwlV
 }
 
 PwlVector least_norm_fixed_point(const PwlMatrix& J, const PwlVector& X0, const PwlVector& Y) {
-  Eigen::CompleteOrthogonalDecomposition<PwlMatrix> cod(J - PwlMatrix::Identity(J.rows(), J.cols()));
+  const PwlMatrix J_minus_I = J - PwlMatrix::Identity(J.rows(), J.cols());
+  // Where J - I is well conditioned the least-norm solution is the solution: by LU, several
+  // times cheaper than the orthogonal decomposition.
+  Eigen::FullPivLU<PwlMatrix> lu(J_minus_I);
+  if (lu.rcond() > 1e-8) return X0 - lu.solve(PwlVector(Y - X0));
+  Eigen::CompleteOrthogonalDecomposition<PwlMatrix> cod(J_minus_I);
   cod.setThreshold(1e-10);
   return X0 - cod.solve(PwlVector(Y - X0));
 }

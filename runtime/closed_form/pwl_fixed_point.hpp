@@ -13,9 +13,10 @@ namespace rheo::runtime {
 // A least-squares solve of (J - I) X = -b where J's eigenvectors are too ill-conditioned.
 PwlVector affine_fixed_point(const PwlMatrix& J, const PwlVector& X0, const PwlVector& Y);
 
-// The same fixed point where no eigenvalue of J is 1, by complete orthogonal decomposition (no
-// heap): the half-period map, on which a never-slipping slider's offset has eigenvalue -1.
-// Where one is 1 all the same, the step is the least-norm solution of (J - I) dX = X0 - Y.
+// The same fixed point where no eigenvalue of J is 1 (no heap): the half-period map, on which
+// a never-slipping slider's offset has eigenvalue -1. By LU where J - I is well conditioned
+// (reciprocal condition above 1e-8), else by complete orthogonal decomposition: where an
+// eigenvalue is 1 all the same, the step is the least-norm solution of (J - I) dX = X0 - Y.
 PwlVector least_norm_fixed_point(const PwlMatrix& J, const PwlVector& X0, const PwlVector& Y);
 
 }  // namespace rheo::runtime

@@ -136,12 +136,28 @@ void modal_factors(const PwlModeSystem& s, double tau, ModalFactors& f) {
   f.cos_step = std::cos(s.drive_omega * tau), f.sin_step = std::sin(s.drive_omega * tau);
   const Complex e_plus(f.cos_step, f.sin_step), e_minus = std::conj(e_plus);
   f.decay.resize(s.nz), f.constant.resize(s.nz), f.plus.resize(s.nz), f.minus.resize(s.nz);
+  Complex to_plus{0.0, 0.0}, to_minus{0.0, 0.0};  // mode j's responses to the drive, before g+-
   for (int j = 0; j < s.nz; ++j) {
-    const Complex l = s.lambda[j], e = exponential(l * tau);
+    const Complex l = s.lambda[j];
+    if (j > 0 && l.imag() != 0.0 && l == std::conj(s.lambda[j - 1])) {
+      // The second of a conjugate pair (the eigensolver gives them exactly conjugate, and so
+      // are gap_zero and gap_plus/gap_minus swapped): every factor is the conjugate of the
+      // first's, to the last bit, without another exponential.
+      f.decay[j] = std::conj(f.decay[j - 1]);
+      f.constant[j] = std::conj(f.constant[j - 1]);
+      const Complex plus = std::conj(to_minus), minus = std::conj(to_plus);
+      f.plus[j] = s.g_plus[j] * plus;
+      f.minus[j] = s.g_minus[j] * minus;
+      to_plus = plus, to_minus = minus;
+      continue;
+    }
+    const Complex e = exponential(l * tau);
     f.decay[j] = e;
     f.constant[j] = response(e, 1.0, -l, s.gap_zero[j], tau);
-    f.plus[j] = s.g_plus[j] * response(e, e_plus, i_omega - l, s.gap_plus[j], tau);
-    f.minus[j] = s.g_minus[j] * response(e, e_minus, -i_omega - l, s.gap_minus[j], tau);
+    to_plus = response(e, e_plus, i_omega - l, s.gap_plus[j], tau);
+    to_minus = response(e, e_minus, -i_omega - l, s.gap_minus[j], tau);
+    f.plus[j] = s.g_plus[j] * to_plus;
+    f.minus[j] = s.g_minus[j] * to_minus;
   }
 }
 

@@ -254,6 +254,8 @@ bool build_pwl_mode(const PwlBranch& branch, const PwlModeCode& code, double ome
   out.guards.resize(static_cast<Eigen::Index>(guard_rows.size()), dim);
   for (std::size_t g = 0; g < guard_rows.size(); ++g) out.guards.row(static_cast<Eigen::Index>(g)) = guard_rows[g];
   out.guard_rates = out.guards * out.A;
+  out.force_rate = out.force * out.A;
+  out.force_curvature = out.force_rate * out.A;
   out.reach = out.A.cwiseAbs().rowwise().sum().maxCoeff();
   out.reach_squared = std::sqrt((out.A * out.A).cwiseAbs().rowwise().sum().maxCoeff());
   out.decompose(st);

@@ -89,6 +89,7 @@ struct PwlModeSystem {
   PwlMatrix from_X;                        // dim x 2N: w = from_X X + drive terms (rows one, s, c: 0)
   PwlVector held_drive;                    // nh: h = R x + rho u, the rho of each rigid edge
   PwlRow force;                            // terminal force [N]
+  PwlRow force_rate, force_curvature;      // force A and force A^2: dF/dt [N/s] and d2F/dt2 [N/s^2]
   PwlMatrix guards;                        // rows >= 0 while the mode holds
   PwlMatrix guard_rates;                   // guards A: their time derivatives
   std::vector<PwlTransition> transitions;  // one per guard row

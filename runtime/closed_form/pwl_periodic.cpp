@@ -58,6 +58,7 @@ bool PwlPeriodicState::restore(Run& run, const Solved& solved) {
   if (!solved.ok) return false;
   storage_ = solved.storage, loss_ = solved.loss;
   switch_phases_ = solved.switch_phases;
+  grid_slopes_ = solved.grid_slopes;
   pieces_ = solved.pieces;
   thread_local std::vector<int> modes;
   modes.clear();
@@ -76,10 +77,11 @@ void PwlPeriodicState::remember(bool ok) {
   s.u0 = u0_, s.omega = omega_, s.ok = ok, s.cycles = cycles_;
   s.storage = storage_, s.loss = loss_;
   s.switch_phases = switch_phases_;
+  s.grid_slopes = grid_slopes_;
   s.pieces = pieces_;
   s.codes.clear();
   for (Piece& piece : s.pieces) {
-    const PwlModeCode& code = modes_[static_cast<std::size_t>(piece.mode)].code;
+    const PwlModeCode& code = system(piece.mode).code;
     const auto known = std::find(s.codes.begin(), s.codes.end(), code);
     piece.mode = static_cast<int>(known - s.codes.begin());
     if (known == s.codes.end()) s.codes.push_back(code);
@@ -107,12 +109,17 @@ bool PwlPeriodicState::shoot(Run& run) {
   PwlVector base, step;  // the last accepted start and its Newton step
   double base_size = std::numeric_limits<double>::infinity(), fraction = 1.0;
   bool average_next = false;
+  // Whether the last step was Newton's from a residual below kQuadratic: its cycle should close
+  // (Newton converges quadratically where the events keep their order), so it is followed
+  // without sensitivities, and again with them in the rare case it does not close.
+  constexpr double kQuadratic = 1e-6;
+  bool expect_closed = false;
   // Every cycle is recorded (pieces, switches, first harmonic): the one that closes on itself
   // is the periodic cycle.
   for (cycles_ = 1; cycles_ <= kMaxCycles; ++cycles_) {
     int m = start_mode;
     PwlMatrix J;
-    if (!run.cycle(m, X0, X_T, &J, true)) {
+    if (!run.cycle(m, X0, X_T, expect_closed ? nullptr : &J, true)) {
       // A start no mode can settle (the linear state, or a Newton step, may hold a slider
       // beyond its cap): start the first cycle from rest instead (the periodic state slips then
       // anyway), a later one from where the last cycle ended, a state the branch reached.
@@ -120,9 +127,9 @@ bool PwlPeriodicState::shoot(Run& run) {
       X0 = cycles_ == 1 ? PwlVector(PwlVector::Zero(2 * n)) : last_end;
       m = start_mode;
       if (!run.cycle(m, X0, X_T, &J, true)) return false;
+      expect_closed = false;
     }
     X_T *= mirror;
-    J *= mirror;
     last_end = X_T;
     const PwlVector residual = (X_T - X0).cwiseQuotient(scale);
     const double size = residual.cwiseAbs().maxCoeff();
@@ -139,8 +146,15 @@ bool PwlPeriodicState::shoot(Run& run) {
       // (periodic_closed_form.cpp), so it need not be half-wave symmetric.
       return true;
     }
+    if (expect_closed) {  // it did not close: the same cycle again, with its sensitivities
+      expect_closed = false;
+      m = start_mode;
+      if (!run.cycle(m, X0, X_T, &J, true)) return false;
+      X_T *= mirror;
+    }
+    J *= mirror;
     if (half_wave_) {
-      PwlModeCode mirrored = modes_[static_cast<std::size_t>(m)].code;
+      PwlModeCode mirrored = system(m).code;
       for (auto& state : mirrored) state = static_cast<std::int8_t>(-state);
       m = run.mode_index(mirrored);
       if (m < 0) return false;
@@ -160,6 +174,7 @@ bool PwlPeriodicState::shoot(Run& run) {
       const PwlVector Xs = X0.cwiseQuotient(scale), Ys = X_T.cwiseQuotient(scale);
       step = scale.cwiseProduct(half_wave_ ? least_norm_fixed_point(Js, Xs, Ys) : affine_fixed_point(Js, Xs, Ys)) - X0;
       X0 = base + step;
+      expect_closed = size <= kQuadratic;
     } else if (fraction == 1.0) {
       fraction *= 0.5;
       X0 = base + fraction * step;
@@ -186,7 +201,7 @@ PwlVector PwlPeriodicState::state_at_phase(double theta, int& mode, double& sign
   const std::size_t k = piece_at_phase(theta, t, sign);
   const Piece& piece = pieces_[k];
   mode = piece.mode;
-  const PwlModeSystem& s = modes_[static_cast<std::size_t>(mode)];
+  const PwlModeSystem& s = system(mode);
   // Nudged from the last state asked for where it is in the same piece and near (the
   // iterations of an extremum's search), else the flow from the piece's start.
   if (k != last_piece_ || !s.nudge(t - last_t_, last_w_, last_w_)) last_w_ = s.advance(t - piece.t, piece.w);
@@ -204,7 +219,7 @@ void PwlPeriodicState::slopes(const double* theta, int count, double offset, dou
     double t = 0.0, sign = 1.0;
     const std::size_t k = piece_at_phase(theta[j] + offset, t, sign);
     const int mode = pieces_[k].mode;
-    const PwlModeSystem& s = modes_[static_cast<std::size_t>(mode)];
+    const PwlModeSystem& s = system(mode);
     if (k == current && sign == current_sign && t > current_t) {
       const PwlGridStep& E = grid_step_[static_cast<std::size_t>(mode)];
       const double gap = t - current_t;
@@ -212,7 +227,7 @@ void PwlPeriodicState::slopes(const double* theta, int count, double offset, dou
       else if (!s.nudge(gap, w, w)) w = s.advance(gap, w);
     } else {
       w = s.advance(t - pieces_[k].t, pieces_[k].w);
-      slope_row = (s.force * s.A) / omega_;
+      slope_row = s.force_rate / omega_;
       current = k, current_sign = sign;
     }
     current_t = t;
@@ -224,17 +239,16 @@ double PwlPeriodicState::force(double theta) const {
   int m = 0;
   double sign = 1.0;
   const PwlVector w = state_at_phase(theta, m, sign);
-  return sign * modes_[static_cast<std::size_t>(m)].force.dot(w);
+  return sign * system(m).force.dot(w);
 }
 
 void PwlPeriodicState::derivatives(double theta, double& first, double& second) const {
   int m = 0;
   double sign = 1.0;
   const PwlVector w = state_at_phase(theta, m, sign);
-  const PwlModeSystem& s = modes_[static_cast<std::size_t>(m)];
-  const PwlVector rate = s.A.lazyProduct(w);
-  first = sign * s.force.dot(rate) / omega_;
-  second = sign * s.force.dot(s.A.lazyProduct(rate)) / (omega_ * omega_);
+  const PwlModeSystem& s = system(m);
+  first = sign * s.force_rate.dot(w) / omega_;
+  second = sign * s.force_curvature.dot(w) / (omega_ * omega_);
 }
 
 }  // namespace rheo::runtime

@@ -70,6 +70,16 @@ class PwlPeriodicState {
   // shooting, else by the flow, and restarted where a piece or the half period ends. The
   // force's maximum search samples its slope so (periodic_closed_form.cpp).
   void slopes(const double* theta, int count, double offset, double* first) const;
+  // dF/dtheta at theta = k 2 pi/64 (any integer k), the grid points of the shooting's steady
+  // cycle: recorded as that cycle passed them (as slopes() would give them, to rounding). At a
+  // switch on a grid point, the slope after it.
+  double grid_slope(int k) const {
+    const int n = static_cast<int>(grid_slopes_.size()) - 1;  // grid steps of the span: 32 or 64
+    const int cycle = half_wave_ ? 2 * n : n;                 // 64
+    k %= cycle;
+    if (k < 0) k += cycle;
+    return (k >= n ? -grid_slopes_[static_cast<std::size_t>(k - n)] : grid_slopes_[static_cast<std::size_t>(k)]) / omega_;
+  }
   // Phases in [0, 2 pi) at which a slider or gap switches in the steady cycle (kinks of F).
   const std::vector<double>& switch_phases() const { return switch_phases_; }
 
@@ -92,6 +102,7 @@ class PwlPeriodicState {
     std::vector<Piece> pieces;
     std::vector<PwlModeCode> codes;
     std::vector<double> switch_phases;
+    std::vector<double> grid_slopes;
   };
 
   double u0_ = 0.0, omega_ = 0.0, period_ = 0.0;
@@ -105,6 +116,8 @@ class PwlPeriodicState {
   // place (a deque, so references stay valid as modes are added). active_ indexes those of this
   // solve's frequency.
   std::deque<PwlModeSystem> modes_;
+  std::vector<PwlModeSystem*> systems_;  // &modes_[i]: indexing a deque costs more than it should in the inner loops
+  const PwlModeSystem& system(int i) const { return *systems_[static_cast<std::size_t>(i)]; }
   std::vector<double> mode_omega_;
   std::size_t mode_count_ = 0;
   std::vector<int> active_;
@@ -120,6 +133,7 @@ class PwlPeriodicState {
   std::vector<PwlVector> linear_start_;
   std::vector<Piece> pieces_;
   std::vector<double> switch_phases_;
+  std::vector<double> grid_slopes_;        // dF/dt [N/s] at the span's grid points k T/64, k = 0..32 or 64 (grid_slope())
   PwlModeCode settle_code_, switch_code_;  // scratch of Run::settle and Run::switch_at (no allocation per event)
   PwlVector known_, probe_;                // scratch of Run::first_crossing and Run::leaves
   // Solves of structures_branch_, the first solved_count_ (storage beyond is reused); a lookup

@@ -335,6 +335,47 @@ TEST_CASE("slopes carried from sample to sample equal the slope at each phase, a
   }
 }
 
+TEST_CASE("the slopes recorded on the grid as the steady cycle passed equal the slope at each grid phase") {
+  // PwlPeriodicState::grid_slope (recorded by the shooting's last cycle) against derivatives()
+  // (a modal exponential from the piece's start) at theta = 2 pi k/64 over three periods, on
+  // the half-period map (the mirrored half by -F(theta - pi)) and on the full one; a grid
+  // point on a switch (a kink: the slope after it is recorded) is skipped.
+  for (const char* model : kOddBranches) {
+    const auto net = test::network_from(model, "a");
+    runtime::PwlBranch half = branch_of(net), full = half;
+    full.odd = false;
+    for (const runtime::PwlBranch* branch : {&half, &full})
+      for (double u0 : {0.05, 0.5, 2.0})
+        for (double f : {0.5, 7.0, 40.0}) {
+          const std::string text = model;
+          CAPTURE(text);
+          CAPTURE(u0);
+          CAPTURE(f);
+          runtime::PwlPeriodicState s;
+          REQUIRE(s.solve(*branch, u0, 2.0 * std::numbers::pi * f));
+          double largest = 0.0, difference = 0.0;
+          int compared = 0;
+          for (int k = -64; k < 128; ++k) {
+            const double theta = 2.0 * std::numbers::pi * k / 64.0;
+            const double cycle_phase = std::fmod(std::fmod(theta, 2.0 * std::numbers::pi) + 2.0 * std::numbers::pi, 2.0 * std::numbers::pi);
+            const auto& kinks = s.switch_phases();
+            if (std::any_of(kinks.begin(), kinks.end(), [&](double kink) {
+                  const double d = std::abs(kink - cycle_phase);
+                  return std::min(d, 2.0 * std::numbers::pi - d) < 1e-6;
+                }))
+              continue;
+            double expected = 0.0, second = 0.0;
+            s.derivatives(theta, expected, second);
+            largest = std::max(largest, std::abs(expected));
+            difference = std::max(difference, std::abs(expected - s.grid_slope(k)));
+            ++compared;
+          }
+          CHECK(compared > 150);
+          CHECK(difference <= 1e-10 * largest + 1e-13);
+        }
+  }
+}
+
 TEST_CASE("a solve of the same branch at a drive solved before restores that result to the last bit") {
   // Solving at other drives in between, and a branch with other values (which drops what was
   // kept), must not change what a repeated drive returns: the same storage, loss, cycles,
