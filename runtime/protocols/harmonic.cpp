@@ -1,5 +1,7 @@
 #include "runtime/protocols/harmonic.hpp"
 
+#include "runtime/protocols/cycle_groups.hpp"
+
 #include "runtime/dae/dae_protocols.hpp"
 #include "runtime/core/parallel_for.hpp"
 #include "runtime/closed_form/periodic_closed_form.hpp"
@@ -16,52 +18,6 @@
 #include <stdexcept>
 
 namespace rheo::runtime {
-namespace {
-
-// Scales of the state variables of a cycle: forces by F^ [N], elongations by u0 [mm],
-// velocities by w u0 [mm/s], times by the period [s].
-struct CycleScales {
-  double force, length, velocity, time;
-  double of(StateScale kind) const {
-    switch (kind) {
-      case StateScale::force: return force;
-      case StateScale::length: return length;
-      case StateScale::velocity: return velocity;
-      case StateScale::time: return time;
-    }
-    return force;
-  }
-};
-
-// Largest change of any state variable over a cycle, relative to its scale.
-double cycle_change(const Topology& t, const std::vector<double>& start, const std::vector<double>& end, const CycleScales& scales) {
-  double change = 0.0;
-  for (std::size_t i = 0; i < start.size(); ++i) change = std::max(change, std::abs(end[i] - start[i]) / scales.of(t.state_scales[i]));
-  return change;
-}
-
-// Whether the cycle-to-cycle change contracts at a steady geometric rate: the last two rates
-// lie in [0.3, 1 - 1e-7] (faster, a few cycles finish anyway) and agree within 5 % of rho up
-// to 0.999, within 5 % of 1 - rho beyond. The skip multiplies the last change by rho/(1 - rho)
-// (up to 1e7), so an error d rho in rho errs by d rho/(1 - rho) of the remaining distance: at
-// most 5 % of it, which the next skips remove (a gap's play shared with a bouc_wen's set,
-// rho = 0.9993: tests/corpus/repro/backends/03).
-bool steady_contraction(double rate, double previous_rate) {
-  const double spread = std::abs(rate - previous_rate);
-  if (rate >= 0.3 && rate <= 0.999) return spread <= 0.05 * rate;
-  return rate > 0.999 && rate <= 1.0 - 1e-7 && spread <= 0.05 * (1.0 - rate);
-}
-
-// A slow mode (a Maxwell element with tau >> period in a subtree that starts at rest) moves the
-// end-of-cycle state by d_n = s_n - s_{n-1} with d_{n+1} = rho d_n, so the periodic state is
-// s_n + d_n rho / (1 - rho): jump there. The skip is only a better start; convergence is still
-// declared on the change over simulated cycles, and a poor skip costs cycles, not accuracy.
-void skip_geometric_tail(const std::vector<double>& cycle_start, double rho, std::vector<double>& state) {
-  const double factor = rho / (1.0 - rho);
-  for (std::size_t i = 0; i < state.size(); ++i) state[i] += factor * (state[i] - cycle_start[i]);
-}
-
-}  // namespace
 
 namespace {
 HarmonicPoint steady_point(const Network& network, double amplitude, double frequency, const HarmonicOptions& options, double preload);
@@ -131,7 +87,7 @@ HarmonicPoint steady_point(const Network& network, double amplitude, double freq
   point.amplitude = amplitude;
   point.frequency = frequency;
   double previous_change = std::numeric_limits<double>::infinity();
-  double previous_rate = 0.0;
+  CycleGroups groups(network.topology());
   StallWatch stall;
   int first_check = 1;  // cycles after a skip that end before this one neither converge nor skip
   for (int cycle = 1; cycle <= options.max_cycles; ++cycle) {
@@ -160,7 +116,7 @@ HarmonicPoint steady_point(const Network& network, double amplitude, double freq
     point.cycles = cycle;
     const double force_scale = std::max(point.measures.force_amplitude, std::numeric_limits<double>::min());
     const CycleScales scales{force_scale, amplitude, omega * amplitude, period};
-    const double change = cycle_change(network.topology(), cycle_start.values, state.values, scales);
+    const double change = groups.measure(cycle_start.values, state.values, scales);
     const double rate = change / previous_change;
     const double remaining = rate < 1.0 ? change * rate / (1.0 - rate) : change;
     previous_change = change;
@@ -171,11 +127,7 @@ HarmonicPoint steady_point(const Network& network, double amplitude, double freq
     }
     if (cycle >= first_check) stall.add(cycle, options.max_cycles, change);  // not the cycle a skip ended
     point.stalled = cycle == options.max_cycles && stall.stalled(options.max_cycles);
-    if (cycle >= first_check && steady_contraction(rate, previous_rate)) {
-      skip_geometric_tail(cycle_start.values, rate, state.values);
-      first_check = cycle + 2;
-    }
-    previous_rate = rate;
+    if (cycle >= first_check && groups.skip_contracting(cycle_start.values, state.values)) first_check = cycle + 2;
   }
   return point;
 }

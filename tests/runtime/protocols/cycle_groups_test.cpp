@@ -1,0 +1,75 @@
+// The settling of a time-stepped harmonic point group by group: which rate pairs count as a
+// steady contraction, which states form a group, and a skip that moves only the groups that
+// contract, each to its own geometric limit (hand values).
+#include "runtime/protocols/cycle_groups.hpp"
+
+#include "support.hpp"
+
+#include <doctest/doctest.h>
+
+#include <vector>
+
+using namespace rheo;
+using runtime::steady_contraction;
+
+TEST_CASE("steady contraction: rates in [0.3, 1) that agree within 5 % of the smaller of rho and 1 - rho") {
+  CHECK(steady_contraction(0.5, 0.51));
+  CHECK_FALSE(steady_contraction(0.5, 0.53));
+  CHECK(steady_contraction(0.9993, 0.99931));         // reproducer 03's slow set
+  CHECK_FALSE(steady_contraction(0.99887, 1.00023));  // 880 times a change known to 100 % (was taken)
+  CHECK_FALSE(steady_contraction(0.98, 0.97));        // 1 - rho = 0.02: a spread of 0.01 is half of it
+  CHECK(steady_contraction(0.98, 0.9795));
+  CHECK_FALSE(steady_contraction(0.2, 0.2));  // fast: a few cycles finish anyway
+  CHECK_FALSE(steady_contraction(1.0, 1.0));
+}
+
+TEST_CASE("cycle groups: the root's states and each subtree's; a skip moves only a group that contracts, by its own rate") {
+  const auto network = test::network_from(
+      "model m { maxwell (k = 5 N/mm, tau = 10 ms)\n series { spring (k = 1 N/mm)\n maxwell (k = 2 N/mm, tau = 1 s) }\n"
+      " series { spring (k = 3 N/mm)\n inerter (b = 1 kg) } }",
+      "m");
+  const auto& t = network.topology();
+  REQUIRE(t.subtrees.size() == 2);
+  runtime::CycleGroups groups(t);
+  CHECK(groups.groups() == 3);
+  // Slots of each group: the root's maxwell force, then the two subtrees' nodes.
+  std::vector<int> group_of(static_cast<std::size_t>(t.state_size), 0);
+  for (std::size_t g = 0; g < t.subtrees.size(); ++g) {
+    std::vector<int> pending{t.subtrees[g]};
+    while (!pending.empty()) {
+      const auto& node = t.nodes[static_cast<std::size_t>(pending.back())];
+      pending.pop_back();
+      for (int s = 0; s < node.slots; ++s) group_of[static_cast<std::size_t>(node.state + s)] = static_cast<int>(g) + 1;
+      for (int c = 0; c < node.child_count; ++c) pending.push_back(t.children[static_cast<std::size_t>(node.first_child + c)]);
+    }
+  }
+  const runtime::CycleScales scales{1.0, 1.0, 1.0, 1.0};
+  // Cycle changes per group: the first subtree contracts by 0.5 a cycle, the second swings
+  // (+1e-3, -1e-3, ...), the root does not move.
+  std::vector<double> start(static_cast<std::size_t>(t.state_size), 0.0), end = start;
+  const auto cycle = [&](int n) {
+    start = end;
+    for (std::size_t i = 0; i < end.size(); ++i) {
+      const double slot = static_cast<double>(i + 1);
+      if (group_of[i] == 1) end[i] += 0.8 * slot * (n == 0 ? 1.0 : n == 1 ? 0.5 : 0.25);
+      if (group_of[i] == 2) end[i] += (n % 2 == 0 ? 1e-3 : -1e-3) * slot;
+    }
+    return groups.measure(start, end, scales);
+  };
+  double largest = 0.0;  // the first subtree's last slot moves most
+  for (std::size_t i = 0; i < group_of.size(); ++i)
+    if (group_of[i] == 1) largest = 0.8 * static_cast<double>(i + 1);
+  CHECK(cycle(0) == doctest::Approx(largest));
+  cycle(1);
+  std::vector<double> state = end;
+  CHECK_FALSE(groups.skip_contracting(start, state));  // one rate of 0.5 only
+  cycle(2);
+  state = end;
+  REQUIRE(groups.skip_contracting(start, state));
+  for (std::size_t i = 0; i < state.size(); ++i) {
+    CAPTURE(i);
+    // Group 1 jumps to its limit: the last change 0.2 (i + 1) times rho/(1 - rho) = 1 more.
+    if (group_of[i] == 1) CHECK(state[i] == doctest::Approx(end[i] + 0.8 * 0.25 * static_cast<double>(i + 1)));
+    else CHECK(state[i] == end[i]);
+  }
+}
