@@ -3,6 +3,7 @@
 #include "lang/text_encoding.hpp"
 #include "runtime/core/errors.hpp"
 #include "runtime/io/hdf5_history.hpp"
+#include "runtime/io/matlab_file.hpp"
 
 #include <fmt/format.h>
 
@@ -33,15 +34,15 @@ HistoryData history_data_from_table(const Table& table, const DataReading& readi
 }
 
 FitDataSet read_fit_data(const std::string& path, double weight, const lang::SourceLocation* named_at, const DataReading& reading) {
-  if (is_hdf5_name(path)) {
+  if (reads_as_hdf5(path)) {
     const char* unused = !reading.step.empty()                                  ? "step (of a TRIOS export)"
                          : reading.columns.area || reading.columns.height       ? "area and height (of material data)"
                          : reading.amplitude || reading.strain_amplitude        ? "amplitude (of a harmonic table)"
                          : reading.duplicates != lang::DuplicatePoints::average ? "duplicates (of a harmonic table)"
                                                                                 : nullptr;
     if (unused)
-      throw DataError(fmt::format("{}: error: an HDF5 file is read as a history, so the data line's {} does not apply; remove it",
-                                  lang::printable(path), unused));
+      throw DataError(fmt::format("{}: error: {} file is read as a history, so the data line's {} does not apply; remove it", lang::printable(path),
+                                  is_matlab_name(path) ? "a MATLAB" : "an HDF5", unused));
     return {path, weight, read_hdf5_history(path, named_at, reading.columns), {}, reading.force_offset};
   }
   const Table table = read_table(path, named_at, reading.step);

@@ -38,8 +38,8 @@ TEST_CASE("every role the language accepts in `columns` is one the readers know,
 
 TEST_CASE("a role's usual names listed for messages, in order of preference") {
   CHECK(role_usual_names(Role::time) == "time, t, test time, elapsed time");
-  CHECK(role_usual_names(Role::displacement) == "displacement, position, stroke, travel, deflection, disp");
-  CHECK(role_usual_names(Role::force) == "force, load, standard force, reaction force");
+  CHECK(role_usual_names(Role::displacement) == "displacement, position, stroke, travel, deflection, disp, x, u");
+  CHECK(role_usual_names(Role::force) == "force, load, standard force, reaction force, f");
 }
 
 TEST_CASE("usual names in any case and spacing, unused columns may hold anything") {
