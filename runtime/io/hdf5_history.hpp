@@ -92,7 +92,6 @@ Drive read_hdf5_drive(const std::string& path, const lang::SourceLocation* named
 // A measured history (time, displacement, force) for fits and reports, held as doubles and
 // each sample's index, kHeldSampleBytes a sample, within lang::max_table_bytes (the bound of a
 // table held whole; a DataError before anything is read beyond it).
-inline constexpr std::size_t kHeldSampleBytes = 3 * sizeof(double) + sizeof(int);
 HistoryData read_hdf5_history(const std::string& path, const lang::SourceLocation* named_at, const ColumnReading& reading);
 
 }  // namespace rheo::runtime
