@@ -205,7 +205,7 @@ TEST_CASE("rheo fit fits an HDF5 history as it fits the same history as CSV") {
   CHECK(read(dir() / "measured.html").find("measured.h5") != std::string::npos);
 }
 
-TEST_CASE("a MATLAB v7.3 file drives a history and is fitted as the same history in HDF5; .mat is not written, v5 is refused") {
+TEST_CASE("a MATLAB v7.3 file drives a history and is fitted as the same history in HDF5: .mat is not written, v5 is refused") {
   // A struct's fields, a column vector in single precision, units on the line, against the CSV route.
   const std::vector<double> t{0.0, 1.0, 2.0, 3.0, 4.0, 5.0}, u{0.0, 100.0, 200.0, 150.0, 50.0, 0.0};  // ms and um
   mat::write_mat((dir() / "rig.mat").string(),

@@ -115,7 +115,7 @@ TEST_CASE("a v7.3 MAT-file reads as written: row and column vectors, single and 
   CHECK(d.force == h.force);
 }
 
-TEST_CASE("a struct's fields by path or as MATLAB writes them; a struct itself named is refused with its fields") {
+TEST_CASE("a struct's fields by path or as MATLAB writes them, a struct itself named is refused with its fields") {
   const auto file = (scratch() / "rig.mat").string();
   const std::vector<double> t = ramp(12, 0.25), u = wave(12), f = ramp(12, 3.0);
   write_mat(file, {{.path = "/rig/t", .values = t}, {.path = "/rig/u", .values = u, .row = false}, {.path = "/rig/F", .values = f}});
