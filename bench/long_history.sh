@@ -6,11 +6,15 @@
 # under /usr/bin/time -v (Debian's `time` package): wall and CPU time, peak memory (maximum
 # resident set).
 #
-#   bench/long_history.sh [--rows N] [--rate HZ] [--runs K] [--elements] [--hdf5] [--rheo PATH]
+#   bench/long_history.sh [--rows N] [--rate HZ] [--runs K] [--elements] [--hdf5] [--report-data] [--rheo PATH]
 #
 # --hdf5: HDF5 in and out instead (docs/data-formats.md, "HDF5 files"): the input is the CSV
 # history simulated once by rheo into history-N-HZ.h5 (kept; rheo's result holds /time and
 # /displacement, its default layout), the output out.h5.
+#
+# --report-data: `rheo report` of specimen D against a measured history instead, read as fits
+# and reports read their data: the model's own result over the CSV history (time, displacement,
+# force), simulated once into history-N-HZ-measured.csv (kept), the output report.html.
 #
 # Defaults: 1e7 rows at 10 kHz, 3 runs, build/rheo. The 24 h durability log of #28 is
 # `--rows 86400000 --rate 1000`. Input and output go to ${TMPDIR:-/tmp}/rheo-bench-history/
@@ -27,7 +31,8 @@ while [ $# -gt 0 ]; do
     --rheo) rheo=$2; shift 2 ;;
     --elements) elements=(--elements); shift ;;
     --hdf5) format=h5; shift ;;
-    -h|--help) sed -n '2,18p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
+    --report-data) format=report; shift ;;
+    -h|--help) sed -n '2,22p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
     *) echo "bench/long_history.sh: unknown argument '$1' (see --help)" >&2; exit 2 ;;
   esac
 done
@@ -63,18 +68,32 @@ if [ "$format" = h5 ]; then
     "$rheo" simulate "$model" -o "$input"
   fi
 fi
-# The model block of the example, then one history protocol over the generated file.
-{ sed -n '/^model /,/^}/p' examples/specimen_d.rheo
-  printf 'simulate {\n  history file = "%s"\n  output "out.%s"\n}\n' "$(basename "$input")" "$format"; } >"$model"
+if [ "$format" = report ]; then
+  input=$dir/history-$rows-$rate-measured.csv
+  if [ ! -e "$input" ]; then
+    echo "simulating $csv into $input (rheo simulate: time, displacement, force)" >&2
+    { sed -n '/^model /,/^}/p' examples/specimen_d.rheo
+      printf 'simulate {\n  history file = "%s"\n}\n' "$(basename "$csv")"; } >"$model"
+    "$rheo" simulate "$model" -o "$input.tmp"
+    mv "$input.tmp" "$input"
+  fi
+  sed -n '/^model /,/^}/p' examples/specimen_d.rheo >"$model"
+  command=(report "$model" --data "$input" -o "$dir/report.html") out=$dir/report.html
+else
+  # The model block of the example, then one history protocol over the generated file.
+  { sed -n '/^model /,/^}/p' examples/specimen_d.rheo
+    printf 'simulate {\n  history file = "%s"\n  output "out.%s"\n}\n' "$(basename "$input")" "$format"; } >"$model"
+  command=(simulate "$model" "${elements[@]}") out=$dir/out.$format
+fi
 
-echo "rheo simulate $model${elements[*]:+ ${elements[*]}}: $(stat -c %s "$input") bytes in, $rows rows, $runs run(s)"
+echo "rheo ${command[*]}: $(stat -c %s "$input") bytes in, $rows rows, $runs run(s)"
 for ((run = 1; run <= runs; ++run)); do
-  /usr/bin/time -v "$rheo" simulate "$model" "${elements[@]}" 2>"$dir/time.log" >/dev/null ||
+  /usr/bin/time -v "$rheo" "${command[@]}" 2>"$dir/time.log" >/dev/null ||
     { cat "$dir/time.log" >&2; exit 1; }
-  awk -F': ' -v out="$(stat -c %s "$dir/out.$format")" '
+  awk -F': ' -v out="$(stat -c %s "$out")" '
     /Elapsed \(wall clock\)/ { wall = $2 } /User time/ { user = $2 } /System time/ { sys = $2 }
     /Maximum resident set size/ { rss = $2 }
     END { printf "wall %s, CPU %.2f s (user %.2f + sys %.2f), peak memory %.1f MB, %d bytes out\n",
           wall, user + sys, user, sys, rss / 1024, out }' "$dir/time.log"
 done
-rm -f "$dir/out.$format" "$dir/time.log"
+rm -f "$out" "$dir/time.log"

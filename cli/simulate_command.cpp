@@ -11,6 +11,7 @@
 #include "runtime/io/hdf5_history.hpp"
 #include "runtime/io/hdf5_writer.hpp"
 #include "runtime/io/history_writer.hpp"
+#include "runtime/io/matlab_file.hpp"
 #include "runtime/io/output.hpp"
 #include "runtime/protocols/run_protocols.hpp"
 #include "runtime/protocols/stream_history.hpp"
@@ -184,6 +185,11 @@ Command add_simulate_command(CLI::App& app) {
       if (destination.empty() && !job.protocol.output.empty())
         destination = (std::filesystem::path(o->file).parent_path() / job.protocol.output).string();
       runtime::check_output_destination(destination);
+      if (runtime::is_matlab_name(destination))
+        throw runtime::UsageError(
+            fmt::format("{}: rheo reads MATLAB .mat files but does not write them; write HDF5 (e.g. -o result.h5, read in MATLAB by "
+                        "h5read('result.h5', '/force')) or CSV (readtable)",
+                        destination));
       if (hdf5_destination(destination) && job.protocol.kind == lang::ProtocolKind::harmonic)
         throw runtime::UsageError(
             fmt::format("{}: an HDF5 output holds a time history; write the harmonic protocol's result as CSV or JSON "

@@ -27,8 +27,14 @@ const std::vector<RoleSpec>& specs() {
   using namespace lang;
   static const std::vector<RoleSpec> table{
       {Role::time, "time", {"time", "t", "test time", "elapsed time"}, dim::time, false, "time (s)", "s"},
-      {Role::displacement, "displacement", {"displacement", "position", "stroke", "travel", "deflection", "disp"}, dim::length, false, "length (mm)", "mm"},
-      {Role::force, "force", {"force", "load", "standard force", "reaction force"}, dim::force, false, "force (N)", "N"},
+      {Role::displacement,
+       "displacement",
+       {"displacement", "position", "stroke", "travel", "deflection", "disp", "x", "u"},
+       dim::length,
+       false,
+       "length (mm)",
+       "mm"},
+      {Role::force, "force", {"force", "load", "standard force", "reaction force", "f"}, dim::force, false, "force (N)", "N"},
       {Role::amplitude,
        "amplitude",
        {"amplitude", "displacement amplitude", "dynamic amplitude", "strain amplitude", "oscillation strain", "dynamic strain", "strain"},

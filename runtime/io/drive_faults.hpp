@@ -23,5 +23,9 @@ std::string time_not_increasing(const std::string& path, int row, int column, do
 // Whether a rig can drive displacement U [mm] (lang::max_amplitude); the fault at ROW:COLUMN.
 bool drivable(double u);
 std::string not_drivable(const std::string& path, int row, int column, double u);
+// A measured history's (fit_data.hpp): the header lacks a force column; every force is zero
+// (the first row's force cell at ROW:COLUMN).
+std::string missing_force(const Table& table);
+std::string zero_force(const std::string& path, int row, int column);
 
 }  // namespace rheo::runtime::drive_faults

@@ -1,24 +1,83 @@
 #include "runtime/io/fit_data.hpp"
 
+#include "lang/limits.hpp"
 #include "lang/text_encoding.hpp"
 #include "runtime/core/errors.hpp"
+#include "runtime/io/drive_faults.hpp"
 #include "runtime/io/hdf5_history.hpp"
+#include "runtime/io/history_stream.hpp"
+#include "runtime/io/matlab_file.hpp"
 
 #include <fmt/format.h>
 
 #include <algorithm>
 #include <cmath>
+#include <filesystem>
+#include <optional>
 #include <stdexcept>
 
 namespace rheo::runtime {
+namespace {
+
+// Whether TABLE's header makes it a harmonic table: amplitude (or one on the data line) and
+// frequency columns.
+bool harmonic_header(const Table& table, const DataReading& reading) {
+  const bool amplitude = find_role(table, Role::amplitude, reading.columns) >= 0 || reading.amplitude || reading.strain_amplitude;
+  return amplitude && find_role(table, Role::frequency, reading.columns) >= 0;
+}
+
+}  // namespace
+
+std::optional<HistoryData> stream_measured_history(const std::string& path, const lang::SourceLocation* named_at, const DataReading& reading,
+                                                   std::size_t most) {
+  std::error_code error;
+  if (!reading.step.empty() || !std::filesystem::is_regular_file(path, error)) return std::nullopt;
+  try {
+    HistoryStream stream(path, named_at, false);
+    stream.read_columns(reading.columns);
+    const Table* head = stream.header();
+    if (!head || head->rows.empty()) return std::nullopt;
+    try {
+      if (harmonic_header(*head, reading) || find_role(*head, Role::time, reading.columns) < 0 || find_role(*head, Role::force, reading.columns) < 0)
+        return std::nullopt;
+    } catch (const DataError&) {  // a column the data line names that the header lacks: said where whole-file reading says it
+      return std::nullopt;
+    }
+    stream.read_force();
+    HistoryData h;
+    h.path = path;
+    DrivePiece piece;
+    std::vector<double> force;
+    while (stream.next(piece, &force)) {
+      if (h.force.size() + force.size() > most)
+        throw DataError(
+            fmt::format("{}: error: the history has more than {} samples, the most a fit or report holds ({} MiB at {} bytes a "
+                        "sample); fit a part of it, or resample it",
+                        lang::printable(path), most, lang::max_table_bytes >> 20, kHeldSampleBytes));
+      if (h.force.empty()) {  // room for the whole file at the first piece's bytes a row: no copies as it grows
+        const double rows = static_cast<double>(stream.file_size()) * static_cast<double>(force.size()) /
+                            static_cast<double>(std::max<std::uint64_t>(stream.bytes_read(), 1));
+        const auto n = static_cast<std::size_t>(std::min(1.02 * rows + 1024.0, static_cast<double>(most)));
+        h.drive.time.reserve(n), h.drive.displacement.reserve(n), h.force.reserve(n), h.rows.reserve(n);
+      }
+      h.drive.time.insert(h.drive.time.end(), piece.time.begin(), piece.time.end());
+      h.drive.displacement.insert(h.drive.displacement.end(), piece.displacement.begin(), piece.displacement.end());
+      h.force.insert(h.force.end(), force.begin(), force.end());
+      h.rows.insert(h.rows.end(), piece.rows.begin(), piece.rows.end());
+    }
+    h.force_scale = 0.0;
+    for (double v : h.force) h.force_scale = std::max(h.force_scale, std::abs(v));
+    return h;
+  } catch (const NotStreamable&) {
+    return std::nullopt;
+  }
+}
 
 HistoryData history_data_from_table(const Table& table) { return history_data_from_table(table, DataReading{}); }
 
 HistoryData history_data_from_table(const Table& table, const DataReading& reading) {
   const int f = find_role(table, Role::force, reading.columns);
-  if (f < 0)
-    throw DataError(fmt::format("{}a measured history needs a column 'force [N]' (any force unit) next to time and displacement; {}",
-                                header_error(table), header_columns(table)));
+  if (f < 0) throw DataError(drive_faults::missing_force(table));
   HistoryData h;
   h.path = table.path;
   h.drive = drive_from_table(table, reading.columns);
@@ -26,28 +85,26 @@ HistoryData history_data_from_table(const Table& table, const DataReading& readi
   h.rows = table.rows;
   h.force_scale = 0.0;
   for (double v : h.force) h.force_scale = std::max(h.force_scale, std::abs(v));
-  if (!(h.force_scale > 0.0))
-    throw DataError(fmt::format("{}:{}:{}: error: every measured force is zero; a fit needs a force signal: check the force column and its unit",
-                                table.path, table.rows.front(), table.cell_column(0, f)));
+  if (!(h.force_scale > 0.0)) throw DataError(drive_faults::zero_force(table.path, table.rows.front(), table.cell_column(0, f)));
   return h;
 }
 
 FitDataSet read_fit_data(const std::string& path, double weight, const lang::SourceLocation* named_at, const DataReading& reading) {
-  if (is_hdf5_name(path)) {
+  if (reads_as_hdf5(path)) {
     const char* unused = !reading.step.empty()                                  ? "step (of a TRIOS export)"
                          : reading.columns.area || reading.columns.height       ? "area and height (of material data)"
                          : reading.amplitude || reading.strain_amplitude        ? "amplitude (of a harmonic table)"
                          : reading.duplicates != lang::DuplicatePoints::average ? "duplicates (of a harmonic table)"
                                                                                 : nullptr;
     if (unused)
-      throw DataError(fmt::format("{}: error: an HDF5 file is read as a history, so the data line's {} does not apply; remove it",
-                                  lang::printable(path), unused));
+      throw DataError(fmt::format("{}: error: {} file is read as a history, so the data line's {} does not apply; remove it", lang::printable(path),
+                                  is_matlab_name(path) ? "a MATLAB" : "an HDF5", unused));
     return {path, weight, read_hdf5_history(path, named_at, reading.columns), {}, reading.force_offset};
   }
+  if (auto history = stream_measured_history(path, named_at, reading)) return {path, weight, std::move(*history), {}, reading.force_offset};
   const Table table = read_table(path, named_at, reading.step);
   FitDataSet set{path, weight, HarmonicData{}, {table.step, false, {}, {}}, reading.force_offset};
-  const bool amplitude = find_role(table, Role::amplitude, reading.columns) >= 0 || reading.amplitude || reading.strain_amplitude;
-  if (amplitude && find_role(table, Role::frequency, reading.columns) >= 0) {
+  if (harmonic_header(table, reading)) {
     set.data = harmonic_data_from_table(table, reading);
     if (set.harmonic().material) set.source = {table.step, true, reading.columns.area, reading.columns.height};
     if (reading.force_offset.given)

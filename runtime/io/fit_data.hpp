@@ -2,8 +2,14 @@
 // time history (`time`, `displacement`, `force` columns, the network relaxed at the first sample, as in the static
 // and quasi-static tests of thesis section 4.3). The kind is read from the header; a file that
 // is neither is a DataError listing the columns each kind needs.
+//
+// A history in a CSV file is read as it streams, into arrays of doubles (stream_measured_history):
+// a fit holds the measured history so, not as text or a table of cells, and simulates it at every
+// evaluation without reading or copying it again. Harmonic tables (and histories the stream does
+// not take) are read whole, at most lang::max_table_bytes of text.
 #pragma once
 
+#include "lang/limits.hpp"
 #include "runtime/core/drive.hpp"
 #include "runtime/io/harmonic_data.hpp"
 
@@ -41,11 +47,25 @@ struct FitDataSet {
   const HistoryData& history() const { return std::get<HistoryData>(data); }
 };
 
+// What a held sample of a measured history takes: time, displacement and force as doubles and
+// its row (or index).
+inline constexpr std::size_t kHeldSampleBytes = 3 * sizeof(double) + sizeof(int);
+
 HistoryData history_data_from_table(const Table& table);
 HistoryData history_data_from_table(const Table& table, const DataReading& reading);
 // NAMED_AT: where a .rheo file's `data` line names PATH (read_table). READING: how the line
 // asks for it to be read.
 FitDataSet read_fit_data(const std::string& path, double weight, const lang::SourceLocation* named_at = nullptr, const DataReading& reading = {});
+// A measured history in the CSV file PATH read piece by piece (history_stream.hpp) into
+// HistoryData's arrays, with no text held and no table of cells: the bound is on the samples
+// held (MOST, kHeldSampleBytes each: 512 MiB of them by default), not on the file's bytes, a
+// DataError when the file has more. Its faults are those history_data_from_table(read_table())
+// gives, at the same file:row:col. nullopt for a file read_fit_data reads whole: not a regular
+// file, a TRIOS step asked for, a header that is not a history's with a force (a harmonic table,
+// none at all), a fault in the lines before its first data row, a file the stream does not take
+// (NotStreamable).
+std::optional<HistoryData> stream_measured_history(const std::string& path, const lang::SourceLocation* named_at, const DataReading& reading,
+                                                   std::size_t most = lang::max_table_bytes / kHeldSampleBytes);
 // The reading a checked data line asks for.
 DataReading reading_of(const lang::FitData& line);
 

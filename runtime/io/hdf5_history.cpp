@@ -3,6 +3,7 @@
 #include "lang/limits.hpp"
 #include "lang/text_encoding.hpp"
 #include "runtime/io/drive_faults.hpp"
+#include "runtime/io/matlab_file.hpp"
 
 #include <fmt/format.h>
 
@@ -29,6 +30,8 @@ bool is_hdf5_name(const std::string& path) {
   return name.ends_with(".h5") || name.ends_with(".hdf5");
 }
 
+bool reads_as_hdf5(const std::string& path) { return is_hdf5_name(path) || is_matlab_name(path); }
+
 
 Hdf5HistoryReader::Hdf5HistoryReader(std::string path, const lang::SourceLocation* named_at, const ColumnReading& reading, bool force,
                                      bool from_rest, std::size_t piece_samples)
@@ -46,6 +49,7 @@ Hdf5HistoryReader::Hdf5HistoryReader(std::string path, const lang::SourceLocatio
   const htri_t is_hdf5 = H5Fis_hdf5(file.c_str());
   if (is_hdf5 <= 0) {
     hdf5::last_error();
+    if (is_matlab_name(file)) refuse_non_hdf5_matlab(file);
     throw DataError(
         fmt::format("{}: error: this is not an HDF5 file (rheo reads a file named .h5 or .hdf5 as HDF5); give the HDF5 file, "
                     "or name a CSV table .csv",

@@ -11,6 +11,10 @@
 // data line (`/rig/t [ms]`), else the dataset's "units" attribute (a string); one of neither is
 // an error, as a CSV column without a unit is.
 //
+// A MATLAB v7.3 .mat file is read so (matlab_file.hpp): its variables are datasets, a struct's
+// fields datasets in its group (`columns = "time = rig.t"` for /rig/t), and those that are not
+// real numbers (text, logical, cell, complex, ...) are refused naming the variable.
+//
 // Faults are DataErrors naming the file, the dataset and, for values, the 0-based index, with
 // what to do: a file that is not HDF5, a dataset that is missing (naming what the group holds),
 // a group where a dataset is expected, a rank or type rheo cannot read, datasets of different
@@ -36,6 +40,9 @@ namespace rheo::runtime {
 
 // Whether PATH names an HDF5 file: it ends in .h5 or .hdf5 (any case).
 bool is_hdf5_name(const std::string& path);
+// Whether a history or measured data at PATH is read as HDF5: an HDF5 name, or a MATLAB .mat
+// file (v7.3 is HDF5; matlab_file.hpp).
+bool reads_as_hdf5(const std::string& path);
 
 class Hdf5HistoryReader {
  public:
@@ -85,7 +92,6 @@ Drive read_hdf5_drive(const std::string& path, const lang::SourceLocation* named
 // A measured history (time, displacement, force) for fits and reports, held as doubles and
 // each sample's index, kHeldSampleBytes a sample, within lang::max_table_bytes (the bound of a
 // table held whole; a DataError before anything is read beyond it).
-inline constexpr std::size_t kHeldSampleBytes = 3 * sizeof(double) + sizeof(int);
 HistoryData read_hdf5_history(const std::string& path, const lang::SourceLocation* named_at, const ColumnReading& reading);
 
 }  // namespace rheo::runtime

@@ -2,6 +2,7 @@
 
 #include "lang/text_encoding.hpp"
 #include "lang/units.hpp"
+#include "runtime/io/matlab_file.hpp"
 
 #include <fmt/format.h>
 
@@ -23,15 +24,19 @@ std::pair<std::string, std::optional<std::string>> path_and_unit(const std::stri
 
 std::string absolute(const std::string& path) { return path.starts_with('/') ? path : "/" + path; }
 
+const std::string kUnitAdvice = "write the unit as one string, e.g. \"mm\"";
+
 herr_t collect_name(hid_t, const char* name, const H5L_info_t*, void* out) {
   static_cast<std::vector<std::string>*>(out)->emplace_back(name);
   return 0;
 }
 
-// The names GROUP holds, for messages.
+// The names GROUP holds, for messages; not MATLAB's own groups of a .mat file (#refs#, the data
+// of its cell arrays, and #subsystem#, of its objects).
 std::vector<std::string> members(hid_t group, const std::string& file, const std::string& group_path) {
   std::vector<std::string> names;
   hdf5::check(H5Literate(group, H5_INDEX_NAME, H5_ITER_INC, nullptr, collect_name, &names), file, "H5Literate", group_path);
+  std::erase_if(names, [](const std::string& name) { return name == "#refs#" || name == "#subsystem#"; });
   return names;
 }
 
@@ -50,41 +55,6 @@ H5I_type_t object_type(hid_t file, const std::string& path, const std::string& f
   const H5I_type_t type = H5Iget_type(object);
   H5Oclose(object);
   return type;
-}
-
-// The string held by DATASET's attribute NAME; nullopt when it has none. DataError when it is
-// not one string.
-std::optional<std::string> string_attribute(hid_t dataset, const char* name, const std::string& file, const std::string& path) {
-  const htri_t has = H5Aexists(dataset, name);
-  hdf5::check(has, file, "H5Aexists", path);
-  if (has == 0) return std::nullopt;
-  const std::string what = fmt::format("the '{}' attribute of {}", name, path);
-  hdf5::Attribute attribute(H5Aopen(dataset, name, H5P_DEFAULT), file, "H5Aopen", what);
-  hdf5::Datatype type(H5Aget_type(attribute.get()), file, "H5Aget_type", what);
-  hdf5::Dataspace space(H5Aget_space(attribute.get()), file, "H5Aget_space", what);
-  const hssize_t points = H5Sget_simple_extent_npoints(space.get());
-  if (H5Tget_class(type.get()) != H5T_STRING || points != 1)
-    throw DataError(fmt::format("{}: error: {} is not a string; write the unit as one string, e.g. \"mm\"", lang::printable(file), what));
-  hdf5::Datatype memory(H5Tcopy(H5T_C_S1), file, "H5Tcopy", what);
-  hdf5::check(H5Tset_cset(memory.get(), H5Tget_cset(type.get())), file, "H5Tset_cset", what);
-  const htri_t variable = H5Tis_variable_str(type.get());
-  hdf5::check(variable, file, "H5Tis_variable_str", what);
-  std::string text;
-  if (variable > 0) {
-    hdf5::check(H5Tset_size(memory.get(), H5T_VARIABLE), file, "H5Tset_size", what);
-    char* value = nullptr;
-    hdf5::check(H5Aread(attribute.get(), memory.get(), &value), file, "H5Aread", what);
-    if (value) text = value;
-    H5free_memory(value);
-  } else {
-    const std::size_t size = H5Tget_size(type.get());
-    std::vector<char> value(size + 1, '\0');  // a null-padded string of SIZE bytes keeps them all
-    hdf5::check(H5Tset_size(memory.get(), size + 1), file, "H5Tset_size", what);
-    hdf5::check(H5Aread(attribute.get(), memory.get(), value.data()), file, "H5Aread", what);
-    text = value.data();
-  }
-  while (!text.empty() && (text.back() == ' ' || text.back() == '\0')) text.pop_back();
-  return text;
 }
 
 // Checks that PATH (absolute), which READING names for ROLE_TEXT, is a dataset: each group on
@@ -108,6 +78,7 @@ void check_named_path(hid_t file_id, const std::string& file, const std::string&
     if (slash == std::string::npos) {
       if (type == H5I_GROUP) {
         hdf5::Group group(H5Gopen2(file_id, next.c_str(), H5P_DEFAULT), file, "H5Gopen2", next);
+        refuse_matlab_group(group.get(), file, next, role_text, listed(members(group.get(), file, next)));
         throw DataError(fmt::format("{}: error: {} ({}) is a group, not a dataset; name a dataset in it: it holds {}", shown, lang::printable(next),
                                     role_text, listed(members(group.get(), file, next))));
       }
@@ -124,14 +95,18 @@ void check_named_path(hid_t file_id, const std::string& file, const std::string&
   }
 }
 
-// The dataset at PATH for ROLE, open and checked; UNIT: the one written on the line.
-Hdf5Column open_column(hid_t file_id, const std::string& file, Role role, const std::string& path, std::optional<std::string> unit) {
+// The dataset at PATH for ROLE, open and checked; UNIT: the one written on the line. NAMING: a
+// `columns` setting naming every role's dataset with a unit, for the advice on a MATLAB variable
+// without one.
+Hdf5Column open_column(hid_t file_id, const std::string& file, Role role, const std::string& path, std::optional<std::string> unit,
+                       const std::string& naming) {
   const std::string shown = lang::printable(file), role_text(role_name(role));
   Hdf5Column column;
   column.role = role;
   column.path = path;
   const std::string& ds = column.path;
   column.dataset = hdf5::Dataset(H5Dopen2(file_id, ds.c_str(), H5P_DEFAULT), file, "H5Dopen2", ds);
+  check_matlab_dataset(column.dataset.get(), file, ds, role_text);
   hdf5::Datatype type(H5Dget_type(column.dataset.get()), file, "H5Dget_type", ds);
   const H5T_class_t type_class = H5Tget_class(type.get());
   if (type_class != H5T_FLOAT && type_class != H5T_INTEGER)
@@ -154,8 +129,13 @@ Hdf5Column open_column(hid_t file_id, const std::string& file, Role role, const 
                                 lang::printable(ds), role_text, rank, rank == 2 ? fmt::format(" ({} x {})", dims[0], dims[1]) : ""));
 
   std::string unit_origin = "on the line";
-  if (!unit) unit = string_attribute(column.dataset.get(), "units", file, ds), unit_origin = "its 'units' attribute";
+  if (!unit) unit = hdf5::string_attribute(column.dataset.get(), "units", file, ds, kUnitAdvice), unit_origin = "its 'units' attribute";
   const std::string example = role_unit_example(role);
+  if ((!unit || unit->empty()) && matlab_class(column.dataset.get(), file, ds))
+    throw DataError(
+        fmt::format("{}: error: {} ({}) has no unit: MATLAB saves none, and it has no 'units' attribute; write each variable's "
+                    "unit after it: {}",
+                    shown, lang::printable(ds), role_text, naming));
   if (!unit || unit->empty())
     throw DataError(
         fmt::format("{}: error: {} ({}) has no unit: no 'units' attribute; give it one (a string, e.g. \"{}\"), or write the unit "
@@ -190,12 +170,18 @@ std::vector<Hdf5Column> hdf5_columns(hid_t file_id, const std::string& file, con
     for (const auto& name : root_members) {
       if (object_type(file_id, "/" + name, file) != H5I_DATASET) continue;
       hdf5::Dataset dataset(H5Dopen2(file_id, ("/" + name).c_str(), H5P_DEFAULT), file, "H5Dopen2", "/" + name);
-      const std::string unit = string_attribute(dataset.get(), "units", file, "/" + name).value_or("");
+      const std::string unit = hdf5::string_attribute(dataset.get(), "units", file, "/" + name, kUnitAdvice).value_or("");
       root.names.push_back(name), root.units.push_back(unit), root.parsed.push_back(unit.empty() ? std::nullopt : table_unit(unit));
       root.unit_columns.push_back(1), root.problems.emplace_back(), root.columns.emplace_back();
     }
   };
-  std::vector<Hdf5Column> columns;
+  // Each role's path and the unit written after it, then the datasets opened.
+  struct Found {
+    Role role;
+    std::string path;
+    std::optional<std::string> unit;
+  };
+  std::vector<Found> found;
   for (const Role role : roles) {
     const std::string role_text(role_name(role));
     std::string named;
@@ -203,9 +189,9 @@ std::vector<Hdf5Column> hdf5_columns(hid_t file_id, const std::string& file, con
       if (r == role) named = name;
     if (!named.empty()) {
       auto [path, unit] = path_and_unit(named);
-      path = absolute(path);
+      path = absolute(matlab_field_path(file, path));
       check_named_path(file_id, file, path, role_text);
-      columns.push_back(open_column(file_id, file, role, path, unit));
+      found.push_back({role, path, unit});
       continue;
     }
     read_root();
@@ -215,8 +201,15 @@ std::vector<Hdf5Column> hdf5_columns(hid_t file_id, const std::string& file, con
           fmt::format("{}: error: no {} dataset: the root group has none named as usual ({}); name the one that holds it: "
                       "columns = \"{} = /group/dataset\" (the root group holds {})",
                       lang::printable(file), role_text, role_usual_names(role), role_text, listed(root_members)));
-    columns.push_back(open_column(file_id, file, role, "/" + root.names[static_cast<std::size_t>(c)], std::nullopt));
+    found.push_back({role, "/" + root.names[static_cast<std::size_t>(c)], std::nullopt});
   }
+  std::string naming;
+  for (const auto& f : found)
+    naming += fmt::format("{}{} = {} [{}]", naming.empty() ? "columns = \"" : ", ", role_name(f.role), lang::printable(f.path.substr(1)),
+                          f.unit.value_or(role_unit_example(f.role)));
+  naming += "\"";
+  std::vector<Hdf5Column> columns;
+  for (const auto& f : found) columns.push_back(open_column(file_id, file, f.role, f.path, f.unit, naming));
   return columns;
 }
 

@@ -13,6 +13,7 @@
 
 #include <hdf5.h>
 
+#include <optional>
 #include <string>
 #include <utility>
 
@@ -69,5 +70,11 @@ using Dataspace = Owner<H5Sclose>;
 using Datatype = Owner<H5Tclose>;
 using Attribute = Owner<H5Aclose>;
 using PropertyList = Owner<H5Pclose>;
+
+// The string held by OBJECT's attribute NAME (fixed or variable length; trailing blanks and
+// nulls dropped); nullopt when it has none. PATH names OBJECT in messages. An attribute that is
+// not one string is a DataError "FILE: error: the 'NAME' attribute of PATH is not a string; ADVICE".
+std::optional<std::string> string_attribute(hid_t object, const char* name, const std::string& file, const std::string& path,
+                                            const std::string& advice);
 
 }  // namespace rheo::runtime::hdf5

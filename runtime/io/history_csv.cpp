@@ -139,7 +139,8 @@ Table read_table(const std::string& path, const lang::SourceLocation* named_at, 
   if (!table.failure.empty() && table.failure.rfind("it is larger than", 0) == 0)
     throw DataError(unreadable_table(path, named_at,
                                      fmt::format("it is larger than {} MiB, the most rheo holds as a whole table; `rheo simulate` streams a history "
-                                                 "file of any size when it writes the history as CSV or HDF5 on the fixed-step solver",
+                                                 "file of any size when it writes the history as CSV or HDF5 on the fixed-step solver, "
+                                                 "`rheo fit` and `report` a measured history in a regular file",
                                                  lang::max_table_bytes >> 20),
                                      table.advice()));
   if (!table.failure.empty()) throw DataError(unreadable_table(path, named_at, table.failure, table.advice()));
@@ -183,6 +184,16 @@ bool drivable(double u) { return std::abs(u) <= lang::max_amplitude; }
 std::string not_drivable(const std::string& path, int row, int column, double u) {
   return fmt::format("{}:{}:{}: error: displacement {:g} mm is beyond the {:g} mm a rig can drive; check the column's unit", path, row, column, u,
                      lang::max_amplitude);
+}
+
+std::string missing_force(const Table& table) {
+  return fmt::format("{}a measured history needs a column 'force [N]' (any force unit) next to time and displacement; {}", header_error(table),
+                     header_columns(table));
+}
+
+std::string zero_force(const std::string& path, int row, int column) {
+  return fmt::format("{}:{}:{}: error: every measured force is zero; a fit needs a force signal: check the force column and its unit", path, row,
+                     column);
 }
 
 }  // namespace drive_faults

@@ -122,7 +122,22 @@ void HistoryStream::take_line(std::string_view line) {
   }
 }
 
-void HistoryStream::check_rows(DrivePiece* piece) {
+const Table* HistoryStream::header() {
+  while (table_.rows.empty() && !faulty_ && take_lines()) {}
+  return faulty_ ? nullptr : &table_;
+}
+
+void HistoryStream::check_force_column() {
+  try {
+    f_ = find_role(table_, Role::force, reading_);
+    if (f_ < 0) throw DataError(drive_faults::missing_force(table_));
+    (void)role_values(table_, f_, Role::force, reading_);
+  } catch (const DataError&) {
+    faulty_ = true;
+  }
+}
+
+void HistoryStream::check_rows(DrivePiece* piece, std::vector<double>* force) {
   const std::size_t n = table_.rows.size();
   if (n == 0) return;
   if (!columns_checked_) {
@@ -136,17 +151,21 @@ void HistoryStream::check_rows(DrivePiece* piece) {
     } catch (const DataError&) {
       faulty_ = true;
     }
+    if (force_) check_force_column();
   }
   if (t_ >= 0 && u_ >= 0) {
     const auto t = static_cast<std::size_t>(t_), u = static_cast<std::size_t>(u_);
     if (!table_.problems[t].empty() || !table_.problems[u].empty()) faulty_ = true;
     const std::vector<double>& time = table_.columns[t];
     const std::vector<double>& disp = table_.columns[u];
+    const std::vector<double>* forces = f_ >= 0 ? &table_.columns[static_cast<std::size_t>(f_)] : nullptr;
+    if (forces && !table_.problems[static_cast<std::size_t>(f_)].empty()) faulty_ = true;
     for (std::size_t i = 0; i < n; ++i) {
       const int row = table_.rows[i];
       if (data_rows_ == 0) {
         t0_ = time[i], u0_ = disp[i], first_row_ = row;
         first_u_column_ = table_.cell_column(i, u_);
+        if (forces) first_f_column_ = table_.cell_column(i, f_);
       } else if (!(time[i] > last_t_) && row_fault_.empty()) {
         row_fault_ = drive_faults::time_not_increasing(path_, row, table_.cell_column(i, t_), time[i], last_t_, last_row_);
         faulty_ = true;
@@ -157,11 +176,13 @@ void HistoryStream::check_rows(DrivePiece* piece) {
       }
       largest_ = std::max(largest_, std::abs(disp[i]));
       last_t_ = time[i], last_row_ = row;
+      if (forces) force_seen_ = force_seen_ || (*forces)[i] != 0.0;
       ++data_rows_;
       if (piece && !faulty_) {
         piece->time.push_back(time[i] - t0_);
         piece->displacement.push_back(disp[i]);
         piece->rows.push_back(row);
+        if (force && forces) force->push_back((*forces)[i]);
       }
     }
   } else {
@@ -177,6 +198,8 @@ void HistoryStream::settle() {
   if (!encoding_fault_.empty()) throw DataError(encoding_fault_);
   if (!width_fault_.empty()) throw DataError(width_fault_);
   rows_.finish(data_rows_);
+  const int f = force_ ? find_role(table_, Role::force, reading_) : -1;  // as history_data_from_table: before the drive
+  if (force_ && f < 0) throw DataError(drive_faults::missing_force(table_));
   const int t = find_role(table_, Role::time, reading_), u = find_role(table_, Role::displacement, reading_);
   if (t < 0 || u < 0) throw DataError(drive_faults::missing_columns(table_));
   (void)role_values(table_, t, Role::time, reading_);
@@ -185,11 +208,15 @@ void HistoryStream::settle() {
   if (from_rest_ && !drive_faults::starts_at_rest(u0_, largest_))
     throw DataError(drive_faults::not_at_rest(path_, first_row_, first_u_column_, u0_));
   if (!row_fault_.empty()) throw DataError(row_fault_);
+  if (force_) {
+    (void)role_values(table_, f, Role::force, reading_);
+    if (!force_seen_) throw DataError(drive_faults::zero_force(path_, first_row_, first_f_column_));
+  }
 }
 
 void HistoryStream::drain() {
-  while (take_lines()) check_rows(nullptr);
-  check_rows(nullptr);
+  while (take_lines()) check_rows(nullptr, nullptr);
+  check_rows(nullptr, nullptr);
   settle();
 }
 
@@ -198,11 +225,12 @@ void HistoryStream::fail_at_first_fault() {
   throw std::logic_error("HistoryStream: a fault was found that settle() does not report");
 }
 
-bool HistoryStream::next(DrivePiece& piece) {
+bool HistoryStream::next(DrivePiece& piece, std::vector<double>* force) {
   piece.clear();
+  if (force) force->clear();
   while (!faulty_) {
     const bool more = take_lines();
-    check_rows(&piece);
+    check_rows(&piece, force);
     if (faulty_) break;
     if (!more) {
       settle();

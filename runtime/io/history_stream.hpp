@@ -13,6 +13,10 @@
 // handed out may precede a fault further down: a caller keeps its results provisional until
 // next() has returned false.
 //
+// A measured history (fit_data.hpp) is read so too, with its force (read_force()): the force
+// column's faults (its unit, its cells) follow the drive's, then a force zero everywhere, as
+// history_data_from_table reports them.
+//
 // Files it does not take throw NotStreamable, before or while pieces are handed out, for the
 // caller to read whole (with its bound on size): what is not a regular file (a pipe, a device:
 // it may never end, and a fault makes the stream read to the end), UTF-16 text, TRIOS exports
@@ -63,10 +67,19 @@ class HistoryStream {
 
   // The columns a history protocol's `columns` names (column_roles.hpp); before the first next().
   void read_columns(ColumnReading reading) { reading_ = std::move(reading); }
+  // Reads the force too (a measured history), handed out by next(piece, force); before the
+  // first next().
+  void read_force() { force_ = true; }
+
+  // The names row and units of the file, and its first data rows, read (as far as the first data
+  // row, or the end of a file without one) for a caller to tell the kind of table before taking
+  // pieces; nullptr when a fault in the lines read stops the table there (whole-file reading
+  // reports it). NotStreamable as next().
+  const Table* header();
 
   // The next samples into PIECE (replacing what it held; at least one): true; false at the end
   // of a file that passed every check. DataError at a fault (see above), NotStreamable.
-  bool next(DrivePiece& piece);
+  bool next(DrivePiece& piece, std::vector<double>* force = nullptr);
   // For a caller whose own work failed: reads the rest of the file and throws the DataError it
   // holds (or NotStreamable), so that a fault in the data is reported before the failure it
   // caused, as when the file is read whole; returns when the file is sound.
@@ -81,7 +94,8 @@ class HistoryStream {
   bool read_block();                                // more bytes into the buffer; false at the end of the file
   bool take_lines();                                // every whole line in the buffer; false at the end of the file
   void take_line(std::string_view line);
-  void check_rows(DrivePiece* piece);  // the data rows read since the last call
+  void check_rows(DrivePiece* piece, std::vector<double>* force);  // the data rows read since the last call
+  void check_force_column();
   [[noreturn]] void fail_at_first_fault();
   void settle();  // at the end of the file: throws the first fault, if any
 
@@ -107,6 +121,10 @@ class HistoryStream {
   int first_row_ = 0, first_u_column_ = 1;
   double t0_ = 0.0, u0_ = 0.0, last_t_ = 0.0, largest_ = 0.0;
   int last_row_ = 0;
+  bool force_ = false;
+  int f_ = -1;               // the force column, when reading force
+  int first_f_column_ = 1;   // the first row's force cell
+  bool force_seen_ = false;  // a force that is not zero
 
   bool faulty_ = false;                                   // a fault is known: no more pieces
   std::string encoding_fault_, width_fault_, row_fault_;  // the first of each kind

@@ -2,6 +2,7 @@
 
 #include "lang/text_encoding.hpp"
 #include "runtime/core/errors.hpp"
+#include "runtime/io/matlab_file.hpp"
 
 #include <fmt/format.h>
 
@@ -171,6 +172,12 @@ void refuse_workbook(const std::string& path, std::string_view start) {
     fail(path, 1, 1,
          "this is an HDF5 file, not a text table; rheo reads HDF5 histories from files named .h5 or .hdf5: rename it (docs/data-formats.md, "
          "\"HDF5 files\")");
+  if (const MatHeader mat = matlab_header(start); mat != MatHeader::none)
+    fail(path, 1, 1,
+         mat == MatHeader::v73 ? "this is a MATLAB v7.3 MAT-file, not a text table; rheo reads one as a history when its name ends in .mat: "
+                                 "rename it (docs/data-formats.md, \"MATLAB files\")"
+                               : "this is a MATLAB v5/v7 MAT-file, not a text table; re-save it in MATLAB as v7.3 and name it .mat "
+                                 "(save('run.mat', 't', 'x', 'F', '-v7.3')), or export the history as a CSV table");
   const bool workbook = start.starts_with(zip) || start.starts_with(ole);
   if (workbook || has_suffix(path, ".xlsx") || has_suffix(path, ".xls") || has_suffix(path, ".xlsm") || has_suffix(path, ".ods"))
     fail(path, 1, 1,

@@ -168,8 +168,8 @@ ProtocolResult run(RunContext& c, const lang::HistorySettings& s) {
   const std::string file = history_file(s, c.source_file);
   const bool from_rest = s.start == lang::HistoryStart::rest;
   const ColumnReading reading = column_reading(s.columns);
-  const Drive measured = is_hdf5_name(file) ? read_hdf5_drive(file, &s.file_where, reading, from_rest)
-                                            : drive_from_table(read_table(file, &s.file_where), reading, from_rest);
+  const Drive measured = reads_as_hdf5(file) ? read_hdf5_drive(file, &s.file_where, reading, from_rest)
+                                             : drive_from_table(read_table(file, &s.file_where), reading, from_rest);
   require_within((static_cast<double>(measured.time.size()) - 1.0) * s.substeps + 1.0, lang::max_drive_samples, c.protocol,
                  "samples (rows x substeps)", "lower substeps or split the file");
   return history_run(c, s, refine(measured, s.substeps), fmt::format("history file={}", file));

@@ -120,7 +120,7 @@ StreamedHistory stream_history(const Network& network, const lang::Protocol& pro
   const std::string file = history_file(s, source_file);
   const ResultHeader header{network.model().name, source_file, fmt::format("history file={}", file)};
   const bool from_rest = s.start == lang::HistoryStart::rest;
-  if (is_hdf5_name(file)) {
+  if (reads_as_hdf5(file)) {
     Hdf5HistoryReader stream(file, &s.file_where, column_reading(s.columns), false, from_rest);
     return streamed(network, s, header, stream, sink, progress);
   }

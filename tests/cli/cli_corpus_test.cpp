@@ -188,7 +188,8 @@ TEST_CASE("hostile files through the binary: 10 MB of errors, invalid UTF-8, NUL
   const auto table = run_rheo("fit " + model.string() + " --data /dev/zero");
   CHECK(table.code == 4);
   CHECK(table.err.find("/dev/zero: error: cannot read the file (it is larger than 512 MiB, the most rheo holds as a whole table; `rheo simulate` "
-                       "streams a history file of any size when it writes the history as CSV or HDF5 on the fixed-step solver); "
+                       "streams a history file of any size when it writes the history as CSV or HDF5 on the fixed-step solver, "
+                       "`rheo fit` and `report` a measured history in a regular file); "
                        "is it the right file?") != std::string::npos);
   // A history is streamed from a regular file only: /dev/zero is read whole, up to the bound.
   const auto history = write("zero_history.rheo", "model m { spring s (k = 1 N/mm) }\nsimulate { history file = \"/dev/zero\" }\n");

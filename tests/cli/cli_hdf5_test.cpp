@@ -1,9 +1,11 @@
 // HDF5 histories through the command line (#28): `rheo simulate` writes a history as HDF5 with
 // the values of its CSV result bit for bit, reads one back (streamed, and whole on SUNDIALS) with
 // the results of the CSV route bit for bit; `rheo fit` fits an HDF5 history as it fits the same
-// history as CSV; a fault names the dataset and index, exits 4 and puts nothing in place.
+// history as CSV; a fault names the dataset and index, exits 4 and puts nothing in place. MATLAB
+// v7.3 .mat files (HDF5 behind a user block) are read as histories and measured data the same way.
 #include "cli_support.hpp"
 #include "hdf5_support.hpp"
+#include "matlab_support.hpp"
 
 #include <doctest/doctest.h>
 #include <fmt/format.h>
@@ -21,6 +23,7 @@
 
 namespace fs = std::filesystem;
 namespace h5 = rheo::test::hdf5;
+namespace mat = rheo::test::matlab;
 using rheo::test::run_rheo;
 
 namespace {
@@ -200,4 +203,67 @@ TEST_CASE("rheo fit fits an HDF5 history as it fits the same history as CSV") {
   CAPTURE(report.err);
   CHECK(report.code == 0);
   CHECK(read(dir() / "measured.html").find("measured.h5") != std::string::npos);
+}
+
+TEST_CASE("a MATLAB v7.3 file drives a history and is fitted as the same history in HDF5: .mat is not written, v5 is refused") {
+  // A struct's fields, a column vector in single precision, units on the line, against the CSV route.
+  const std::vector<double> t{0.0, 1.0, 2.0, 3.0, 4.0, 5.0}, u{0.0, 100.0, 200.0, 150.0, 50.0, 0.0};  // ms and um
+  mat::write_mat((dir() / "rig.mat").string(),
+                 {{.path = "/rig/t", .values = t}, {.path = "/rig/u", .values = u, .matlab_class = "single", .type = H5T_IEEE_F32LE, .row = false}});
+  std::ofstream(dir() / "rig_mat.csv") << "time [ms],displacement [um]\n0,0\n1,100\n2,200\n3,150\n4,50\n5,0\n";
+  write_model(dir() / "rig_mat.rheo", "rig.mat", ", columns = \"time = rig.t [ms], displacement = /rig/u [um]\"");
+  write_model(dir() / "rig_mat_csv.rheo", "rig_mat.csv");
+  for (const std::string solver : {"fixed", "sundials"}) {
+    CAPTURE(solver);
+    const auto a = run_rheo(fmt::format("simulate '{}' --solver {}", (dir() / "rig_mat.rheo").string(), solver));
+    CAPTURE(a.err);
+    REQUIRE(a.code == 0);
+    const auto b = run_rheo(fmt::format("simulate '{}' --solver {}", (dir() / "rig_mat_csv.rheo").string(), solver));
+    REQUIRE(b.code == 0);
+    CHECK(without_comments(a.out) == without_comments(b.out));
+  }
+
+  // A measured history as HDF5 (rheo's result) and the same doubles as MATLAB variables.
+  write_drive(dir() / "mat_drive.csv", 3000);
+  write_model(dir() / "mat_truth.rheo", "mat_drive.csv");
+  const auto h5file = (dir() / "mat_measured.h5").string(), matfile = (dir() / "mat_measured.mat").string();
+  REQUIRE(run_rheo(fmt::format("simulate '{}' -o '{}'", (dir() / "mat_truth.rheo").string(), h5file)).code == 0);
+  mat::write_mat(matfile, {{.path = "/t", .values = h5::read_dataset(h5file, "/time")},
+                           {.path = "/x", .values = h5::read_dataset(h5file, "/displacement"), .row = false},
+                           {.path = "/F", .values = h5::read_dataset(h5file, "/force")}});
+  std::ofstream(dir() / "mat_start.rheo") << "model t {\n  spring e (k = 300 N/mm in [1, 10000])\n  maxwell m (k = 100 N/mm in [1, 10000], tau = 3 "
+                                             "ms in [0.01, 10000])\n}\n";
+  auto fit = [&](const std::string& data) {
+    const auto r = run_rheo(fmt::format("fit '{}' --data '{}' --max-evaluations 30 --json", (dir() / "mat_start.rheo").string(), data));
+    CAPTURE(r.err);
+    REQUIRE(r.code == 0);
+    return nlohmann::json::parse(r.out);
+  };
+  const auto from_h5 = fit(h5file), from_mat = fit(matfile + ", columns = \"time = t [s], displacement = x [mm], force = F [N]\"");
+  CHECK(from_h5["err"].get<double>() == from_mat["err"].get<double>());
+  CHECK(from_h5["parameters"] == from_mat["parameters"]);
+  // Without units, the advice names every variable with one.
+  const auto bare = run_rheo(fmt::format("fit '{}' --data '{}'", (dir() / "mat_start.rheo").string(), matfile));
+  CHECK(bare.code == 4);
+  CHECK(bare.err.find(matfile + ": error: /t (time) has no unit: MATLAB saves none, and it has no 'units' attribute; write each variable's "
+                                "unit after it: columns = \"time = t [s], displacement = x [mm], force = F [N]\"") != std::string::npos);
+  // rheo report draws it.
+  const auto report = run_rheo(fmt::format("report '{}' --data '{}' -o '{}'", (dir() / "mat_start.rheo").string(),
+                                           matfile + ", columns = \"time = t [s], displacement = x [mm], force = F [N]\"",
+                                           (dir() / "mat_measured.html").string()));
+  CAPTURE(report.err);
+  CHECK(report.code == 0);
+  CHECK(read(dir() / "mat_measured.html").find("mat_measured.mat") != std::string::npos);
+
+  // An output named .mat is refused before anything runs, and a v5 MAT-file as a history.
+  const auto out = run_rheo(fmt::format("simulate '{}' -o '{}'", (dir() / "mat_truth.rheo").string(), (dir() / "result.mat").string()));
+  CHECK(out.code == 2);
+  CHECK(out.err.find("result.mat: rheo reads MATLAB .mat files but does not write them; write HDF5 (e.g. -o result.h5") != std::string::npos);
+  CHECK_FALSE(fs::exists(dir() / "result.mat"));
+  mat::write_v5_mat((dir() / "old.mat").string());
+  write_model(dir() / "old.rheo", "old.mat");
+  const auto old = run_rheo(fmt::format("simulate '{}'", (dir() / "old.rheo").string()));
+  CHECK(old.code == 4);
+  CHECK(old.err.find((dir() / "old.mat").string() + ": error: this is a MATLAB v5/v7 MAT-file (the default of save), which rheo cannot read; "
+                                                    "re-save it as v7.3") != std::string::npos);
 }

@@ -38,8 +38,24 @@ TEST_CASE("every role the language accepts in `columns` is one the readers know,
 
 TEST_CASE("a role's usual names listed for messages, in order of preference") {
   CHECK(role_usual_names(Role::time) == "time, t, test time, elapsed time");
-  CHECK(role_usual_names(Role::displacement) == "displacement, position, stroke, travel, deflection, disp");
-  CHECK(role_usual_names(Role::force) == "force, load, standard force, reaction force");
+  CHECK(role_usual_names(Role::displacement) == "displacement, position, stroke, travel, deflection, disp, x, u");
+  CHECK(role_usual_names(Role::force) == "force, load, standard force, reaction force, f");
+}
+
+TEST_CASE("short names as MATLAB variables and scripts have them: x and u are a displacement, F a force, the long names first") {
+  const Table t = parse_table("s.csv", "t [s],x [mm],F [N]\n0,0,1\n1,0.5,2\n");
+  CHECK(find_role(t, Role::time, {}) == 0);
+  CHECK(find_role(t, Role::displacement, {}) == 1);
+  CHECK(find_role(t, Role::force, {}) == 2);
+  const Table u = parse_table("u.csv", "time [s],u [um],f [kN]\n0,0,1\n1,5,2\n");
+  CHECK(role_values(u, find_role(u, Role::displacement, {}), Role::displacement, {})[1] == doctest::Approx(0.005));
+  CHECK(role_values(u, find_role(u, Role::force, {}), Role::force, {})[1] == 2000.0);
+  const Table both = parse_table("b.csv", "x [mm],displacement [mm],F [N],force [N]\n0,0,1,1\n");
+  CHECK(find_role(both, Role::displacement, {}) == 1);
+  CHECK(find_role(both, Role::force, {}) == 3);
+  // A frequency written f beside a force: the force column, named as preferred and of a force unit.
+  const Table sweep = parse_table("f.csv", "f [Hz],force [N]\n1,2\n");
+  CHECK(find_role(sweep, Role::force, {}) == 1);
 }
 
 TEST_CASE("usual names in any case and spacing, unused columns may hold anything") {

@@ -10,6 +10,7 @@
 #include <fmt/format.h>
 #include <unistd.h>
 
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <numbers>
@@ -144,4 +145,53 @@ TEST_CASE("an HDF5 file is a measured history, the same as its CSV twin: setting
       runtime::read_fit_data(h5, 1.0, nullptr, reading),
       (h5 + ": error: an HDF5 file is read as a history, so the data line's step (of a TRIOS export) does not apply; remove it").c_str(),
       runtime::DataError);
+}
+
+TEST_CASE("a CSV history is streamed into arrays: the same history, rows and faults as the table read whole") {
+  std::string text = "# rig 3\ntime [ms];displacement [um];force [kN];note\n";
+  for (int k = 0; k < 30000; ++k) text += fmt::format("{};{};{};{}\n", k * 0.5, 1e3 * std::sin(k * 1e-3), std::cos(k * 2e-3), k % 2 ? "ok" : "x,y");
+  const auto path = write("long.csv", text);
+  const auto streamed = runtime::stream_measured_history(path, nullptr, {});
+  REQUIRE(streamed.has_value());
+  const runtime::HistoryData whole = runtime::history_data_from_table(runtime::read_table(path));
+  CHECK(streamed->drive.time == whole.drive.time);  // exactly: the same cells read by the same code
+  CHECK(streamed->drive.displacement == whole.drive.displacement);
+  CHECK(streamed->force == whole.force);
+  CHECK(streamed->rows == whole.rows);
+  CHECK(streamed->force_scale == whole.force_scale);
+  CHECK(runtime::read_fit_data(path, 1.0).history().force == whole.force);
+  // A fault late in the file: the whole-file message.
+  const auto late = write("late.csv", text + "15000;1;1,5;z\n15001;2;NaN;z\n");
+  std::string whole_error;
+  try {
+    (void)runtime::history_data_from_table(runtime::read_table(late));
+  } catch (const runtime::DataError& e) {
+    whole_error = e.what();
+  }
+  CHECK(whole_error == fmt::format("{}:30004:9: error: 'NaN' is not a finite number (column 'force'); remove or repair the row", late));
+  CHECK(data_error(late) == whole_error);
+  // The bound is on the samples held, said before more are held.
+  CHECK_THROWS_WITH_AS(runtime::stream_measured_history(path, nullptr, {}, 20000),
+                       (path + ": error: the history has more than 20000 samples, the most a fit or report holds (512 MiB at 28 bytes a sample); "
+                               "fit a part of it, or resample it")
+                           .c_str(),
+                       runtime::DataError);
+  CHECK(runtime::stream_measured_history(path, nullptr, {}, 30000).has_value());
+}
+
+TEST_CASE("files that are not streamed histories are left to whole-file reading") {
+  const auto harmonic = write("sweep.csv", "amplitude [mm],frequency [Hz],stiffness [N/mm],phase [deg]\n0.5,10,300,10\n");
+  CHECK_FALSE(runtime::stream_measured_history(harmonic, nullptr, {}).has_value());
+  const auto no_force = write("drive.csv", "time [s],displacement [mm]\n0,0\n1,1\n");
+  CHECK_FALSE(runtime::stream_measured_history(no_force, nullptr, {}).has_value());
+  const auto header_only = write("header.csv", "time [s],displacement [mm],force [N]\n");
+  CHECK_FALSE(runtime::stream_measured_history(header_only, nullptr, {}).has_value());
+  const auto wide = write("wide.csv", "time [s],displacement [mm],force [N]\n0,0,1,4\n1,1,1\n");
+  CHECK_FALSE(runtime::stream_measured_history(wide, nullptr, {}).has_value());
+  CHECK(contains(data_error(wide), ":2:7: error: this row has 4 values, the header has 3 columns"));
+  runtime::DataReading named;
+  named.columns.columns = {{runtime::Role::force, "F"}};  // a column the header lacks: the whole-file message
+  CHECK_FALSE(runtime::stream_measured_history(no_force, nullptr, named).has_value());
+  CHECK_FALSE(runtime::stream_measured_history("/dev/null", nullptr, {}).has_value());
+  CHECK_FALSE(runtime::stream_measured_history(RHEO_DATA_DIR, nullptr, {}).has_value());
 }

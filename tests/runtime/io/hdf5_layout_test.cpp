@@ -249,7 +249,7 @@ TEST_CASE("layout faults are DataErrors naming the file and the dataset, with wh
   SUBCASE("no dataset named as usual in the root") {
     CHECK(error_of(file, {Role::force}) ==
           file +
-              ": error: no force dataset: the root group has none named as usual (force, load, standard force, reaction force); name the one "
+              ": error: no force dataset: the root group has none named as usual (force, load, standard force, reaction force, f); name the one "
               "that holds it: columns = \"force = /group/dataset\" (the root group holds bare, cube, "
               "labels, matrix, odd, rig)");
   }

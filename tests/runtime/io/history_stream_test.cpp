@@ -1,10 +1,11 @@
 // The streamed history reader against the whole-file one (two paths over the same text): for
 // sound tables the same drive, sample for sample and bit for bit, whatever the block size; for
 // faulty ones the same message at the same file:row:column, however late in the file the fault
-// sits and whatever other faults follow or precede it.
+// sits and whatever other faults follow or precede it; measured histories (force too) alike.
 #include "runtime/io/history_stream.hpp"
 
 #include "runtime/core/errors.hpp"
+#include "runtime/io/fit_data.hpp"
 #include "runtime/io/history_csv.hpp"
 
 #include <doctest/doctest.h>
@@ -22,7 +23,7 @@ using namespace std::string_literals;
 namespace {
 
 struct Reading {
-  std::vector<double> time, displacement;
+  std::vector<double> time, displacement, force;
   std::vector<int> rows;
   std::string error;  // the DataError's message; "" when none
   bool not_streamable = false;
@@ -33,7 +34,7 @@ bool operator==(const Reading& a, const Reading& b) {
   auto same = [](const std::vector<double>& x, const std::vector<double>& y) {
     return x.size() == y.size() && (x.empty() || std::memcmp(x.data(), y.data(), x.size() * sizeof(double)) == 0);
   };
-  return a.error == b.error && same(a.time, b.time) && same(a.displacement, b.displacement) && a.rows == b.rows;
+  return a.error == b.error && same(a.time, b.time) && same(a.displacement, b.displacement) && same(a.force, b.force) && a.rows == b.rows;
 }
 
 // TEXT through HistoryStream, BLOCK bytes read at a time.
@@ -239,4 +240,142 @@ TEST_CASE("a workbook and a directory fail as whole-file reading fails") {
                        doctest::Contains("cannot read the file (it is a directory)"), DataError);
   CHECK_THROWS_WITH_AS(HistoryStream("/nonexistent/h.csv", static_cast<const rheo::lang::SourceLocation*>(nullptr), false),
                        doctest::Contains("No such file"), DataError);
+}
+
+namespace {
+
+// TEXT as a measured history (time, displacement, force) through HistoryStream, BLOCK bytes read at a time.
+Reading streamed_measured(const std::string& text, std::size_t block) {
+  std::FILE* file = std::tmpfile();
+  REQUIRE(file != nullptr);
+  std::fwrite(text.data(), 1, text.size(), file);
+  std::rewind(file);
+  Reading r;
+  try {
+    HistoryStream stream("t.csv", file, false, block);
+    stream.read_force();
+    DrivePiece piece;
+    std::vector<double> force;
+    while (stream.next(piece, &force)) {
+      REQUIRE(force.size() == piece.time.size());
+      r.time.insert(r.time.end(), piece.time.begin(), piece.time.end());
+      r.displacement.insert(r.displacement.end(), piece.displacement.begin(), piece.displacement.end());
+      r.force.insert(r.force.end(), force.begin(), force.end());
+      r.rows.insert(r.rows.end(), piece.rows.begin(), piece.rows.end());
+    }
+  } catch (const DataError& e) {
+    r = Reading{};
+    r.error = e.what();
+  } catch (const NotStreamable&) {
+    r = Reading{};
+    r.not_streamable = true;
+  }
+  return r;
+}
+
+// TEXT read whole into a measured history, as fits read CSV histories before #28.
+Reading whole_measured(const std::string& text) {
+  Reading r;
+  try {
+    const HistoryData h = history_data_from_table(parse_table("t.csv", text));
+    r.time = h.drive.time, r.displacement = h.drive.displacement, r.force = h.force, r.rows = h.rows;
+  } catch (const DataError& e) {
+    r.error = e.what();
+  }
+  return r;
+}
+
+void check_measured_alike(const std::string& text) {
+  CAPTURE(text);
+  const Reading expected = whole_measured(text);
+  for (const std::size_t block : {std::size_t{4}, std::size_t{9}, std::size_t{64}, HistoryStream::kBlockBytes}) {
+    CAPTURE(block);
+    const Reading got = streamed_measured(text, block);
+    CHECK_FALSE(got.not_streamable);
+    CHECK(got.error == expected.error);
+    CHECK(got == expected);
+  }
+}
+
+// A measured history of N rows (time, displacement, force; in any order of columns) with
+// random faults in any of them (seeded).
+std::string random_measured_table(std::mt19937& random, int n) {
+  auto pick = [&](int k) { return static_cast<int>(random() % static_cast<unsigned>(k)); };
+  const std::vector<std::string> headers = {
+      "time [s],displacement [mm],force [N]",  "force [kN],time [ms],displacement [um]", "t,x,F\ns,mm,N",
+      "time [s],displacement [mm],force [mm]", "time [s],displacement [mm],load",        "time [s],displacement [mm],force [N],note"};
+  const int header = pick(4) < 3 ? 0 : pick(static_cast<int>(headers.size()));
+  std::string text = headers[static_cast<std::size_t>(header)] + "\n";
+  const bool force_first = header == 1, note = header == 5, zero = pick(8) == 0;
+  double t = 0.0;
+  const int fault = pick(3) == 0 ? -1 : pick(8);
+  for (int k = 0; k < n; ++k) {
+    t += 0.001 * (1 + pick(3));
+    std::string time = fmt::format("{}", t), disp = fmt::format("{}", std::sin(t) * 2.0), force = zero ? "0" : fmt::format("{}", std::cos(t) * 3.0);
+    if (fault >= 0 && pick(15) == 0) {
+      switch (fault) {
+        case 0: force = "NaN"; break;
+        case 1: force = ""; break;
+        case 2: force = "12 N"; break;
+        case 3: disp = "x"; break;
+        case 4: time = "0"; break;
+        case 5: force = "1e400"; break;
+        case 6: force = "0"; break;
+        default: force += ",1,2"; break;
+      }
+    }
+    text += (force_first ? force + "," + time + "," + disp : time + "," + disp + "," + force) + (note ? ",n/a" : "") + "\n";
+  }
+  return text;
+}
+
+}  // namespace
+
+TEST_CASE("a measured history streamed with its force reads as the whole-file reader reads it, faults alike") {
+  check_measured_alike("time [s],displacement [mm],force [N]\n0,0,1\n0.1,0.5,2\n0.2,1,-3\n");
+  check_measured_alike("force [kN];Time (ms);Position (um)\n1,5;0;2\n2;1;3\n");
+  check_measured_alike("t,x,F,Temperature\ns,mm,N,degC\n0,0,1,20\n1,1,2,twenty\n");  // a column no reader uses is not checked
+  // Faults: no force column, force's unit, a bad force cell, force zero everywhere; and drive
+  // faults, which whole-file reading reports before the force's.
+  check_measured_alike("time [s],displacement [mm]\n0,0\n1,1\n");
+  check_measured_alike("time [s],displacement [mm],force [mm]\n0,0,1\n1,1,1\n");
+  check_measured_alike("time [s],displacement [mm],force\n0,0,1\n1,1,1\n");
+  check_measured_alike("time [s],displacement [mm],force [N]\n0,0,1\n1,1,NaN\n2,2,3\n");
+  check_measured_alike("time [s],displacement [mm],force [N]\n0,0,1\n1,1\n2,2,3\n");
+  check_measured_alike("time [s],displacement [mm],force [N]\n0,0,0\n1,1,0\n2,2,0\n");
+  check_measured_alike("time [s],displacement [mm],force [N]\n0,0,0\n1,1,0\n1,2,0\n");
+  check_measured_alike("time [s],displacement [mm],force [N]\n0,0,1\n1,1,NaN\n1,2,3\n");
+  check_measured_alike("time [s],displacement [mm],force [N]\n0,0,x\n1,NaN,1\n");
+  check_measured_alike("time [s],displacement [mm],force [N]\n0,0,1\n");
+  std::mt19937 random(2828);
+  int faulty = 0, sound = 0;
+  for (int k = 0; k < 300; ++k) {
+    const std::string text = random_measured_table(random, 1 + static_cast<int>(random() % 50));
+    check_measured_alike(text);
+    (whole_measured(text).error.empty() ? sound : faulty) += 1;
+  }
+  MESSAGE(sound << " sound and " << faulty << " faulty measured tables");
+  CHECK(sound >= 40);
+  CHECK(faulty >= 40);
+}
+
+TEST_CASE("the header and first rows are read before any piece, to tell a table's kind") {
+  std::FILE* file = std::tmpfile();
+  const std::string text = "# notes\nfrequency [Hz],amplitude [mm],stiffness [N/mm],phase [deg]\n1,0.1,100,10\n2,0.1,110,11\n";
+  std::fwrite(text.data(), 1, text.size(), file);
+  std::rewind(file);
+  HistoryStream stream("h.csv", file, false, 8);
+  const Table* head = stream.header();
+  REQUIRE(head != nullptr);
+  CHECK(head->names == std::vector<std::string>{"frequency", "amplitude", "stiffness", "phase"});
+  CHECK(head->header_row == 2);
+  CHECK_FALSE(head->rows.empty());
+  CHECK(head->rows.front() == 3);
+  // A fault in the lines read: no header to tell by (whole-file reading reports it).
+  std::FILE* bad = std::tmpfile();
+  const std::string faulty = "time [s],displacement [mm]\n0,0,1,2\n";
+  std::fwrite(faulty.data(), 1, faulty.size(), bad);
+  std::rewind(bad);
+  HistoryStream bad_stream("b.csv", bad, false);
+  CHECK(bad_stream.header() == nullptr);
 }

@@ -116,6 +116,14 @@ TEST_CASE("spreadsheet workbooks are refused with what to do, UTF-16 text is rea
   CHECK(error_of("\x89HDF\r\n\x1a\n\0\0"s, "run.csv")
             .find("run.csv:1:1: error: this is an HDF5 file, not a text table; rheo reads HDF5 histories from "
                   "files named .h5 or .hdf5: rename it") == 0);
+  // MATLAB files under a text table's name: a v7.3 one (HDF5 behind MATLAB's text header) is read
+  // when named .mat, a v5 one not at all.
+  CHECK(error_of("MATLAB 7.3 MAT-file, Platform: GLNXA64, Created on: Fri Nov 27 08:00:00 2026 HDF5 schema 1.00 .  \0\x02IM"s, "run.csv") ==
+        "run.csv:1:1: error: this is a MATLAB v7.3 MAT-file, not a text table; rheo reads one as a history when its name ends in .mat: rename "
+        "it (docs/data-formats.md, \"MATLAB files\")");
+  CHECK(error_of("MATLAB 5.0 MAT-file, Platform: PCWIN64, Created on: Fri Nov 27 08:00:00 2026  \0\x01IM"s, "run.txt") ==
+        "run.txt:1:1: error: this is a MATLAB v5/v7 MAT-file, not a text table; re-save it in MATLAB as v7.3 and name it .mat "
+        "(save('run.mat', 't', 'x', 'F', '-v7.3')), or export the history as a CSV table");
   std::string utf16 = "\xFF\xFE"s;
   for (char c : "time [\xC2\xB5s],displacement [mm]\n0,0\n1,2\n"s) {
     if (c == '\xC2') continue;
