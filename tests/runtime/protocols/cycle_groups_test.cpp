@@ -12,7 +12,7 @@
 using namespace rheo;
 using runtime::steady_contraction;
 
-TEST_CASE("steady contraction: rates in [0.3, 1) that agree within 5 % of the smaller of rho and 1 - rho") {
+TEST_CASE("steady contraction: rates from 0.3 to 1 that agree within 5 % of the smaller of rho and 1 - rho") {
   CHECK(steady_contraction(0.5, 0.51));
   CHECK_FALSE(steady_contraction(0.5, 0.53));
   CHECK(steady_contraction(0.9993, 0.99931));         // reproducer 03's slow set
@@ -23,7 +23,7 @@ TEST_CASE("steady contraction: rates in [0.3, 1) that agree within 5 % of the sm
   CHECK_FALSE(steady_contraction(1.0, 1.0));
 }
 
-TEST_CASE("cycle groups: the root's states and each subtree's; a skip moves only a group that contracts, by its own rate") {
+TEST_CASE("cycle groups: the root's states and each subtree's, and a skip moves only a group that contracts, by its own rate") {
   const auto network = test::network_from(
       "model m { maxwell (k = 5 N/mm, tau = 10 ms)\n series { spring (k = 1 N/mm)\n maxwell (k = 2 N/mm, tau = 1 s) }\n"
       " series { spring (k = 3 N/mm)\n inerter (b = 1 kg) } }",
