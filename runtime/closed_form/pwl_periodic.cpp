@@ -42,18 +42,28 @@ bool PwlPeriodicState::solve(const PwlBranch& branch, double u0, double omega, c
   cycles_ = 0;
   pieces_.clear(), switch_phases_.clear();
   last_piece_ = kNoPiece;
+  start_.X0.resize(0), start_.mode.clear();
   Run run{*this, branch, period_ / kPwlGridPerCycle};
+  // Only an odd branch is warm-started: its periodic state is unique (the half map flips a
+  // never-slipping slider's offset, so its fixed point has none), where a full-period fixed
+  // point keeps the offsets of its start.
+  if (!branch.odd) from = nullptr;
+  // A cold solve restores a cold one; a warm one any that started its closing cycle at FROM
+  // (the warm solve's first cycle would be that cycle, bit for bit).
   for (std::size_t k = 0; k < solved_count_; ++k) {
     const std::size_t i = (solved_next_ + k) % solved_count_;
-    if (solved_[i].u0 == u0 && solved_[i].omega == omega) {
-      if (from != nullptr && !same_start(solved_[i].start, *from)) break;  // the warm solve's bits differ from the cold one's
-      solved_next_ = (i + 1) % solved_count_;
-      return restore(run, solved_[i]);
-    }
+    const Solved& solved = solved_[i];
+    if (solved.u0 != u0 || solved.omega != omega) continue;
+    if (from == nullptr ? solved.warm : !(solved.ok && same_start(solved.start, *from))) continue;
+    solved_next_ = (i + 1) % solved_count_;
+    return restore(run, solved);
   }
-  if (from != nullptr && shoot(run, from)) return true;  // not remembered: a cold solve of this drive would differ in its last bits
+  if (from != nullptr && shoot(run, from)) {
+    remember(true, true);
+    return true;
+  }
   const bool ok = shoot(run, nullptr);
-  remember(ok);
+  remember(ok, false);
   return ok;
 }
 
@@ -76,11 +86,11 @@ bool PwlPeriodicState::restore(Run& run, const Solved& solved) {
   return true;
 }
 
-void PwlPeriodicState::remember(bool ok) {
+void PwlPeriodicState::remember(bool ok, bool warm) {
   if (solved_count_ == kMaxSolved) return;
   if (solved_count_ == solved_.size()) solved_.emplace_back();
   Solved& s = solved_[solved_count_++];
-  s.u0 = u0_, s.omega = omega_, s.ok = ok, s.cycles = cycles_;
+  s.u0 = u0_, s.omega = omega_, s.ok = ok, s.warm = warm, s.cycles = cycles_;
   s.storage = storage_, s.loss = loss_;
   s.switch_phases = switch_phases_;
   s.grid_slopes = grid_slopes_;

@@ -53,9 +53,10 @@ class PwlPeriodicState {
   // caller then time-steps the point. A solve of the same branch (every edge and value equal)
   // at a drive solved before (up to 2048 drives) restores that result.
   // With FROM (pwl_warm_start.hpp: the start() of a solve of this point with nearby parameters)
-  // the shooting starts there, not at the stuck linear state; from the cold start where that
-  // fails. Such a solve is not kept for restoring, and restores one only where that one started
-  // its closing cycle at FROM itself (the same bits the warm solve's first cycle gives).
+  // an odd branch's shooting starts there, not at the stuck linear state; from the cold start
+  // where that fails. A warm solve restores a kept solve only where that one started its
+  // closing cycle at FROM itself (the same bits the warm solve's first cycle gives), and a cold
+  // solve never restores a warm one: a result does not depend on which solves a thread kept.
   bool solve(const PwlBranch& branch, double u0, double omega, const PwlStart* from = nullptr);
   // Where the cycle that closed on itself started (after a successful solve or restore).
   const PwlStart& start() const { return start_; }
@@ -104,6 +105,7 @@ class PwlPeriodicState {
   struct Solved {
     double u0 = 0.0, omega = 0.0;
     bool ok = false;
+    bool warm = false;  // shot from a warm start
     int cycles = 0;
     double storage = 0.0, loss = 0.0;
     std::vector<Piece> pieces;
@@ -152,7 +154,7 @@ class PwlPeriodicState {
 
   bool shoot(Run& run, const PwlStart* from);  // the periodic state by shooting (the solve proper), from FROM or cold
   bool restore(Run& run, const Solved& solved);
-  void remember(bool ok);
+  void remember(bool ok, bool warm);
 
   // The state at phase theta, its mode, and the sign its force takes there (-1 in the
   // mirrored half of an odd branch).

@@ -80,6 +80,21 @@ void check_columns(const runtime::Network& base, const runtime::HarmonicData& gr
     }
     CHECK(total_cycles(warm) < total_cycles(cold));
   }
+  for (const std::string& path : paths) {  // a trial step's move, 1 %: the same periodic state as the cold start's
+    CAPTURE(path);
+    const runtime::Network trial = moved(base, path, 1.01);
+    const auto cold = evaluate(trial, grid, 1, {});
+    evaluate(base, grid, 1, {});  // another branch: this thread forgets the trial's solves
+    const auto warm = evaluate(trial, grid, 1, {nullptr, &states});
+    const auto cold_again = evaluate(trial, grid, 1, {});  // this thread keeps the warm solves of the branch only
+    for (std::size_t i = 0; i < grid.size(); ++i) {
+      CAPTURE(i);
+      CHECK(test::relative_error(warm[i].measures.stiffness, cold[i].measures.stiffness) < 1e-10);
+      CHECK(std::abs(warm[i].measures.phase - cold[i].measures.phase) < 1e-10);
+      CHECK(cold_again[i].measures.stiffness == cold[i].measures.stiffness);  // a cold solve never restores a warm one
+      CHECK(cold_again[i].measures.phase == cold[i].measures.phase);
+    }
+  }
   for (const std::string& path : outside) {  // the subtree unchanged: the base's bits, warm or not
     CAPTURE(path);
     const runtime::Network column = moved(base, path, 1.0 + 1e-6);

@@ -364,10 +364,11 @@ TEST_CASE("the least-squares search keeps the budget, the best point and the int
   CHECK(stopped.evaluations == 9);
 }
 
-TEST_CASE("the least-squares search: Jacobian columns start from the periodic states of the point they difference about") {
-  // Each call's evaluation context (evaluation_context.hpp): a single evaluation
-  // of Levenberg-Marquardt (its start, a trial) records, the columns after it start from what
-  // it recorded, and the rest (the first evaluation, the samples) neither.
+TEST_CASE("the least-squares search: columns and trial steps start from the periodic states of the accepted point") {
+  // Each call's evaluation context (evaluation_context.hpp): a single evaluation of
+  // Levenberg-Marquardt (its start, a trial step) records; the columns of a Jacobian start
+  // from what the point they difference about recorded, and so do the trial steps after them;
+  // the rest (the first evaluation, the samples) neither records nor starts warm.
   struct Call {
     std::vector<double> z;
     EvaluationContext context;
@@ -387,20 +388,31 @@ TEST_CASE("the least-squares search: Jacobian columns start from the periodic st
     search_least_squares(observed, bowl_start, bowl_lower, bowl_upper, linear3, s);
     CHECK(calls.front().context.record == nullptr);
     CHECK(calls.front().context.start == nullptr);
-    const Call* base = nullptr;
-    int columns = 0, records = 0;
+    const Call* single = nullptr;
+    const PwlWarmStarts* accepted = nullptr;
+    int columns = 0, warm_trials = 0, singles = 0;
     for (const Call& call : calls) {
-      CHECK((call.context.record == nullptr || call.context.start == nullptr));
-      if (call.context.record != nullptr) base = &call, ++records;
+      if (call.context.record != nullptr) {  // a single evaluation: from the accepted point's states, if any yet
+        ++singles;
+        if (call.context.start != nullptr) {
+          ++warm_trials;
+          CHECK(call.context.start == accepted);
+        }
+        CHECK(call.context.start != call.context.record);
+        single = &call;
+        continue;
+      }
       if (call.context.start == nullptr) continue;
-      ++columns;
-      REQUIRE(base != nullptr);
-      CHECK(call.context.start == base->context.record);
+      ++columns;  // a column: about the last single evaluation, which is now the accepted point
+      REQUIRE(single != nullptr);
+      CHECK(call.context.start == single->context.record);
+      accepted = single->context.record;
       int moved = 0;
-      for (std::size_t j = 0; j < call.z.size(); ++j) moved += call.z[j] != base->z[j];
+      for (std::size_t j = 0; j < call.z.size(); ++j) moved += call.z[j] != single->z[j];
       CHECK(moved == 1);
     }
-    CHECK(records >= 2);
+    CHECK(singles >= 2);
+    CHECK(warm_trials >= 1);
     CHECK(columns >= 3);
   }
 }
