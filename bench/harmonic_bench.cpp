@@ -3,8 +3,11 @@
 // hydrobushing grid (147 points) of the coupled model of examples/hydrobushing_fit.rheo at its
 // start values (a slider-capped fluid column beside the rubber), by the exact event-driven
 // periodic state (solver = auto) and time-stepped as that fit block asks (fixed, 128 steps per
-// cycle, periodicity 1e-6; an approximation); and one trial of diagnose's backlash screen.
+// cycle, periodicity 1e-6; an approximation), also as a Jacobian column warm-started from the
+// base point's periodic states; and one trial of diagnose's backlash screen.
 #include "bench_support.hpp"
+#include "runtime/closed_form/pwl_warm_start.hpp"
+#include "runtime/core/evaluation_context.hpp"
 #include "runtime/fit/fit_scoring.hpp"
 #include "runtime/fit/objective.hpp"
 #include "lang/frontend.hpp"
@@ -72,6 +75,40 @@ void BM_Hydrobushing_CoupledGrid_EventDriven_OtherParameter(benchmark::State& st
 }
 void BM_Hydrobushing_CoupledGrid_Fixed128(benchmark::State& state) { hydrobushing(state, runtime::SolverChoice::fixed); }
 
+// A Jacobian column of a fit that moves a parameter of the fluid branch (fluid.k2 by 1e-6,
+// and by 1e-12 k more each evaluation so that nothing kept serves the next): every point's
+// shooting starts from the base point's periodic state (closed_form/pwl_warm_start.hpp).
+void BM_Hydrobushing_CoupledGrid_EventDriven_WarmColumn(benchmark::State& state) {
+  const runtime::Network network = runtime::Network::compile(bench::example_model("hydrobushing_fit.rheo", "coupled"));
+  const auto data = bench::example_data("hydrobushing_harmonic.csv");
+  const runtime::HarmonicOptions options;
+  runtime::PwlWarmStarts base;
+  {
+    const runtime::EvaluationScope scope({&base, nullptr});
+    runtime::simulate_at(network, data.harmonic(), options);
+  }
+  base.seal();
+  const auto& parameters = network.model().parameters;
+  const auto k2 = static_cast<std::size_t>(
+      std::find_if(parameters.begin(), parameters.end(), [](const lang::Parameter& q) { return q.path == "fluid.k2"; }) - parameters.begin());
+  std::vector<runtime::Network> networks;
+  for (int k = 0; k < 64; ++k) {
+    std::vector<double> values = network.parameters();
+    values[k2] *= (1.0 + 1e-6) * (1.0 + 1e-12 * k);
+    networks.push_back(network.with_parameters(values));
+  }
+  const runtime::EvaluationScope scope({nullptr, &base});
+  std::vector<runtime::HarmonicPoint> points;
+  std::size_t next = 0;
+  for (auto _ : state) {
+    benchmark::DoNotOptimize(points = runtime::simulate_at(networks[next], data.harmonic(), options));
+    next = (next + 1) % networks.size();
+  }
+  double cycles = 0.0;
+  for (const auto& p : points) cycles += p.cycles;
+  state.counters["cycles_per_point"] = cycles / static_cast<double>(points.size());
+}
+
 // One trial of `rheo diagnose`'s backlash screen: free play (0.2 mm) in front of a friction
 // element (arg 0) or a Maxwell element (arg 1), alone, on the hydrobushing grid (147 points) by
 // the event path, the play's width changed each evaluation (by 1e-6 relative) as from trial to
@@ -104,6 +141,7 @@ void BM_Backlash_Trial_Grid(benchmark::State& state) {
 
 BENCHMARK(BM_Hydrobushing_CoupledGrid_EventDriven)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_Hydrobushing_CoupledGrid_EventDriven_OtherParameter)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_Hydrobushing_CoupledGrid_EventDriven_WarmColumn)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_Hydrobushing_CoupledGrid_Fixed128)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_SpecimenD_Grid_ClosedForm)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_SpecimenD_Grid_TimeStepping2048)->Unit(benchmark::kMillisecond);

@@ -1,6 +1,8 @@
 #include "runtime/closed_form/periodic_closed_form.hpp"
 
 #include "runtime/closed_form/pwl_periodic.hpp"
+#include "runtime/closed_form/pwl_warm_start.hpp"
+#include "runtime/core/evaluation_context.hpp"
 #include "runtime/core/errors.hpp"
 #include "runtime/network/leaf_kernels.hpp"
 
@@ -396,8 +398,14 @@ std::optional<HarmonicPoint> try_closed_form_harmonic_point(const Network& netwo
       if (!PwlBranch::build(network, root, branch)) throw std::logic_error("closed_form_harmonic_point: a subtree has no closed form");
       if (preload != 0.0 && has_gap(network.topology(), root)) return std::nullopt;  // its play is not centred on the drive
       if (event_branches.size() <= events_used) event_branches.emplace_back();
+      // The evaluation's warm starts (pwl_warm_start.hpp), by the subtree's ordinal among the event-driven ones.
+      const int ordinal = static_cast<int>(events_used);
+      const EvaluationContext& context = evaluation_context();
       PwlPeriodicState& state = event_branches[events_used++];
-      if (!state.solve(branch, u0, omega)) return std::nullopt;
+      if (!state.solve(branch, u0, omega, context.start ? context.start->find(u0, omega, ordinal) : nullptr)) return std::nullopt;
+      // Not where the cold start closed at once (no slider slips, no gap closes: the stuck linear
+      // state is the periodic one, and stays so for nearby parameters).
+      if (context.record && state.cycles() > 1) context.record->record(u0, omega, ordinal, state.start());
       cycles = std::max(cycles, state.cycles());
       event_storage += state.storage();
       event_loss += state.loss();

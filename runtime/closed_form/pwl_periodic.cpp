@@ -25,9 +25,11 @@ bool same_branch(const PwlBranch& a, const PwlBranch& b) {
   return true;
 }
 
+bool same_start(const PwlStart& a, const PwlStart& b) { return a.mode == b.mode && a.X0.size() == b.X0.size() && a.X0 == b.X0; }
+
 }  // namespace
 
-bool PwlPeriodicState::solve(const PwlBranch& branch, double u0, double omega) {
+bool PwlPeriodicState::solve(const PwlBranch& branch, double u0, double omega, const PwlStart* from) {
   u0_ = u0, omega_ = omega, period_ = 2.0 * std::numbers::pi / omega;
   half_wave_ = branch.odd;
   if (!same_branch(branch, structures_branch_)) structures_.clear(), structures_branch_ = branch, solved_count_ = 0, mode_count_ = 0;
@@ -40,16 +42,28 @@ bool PwlPeriodicState::solve(const PwlBranch& branch, double u0, double omega) {
   cycles_ = 0;
   pieces_.clear(), switch_phases_.clear();
   last_piece_ = kNoPiece;
+  start_.X0.resize(0), start_.mode.clear();
   Run run{*this, branch, period_ / kPwlGridPerCycle};
+  // Only an odd branch is warm-started: its periodic state is unique (the half map flips a
+  // never-slipping slider's offset, so its fixed point has none), where a full-period fixed
+  // point keeps the offsets of its start.
+  if (!branch.odd) from = nullptr;
+  // A cold solve restores a cold one; a warm one any that started its closing cycle at FROM
+  // (the warm solve's first cycle would be that cycle, bit for bit).
   for (std::size_t k = 0; k < solved_count_; ++k) {
     const std::size_t i = (solved_next_ + k) % solved_count_;
-    if (solved_[i].u0 == u0 && solved_[i].omega == omega) {
-      solved_next_ = (i + 1) % solved_count_;
-      return restore(run, solved_[i]);
-    }
+    const Solved& solved = solved_[i];
+    if (solved.u0 != u0 || solved.omega != omega) continue;
+    if (from == nullptr ? solved.warm : !(solved.ok && same_start(solved.start, *from))) continue;
+    solved_next_ = (i + 1) % solved_count_;
+    return restore(run, solved);
   }
-  const bool ok = shoot(run);
-  remember(ok);
+  if (from != nullptr && shoot(run, from)) {
+    remember(true, true);
+    return true;
+  }
+  const bool ok = shoot(run, nullptr);
+  remember(ok, false);
   return ok;
 }
 
@@ -57,6 +71,8 @@ bool PwlPeriodicState::restore(Run& run, const Solved& solved) {
   cycles_ = solved.cycles;
   if (!solved.ok) return false;
   storage_ = solved.storage, loss_ = solved.loss;
+  start_.X0 = solved.start.X0;
+  start_.mode.assign(solved.start.mode.begin(), solved.start.mode.end());
   switch_phases_ = solved.switch_phases;
   grid_slopes_ = solved.grid_slopes;
   pieces_ = solved.pieces;
@@ -70,14 +86,16 @@ bool PwlPeriodicState::restore(Run& run, const Solved& solved) {
   return true;
 }
 
-void PwlPeriodicState::remember(bool ok) {
+void PwlPeriodicState::remember(bool ok, bool warm) {
   if (solved_count_ == kMaxSolved) return;
   if (solved_count_ == solved_.size()) solved_.emplace_back();
   Solved& s = solved_[solved_count_++];
-  s.u0 = u0_, s.omega = omega_, s.ok = ok, s.cycles = cycles_;
+  s.u0 = u0_, s.omega = omega_, s.ok = ok, s.warm = warm, s.cycles = cycles_;
   s.storage = storage_, s.loss = loss_;
   s.switch_phases = switch_phases_;
   s.grid_slopes = grid_slopes_;
+  s.start.X0 = start_.X0;
+  s.start.mode.assign(start_.mode.begin(), start_.mode.end());
   s.pieces = pieces_;
   s.codes.clear();
   for (Piece& piece : s.pieces) {
@@ -88,7 +106,7 @@ void PwlPeriodicState::remember(bool ok) {
   }
 }
 
-bool PwlPeriodicState::shoot(Run& run) {
+bool PwlPeriodicState::shoot(Run& run, const PwlStart* from) {
   const PwlBranch& branch = run.branch;
   const double u0 = u0_, omega = omega_;
   const double mirror = half_wave_ ? -1.0 : 1.0;  // the map is X0 -> mirror X(span)
@@ -99,9 +117,13 @@ bool PwlPeriodicState::shoot(Run& run) {
   // The start: the periodic state of the mode with every slider stuck and every gap open (its
   // offsets those of rest), which is the answer where no guard is reached, as the time-stepping
   // path starts from the same linear periodic state.
-  int start_mode = run.mode_index(PwlModeCode(branch.switches.size(), 0));
+  // A warm start (pwl_warm_start.hpp) instead: the periodic state of nearby parameters and the
+  // mode its closing cycle settled from.
+  const bool warm = from != nullptr && from->X0.size() == 2 * n && from->mode.size() == branch.switches.size();
+  if (from != nullptr && !warm) return false;
+  int start_mode = run.mode_index(warm ? from->mode : PwlModeCode(branch.switches.size(), 0));
   if (start_mode < 0) return false;
-  PwlVector X0 = run.linear_periodic_state(start_mode), X_T, last_end;
+  PwlVector X0 = warm ? from->X0 : run.linear_periodic_state(start_mode), X_T, last_end;
   // Newton's method on X_T(X0) - X0 = 0 in scaled coordinates, globalised: a step that does not
   // lower the residual (the events moved under it) is halved once, and if that does not help
   // either, one plain cycle is taken from where the last one ended (a lightly damped fluid
@@ -123,6 +145,7 @@ bool PwlPeriodicState::shoot(Run& run) {
       // A start no mode can settle (the linear state, or a Newton step, may hold a slider
       // beyond its cap): start the first cycle from rest instead (the periodic state slips then
       // anyway), a later one from where the last cycle ended, a state the branch reached.
+      if (warm && cycles_ == 1) return false;  // the cold start then
       if (cycles_ == 1 ? X0.isZero() : X0 == last_end) return false;
       X0 = cycles_ == 1 ? PwlVector(PwlVector::Zero(2 * n)) : last_end;
       m = start_mode;
@@ -135,6 +158,8 @@ bool PwlPeriodicState::shoot(Run& run) {
     const double size = residual.cwiseAbs().maxCoeff();
     if (!std::isfinite(size)) return false;
     if (size <= kPeriodicTolerance) {
+      start_.X0 = X0;
+      start_.mode.assign(system(start_mode).code.begin(), system(start_mode).code.end());
       run.first_harmonic();
       if (half_wave_) {
         // The other half is this one mirrored: its switches half a period later.

@@ -38,6 +38,7 @@
 #pragma once
 
 #include "runtime/closed_form/pwl_mode.hpp"
+#include "runtime/closed_form/pwl_warm_start.hpp"
 
 #include <deque>
 #include <utility>
@@ -51,7 +52,14 @@ class PwlPeriodicState {
   // indeterminate, more than 10000 switches in a cycle, or no fixed point after 60 cycles. The
   // caller then time-steps the point. A solve of the same branch (every edge and value equal)
   // at a drive solved before (up to 2048 drives) restores that result.
-  bool solve(const PwlBranch& branch, double u0, double omega);
+  // With FROM (pwl_warm_start.hpp: the start() of a solve of this point with nearby parameters)
+  // an odd branch's shooting starts there, not at the stuck linear state; from the cold start
+  // where that fails. A warm solve restores a kept solve only where that one started its
+  // closing cycle at FROM itself (the same bits the warm solve's first cycle gives), and a cold
+  // solve never restores a warm one: a result does not depend on which solves a thread kept.
+  bool solve(const PwlBranch& branch, double u0, double omega, const PwlStart* from = nullptr);
+  // Where the cycle that closed on itself started (after a successful solve or restore).
+  const PwlStart& start() const { return start_; }
   // Whether the steady force is half-wave symmetric, F(theta + pi) = -F(theta), by
   // construction (an odd branch): then max F = -min F. Otherwise, a branch with uneven laws
   // (one-sided caps, an off-centre gap), the extrema are those of the whole period.
@@ -97,12 +105,14 @@ class PwlPeriodicState {
   struct Solved {
     double u0 = 0.0, omega = 0.0;
     bool ok = false;
+    bool warm = false;  // shot from a warm start
     int cycles = 0;
     double storage = 0.0, loss = 0.0;
     std::vector<Piece> pieces;
     std::vector<PwlModeCode> codes;
     std::vector<double> switch_phases;
     std::vector<double> grid_slopes;
+    PwlStart start;
   };
 
   double u0_ = 0.0, omega_ = 0.0, period_ = 0.0;
@@ -110,6 +120,7 @@ class PwlPeriodicState {
   double span_ = 0.0;       // T/2 or T [s]
   double storage_ = 0.0, loss_ = 0.0;
   int cycles_ = 0;
+  PwlStart start_;
   // The modes built for structures_branch_ are the first mode_count_, each for the frequency
   // mode_omega_ holds (a mode serves every amplitude: pwl_mode.hpp), kept across solves (the
   // points of a grid) up to kMaxModes; the rest are storage kept from earlier solves, rebuilt in
@@ -141,9 +152,9 @@ class PwlPeriodicState {
   std::vector<Solved> solved_;
   std::size_t solved_count_ = 0, solved_next_ = 0;
 
-  bool shoot(Run& run);  // the periodic state by shooting (the solve proper)
+  bool shoot(Run& run, const PwlStart* from);  // the periodic state by shooting (the solve proper), from FROM or cold
   bool restore(Run& run, const Solved& solved);
-  void remember(bool ok);
+  void remember(bool ok, bool warm);
 
   // The state at phase theta, its mode, and the sign its force takes there (-1 in the
   // mirrored half of an odd branch).

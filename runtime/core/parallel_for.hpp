@@ -11,8 +11,10 @@
 // The other threads are the process's persistent helpers (worker_pool.hpp): nothing is
 // started per call. A parallel_for inside an item, or one called while another runs, runs on
 // its calling thread alone.
+// Every item runs with the calling thread's evaluation context (evaluation_context.hpp).
 #pragma once
 
+#include "runtime/core/evaluation_context.hpp"
 #include "runtime/core/worker_pool.hpp"
 
 #include <algorithm>
@@ -41,7 +43,9 @@ void parallel_for(std::size_t count, int threads, Body&& body) {
   std::atomic<bool> failed{false};
   std::exception_ptr first_error;
   std::mutex error_mutex;
+  const EvaluationContext context = evaluation_context();
   auto work = [&]() noexcept {
+    const EvaluationScope scope(context);
     for (;;) {
       const std::size_t seen = next.load(std::memory_order_relaxed);
       const std::size_t chunk = std::max<std::size_t>(1, (count - std::min(seen, count)) / (4 * workers));

@@ -1,12 +1,15 @@
 #include "runtime/fit/fit_search.hpp"
 
+#include "runtime/closed_form/pwl_warm_start.hpp"
 #include "runtime/core/errors.hpp"
+#include "runtime/core/evaluation_context.hpp"
 #include "runtime/fit/levenberg_marquardt.hpp"
 #include "runtime/fit/search_tracker.hpp"
 
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 #include <numeric>
@@ -84,16 +87,44 @@ std::string least_squares_local(Tracker& tracker, const std::vector<double>& fro
                                 const std::vector<double>& upper, double tolerance) {
   const int first = tracker.evaluations();
   LeastSquaresProblem problem;
+  // Warm starts (closed_form/pwl_warm_start.hpp). Every single evaluation (the start, a trial
+  // step) records the periodic states of its event-driven subtrees. A batch whose points each
+  // move one coordinate of the last single evaluation's x is a differenced Jacobian's columns
+  // about the accepted point (levenberg_marquardt evaluates that last): they start their
+  // shootings from its states, and so do the trial steps that follow, until the next Jacobian.
+  // Every column and trial starts from the accepted point's states, so the results do not
+  // depend on the threads.
+  std::array<PwlWarmStarts, 2> stores;
+  PwlWarmStarts* latest = &stores[0];       // the last single evaluation's
+  const PwlWarmStarts* accepted = nullptr;  // the accepted point's (sealed)
+  Eigen::VectorXd latest_x;
+  bool latest_accepted = false;  // latest_x is the accepted point (its states in *accepted)
   problem.residuals = [&](const Eigen::VectorXd& x) {
     if (tracker.evaluations() - first >= budget) throw LocalBudgetSpent{};
+    latest->clear();
+    latest_x = x;
+    latest_accepted = false;
+    const EvaluationScope scope({latest, accepted});
     const std::vector<double>& r = tracker.residuals(std::vector<double>(x.data(), x.data() + x.size()));
     return Eigen::VectorXd(Eigen::Map<const Eigen::VectorXd>(r.data(), static_cast<Eigen::Index>(r.size())));
+  };
+  const auto about_latest = [&](const std::vector<Eigen::VectorXd>& xs) {
+    return std::all_of(xs.begin(), xs.end(),
+                       [&](const Eigen::VectorXd& x) { return x.size() == latest_x.size() && (x.array() != latest_x.array()).count() <= 1; });
   };
   // As the calls above one after another: the local budget first, then the tracker's stops.
   problem.residuals_batch = [&](const std::vector<Eigen::VectorXd>& xs) {
     const auto left = static_cast<std::size_t>(std::max(0, budget - (tracker.evaluations() - first)));
     std::vector<std::vector<double>> zs;
     for (std::size_t k = 0; k < std::min(left, xs.size()); ++k) zs.emplace_back(xs[k].data(), xs[k].data() + xs[k].size());
+    const bool columns = about_latest(xs);
+    if (columns && !latest_accepted) {  // the last single evaluation is the accepted point
+      latest->seal();
+      accepted = latest;
+      latest = latest == &stores[0] ? &stores[1] : &stores[0];
+      latest_accepted = true;
+    }
+    const EvaluationScope scope({nullptr, columns ? accepted : nullptr});
     const std::vector<std::vector<double>> rs = tracker.residuals(zs);
     if (zs.size() < xs.size()) throw LocalBudgetSpent{};
     std::vector<Eigen::VectorXd> out;

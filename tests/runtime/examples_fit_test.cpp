@@ -254,6 +254,19 @@ TEST_CASE("examples/coupled_bushing_fit.rheo: the README's generating model scor
   MESSAGE(fmt::format("coupled bushing: err at the start {:.4e}, after 120 evaluations {:.4e}", js["err"].get<double>(), jf["err"].get<double>()));
   CHECK(jf["err"].get<double>() < js["err"].get<double>() / 10.0);
   CHECK(rheo_run(fmt::format("check {}", fitted.string())) == 0);
+  // The Jacobian columns start their shootings from the base point's periodic states
+  // (closed_form/pwl_warm_start.hpp), the same whichever thread evaluates them: one thread
+  // writes the same model, digit for digit.
+  const fs::path fitted_one = dir / "coupled_fitted_1.rheo", fit_one_json = dir / "coupled_fit_1.json";
+  REQUIRE(rheo_run(fmt::format("fit {} --starts 1 --max-evaluations 120 --threads 1 --json -o {} > {}", example("coupled_bushing_fit.rheo"),
+                               fitted_one.string(), fit_one_json.string())) == 0);
+  std::ifstream f1(fit_one_json);
+  CHECK(nlohmann::json::parse(f1)["err"].get<double>() == jf["err"].get<double>());
+  const auto text = [](const fs::path& path) {
+    std::ifstream in(path);
+    return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+  };
+  CHECK(text(fitted_one) == text(fitted));
 }
 
 // A real TRIOS export (#25) read from a data line alone: the step, the geometry, the moduli.

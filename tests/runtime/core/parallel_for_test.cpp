@@ -9,6 +9,7 @@
 
 #include <atomic>
 #include <chrono>
+#include <cstdint>
 #include <stdexcept>
 #include <thread>
 #include <vector>
@@ -26,6 +27,31 @@ TEST_CASE("parallel_for calls the body once per item on any number of threads") 
   CHECK(none == 0);
   CHECK(runtime::resolved_threads(0) >= 1);
   CHECK(runtime::resolved_threads(3) == 3);
+}
+
+TEST_CASE("parallel_for runs every item with the caller's evaluation context, and restores each thread's own") {
+  runtime::PwlWarmStarts* const record = reinterpret_cast<runtime::PwlWarmStarts*>(std::uintptr_t{0x1000});
+  const runtime::PwlWarmStarts* const start = reinterpret_cast<const runtime::PwlWarmStarts*>(std::uintptr_t{0x2000});
+  for (int threads : {1, 2, 4}) {
+    std::vector<std::atomic<int>> seen(200);
+    {
+      const runtime::EvaluationScope scope({record, start});
+      runtime::parallel_for(seen.size(), threads, [&](std::size_t i) {
+        const runtime::EvaluationContext& c = runtime::evaluation_context();
+        seen[i].store(c.record == record && c.start == start ? 1 : -1);
+      });
+      CHECK(runtime::evaluation_context().record == record);
+    }
+    for (const auto& s : seen) CHECK(s.load() == 1);
+    CHECK(runtime::evaluation_context().record == nullptr);
+    CHECK(runtime::evaluation_context().start == nullptr);
+    // Without a scope the items see none, whichever thread ran an item with one before.
+    std::atomic<int> with_context{0};
+    runtime::parallel_for(seen.size(), threads, [&](std::size_t) {
+      if (runtime::evaluation_context().record != nullptr || runtime::evaluation_context().start != nullptr) with_context.fetch_add(1);
+    });
+    CHECK(with_context.load() == 0);
+  }
 }
 
 TEST_CASE("parallel_for rethrows an item's exception on the caller after every thread stopped") {

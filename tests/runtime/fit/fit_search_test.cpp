@@ -4,6 +4,7 @@
 #include "runtime/fit/fit_search.hpp"
 
 #include "runtime/core/errors.hpp"
+#include "runtime/core/evaluation_context.hpp"
 
 #include <doctest/doctest.h>
 
@@ -11,6 +12,7 @@
 #include <chrono>
 #include <cmath>
 #include <limits>
+#include <mutex>
 #include <optional>
 #include <string>
 #include <thread>
@@ -360,6 +362,59 @@ TEST_CASE("the least-squares search keeps the budget, the best point and the int
   const SearchResult stopped = search_least_squares(stopping, bowl_start, bowl_lower, bowl_upper, linear3, no_samples, {}, &interrupt);
   CHECK(stopped.interrupted);
   CHECK(stopped.evaluations == 9);
+}
+
+TEST_CASE("the least-squares search: columns and trial steps start from the periodic states of the accepted point") {
+  // Each call's evaluation context (evaluation_context.hpp): a single evaluation of
+  // Levenberg-Marquardt (its start, a trial step) records; the columns of a Jacobian start
+  // from what the point they difference about recorded, and so do the trial steps after them;
+  // the rest (the first evaluation, the samples) neither records nor starts warm.
+  struct Call {
+    std::vector<double> z;
+    EvaluationContext context;
+  };
+  for (int threads : {1, 2}) {
+    CAPTURE(threads);
+    std::mutex mutex;
+    std::vector<Call> calls;
+    const Residuals observed = [&](const std::vector<double>& z) {
+      const std::lock_guard lock(mutex);
+      calls.push_back({z, evaluation_context()});
+      return bowl_residuals(z);
+    };
+    SearchSettings s;
+    s.threads = threads;
+    s.samples = 3;
+    search_least_squares(observed, bowl_start, bowl_lower, bowl_upper, linear3, s);
+    CHECK(calls.front().context.record == nullptr);
+    CHECK(calls.front().context.start == nullptr);
+    const Call* single = nullptr;
+    const PwlWarmStarts* accepted = nullptr;
+    int columns = 0, warm_trials = 0, singles = 0;
+    for (const Call& call : calls) {
+      if (call.context.record != nullptr) {  // a single evaluation: from the accepted point's states, if any yet
+        ++singles;
+        if (call.context.start != nullptr) {
+          ++warm_trials;
+          CHECK(call.context.start == accepted);
+        }
+        CHECK(call.context.start != call.context.record);
+        single = &call;
+        continue;
+      }
+      if (call.context.start == nullptr) continue;
+      ++columns;  // a column: about the last single evaluation, which is now the accepted point
+      REQUIRE(single != nullptr);
+      CHECK(call.context.start == single->context.record);
+      accepted = single->context.record;
+      int moved = 0;
+      for (std::size_t j = 0; j < call.z.size(); ++j) moved += call.z[j] != single->z[j];
+      CHECK(moved == 1);
+    }
+    CHECK(singles >= 2);
+    CHECK(warm_trials >= 1);
+    CHECK(columns >= 3);
+  }
 }
 
 TEST_CASE("an extra start equal to the start is searched from once, and a sample takes its place") {
