@@ -37,6 +37,21 @@ void grid(benchmark::State& state, runtime::SteadyState steady_state) {
 void BM_SpecimenD_Grid_ClosedForm(benchmark::State& state) { grid(state, runtime::SteadyState::closed_form); }
 void BM_SpecimenD_Grid_TimeStepping2048(benchmark::State& state) { grid(state, runtime::SteadyState::time_stepping); }
 
+// Each iteration the grid of DATA through the next of NETWORKS (in turn, so that nothing kept for
+// one serves the next); counter cycles_per_point.
+void grid_in_turn(benchmark::State& state, const std::vector<runtime::Network>& networks, const runtime::FitDataSet& data,
+                  const runtime::HarmonicOptions& options) {
+  std::vector<runtime::HarmonicPoint> points;
+  std::size_t next = 0;
+  for (auto _ : state) {
+    benchmark::DoNotOptimize(points = runtime::simulate_at(networks[next], data.harmonic(), options));
+    next = (next + 1) % networks.size();
+  }
+  double cycles = 0.0;
+  for (const auto& p : points) cycles += p.cycles;
+  state.counters["cycles_per_point"] = cycles / static_cast<double>(points.size());
+}
+
 // Each evaluation a network with parameter `changed` scaled by 1 + 1e-12 k (k = 0..63 in
 // turn), as from one evaluation of a fit to the next.
 void hydrobushing(benchmark::State& state, runtime::SolverChoice solver, const char* changed = "fluid.k2") {
@@ -54,15 +69,7 @@ void hydrobushing(benchmark::State& state, runtime::SolverChoice solver, const c
     values[static_cast<std::size_t>(found - parameters.begin())] *= 1.0 + 1e-12 * k;
     networks.push_back(network.with_parameters(values));
   }
-  std::vector<runtime::HarmonicPoint> points;
-  std::size_t next = 0;
-  for (auto _ : state) {
-    benchmark::DoNotOptimize(points = runtime::simulate_at(networks[next], data.harmonic(), options));
-    next = (next + 1) % networks.size();
-  }
-  double cycles = 0.0;
-  for (const auto& p : points) cycles += p.cycles;
-  state.counters["cycles_per_point"] = cycles / static_cast<double>(points.size());
+  grid_in_turn(state, networks, data, options);
 }
 
 // A parameter of the fluid branch changes: nothing the event path keeps for a branch (its
@@ -98,15 +105,7 @@ void BM_Hydrobushing_CoupledGrid_EventDriven_WarmColumn(benchmark::State& state)
     networks.push_back(network.with_parameters(values));
   }
   const runtime::EvaluationScope scope({nullptr, &base});
-  std::vector<runtime::HarmonicPoint> points;
-  std::size_t next = 0;
-  for (auto _ : state) {
-    benchmark::DoNotOptimize(points = runtime::simulate_at(networks[next], data.harmonic(), options));
-    next = (next + 1) % networks.size();
-  }
-  double cycles = 0.0;
-  for (const auto& p : points) cycles += p.cycles;
-  state.counters["cycles_per_point"] = cycles / static_cast<double>(points.size());
+  grid_in_turn(state, networks, data, options);
 }
 
 // One trial of `rheo diagnose`'s backlash screen: free play (0.2 mm) in front of a friction
@@ -126,15 +125,7 @@ void BM_Backlash_Trial_Grid(benchmark::State& state) {
   }
   const auto data = bench::example_data("hydrobushing_harmonic.csv");
   runtime::HarmonicOptions options;
-  std::vector<runtime::HarmonicPoint> points;
-  std::size_t next = 0;
-  for (auto _ : state) {
-    benchmark::DoNotOptimize(points = runtime::simulate_at(networks[next], data.harmonic(), options));
-    next = (next + 1) % networks.size();
-  }
-  double cycles = 0.0;
-  for (const auto& p : points) cycles += p.cycles;
-  state.counters["cycles_per_point"] = cycles / static_cast<double>(points.size());
+  grid_in_turn(state, networks, data, options);
 }
 
 }  // namespace

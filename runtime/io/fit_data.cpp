@@ -17,6 +17,18 @@
 #include <stdexcept>
 
 namespace rheo::runtime {
+
+void HistoryData::append(const DrivePiece& piece, const std::vector<double>& piece_force) {
+  drive.time.insert(drive.time.end(), piece.time.begin(), piece.time.end());
+  drive.displacement.insert(drive.displacement.end(), piece.displacement.begin(), piece.displacement.end());
+  force.insert(force.end(), piece_force.begin(), piece_force.end());
+  rows.insert(rows.end(), piece.rows.begin(), piece.rows.end());
+}
+
+void HistoryData::set_force_scale() {
+  force_scale = 0.0;
+  for (double v : force) force_scale = std::max(force_scale, std::abs(v));
+}
 namespace {
 
 // Whether TABLE's header makes it a harmonic table: amplitude (or one on the data line) and
@@ -60,13 +72,9 @@ std::optional<HistoryData> stream_measured_history(const std::string& path, cons
         const auto n = static_cast<std::size_t>(std::min(1.02 * rows + 1024.0, static_cast<double>(most)));
         h.drive.time.reserve(n), h.drive.displacement.reserve(n), h.force.reserve(n), h.rows.reserve(n);
       }
-      h.drive.time.insert(h.drive.time.end(), piece.time.begin(), piece.time.end());
-      h.drive.displacement.insert(h.drive.displacement.end(), piece.displacement.begin(), piece.displacement.end());
-      h.force.insert(h.force.end(), force.begin(), force.end());
-      h.rows.insert(h.rows.end(), piece.rows.begin(), piece.rows.end());
+      h.append(piece, force);
     }
-    h.force_scale = 0.0;
-    for (double v : h.force) h.force_scale = std::max(h.force_scale, std::abs(v));
+    h.set_force_scale();
     return h;
   } catch (const NotStreamable&) {
     return std::nullopt;

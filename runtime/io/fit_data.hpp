@@ -20,12 +20,19 @@
 
 namespace rheo::runtime {
 
+struct DrivePiece;  // history_stream.hpp
+
 struct HistoryData {
   std::string path;
   Drive drive;                // the measured displacement; the network starts relaxed at its first sample
   std::vector<double> force;  // measured force at each drive sample [N]
   std::vector<int> rows;      // 1-based file line of each sample
   double force_scale = 1.0;   // max |F| [N]: residuals are relative to it
+
+  // Appends the samples of PIECE and their forces FORCE [N] (one per sample), as a reader yields them.
+  void append(const DrivePiece& piece, const std::vector<double>& piece_force);
+  // force_scale := max |F| of the samples held.
+  void set_force_scale();
 };
 
 // Where a data set's values came from beyond its path, for reports.

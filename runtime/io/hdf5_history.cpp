@@ -193,14 +193,8 @@ HistoryData read_hdf5_history(const std::string& path, const lang::SourceLocatio
   h.drive.time.reserve(n), h.drive.displacement.reserve(n), h.force.reserve(n), h.rows.reserve(n);
   DrivePiece piece;
   std::vector<double> force;
-  while (reader.next(piece, &force)) {
-    h.drive.time.insert(h.drive.time.end(), piece.time.begin(), piece.time.end());
-    h.drive.displacement.insert(h.drive.displacement.end(), piece.displacement.begin(), piece.displacement.end());
-    h.force.insert(h.force.end(), force.begin(), force.end());
-    h.rows.insert(h.rows.end(), piece.rows.begin(), piece.rows.end());
-  }
-  h.force_scale = 0.0;
-  for (double v : h.force) h.force_scale = std::max(h.force_scale, std::abs(v));
+  while (reader.next(piece, &force)) h.append(piece, force);
+  h.set_force_scale();
   return h;
 }
 

@@ -244,6 +244,28 @@ const char* kOddBranches[] = {
     " parallel p { friction f2 (k = 100 N/mm, uy = 0.2 mm)\n maxwell m (k = 80 N/mm, tau = 5 ms) } } }",
     "model a { series s { gap g (width = 0.2 mm)\n slider s (fy = 20 N)\n spring k (k = 300 N/mm) } }"};
 
+// CHECK_STATE(state) for the periodic state of every odd branch above, on the half-period map
+// and on the full one, at 0.05, 0.5 and 2 mm and 0.5, 7 and 40 Hz.
+template <class Check>
+void for_each_odd_state(Check check_state) {
+  for (const char* model : kOddBranches) {
+    const auto net = test::network_from(model, "a");
+    runtime::PwlBranch half = branch_of(net), full = half;
+    full.odd = false;
+    for (const runtime::PwlBranch* branch : {&half, &full})
+      for (double u0 : {0.05, 0.5, 2.0})
+        for (double f : {0.5, 7.0, 40.0}) {
+          const std::string text = model;
+          CAPTURE(text);
+          CAPTURE(u0);
+          CAPTURE(f);
+          runtime::PwlPeriodicState s;
+          REQUIRE(s.solve(*branch, u0, 2.0 * std::numbers::pi * f));
+          check_state(s);
+        }
+  }
+}
+
 }  // namespace
 
 TEST_CASE("the half-period map of an odd branch closes on the full-period map's periodic state") {
@@ -302,37 +324,24 @@ TEST_CASE("slopes carried from sample to sample equal the slope at each phase, a
   // PwlPeriodicState::slopes against derivatives() (a modal exponential per phase) at every
   // sample, for odd branches on the half-period map and the same on the full one, over runs
   // that cross switches, the half period and the period.
-  for (const char* model : kOddBranches) {
-    const auto net = test::network_from(model, "a");
-    runtime::PwlBranch half = branch_of(net), full = half;
-    full.odd = false;
-    for (const runtime::PwlBranch* branch : {&half, &full})
-      for (double u0 : {0.05, 0.5, 2.0})
-        for (double f : {0.5, 7.0, 40.0}) {
-          const std::string text = model;
-          CAPTURE(text);
-          CAPTURE(u0);
-          CAPTURE(f);
-          runtime::PwlPeriodicState s;
-          REQUIRE(s.solve(*branch, u0, 2.0 * std::numbers::pi * f));
-          // On the half cycle's grid (the grid step's propagator), off it, and with an offset.
-          for (const auto& [from, step, count, offset] :
-               {std::tuple{-0.5 * std::numbers::pi, std::numbers::pi / 32.0, 32, 0.0}, std::tuple{0.1, 0.37, 40, 0.0},
-                std::tuple{-7.0, 0.05, 30, 0.0}, std::tuple{-0.5 * std::numbers::pi, std::numbers::pi / 32.0, 40, std::numbers::pi}}) {
-            std::vector<double> first(static_cast<std::size_t>(count) + 1), phases;
-            for (int j = 0; j <= count; ++j) phases.push_back(from + j * step);
-            s.slopes(phases.data(), count + 1, offset, first.data());
-            double largest = 0.0, difference = 0.0;
-            for (int j = 0; j <= count; ++j) {
-              double expected = 0.0, second = 0.0;
-              s.derivatives(from + j * step + offset, expected, second);
-              largest = std::max(largest, std::abs(expected));
-              difference = std::max(difference, std::abs(expected - first[static_cast<std::size_t>(j)]));
-            }
-            CHECK(difference <= 1e-10 * largest + 1e-13);
-          }
-        }
-  }
+  for_each_odd_state([](const runtime::PwlPeriodicState& s) {
+    // On the half cycle's grid (the grid step's propagator), off it, and with an offset.
+    for (const auto& [from, step, count, offset] :
+         {std::tuple{-0.5 * std::numbers::pi, std::numbers::pi / 32.0, 32, 0.0}, std::tuple{0.1, 0.37, 40, 0.0}, std::tuple{-7.0, 0.05, 30, 0.0},
+          std::tuple{-0.5 * std::numbers::pi, std::numbers::pi / 32.0, 40, std::numbers::pi}}) {
+      std::vector<double> first(static_cast<std::size_t>(count) + 1), phases;
+      for (int j = 0; j <= count; ++j) phases.push_back(from + j * step);
+      s.slopes(phases.data(), count + 1, offset, first.data());
+      double largest = 0.0, difference = 0.0;
+      for (int j = 0; j <= count; ++j) {
+        double expected = 0.0, second = 0.0;
+        s.derivatives(from + j * step + offset, expected, second);
+        largest = std::max(largest, std::abs(expected));
+        difference = std::max(difference, std::abs(expected - first[static_cast<std::size_t>(j)]));
+      }
+      CHECK(difference <= 1e-10 * largest + 1e-13);
+    }
+  });
 }
 
 TEST_CASE("the slopes recorded on the grid as the steady cycle passed equal the slope at each grid phase") {
@@ -340,40 +349,27 @@ TEST_CASE("the slopes recorded on the grid as the steady cycle passed equal the 
   // (a modal exponential from the piece's start) at theta = 2 pi k/64 over three periods, on
   // the half-period map (the mirrored half by -F(theta - pi)) and on the full one; a grid
   // point on a switch (a kink: the slope after it is recorded) is skipped.
-  for (const char* model : kOddBranches) {
-    const auto net = test::network_from(model, "a");
-    runtime::PwlBranch half = branch_of(net), full = half;
-    full.odd = false;
-    for (const runtime::PwlBranch* branch : {&half, &full})
-      for (double u0 : {0.05, 0.5, 2.0})
-        for (double f : {0.5, 7.0, 40.0}) {
-          const std::string text = model;
-          CAPTURE(text);
-          CAPTURE(u0);
-          CAPTURE(f);
-          runtime::PwlPeriodicState s;
-          REQUIRE(s.solve(*branch, u0, 2.0 * std::numbers::pi * f));
-          double largest = 0.0, difference = 0.0;
-          int compared = 0;
-          for (int k = -64; k < 128; ++k) {
-            const double theta = 2.0 * std::numbers::pi * k / 64.0;
-            const double cycle_phase = std::fmod(std::fmod(theta, 2.0 * std::numbers::pi) + 2.0 * std::numbers::pi, 2.0 * std::numbers::pi);
-            const auto& kinks = s.switch_phases();
-            if (std::any_of(kinks.begin(), kinks.end(), [&](double kink) {
-                  const double d = std::abs(kink - cycle_phase);
-                  return std::min(d, 2.0 * std::numbers::pi - d) < 1e-6;
-                }))
-              continue;
-            double expected = 0.0, second = 0.0;
-            s.derivatives(theta, expected, second);
-            largest = std::max(largest, std::abs(expected));
-            difference = std::max(difference, std::abs(expected - s.grid_slope(k)));
-            ++compared;
-          }
-          CHECK(compared > 150);
-          CHECK(difference <= 1e-10 * largest + 1e-13);
-        }
-  }
+  for_each_odd_state([](const runtime::PwlPeriodicState& s) {
+    double largest = 0.0, difference = 0.0;
+    int compared = 0;
+    for (int k = -64; k < 128; ++k) {
+      const double theta = 2.0 * std::numbers::pi * k / 64.0;
+      const double cycle_phase = std::fmod(std::fmod(theta, 2.0 * std::numbers::pi) + 2.0 * std::numbers::pi, 2.0 * std::numbers::pi);
+      const auto& kinks = s.switch_phases();
+      if (std::any_of(kinks.begin(), kinks.end(), [&](double kink) {
+            const double d = std::abs(kink - cycle_phase);
+            return std::min(d, 2.0 * std::numbers::pi - d) < 1e-6;
+          }))
+        continue;
+      double expected = 0.0, second = 0.0;
+      s.derivatives(theta, expected, second);
+      largest = std::max(largest, std::abs(expected));
+      difference = std::max(difference, std::abs(expected - s.grid_slope(k)));
+      ++compared;
+    }
+    CHECK(compared > 150);
+    CHECK(difference <= 1e-10 * largest + 1e-13);
+  });
 }
 
 TEST_CASE("a solve of the same branch at a drive solved before restores that result to the last bit") {
