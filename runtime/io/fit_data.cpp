@@ -29,6 +29,7 @@ void HistoryData::set_force_scale() {
   force_scale = 0.0;
   for (double v : force) force_scale = std::max(force_scale, std::abs(v));
 }
+
 namespace {
 
 // Whether TABLE's header makes it a harmonic table: amplitude (or one on the data line) and
@@ -91,8 +92,7 @@ HistoryData history_data_from_table(const Table& table, const DataReading& readi
   h.drive = drive_from_table(table, reading.columns);
   h.force = role_values(table, f, Role::force, reading.columns);
   h.rows = table.rows;
-  h.force_scale = 0.0;
-  for (double v : h.force) h.force_scale = std::max(h.force_scale, std::abs(v));
+  h.set_force_scale();
   if (!(h.force_scale > 0.0)) throw DataError(drive_faults::zero_force(table.path, table.rows.front(), table.cell_column(0, f)));
   return h;
 }
