@@ -45,7 +45,7 @@ void HistoryStream::take_regular_file(std::size_t block_bytes) {
     throw NotStreamable("not a regular file");
   }
   size_ = static_cast<std::uint64_t>(status.st_size);
-  buffer_.resize(std::max<std::size_t>(block_bytes, 4));
+  buffer_.resize(std::max(block_bytes, kSignatureBytes));
 }
 
 HistoryStream::HistoryStream(std::string path, std::FILE* file, bool from_rest, std::size_t block_bytes)
@@ -74,7 +74,7 @@ bool HistoryStream::read_block() {
   end_ += got;
   if (!started_) {
     started_ = true;
-    const std::string_view start(buffer_.data(), std::min<std::size_t>(end_, 4));
+    const std::string_view start(buffer_.data(), std::min(end_, kSignatureBytes));
     refuse_workbook(path_, start);
     if (is_utf16(start)) throw NotStreamable("UTF-16 text");
     if (start.starts_with("\xEF\xBB\xBF")) begin_ = 3;

@@ -32,8 +32,9 @@ struct TableLayout {
 // byte-order mark removed; an Excel workbook or an HDF5 file is a DataError.
 std::string text_as_utf8(const std::string& path, std::string text);
 // The parts of that for a file read piece by piece: a DataError for an HDF5 file or a workbook (PATH's
-// extension, or START, the file's first bytes (4 suffice), says so); whether START is a UTF-16
+// extension, or START, the file's first kSignatureBytes bytes, says so); whether START is a UTF-16
 // byte-order mark.
+inline constexpr std::size_t kSignatureBytes = 32;  // the longest signature, MATLAB's, is 19 bytes
 void refuse_workbook(const std::string& path, std::string_view start);
 bool is_utf16(std::string_view start);
 

@@ -236,6 +236,11 @@ TEST_CASE("files the stream does not take are left to whole-file reading: device
 
 TEST_CASE("a workbook and a directory fail as whole-file reading fails") {
   CHECK(streamed("PK\x03\x04rest", false, 64).error == whole("PK\x03\x04rest", false).error);
+  // MATLAB's signature is 19 bytes: a stream read 7 bytes at a time still sees all of it.
+  for (const std::string& mat : {"MATLAB 7.3 MAT-file, Platform: GLNXA64\n0,0\n"s, "MATLAB 5.0 MAT-file\n0,0\n"s}) {
+    CHECK(streamed(mat, false, 7).error == whole(mat, false).error);
+    CHECK(streamed(mat, false, 7).error.find("MAT-file") != std::string::npos);
+  }
   CHECK_THROWS_WITH_AS(HistoryStream(RHEO_DATA_DIR, static_cast<const rheo::lang::SourceLocation*>(nullptr), false),
                        doctest::Contains("cannot read the file (it is a directory)"), DataError);
   CHECK_THROWS_WITH_AS(HistoryStream("/nonexistent/h.csv", static_cast<const rheo::lang::SourceLocation*>(nullptr), false),
