@@ -44,21 +44,31 @@ void DaeIntegrator::rechoose_coordinates(double t) {
   if (layout_.switch_forces > 0) sundials::check_ida(IDASetRootDirection(solver_->ida.get(), root_direction_.data()), "IDASetRootDirection");
 }
 
-// After IDACalcIC: a slider stuck beyond its yield force slips, a gap closed under tension opens.
-// True when no mode had to change.
+// After IDACalcIC: a gap closed under tension opens, and of the sliders stuck beyond their yield
+// forces the one furthest beyond (largest |lambda| / fy) slips; the others wait for the next
+// consistent state. Sliders in series carry one force: were all those beyond yield to slip at
+// once (a friction element and a weaker slider in series, both beyond yield in the linearised
+// start), the chain would need two forces, and IDACalcIC finds no consistent state. True when
+// no mode had to change.
 bool DaeIntegrator::switch_inconsistent_modes() {
   bool consistent = true;
+  int furthest = -1;
+  double furthest_ratio = 1.0 + 0.5 * kSlack;
   for (int l = 0; l < layout_.switch_forces; ++l) {
     const Edge& edge = switch_edge(l);
     std::int8_t& mode = at(modes_, l);
     const double lambda = at(y_, layout_.switch_force(l));
-    if (edge.kind == EdgeKind::slider && mode == 0 && (lambda > edge.p[0] * (1.0 + 0.5 * kSlack) || -lambda > edge.p[1] * (1.0 + 0.5 * kSlack))) {
-      mode = lambda > 0.0 ? 1 : -1;
-      consistent = false;
+    if (edge.kind == EdgeKind::slider && mode == 0) {
+      const double ratio = lambda > 0.0 ? lambda / edge.p[0] : -lambda / edge.p[1];
+      if (ratio > furthest_ratio) furthest = l, furthest_ratio = ratio;
     } else if (edge.kind == EdgeKind::gap && mode != 0 && lambda * mode < -1e-12 * options_.force_scale) {
       mode = 0;
       consistent = false;
     }
+  }
+  if (furthest >= 0) {
+    at(modes_, furthest) = at(y_, layout_.switch_force(furthest)) > 0.0 ? 1 : -1;
+    consistent = false;
   }
   return consistent;
 }
