@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cerrno>
+#include <cstdint>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
@@ -19,12 +20,23 @@ FileText read_file_text(const std::string& path, std::size_t max_bytes) {
     out.failure = "it is a directory";
     return out;
   }
+  const auto too_large = [&] { return fmt::format("it is larger than {} MiB, the most rheo reads", max_bytes >> 20); };
+  // A regular file says its size: one past the bound is refused before a byte is read, and the
+  // text is allocated once (growing by doubling held up to twice the file).
+  const bool regular = std::filesystem::is_regular_file(path, error);
+  const std::uintmax_t size = regular ? std::filesystem::file_size(path, error) : 0;
+  if (regular && !error && size > max_bytes) {
+    out.failure = too_large();
+    return out;
+  }
   std::ifstream in(path, std::ios::binary);
   if (!in) {
     out.failure = std::strerror(errno);
     return out;
   }
-  // Chunks up to one byte past the bound, so that a file of exactly MAX_BYTES is read whole.
+  if (regular && !error) out.text.reserve(static_cast<std::size_t>(size));
+  // Chunks up to one byte past the bound (a file that grows while read, a pipe, a device), so
+  // that one of exactly MAX_BYTES is read whole.
   char chunk[1 << 16];
   while (in && out.text.size() <= max_bytes) {
     in.read(chunk, static_cast<std::streamsize>(std::min(sizeof chunk, max_bytes + 1 - out.text.size())));
@@ -34,7 +46,7 @@ FileText read_file_text(const std::string& path, std::size_t max_bytes) {
     out.failure = std::strerror(errno);
     out.text.clear();
   } else if (out.text.size() > max_bytes) {
-    out.failure = fmt::format("it is larger than {} MiB, the most rheo reads", max_bytes >> 20);
+    out.failure = too_large();
     out.text.clear();
   }
   return out;

@@ -33,6 +33,18 @@ TEST_CASE("read_file_text reads up to its bound and refuses more, naming the bou
   CHECK(std::string(missing.advice()) == "check the path");
   CHECK(read_file_text(dir.string(), bound).failure == "it is a directory");
 
+  // A regular file is held in one allocation of its size (growing by doubling held up to twice
+  // it: 2 MiB for this 1.1 MiB file), and one past the bound is refused from its size: a sparse
+  // file of 1 TiB, which reading would take minutes, at once.
+  const std::string odd(bound + bound / 10, 'z');
+  std::ofstream(dir / "odd.txt", std::ios::binary) << odd;
+  const auto held = read_file_text((dir / "odd.txt").string(), 2 * bound);
+  CHECK(held.text == odd);
+  CHECK(held.text.capacity() < odd.size() + 4096);
+  { std::ofstream(dir / "sparse.txt", std::ios::binary) << 'x'; }
+  fs::resize_file(dir / "sparse.txt", std::uintmax_t{1} << 40);
+  CHECK(read_file_text((dir / "sparse.txt").string(), bound).failure == "it is larger than 1 MiB, the most rheo reads");
+
   const auto endless = read_file_text("/dev/zero", bound);
   CHECK(endless.failure == "it is larger than 1 MiB, the most rheo reads");
   fs::remove_all(dir);
