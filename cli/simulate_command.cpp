@@ -99,7 +99,8 @@ struct Job {
 };
 
 // Whether the result goes to an HDF5 file (by the destination's extension, runtime/io/hdf5_writer.hpp).
-bool hdf5_destination(const std::string& destination) { return runtime::is_hdf5_name(destination); }
+// HDF5, or MATLAB's v7.3 MAT-file, which is HDF5 with MATLAB's header (hdf5_writer.hpp).
+bool hdf5_destination(const std::string& destination) { return runtime::is_hdf5_name(destination) || runtime::is_matlab_name(destination); }
 
 // Histories stream where they are written as CSV or HDF5 (JSON holds whole arrays); a report
 // draws a streamed history from its digest (report/history_digest.hpp).
@@ -185,21 +186,16 @@ Command add_simulate_command(CLI::App& app) {
       if (destination.empty() && !job.protocol.output.empty())
         destination = (std::filesystem::path(o->file).parent_path() / job.protocol.output).string();
       runtime::check_output_destination(destination);
-      if (runtime::is_matlab_name(destination))
-        throw runtime::UsageError(
-            fmt::format("{}: rheo reads MATLAB .mat files but does not write them; write HDF5 (e.g. -o result.h5, read in MATLAB by "
-                        "h5read('result.h5', '/force')) or CSV (readtable)",
-                        destination));
       if (hdf5_destination(destination) && job.protocol.kind == lang::ProtocolKind::harmonic)
         throw runtime::UsageError(
-            fmt::format("{}: an HDF5 output holds a time history; write the harmonic protocol's result as CSV or JSON "
+            fmt::format("{}: {} output holds a time history; write the harmonic protocol's result as CSV or JSON "
                         "(e.g. -o result.csv)",
-                        destination));
+                        destination, runtime::is_matlab_name(destination) ? "a MATLAB" : "an HDF5"));
       if (hdf5_destination(destination) && (o->json || lang::common(job.protocol.settings).format == lang::OutputFormat::json))
-        throw runtime::UsageError(
-            fmt::format("{}: the output is HDF5 (its name ends in .h5) but JSON is asked for (--json or format = json); "
-                        "drop one",
-                        destination));
+        throw runtime::UsageError(fmt::format(
+            "{}: the output is {} but JSON is asked for (--json or format = json); "
+            "drop one",
+            destination, runtime::is_matlab_name(destination) ? "a MATLAB file (its name ends in .mat)" : "HDF5 (its name ends in .h5)"));
       destinations.push_back(std::move(destination));
     }
     check_report_targets(o->report);

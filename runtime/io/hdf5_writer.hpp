@@ -5,6 +5,13 @@
 // say what produced it. Datasets are chunked (kChunkSamples) and extended a whole chunk at a
 // time from a buffer of one chunk per dataset: memory does not grow with the history.
 //
+// A PATH ending in .mat is written as a MATLAB v7.3 MAT-file (docs/data-formats.md, "MATLAB
+// files"), which MATLAB's load and matio read: the same HDF5 file behind a 512-byte user block
+// with MATLAB's header, each dataset 1 x N (MATLAB's N x 1 column: time, displacement, force)
+// with MATLAB_class "double", and /elements and its groups structs (MATLAB_class "struct"; an
+// element path a.b becomes elements.a.b.force): an element name MATLAB cannot take as a field
+// (one starting with '_') is a DataError at begin().
+//
 // The file is written to a temporary sibling (output_file.hpp's temporary_beside) and renamed
 // over PATH by commit(): a failed run leaves PATH as it was and, destroyed without commit(),
 // nothing behind (a killed run leaves the hidden sibling). HDF5 needs a regular file: a device,
@@ -23,6 +30,7 @@ namespace rheo::runtime {
 class Hdf5HistoryWriter : public HistorySink {
  public:
   static constexpr std::size_t kChunkSamples = 32768;
+  static constexpr hsize_t kMatlabUserBlock = 512;
 
   // Checks that PATH can be written (check_output_destination); creates nothing yet.
   explicit Hdf5HistoryWriter(const std::string& path);
@@ -43,10 +51,12 @@ class Hdf5HistoryWriter : public HistorySink {
     std::vector<double> buffer;  // kChunkSamples
   };
   void create_series(const std::string& path, const char* unit);
+  void create_struct(const std::string& path, const std::vector<std::string>& fields);
   void flush();
   void discard();  // closes and removes the temporary file
 
   std::string path_;                 // as given, for messages
+  bool matlab_ = false;              // a .mat name: MATLAB's layout
   std::filesystem::path target_;     // the file renamed over (links followed)
   std::filesystem::path temporary_;  // the sibling written
   hdf5::File file_;

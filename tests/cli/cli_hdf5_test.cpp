@@ -205,7 +205,7 @@ TEST_CASE("rheo fit fits an HDF5 history as it fits the same history as CSV") {
   CHECK(read(dir() / "measured.html").find("measured.h5") != std::string::npos);
 }
 
-TEST_CASE("a MATLAB v7.3 file drives a history and is fitted as the same history in HDF5: .mat is not written, v5 is refused") {
+TEST_CASE("a MATLAB v7.3 file drives a history and is fitted as the same history in HDF5: rheo writes .mat and fits it alike, v5 is refused") {
   // A struct's fields, a column vector in single precision, units on the line, against the CSV route.
   const std::vector<double> t{0.0, 1.0, 2.0, 3.0, 4.0, 5.0}, u{0.0, 100.0, 200.0, 150.0, 50.0, 0.0};  // ms and um
   mat::write_mat((dir() / "rig.mat").string(),
@@ -255,11 +255,20 @@ TEST_CASE("a MATLAB v7.3 file drives a history and is fitted as the same history
   CHECK(report.code == 0);
   CHECK(read(dir() / "mat_measured.html").find("mat_measured.mat") != std::string::npos);
 
-  // An output named .mat is refused before anything runs, and a v5 MAT-file as a history.
+  // rheo's result written as a MAT-file (its variables carry 'units' attributes, so no columns
+  // are needed) is fitted as the HDF5 one is; a harmonic result is not a history: refused before
+  // anything runs. A v5 MAT-file as a history is refused.
   const auto out = run_rheo(fmt::format("simulate '{}' -o '{}'", (dir() / "mat_truth.rheo").string(), (dir() / "result.mat").string()));
-  CHECK(out.code == 2);
-  CHECK(out.err.find("result.mat: rheo reads MATLAB .mat files but does not write them; write HDF5 (e.g. -o result.h5") != std::string::npos);
-  CHECK_FALSE(fs::exists(dir() / "result.mat"));
+  CAPTURE(out.err);
+  REQUIRE(out.code == 0);
+  const auto from_written = fit((dir() / "result.mat").string());
+  CHECK(from_h5["err"].get<double>() == from_written["err"].get<double>());
+  CHECK(from_h5["parameters"] == from_written["parameters"]);
+  std::ofstream(dir() / "mat_harmonic.rheo") << "model m { spring (k = 10 N/mm) }\nsimulate {\n  harmonic frequency = [1] Hz, amplitude = [1] mm\n}\n";
+  const auto harmonic = run_rheo(fmt::format("simulate '{}' -o '{}'", (dir() / "mat_harmonic.rheo").string(), (dir() / "harmonic.mat").string()));
+  CHECK(harmonic.code == 2);
+  CHECK(harmonic.err.find("harmonic.mat: a MATLAB output holds a time history") != std::string::npos);
+  CHECK_FALSE(fs::exists(dir() / "harmonic.mat"));
   mat::write_v5_mat((dir() / "old.mat").string());
   write_model(dir() / "old.rheo", "old.mat");
   const auto old = run_rheo(fmt::format("simulate '{}'", (dir() / "old.rheo").string()));

@@ -174,8 +174,8 @@ void compare(const std::string& source, double fastest_mass, Worst& worst) {
       options.max_cycles = kSettleBudget * kCycles;
       p = runtime::simulate_harmonic_point(network, amplitude, frequency, options);
       options.max_cycles = kCycles;
-      CHECK_MESSAGE(p.converged, "fixed steps (", steps_per_cycle, " a cycle) do not settle in ", options.max_cycles, " cycles where IDA settles in ",
-                    a.cycles);
+      CHECK_MESSAGE(p.converged, "fixed steps (", steps_per_cycle, " a cycle) do not settle in ", options.max_cycles,
+                    " cycles where IDA settles in ", a.cycles);
       return p;
     };
     double stiffness = 0.0, damping = 0.0;
@@ -254,9 +254,9 @@ TEST_CASE("differential: random networks to depth 6 agree between fixed steps an
   }
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   MESSAGE(models, " models (seed ", seed, ") in ", seconds, " s; worst: history ", worst.history, " of max |F|, stiffness ", worst.stiffness,
-          ", damping ", worst.damping, "; ", worst.refined_histories, " histories and ", worst.refined_points,
-          " harmonic points refined; ", worst.fixed_settled_late, " fixed-step points settled late; harmonic points compared ", worst.harmonic_compared, " of ", worst.harmonic_points, "; ", refused,
-          " models drawn again");
+          ", damping ", worst.damping, "; ", worst.refined_histories, " histories and ", worst.refined_points, " harmonic points refined; ",
+          worst.fixed_settled_late, " fixed-step points settled late; harmonic points compared ", worst.harmonic_compared, " of ",
+          worst.harmonic_points, "; ", refused, " models drawn again");
   // Few models are drawn again, and a fair share of points reach their periodic state within
   // the cycle budget: the comparison is not vacuous.
   CHECK(refused * 5 <= models);

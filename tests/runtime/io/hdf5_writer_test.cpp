@@ -10,6 +10,7 @@
 
 #include <doctest/doctest.h>
 #include <fmt/format.h>
+#include <matio.h>
 
 #include <cmath>
 #include <cstring>
@@ -127,4 +128,78 @@ TEST_CASE("an HDF5 output is put in place only by commit: dropped or restarted, 
 TEST_CASE("an HDF5 output in a missing directory, or to a device, is a DataError naming it") {
   CHECK_THROWS_AS(Hdf5HistoryWriter("/nonexistent-rheo-dir/out.h5"), DataError);
   CHECK_THROWS_WITH_AS(Hdf5HistoryWriter("/dev/null"), doctest::Contains("HDF5 output needs a regular file"), DataError);
+}
+
+namespace {
+
+// VARIABLE of the MAT-file FILE as matio (an independent implementation of the format) reads
+// it: a real double column vector, or empty when it is not one.
+std::vector<double> matio_column(const std::string& file, const std::vector<std::string>& variable) {
+  mat_t* mat = Mat_Open(file.c_str(), MAT_ACC_RDONLY);
+  REQUIRE(mat != nullptr);
+  CHECK(Mat_GetVersion(mat) == MAT_FT_MAT73);
+  std::vector<double> out;
+  if (matvar_t* top = Mat_VarRead(mat, variable.front().c_str())) {
+    matvar_t* v = top;
+    for (std::size_t i = 1; i < variable.size() && v; ++i) v = Mat_VarGetStructFieldByName(v, variable[i].c_str(), 0);
+    if (v && v->class_type == MAT_C_DOUBLE && !v->isComplex && v->rank == 2 && v->dims[1] == 1) {
+      const auto* data = static_cast<const double*>(v->data);
+      out.assign(data, data + v->dims[0]);
+    }
+    Mat_VarFree(top);
+  }
+  Mat_Close(mat);
+  return out;
+}
+
+}  // namespace
+
+TEST_CASE("a .mat output is a MATLAB v7.3 MAT-file: matio reads its columns and element structs bit for bit, rheo reads it back") {
+  const auto dir = scratch("matlab");
+  const auto file = (dir / "out.mat").string();
+  const std::size_t total = Hdf5HistoryWriter::kChunkSamples + 777;
+  {
+    Hdf5HistoryWriter writer(file);
+    writer.begin({"d", "model.rheo", "history file=drive.csv"}, {"rubber", "outer.m1"});
+    writer.write(piece(0, 5000));
+    writer.write(piece(5000, total - 5000));
+    writer.commit();
+  }
+  // MATLAB's 128-byte header: its text, version 0x0200 and the endian indicator "IM".
+  std::ifstream in(file, std::ios::binary);
+  std::string header(128, '\0');
+  in.read(header.data(), 128);
+  CHECK(header.rfind("MATLAB 7.3 MAT-file, Platform: GLNXA64, Created on: ", 0) == 0);
+  CHECK(header.substr(124) == std::string("\x00\x02IM", 4));
+  const History whole = piece(0, total);
+  CHECK(same_bits(matio_column(file, {"time"}), whole.time));
+  CHECK(same_bits(matio_column(file, {"displacement"}), whole.displacement));
+  CHECK(same_bits(matio_column(file, {"force"}), whole.force));
+  CHECK(same_bits(matio_column(file, {"elements", "rubber", "elongation"}), whole.element_elongation[0]));
+  CHECK(same_bits(matio_column(file, {"elements", "outer", "m1", "force"}), whole.element_force[1]));
+  CHECK(h5::read_string_attribute(file, "/force", "units") == "N");
+  // rheo reads its own MAT-file as a history, as it reads MATLAB's.
+  const HistoryData back = read_hdf5_history(file, nullptr, {});
+  CHECK(same_bits(back.drive.time, whole.time));
+  CHECK(same_bits(back.drive.displacement, whole.displacement));
+  CHECK(same_bits(back.force, whole.force));
+  CHECK(entries(dir) == 1);
+}
+
+TEST_CASE("a .mat output refuses an element name MATLAB cannot take as a struct field, and leaves nothing") {
+  const auto dir = scratch("matlab-name");
+  const auto file = (dir / "out.mat").string();
+  {
+    Hdf5HistoryWriter writer(file);
+    CHECK_THROWS_WITH_AS(writer.begin({"d", "model.rheo", "history"}, {"ok", "outer._hidden"}),
+                         doctest::Contains("the element name '_hidden' cannot be a MATLAB struct field"), DataError);
+  }
+  CHECK(entries(dir) == 0);
+  Hdf5HistoryWriter writer(file);  // without element outputs the names do not matter
+  writer.begin({"d", "model.rheo", "history"}, {});
+  History plain = piece(0, 10);
+  plain.element_paths.clear(), plain.element_force.clear(), plain.element_elongation.clear();
+  writer.write(plain);
+  writer.commit();
+  CHECK(matio_column(file, {"force"}).size() == 10);
 }
