@@ -9,6 +9,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <stdexcept>
 #include <utility>
 
 namespace rheo::runtime {
@@ -135,6 +136,26 @@ void DaeIntegrator::restart(double t, bool modes_changed) {
       throw NumericalError(fmt::format("model '{}': the sliders and gaps find no consistent state at t = {:g} s", graph_.model, t));
     modes_changed = true;
   }
+}
+
+std::vector<double> DaeIntegrator::settling_state() const {
+  if (nested_bouc_wen_) return {};  // its restart takes the state as consistent (no IDACalcIC)
+  std::vector<double> out(y_.begin(), y_.begin() + layout_.positions);
+  out.insert(out.end(), y_.begin() + layout_.bouc_wen_state(0), y_.begin() + layout_.size());
+  return out;
+}
+
+void DaeIntegrator::move_to(const std::vector<double>& settling) {
+  if (settling.size() != static_cast<std::size_t>(layout_.positions + layout_.bouc_wen_states))
+    throw std::logic_error("DaeIntegrator::move_to: not a settling_state()");
+  std::copy(settling.begin(), settling.begin() + layout_.positions, y_.begin());
+  std::copy(settling.begin() + layout_.positions, settling.end(), y_.begin() + layout_.bouc_wen_state(0));
+  const DriveState drive = drive_at(time_);
+  for (int l = 0; l < layout_.switch_forces; ++l) {
+    const Edge& edge = switch_edge(l);
+    if (edge.kind == EdgeKind::slider && at(modes_, l) == 0) at(held_, l) = elongation(y_.data(), drive, edge);
+  }
+  restart(time_, true);
 }
 
 // y_ and yp_ from IDA's vectors.

@@ -103,6 +103,16 @@ class DaeIntegrator {
   // Bouc-Wen states to 1. Rate coordinates are left out: events re-choose them.
   double change_since(const std::vector<double>& start, double length, double force, double velocity) const;
 
+  // The unknowns a harmonic point's settling extrapolates (dae_settling.hpp): the node positions
+  // [mm] and the Bouc-Wen states [-]; forces, rate coordinates and rates follow from them. Empty
+  // where a restart cannot make a moved state consistent: with a nested bouc_wen, whose restart
+  // takes the state as it is (IDACalcIC holds node rates fixed, dae_initial_rates.cpp).
+  std::vector<double> settling_state() const;
+  // Moves to SETTLING (settling_state()'s layout) at the current time and restarts IDA there:
+  // each stuck slider holds its new elongation, the coordinates are chosen anew and IDACalcIC
+  // makes forces and rates consistent (a slider then beyond its yield force slips).
+  void move_to(const std::vector<double>& settling);
+
   // Residual and root functions, called by the C trampolines.
   void residual(double t, const double* y, const double* yp, double* r);
   void roots(double t, const double* y, const double* yp, double* g);

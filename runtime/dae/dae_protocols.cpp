@@ -1,5 +1,7 @@
 #include "runtime/dae/dae_protocols.hpp"
 
+#include "runtime/core/geometric_settling.hpp"
+
 #include "runtime/core/errors.hpp"
 #include "runtime/network/leaf_kernels.hpp"
 
@@ -147,6 +149,16 @@ HarmonicPoint harmonic_point(const Network& network, double amplitude, double fr
   point.frequency = frequency;
   double previous_change = std::numeric_limits<double>::infinity();
   StallWatch stall;
+  // Slow tails (a springpot's chain behind a gap, a long Maxwell time) are skipped to their
+  // geometric limits component by component, positions by the amplitude, Bouc-Wen states by 1;
+  // changes below the tolerance are left alone (IDA's own error is near them). The cycle after a
+  // skip is not taken as converged: its change was measured from the moved state, its rate against
+  // the cycle before the move.
+  std::vector<double> settling_scales(static_cast<std::size_t>(graph.internal_nodes), amplitude);
+  settling_scales.resize(integrator.settling_state().size(), 1.0);
+  ComponentSettling settling(std::move(settling_scales), tolerance);
+  std::vector<double> skipped;
+  int first_check = 1;
   for (int cycle = 1; cycle <= options.max_cycles; ++cycle) {
     cycle_start = integrator.state();  // reuses the capacity
     const double t0 = (cycle - 1) * period;
@@ -165,12 +177,17 @@ HarmonicPoint harmonic_point(const Network& network, double amplitude, double fr
     const double remaining = rate < 1.0 ? change * rate / (1.0 - rate) : change;
     previous_change = change;
     point.residual = std::max(change, remaining);
-    if (cycle >= 2 && change <= tolerance && remaining <= tolerance) {
+    if (cycle >= 2 && cycle >= first_check && change <= tolerance && remaining <= tolerance) {
       point.converged = true;
       break;
     }
-    stall.add(cycle, options.max_cycles, change);
+    if (cycle >= first_check) stall.add(cycle, options.max_cycles, change);  // not the cycle a skip ended
     point.stalled = cycle == options.max_cycles && stall.stalled(options.max_cycles);
+    if (cycle < options.max_cycles && settling.record(integrator.settling_state(), skipped)) {
+      integrator.move_to(skipped);
+      settling.forget();
+      first_check = cycle + 2;
+    }
   }
   if (statistics) *statistics = integrator.statistics();
   return point;

@@ -16,11 +16,6 @@ double CycleScales::of(StateScale kind) const {
   return force;
 }
 
-bool steady_contraction(double rate, double previous_rate) {
-  const double spread = std::abs(rate - previous_rate);
-  return rate >= 0.3 && rate <= 1.0 - 1e-7 && spread <= 0.05 * std::min(rate, 1.0 - rate);
-}
-
 namespace {
 
 void mark(const Topology& t, int node, int group, std::vector<int>& group_of_slot) {

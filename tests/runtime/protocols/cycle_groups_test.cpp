@@ -1,6 +1,6 @@
-// The settling of a time-stepped harmonic point group by group: which rate pairs count as a
-// steady contraction, which states form a group, and a skip that moves only the groups that
-// contract, each to its own geometric limit (hand values).
+// The settling of a time-stepped harmonic point group by group: which states form a group, and a
+// skip that moves only the groups that contract, each to its own geometric limit (hand values).
+// Which rate pairs count as a steady contraction: tests/runtime/core/geometric_settling_test.cpp.
 #include "runtime/protocols/cycle_groups.hpp"
 
 #include "support.hpp"
@@ -10,18 +10,6 @@
 #include <vector>
 
 using namespace rheo;
-using runtime::steady_contraction;
-
-TEST_CASE("steady contraction: rates from 0.3 to 1 that agree within 5 % of the smaller of rho and 1 - rho") {
-  CHECK(steady_contraction(0.5, 0.51));
-  CHECK_FALSE(steady_contraction(0.5, 0.53));
-  CHECK(steady_contraction(0.9993, 0.99931));         // reproducer 03's slow set
-  CHECK_FALSE(steady_contraction(0.99887, 1.00023));  // 880 times a change known to 100 % (was taken)
-  CHECK_FALSE(steady_contraction(0.98, 0.97));        // 1 - rho = 0.02: a spread of 0.01 is half of it
-  CHECK(steady_contraction(0.98, 0.9795));
-  CHECK_FALSE(steady_contraction(0.2, 0.2));  // fast: a few cycles finish anyway
-  CHECK_FALSE(steady_contraction(1.0, 1.0));
-}
 
 TEST_CASE("cycle groups: the root's states and each subtree's, and a skip moves only a group that contracts, by its own rate") {
   const auto network = test::network_from(

@@ -1,0 +1,51 @@
+// Settling by cycles accelerated where it is geometric (runtime/core/geometric_settling.hpp):
+// which rate pairs count as a steady contraction, and the component-wise skip against hand
+// sequences: each component to its own limit, none moved on another's rate, none on noise.
+#include "runtime/core/geometric_settling.hpp"
+
+#include <doctest/doctest.h>
+
+#include <cmath>
+#include <vector>
+
+using rheo::runtime::ComponentSettling;
+using rheo::runtime::steady_contraction;
+
+TEST_CASE("steady contraction: rates from 0.3 to 1 that agree within 5 % of the smaller of rho and 1 - rho") {
+  CHECK(steady_contraction(0.5, 0.51));
+  CHECK_FALSE(steady_contraction(0.5, 0.53));
+  CHECK(steady_contraction(0.9993, 0.99931));         // reproducer 03's slow set
+  CHECK_FALSE(steady_contraction(0.99887, 1.00023));  // 880 times a change known to 100 % (was taken)
+  CHECK_FALSE(steady_contraction(0.98, 0.97));        // 1 - rho = 0.02: a spread of 0.01 is half of it
+  CHECK(steady_contraction(0.98, 0.9795));
+  CHECK_FALSE(steady_contraction(0.2, 0.2));  // fast: a few cycles finish anyway
+  CHECK_FALSE(steady_contraction(1.0, 1.0));
+}
+
+TEST_CASE("component settling: each geometric component jumps to its own limit, the others keep their values") {
+  // Component 0 settles to 2 at rate 0.9, component 1 to -1 at rate 0.5 (scale 10), component 2
+  // swings without settling (an undamped mass), component 3 is settled but for noise below the floor.
+  ComponentSettling settling({1.0, 10.0, 1.0, 1.0}, 1e-6);
+  std::vector<double> target;
+  const auto state = [](int n) {
+    return std::vector<double>{2.0 - std::pow(0.9, n), -1.0 + 3.0 * std::pow(0.5, n), std::sin(1.3 * n), 5.0 + 1e-8 * ((n * 7) % 3)};
+  };
+  for (int n = 0; n < 3; ++n) CHECK_FALSE(settling.record(state(n), target));  // four records make three changes
+  REQUIRE(settling.record(state(3), target));
+  CHECK(target[0] == doctest::Approx(2.0).epsilon(1e-12));
+  CHECK(target[1] == doctest::Approx(-1.0).epsilon(1e-12));
+  CHECK(target[2] == state(3)[2]);
+  CHECK(target[3] == state(3)[3]);
+  // After forget() the next three records only gather changes again.
+  settling.forget();
+  for (int n = 4; n < 7; ++n) CHECK_FALSE(settling.record(state(n), target));
+  CHECK(settling.record(state(7), target));
+}
+
+TEST_CASE("component settling: a change that flips sign, speeds up or slows down is not extrapolated") {
+  ComponentSettling settling({1.0, 1.0, 1.0}, 1e-6);
+  std::vector<double> target;
+  // 0: alternating about a limit (rate -0.8); 1: rates 0.5 then 0.9; 2: a steady drift (rate 1).
+  const std::vector<std::vector<double>> states = {{0.0, 0.0, 0.0}, {1.0, 1.0, 1.0}, {0.2, 1.5, 2.0}, {0.84, 1.95, 3.0}};
+  for (const auto& s : states) CHECK_FALSE(settling.record(s, target));
+}
