@@ -273,6 +273,9 @@ DataScales data_scales(const std::vector<FitDataSet>& data) {
   }
   s.bounds.max_displacement = max_u > 0.0 ? max_u : 1.0;
   s.has_history = std::any_of(data.begin(), data.end(), [](const FitDataSet& set) { return !set.is_harmonic(); });
+  s.symmetric_drives = std::all_of(data.begin(), data.end(), [](const FitDataSet& set) {
+    return set.is_harmonic() && std::all_of(set.harmonic().preload.begin(), set.harmonic().preload.end(), [](double p) { return p == 0.0; });
+  });
   return s;
 }
 
@@ -320,7 +323,7 @@ std::vector<Trial> trial_family(Effect effect, const DataScales& s, const std::s
       break;
     case Effect::backlash:
       for (double half : log_spaced(s.amplitude_low / 10.0, s.amplitude_high, 6))
-        for (double bias : {-0.5, 0.0, 0.5}) {
+        for (double bias : play_biases(s.symmetric_drives)) {
           add(Shape::gapped_spring, 0.0, half, 0.0, 0.0);
           family.back().bias = bias;
         }
@@ -374,7 +377,8 @@ std::vector<ScreenedEffect> screen(const FitResult& fit, const std::vector<FitDa
     std::vector<std::pair<Trial, double>> best_of_shape;
     std::vector<Trial> family = trial_family(effect, scales, root_spring.name);
     const std::vector<Trial> rebuilt = effect == Effect::backlash
-                                           ? gapped_element_family(fit.network, log_spaced(scales.amplitude_low / 10.0, scales.amplitude_high, 6))
+                                           ? gapped_element_family(fit.network, log_spaced(scales.amplitude_low / 10.0, scales.amplitude_high, 6),
+                                                                   scales.symmetric_drives)
                                        : effect == Effect::asymmetry ? one_sided_family(fit.network)
                                                                      : std::vector<Trial>{};
     family.insert(family.end(), rebuilt.begin(), rebuilt.end());
