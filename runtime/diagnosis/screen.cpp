@@ -64,30 +64,40 @@ Signature simulate_alone(const Trial& trial, const std::vector<FitDataSet>& data
 
 
 // Objective of the fitted model plus sum_b coefficient[b] * basis[b], as fit_scoring.hpp scores it.
+// Called thousands of times a screen: the fitted K*_m of every harmonic point is formed once, and
+// each call writes the sums into scratch copies of the fitted predictions (not thread-safe).
 class AddedObjective {
  public:
-  AddedObjective(const FitResult& fit, const std::vector<FitDataSet>& data, const ScoreSettings& score) : fit_(fit), data_(data), score_(score) {}
+  AddedObjective(const FitResult& fit, const std::vector<FitDataSet>& data, const ScoreSettings& score) : data_(data), score_(score) {
+    for (const auto& set : fit.datasets) {
+      scratch_.push_back(set.prediction);
+      base_force_.push_back(set.prediction.force);
+      std::vector<Complex> k;
+      for (const auto& point : set.prediction.points) k.push_back(std::polar(point.measures.stiffness, point.measures.phase));
+      base_k_.push_back(std::move(k));
+    }
+  }
 
   double operator()(const std::vector<const Signature*>& basis, const std::vector<double>& coefficient) const {
     double sum = 0.0;
-    std::vector<double> residuals;
     for (std::size_t f = 0; f < data_.size(); ++f) {
       const FitDataSet& set = data_[f];
-      Prediction p = fit_.datasets[f].prediction;
+      Prediction& p = scratch_[f];
       if (set.is_harmonic()) {
         for (std::size_t j = 0; j < p.points.size(); ++j) {
           CycleMeasures& m = p.points[j].measures;
-          Complex k = std::polar(m.stiffness, m.phase);
+          Complex k = base_k_[f][j];
           for (std::size_t b = 0; b < basis.size(); ++b) k += coefficient[b] * basis[b]->harmonic[f][j];
           m.stiffness = std::abs(k);
           m.phase = std::arg(k);
         }
       } else {
+        std::copy(base_force_[f].begin(), base_force_[f].end(), p.force.begin());
         add_history(set, basis, coefficient, f, p.force);
       }
-      residuals.clear();
-      append_residuals(set, p, score_, residuals);
-      for (double r : residuals) sum += r * r;
+      residuals_.clear();
+      append_residuals(set, p, score_, residuals_);
+      for (double r : residuals_) sum += r * r;
     }
     return sum;
   }
@@ -121,9 +131,12 @@ class AddedObjective {
     for (std::size_t j = 0; j < force.size(); ++j) force[j] += beta * u[j] + dc;
   }
 
-  const FitResult& fit_;
   const std::vector<FitDataSet>& data_;
   const ScoreSettings& score_;
+  std::vector<std::vector<Complex>> base_k_;     // per set: K*_m per harmonic point
+  std::vector<std::vector<double>> base_force_;  // per set: F_m per history sample
+  mutable std::vector<Prediction> scratch_;      // per set: the fitted prediction, its measures or force rewritten per call
+  mutable std::vector<double> residuals_;
 };
 
 // argmin over [lo, hi] of a unimodal-enough g: a scan of `count` points (log-spaced when lo > 0),
