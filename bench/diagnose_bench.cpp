@@ -8,8 +8,6 @@
 #include <benchmark/benchmark.h>
 
 #include <fstream>
-#include <ctime>
-#include <cstdio>
 #include <iterator>
 
 namespace {
@@ -25,12 +23,7 @@ void BM_Hydrobushing_Diagnose(benchmark::State& state) {
   settings.fit.score.harmonic.steps_per_cycle = 128;
   settings.fit.score.harmonic.tolerance = 1e-6;
   runtime::diagnosis::Diagnosis d;
-  auto cpu = [] { timespec ts; clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts); return ts.tv_sec + 1e-9 * ts.tv_nsec; };
-  double last = cpu();
-  std::string what = "start";
-  settings.stage = [&](const std::string& next) { const double now = cpu(); fprintf(stderr, "STAGE %.3f s  %s\n", now - last, what.c_str()); last = now; what = next; };
   for (auto _ : state) d = runtime::diagnosis::diagnose({file, text, "uncoupled"}, data, settings);
-  fprintf(stderr, "STAGE %.3f s  %s\n", cpu() - last, what.c_str());
   state.counters["gap_before"] = d.gap_before;
   state.counters["gap_after"] = d.gap_after;
 }
