@@ -307,6 +307,7 @@ class Diagnoser {
     const int n = static_cast<int>(chosen_->result.free.size());
     FitSettings settings = local_search(within(1.0).fit, affordable_evaluations(chosen_->result.network, data_, s_, kLocalJacobians * (n + 1)));
     settings.statistics = settings_.standard_errors;
+    settings.search.crawl_tolerance = kPolishCrawl;
     FitResult polished = fit(chosen_->result.network, chosen_->result.free, data_, settings);
     d_.interrupted = polished.interrupted;
     d_.time_limited = d_.time_limited || polished.time_limited;

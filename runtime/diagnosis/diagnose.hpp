@@ -27,7 +27,8 @@
 //      residual (noise_estimate.hpp), else `unexplained`, with the residual's shape
 //      (unexplained.hpp) and the best candidate's numbers.
 //   5. Polish the chosen model: Levenberg-Marquardt over every free parameter again with the
-//      refit's budget, at least 10 Jacobians (refit.hpp kLocalJacobians); gap_after is the
+//      refit's budget, at least 10 Jacobians (refit.hpp kLocalJacobians), ended where a
+//      Jacobian's step gains less than kPolishCrawl of the objective; gap_after is the
 //      polished model's (with its standard errors when `standard_errors`).
 // The gap is err (eq. 6.1) over the harmonic points when there are any, else the RMS over the
 // history files of their RMS force residual relative to max|F_exp|.

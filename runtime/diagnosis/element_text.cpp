@@ -103,14 +103,19 @@ const lang::Element& root_element(const Network& network, const std::string& nam
   throw std::logic_error("diagnose: no root element " + name);
 }
 
-std::vector<Trial> gapped_element_family(const Network& network, const std::vector<double>& half_widths) {
+std::vector<double> play_biases(bool symmetric_drives) {
+  return symmetric_drives ? std::vector<double>{0.0, 0.5} : std::vector<double>{-0.5, 0.0, 0.5};
+}
+
+std::vector<Trial> gapped_element_family(const Network& network, const std::vector<double>& half_widths, bool symmetric_drives) {
   std::vector<Trial> family;
   for (const lang::Element& e : network.model().root.children) {
     if (e.kind != lang::ElementKind::spring && e.kind != lang::ElementKind::maxwell && e.kind != lang::ElementKind::friction) continue;
     const auto text = element_text(network, e);
     if (!text) continue;
+    const bool symmetric = e.kind != lang::ElementKind::friction || e.parameters.size() == 2;  // one cap both ways
     for (double half : half_widths)
-      for (double bias : {-0.5, 0.0, 0.5}) {
+      for (double bias : play_biases(symmetric_drives && symmetric)) {
         Trial t;
         t.effect = Effect::backlash, t.shape = Shape::gapped_element, t.slip = half, t.bias = bias;
         t.replaces = e.name, t.inner = joined(*text);

@@ -32,10 +32,16 @@ std::string joined(const ElementText& text);
 // The root element NAME of NETWORK's model; std::logic_error when there is none.
 const lang::Element& root_element(const Network& network, const std::string& name);
 
-// The gapped_element trials (trial.hpp): free play of each half width, centred and off-centre
-// by half a half width either way, in front of each root spring, Maxwell or friction element
-// (a compliant member the play's series chain needs).
-std::vector<Trial> gapped_element_family(const Network& network, const std::vector<double>& half_widths);
+// The centres of free play the backlash trials take, in half widths: centred and off-centre
+// by half a half width either way; with SYMMETRIC_DRIVES (screen.hpp DataScales) and a
+// mirror-symmetric element behind the play, not the negative one (its mirror image scores alike).
+std::vector<double> play_biases(bool symmetric_drives);
+
+// The gapped_element trials (trial.hpp): free play of each half width, at play_biases, in front
+// of each root spring, Maxwell or friction element (a compliant member the play's series chain
+// needs). Play in front of a friction element with one-sided caps is tried off-centre both ways
+// (it is not its own mirror image).
+std::vector<Trial> gapped_element_family(const Network& network, const std::vector<double>& half_widths, bool symmetric_drives);
 
 // The one_sided_element trials: each root element holding friction elements or sliders with
 // one cap both ways, their caps split by -0.5, -0.2, 0.2 and 0.5 (the screen refines the split).

@@ -19,6 +19,13 @@ int affordable_evaluations(const Network& network, const std::vector<FitDataSet>
 // their objective a Jacobian, within about ten (docs/performance.md, 2026-11-27).
 inline constexpr int kLocalJacobians = 10;
 
+// The polish of the chosen model (diagnose.hpp, step 5) starts where a local search of every
+// free parameter ended and ends where a Jacobian's step lowers the objective by less than this
+// share of it (the gap by less than half that, below the four digits a diagnosis reports; the
+// verdict is taken before): on the hydrobushing the polish otherwise crawled nine Jacobians at
+// 1e-5 each (docs/performance.md, 2026-11-27 session 4).
+inline constexpr double kPolishCrawl = 1e-4;
+
 // BASE as one local search of at most EVALUATIONS from its start, without statistics or a Yeoh
 // start: Levenberg-Marquardt on the residual vector (rheo fit's default local method,
 // fit_search.hpp: half the budget, then a polish from the best point with the rest), BOBYQA

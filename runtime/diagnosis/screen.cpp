@@ -64,30 +64,40 @@ Signature simulate_alone(const Trial& trial, const std::vector<FitDataSet>& data
 
 
 // Objective of the fitted model plus sum_b coefficient[b] * basis[b], as fit_scoring.hpp scores it.
+// Called thousands of times a screen: the fitted K*_m of every harmonic point is formed once, and
+// each call writes the sums into scratch copies of the fitted predictions (not thread-safe).
 class AddedObjective {
  public:
-  AddedObjective(const FitResult& fit, const std::vector<FitDataSet>& data, const ScoreSettings& score) : fit_(fit), data_(data), score_(score) {}
+  AddedObjective(const FitResult& fit, const std::vector<FitDataSet>& data, const ScoreSettings& score) : data_(data), score_(score) {
+    for (const auto& set : fit.datasets) {
+      scratch_.push_back(set.prediction);
+      base_force_.push_back(set.prediction.force);
+      std::vector<Complex> k;
+      for (const auto& point : set.prediction.points) k.push_back(std::polar(point.measures.stiffness, point.measures.phase));
+      base_k_.push_back(std::move(k));
+    }
+  }
 
   double operator()(const std::vector<const Signature*>& basis, const std::vector<double>& coefficient) const {
     double sum = 0.0;
-    std::vector<double> residuals;
     for (std::size_t f = 0; f < data_.size(); ++f) {
       const FitDataSet& set = data_[f];
-      Prediction p = fit_.datasets[f].prediction;
+      Prediction& p = scratch_[f];
       if (set.is_harmonic()) {
         for (std::size_t j = 0; j < p.points.size(); ++j) {
           CycleMeasures& m = p.points[j].measures;
-          Complex k = std::polar(m.stiffness, m.phase);
+          Complex k = base_k_[f][j];
           for (std::size_t b = 0; b < basis.size(); ++b) k += coefficient[b] * basis[b]->harmonic[f][j];
           m.stiffness = std::abs(k);
           m.phase = std::arg(k);
         }
       } else {
+        std::copy(base_force_[f].begin(), base_force_[f].end(), p.force.begin());
         add_history(set, basis, coefficient, f, p.force);
       }
-      residuals.clear();
-      append_residuals(set, p, score_, residuals);
-      for (double r : residuals) sum += r * r;
+      residuals_.clear();
+      append_residuals(set, p, score_, residuals_);
+      for (double r : residuals_) sum += r * r;
     }
     return sum;
   }
@@ -121,9 +131,12 @@ class AddedObjective {
     for (std::size_t j = 0; j < force.size(); ++j) force[j] += beta * u[j] + dc;
   }
 
-  const FitResult& fit_;
   const std::vector<FitDataSet>& data_;
   const ScoreSettings& score_;
+  std::vector<std::vector<Complex>> base_k_;     // per set: K*_m per harmonic point
+  std::vector<std::vector<double>> base_force_;  // per set: F_m per history sample
+  mutable std::vector<Prediction> scratch_;      // per set: the fitted prediction, its measures or force rewritten per call
+  mutable std::vector<double> residuals_;
 };
 
 // argmin over [lo, hi] of a unimodal-enough g: a scan of `count` points (log-spaced when lo > 0),
@@ -273,6 +286,9 @@ DataScales data_scales(const std::vector<FitDataSet>& data) {
   }
   s.bounds.max_displacement = max_u > 0.0 ? max_u : 1.0;
   s.has_history = std::any_of(data.begin(), data.end(), [](const FitDataSet& set) { return !set.is_harmonic(); });
+  s.symmetric_drives = std::all_of(data.begin(), data.end(), [](const FitDataSet& set) {
+    return set.is_harmonic() && std::all_of(set.harmonic().preload.begin(), set.harmonic().preload.end(), [](double p) { return p == 0.0; });
+  });
   return s;
 }
 
@@ -320,7 +336,7 @@ std::vector<Trial> trial_family(Effect effect, const DataScales& s, const std::s
       break;
     case Effect::backlash:
       for (double half : log_spaced(s.amplitude_low / 10.0, s.amplitude_high, 6))
-        for (double bias : {-0.5, 0.0, 0.5}) {
+        for (double bias : play_biases(s.symmetric_drives)) {
           add(Shape::gapped_spring, 0.0, half, 0.0, 0.0);
           family.back().bias = bias;
         }
@@ -374,7 +390,8 @@ std::vector<ScreenedEffect> screen(const FitResult& fit, const std::vector<FitDa
     std::vector<std::pair<Trial, double>> best_of_shape;
     std::vector<Trial> family = trial_family(effect, scales, root_spring.name);
     const std::vector<Trial> rebuilt = effect == Effect::backlash
-                                           ? gapped_element_family(fit.network, log_spaced(scales.amplitude_low / 10.0, scales.amplitude_high, 6))
+                                           ? gapped_element_family(fit.network, log_spaced(scales.amplitude_low / 10.0, scales.amplitude_high, 6),
+                                                                   scales.symmetric_drives)
                                        : effect == Effect::asymmetry ? one_sided_family(fit.network)
                                                                      : std::vector<Trial>{};
     family.insert(family.end(), rebuilt.begin(), rebuilt.end());

@@ -32,6 +32,11 @@ struct DataScales {
   double amplitude_low = 1.0, amplitude_high = 1.0;  // [mm]: measured amplitudes, or a history's turning points
   BoundScales bounds;                                // typical stiffness and largest displacement
   bool has_history = false;                          // some data set is a history
+  // Every data set is harmonic about zero displacement (no history, no preload). An element and
+  // its mirror image (F(u) -> -F(-u): play centred at -c for +c) then score alike: the mirror's
+  // periodic force under u0 sin(w t) is -F(t + T/2), which has the same max F - min F, loop
+  // energy and first harmonic, so only one of the two is screened.
+  bool symmetric_drives = false;
 };
 
 DataScales data_scales(const std::vector<FitDataSet>& data);

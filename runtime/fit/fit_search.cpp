@@ -84,7 +84,7 @@ std::vector<std::pair<double, std::vector<double>>> sample_box(Tracker& tracker,
 // Levenberg-Marquardt from FROM on the tracker's residuals, within BUDGET evaluations; the
 // NLopt-style status. A start whose residuals are not finite ends it at once.
 std::string least_squares_local(Tracker& tracker, const std::vector<double>& from, int budget, const std::vector<double>& lower,
-                                const std::vector<double>& upper, double tolerance) {
+                                const std::vector<double>& upper, const SearchSettings& settings) {
   const int first = tracker.evaluations();
   LeastSquaresProblem problem;
   // Warm starts (closed_form/pwl_warm_start.hpp). Every single evaluation (the start, a trial
@@ -138,7 +138,8 @@ std::string least_squares_local(Tracker& tracker, const std::vector<double>& fro
     };
   LevenbergMarquardtSettings lm;
   lm.max_iterations = std::min(budget, kMaxLocalIterations);
-  lm.step_tolerance = tolerance;
+  lm.step_tolerance = settings.tolerance;
+  lm.crawl_tolerance = settings.crawl_tolerance;
   lm.decrease_tolerance = 1e-9;  // as the NLopt local stages' relative f tolerance
   // Steps of 1e-6 max(|z|, 1): for z = ln p a relative change of 1e-6 to ~1e-5 in the parameter,
   // above the event-driven and time-stepped paths' convergence noise, below the response's curvature.
@@ -163,7 +164,7 @@ SearchResult search_with(const Objective& objective, const Residuals* residuals,
   auto remaining = [&] { return tracker.limit() - tracker.evaluations(); };
   auto local = [&](const std::vector<double>& from, int budget, Algorithm algorithm) {
     if (tracker.has_residuals() && !settings.algorithm) {
-      result.status = least_squares_local(tracker, from, std::max(1, budget), lower, upper, settings.tolerance);
+      result.status = least_squares_local(tracker, from, std::max(1, budget), lower, upper, settings);
       return;
     }
     OptimizerSettings o;

@@ -51,7 +51,10 @@ struct SearchSettings {
   int starts = 3;
   int samples = -1;  // default strategy's sample count; -1: max(10 n, 40)
   unsigned long seed = 1;
-  double tolerance = 1e-10;                       // relative, on z (local stages)
+  double tolerance = 1e-10;  // relative, on z (local stages)
+  // Levenberg-Marquardt stages (levenberg_marquardt.hpp crawl_tolerance): end where a Jacobian's
+  // step lowered the objective by less than this share of it; 0: never.
+  double crawl_tolerance = 0.0;
   std::vector<std::vector<double>> extra_starts;  // default strategy: local searches from these too
   std::optional<std::chrono::steady_clock::time_point> deadline;
   int reserve_evaluations = 0;

@@ -202,6 +202,10 @@ LevenbergMarquardtResult levenberg_marquardt(const LeastSquaresProblem& problem,
         out.status = "FTOL_REACHED";
         return out;
       }
+      if (decrease <= settings.crawl_tolerance * (out.value + decrease)) {
+        out.status = "FTOL_REACHED";
+        return out;
+      }
       if (near_minimum && moved <= settings.step_tolerance) {
         out.status = "XTOL_REACHED";
         return out;

@@ -22,6 +22,9 @@
 //                   tolerance); or five iterations together lowered phi by less than 100 times
 //                   the tolerance (a crawl along a valley of parameters the data do not
 //                   determine, which would otherwise take hundreds of Jacobians);
+//                   With `crawl_tolerance` > 0, also where a Jacobian's step lowered phi by
+//                   less than that share of it (a search whose caller needs phi to a few digits
+//                   only, left crawling along a valley);
 //   "XTOL_REACHED"  a step moved no coordinate by more than `step_tolerance` relative to
 //                   max(|x_j|, typical_j), where the undamped step predicts less than 100 times
 //                   the decrease tolerance (a step that heavy damping made short says nothing);
@@ -61,6 +64,7 @@ struct LevenbergMarquardtSettings {
   int max_iterations = 200;
   double decrease_tolerance = 1e-10;  // relative, on phi
   double step_tolerance = 1e-10;      // relative to max(|x_j|, typical_j)
+  double crawl_tolerance = 0.0;       // relative, on phi, per Jacobian (FTOL_REACHED above); 0: off
   double difference_step = 1e-7;      // forward differences: h_j = this * max(|x_j|, typical_j)
   Eigen::VectorXd typical;            // the size of each coordinate where x_j is near zero; empty: 1
 };

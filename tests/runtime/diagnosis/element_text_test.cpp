@@ -2,12 +2,17 @@
 // parameters at the same values, free ones with their bounds, under the same paths; a split
 // writes one-sided caps around the cap; elements that cannot be written give nothing.
 #include "runtime/diagnosis/element_text.hpp"
+#include "runtime/protocols/harmonic.hpp"
 
 #include "support.hpp"
 
 #include <doctest/doctest.h>
 
+#include <fmt/format.h>
+
 #include <map>
+#include <string>
+#include <vector>
 
 using namespace rheo;
 namespace dx = runtime::diagnosis;
@@ -81,4 +86,38 @@ TEST_CASE("element_text: an element with a quadratic dashpot or Bouc-Wen element
   const runtime::Network network = test::network_from(
       "model q { series c { spring k (k = 1 N/mm)  quadratic_dashpot d (cq = 1 N*s^2/mm^2) }  bouc_wen w (k = 1 N/mm, fy = 1 N, n = 2) }", "q");
   for (const lang::Element& e : network.model().root.children) CHECK_FALSE(dx::element_text(network, e).has_value());
+}
+
+// The mirror symmetry the backlash family leans on (element_text.hpp play_biases): play centred
+// at -c in front of a mirror-symmetric element scores as play at +c on harmonic points about zero
+// (same stiffness and phase, here by the event path at amplitudes inside, across and beyond the
+// play). A friction element with one-sided caps is no mirror image of itself (the mirror swaps
+// its caps): play in front of it is tried both ways.
+TEST_CASE("gapped_element_family: harmonic points about zero see play at -c as at +c, so only one is tried") {
+  auto point = [](const std::string& element, double center, double amplitude, double frequency) {
+    const runtime::Network n = test::network_from(
+        fmt::format("model p {{ series b {{ gap g (width = 0.6 mm, center = {} mm)  {} }} }}", center, element), "p");
+    return runtime::simulate_harmonic_point(n, amplitude, frequency, runtime::HarmonicOptions{});
+  };
+  for (const char* element : {"spring e (k = 300 N/mm)", "maxwell e (k = 300 N/mm, tau = 5 ms)", "friction e (k = 300 N/mm, uy = 40 um)"})
+    for (double amplitude : {0.2, 0.45, 1.5})
+      for (double frequency : {1.0, 30.0}) {
+        CAPTURE(element);
+        CAPTURE(amplitude);
+        CAPTURE(frequency);
+        const runtime::HarmonicPoint plus = point(element, 0.15, amplitude, frequency), minus = point(element, -0.15, amplitude, frequency);
+        CHECK(minus.measures.stiffness == doctest::Approx(plus.measures.stiffness).epsilon(1e-9));
+        CHECK(minus.measures.phase == doctest::Approx(plus.measures.phase).epsilon(1e-9).scale(1.0));  // [rad], near 0 for the spring
+      }
+  const runtime::Network network = test::network_from(kModel, "m");
+  auto biases = [&](bool symmetric_drives, const std::string& element) {
+    std::vector<double> out;
+    for (const dx::Trial& t : dx::gapped_element_family(network, {0.1, 1.0}, symmetric_drives))
+      if (t.replaces == element && t.slip == 0.1) out.push_back(t.bias);
+    return out;
+  };
+  CHECK(biases(false, "s") == std::vector<double>{-0.5, 0.0, 0.5});
+  CHECK(biases(true, "s") == std::vector<double>{0.0, 0.5});
+  CHECK(biases(true, "r") == std::vector<double>{0.0, 0.5});
+  CHECK(biases(true, "a") == std::vector<double>{-0.5, 0.0, 0.5});  // one-sided caps
 }

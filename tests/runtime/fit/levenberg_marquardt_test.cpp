@@ -146,3 +146,25 @@ TEST_CASE("residuals at rounding level end the search at once") {
   CHECK(r.status == "STOPVAL_REACHED");
   CHECK(calls == 1);
 }
+
+// r = x^3 from x = 1: each near-Gauss-Newton step takes x to about 2x/3, so phi = x^6 falls by
+// about 1 - (2/3)^6 = 91 % a Jacobian (less once the damping, scaled by the first Jacobian,
+// shortens the steps). A crawl tolerance above that share ends the search after its first step;
+// one below it lets it go on, and none further towards 0.
+TEST_CASE("a crawl tolerance ends the search where a Jacobian's step gains less than that share of phi") {
+  LeastSquaresProblem p;
+  p.residuals = [](const VectorXd& x) { return vec({x(0) * x(0) * x(0)}); };
+  auto run = [&](double crawl) {
+    LevenbergMarquardtSettings s;
+    s.crawl_tolerance = crawl;
+    return levenberg_marquardt(p, vec({1.0}), vec({-inf}), vec({inf}), s);
+  };
+  const LevenbergMarquardtResult stopped = run(0.95), going = run(0.85), plain = run(0.0);
+  CHECK(stopped.status == "FTOL_REACHED");
+  CHECK(stopped.iterations == 1);
+  CHECK(stopped.x(0) == doctest::Approx(2.0 / 3.0).epsilon(1e-2));
+  CHECK(going.iterations > 3);
+  CHECK(std::abs(going.x(0)) < 0.5 * std::abs(stopped.x(0)));
+  CHECK(plain.iterations > going.iterations);  // Marquardt's scaling keeps the largest column norm: the steps shrink as J does
+  CHECK(std::abs(plain.x(0)) < 1e-3);
+}
