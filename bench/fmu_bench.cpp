@@ -4,8 +4,9 @@
 // step of run_history, what `rheo simulate --solver fixed` runs, on the same samples.
 // Drive: 2 mm at 1.5 Hz plus 0.1 mm at 23 Hz, h = 0.1 ms, 1e5 steps per run.
 //   _Held:  the input held over each step (FMI's default): a jump at every step, exact in one
-//           kernel pass where every element is in the model's body (specimen D), a ramp of h/2^10
-//           and the rest of the step, two passes, into a subtree (the hydrobushing's fluid branch);
+//           kernel pass where every element is in the model's body (specimen D); into a subtree
+//           (the hydrobushing's capped fluid branch) a ramp of h/2^10 and the rest of the step,
+//           taken in one pass of composed maps (stepping/jump_hold.hpp);
 //   _Ramp:  the host passes du/dt = (u_{n+1} - u_n)/h (fmi2SetRealInputDerivatives): the path is
 //           rheo's piecewise-linear drive, one kernel pass per step. The host's derivatives are
 //           computed before the timed loop, as its inputs are: the host's arithmetic (a division

@@ -63,17 +63,23 @@ std::string value_attributes(const Variable& v) {
   return out;
 }
 
+// FMI 2.0's <Real derivative>: the 1-based position in ModelVariables of the variable V is the
+// time derivative of (value reference + 1: FMI 2.0 omits time, the last).
 std::string scalar_variable(const Variable& v) {
+  const std::string derivative = v.derivative_of ? fmt::format(" derivative=\"{}\"", *v.derivative_of + 1) : "";
   return fmt::format(
-      "    <ScalarVariable name=\"{}\" valueReference=\"{}\" description=\"{}\" causality=\"{}\"{}>\n      <Real{}/>\n    </ScalarVariable>\n",
-      xml_attribute(v.name), v.reference, xml_attribute(v.description), causality_word(v.causality), variability_attributes(v), value_attributes(v));
+      "    <ScalarVariable name=\"{}\" valueReference=\"{}\" description=\"{}\" causality=\"{}\"{}>\n      <Real{}{}/>\n    </ScalarVariable>\n",
+      xml_attribute(v.name), v.reference, xml_attribute(v.description), causality_word(v.causality), variability_attributes(v), value_attributes(v),
+      derivative);
 }
 
 // <Float64> of V (FMI 3.0 section 2.4.7): the attributes of an FMI 2.0 <ScalarVariable> and its
-// <Real> in one element.
+// <Real> in one element; `derivative` names a variable by its value reference.
 std::string float64_variable(const Variable& v) {
-  return fmt::format("    <Float64 name=\"{}\" valueReference=\"{}\" description=\"{}\" causality=\"{}\"{}{}/>\n", xml_attribute(v.name),
-                     v.reference, xml_attribute(v.description), causality_word(v.causality), variability_attributes(v), value_attributes(v));
+  const std::string derivative = v.derivative_of ? fmt::format(" derivative=\"{}\"", *v.derivative_of) : "";
+  return fmt::format("    <Float64 name=\"{}\" valueReference=\"{}\" description=\"{}\" causality=\"{}\"{}{}{}/>\n", xml_attribute(v.name),
+                     v.reference, xml_attribute(v.description), causality_word(v.causality), variability_attributes(v), value_attributes(v),
+                     derivative);
 }
 
 std::string unit_definitions(const std::vector<Variable>& variables) {

@@ -52,6 +52,7 @@ CoSimulation::CoSimulation(const std::string& file_name, std::string_view source
   variables_ = fmu_variables(*model_);
   compiled_ = std::make_unique<Network>(Network::compile(*model_));
   root_only_ = compiled_->topology().subtrees.empty();
+  jump_hold_ = !root_only_ && JumpHoldStep::applies(compiled_->topology());
   now_.parameters = compiled_->parameters();
 }
 
@@ -191,6 +192,8 @@ void CoSimulation::prepare_plans(double h) {
   const auto& k = n.coefficients().maxwell_k;
   for (std::size_t i = 0; i < k.size(); ++i) plans_.held.maxwell_b[i] = plans_.held.maxwell_a[i] * k[i];
   plans_.held.dashpot_c_over_dt = 0.0;
+  if (jump_hold_) plans_.jump_hold.emplace(n, h, delta);
+  else plans_.jump_hold.reset();
 }
 
 // Why a step cannot be taken (the same tests as do_step's, one at a time, off its path).
@@ -223,6 +226,8 @@ void CoSimulation::do_step(double t, double h) {
     simulator_->step(plans_.whole, before, target, next_, t + h);
   } else if (rate == 0.0 && root_only_) {
     simulator_->step(plans_.held, before, u, next_, t + h);
+  } else if (rate == 0.0 && jump_hold_) {
+    plans_.jump_hold->step(*simulator_, before, u, next_);
   } else {
     const double delta = h * kJumpFraction;
     simulator_->step(plans_.jump, before, u + rate * delta, mid_, t + delta);

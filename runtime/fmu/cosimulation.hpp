@@ -15,7 +15,9 @@
 //     step's coefficients become those of a jump followed by a hold (a Maxwell arm's
 //     F <- a (F + k du), a root dashpot carries nothing at the step's end), one kernel pass;
 //   - otherwise as a ramp over the first h / 2^10 of the step (kJumpFraction), then the rest of
-//     the step: two kernel passes. For a Maxwell arm of time constant tau that differs from an
+//     the step: the two kernel passes, or where the input is held and every subtree is linear
+//     or a capped-linear chain (the hydrobushing's fluid branch), both at once in one pass
+//     (stepping/jump_hold.hpp), the same to rounding. For a Maxwell arm of time constant tau that differs from an
 //     instantaneous jump by (h / 2^10) / (2 tau) of the jump's force in it. A shorter ramp would
 //     be closer to the jump but ill-conditioned behind an inerter, whose step relation has the
 //     slope 4 b / dt^2: at h / 2^20 the hydrobushing's force after 400 steps moves by 3e-8 of
@@ -37,6 +39,7 @@
 #include "lang/model.hpp"
 #include "runtime/fmu/fmu_variables.hpp"
 #include "runtime/network/network.hpp"
+#include "runtime/stepping/jump_hold.hpp"
 #include "runtime/stepping/simulator.hpp"
 
 #include <cmath>
@@ -136,6 +139,7 @@ class CoSimulation {
   struct Plans {
     double h = 0.0;
     StepPlan whole, jump, rest, held;
+    std::optional<JumpHoldStep> jump_hold;  // where jump_hold_ (the ramp and the hold in one pass)
   };
 
   void set_real_checked(unsigned reference, double value);
@@ -158,6 +162,7 @@ class CoSimulation {
   std::unique_ptr<Simulator> simulator_;
   Plans plans_;
   bool root_only_ = false;  // every element in the model's body: a held input's jump is exact in one pass
+  bool jump_hold_ = false;  // every subtree piecewise affine: a held input's ramp and hold in one pass
   Snapshot now_;
   State mid_, next_;
   double start_time_ = 0.0;

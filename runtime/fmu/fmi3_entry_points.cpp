@@ -87,7 +87,9 @@ extern "C" {
 
 const char* fmi3GetVersion(void) { return fmi3Version; }
 
-// Errors are logged whatever loggingOn says, and nothing else is: the call checks the categories.
+// Errors are logged whatever loggingOn and the categories say, and nothing else ever is: FMI 3.0.3
+// section 2.2.4 has an FMU with logging off call logMessage for fmi3Error and fmi3Fatal only,
+// which it should log regardless of the settings. The call checks the categories.
 fmi3Status fmi3SetDebugLogging(fmi3Instance c, fmi3Boolean /*loggingOn*/, size_t nCategories, const fmi3String categories[]) {
   return guarded(c, "fmi3SetDebugLogging", [&](Instance&) {
     require_array(categories, nCategories, "categories");
@@ -151,6 +153,7 @@ fmi3Status fmi3ExitInitializationMode(fmi3Instance c) {
   return guarded(c, "fmi3ExitInitializationMode", [](Instance& i) { i.cosimulation->exit_initialization(); });
 }
 fmi3Status fmi3EnterEventMode(fmi3Instance c) { return unsupported(c, "fmi3EnterEventMode", kNoEventMode); }
+// Super state Initialized (FMI 3.0 section 2.3.4), of which this FMU has Step Mode only.
 fmi3Status fmi3Terminate(fmi3Instance c) {
   return guarded(c, "fmi3Terminate", [](Instance& i) { i.cosimulation->terminate(); });
 }

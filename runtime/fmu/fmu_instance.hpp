@@ -5,7 +5,9 @@
 //
 // A call that fails changes nothing (CoSimulation's contract), so a host may restore a saved FMU
 // state and go on. Errors are logged whatever the host's logging switch says, as both standards
-// ask of errors, under the one category the FMU declares (kErrorCategory).
+// ask of errors (FMI 2.0: the logger was called for every fmi2Error; FMI 3.0.3 section 2.2.4:
+// regardless of the logging settings), under the one category the FMU declares (kErrorCategory),
+// and nothing else is logged.
 #pragma once
 
 #include "runtime/core/errors.hpp"

@@ -100,7 +100,8 @@ std::vector<Variable> fmu_variables(const lang::CheckedModel& model) {
                          .start = 0.0,
                          .min = std::nullopt,
                          .max = std::nullopt,
-                         .description = "terminal velocity over the next step, for hosts that provide it (0: u is held over the step)"});
+                         .description = "terminal velocity over the next step, for hosts that provide it (0: u is held over the step)",
+                         .derivative_of = kInputU});
   std::map<std::string, lang::ElementKind> kinds;
   collect_kinds(model.root, kinds);
   for (std::size_t i = 0; i < model.parameters.size(); ++i) {

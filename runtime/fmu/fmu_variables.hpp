@@ -3,7 +3,10 @@
 //   value reference 0  u  input  [mm]  the terminal displacement (the other terminal is ground)
 //   value reference 1  F  output [N]   the terminal force at the last communication point
 //   value reference 2  v  input [mm/s] the terminal's velocity over the next step, for hosts that
-//                                      provide it (0, its start: the input u is held)
+//                                      provide it (0, its start: the input u is held); declared
+//                                      u's time derivative (the `derivative` attribute, which both
+//                                      standards offer for an input that is the derivative of
+//                                      another: FMI 2.0 section 2.2.7, FMI 3.0 section 2.4.7.5)
 //   value reference 3 + i              the model's parameter i (CheckedModel::parameters order),
 //                                      in rheo's internal units (N, mm, s): a literal value is a
 //                                      parameter the host may set until initialisation ends
@@ -42,7 +45,8 @@ struct Variable {
   // input's the range of a rig's displacement (lang/limits.hpp).
   std::optional<double> min, max;
   std::string description;
-  int parameter = -1;  // index into CheckedModel::parameters; -1 for u, F, v and time
+  int parameter = -1;                                    // index into CheckedModel::parameters; -1 for u, F, v and time
+  std::optional<unsigned> derivative_of = std::nullopt;  // the value reference of the variable this one is the time derivative of (v: u)
 };
 
 // The variables of MODEL in value-reference order. ModelError when a model-level parameter is

@@ -24,9 +24,12 @@ State Simulator::rest_state() const {
   return s;
 }
 
-double Simulator::step(const StepPlan& plan, const State& before, double u_next, State& after, double time) const {
-  const Topology& t = network_.topology();
-  const Coefficients& c = network_.coefficients();
+namespace {
+
+// Simulator::step_root, inlined into Simulator::step.
+[[gnu::always_inline]] inline double root_step(const Network& network, const StepPlan& plan, const State& before, double u_next, State& after) {
+  const Topology& t = network.topology();
+  const Coefficients& c = network.coefficients();
   const double du = u_next - before.u;
   const double* x = before.values.data();
   double* y = after.values.data();
@@ -60,14 +63,25 @@ double Simulator::step(const StepPlan& plan, const State& before, double u_next,
     ys[i] = du > 0.0 ? fy : du < 0.0 ? -fy : std::clamp(xs[i], -fy, fy);
     force += ys[i];
   }
+  return force;
+}
 
+}  // namespace
+
+double Simulator::step(const StepPlan& plan, const State& before, double u_next, State& after, double time) const {
+  double force = root_step(network_, plan, before, u_next, after);
+  const Topology& t = network_.topology();
   if (!t.subtrees.empty()) {
-    const TreeSolver solver(network_, plan.tree, x, time);
-    for (int root : t.subtrees) force += solver.advance(root, du, y);
+    const TreeSolver solver(network_, plan.tree, before.values.data(), time);
+    for (int root : t.subtrees) force += solver.advance(root, u_next - before.u, after.values.data());
   }
   after.u = u_next;
   after.force = force;
   return force;
+}
+
+double Simulator::step_root(const StepPlan& plan, const State& before, double u_next, State& after) const {
+  return root_step(network_, plan, before, u_next, after);
 }
 
 void Simulator::element_outputs(const StepPlan& plan, const State& before, const State& after, std::vector<double>& force,

@@ -52,6 +52,9 @@ class Simulator {
   // `time` [s], the time at the end of the step, only names the step in a NumericalError when
   // a subtree's solve exhausts its iteration cap (tree_solver.hpp).
   double step(const StepPlan& plan, const State& before, double u_next, State& after, double time = std::numeric_limits<double>::quiet_NaN()) const;
+  // The root block's part of step(): writes its slots of `after` and returns its force [N];
+  // the subtrees' slots, after.u and after.force are left as they are.
+  double step_root(const StepPlan& plan, const State& before, double u_next, State& after) const;
 
   // Force [N] and elongation [mm] of every element the user wrote (Topology::probes order),
   // for the step that led from `before` to `after`.

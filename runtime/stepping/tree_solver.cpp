@@ -307,7 +307,7 @@ ForceSlope TreeSolver::inverse(int node, double force) const {
     }
     case NodeKind::friction: {
       const double k = p(n, 0);
-      return {(std::clamp(force, -p(n, 2), p(n, 1)) - f_before(n)) / k, 1.0 / k};
+      return {((plan_.clamp_friction ? std::clamp(force, -p(n, 2), p(n, 1)) : force) - f_before(n)) / k, 1.0 / k};
     }
     case NodeKind::slider: return {0.0, 0.0};
     case NodeKind::series: return add_over_children(*this, n, [&](int c) { return inverse(c, force); });

@@ -69,6 +69,11 @@ struct TreeStepPlan {
   // the nested solve alone: tests compare the two paths.
   NewtonLayout newton;
   bool global_newton = true;
+  // A friction element is inverted within its cap (the force it is asked for clamped to it).
+  // In a capped-linear chain that clamp never binds (the chain's force lies within the cap);
+  // `clamp_friction = false` drops it, so that such a chain's step is affine in the state on
+  // any state: JumpHoldStep reads its maps off unit states (jump_hold.hpp).
+  bool clamp_friction = true;
   // That solve's scratch: a plan serves one thread at a time.
   mutable NewtonWork work;
   void prepare(const Network& network, double dt, double piece);

@@ -51,7 +51,9 @@ TEST_CASE("fmu description: input, output, parameters and calculated parameters,
   CHECK(has(xml, "causality=\"parameter\" variability=\"fixed\" initial=\"exact\">\n      <Real unit=\"N/mm\" min=\"1\" max=\"100\" start=\"20\"/>"));
   CHECK(has(xml,
             "name=\"v\" valueReference=\"2\" description=\"terminal velocity over the next step, for hosts that provide it (0: u is held over "
-            "the step)\" causality=\"input\" variability=\"continuous\">\n      <Real unit=\"mm/s\" start=\"0\"/>"));
+            "the step)\" causality=\"input\" variability=\"continuous\">\n      <Real unit=\"mm/s\" start=\"0\" derivative=\"1\"/>"));
+  // v is u's time derivative: u is ModelVariables' first (index 1); no other variable is one.
+  CHECK(xml.find("derivative=") == xml.rfind("derivative="));
   CHECK(has(xml, "name=\"m1.c\" valueReference=\"6\""));
   CHECK(has(
       xml,
@@ -84,6 +86,11 @@ TEST_CASE("fmu description: FMI 3.0 declares every variable as a Float64, time a
             "variability=\"continuous\" initial=\"calculated\" unit=\"N\"/>"));
   CHECK(has(xml, "causality=\"parameter\" variability=\"fixed\" initial=\"exact\" unit=\"N/mm\" min=\"1\" max=\"100\" start=\"20\"/>"));
   CHECK(has(xml, "<Float64 name=\"m1.c\" valueReference=\"6\""));
+  // v is u's time derivative, named by value reference; no other variable is one.
+  CHECK(has(xml,
+            "<Float64 name=\"v\" valueReference=\"2\" description=\"terminal velocity over the next step, for hosts that provide it (0: u is "
+            "held over the step)\" causality=\"input\" variability=\"continuous\" unit=\"mm/s\" start=\"0\" derivative=\"0\"/>"));
+  CHECK(xml.find("derivative=") == xml.rfind("derivative="));
   // The independent variable: continuous, in s, with no start (FMI 3.0 section 2.4.7.4).
   CHECK(has(xml,
             "<Float64 name=\"time\" valueReference=\"7\" description=\"time at the last communication point\" causality=\"independent\" "

@@ -41,6 +41,41 @@ fmi3Instance instantiate(test::Fmi3Library& fmu, const std::string& token, const
                                          test::fmi3_logger, nullptr);
 }
 
+// An instance of a 10 N/mm spring, instantiated with loggingOn false; its resources under the
+// scratch directory NAME, removed with it.
+struct SpringFmu {
+  test::Fmi3Library fmu{RHEO_FMU_BINARY_PATH};
+  std::filesystem::path dir;
+  std::string token, path;
+  fmi3Instance c = nullptr;
+  fmi3Boolean event = fmi3False, terminate = fmi3False, early = fmi3False;
+  double last = 0.0;
+  explicit SpringFmu(const char* name) : dir(test::scratch_directory(name) / "resources") {
+    path = resources(dir, "model m { spring s (k = 10 N/mm) }", "m", token);
+    c = instantiate(fmu, token, path);
+    REQUIRE(c != nullptr);
+  }
+  ~SpringFmu() {
+    fmu.fmi3FreeInstance(c);
+    std::filesystem::remove_all(dir.parent_path());
+  }
+  SpringFmu(const SpringFmu&) = delete;
+  SpringFmu& operator=(const SpringFmu&) = delete;
+  fmi3Status step(double t) { return fmu.fmi3DoStep(c, t, 1e-3, fmi3True, &event, &terminate, &early, &last); }
+  fmi3Status set_u(double value) {
+    const fmi3ValueReference u = runtime::fmu::kInputU;
+    return fmu.fmi3SetFloat64(c, &u, 1, &value, 1);
+  }
+  fmi3Status get_force(double& force) {
+    const fmi3ValueReference f = runtime::fmu::kOutputF;
+    return fmu.fmi3GetFloat64(c, &f, 1, &force, 1);
+  }
+  fmi3Status start() {
+    const fmi3Status entered = fmu.fmi3EnterInitializationMode(c, fmi3False, 0.0, 0.0, fmi3False, 0.0);
+    return entered == fmi3OK ? fmu.fmi3ExitInitializationMode(c) : entered;
+  }
+};
+
 }  // namespace
 
 TEST_CASE("fmi3 binary: it exports every function fmi3Functions.h declares, and reports version 3.0") {
@@ -197,4 +232,66 @@ TEST_CASE("fmi3 binary: an FMU state serialized to bytes and read back repeats t
   REQUIRE(fmu.fmi3GetFMUState(c, &state) == fmi3OK);  // left for fmi3FreeInstance to free
   fmu.fmi3FreeInstance(c);
   std::filesystem::remove_all(dir.parent_path());
+}
+
+// FMI 3.0.3 section 2.2.4 (clarifying 3.0): with logging off (loggingOn false at instantiation, or
+// switched off by fmi3SetDebugLogging) the FMU must not call logMessage, except for fmi3Error and
+// fmi3Fatal, which it should log whatever the settings; with a NULL logMessage it calls nothing.
+TEST_CASE("fmi3 binary: with logging off nothing is logged but errors, which are logged whatever the settings") {
+  SpringFmu s("fmi3-logging");
+  double force = 0.0;
+  test::fmi3_log().clear();
+  CHECK(s.start() == fmi3OK);
+  CHECK(s.set_u(1.0) == fmi3OK);
+  CHECK(s.step(0.0) == fmi3OK);
+  CHECK(s.get_force(force) == fmi3OK);
+  CHECK(s.fmu.fmi3Terminate(s.c) == fmi3OK);
+  CHECK(s.fmu.fmi3Reset(s.c) == fmi3OK);
+  CHECK(test::fmi3_log().empty());
+  CHECK(s.step(5.0) == fmi3Error);
+  CHECK(test::fmi3_log().size() == 1);
+  // Switched off for every category, and for the error category by name: errors still logged.
+  const fmi3String errors[] = {"logStatusError"};
+  for (size_t n : {size_t{0}, size_t{1}}) {
+    CHECK(s.fmu.fmi3SetDebugLogging(s.c, fmi3False, n, n ? errors : nullptr) == fmi3OK);
+    test::fmi3_log().clear();
+    CHECK(s.step(5.0) == fmi3Error);
+    REQUIRE(test::fmi3_log().size() == 1);
+    CHECK(test::fmi3_log()[0].starts_with("3 logStatusError: fmi3DoStep: fmi3DoStep is called after initialisation"));
+  }
+  // No logger: the error is returned, nothing is called.
+  fmi3Instance quiet = s.fmu.fmi3InstantiateCoSimulation("q", s.token.c_str(), s.path.c_str(), fmi3False, fmi3True, fmi3False, fmi3False, nullptr,
+                                                         0, nullptr, nullptr, nullptr);
+  REQUIRE(quiet != nullptr);
+  CHECK(s.fmu.fmi3DoStep(quiet, 0.0, 1e-3, fmi3True, &s.event, &s.terminate, &s.early, &s.last) == fmi3Error);
+  s.fmu.fmi3FreeInstance(quiet);
+}
+
+// FMI 3.0 section 2.3.4: fmi3Terminate belongs to super state Initialized (Event, Step,
+// Continuous-Time, Clock Activation and Reconfiguration Mode). Without event mode, clocks,
+// model exchange or structural parameters, this FMU's only state of it is Step Mode, entered by
+// fmi3ExitInitializationMode; elsewhere (Instantiated, Initialization Mode, Terminated) the call
+// is out of sequence: fmi3Error (section 2.2.4).
+TEST_CASE("fmi3 binary: fmi3Terminate is taken in Step Mode, before or after steps, and refused out of sequence") {
+  SpringFmu s("fmi3-terminate");
+  test::fmi3_log().clear();
+  CHECK(s.fmu.fmi3Terminate(s.c) == fmi3Error);  // Instantiated
+  CHECK(logged("fmi3Terminate: fmi3Terminate is called after initialisation, not instantiated"));
+  CHECK(s.fmu.fmi3EnterInitializationMode(s.c, fmi3False, 0.0, 0.0, fmi3False, 0.0) == fmi3OK);
+  CHECK(s.fmu.fmi3Terminate(s.c) == fmi3Error);  // Initialization Mode
+  CHECK(logged("not in initialisation mode"));
+  CHECK(s.fmu.fmi3ExitInitializationMode(s.c) == fmi3OK);
+  CHECK(s.fmu.fmi3Terminate(s.c) == fmi3OK);     // Step Mode, no step taken
+  CHECK(s.fmu.fmi3Terminate(s.c) == fmi3Error);  // Terminated
+  double force = -1.0;
+  CHECK(s.step(0.0) == fmi3Error);
+  CHECK(s.get_force(force) == fmi3OK);
+  CHECK(force == 0.0);
+  CHECK(s.fmu.fmi3Reset(s.c) == fmi3OK);
+  CHECK(s.start() == fmi3OK);
+  CHECK(s.set_u(0.5) == fmi3OK);
+  CHECK(s.step(0.0) == fmi3OK);
+  CHECK(s.fmu.fmi3Terminate(s.c) == fmi3OK);  // Step Mode after a step
+  CHECK(s.get_force(force) == fmi3OK);
+  CHECK(force == 5.0);  // the last step's result, readable in Terminated
 }
