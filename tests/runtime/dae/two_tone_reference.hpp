@@ -1,10 +1,12 @@
 // The differential test's two-tone drive and the fixed-step reference the IDA tests hold a
-// history on it to.
+// history on it to; and the fixed-step reference of a harmonic point.
 #pragma once
 
 #include "runtime/core/drive.hpp"
 #include "runtime/network/network.hpp"
+#include "runtime/protocols/harmonic.hpp"
 #include "runtime/protocols/run_history.hpp"
+#include "support.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -40,6 +42,23 @@ inline double gap_to_extrapolated_fixed_steps(const runtime::Network& network, c
     worst = std::max(worst, std::abs(force[j] - (2.0 * fine.force[128 * j] - coarse.force[64 * j])));
   }
   return worst / scale;
+}
+
+// How far IDA's harmonic point IDA lies from NETWORK's on fixed steps at 2048 and 4096 steps a
+// cycle, extrapolated (2 X(4096) - X(2048)), at the same amplitude and frequency and with OPTIONS'
+// other settings: the stiffness relative, the damping d absolute.
+struct HarmonicGap {
+  double stiffness = 0.0, damping = 0.0;
+};
+inline HarmonicGap gap_to_extrapolated_fixed_point(const runtime::Network& network, const runtime::HarmonicPoint& ida,
+                                                   runtime::HarmonicOptions options) {
+  options.solver = runtime::SolverChoice::fixed;
+  options.steps_per_cycle = 2048;
+  const auto coarse = runtime::simulate_harmonic_point(network, ida.amplitude, ida.frequency, options);
+  options.steps_per_cycle = 4096;
+  const auto fine = runtime::simulate_harmonic_point(network, ida.amplitude, ida.frequency, options);
+  return {relative_error(ida.measures.stiffness, 2.0 * fine.measures.stiffness - coarse.measures.stiffness),
+          std::abs(ida.measures.damping - (2.0 * fine.measures.damping - coarse.measures.damping))};
 }
 
 }  // namespace rheo::test
