@@ -84,8 +84,7 @@ void DaeIntegrator::restart(double t, bool modes_changed) {
   void* mem = solver_->ida.get();
   for (int attempt = 0;; ++attempt) {
     if (modes_changed) rechoose_coordinates(t);
-    const double horizon = drive_.kind == DriveSignal::Kind::sine ? 1e-3 / std::max(drive_.omega, std::numeric_limits<double>::min())
-                                                                  : 1e-3 * (drive_.samples->time.back() - drive_.samples->time.front());
+    const double horizon = time_horizon();
     if (nested_bouc_wen_) initial_rates_by_euler_step(t, horizon);  // no sliders or gaps: y is consistent
     std::copy(y_.begin(), y_.end(), N_VGetArrayPointer(solver_->y.get()));
     std::copy(yp_.begin(), yp_.end(), N_VGetArrayPointer(solver_->yp.get()));
@@ -223,8 +222,7 @@ double DaeIntegrator::solve_to(double t_stop) {
     // tangents that hold along its steps.
     copy_from_solver();
     time_ = t_reached;
-    const double horizon = drive_.kind == DriveSignal::Kind::sine ? 1e-3 / std::max(drive_.omega, std::numeric_limits<double>::min())
-                                                                  : 1e-3 * (drive_.samples->time.back() - drive_.samples->time.front());
+    const double horizon = time_horizon();
     euler_step(time_, std::min(1e-3 * horizon, 0.5 * (t_stop - time_)));
     restart(time_, false);
     first_step_ = false;

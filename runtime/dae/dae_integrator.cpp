@@ -369,6 +369,12 @@ void DaeIntegrator::start(const DriveSignal& drive, const std::vector<double>* p
     }
   }
   kinematics_ = ModeKinematics::make(graph_, modes_);
+  // The smallest step: 1e-13 of the drive's time scale (its duration, or 1/w). Without it, IDA's
+  // corrector failing at every other step (a rate it predicts with the wrong sign, behind a
+  // quadratic dashpot whose Newton tangent reads that rate) halved h down to 1e-19 s and took
+  // 500000 steps there; below the floor the failure is returned, and solve_to restarts from
+  // consistent rates.
+  if (solver_) sundials::check_ida(IDASetMinStep(solver_->ida.get(), 1e-10 * time_horizon()), "IDASetMinStep");
   restart(time_, true);
 }
 
@@ -376,6 +382,11 @@ void DaeIntegrator::start(const DriveSignal& drive, const DaeLinearStart& linear
   if (linear.rate_edge_rates.size() != graph_.rate_edges.size()) throw std::logic_error("DaeIntegrator::start: one rate per rate edge");
   start_rates_ = linear.rate_edge_rates;
   start(drive, &linear.positions);
+}
+
+double DaeIntegrator::time_horizon() const {
+  return drive_.kind == DriveSignal::Kind::sine ? 1e-3 / std::max(drive_.omega, std::numeric_limits<double>::min())
+                                                : 1e-3 * (drive_.samples->time.back() - drive_.samples->time.front());
 }
 
 double DaeIntegrator::advance(double t) {

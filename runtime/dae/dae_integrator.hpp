@@ -134,6 +134,8 @@ class DaeIntegrator {
   double terminal_force(const double* force) const;
   const Edge& switch_edge(int l) const;
   void restart(double t, bool modes_changed);
+  // 1e-3 of the drive's time scale [s]: of 1/w for a sine, of the duration for samples.
+  double time_horizon() const;
   // Consistent rates yp_ at t for the current y_ (consistent there) from one backward-Euler step
   // of 1e-3 HORIZON [s], where IDACalcIC cannot find them (dae_initial_rates.cpp).
   void initial_rates_by_euler_step(double t, double horizon);

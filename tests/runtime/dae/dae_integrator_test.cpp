@@ -240,3 +240,52 @@ TEST_CASE("a friction element and a weaker slider in series both beyond yield at
   // Observed 1.9e-5: IDA's loop energy is summed over its 256 samples a cycle, across the slip's corners.
   CHECK(gap.damping < 5e-5);
 }
+
+// The differential test's seed 11, model 16: at t = 0.0510045 s, 4.5 us after a drive sample, IDA
+// predicted the rate of the quadratic dashpot behind poly_spring (cq = 0.0155) as -0.707 mm/s
+// where +0.028 is consistent; the corrector, whose matrix reads the dashpot's tangent at that
+// rate, failed at every other step, so IDA never returned the failure and halved h to 1e-19 s
+// (500000 steps, 88 s, then IDA_TOO_MUCH_WORK). With the smallest step at 1e-13 of the drive's
+// time scale the failure comes back to solve_to, which restarts from consistent rates.
+// Against extrapolated fixed steps on the two-tone drive (observed 8.4e-5 of max |F|; 0.8 s).
+TEST_CASE("IDA recovers where its corrector fails at every other step (differential seed 11, model 16): fixed steps' forces") {
+  const auto network = test::network_from(R"(model m {
+series {
+yeoh (D10 = 9.64097 N/mm, D20 = 0 N/mm^3, D30 = 0 N/mm^5)
+poly_spring (k1 = 4306.44 N/mm, k2 = -106.724 N/mm^2, k3 = 2.71308 N/mm^3)
+}
+series {
+dashpot (c = 0.320913 N*s/mm)
+gap (width = 0.181828 mm, center = -0.0583074 mm)
+springpot (k = 136.955 N/mm, alpha = 0.887168, tau = 21.9722 ms, f_low = 1 Hz, f_high = 100 Hz)
+}
+series {
+quadratic_dashpot (cq = 0.000329422 N*s^2/mm^2)
+parallel {
+poly_spring (k1 = 2286.08 N/mm, k2 = -44.7169 N/mm^2, k3 = 420.736 N/mm^3)
+series {
+friction (k = 8700.34 N/mm, uy = 54.0782 um)
+parallel {
+dashpot (c = 0.227917 N*s/mm)
+series {
+poly_spring (k1 = 82.4954 N/mm, k2 = 10.6433 N/mm^2, k3 = 3.42634 N/mm^3)
+quadratic_dashpot (cq = 0.0155541 N*s^2/mm^2)
+}
+}
+}
+series {
+quadratic_dashpot (cq = 0.00018388 N*s^2/mm^2)
+parallel {
+spring (k = 221.219 N/mm)
+slider (fy_pos = 1.29278 N, fy_neg = 13.353 N)
+}
+gap (width = 0.00505544 mm, center = -0.000247557 mm)
+quadratic_dashpot (cq = 0.000984108 N*s^2/mm^2)
+}
+}
+}
+})",
+                                          "m");
+  const auto ida = runtime::dae_history(network, test::two_tone_drive(1), false);
+  CHECK(test::gap_to_extrapolated_fixed_steps(network, ida.force) < 5e-4);
+}
