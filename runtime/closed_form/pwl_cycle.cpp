@@ -6,6 +6,7 @@
 #include <complex>
 #include <limits>
 #include <numbers>
+#include <utility>
 
 namespace rheo::runtime {
 namespace {
@@ -102,12 +103,11 @@ double PwlPeriodicState::Run::first_crossing(int m, int i, const PwlVector& w0, 
   // The state at tau into the step: nudged from the last state found (or from the step's end)
   // where that is near enough (PwlModeSystem::nudge), else the flow from w0.
   double known_t = 0.0;
-  PwlVector& known = self.known_;
-  known = w0;
+  const PwlVector* known = &w0;  // the state at known_t: w0, then w_at (nudged in place)
   auto at = [&](double tau) -> const PwlVector& {
     const bool from_end = std::abs(tau - h) < std::abs(tau - known_t);
-    if (!s.nudge(from_end ? tau - h : tau - known_t, from_end ? w1 : known, w_at)) w_at = s.advance(tau, w0);
-    known_t = tau, known = w_at;
+    if (!s.nudge(from_end ? tau - h : tau - known_t, from_end ? w1 : *known, w_at)) w_at = s.advance(tau, w0);
+    known_t = tau, known = &w_at;
     return w_at;
   };
   // The cubic through the values and slopes at both ends, c(x) = ((a3 x + a2) x + a1) x + g0
@@ -242,8 +242,11 @@ int PwlPeriodicState::Run::switch_at(int m, int i, double t, PwlVector& w, PwlMa
 }
 
 bool PwlPeriodicState::Run::cycle(int& m, const PwlVector& X0, PwlVector& X_T, PwlMatrix* J, bool record) {
-  PwlVector w;
-  m = settle(m, X0, 0.0, w);
+  // The state, the guards and their slopes at both ends of a step: the start's [0], the end's
+  // [1], exchanged by pointer where a step ends without an event (no copies per step).
+  PwlVector states[2], values[2], slopes[2];
+  PwlVector *w = &states[0], *w1 = &states[1], *g0 = &values[0], *g1 = &values[1], *dg0 = &slopes[0], *dg1 = &slopes[1];
+  m = settle(m, X0, 0.0, *w);
   if (m < 0) return false;
   PwlMatrix S;
   PwlMatrix* Sp = nullptr;
@@ -253,16 +256,15 @@ bool PwlPeriodicState::Run::cycle(int& m, const PwlVector& X0, PwlVector& X_T, P
     Sp = &S;
   }
   const int grid_steps = self.half_wave_ ? kPwlGridPerCycle / 2 : kPwlGridPerCycle;
-  auto grid_slope = [&] { return self.system(m).force_rate.dot(w); };
+  auto grid_slope = [&] { return self.system(m).force_rate.dot(*w); };
   if (record) {
-    self.pieces_.assign(1, {0.0, m, w}), self.switch_phases_.clear();
+    self.pieces_.assign(1, {0.0, m, *w}), self.switch_phases_.clear();
     self.grid_slopes_.resize(static_cast<std::size_t>(grid_steps) + 1);
     self.grid_slopes_[0] = grid_slope();
   }
   int switches = 0;
   double t = 0.0, piece_start = 0.0;
-  PwlVector w1, g0, g1, dg0, dg1;  // the state a step on; the guards and their slopes at both ends
-  PwlVector w_cross, w_first;      // the state at a guard's crossing, and at the first one's
+  PwlVector w_cross, w_first;  // the state at a guard's crossing, and at the first one's
   Eigen::Matrix<double, Eigen::Dynamic, 1, 0, 3 * kPwlMaxDim, 1> stacked;
   bool g0_known = false;
   for (int k = 0; k < grid_steps; ++k) {
@@ -272,43 +274,43 @@ bool PwlPeriodicState::Run::cycle(int& m, const PwlVector& X0, PwlVector& X_T, P
       const double h = t_end - t;
       const bool full = std::abs(h - step) <= 1e-12 * step;
       const Eigen::Index dim = s.dim, guards = s.guards.rows();
-      if (!g0_known) g0.noalias() = s.guards.lazyProduct(w), dg0.noalias() = s.guard_rates.lazyProduct(w);
+      if (!g0_known) g0->noalias() = s.guards.lazyProduct(*w), dg0->noalias() = s.guard_rates.lazyProduct(*w);
       if (full) {
-        stacked.noalias() = grid_step(m).lazyProduct(w);
-        w1 = stacked.head(dim), g1 = stacked.segment(dim, guards), dg1 = stacked.tail(guards);
+        stacked.noalias() = grid_step(m).lazyProduct(*w);
+        *w1 = stacked.head(dim), *g1 = stacked.segment(dim, guards), *dg1 = stacked.tail(guards);
       } else {
-        w1 = advance(m, h, w);
-        g1.noalias() = s.guards.lazyProduct(w1), dg1.noalias() = s.guard_rates.lazyProduct(w1);
+        *w1 = advance(m, h, *w);
+        g1->noalias() = s.guards.lazyProduct(*w1), dg1->noalias() = s.guard_rates.lazyProduct(*w1);
       }
       double first = std::numeric_limits<double>::infinity();
       int fired = -1;
-      for (int i = 0; i < g0.size(); ++i) {
-        if (g1[i] >= 0.0 && !(dg0[i] < 0.0 && dg1[i] > 0.0)) continue;  // no crossing and no dip
-        const double tau = first_crossing(m, i, w, w1, h, g0[i], g1[i], dg0[i], dg1[i], w_cross);
+      for (int i = 0; i < g0->size(); ++i) {
+        if ((*g1)[i] >= 0.0 && !((*dg0)[i] < 0.0 && (*dg1)[i] > 0.0)) continue;  // no crossing and no dip
+        const double tau = first_crossing(m, i, *w, *w1, h, (*g0)[i], (*g1)[i], (*dg0)[i], (*dg1)[i], w_cross);
         if (tau < first) first = tau, fired = i, w_first = w_cross;
       }
       if (fired < 0) {
-        w = w1;
-        g0 = g1, dg0 = dg1, g0_known = true;
+        std::swap(w, w1), std::swap(g0, g1), std::swap(dg0, dg1);
+        g0_known = true;
         t = t_end;
         break;
       }
-      w = w_first;
+      *w = w_first;
       t += first;
       if (Sp != nullptr) *Sp = s.propagator(t - piece_start) * *Sp, piece_start = t;
       g0_known = false;
       if (++switches > kMaxSwitchesPerCycle) return false;
-      m = switch_at(m, fired, t, w, Sp);
+      m = switch_at(m, fired, t, *w, Sp);
       if (m < 0) return false;
       if (record) {
-        self.pieces_.push_back({t, m, w});
+        self.pieces_.push_back({t, m, *w});
         self.switch_phases_.push_back(std::fmod(self.omega_ * t, 2.0 * std::numbers::pi));
       }
     }
     if (record) self.grid_slopes_[static_cast<std::size_t>(k) + 1] = grid_slope();
   }
   const PwlModeSystem& s = self.system(m);
-  X_T = s.to_X.lazyProduct(w);
+  X_T = s.to_X.lazyProduct(*w);
   if (J != nullptr) *J = s.to_X * (s.propagator(self.span_ - piece_start) * S);
   return true;
 }

@@ -146,7 +146,7 @@ class PwlPeriodicState {
   std::vector<double> switch_phases_;
   std::vector<double> grid_slopes_;        // dF/dt [N/s] at the span's grid points k T/64, k = 0..32 or 64 (grid_slope())
   PwlModeCode settle_code_, switch_code_;  // scratch of Run::settle and Run::switch_at (no allocation per event)
-  PwlVector known_, probe_;                // scratch of Run::first_crossing and Run::leaves
+  PwlVector probe_;                        // scratch of Run::leaves
   // Solves of structures_branch_, the first solved_count_ (storage beyond is reused); a lookup
   // starts at solved_next_, after the last one found (a grid's points come in order).
   std::vector<Solved> solved_;
