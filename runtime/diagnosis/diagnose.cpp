@@ -133,8 +133,16 @@ class Diagnoser {
     d_.patterns = residual_patterns(d_.before, data_);
     d_.noise = estimate_noise(d_.before, data_);
     d_.noise_weighted = noise_weighted(data_, d_.noise);
+    const int p = static_cast<int>(d_.before.free.size());
     d_.criterion_before = criterion(d_.before, d_.residual_terms, d_.noise_weighted, d_.noise);
-    d_.noise_ratio = noise_ratio(d_.gap_before, d_.noise, d_.residual_terms, static_cast<int>(d_.before.free.size()));
+    d_.noise_ratio = noise_ratio(d_.gap_before, d_.noise, d_.residual_terms, p);
+    if (d_.noise_weighted && !stopped()) {
+      // The likelihood at its maximum (criterion.hpp least_chi_square), from the fit and from its start.
+      stage("weighing the fit by the noise");
+      d_.chi_square_before = least_chi_square(d_.before, data_, d_.noise, within(1.0 / 3.0).fit, 2 * kLikelihoodJacobians * (p + 1));
+      d_.criterion_before = d_.chi_square_before + p * std::log(static_cast<double>(d_.residual_terms));
+      d_.chi_square_ratio = chi_square_ratio(d_.chi_square_before, d_.residual_terms, p);
+    }
     fitted_text_ = lang::write_fitted_source(source_.text, source_.file, *base_.model, d_.before.network.parameters(), d_.before.free, {});
     d_.interrupted = d_.before.interrupted;
     for (int i : d_.before.free) kept_paths_.push_back(base_.model->parameters[static_cast<std::size_t>(i)].path);
@@ -290,8 +298,13 @@ class Diagnoser {
     // A gap just beyond the noise cannot fall by min_improvement; taking it to the noise earns too.
     const bool to_noise = reaches_noise(d_.gap_before, static_cast<int>(d_.before.free.size()), outcome.gap_after, outcome.parameters, d_.noise,
                                         d_.residual_terms);
-    const bool earns = outcome.unresolved.empty() && outcome.criterion < d_.criterion_before &&
-                       (outcome.gap_after <= (1.0 - s_.min_improvement) * d_.gap_before || to_noise);
+    const bool gains = outcome.unresolved.empty() && (outcome.gap_after <= (1.0 - s_.min_improvement) * d_.gap_before || to_noise);
+    // A candidate that may earn is judged, as the model was, at its likelihood's maximum; one
+    // whose fit earns already keeps its fit's chi^2, an upper bound of its least.
+    if (gains && d_.noise_weighted && !(outcome.criterion < d_.criterion_before) && !stopped())
+      outcome.criterion = least_chi_square(result, data_, d_.noise, within(share).fit, kLikelihoodJacobians * (outcome.parameters + 1)) +
+                          outcome.parameters * std::log(static_cast<double>(d_.residual_terms));
+    const bool earns = gains && outcome.criterion < d_.criterion_before;
     if (earns && (!chosen_ || preferred(outcome, d_.candidates[chosen_->candidate], s_.parsimony)))
       chosen_ = Chosen{d_.candidates.size(), trial, std::move(candidate), std::move(result)};
     d_.candidates.push_back(outcome);
@@ -324,7 +337,8 @@ class Diagnoser {
   // No candidate earned: the model as fitted, its residual at the noise (none) or not (unexplained).
   Diagnosis finish_none() {
     d_.effect = Effect::none;
-    const bool beyond_noise = systematic(d_.gap_before, d_.noise, d_.residual_terms, static_cast<int>(d_.before.free.size()));
+    const bool beyond_noise = d_.noise_weighted ? beyond_noise_ratio(d_.chi_square_ratio, d_.noise)
+                                                : systematic(d_.gap_before, d_.noise, d_.residual_terms, static_cast<int>(d_.before.free.size()));
     d_.verdict = beyond_noise ? Verdict::unexplained : Verdict::none;
     if (beyond_noise) d_.unexplained = residual_shape(d_.before, data_);
     d_.reason = beyond_noise ? unexplained_reason(d_) : none_reason(d_, s_);

@@ -25,7 +25,13 @@
 //      rising stiffness with one more parameter. None earns: nothing is added, and the verdict
 //      is `none` when the gap is indistinguishable from the measurement noise estimated from the
 //      residual (noise_estimate.hpp), else `unexplained`, with the residual's shape
-//      (unexplained.hpp) and the best candidate's numbers.
+//      (unexplained.hpp) and the best candidate's numbers. Where the criterion is noise-
+//      weighted, the fits minimise eq. 5.1, not chi^2, and a fit's chi^2 is not the likelihood
+//      at its maximum, which the BIC takes: the model's chi^2, and that of each candidate that
+//      lowers the gap enough to earn but whose fit's chi^2 does not earn already (an upper bound
+//      of its least), are minimised from their fits (criterion.hpp least_chi_square), and the model's least chi^2 over N - p, not the gap over the floor,
+//      tells noise from a systematic residual (on pure noise the gap of a fit drawn to a few
+//      nearly elastic points' phase noise was twice the floor, at chi^2 / (N - p) = 0.46).
 //   5. Polish the chosen model: Levenberg-Marquardt over every free parameter again with the
 //      refit's budget, at least 10 Jacobians (refit.hpp kLocalJacobians), ended where a
 //      Jacobian's step gains less than kPolishCrawl of the objective; gap_after is the
@@ -120,11 +126,15 @@ struct CandidateOutcome {
 
 struct Diagnosis {
   Verdict verdict = Verdict::none;
-  Effect effect = Effect::none;              // the effect named; none for the verdicts none and unexplained
-  std::string reason;                        // why, with numbers
-  ResidualPatterns patterns;                 // of the model as fitted
-  NoiseEstimate noise;                       // behind the residual of the model as fitted
-  double noise_ratio = 0.0;                  // gap_before over the floor noise leaves (noise_estimate.hpp); 0 without an estimate
+  Effect effect = Effect::none;  // the effect named; none for the verdicts none and unexplained
+  std::string reason;            // why, with numbers
+  ResidualPatterns patterns;     // of the model as fitted
+  NoiseEstimate noise;           // behind the residual of the model as fitted
+  double noise_ratio = 0.0;      // gap_before over the floor noise leaves (noise_estimate.hpp); 0 without an estimate
+  // Where the criterion is noise-weighted: the least chi^2 of the model as fitted
+  // (criterion.hpp least_chi_square) and sqrt(chi^2 / (N - p)), the residual at the likelihood's
+  // maximum over the noise, which judges none against unexplained in place of noise_ratio.
+  double chi_square_before = 0.0, chi_square_ratio = 0.0;
   std::optional<ResidualShape> unexplained;  // the verdict unexplained: where the residual lies, what it resembles
   FitResult before;
   std::optional<FitResult> after;            // the refined model refitted; empty for none

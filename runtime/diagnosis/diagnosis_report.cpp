@@ -98,6 +98,8 @@ std::string diagnosis_report_json(const std::string& source_file, const Diagnosi
                                          {"pseudo_residuals", n.pseudo_residuals}}
                                   : json(nullptr);
   if (n.estimated && d.patterns.has_harmonic) evidence["noise"]["stiffness"] = n.stiffness, evidence["noise"]["phase_deg"] = degrees(n.phase);
+  if (d.chi_square_ratio > 0.0)
+    evidence["noise"]["least_chi_square"] = d.chi_square_before, evidence["noise"]["chi_square_ratio"] = d.chi_square_ratio;
   if (n.estimated && !d.patterns.has_harmonic) evidence["noise"]["force"] = n.force, evidence["noise"]["autocorrelation"] = n.autocorrelation;
 
   json j{{"effect", verdict_name(d)}, {"evidence", evidence}, {"gap_measure", d.gap_name}, {"err_before", d.gap_before}, {"err_after", d.gap_after}};

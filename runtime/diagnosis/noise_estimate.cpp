@@ -219,8 +219,10 @@ double noise_ratio(double gap, const NoiseEstimate& noise, int residual_terms, i
 bool systematic(double gap, const NoiseEstimate& noise, int residual_terms, int parameters) {
   if (!noise.estimated) return false;
   if (!(noise.floor > 0.0)) return gap > 0.0;
-  return noise_ratio(gap, noise, residual_terms, parameters) > 1.0 + std::max(0.25, 3.0 * noise.relative_error);
+  return beyond_noise_ratio(noise_ratio(gap, noise, residual_terms, parameters), noise);
 }
+
+bool beyond_noise_ratio(double ratio, const NoiseEstimate& noise) { return ratio > 1.0 + std::max(0.25, 3.0 * noise.relative_error); }
 
 bool reaches_noise(double gap_before, int parameters_before, double gap_after, int parameters_after, const NoiseEstimate& noise, int residual_terms) {
   return systematic(gap_before, noise, residual_terms, parameters_before) && !systematic(gap_after, noise, residual_terms, parameters_after);

@@ -63,6 +63,10 @@ bool systematic(double gap, const NoiseEstimate& noise, int residual_terms, int 
 // share, yet a candidate that leaves only noise explains all of it.
 bool reaches_noise(double gap_before, int parameters_before, double gap_after, int parameters_after, const NoiseEstimate& noise, int residual_terms);
 
+// Whether RATIO, a residual over what noise leaves (1: at the noise), is beyond NOISE: above 1 by
+// more than the larger of 25 % and three standard errors of the estimate.
+bool beyond_noise_ratio(double ratio, const NoiseEstimate& noise);
+
 // GAP over the floor pure noise would leave for a fit of P parameters to N terms (1: at the noise).
 double noise_ratio(double gap, const NoiseEstimate& noise, int residual_terms, int parameters);
 

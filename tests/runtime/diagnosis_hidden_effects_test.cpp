@@ -225,6 +225,23 @@ TEST_CASE("diagnose, harmonic: data the model already explains gives none over s
   }
 }
 
+// The false-positive rate on pure noise: of ten draws, at most one may name an effect or call the
+// residual unexplained. Judged on the fits of eq. 5.1, whose damping terms follow the phase noise
+// of a few nearly elastic points, 3 of these 10 draws did (7 of the 40 from seed 100: a
+// slider-capped Maxwell arm named, or a fit drawn to those points called unexplained at twice
+// the noise floor); the likelihood at its maximum (criterion.hpp least_chi_square) leaves none.
+TEST_CASE("diagnose, harmonic: pure noise rarely gives a verdict other than none") {
+  int other = 0;
+  std::string verdicts;
+  for (unsigned seed = 117; seed < 127; ++seed) {
+    const dx::Diagnosis d = diagnose(kExplainedStart, {harmonic_measurement(kExplainedTruth, seed)});
+    verdicts += fmt::format(" {}:{}", seed, dx::verdict_name(d));
+    if (d.verdict != dx::Verdict::none) ++other;
+  }
+  INFO("verdicts:" << verdicts);
+  CHECK(other <= 1);
+}
+
 TEST_CASE("diagnose, static loops: a Yeoh law behind the loops is nonlinear-elasticity") {
   const std::string truth = "model truth { yeoh r (D10 = 150 N/mm, D20 = -1 N/mm^3, D30 = 0.05 N/mm^5)  friction f (k = 200 N/mm, uy = 50 um) }";
   const std::string start =
