@@ -33,17 +33,7 @@ namespace {
 
 // In the suite: 100 models take about 20 s of CPU in Release (docs/numerics.md). The sanitizer
 // build (ASan + UBSan, RelWithDebInfo) runs a quarter of them, each several times slower.
-#if defined(__SANITIZE_ADDRESS__)
-constexpr int kModels = 25;
-#elif defined(__has_feature)
-#if __has_feature(address_sanitizer)
-constexpr int kModels = 25;
-#else
-constexpr int kModels = 100;
-#endif
-#else
-constexpr int kModels = 100;
-#endif
+constexpr int kModels = test::kUnderSanitizer ? 25 : 100;
 constexpr std::uint64_t kSeed = 2026;  // RHEO_DIFFERENTIAL_SEED overrides
 constexpr int kMaxDepth = 6;
 constexpr int kRefine = 4;                // fixed steps per drive sample (the drive is the same piecewise-linear one), and twice that,

@@ -16,6 +16,20 @@
 
 namespace rheo::test {
 
+// Whether this build runs under AddressSanitizer (CI's second build, RelWithDebInfo at -O1, each
+// test several times slower): long loops over models or seeds run a shorter count there.
+#if defined(__SANITIZE_ADDRESS__)
+inline constexpr bool kUnderSanitizer = true;
+#elif defined(__has_feature)
+#if __has_feature(address_sanitizer)
+inline constexpr bool kUnderSanitizer = true;
+#else
+inline constexpr bool kUnderSanitizer = false;
+#endif
+#else
+inline constexpr bool kUnderSanitizer = false;
+#endif
+
 inline lang::CheckedModel model_from(const std::string& source, const std::string& name) {
   const lang::Program program = lang::compile_source("test.rheo", source);
   const lang::CheckedModel* model = program.find_model(name);
