@@ -244,33 +244,10 @@ const char* kOddBranches[] = {
     " parallel p { friction f2 (k = 100 N/mm, uy = 0.2 mm)\n maxwell m (k = 80 N/mm, tau = 5 ms) } } }",
     "model a { series s { gap g (width = 0.2 mm)\n slider s (fy = 20 N)\n spring k (k = 300 N/mm) } }"};
 
-// CHECK_STATE(state) for the periodic state of every odd branch above, on the half-period map
-// and on the full one, at 0.05, 0.5 and 2 mm and 0.5, 7 and 40 Hz.
+// CHECK_POINT(half, full, u0, omega) for every odd branch above as it is (the half-period map)
+// and with its oddness switched off (the full one), at 0.05, 0.5 and 2 mm and 0.5, 7 and 40 Hz.
 template <class Check>
-void for_each_odd_state(Check check_state) {
-  for (const char* model : kOddBranches) {
-    const auto net = test::network_from(model, "a");
-    runtime::PwlBranch half = branch_of(net), full = half;
-    full.odd = false;
-    for (const runtime::PwlBranch* branch : {&half, &full})
-      for (double u0 : {0.05, 0.5, 2.0})
-        for (double f : {0.5, 7.0, 40.0}) {
-          const std::string text = model;
-          CAPTURE(text);
-          CAPTURE(u0);
-          CAPTURE(f);
-          runtime::PwlPeriodicState s;
-          REQUIRE(s.solve(*branch, u0, 2.0 * std::numbers::pi * f));
-          check_state(s);
-        }
-  }
-}
-
-}  // namespace
-
-TEST_CASE("the half-period map of an odd branch closes on the full-period map's periodic state") {
-  // Two paths to one state: X0 -> -X(T/2) (what odd branches use) and X0 -> X(T) with the
-  // half-wave symmetry checked afterwards (what a branch with an uneven law uses).
+void for_each_odd_point(Check check_point) {
   for (const char* model : kOddBranches) {
     const auto net = test::network_from(model, "a");
     runtime::PwlBranch half = branch_of(net), full = half;
@@ -282,23 +259,45 @@ TEST_CASE("the half-period map of an odd branch closes on the full-period map's 
         CAPTURE(text);
         CAPTURE(u0);
         CAPTURE(f);
-        runtime::PwlPeriodicState a, b;
-        const double omega = 2.0 * std::numbers::pi * f;
-        REQUIRE(a.solve(half, u0, omega));
-        REQUIRE(b.solve(full, u0, omega));
-        const double scale = std::hypot(b.storage(), b.loss()) + 1e-12;  // 0 where a gap never closes
-        CHECK(std::abs(a.storage() - b.storage()) < 1e-9 * scale);
-        CHECK(std::abs(a.loss() - b.loss()) < 1e-9 * scale);
-        double largest = 0.0, difference = 0.0;
-        for (int k = 0; k < 32; ++k) {
-          const double theta = (k + 0.3) * std::numbers::pi / 16.0;
-          largest = std::max(largest, std::abs(b.force(theta)));
-          difference = std::max(difference, std::abs(a.force(theta) - b.force(theta)));
-        }
-        CHECK(difference <= 1e-9 * largest + 1e-12);
-        CHECK(a.switch_phases().size() == b.switch_phases().size());
+        check_point(half, full, u0, 2.0 * std::numbers::pi * f);
       }
   }
+}
+
+// CHECK_STATE(state) for the periodic state of every odd branch above, on the half-period map
+// and on the full one, at the points of for_each_odd_point.
+template <class Check>
+void for_each_odd_state(Check check_state) {
+  for_each_odd_point([&](const runtime::PwlBranch& half, const runtime::PwlBranch& full, double u0, double omega) {
+    for (const runtime::PwlBranch* branch : {&half, &full}) {
+      runtime::PwlPeriodicState s;
+      REQUIRE(s.solve(*branch, u0, omega));
+      check_state(s);
+    }
+  });
+}
+
+}  // namespace
+
+TEST_CASE("the half-period map of an odd branch closes on the full-period map's periodic state") {
+  // Two paths to one state: X0 -> -X(T/2) (what odd branches use) and X0 -> X(T) with the
+  // half-wave symmetry checked afterwards (what a branch with an uneven law uses).
+  for_each_odd_point([](const runtime::PwlBranch& half, const runtime::PwlBranch& full, double u0, double omega) {
+    runtime::PwlPeriodicState a, b;
+    REQUIRE(a.solve(half, u0, omega));
+    REQUIRE(b.solve(full, u0, omega));
+    const double scale = std::hypot(b.storage(), b.loss()) + 1e-12;  // 0 where a gap never closes
+    CHECK(std::abs(a.storage() - b.storage()) < 1e-9 * scale);
+    CHECK(std::abs(a.loss() - b.loss()) < 1e-9 * scale);
+    double largest = 0.0, difference = 0.0;
+    for (int k = 0; k < 32; ++k) {
+      const double theta = (k + 0.3) * std::numbers::pi / 16.0;
+      largest = std::max(largest, std::abs(b.force(theta)));
+      difference = std::max(difference, std::abs(a.force(theta) - b.force(theta)));
+    }
+    CHECK(difference <= 1e-9 * largest + 1e-12);
+    CHECK(a.switch_phases().size() == b.switch_phases().size());
+  });
 }
 
 TEST_CASE("modes built once serve every point of a branch, and other parameters rebuild them") {

@@ -37,8 +37,9 @@ bool operator==(const Reading& a, const Reading& b) {
   return a.error == b.error && same(a.time, b.time) && same(a.displacement, b.displacement) && same(a.force, b.force) && a.rows == b.rows;
 }
 
-// TEXT through HistoryStream, BLOCK bytes read at a time.
-Reading streamed(const std::string& text, bool from_rest, std::size_t block) {
+// TEXT through HistoryStream, BLOCK bytes read at a time; WITH_FORCE: as a measured history
+// (time, displacement, force).
+Reading streamed(const std::string& text, bool from_rest, std::size_t block, bool with_force = false) {
   std::FILE* file = std::tmpfile();
   REQUIRE(file != nullptr);
   std::fwrite(text.data(), 1, text.size(), file);
@@ -46,12 +47,16 @@ Reading streamed(const std::string& text, bool from_rest, std::size_t block) {
   Reading r;
   try {
     HistoryStream stream("t.csv", file, from_rest, block);
+    if (with_force) stream.read_force();
     DrivePiece piece;
-    while (stream.next(piece)) {
+    std::vector<double> force;
+    while (stream.next(piece, with_force ? &force : nullptr)) {
+      if (with_force) REQUIRE(force.size() == piece.time.size());
       ++r.pieces;
       r.largest_piece = std::max(r.largest_piece, piece.time.size());
       r.time.insert(r.time.end(), piece.time.begin(), piece.time.end());
       r.displacement.insert(r.displacement.end(), piece.displacement.begin(), piece.displacement.end());
+      r.force.insert(r.force.end(), force.begin(), force.end());
       r.rows.insert(r.rows.end(), piece.rows.begin(), piece.rows.end());
     }
   } catch (const DataError& e) {
@@ -249,35 +254,6 @@ TEST_CASE("a workbook and a directory fail as whole-file reading fails") {
 
 namespace {
 
-// TEXT as a measured history (time, displacement, force) through HistoryStream, BLOCK bytes read at a time.
-Reading streamed_measured(const std::string& text, std::size_t block) {
-  std::FILE* file = std::tmpfile();
-  REQUIRE(file != nullptr);
-  std::fwrite(text.data(), 1, text.size(), file);
-  std::rewind(file);
-  Reading r;
-  try {
-    HistoryStream stream("t.csv", file, false, block);
-    stream.read_force();
-    DrivePiece piece;
-    std::vector<double> force;
-    while (stream.next(piece, &force)) {
-      REQUIRE(force.size() == piece.time.size());
-      r.time.insert(r.time.end(), piece.time.begin(), piece.time.end());
-      r.displacement.insert(r.displacement.end(), piece.displacement.begin(), piece.displacement.end());
-      r.force.insert(r.force.end(), force.begin(), force.end());
-      r.rows.insert(r.rows.end(), piece.rows.begin(), piece.rows.end());
-    }
-  } catch (const DataError& e) {
-    r = Reading{};
-    r.error = e.what();
-  } catch (const NotStreamable&) {
-    r = Reading{};
-    r.not_streamable = true;
-  }
-  return r;
-}
-
 // TEXT read whole into a measured history, as fits read CSV histories before #28.
 Reading whole_measured(const std::string& text) {
   Reading r;
@@ -295,7 +271,7 @@ void check_measured_alike(const std::string& text) {
   const Reading expected = whole_measured(text);
   for (const std::size_t block : {std::size_t{4}, std::size_t{9}, std::size_t{64}, HistoryStream::kBlockBytes}) {
     CAPTURE(block);
-    const Reading got = streamed_measured(text, block);
+    const Reading got = streamed(text, false, block, true);
     CHECK_FALSE(got.not_streamable);
     CHECK(got.error == expected.error);
     CHECK(got == expected);
