@@ -24,7 +24,7 @@ Prediction predict(const Network& network, const FitDataSet& set, FitMethod meth
     p.points = simulate_at(network, data, harmonic);
     return p;
   }
-  p.points = approximate_harmonic(network, data.amplitude, data.frequency);
+  p.points = approximate_harmonic(network, data.amplitude, data.frequency, harmonic.threads);
   if (method == FitMethod::corrected) {
     if (!correction) throw std::logic_error("the corrected method needs correction factors");
     apply_correction(*correction, p.points);

@@ -1,5 +1,6 @@
 #include "runtime/fit/thesis_approximation.hpp"
 
+#include "runtime/core/parallel_for.hpp"
 #include "runtime/network/leaf_kernels.hpp"
 
 #include <fmt/format.h>
@@ -124,19 +125,17 @@ std::string approximation_misfit(const Network& network) {
 }
 
 std::vector<HarmonicPoint> approximate_harmonic(const Network& network, const std::vector<double>& amplitudes,
-                                                const std::vector<double>& frequencies) {
+                                                const std::vector<double>& frequencies, int threads) {
   if (amplitudes.size() != frequencies.size())
     throw std::logic_error(
         fmt::format("approximate_harmonic: {} amplitudes but {} frequencies (pointwise pairs)", amplitudes.size(), frequencies.size()));
   const ThesisElements elements = thesis_elements(network);
-  std::vector<HarmonicPoint> points;
-  points.reserve(amplitudes.size());
-  for (std::size_t i = 0; i < amplitudes.size(); ++i) {
+  for (std::size_t i = 0; i < amplitudes.size(); ++i)
     if (!(amplitudes[i] > 0.0) || !(frequencies[i] > 0.0))
       throw std::logic_error(fmt::format("approximate_harmonic: point {} has amplitude {} mm, frequency {} Hz; both must be > 0", i + 1,
                                          amplitudes[i], frequencies[i]));
-    points.push_back(approximate_point(elements, amplitudes[i], frequencies[i]));
-  }
+  std::vector<HarmonicPoint> points(amplitudes.size());
+  parallel_for(points.size(), threads, [&](std::size_t i) { points[i] = approximate_point(elements, amplitudes[i], frequencies[i]); });
   return points;
 }
 

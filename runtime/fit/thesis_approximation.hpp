@@ -56,9 +56,10 @@ std::string approximation_misfit(const Network& network);
 
 // One point per (amplitudes[i], frequencies[i]) pair (same length; pointwise, not a grid), in
 // that order; converged = true, cycles = 0. Preconditions (std::logic_error otherwise): an
-// empty approximation_misfit, equal lengths, positive amplitudes and frequencies.
+// empty approximation_misfit, equal lengths, positive amplitudes and frequencies. The points
+// are evaluated THREADS at a time (parallel_for.hpp), the same points for every value.
 std::vector<HarmonicPoint> approximate_harmonic(const Network& network, const std::vector<double>& amplitudes,
-                                                const std::vector<double>& frequencies);
+                                                const std::vector<double>& frequencies, int threads = 1);
 
 // Correction factors of Table 5.1, one per point. `approximate` and `numerical` must hold the
 // same points (amplitude and frequency equal to 1e-12 relative) in the same order, else

@@ -122,6 +122,22 @@ TEST_CASE("the sensitivity Jacobian matches central differences of the scored re
     }
 }
 
+TEST_CASE("the sensitivity Jacobian on two threads is the one thread's, bit for bit") {
+  // Two files: the second's rows start after the first's, whichever thread writes them.
+  const runtime::Network truth = test::network_from(kTruth, "m"), start = test::network_from(kStart, "m");
+  const std::vector<int> free = runtime::bounded_parameters(start);
+  const runtime::Coordinates coordinates(start, free);
+  runtime::ScoreSettings score;
+  const std::vector<runtime::FitDataSet> data{harmonic_of(truth, score.harmonic.definition, false),
+                                              harmonic_of(truth, score.harmonic.definition, true)};
+  const runtime::ResidualsWithJacobian one = runtime::residual_jacobian(coordinates, coordinates.z0, data, score);
+  score.harmonic.threads = 2;
+  const runtime::ResidualsWithJacobian two = runtime::residual_jacobian(coordinates, coordinates.z0, data, score);
+  REQUIRE(one.jacobian.size() > 0);
+  CHECK(two.residuals == one.residuals);
+  CHECK(two.jacobian == one.jacobian);
+}
+
 TEST_CASE("a fit by sensitivities reaches the noise-free truth as the differenced fit does, in fewer evaluations") {
   const runtime::Network truth = test::network_from(kTruth, "m"), start = test::network_from(kStart, "m");
   runtime::FitSettings settings;

@@ -194,6 +194,22 @@ TEST_CASE("specimen D: the approximation deviates from the exact steady state by
   }
 }
 
+TEST_CASE("the approximation on two threads gives the one thread's points, bit for bit") {
+  const auto net = specimen_d();
+  std::vector<double> amplitudes, frequencies;
+  for (double u0 : {0.2, 1.0, 3.0})
+    for (double f = 1.0; f <= 51.0; f += 5.0) amplitudes.push_back(u0), frequencies.push_back(f);
+  const auto one = runtime::approximate_harmonic(net, amplitudes, frequencies, 1);
+  const auto two = runtime::approximate_harmonic(net, amplitudes, frequencies, 2);
+  REQUIRE(two.size() == one.size());
+  for (std::size_t i = 0; i < one.size(); ++i) {
+    CHECK(two[i].amplitude == one[i].amplitude);
+    CHECK(two[i].frequency == one[i].frequency);
+    CHECK(two[i].measures.stiffness == one[i].measures.stiffness);
+    CHECK(two[i].measures.phase == one[i].measures.phase);
+  }
+}
+
 TEST_CASE("the correction refuses points that do not match") {
   const auto net = test::network_from("model z { spring e (k = 100) friction f (k = 50, fy = 1) }", "z");
   const auto a = runtime::approximate_harmonic(net, {0.01, 0.1}, {1.0, 1.0});
