@@ -212,4 +212,12 @@ std::vector<double> positions_at_rest(const DaeGraph& graph, double u0, const st
   return x;
 }
 
+double stiffest_spring_force(const DaeGraph& graph, double length) {
+  double stiffest = 0.0;
+  for (const Edge& edge : graph.edges)
+    if (edge.kind == EdgeKind::spring || edge.kind == EdgeKind::yeoh || edge.kind == EdgeKind::poly_spring)
+      stiffest = std::max(stiffest, (edge.kind == EdgeKind::yeoh ? 2.0 : 1.0) * std::abs(edge.p[0]) * length);
+  return stiffest;
+}
+
 }  // namespace rheo::runtime

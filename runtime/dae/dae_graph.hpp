@@ -70,6 +70,11 @@ struct DaeGraph {
   static DaeGraph build(const Network& network);
 };
 
+// The largest force [N] a spring-like edge (spring, yeoh's linear term, poly_spring's k1)
+// carries at elongation LENGTH [mm]: the size of the terms a position's rounding is multiplied
+// by in the node balances.
+double stiffest_spring_force(const DaeGraph& graph, double length);
+
 // Internal node positions [mm] of a configuration at rest with the terminal at u0 [mm], from
 // the force [N] and elongation [mm] of every element the user wrote (probes order): the spring
 // of a Maxwell or friction element carries its force (e = F/k), its dashpot or slider the rest

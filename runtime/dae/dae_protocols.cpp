@@ -67,10 +67,7 @@ double dae_force_scale(const Network& network, double length, double rate) {
 }
 
 double dae_newton_tolerance(const DaeGraph& graph, double length, double force_scale) {
-  double stiffest = 0.0;
-  for (const Edge& edge : graph.edges)
-    if (edge.kind == EdgeKind::spring || edge.kind == EdgeKind::yeoh || edge.kind == EdgeKind::poly_spring)
-      stiffest = std::max(stiffest, (edge.kind == EdgeKind::yeoh ? 2.0 : 1.0) * std::abs(edge.p[0]) * length);
+  const double stiffest = stiffest_spring_force(graph, length);
   constexpr double ida_default = 0.33, floor = 1e-6;
   return stiffest > 0.0 ? std::clamp(ida_default * force_scale / stiffest, floor, ida_default) : ida_default;
 }
