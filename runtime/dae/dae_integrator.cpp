@@ -144,16 +144,21 @@ DaeIntegrator::DaeIntegrator(const DaeGraph& graph, const DaeOptions& options) :
         // 3.5e-3 N, and an absolute tolerance of 1e-8 of that on the slider's force (returned
         // through the stiff spring's elongation) failed IDA's error test at nearly every step
         // (2e7 steps a cycle; now 551, the same K* to 1e-9).
-        // Nor below what rounding leaves in it: a switch force balances the node forces, in
-        // which a position's last bit is multiplied by up to the stiffest spring's force F_k,
-        // and Newton must bring its update below newton_tolerance of the tolerance. A gap
-        // closing behind a 35366 N/mm spring and a quadratic dashpot carrying 0.011 N at the
-        // history's rate scale: an absolute tolerance of 1.1e-10 N, 1e-6 of it for Newton,
-        // against 2.7e-12 N of rounding, and the corrector failed at every h (IDA_CONV_FAIL).
         const Edge& edge = switch_edge(i - layout_.switch_force(0));
-        scale = edge.kind == EdgeKind::slider ? std::max(options_.force_scale, 0.5 * (edge.p[0] + edge.p[1])) : options_.force_scale;
-        const double rounding = kRoundingMargin * std::numeric_limits<double>::epsilon() * stiffest_spring_force(graph_, options_.length_scale);
-        scale = std::max(scale, rounding / (rtol * options_.newton_tolerance));
+        if (edge.kind == EdgeKind::slider) {
+          scale = std::max(options_.force_scale, 0.5 * (edge.p[0] + edge.p[1]));
+        } else {
+          // A gap's force, rigid in contact, has no scale of its own; it is kept above what
+          // rounding leaves in it. It balances node forces in which a position's last bit is
+          // multiplied by up to the stiffest spring's force F_k, and Newton must bring its
+          // update below newton_tolerance of the tolerance. A gap closing behind a 35366 N/mm
+          // spring and a quadratic dashpot carrying 0.011 N at the history's rate scale had an
+          // absolute tolerance of 1.1e-10 N, 1e-6 of it for Newton, against 2.7e-12 N of
+          // rounding, and the corrector failed at every h (IDA_CONV_FAIL). (Not for sliders:
+          // their yield force scales them, and their stick-slip roots read the force.)
+          const double rounding = kRoundingMargin * std::numeric_limits<double>::epsilon() * stiffest_spring_force(graph_, options_.length_scale);
+          scale = std::max(options_.force_scale, rounding / (rtol * options_.newton_tolerance));
+        }
         break;
       }
       case DaeLayout::Block::inerter_velocity: scale = options_.velocity_scale; break;

@@ -15,6 +15,7 @@
 #include "runtime/core/errors.hpp"
 #include "runtime/dae/dae_graph.hpp"
 #include "runtime/dae/dae_linear_start.hpp"
+#include "runtime/dae/dae_protocols.hpp"
 #include "runtime/protocols/harmonic.hpp"
 #include "support.hpp"
 
@@ -26,6 +27,7 @@
 #include <chrono>
 #include <cstdlib>
 #include <ctime>
+#include <numbers>
 
 using namespace rheo;
 
@@ -180,7 +182,12 @@ void compare(const std::string& source, double fastest_mass, Worst& worst) {
       for (const auto* p : {&a, &b_fine, &b_coarse}) REQUIRE(std::isfinite(p->measures.stiffness));
       if (!ida_harmonic || !a.converged || !b_fine.converged || !b_coarse.converged) break;
       // A point inside a gap's play carries no force on either side: it has no phase to compare.
-      if (a.measures.force_amplitude == 0.0 && b_fine.measures.force_amplitude == 0.0 && b_coarse.measures.force_amplitude == 0.0) break;
+      // IDA's may be a transient's rounding residue instead of 0 (seed 17, model 108: 9e-223 N
+      // where a quadratic dashpot has pushed the gap clear): below 1e-12 of what the network
+      // carries at this amplitude and rate counts as none.
+      const double no_force = 1e-12 * runtime::dae_force_scale(network, amplitude, 2.0 * std::numbers::pi * frequency * amplitude);
+      if (a.measures.force_amplitude <= no_force && b_fine.measures.force_amplitude <= no_force && b_coarse.measures.force_amplitude <= no_force)
+        break;
       compared = true;
       const double b_stiffness = 2.0 * b_fine.measures.stiffness - b_coarse.measures.stiffness;
       const double b_damping = 2.0 * b_fine.measures.damping - b_coarse.measures.damping;
