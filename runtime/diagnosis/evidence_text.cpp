@@ -118,8 +118,13 @@ std::string noise_sentence(const Diagnosis& d) {
                         100.0 * n.stiffness, degrees(n.phase))
           : fmt::format("from the force residual's roughness in time: {:.3f} % of max|F| (lag-1 autocorrelation of the residual {:.2f})",
                         100.0 * n.force, n.autocorrelation);
-  std::string out = fmt::format("measurement noise estimated {}; noise alone leaves {} = {:.4g} (+-{:.0f} %), and the gap is {:.2f} times that",
-                                what, d.gap_name, n.floor, percent(n.relative_error), d.noise_ratio);
+  std::string varies;
+  auto law = [](const NoiseProfile& p) { return p.varies ? fmt::format("a^{:.2f} f^{:.2f}", p.amplitude_slope, p.frequency_slope) : "one size"; };
+  if (d.patterns.has_harmonic && (n.stiffness_profile.varies || n.phase_profile.varies))
+    varies = fmt::format(" (RMS over the points; the variance varies as {} in stiffness, {} in phase)", law(n.stiffness_profile),
+                         law(n.phase_profile));
+  std::string out = fmt::format("measurement noise estimated {}{}; noise alone leaves {} = {:.4g} (+-{:.0f} %), and the gap is {:.2f} times that",
+                                what, varies, d.gap_name, n.floor, percent(n.relative_error), d.noise_ratio);
   if (d.chi_square_ratio > 0.0)
     out += fmt::format("; weighted by the noise, the model's least chi^2 is {:.4g} for N - p = {}, the residual {:.2f} times the noise",
                        d.chi_square_before, d.residual_terms - static_cast<int>(d.before.free.size()), d.chi_square_ratio);
