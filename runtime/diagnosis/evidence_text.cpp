@@ -5,9 +5,12 @@
 #include "runtime/fit/fit_report.hpp"
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 
 #include <cmath>
 #include <numbers>
+#include <utility>
+#include <vector>
 
 namespace rheo::runtime::diagnosis {
 namespace {
@@ -118,11 +121,12 @@ std::string noise_sentence(const Diagnosis& d) {
                         100.0 * n.stiffness, degrees(n.phase))
           : fmt::format("from the force residual's roughness in time: {:.3f} % of max|F| (lag-1 autocorrelation of the residual {:.2f})",
                         100.0 * n.force, n.autocorrelation);
-  std::string varies;
-  auto law = [](const NoiseProfile& p) { return p.varies ? fmt::format("a^{:.2f} f^{:.2f}", p.amplitude_slope, p.frequency_slope) : "one size"; };
-  if (d.patterns.has_harmonic && (n.stiffness_profile.varies || n.phase_profile.varies))
-    varies = fmt::format(" (RMS over the points; the variance varies as {} in stiffness, {} in phase)", law(n.stiffness_profile),
-                         law(n.phase_profile));
+  // Where the noise's size varies over the grid (noise_profile.hpp): its law, the sizes above being RMS.
+  std::vector<std::string> laws;
+  for (const auto& [name, p] : {std::pair{"stiffness", &n.stiffness_profile}, std::pair{"phase", &n.phase_profile}})
+    if (d.patterns.has_harmonic && p->varies)
+      laws.push_back(fmt::format("the {} noise's variance as a^{:.2f} f^{:.2f}", name, p->amplitude_slope, p->frequency_slope));
+  const std::string varies = laws.empty() ? "" : fmt::format(" (RMS over the points; {})", fmt::join(laws, ", "));
   std::string out = fmt::format("measurement noise estimated {}{}; noise alone leaves {} = {:.4g} (+-{:.0f} %), and the gap is {:.2f} times that",
                                 what, varies, d.gap_name, n.floor, percent(n.relative_error), d.noise_ratio);
   if (d.chi_square_ratio > 0.0)
