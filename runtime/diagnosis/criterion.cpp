@@ -1,5 +1,6 @@
 #include "runtime/diagnosis/criterion.hpp"
 
+#include "runtime/fit/data_set_fit.hpp"
 #include "runtime/fit/fit_coordinates.hpp"
 #include "runtime/fit/fit_scoring.hpp"
 #include "runtime/fit/fit_search.hpp"
@@ -7,6 +8,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <limits>
 #include <numbers>
 
 namespace rheo::runtime::diagnosis {
@@ -24,32 +26,39 @@ bool noise_weighted(const std::vector<FitDataSet>& data, const NoiseEstimate& no
 
 namespace {
 
-// The variance of a damping term r_d at the measured phase PHASE under NOISE (criterion.hpp);
-// 0 where eq. 5.1 leaves the term out (phase outside (0, pi)).
-double damping_variance(double phase, const NoiseEstimate& noise) {
+// The variance of a damping term r_d at the measured phase PHASE under NOISE (criterion.hpp) at
+// amplitude A, frequency F; 0 where eq. 5.1 leaves the term out (phase outside (0, pi)).
+double damping_variance(double phase, const NoiseEstimate& noise, double a, double f) {
   if (!(phase > 0.0 && phase < std::numbers::pi)) return 0.0;
-  const double s_phi2 = noise.phase * noise.phase, cot = std::cos(phase) / std::sin(phase);
+  const double s_phi2 = noise.phase * noise.phase * noise.phase_profile.factor(a, f), cot = std::cos(phase) / std::sin(phase);
   return s_phi2 * cot * cot + 0.5 * s_phi2 * s_phi2;
+}
+
+// The variance of a stiffness term r_K at amplitude A, frequency F.
+double stiffness_variance(const NoiseEstimate& noise, double a, double f) {
+  return noise.stiffness * noise.stiffness * noise.stiffness_profile.factor(a, f);
 }
 
 }  // namespace
 
 double noise_chi_square(const FitResult& fit, const NoiseEstimate& noise) {
-  const double s_k2 = noise.stiffness * noise.stiffness;
+  const bool varies = noise.stiffness_profile.varies || noise.phase_profile.varies;
   double chi2 = 0.0;
   for (const auto& set : fit.datasets) {
     if (!set.harmonic) continue;
     for (std::size_t i = 0; i < set.residuals.stiffness.size(); ++i) {
-      chi2 += set.residuals.stiffness[i] * set.residuals.stiffness[i] / s_k2;
-      if (const double v = damping_variance(set.measured_phase[i], noise); v > 0.0) chi2 += set.residuals.damping[i] * set.residuals.damping[i] / v;
+      const double a = varies ? set.prediction.points.at(i).amplitude : 1.0, f = varies ? set.prediction.points.at(i).frequency : 1.0;
+      chi2 += set.residuals.stiffness[i] * set.residuals.stiffness[i] / stiffness_variance(noise, a, f);
+      if (const double v = damping_variance(set.measured_phase[i], noise, a, f); v > 0.0)
+        chi2 += set.residuals.damping[i] * set.residuals.damping[i] / v;
     }
   }
   return chi2;
 }
 
-double least_chi_square(const FitResult& fit, const std::vector<FitDataSet>& data, const NoiseEstimate& noise, const FitSettings& settings,
-                        int evaluations) {
-  const double own = noise_chi_square(fit, noise);
+LeastChiSquare least_chi_square(const FitResult& fit, const std::vector<FitDataSet>& data, const NoiseEstimate& noise, const FitSettings& settings,
+                                int evaluations) {
+  const LeastChiSquare own{noise_chi_square(fit, noise), fit.network.parameters()};
   if (fit.free.empty() || evaluations <= static_cast<int>(fit.free.size())) return own;
   const Coordinates coordinates(fit.network, fit.free);
   const Residuals terms = [&](const std::vector<double>& z) {
@@ -60,8 +69,8 @@ double least_chi_square(const FitResult& fit, const std::vector<FitDataSet>& dat
       const Prediction p = predict(network, set, FitMethod::exact, settings.score.harmonic, nullptr);
       for (std::size_t i = 0; i < d.size(); ++i) {
         const CycleMeasures& m = p.points[i].measures;
-        r.push_back((m.stiffness / d.stiffness[i] - 1.0) / noise.stiffness);
-        const double v = damping_variance(d.phase[i], noise);
+        r.push_back((m.stiffness / d.stiffness[i] - 1.0) / std::sqrt(stiffness_variance(noise, d.amplitude[i], d.frequency[i])));
+        const double v = damping_variance(d.phase[i], noise, d.amplitude[i], d.frequency[i]);
         r.push_back(v > 0.0 ? (std::sin(m.phase) / std::sin(d.phase[i]) - 1.0) / std::sqrt(v) : 0.0);
       }
     }
@@ -77,7 +86,52 @@ double least_chi_square(const FitResult& fit, const std::vector<FitDataSet>& dat
                       std::chrono::duration_cast<std::chrono::steady_clock::duration>(std::chrono::duration<double>(*settings.time_limit));
   const SearchResult found = search_least_squares(terms, coordinates.z0, coordinates.lower, coordinates.upper, coordinates.logarithmic, search, {},
                                                   settings.interrupt);
-  return std::isfinite(found.value) ? std::min(own, found.value) : own;
+  if (!(std::isfinite(found.value) && found.value < own.chi_square)) return own;
+  return {found.value, coordinates.values(found.z)};
+}
+
+FitResult fit_at(const FitResult& fit, const std::vector<double>& values, const std::vector<FitDataSet>& data, const HarmonicOptions& harmonic) {
+  FitResult at = fit;
+  at.network = fit.network.with_parameters(values);
+  at.datasets.clear();
+  for (const FitDataSet& set : data) at.datasets.push_back(data_set_fit(at.network, set, harmonic));
+  return at;
+}
+
+NoiseAndChiSquare noise_at_likelihood_maximum(const FitResult& fit, const std::vector<FitDataSet>& data, const NoiseEstimate& noise,
+                                              const FitSettings& settings, int evaluations) {
+  NoiseAndChiSquare out{noise, 0.0, 0};
+  const int terms = residual_terms(data), p = static_cast<int>(fit.free.size());
+  FitResult at = fit;
+  for (int round = 0; round < kNoiseRounds; ++round) {
+    const LeastChiSquare least = least_chi_square(at, data, out.noise, settings, round == 0 ? evaluations : evaluations / 2);
+    ++out.rounds;
+    out.chi_square = least.chi_square;
+    at = fit_at(at, least.values, data, settings.score.harmonic);
+    at.start_values.clear();  // later rounds search from the last point alone
+    const NoiseEstimate again = estimate_noise(at, data);
+    if (!noise_weighted(data, again)) break;
+    const double chi_square = std::min(noise_chi_square(at, again), noise_chi_square(fit, again));
+    // Taken only where the residual it came from is at it: a fit weighted to a term whose noise
+    // is near 0 follows that term, and its smoother residual would give a smaller noise still.
+    if (beyond_noise_ratio(chi_square_ratio(chi_square, terms, p), again)) break;
+    const double change = std::abs(std::log(again.stiffness / again.phase) - std::log(out.noise.stiffness / out.noise.phase));
+    out.noise = again, out.chi_square = chi_square;
+    if (change <= kNoiseRatioChange) break;
+  }
+  return out;
+}
+
+double residual_ratio(const Residual& residual, const NoiseEstimate& noise, int residual_terms, bool weighted) {
+  if (weighted) return chi_square_ratio(residual.chi_square, residual_terms, residual.parameters);
+  if (noise.estimated && !(noise.floor > 0.0)) return residual.gap > 0.0 ? std::numeric_limits<double>::infinity() : 0.0;
+  return noise_ratio(residual.gap, noise, residual_terms, residual.parameters);
+}
+
+bool reaches_noise(const Residual& before, const Residual& after, const NoiseEstimate& noise, int residual_terms, bool weighted) {
+  if (!noise.estimated) return false;
+  return beyond_noise_ratio(residual_ratio(before, noise, residual_terms, weighted), noise) &&
+         !beyond_noise_ratio(residual_ratio(after, noise, residual_terms, weighted), noise);
 }
 
 double chi_square_ratio(double chi_square, int residual_terms, int parameters) {

@@ -52,9 +52,61 @@ double criterion(const FitResult& fit, int residual_terms, bool weighted, const 
 // (pure noise: a Maxwell element fitted as a dashpot at tau's bound, chi^2 1122 where the
 // model's least is 31). Levenberg-Marquardt on the terms r/s of chi^2 from FIT's values and
 // from where FIT started (FitResult::start_values), at most EVALUATIONS evaluations in all under
-// SETTINGS' harmonic options and time limit; FIT's own chi^2 where the search finds nothing
-// lower. Requires noise_weighted(DATA, NOISE).
-double least_chi_square(const FitResult& fit, const std::vector<FitDataSet>& data, const NoiseEstimate& noise, const FitSettings& settings,
-                        int evaluations);
+// SETTINGS' harmonic options and time limit; FIT's own chi^2 and values where the search finds
+// nothing lower. Requires noise_weighted(DATA, NOISE).
+struct LeastChiSquare {
+  double chi_square = 0.0;
+  std::vector<double> values;  // every model parameter (Network::parameters() order) where it is reached
+};
+LeastChiSquare least_chi_square(const FitResult& fit, const std::vector<FitDataSet>& data, const NoiseEstimate& noise, const FitSettings& settings,
+                                int evaluations);
+
+// FIT's model with every parameter at VALUES and its exact response to DATA (FitResult::network
+// and datasets; the rest of FIT's result is kept): the residual of another point of the search.
+FitResult fit_at(const FitResult& fit, const std::vector<double>& values, const std::vector<FitDataSet>& data, const HarmonicOptions& harmonic);
+
+// The noise behind FIT's residual and its least chi^2, estimated together. The residual of eq.
+// 5.1's fit bends through the phase noise of a few nearly elastic points, and estimate_noise
+// takes that bend for noise (pure noise of 0.15 deg: estimated up to 2.3 times larger); the
+// residual at the likelihood's maximum holds less of it. From NOISE (estimated on FIT's
+// residual): the least chi^2 (EVALUATIONS), the noise estimated again on the residual where it
+// is reached, and while that changes the ratio of stiffness to phase noise, which sets the
+// weights of chi^2, by more than kNoiseRatioChange, the least chi^2 again from there under the
+// new estimate (at most kNoiseRounds rounds in all, half the evaluations each after the first).
+// The chi^2 returned is the lower of FIT's and the last point's under the last estimate. A
+// round's estimate is not taken where it leaves the criterion unweighted, or where the residual
+// it came from is beyond it (beyond_noise_ratio of chi_square_ratio): a fit weighted to a term
+// whose noise is near 0 (phases measured without noise) follows that term, and its residual,
+// smoother still, would give a smaller noise again (pure force-amplitude noise without phase
+// noise: chi^2 / (N - p) 0.84 under the first estimate, 3.6 under the re-estimate). Requires
+// noise_weighted(DATA, NOISE).
+struct NoiseAndChiSquare {
+  NoiseEstimate noise;
+  double chi_square = 0.0;
+  int rounds = 0;  // least chi^2 searches run
+};
+inline constexpr double kNoiseRatioChange = 0.1;  // in ln(s_K / s_phi)
+inline constexpr int kNoiseRounds = 3;
+NoiseAndChiSquare noise_at_likelihood_maximum(const FitResult& fit, const std::vector<FitDataSet>& data, const NoiseEstimate& noise,
+                                              const FitSettings& settings, int evaluations);
+
+// A fit's residual as the verdict weighs it: its gap (diagnose.hpp), its chi^2 under the noise
+// (where the criterion is noise-weighted) and its free parameters.
+struct Residual {
+  double gap = 0.0, chi_square = 0.0;
+  int parameters = 0;
+};
+
+// RESIDUAL over what noise alone leaves (1: at the noise) for N residual terms: where WEIGHTED,
+// sqrt(chi^2 / (N - p)) (chi_square_ratio), else the gap over the floor (noise_ratio); +inf for
+// a positive gap where the estimated floor is 0, 0 without an estimate.
+double residual_ratio(const Residual& residual, const NoiseEstimate& noise, int residual_terms, bool weighted);
+
+// Whether a candidate took the model's residual BEFORE, beyond the noise (beyond_noise_ratio of
+// residual_ratio), to the noise (AFTER not beyond it): a residual just beyond the noise cannot
+// fall by a fixed share, yet a candidate that leaves only noise explains all of it. Judged as
+// the verdict none / unexplained is: on chi^2 where WEIGHTED, else on the gap. Without an
+// estimate nothing can be told from noise: false.
+bool reaches_noise(const Residual& before, const Residual& after, const NoiseEstimate& noise, int residual_terms, bool weighted);
 
 }  // namespace rheo::runtime::diagnosis

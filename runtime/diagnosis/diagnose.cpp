@@ -139,9 +139,14 @@ class Diagnoser {
     if (d_.noise_weighted && !stopped()) {
       // The likelihood at its maximum (criterion.hpp least_chi_square), from the fit and from its start.
       stage("weighing the fit by the noise");
-      d_.chi_square_before = least_chi_square(d_.before, data_, d_.noise, within(1.0 / 3.0).fit, 2 * kLikelihoodJacobians * (p + 1));
+      // The noise estimated again where the likelihood is at its maximum (criterion.hpp noise_at_likelihood_maximum).
+      const NoiseAndChiSquare weighed = noise_at_likelihood_maximum(d_.before, data_, d_.noise, within(1.0 / 3.0).fit,
+                                                                    2 * kLikelihoodJacobians * (p + 1));
+      d_.noise = weighed.noise;
+      d_.chi_square_before = weighed.chi_square;
       d_.criterion_before = d_.chi_square_before + p * std::log(static_cast<double>(d_.residual_terms));
       d_.chi_square_ratio = chi_square_ratio(d_.chi_square_before, d_.residual_terms, p);
+      d_.noise_ratio = noise_ratio(d_.gap_before, d_.noise, d_.residual_terms, p);
     }
     fitted_text_ = lang::write_fitted_source(source_.text, source_.file, *base_.model, d_.before.network.parameters(), d_.before.free, {});
     d_.interrupted = d_.before.interrupted;
@@ -295,21 +300,30 @@ class Diagnoser {
     std::optional<Trial> next;
     if (trial.shape == Shape::capped_column) next = resonance_free_limit(trial, *candidate.model, result.network, outcome.element);
     if (column != nullptr) next = column_from_limit(*column, *candidate.model, result.network, outcome.element);
-    // A gap just beyond the noise cannot fall by min_improvement; taking it to the noise earns too.
-    const bool to_noise = reaches_noise(d_.gap_before, static_cast<int>(d_.before.free.size()), outcome.gap_after, outcome.parameters, d_.noise,
-                                        d_.residual_terms);
-    const bool gains = outcome.unresolved.empty() && (outcome.gap_after <= (1.0 - s_.min_improvement) * d_.gap_before || to_noise);
+    // A gap just beyond the noise cannot fall by min_improvement; taking it to the noise earns
+    // too, judged as the verdict is (criterion.hpp reaches_noise).
+    const double penalty = outcome.parameters * std::log(static_cast<double>(d_.residual_terms));
+    auto to_noise = [&](double chi_square) {
+      return reaches_noise(before_residual(), {outcome.gap_after, chi_square, outcome.parameters}, d_.noise, d_.residual_terms, d_.noise_weighted);
+    };
+    const bool drops = outcome.gap_after <= (1.0 - s_.min_improvement) * d_.gap_before;
+    bool gains = outcome.unresolved.empty() && (drops || to_noise(outcome.criterion - penalty));
     // A candidate that may earn is judged, as the model was, at its likelihood's maximum; one
     // whose fit earns already keeps its fit's chi^2, an upper bound of its least.
-    if (gains && d_.noise_weighted && !(outcome.criterion < d_.criterion_before) && !stopped())
-      outcome.criterion = least_chi_square(result, data_, d_.noise, within(share).fit, kLikelihoodJacobians * (outcome.parameters + 1)) +
-                          outcome.parameters * std::log(static_cast<double>(d_.residual_terms));
+    if (gains && d_.noise_weighted && !(outcome.criterion < d_.criterion_before) && !stopped()) {
+      outcome.criterion = least_chi_square(result, data_, d_.noise, within(share).fit, kLikelihoodJacobians * (outcome.parameters + 1)).chi_square +
+                          penalty;
+      gains = drops || to_noise(outcome.criterion - penalty);
+    }
     const bool earns = gains && outcome.criterion < d_.criterion_before;
     if (earns && (!chosen_ || preferred(outcome, d_.candidates[chosen_->candidate], s_.parsimony)))
       chosen_ = Chosen{d_.candidates.size(), trial, std::move(candidate), std::move(result)};
     d_.candidates.push_back(outcome);
     return next;
   }
+
+  // The model's residual as fitted, its chi^2 the least (criterion.hpp Residual).
+  Residual before_residual() const { return {d_.gap_before, d_.chi_square_before, static_cast<int>(d_.before.free.size())}; }
 
   // Step 5: Levenberg-Marquardt over every free parameter of the chosen model again (refit.hpp
   // local_search), kept when no worse; its
@@ -337,8 +351,8 @@ class Diagnoser {
   // No candidate earned: the model as fitted, its residual at the noise (none) or not (unexplained).
   Diagnosis finish_none() {
     d_.effect = Effect::none;
-    const bool beyond_noise = d_.noise_weighted ? beyond_noise_ratio(d_.chi_square_ratio, d_.noise)
-                                                : systematic(d_.gap_before, d_.noise, d_.residual_terms, static_cast<int>(d_.before.free.size()));
+    const bool beyond_noise = d_.noise.estimated &&
+                              beyond_noise_ratio(residual_ratio(before_residual(), d_.noise, d_.residual_terms, d_.noise_weighted), d_.noise);
     d_.verdict = beyond_noise ? Verdict::unexplained : Verdict::none;
     if (beyond_noise) d_.unexplained = residual_shape(d_.before, data_);
     d_.reason = beyond_noise ? unexplained_reason(d_) : none_reason(d_, s_);

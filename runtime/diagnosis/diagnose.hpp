@@ -31,7 +31,10 @@
 //      lowers the gap enough to earn but whose fit's chi^2 does not earn already (an upper bound
 //      of its least), are minimised from their fits (criterion.hpp least_chi_square), and the model's least chi^2 over N - p, not the gap over the floor,
 //      tells noise from a systematic residual (on pure noise the gap of a fit drawn to a few
-//      nearly elastic points' phase noise was twice the floor, at chi^2 / (N - p) = 0.46).
+//      nearly elastic points' phase noise was twice the floor, at chi^2 / (N - p) = 0.46); the
+//      noise is estimated again on the residual at the model's least chi^2 (criterion.hpp
+//      noise_at_likelihood_maximum), and a candidate's gain to the noise is judged by the same
+//      measure (criterion.hpp reaches_noise).
 //   5. Polish the chosen model: Levenberg-Marquardt over every free parameter again with the
 //      refit's budget, at least 10 Jacobians (refit.hpp kLocalJacobians), ended where a
 //      Jacobian's step gains less than kPolishCrawl of the objective; gap_after is the
@@ -129,7 +132,7 @@ struct Diagnosis {
   Effect effect = Effect::none;  // the effect named; none for the verdicts none and unexplained
   std::string reason;            // why, with numbers
   ResidualPatterns patterns;     // of the model as fitted
-  NoiseEstimate noise;           // behind the residual of the model as fitted
+  NoiseEstimate noise;           // behind the residual of the model as fitted, or at its least chi^2 where weighted
   double noise_ratio = 0.0;      // gap_before over the floor noise leaves (noise_estimate.hpp); 0 without an estimate
   // Where the criterion is noise-weighted: the least chi^2 of the model as fitted
   // (criterion.hpp least_chi_square) and sqrt(chi^2 / (N - p)), the residual at the likelihood's

@@ -98,6 +98,10 @@ std::string diagnosis_report_json(const std::string& source_file, const Diagnosi
                                          {"pseudo_residuals", n.pseudo_residuals}}
                                   : json(nullptr);
   if (n.estimated && d.patterns.has_harmonic) evidence["noise"]["stiffness"] = n.stiffness, evidence["noise"]["phase_deg"] = degrees(n.phase);
+  // The variance's power law over the grid (noise_profile.hpp), where it varies.
+  for (const auto& [name, profile] : {std::pair{"stiffness_profile", &n.stiffness_profile}, std::pair{"phase_profile", &n.phase_profile}})
+    if (n.estimated && profile->varies)
+      evidence["noise"][name] = json{{"amplitude_slope", profile->amplitude_slope}, {"frequency_slope", profile->frequency_slope}};
   if (d.chi_square_ratio > 0.0)
     evidence["noise"]["least_chi_square"] = d.chi_square_before, evidence["noise"]["chi_square_ratio"] = d.chi_square_ratio;
   if (n.estimated && !d.patterns.has_harmonic) evidence["noise"]["force"] = n.force, evidence["noise"]["autocorrelation"] = n.autocorrelation;

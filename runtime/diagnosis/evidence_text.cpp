@@ -5,9 +5,12 @@
 #include "runtime/fit/fit_report.hpp"
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 
 #include <cmath>
 #include <numbers>
+#include <utility>
+#include <vector>
 
 namespace rheo::runtime::diagnosis {
 namespace {
@@ -118,8 +121,14 @@ std::string noise_sentence(const Diagnosis& d) {
                         100.0 * n.stiffness, degrees(n.phase))
           : fmt::format("from the force residual's roughness in time: {:.3f} % of max|F| (lag-1 autocorrelation of the residual {:.2f})",
                         100.0 * n.force, n.autocorrelation);
-  std::string out = fmt::format("measurement noise estimated {}; noise alone leaves {} = {:.4g} (+-{:.0f} %), and the gap is {:.2f} times that",
-                                what, d.gap_name, n.floor, percent(n.relative_error), d.noise_ratio);
+  // Where the noise's size varies over the grid (noise_profile.hpp): its law, the sizes above being RMS.
+  std::vector<std::string> laws;
+  for (const auto& [name, p] : {std::pair{"stiffness", &n.stiffness_profile}, std::pair{"phase", &n.phase_profile}})
+    if (d.patterns.has_harmonic && p->varies)
+      laws.push_back(fmt::format("the {} noise's variance as a^{:.2f} f^{:.2f}", name, p->amplitude_slope, p->frequency_slope));
+  const std::string varies = laws.empty() ? "" : fmt::format(" (RMS over the points; {})", fmt::join(laws, ", "));
+  std::string out = fmt::format("measurement noise estimated {}{}; noise alone leaves {} = {:.4g} (+-{:.0f} %), and the gap is {:.2f} times that",
+                                what, varies, d.gap_name, n.floor, percent(n.relative_error), d.noise_ratio);
   if (d.chi_square_ratio > 0.0)
     out += fmt::format("; weighted by the noise, the model's least chi^2 is {:.4g} for N - p = {}, the residual {:.2f} times the noise",
                        d.chi_square_before, d.residual_terms - static_cast<int>(d.before.free.size()), d.chi_square_ratio);

@@ -72,8 +72,12 @@ struct GridTerm {
 };
 
 // Moments of r_K, r_d and the phase along one axis of the grid CELLS (key: (row level, position
-// level) -> terms), X the positions' measure; ALONG_FREQUENCY: rows are amplitude levels.
-std::array<Moments, 3> along(const std::map<Cell, GridTerm>& cells, const std::vector<double>& x, bool along_frequency) {
+// level) -> terms), X the positions' measure; ALONG_FREQUENCY: rows are amplitude levels. With
+// the pseudo-residuals of r_K and the phase for the noise profile (PROFILE[0], [1]), at the
+// levels AMPLITUDES and FREQUENCIES.
+std::array<Moments, 3> along(const std::map<Cell, GridTerm>& cells, const std::vector<double>& x, bool along_frequency,
+                             const std::vector<double>& amplitudes, const std::vector<double>& frequencies,
+                             std::array<std::vector<ProfileTerm>, 2>& profile) {
   std::array<Moments, 3> out;
   std::map<std::size_t, std::vector<std::pair<std::size_t, GridTerm>>> rows;
   for (const auto& [key, term] : cells) rows[key.first].emplace_back(key.second, term);  // sorted by position
@@ -86,9 +90,18 @@ std::array<Moments, 3> along(const std::map<Cell, GridTerm>& cells, const std::v
         const std::size_t position = line[i + k - 1].first;
         at[k] = along_frequency ? Cell{row, position} : Cell{position, row};
       }
-      out[0].add(pseudo_q(xl, l.r_k, xi, c.r_k, xh, h.r_k), at);
+      const double q_k = pseudo_q(xl, l.r_k, xi, c.r_k, xh, h.r_k), q_p = pseudo_q(xl, l.phase, xi, c.phase, xh, h.phase);
+      out[0].add(q_k, at);
       out[1].add(pseudo_q(xl, l.r_d, xi, c.r_d, xh, h.r_d), at);
-      out[2].add(pseudo_q(xl, l.phase, xi, c.phase, xh, h.phase), at);
+      out[2].add(q_p, at);
+      const double wl = (xh - xi) / (xh - xl), wh = (xi - xl) / (xh - xl), norm = 1.0 + wl * wl + wh * wh;
+      ProfileTerm term;
+      const std::array<Cell, 3> middle_first{at[1], at[0], at[2]};
+      const double weights[3]{1.0 / norm, wl * wl / norm, wh * wh / norm};
+      for (std::size_t k = 0; k < 3; ++k)
+        term.amplitude[k] = amplitudes[middle_first[k].first], term.frequency[k] = frequencies[middle_first[k].second], term.weight[k] = weights[k];
+      term.q = q_k, profile[0].push_back(term);
+      term.q = q_p, profile[1].push_back(term);
     }
   return out;
 }
@@ -131,12 +144,13 @@ void estimate_harmonic(const FitResult& fit, const std::vector<FitDataSet>& data
       by_frequency.emplace(std::pair{f, a}, term);
     }
   }
-  const std::array<Moments, 3> along_f = along(by_amplitude, even_measure(frequencies), true);
-  const std::array<Moments, 3> along_a = along(by_frequency, even_measure(amplitudes), false);
+  std::array<std::vector<ProfileTerm>, 2> profile_f, profile_a;
+  const std::array<Moments, 3> along_f = along(by_amplitude, even_measure(frequencies), true, amplitudes, frequencies, profile_f);
+  const std::array<Moments, 3> along_a = along(by_frequency, even_measure(amplitudes), false, amplitudes, frequencies, profile_a);
   // Per term, both axes pooled where they agree within two standard errors of their difference;
   // else the smoother one (the other holds a systematic bend).
   std::array<Moments, 3> taken;
-  std::array<bool, 3> along_frequency{};
+  std::array<bool, 3> along_frequency{}, pooled{};
   for (std::size_t term = 0; term < 3; ++term) {
     const Moments &f = along_f[term], &a = along_a[term];
     if (f.m < kMinPseudoResiduals || a.m < kMinPseudoResiduals) {
@@ -144,6 +158,7 @@ void estimate_harmonic(const FitResult& fit, const std::vector<FitDataSet>& data
       along_frequency[term] = f.m >= a.m;
     } else if (std::abs(f.mean() - a.mean()) <= 2.0 * std::hypot(f.standard_error(), a.standard_error())) {
       taken[term] = f.pooled(a);
+      pooled[term] = true;
     } else {
       taken[term] = f.mean() <= a.mean() ? f : a;
       along_frequency[term] = f.mean() <= a.mean();
@@ -156,6 +171,17 @@ void estimate_harmonic(const FitResult& fit, const std::vector<FitDataSet>& data
   out.stiffness = std::sqrt(k->mean());
   out.phase = std::sqrt(phase->mean());
   out.harmonic_along_frequency = along_frequency[0];
+  std::vector<std::pair<double, double>> measured;
+  for (const Cell& c : points) measured.emplace_back(amplitudes[c.first], frequencies[c.second]);
+  // The profile from the pseudo-residuals of the axis taken (term 0: r_K; term 2: the phase).
+  auto profile_of = [&](std::size_t term, std::size_t index) {
+    std::vector<ProfileTerm> terms = along_frequency[term] || pooled[term] ? profile_f[index] : profile_a[index];
+    if (pooled[term]) terms.insert(terms.end(), profile_a[index].begin(), profile_a[index].end());
+    return fit_noise_profile(terms, measured);
+  };
+  out.stiffness_profile = profile_of(0, 0), out.phase_profile = profile_of(2, 1);
+  if (out.stiffness_profile.varies) out.stiffness = std::sqrt(out.stiffness_profile.mean_variance);
+  if (out.phase_profile.varies) out.phase = std::sqrt(out.phase_profile.mean_variance);
   out.pseudo_residuals = std::min(k->m, dmp->m);
   const double variance = (k->total_over(points) + dmp->total_over(points)) / n;  // per point, of r_K^2 + r_d^2
   out.floor = std::sqrt(n * variance) / n;
@@ -224,8 +250,5 @@ bool systematic(double gap, const NoiseEstimate& noise, int residual_terms, int 
 
 bool beyond_noise_ratio(double ratio, const NoiseEstimate& noise) { return ratio > 1.0 + std::max(0.25, 3.0 * noise.relative_error); }
 
-bool reaches_noise(double gap_before, int parameters_before, double gap_after, int parameters_after, const NoiseEstimate& noise, int residual_terms) {
-  return systematic(gap_before, noise, residual_terms, parameters_before) && !systematic(gap_after, noise, residual_terms, parameters_after);
-}
 
 }  // namespace rheo::runtime::diagnosis

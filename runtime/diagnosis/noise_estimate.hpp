@@ -24,11 +24,16 @@
 // Histories: r = (F - F_exp)/max|F_exp| along time, neighbours the adjacent samples; pure noise
 // leaves an RMS force residual of s per file, and the RMS over files as the gap takes it.
 //
+// Where the noise's size varies over the grid (noise_profile.hpp), the pseudo-residuals of the
+// axis taken (both where pooled) fit its power law in amplitude and frequency, for r_K and the
+// phase separately.
+//
 // The estimate's standard error is that of a mean of the q_i, sd(q) sqrt(2/m) for m of them
 // (neighbouring q_i share points: their correlation doubles the variance of the mean), halved
 // for the square root.
 #pragma once
 
+#include "runtime/diagnosis/noise_profile.hpp"
 #include "runtime/fit/fit.hpp"
 
 #include <vector>
@@ -36,12 +41,15 @@
 namespace rheo::runtime::diagnosis {
 
 struct NoiseEstimate {
-  bool estimated = false;                 // enough neighbours: at least kMinPseudoResiduals pseudo-residuals
-  double floor = 0.0;                     // the gap pure noise would leave, in the gap's measure
-  double relative_error = 0.0;            // standard error of `floor` relative to it
-  int pseudo_residuals = 0;               // m: over the axis taken (harmonic), over every history
-  double stiffness = 0.0;                 // harmonic: RMS noise of K/K_exp [-]
-  double phase = 0.0;                     // harmonic: RMS noise of the phase [rad]
+  bool estimated = false;       // enough neighbours: at least kMinPseudoResiduals pseudo-residuals
+  double floor = 0.0;           // the gap pure noise would leave, in the gap's measure
+  double relative_error = 0.0;  // standard error of `floor` relative to it
+  int pseudo_residuals = 0;     // m: over the axis taken (harmonic), over every history
+  double stiffness = 0.0;       // harmonic: RMS noise of K/K_exp [-]
+  double phase = 0.0;           // harmonic: RMS noise of the phase [rad]
+  // harmonic: how the variances of K/K_exp and of the phase vary over the grid (noise_profile.hpp;
+  // where they do, `stiffness` and `phase` are the RMS of the fitted profile over the points)
+  NoiseProfile stiffness_profile, phase_profile;
   bool harmonic_along_frequency = false;  // harmonic: the stiffness estimate along frequency alone (else amplitude, or both)
   double force = 0.0;                     // histories: RMS force noise relative to max|F_exp| [-], RMS over files
   double autocorrelation = 0.0;           // histories: the residual's lag-1 autocorrelation (0 white, near 1 smooth)
@@ -57,11 +65,6 @@ NoiseEstimate estimate_noise(const FitResult& fit, const std::vector<FitDataSet>
 // GAP must exceed that by the larger of 25 % and three standard errors of the estimate.
 // Without an estimate (too few neighbours) nothing can be told from noise: false.
 bool systematic(double gap, const NoiseEstimate& noise, int residual_terms, int parameters);
-
-// Whether a candidate took a systematic GAP_BEFORE (P_BEFORE parameters) to the noise
-// (GAP_AFTER with P_AFTER is not systematic): a gap just beyond the noise cannot fall by a fixed
-// share, yet a candidate that leaves only noise explains all of it.
-bool reaches_noise(double gap_before, int parameters_before, double gap_after, int parameters_after, const NoiseEstimate& noise, int residual_terms);
 
 // Whether RATIO, a residual over what noise leaves (1: at the noise), is beyond NOISE: above 1 by
 // more than the larger of 25 % and three standard errors of the estimate.

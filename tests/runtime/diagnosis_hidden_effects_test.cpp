@@ -192,13 +192,8 @@ TEST_CASE("diagnose, harmonic: a mass moved past its resonance is inertia, and t
 }
 
 // A model with the structure of the data's: nothing is missing.
-const char* const kExplainedTruth = "model truth { spring s (k = 700 N/mm)  maxwell m (k = 90 N/mm, tau = 6 ms)  friction f (k = 250 N/mm, uy = 60 um) }";
-const char* const kExplainedStart = R"(model start {
-  spring s (k = 500 N/mm in [10, 10000])
-  maxwell m (k = 100 N/mm in [1, 10000], tau = 10 ms in [0.01, 10000])
-  friction f (k = 100 N/mm in [1, 10000], uy = 20 um in [0.1, 10000])
-}
-)";
+using test::kExplainedStart;
+using test::kExplainedTruth;
 
 TEST_CASE("diagnose, harmonic: data the model already explains gives none") {
   const dx::Diagnosis d = diagnose(kExplainedStart, {harmonic_measurement(kExplainedTruth, 8)});

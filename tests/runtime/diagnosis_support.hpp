@@ -28,6 +28,16 @@ inline rheo::runtime::HarmonicOptions simulation_options() {
   return o;
 }
 
+// A model that explains harmonic_measurement's grid of kExplainedTruth: the verdict must be none.
+inline const char* const kExplainedTruth =
+    "model truth { spring s (k = 700 N/mm)  maxwell m (k = 90 N/mm, tau = 6 ms)  friction f (k = 250 N/mm, uy = 60 um) }";
+inline const char* const kExplainedStart = R"(model start {
+  spring s (k = 500 N/mm in [10, 10000])
+  maxwell m (k = 100 N/mm in [1, 10000], tau = 10 ms in [0.01, 10000])
+  friction f (k = 100 N/mm in [1, 10000], uy = 20 um in [0.1, 10000])
+}
+)";
+
 inline rheo::runtime::FitDataSet harmonic_measurement(const std::string& truth, unsigned seed, const std::vector<double>& amplitudes = kAmplitudes) {
   const rheo::runtime::Network network = network_from(truth, "truth");
   const auto points = rheo::runtime::simulate_harmonic_grid(network, amplitudes, kFrequencies, simulation_options());
@@ -59,10 +69,12 @@ inline rheo::runtime::FitDataSet history_measurement(const std::string& truth, c
   return {d.path, 1.0, d};
 }
 
+// CONFIRM: the candidates refitted (0: the model's fit, noise and verdict alone).
 inline rheo::runtime::diagnosis::Diagnosis diagnose(const std::string& start, const std::vector<rheo::runtime::FitDataSet>& data,
-                                                    bool standard_errors = false) {
+                                                    bool standard_errors = false, int confirm = 3) {
   rheo::runtime::diagnosis::DiagnoseSettings s;
   s.standard_errors = standard_errors;
+  s.confirm = confirm;
   s.fit.score.harmonic = simulation_options();
   s.fit.score.harmonic.steps_per_cycle = 128;
   s.fit.score.harmonic.tolerance = 1e-6;

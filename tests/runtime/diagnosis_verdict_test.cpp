@@ -169,3 +169,22 @@ TEST_CASE("diagnose on an L of two sweeps: the interaction is not measured, and 
   const auto j = nlohmann::json::parse(dx::diagnosis_report_json("start.rheo", d, ""));
   CHECK(j["evidence"]["harmonic"]["interaction_measured"] == false);
 }
+
+// The noise behind pure noise (1 %, 0.15 deg) on the 6 x 6 grid, estimated on the residual of
+// eq. 5.1's fit, was 2.3 times the phase noise for draws 134 and 135 (that fit bends through the
+// phase noise of a few nearly elastic points) and chi^2 / (N - p) 0.61 and 0.68 under it; on the
+// residual at the likelihood's maximum (criterion.hpp noise_at_likelihood_maximum) it is the
+// injected noise, and chi^2 / (N - p) is 1 (over draws 100-139: phase estimate over true noise
+// within 0.74-1.22, against 0.62-2.34).
+TEST_CASE("diagnose verdict, harmonic: the noise is estimated where the likelihood is at its maximum") {
+  for (const unsigned seed : {134u, 135u}) {
+    if (test::kUnderSanitizer && seed > 134u) break;
+    const dx::Diagnosis d = diagnose(test::kExplainedStart, {harmonic_measurement(test::kExplainedTruth, seed)}, false, 0);
+    CAPTURE(seed);
+    MESSAGE(summary(d));
+    REQUIRE(d.noise_weighted);
+    CHECK(test::degrees(d.noise.phase) == doctest::Approx(0.15).epsilon(0.25));
+    CHECK(d.chi_square_ratio == doctest::Approx(1.0).epsilon(0.15));
+    CHECK(d.verdict == dx::Verdict::none);
+  }
+}

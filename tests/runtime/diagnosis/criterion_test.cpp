@@ -86,3 +86,42 @@ TEST_CASE("diagnose criterion: without a noise estimate or with histories, BIC =
   CHECK(dx::residual_terms({harmonic, samples}) == 5);
   CHECK_FALSE(dx::noise_weighted({harmonic, samples}, noise_of(0.01, 0.002)));
 }
+
+TEST_CASE("diagnose criterion, unweighted: a candidate that takes a gap just beyond the noise to the noise reaches it") {
+  // Floor 0.003 +- 2 %, N = 4000 terms: the bar for systematic is 1.25 x floor sqrt((N - P)/N).
+  dx::NoiseEstimate n;
+  n.estimated = true, n.floor = 0.003, n.relative_error = 0.02;
+  const double bar = 1.25 * 0.003 * std::sqrt((4000.0 - 5.0) / 4000.0);
+  auto reaches = [&](double before, double after) { return dx::reaches_noise({before, 0.0, 5}, {after, 0.0, 7}, n, 4000, false); };
+  // 1.27 x the floor to 1.0 x: 21 % lower, short of a 25 % cut, but only noise is left.
+  CHECK(reaches(1.27 * 0.003, 0.003));
+  CHECK(reaches(1.01 * bar, 0.99 * bar));
+  // A gap already at the noise is not reached, and one still beyond it is not either.
+  CHECK_FALSE(reaches(0.99 * bar, 0.003));
+  CHECK_FALSE(reaches(2.0 * 0.003, 1.3 * 0.003));
+  CHECK(dx::residual_ratio({1.27 * 0.003, 0.0, 5}, n, 4000, false) == doctest::Approx(1.27 / std::sqrt(3995.0 / 4000.0)).epsilon(1e-12));
+  // Without an estimate nothing is told from noise.
+  n.estimated = false;
+  CHECK_FALSE(reaches(1.27 * 0.003, 0.003));
+}
+
+// Where the criterion is noise-weighted the verdict tells noise from a systematic residual by
+// sqrt(chi^2 / (N - p)), and so does reaches_noise: err (6.1) of eq. 5.1's fit can be twice the
+// floor on pure noise (a fit drawn through nearly elastic points' phase noise), and err can sit
+// at the floor while chi^2 says the residual is systematic.
+TEST_CASE("diagnose criterion, weighted: reaches_noise judges on chi^2 over N - p, not on the gap") {
+  dx::NoiseEstimate n = noise_of(0.01, 0.002);
+  n.floor = 0.003, n.relative_error = 0.02;
+  const int terms = 400;
+  // Pure noise whose fit's err is twice the floor: chi^2 = N - p, at the noise. A candidate
+  // that brings err to the floor reaches nothing (judged on the gap, it would).
+  CHECK_FALSE(dx::reaches_noise({2.0 * 0.003, 395.0, 5}, {0.003, 390.0, 7}, n, terms, true));
+  CHECK(dx::reaches_noise({2.0 * 0.003, 395.0, 5}, {0.003, 390.0, 7}, n, terms, false));
+  // A residual beyond the noise by chi^2 (ratio 1.4) whose err is at the floor: a candidate
+  // that takes chi^2 to N - p reaches the noise (judged on the gap, it would not).
+  CHECK(dx::reaches_noise({1.02 * 0.003, 1.96 * 395.0, 5}, {1.0 * 0.003, 393.0, 7}, n, terms, true));
+  CHECK_FALSE(dx::reaches_noise({1.02 * 0.003, 1.96 * 395.0, 5}, {1.0 * 0.003, 393.0, 7}, n, terms, false));
+  // And one that leaves chi^2 beyond the noise (ratio 1.3) does not.
+  CHECK_FALSE(dx::reaches_noise({1.02 * 0.003, 1.96 * 395.0, 5}, {1.0 * 0.003, 1.69 * 393.0, 7}, n, terms, true));
+  CHECK(dx::residual_ratio({0.003, 1.96 * 395.0, 5}, n, terms, true) == doctest::Approx(1.4).epsilon(1e-12));
+}

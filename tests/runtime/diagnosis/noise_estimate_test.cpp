@@ -148,19 +148,3 @@ TEST_CASE("noise estimate, history: white force noise is found under a smooth mi
   CHECK(smooth.autocorrelation > 0.9);
   CHECK(dx::systematic(missed.datasets[0].err, smooth, 1201, 2));
 }
-
-TEST_CASE("noise estimate: a candidate that takes a gap just beyond the noise to the noise reaches it") {
-  // Floor 0.003 +- 2 %, N = 4000 terms: the bar for systematic is 1.25 x floor sqrt((N - P)/N).
-  dx::NoiseEstimate n;
-  n.estimated = true, n.floor = 0.003, n.relative_error = 0.02;
-  const double bar = 1.25 * 0.003 * std::sqrt((4000.0 - 5.0) / 4000.0);
-  // 1.27 x the floor to 1.0 x: 21 % lower, short of a 25 % cut, but only noise is left.
-  CHECK(dx::reaches_noise(1.27 * 0.003, 5, 0.003, 7, n, 4000));
-  CHECK(dx::reaches_noise(1.01 * bar, 5, 0.99 * bar, 7, n, 4000));
-  // A gap already at the noise is not reached, and one still beyond it is not either.
-  CHECK_FALSE(dx::reaches_noise(0.99 * bar, 5, 0.003, 7, n, 4000));
-  CHECK_FALSE(dx::reaches_noise(2.0 * 0.003, 5, 1.3 * 0.003, 7, n, 4000));
-  // Without an estimate nothing is told from noise.
-  n.estimated = false;
-  CHECK_FALSE(dx::reaches_noise(1.27 * 0.003, 5, 0.003, 7, n, 4000));
-}
