@@ -70,8 +70,8 @@ struct PwlTransition {
 struct PwlModeStructure {
   bool filled = false;
   bool determinate = true;  // false: the mode is indeterminate (build_pwl_mode returns false)
-  Eigen::MatrixXd P, N, Vm, Vd, Va;
-  Eigen::MatrixXd Kaa_inverse, Cdd_inverse, Mmm_inverse;
+  PwlMatrix P, N, Vm, Vd, Va;
+  PwlMatrix Kaa_inverse, Cdd_inverse, Mmm_inverse;
   bool modal = false;  // V, V_inverse and lambda hold a well-conditioned eigendecomposition of A_zz
   PwlComplexMatrix V, V_inverse;
   PwlComplexVector lambda;
