@@ -76,11 +76,11 @@ bool PwlPeriodicState::Run::leaves(int m, int i, const PwlVector& w) {
   return G.dot(ahead) < -tol;
 }
 
-int PwlPeriodicState::Run::settle(int m, const PwlVector& X, double t, PwlVector& w) {
+int PwlPeriodicState::Run::settle(int m, const PwlVector& X, double s_drive, double c_drive, PwlVector& w) {
   for (int attempt = 0; attempt <= 2 * static_cast<int>(branch.switches.size()) + 2; ++attempt) {
     if (m < 0) return -1;
     const PwlModeSystem& s = self.system(m);
-    w = s.state_at(X, t, self.u0_, self.omega_);
+    w = s.state_at(X, s_drive, c_drive);
     int violated = -1;
     for (int i = 0; i < s.guards.rows() && violated < 0; ++i)
       if (leaves(m, static_cast<int>(i), w)) violated = static_cast<int>(i);
@@ -214,15 +214,16 @@ double PwlPeriodicState::Run::first_crossing(int m, int i, const PwlVector& w0, 
   return hi;
 }
 
-int PwlPeriodicState::Run::switch_at(int m, int i, double t, PwlVector& w, PwlMatrix* S) {
+int PwlPeriodicState::Run::switch_at(int m, int i, PwlVector& w, PwlMatrix* S) {
   const PwlModeSystem& old = self.system(m);
   const PwlVector X = old.to_X.lazyProduct(w);
+  const double s_drive = w[old.sine()], c_drive = w[old.cosine()];  // u0 sin(w t), u0 cos(w t)
   PwlModeCode& code = self.switch_code_;
   code = old.code;
   const PwlTransition& tr = old.transitions[static_cast<std::size_t>(i)];
   code[static_cast<std::size_t>(tr.which)] = tr.to;
   PwlVector w_new;
-  const int next = settle(mode_index(code), X, t, w_new);
+  const int next = settle(mode_index(code), X, s_drive, c_drive, w_new);
   if (next < 0) return -1;
   if (S != nullptr) {
     const PwlModeSystem& o = self.system(m);
@@ -232,7 +233,7 @@ int PwlPeriodicState::Run::switch_at(int m, int i, double t, PwlVector& w, PwlMa
     PwlRow dt = PwlRow::Zero(S->cols());
     if (std::abs(slope) > 1e-300) dt = -(o.guards.row(i) * *S) / slope;
     PwlVector drift = -(n.A * w_new);
-    drift.segment(n.nz, n.nh) += n.held_drive * (self.u0_ * self.omega_ * std::cos(self.omega_ * t));
+    drift.segment(n.nz, n.nh) += n.held_drive * (self.omega_ * c_drive);
     PwlMatrix S_new = n.from_X * (o.to_X * (*S + rate_old * dt)) + drift * dt;
     S_new.bottomRows(3).setZero();
     *S = std::move(S_new);
@@ -246,7 +247,7 @@ bool PwlPeriodicState::Run::cycle(int& m, const PwlVector& X0, PwlVector& X_T, P
   // [1], exchanged by pointer where a step ends without an event (no copies per step).
   PwlVector states[2], values[2], slopes[2];
   PwlVector *w = &states[0], *w1 = &states[1], *g0 = &values[0], *g1 = &values[1], *dg0 = &slopes[0], *dg1 = &slopes[1];
-  m = settle(m, X0, 0.0, *w);
+  m = settle(m, X0, 0.0, self.u0_, *w);
   if (m < 0) return false;
   PwlMatrix S;
   PwlMatrix* Sp = nullptr;
@@ -300,7 +301,7 @@ bool PwlPeriodicState::Run::cycle(int& m, const PwlVector& X0, PwlVector& X_T, P
       if (Sp != nullptr) *Sp = s.propagator(t - piece_start) * *Sp, piece_start = t;
       g0_known = false;
       if (++switches > kMaxSwitchesPerCycle) return false;
-      m = switch_at(m, fired, t, *w, Sp);
+      m = switch_at(m, fired, *w, Sp);
       if (m < 0) return false;
       if (record) {
         self.pieces_.push_back({t, m, *w});
@@ -340,7 +341,7 @@ PwlVector PwlPeriodicState::Run::linear_periodic_state(int m) {
   const double mirror = self.half_wave_ ? -1.0 : 1.0;
   const PwlMatrix P = s.propagator(self.span_);
   const PwlMatrix J = mirror * (s.to_X * (P * from));
-  const PwlVector X_T = mirror * (s.to_X * (P * s.state_at(X0, 0.0, 1.0, self.omega_)));
+  const PwlVector X_T = mirror * (s.to_X * (P * s.state_at(X0, 0.0, 1.0)));
   const PwlMatrix Js = scale.cwiseInverse().asDiagonal() * J * scale.asDiagonal();
   const PwlVector Xs = X0.cwiseQuotient(scale), Ys = X_T.cwiseQuotient(scale);
   unit = scale.cwiseProduct(self.half_wave_ ? least_norm_fixed_point(Js, Xs, Ys) : affine_fixed_point(Js, Xs, Ys));

@@ -51,9 +51,8 @@ void split_by_eigenvalue(const MatrixXd& S, double reference, MatrixXd& range, M
 
 }  // namespace
 
-PwlVector PwlModeSystem::state_at(const PwlVector& X, double t, double u0, double omega) const {
+PwlVector PwlModeSystem::state_at(const PwlVector& X, double s, double c) const {
   PwlVector w = from_X.lazyProduct(X);
-  const double s = u0 * std::sin(omega * t), c = u0 * std::cos(omega * t);
   w.segment(nz, nh) += held_drive * s;
   w[one()] = 1.0;
   w[sine()] = s;

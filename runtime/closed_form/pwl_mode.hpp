@@ -94,8 +94,9 @@ struct PwlModeSystem {
   PwlMatrix guard_rates;                   // guards A: their time derivatives
   std::vector<PwlTransition> transitions;  // one per guard row
 
-  // The augmented state at time t [s] of node positions and velocities X under the drive u0 sin(w t).
-  PwlVector state_at(const PwlVector& X, double t, double u0, double omega) const;
+  // The augmented state of node positions and velocities X where the drive's entries are
+  // s = u0 sin(w t) and c = u0 cos(w t) [mm] (as a state of any mode at that time holds them).
+  PwlVector state_at(const PwlVector& X, double s, double c) const;
 
   // The exact flow of the mode (pwl_flow.cpp): e^{A tau}, its action on a state, and
   // int_0^h F(w(tau)) e^{i omega tau} dtau. Where the state block A_zz is diagonalisable with
