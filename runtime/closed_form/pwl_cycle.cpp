@@ -234,9 +234,13 @@ int PwlPeriodicState::Run::switch_at(int m, int i, PwlVector& w, PwlMatrix* S) {
     if (std::abs(slope) > 1e-300) dt = -(o.guards.row(i) * *S) / slope;
     PwlVector drift = -(n.A * w_new);
     drift.segment(n.nz, n.nh) += n.held_drive * (self.omega_ * c_drive);
-    PwlMatrix S_new = n.from_X * (o.to_X * (*S + rate_old * dt)) + drift * dt;
-    S_new.bottomRows(3).setZero();
-    *S = std::move(S_new);
+    // S_new = from_X_new (to_X_old (S + rate_old dt)) + drift dt.
+    const PwlMatrix shifted = *S + rate_old * dt;
+    PwlMatrix positions;
+    multiply(o.to_X, shifted, positions);
+    multiply(n.from_X, positions, *S);
+    S->noalias() += drift * dt;
+    S->bottomRows(3).setZero();
   }
   w = std::move(w_new);
   return next;
@@ -298,7 +302,7 @@ bool PwlPeriodicState::Run::cycle(int& m, const PwlVector& X0, PwlVector& X_T, P
       }
       *w = w_first;
       t += first;
-      if (Sp != nullptr) *Sp = s.propagator(t - piece_start) * *Sp, piece_start = t;
+      if (Sp != nullptr) multiply(s.propagator(t - piece_start), PwlMatrix(*Sp), *Sp), piece_start = t;
       g0_known = false;
       if (++switches > kMaxSwitchesPerCycle) return false;
       m = switch_at(m, fired, *w, Sp);
@@ -312,7 +316,11 @@ bool PwlPeriodicState::Run::cycle(int& m, const PwlVector& X0, PwlVector& X_T, P
   }
   const PwlModeSystem& s = self.system(m);
   X_T = s.to_X.lazyProduct(*w);
-  if (J != nullptr) *J = s.to_X * (s.propagator(self.span_ - piece_start) * S);
+  if (J != nullptr) {
+    PwlMatrix carried;
+    multiply(s.propagator(self.span_ - piece_start), S, carried);
+    multiply(s.to_X, carried, *J);
+  }
   return true;
 }
 

@@ -48,6 +48,22 @@ using PwlComplexVector = Eigen::Matrix<std::complex<double>, Eigen::Dynamic, 1, 
 using PwlComplexRow = Eigen::Matrix<std::complex<double>, 1, Eigen::Dynamic, Eigen::RowMajor, 1, kPwlMaxDim>;
 using PwlComplexMatrix = Eigen::Matrix<std::complex<double>, Eigen::Dynamic, Eigen::Dynamic, 0, kPwlMaxDim, kPwlMaxDim>;
 
+// OUT = A B (OUT neither A nor B), column by column as sums of A's columns: for the event
+// path's small matrices, without the size dispatch of a general product.
+inline void multiply(const PwlMatrix& a, const PwlMatrix& b, PwlMatrix& out) {
+  const Eigen::Index rows = a.rows(), inner = a.cols(), cols = b.cols();
+  out.resize(rows, cols);
+  for (Eigen::Index c = 0; c < cols; ++c) {
+    double* column = out.col(c).data();
+    for (Eigen::Index r = 0; r < rows; ++r) column[r] = 0.0;
+    for (Eigen::Index k = 0; k < inner; ++k) {
+      const double factor = b(k, c);
+      const double* from = a.col(k).data();
+      for (Eigen::Index r = 0; r < rows; ++r) column[r] += from[r] * factor;
+    }
+  }
+}
+
 // One entry per PwlBranch::switches: slider 0 stuck, +1 / -1 slipping with F = fy+ / -fy- (de/dt
 // of that sign); gap 0 open, +1 / -1 closed at e = c + w/2 / c - w/2.
 using PwlModeCode = std::vector<std::int8_t>;
