@@ -26,6 +26,8 @@ bool leaving(double g, double dg, double ddg, double tol, double dtol) {
   return dg < -dtol || (dg <= dtol && ddg < 0.0);
 }
 
+using Stacked = Eigen::Matrix<double, Eigen::Dynamic, 1, 0, 3 * kPwlMaxDim, 1>;
+
 }  // namespace
 
 int PwlPeriodicState::Run::mode_index(const PwlModeCode& code) {
@@ -67,8 +69,10 @@ bool PwlPeriodicState::Run::leaves(int m, int i, const PwlVector& w) {
   const double g = G.dot(w);
   if (g > tol) return false;
   const double probe = 1e-7 * self.period_;
-  const PwlVector rate = s.A.lazyProduct(w);
-  const double slope = G.dot(rate), curvature = G.dot(s.A.lazyProduct(rate));
+  PwlVector rate, rate_of_rate;
+  multiply(s.A, w, rate);
+  multiply(s.A, rate, rate_of_rate);
+  const double slope = G.dot(rate), curvature = G.dot(rate_of_rate);
   const bool turning = g >= -tol && slope < 0.0 && slope + curvature * probe > 0.0;
   if (!turning && leaving(g, slope, curvature, tol, tol * self.omega_)) return true;
   PwlVector& ahead = self.probe_;
@@ -216,7 +220,8 @@ double PwlPeriodicState::Run::first_crossing(int m, int i, const PwlVector& w0, 
 
 int PwlPeriodicState::Run::switch_at(int m, int i, PwlVector& w, PwlMatrix* S) {
   const PwlModeSystem& old = self.system(m);
-  const PwlVector X = old.to_X.lazyProduct(w);
+  PwlVector X;
+  multiply(old.to_X, w, X);
   const double s_drive = w[old.sine()], c_drive = w[old.cosine()];  // u0 sin(w t), u0 cos(w t)
   PwlModeCode& code = self.switch_code_;
   code = old.code;
@@ -270,7 +275,7 @@ bool PwlPeriodicState::Run::cycle(int& m, const PwlVector& X0, PwlVector& X_T, P
   int switches = 0;
   double t = 0.0, piece_start = 0.0;
   PwlVector w_cross, w_first;  // the state at a guard's crossing, and at the first one's
-  Eigen::Matrix<double, Eigen::Dynamic, 1, 0, 3 * kPwlMaxDim, 1> stacked;
+  Stacked stacked;
   bool g0_known = false;
   for (int k = 0; k < grid_steps; ++k) {
     const double t_end = k + 1 == grid_steps ? self.span_ : (k + 1) * step;
@@ -281,7 +286,7 @@ bool PwlPeriodicState::Run::cycle(int& m, const PwlVector& X0, PwlVector& X_T, P
       const Eigen::Index dim = s.dim, guards = s.guards.rows();
       if (!g0_known) g0->noalias() = s.guards.lazyProduct(*w), dg0->noalias() = s.guard_rates.lazyProduct(*w);
       if (full) {
-        stacked.noalias() = grid_step(m).lazyProduct(*w);
+        multiply(grid_step(m), *w, stacked);
         *w1 = stacked.head(dim), *g1 = stacked.segment(dim, guards), *dg1 = stacked.tail(guards);
       } else {
         *w1 = advance(m, h, *w);

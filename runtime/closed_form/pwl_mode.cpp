@@ -52,7 +52,8 @@ void split_by_eigenvalue(const MatrixXd& S, double reference, MatrixXd& range, M
 }  // namespace
 
 PwlVector PwlModeSystem::state_at(const PwlVector& X, double s, double c) const {
-  PwlVector w = from_X.lazyProduct(X);
+  PwlVector w;
+  multiply(from_X, X, w);
   w.segment(nz, nh) += held_drive * s;
   w[one()] = 1.0;
   w[sine()] = s;
