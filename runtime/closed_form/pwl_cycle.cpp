@@ -2,6 +2,7 @@
 
 #include "runtime/closed_form/pwl_fixed_point.hpp"
 
+#include <array>
 #include <cmath>
 #include <complex>
 #include <limits>
@@ -233,18 +234,22 @@ int PwlPeriodicState::Run::switch_at(int m, int i, PwlVector& w, PwlMatrix* S) {
   if (S != nullptr) {
     const PwlModeSystem& o = self.system(m);
     const PwlModeSystem& n = self.system(next);
-    const PwlVector rate_old = o.A.lazyProduct(w);
+    PwlVector rate_old, drift;
+    multiply(o.A, w, rate_old);
     const double slope = o.guards.row(i).dot(rate_old);
-    PwlRow dt = PwlRow::Zero(S->cols());
-    if (std::abs(slope) > 1e-300) dt = -(o.guards.row(i) * *S) / slope;
-    PwlVector drift = -(n.A * w_new);
+    const Eigen::Index columns = S->cols();
+    std::array<double, kPwlMaxDim> dt{};  // dt/dX0 of the switch time
+    if (std::abs(slope) > 1e-300)
+      for (Eigen::Index c = 0; c < columns; ++c) dt[static_cast<std::size_t>(c)] = -o.guards.row(i).dot(S->col(c)) / slope;
+    multiply(n.A, w_new, drift);
+    drift = -drift;
     drift.segment(n.nz, n.nh) += n.held_drive * (self.omega_ * c_drive);
     // S_new = from_X_new (to_X_old (S + rate_old dt)) + drift dt.
-    const PwlMatrix shifted = *S + rate_old * dt;
+    for (Eigen::Index c = 0; c < columns; ++c) S->col(c) += rate_old * dt[static_cast<std::size_t>(c)];
     PwlMatrix positions;
-    multiply(o.to_X, shifted, positions);
+    multiply(o.to_X, *S, positions);
     multiply(n.from_X, positions, *S);
-    S->noalias() += drift * dt;
+    for (Eigen::Index c = 0; c < columns; ++c) S->col(c) += drift * dt[static_cast<std::size_t>(c)];
     S->bottomRows(3).setZero();
   }
   w = std::move(w_new);

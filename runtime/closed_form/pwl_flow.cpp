@@ -183,7 +183,7 @@ PwlVector PwlModeSystem::advance(double tau, const PwlVector& w) const {
   }
   for (int i = 0; i < nz; ++i) {
     double sum = 0.0;
-    for (int j = 0; j < nz; ++j) sum += (V(i, j) * q[j]).real();
+    for (int j = 0; j < nz; ++j) sum += V(i, j).real() * q[j].real() - V(i, j).imag() * q[j].imag();
     out[i] = sum;
   }
   out[sine()] = s0 * f.cos_step + c0 * f.sin_step;
