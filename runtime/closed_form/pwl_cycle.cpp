@@ -2,6 +2,7 @@
 
 #include "runtime/closed_form/pwl_fixed_point.hpp"
 
+#include <array>
 #include <cmath>
 #include <complex>
 #include <limits>
@@ -25,6 +26,8 @@ bool leaving(double g, double dg, double ddg, double tol, double dtol) {
   if (g > tol) return false;
   return dg < -dtol || (dg <= dtol && ddg < 0.0);
 }
+
+using Stacked = Eigen::Matrix<double, Eigen::Dynamic, 1, 0, 3 * kPwlMaxDim, 1>;
 
 }  // namespace
 
@@ -67,8 +70,10 @@ bool PwlPeriodicState::Run::leaves(int m, int i, const PwlVector& w) {
   const double g = G.dot(w);
   if (g > tol) return false;
   const double probe = 1e-7 * self.period_;
-  const PwlVector rate = s.A.lazyProduct(w);
-  const double slope = G.dot(rate), curvature = G.dot(s.A.lazyProduct(rate));
+  PwlVector rate, rate_of_rate;
+  multiply(s.A, w, rate);
+  multiply(s.A, rate, rate_of_rate);
+  const double slope = G.dot(rate), curvature = G.dot(rate_of_rate);
   const bool turning = g >= -tol && slope < 0.0 && slope + curvature * probe > 0.0;
   if (!turning && leaving(g, slope, curvature, tol, tol * self.omega_)) return true;
   PwlVector& ahead = self.probe_;
@@ -76,11 +81,11 @@ bool PwlPeriodicState::Run::leaves(int m, int i, const PwlVector& w) {
   return G.dot(ahead) < -tol;
 }
 
-int PwlPeriodicState::Run::settle(int m, const PwlVector& X, double t, PwlVector& w) {
+int PwlPeriodicState::Run::settle(int m, const PwlVector& X, double s_drive, double c_drive, PwlVector& w) {
   for (int attempt = 0; attempt <= 2 * static_cast<int>(branch.switches.size()) + 2; ++attempt) {
     if (m < 0) return -1;
     const PwlModeSystem& s = self.system(m);
-    w = s.state_at(X, t, self.u0_, self.omega_);
+    w = s.state_at(X, s_drive, c_drive);
     int violated = -1;
     for (int i = 0; i < s.guards.rows() && violated < 0; ++i)
       if (leaves(m, static_cast<int>(i), w)) violated = static_cast<int>(i);
@@ -214,28 +219,38 @@ double PwlPeriodicState::Run::first_crossing(int m, int i, const PwlVector& w0, 
   return hi;
 }
 
-int PwlPeriodicState::Run::switch_at(int m, int i, double t, PwlVector& w, PwlMatrix* S) {
+int PwlPeriodicState::Run::switch_at(int m, int i, PwlVector& w, PwlMatrix* S) {
   const PwlModeSystem& old = self.system(m);
-  const PwlVector X = old.to_X.lazyProduct(w);
+  PwlVector X;
+  multiply(old.to_X, w, X);
+  const double s_drive = w[old.sine()], c_drive = w[old.cosine()];  // u0 sin(w t), u0 cos(w t)
   PwlModeCode& code = self.switch_code_;
   code = old.code;
   const PwlTransition& tr = old.transitions[static_cast<std::size_t>(i)];
   code[static_cast<std::size_t>(tr.which)] = tr.to;
   PwlVector w_new;
-  const int next = settle(mode_index(code), X, t, w_new);
+  const int next = settle(mode_index(code), X, s_drive, c_drive, w_new);
   if (next < 0) return -1;
   if (S != nullptr) {
     const PwlModeSystem& o = self.system(m);
     const PwlModeSystem& n = self.system(next);
-    const PwlVector rate_old = o.A.lazyProduct(w);
+    PwlVector rate_old, drift;
+    multiply(o.A, w, rate_old);
     const double slope = o.guards.row(i).dot(rate_old);
-    PwlRow dt = PwlRow::Zero(S->cols());
-    if (std::abs(slope) > 1e-300) dt = -(o.guards.row(i) * *S) / slope;
-    PwlVector drift = -(n.A * w_new);
-    drift.segment(n.nz, n.nh) += n.held_drive * (self.u0_ * self.omega_ * std::cos(self.omega_ * t));
-    PwlMatrix S_new = n.from_X * (o.to_X * (*S + rate_old * dt)) + drift * dt;
-    S_new.bottomRows(3).setZero();
-    *S = std::move(S_new);
+    const Eigen::Index columns = S->cols();
+    std::array<double, kPwlMaxDim> dt{};  // dt/dX0 of the switch time
+    if (std::abs(slope) > 1e-300)
+      for (Eigen::Index c = 0; c < columns; ++c) dt[static_cast<std::size_t>(c)] = -o.guards.row(i).dot(S->col(c)) / slope;
+    multiply(n.A, w_new, drift);
+    drift = -drift;
+    drift.segment(n.nz, n.nh) += n.held_drive * (self.omega_ * c_drive);
+    // S_new = from_X_new (to_X_old (S + rate_old dt)) + drift dt.
+    for (Eigen::Index c = 0; c < columns; ++c) S->col(c) += rate_old * dt[static_cast<std::size_t>(c)];
+    PwlMatrix positions;
+    multiply(o.to_X, *S, positions);
+    multiply(n.from_X, positions, *S);
+    for (Eigen::Index c = 0; c < columns; ++c) S->col(c) += drift * dt[static_cast<std::size_t>(c)];
+    S->bottomRows(3).setZero();
   }
   w = std::move(w_new);
   return next;
@@ -246,7 +261,7 @@ bool PwlPeriodicState::Run::cycle(int& m, const PwlVector& X0, PwlVector& X_T, P
   // [1], exchanged by pointer where a step ends without an event (no copies per step).
   PwlVector states[2], values[2], slopes[2];
   PwlVector *w = &states[0], *w1 = &states[1], *g0 = &values[0], *g1 = &values[1], *dg0 = &slopes[0], *dg1 = &slopes[1];
-  m = settle(m, X0, 0.0, *w);
+  m = settle(m, X0, 0.0, self.u0_, *w);
   if (m < 0) return false;
   PwlMatrix S;
   PwlMatrix* Sp = nullptr;
@@ -265,7 +280,7 @@ bool PwlPeriodicState::Run::cycle(int& m, const PwlVector& X0, PwlVector& X_T, P
   int switches = 0;
   double t = 0.0, piece_start = 0.0;
   PwlVector w_cross, w_first;  // the state at a guard's crossing, and at the first one's
-  Eigen::Matrix<double, Eigen::Dynamic, 1, 0, 3 * kPwlMaxDim, 1> stacked;
+  Stacked stacked;
   bool g0_known = false;
   for (int k = 0; k < grid_steps; ++k) {
     const double t_end = k + 1 == grid_steps ? self.span_ : (k + 1) * step;
@@ -276,7 +291,7 @@ bool PwlPeriodicState::Run::cycle(int& m, const PwlVector& X0, PwlVector& X_T, P
       const Eigen::Index dim = s.dim, guards = s.guards.rows();
       if (!g0_known) g0->noalias() = s.guards.lazyProduct(*w), dg0->noalias() = s.guard_rates.lazyProduct(*w);
       if (full) {
-        stacked.noalias() = grid_step(m).lazyProduct(*w);
+        multiply(grid_step(m), *w, stacked);
         *w1 = stacked.head(dim), *g1 = stacked.segment(dim, guards), *dg1 = stacked.tail(guards);
       } else {
         *w1 = advance(m, h, *w);
@@ -297,10 +312,10 @@ bool PwlPeriodicState::Run::cycle(int& m, const PwlVector& X0, PwlVector& X_T, P
       }
       *w = w_first;
       t += first;
-      if (Sp != nullptr) *Sp = s.propagator(t - piece_start) * *Sp, piece_start = t;
+      if (Sp != nullptr) multiply(s.propagator(t - piece_start), PwlMatrix(*Sp), *Sp), piece_start = t;
       g0_known = false;
       if (++switches > kMaxSwitchesPerCycle) return false;
-      m = switch_at(m, fired, t, *w, Sp);
+      m = switch_at(m, fired, *w, Sp);
       if (m < 0) return false;
       if (record) {
         self.pieces_.push_back({t, m, *w});
@@ -311,7 +326,11 @@ bool PwlPeriodicState::Run::cycle(int& m, const PwlVector& X0, PwlVector& X_T, P
   }
   const PwlModeSystem& s = self.system(m);
   X_T = s.to_X.lazyProduct(*w);
-  if (J != nullptr) *J = s.to_X * (s.propagator(self.span_ - piece_start) * S);
+  if (J != nullptr) {
+    PwlMatrix carried;
+    multiply(s.propagator(self.span_ - piece_start), S, carried);
+    multiply(s.to_X, carried, *J);
+  }
   return true;
 }
 
@@ -340,7 +359,7 @@ PwlVector PwlPeriodicState::Run::linear_periodic_state(int m) {
   const double mirror = self.half_wave_ ? -1.0 : 1.0;
   const PwlMatrix P = s.propagator(self.span_);
   const PwlMatrix J = mirror * (s.to_X * (P * from));
-  const PwlVector X_T = mirror * (s.to_X * (P * s.state_at(X0, 0.0, 1.0, self.omega_)));
+  const PwlVector X_T = mirror * (s.to_X * (P * s.state_at(X0, 0.0, 1.0)));
   const PwlMatrix Js = scale.cwiseInverse().asDiagonal() * J * scale.asDiagonal();
   const PwlVector Xs = X0.cwiseQuotient(scale), Ys = X_T.cwiseQuotient(scale);
   unit = scale.cwiseProduct(self.half_wave_ ? least_norm_fixed_point(Js, Xs, Ys) : affine_fixed_point(Js, Xs, Ys));

@@ -27,10 +27,11 @@ struct PwlPeriodicState::Run {
   // drive's turning point, its slope there rounding noise of forces rates far larger).
   bool leaves(int m, int i, const PwlVector& w);
 
-  // The mode reached from `m` at time t with positions and velocities X once every guard the
-  // state violates has switched (a stuck slider above fy slips, a slipping one whose rate
-  // points against its force sticks, ...); -1 when it does not settle.
-  int settle(int m, const PwlVector& X, double t, PwlVector& w);
+  // The mode reached from `m` with positions and velocities X and the drive's entries s, c
+  // (PwlModeSystem::state_at) once every guard the state violates has switched (a stuck slider
+  // above fy slips, a slipping one whose rate points against its force sticks, ...); -1 when
+  // it does not settle.
+  int settle(int m, const PwlVector& X, double s, double c, PwlVector& w);
 
   // The first time in (0, h] at which guard row i of mode m crosses from positive to
   // negative along w(tau) = e^{A tau} w0, or infinity; W_AT the state there. w1 is the state at
@@ -38,9 +39,9 @@ struct PwlPeriodicState::Run {
   double first_crossing(int m, int i, const PwlVector& w0, const PwlVector& w1, double h, double g0, double g1, double slope0, double slope1,
                         PwlVector& w_at);
 
-  // Switches at time t from mode m (state w) through guard i; with sensitivities S (dw/dX0)
+  // Switches from mode m (state w, whose drive entries give the time) through guard i; with sensitivities S (dw/dX0)
   // applies the saltation matrix. Returns the new mode or -1.
-  int switch_at(int m, int i, double t, PwlVector& w, PwlMatrix* S);
+  int switch_at(int m, int i, PwlVector& w, PwlMatrix* S);
 
   // Follows the map's span (a period, or half of one for an odd branch) from X0, settled from
   // mode m: X at its end and, with `J`, dX/dX0; with `record`, the pieces, switch phases and

@@ -29,18 +29,39 @@ PwlVector affine_fixed_point(const PwlMatrix& J, const PwlVector& X0, const PwlV
   return X0 - (J - PwlMatrix::Identity(J.rows(), J.cols())).jacobiSvd(Eigen::ComputeThinU | Eigen::ComputeThinV).setThreshold(1e-10).solve(Y - X0);
 }
 
+namespace {
+
+// Where J - I is well conditioned the least-norm solution is the solution: by LU, several
+// times cheaper than the orthogonal decomposition. Its reciprocal condition in the 1-norm,
+// 1/(||J - I|| ||(J - I)^-1||), from the inverse itself (at most 24 x 24: cheaper than the
+// estimator's repeated solves, and exact). False (OUT untouched) where it is below 1e-8.
+// MATRIX: PwlMatrix, or a fixed size the compiler unrolls.
+template <class Matrix>
+bool lu_fixed_point(const PwlMatrix& J, const PwlVector& X0, const PwlVector& Y, PwlVector& out) {
+  using Vector = Eigen::Matrix<double, Matrix::RowsAtCompileTime, 1, 0, Matrix::MaxRowsAtCompileTime, 1>;
+  const Matrix J_minus_I = Matrix(J) - Matrix::Identity(J.rows(), J.cols());
+  Eigen::FullPivLU<Matrix> lu(J_minus_I);
+  if (!lu.isInvertible()) return false;
+  const Matrix inverse = lu.inverse();
+  const double norm = J_minus_I.cwiseAbs().colwise().sum().maxCoeff(), inverse_norm = inverse.cwiseAbs().colwise().sum().maxCoeff();
+  if (!(1.0 / (norm * inverse_norm) > 1e-8)) return false;
+  const Vector x0 = X0, residual = Vector(Y) - x0;
+  out = x0 - lu.solve(residual);
+  return true;
+}
+
+}  // namespace
+
 PwlVector least_norm_fixed_point(const PwlMatrix& J, const PwlVector& X0, const PwlVector& Y) {
-  const PwlMatrix J_minus_I = J - PwlMatrix::Identity(J.rows(), J.cols());
-  // Where J - I is well conditioned the least-norm solution is the solution: by LU, several
-  // times cheaper than the orthogonal decomposition.
-  // Its reciprocal condition in the 1-norm, 1/(||J - I|| ||(J - I)^-1||), from the inverse
-  // itself (at most 24 x 24: cheaper than the estimator's repeated solves, and exact).
-  Eigen::FullPivLU<PwlMatrix> lu(J_minus_I);
-  if (lu.isInvertible()) {
-    const PwlMatrix inverse = lu.inverse();
-    const double norm = J_minus_I.cwiseAbs().colwise().sum().maxCoeff(), inverse_norm = inverse.cwiseAbs().colwise().sum().maxCoeff();
-    if (1.0 / (norm * inverse_norm) > 1e-8) return X0 - lu.solve(PwlVector(Y - X0));
+  PwlVector out;
+  bool solved = false;
+  switch (J.rows()) {  // 2 N for N internal nodes: a slider-capped column has 4
+    case 4: solved = lu_fixed_point<Eigen::Matrix4d>(J, X0, Y, out); break;
+    case 6: solved = lu_fixed_point<Eigen::Matrix<double, 6, 6>>(J, X0, Y, out); break;
+    default: solved = lu_fixed_point<PwlMatrix>(J, X0, Y, out); break;
   }
+  if (solved) return out;
+  const PwlMatrix J_minus_I = J - PwlMatrix::Identity(J.rows(), J.cols());
   Eigen::CompleteOrthogonalDecomposition<PwlMatrix> cod(J_minus_I);
   cod.setThreshold(1e-10);
   return X0 - cod.solve(PwlVector(Y - X0));

@@ -183,13 +183,42 @@ PwlVector PwlModeSystem::advance(double tau, const PwlVector& w) const {
   }
   for (int i = 0; i < nz; ++i) {
     double sum = 0.0;
-    for (int j = 0; j < nz; ++j) sum += (V(i, j) * q[j]).real();
+    for (int j = 0; j < nz; ++j) sum += V(i, j).real() * q[j].real() - V(i, j).imag() * q[j].imag();
     out[i] = sum;
   }
   out[sine()] = s0 * f.cos_step + c0 * f.sin_step;
   out[cosine()] = c0 * f.cos_step - s0 * f.sin_step;
   return out;
 }
+
+namespace {
+
+// The Taylor sum w + sum_{k=1..terms} (delta A)^k w / k! of PwlModeSystem::nudge (OUT may be W),
+// for a state of D entries at compile time: the products unrolled, in registers.
+template <int D>
+void taylor_fixed(const PwlMatrix& A, double delta, int terms, const PwlVector& w, PwlVector& out) {
+  using Vector = Eigen::Matrix<double, D, 1>;
+  const Eigen::Map<const Eigen::Matrix<double, D, D>> a(A.data());  // A is D x D, stored contiguously
+  Vector term = w.template head<D>(), sum = term;
+  for (int k = 1; k <= terms; ++k) {
+    const Vector next = a.lazyProduct(term);
+    term = next * (delta / k);
+    sum += term;
+  }
+  out = sum;
+}
+
+void taylor_dynamic(const PwlMatrix& A, double delta, int terms, const PwlVector& w, PwlVector& out) {
+  thread_local PwlVector term, next;
+  out = w, term = w;
+  for (int k = 1; k <= terms; ++k) {
+    next.noalias() = A.lazyProduct(term);
+    term = next * (delta / k);
+    out += term;
+  }
+}
+
+}  // namespace
 
 bool PwlModeSystem::nudge(double delta, const PwlVector& w, PwlVector& out) const {
   const double x1 = reach * std::abs(delta), x2 = reach_squared * std::abs(delta);
@@ -198,12 +227,15 @@ bool PwlModeSystem::nudge(double delta, const PwlVector& w, PwlVector& out) cons
   int terms = 0;
   for (double bound = (x1 + x2) / (1.0 - x2); terms < 16 && bound > 1e-17; ++terms) bound *= x2 / (terms + 2.0);
   if (terms == 16) return false;
-  thread_local PwlVector term, next;
-  out = w, term = w;
-  for (int k = 1; k <= terms; ++k) {
-    next.noalias() = A.lazyProduct(term);
-    term = next * (delta / k);
-    out += term;
+  // The small states of the usual branches (a slider-capped column: 5 and 6 entries) at sizes
+  // known to the compiler.
+  switch (dim) {
+    case 4: taylor_fixed<4>(A, delta, terms, w, out); break;
+    case 5: taylor_fixed<5>(A, delta, terms, w, out); break;
+    case 6: taylor_fixed<6>(A, delta, terms, w, out); break;
+    case 7: taylor_fixed<7>(A, delta, terms, w, out); break;
+    case 8: taylor_fixed<8>(A, delta, terms, w, out); break;
+    default: taylor_dynamic(A, delta, terms, w, out); break;
   }
   return true;
 }

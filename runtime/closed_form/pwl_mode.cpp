@@ -3,15 +3,18 @@
 #include <Eigen/Eigenvalues>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <memory>
 
 namespace rheo::runtime {
 namespace {
 
-using Eigen::MatrixXd;
-using Eigen::RowVectorXd;
-using Eigen::VectorXd;
+// Every matrix of a build has the event path's fixed capacity (a mode of N internal nodes has
+// dim = 2 N + r + 3 <= kPwlMaxDim): a build touches no heap.
+using MatrixXd = PwlMatrix;
+using RowVectorXd = PwlRow;
+using VectorXd = PwlVector;
 
 // Incidence of an edge over the internal nodes (d) and the terminal (d_T): e = d.x + d_T u.
 struct Incidence {
@@ -48,9 +51,9 @@ void split_by_eigenvalue(const MatrixXd& S, double reference, MatrixXd& range, M
 
 }  // namespace
 
-PwlVector PwlModeSystem::state_at(const PwlVector& X, double t, double u0, double omega) const {
-  PwlVector w = from_X.lazyProduct(X);
-  const double s = u0 * std::sin(omega * t), c = u0 * std::cos(omega * t);
+PwlVector PwlModeSystem::state_at(const PwlVector& X, double s, double c) const {
+  PwlVector w;
+  multiply(from_X, X, w);
   w.segment(nz, nh) += held_drive * s;
   w[one()] = 1.0;
   w[sine()] = s;
@@ -67,16 +70,20 @@ bool build_pwl_mode(const PwlBranch& branch, const PwlModeCode& code, double ome
   const int n = branch.internal_nodes;
   MatrixXd K = MatrixXd::Zero(n, n), C = K, M = K;
   VectorXd kT = VectorXd::Zero(n), cT = kT, mT = kT, f_slip = kT;
-  std::vector<int> rigid;  // edge indices of stuck sliders and closed gaps, in switch order
+  std::array<int, kPwlMaxDim> rigid{};  // edge indices of stuck sliders and closed gaps, in switch order
+  int r = 0;
+  int guard_count = 0;  // two rows for a stuck slider or an open gap, one for a slipping slider or a closed gap
   double largest_k = 0.0;
   for (std::size_t s = 0; s < branch.switches.size(); ++s) {
     const PwlEdge& e = branch.edges[static_cast<std::size_t>(branch.switches[s])];
+    guard_count += (code[s] == 0) ? 2 : 1;
     if (code[s] == 0 && e.kind == PwlEdgeKind::gap) continue;  // open: no force
     if (code[s] != 0 && e.kind == PwlEdgeKind::slider) {
       f_slip += incidence(e, n).d * e.slip_force(code[s]);
       continue;
     }
-    rigid.push_back(branch.switches[s]);
+    if (r == kPwlMaxDim) return false;  // not reached: PwlBranch::build keeps dim within kPwlMaxDim
+    rigid[static_cast<std::size_t>(r++)] = branch.switches[s];
   }
   for (const PwlEdge& e : branch.edges) {
     const Incidence in = incidence(e, n);
@@ -92,7 +99,6 @@ bool build_pwl_mode(const PwlBranch& branch, const PwlModeCode& code, double ome
   }
 
   // Rigid constraints R x + rho u = h and the split x = P (h - rho u) + N y.
-  const int r = static_cast<int>(rigid.size());
   MatrixXd R(r, n);
   VectorXd rho(r);
   for (int i = 0; i < r; ++i) {
@@ -203,11 +209,10 @@ bool build_pwl_mode(const PwlBranch& branch, const PwlModeCode& code, double ome
 
   // Edge forces, the terminal force and the guards.
   out.force = RowVectorXd::Zero(dim);
-  out.guards.resize(0, dim);
+  out.guards.resize(guard_count, dim);
   out.transitions.clear();
-  std::vector<RowVectorXd> guard_rows;
   auto guard = [&](const RowVectorXd& row, int which, std::int8_t to, double scale, double per_amplitude) {
-    guard_rows.push_back(row);
+    out.guards.row(static_cast<Eigen::Index>(out.transitions.size())) = row;
     out.transitions.push_back({which, to, scale, per_amplitude});
   };
   int rigid_index = 0;
@@ -251,8 +256,6 @@ bool build_pwl_mode(const PwlBranch& branch, const PwlModeCode& code, double ome
     }
     out.force += in.terminal * force;
   }
-  out.guards.resize(static_cast<Eigen::Index>(guard_rows.size()), dim);
-  for (std::size_t g = 0; g < guard_rows.size(); ++g) out.guards.row(static_cast<Eigen::Index>(g)) = guard_rows[g];
   out.guard_rates = out.guards * out.A;
   out.force_rate = out.force * out.A;
   out.force_curvature = out.force_rate * out.A;

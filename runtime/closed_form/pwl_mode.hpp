@@ -48,6 +48,45 @@ using PwlComplexVector = Eigen::Matrix<std::complex<double>, Eigen::Dynamic, 1, 
 using PwlComplexRow = Eigen::Matrix<std::complex<double>, 1, Eigen::Dynamic, Eigen::RowMajor, 1, kPwlMaxDim>;
 using PwlComplexMatrix = Eigen::Matrix<std::complex<double>, Eigen::Dynamic, Eigen::Dynamic, 0, kPwlMaxDim, kPwlMaxDim>;
 
+// OUT = A B (OUT neither A nor B), column by column as sums of A's columns: for the event
+// path's small matrices, without the size dispatch of a general product.
+inline void multiply(const PwlMatrix& a, const PwlMatrix& b, PwlMatrix& out) {
+  const Eigen::Index rows = a.rows(), inner = a.cols(), cols = b.cols();
+  out.resize(rows, cols);
+  for (Eigen::Index c = 0; c < cols; ++c) {
+    double* column = out.col(c).data();
+    for (Eigen::Index r = 0; r < rows; ++r) column[r] = 0.0;
+    for (Eigen::Index k = 0; k < inner; ++k) {
+      const double factor = b(k, c);
+      const double* from = a.col(k).data();
+      for (Eigen::Index r = 0; r < rows; ++r) column[r] += from[r] * factor;
+    }
+  }
+}
+
+// OUT = M v for a column-major matrix M of the event path's storage: where its column count
+// (a state's size, 4 to 8 for the usual branches) is small, at that size known to the
+// compiler (the columns unrolled), else as a general lazy product.
+template <int Columns, class Matrix, class Out>
+void multiply_fixed(const Matrix& m, const PwlVector& v, Out& out) {
+  const Eigen::Map<const Eigen::Matrix<double, Eigen::Dynamic, Columns>> fixed(m.data(), m.rows(), Columns);
+  const Eigen::Matrix<double, Columns, 1> x = v.template head<Columns>();
+  out.resize(m.rows());
+  out.noalias() = fixed.lazyProduct(x);
+}
+
+template <class Matrix, class Out>
+void multiply(const Matrix& m, const PwlVector& v, Out& out) {
+  switch (m.cols()) {
+    case 4: multiply_fixed<4>(m, v, out); break;
+    case 5: multiply_fixed<5>(m, v, out); break;
+    case 6: multiply_fixed<6>(m, v, out); break;
+    case 7: multiply_fixed<7>(m, v, out); break;
+    case 8: multiply_fixed<8>(m, v, out); break;
+    default: out.noalias() = m.lazyProduct(v); break;
+  }
+}
+
 // One entry per PwlBranch::switches: slider 0 stuck, +1 / -1 slipping with F = fy+ / -fy- (de/dt
 // of that sign); gap 0 open, +1 / -1 closed at e = c + w/2 / c - w/2.
 using PwlModeCode = std::vector<std::int8_t>;
@@ -70,8 +109,8 @@ struct PwlTransition {
 struct PwlModeStructure {
   bool filled = false;
   bool determinate = true;  // false: the mode is indeterminate (build_pwl_mode returns false)
-  Eigen::MatrixXd P, N, Vm, Vd, Va;
-  Eigen::MatrixXd Kaa_inverse, Cdd_inverse, Mmm_inverse;
+  PwlMatrix P, N, Vm, Vd, Va;
+  PwlMatrix Kaa_inverse, Cdd_inverse, Mmm_inverse;
   bool modal = false;  // V, V_inverse and lambda hold a well-conditioned eigendecomposition of A_zz
   PwlComplexMatrix V, V_inverse;
   PwlComplexVector lambda;
@@ -94,8 +133,9 @@ struct PwlModeSystem {
   PwlMatrix guard_rates;                   // guards A: their time derivatives
   std::vector<PwlTransition> transitions;  // one per guard row
 
-  // The augmented state at time t [s] of node positions and velocities X under the drive u0 sin(w t).
-  PwlVector state_at(const PwlVector& X, double t, double u0, double omega) const;
+  // The augmented state of node positions and velocities X where the drive's entries are
+  // s = u0 sin(w t) and c = u0 cos(w t) [mm] (as a state of any mode at that time holds them).
+  PwlVector state_at(const PwlVector& X, double s, double c) const;
 
   // The exact flow of the mode (pwl_flow.cpp): e^{A tau}, its action on a state, and
   // int_0^h F(w(tau)) e^{i omega tau} dtau. Where the state block A_zz is diagonalisable with

@@ -41,7 +41,7 @@ bool PwlPeriodicState::solve(const PwlBranch& branch, double u0, double omega, c
   storage_ = loss_ = 0.0;
   cycles_ = 0;
   pieces_.clear(), switch_phases_.clear();
-  last_piece_ = kNoPiece;
+  last_piece_ = kNoPiece, recent_count_ = recent_next_ = 0;
   start_.X0.resize(0), start_.mode.clear();
   Run run{*this, branch, period_ / kPwlGridPerCycle};
   // Only an odd branch is warm-started: its periodic state is unique (the half map flips a
@@ -221,16 +221,25 @@ std::size_t PwlPeriodicState::piece_at_phase(double theta, double& t, double& si
   return it == pieces_.begin() ? 0 : static_cast<std::size_t>(std::prev(it) - pieces_.begin());
 }
 
-PwlVector PwlPeriodicState::state_at_phase(double theta, int& mode, double& sign) const {
+const PwlVector& PwlPeriodicState::state_at_phase(double theta, int& mode, double& sign) const {
   double t = 0.0;
   const std::size_t k = piece_at_phase(theta, t, sign);
+  mode = pieces_[k].mode;
+  return state_in_piece(theta, k, t);
+}
+
+const PwlVector& PwlPeriodicState::state_in_piece(double theta, std::size_t k, double t) const {
+  for (std::size_t i = 0; i < recent_count_; ++i)
+    if (recent_[i].theta == theta) return recent_[i].w;
   const Piece& piece = pieces_[k];
-  mode = piece.mode;
-  const PwlModeSystem& s = system(mode);
+  const PwlModeSystem& s = system(piece.mode);
   // Nudged from the last state asked for where it is in the same piece and near (the
   // iterations of an extremum's search), else the flow from the piece's start.
   if (k != last_piece_ || !s.nudge(t - last_t_, last_w_, last_w_)) last_w_ = s.advance(t - piece.t, piece.w);
   last_piece_ = k, last_t_ = t;
+  Recent& kept = recent_[recent_next_];
+  kept.theta = theta, kept.w = last_w_;
+  recent_next_ = (recent_next_ + 1) % kRecent, recent_count_ = std::min(recent_count_ + 1, kRecent);
   return last_w_;
 }
 
@@ -251,7 +260,7 @@ void PwlPeriodicState::slopes(const double* theta, int count, double offset, dou
       if (E.size() != 0 && std::abs(gap - grid) <= 1e-9 * grid) next.noalias() = E.topRows(s.dim).lazyProduct(w), w = next;
       else if (!s.nudge(gap, w, w)) w = s.advance(gap, w);
     } else {
-      w = s.advance(t - pieces_[k].t, pieces_[k].w);
+      w = state_in_piece(theta[j] + offset, k, t);
       slope_row = s.force_rate / omega_;
       current = k, current_sign = sign;
     }
@@ -263,14 +272,14 @@ void PwlPeriodicState::slopes(const double* theta, int count, double offset, dou
 double PwlPeriodicState::force(double theta) const {
   int m = 0;
   double sign = 1.0;
-  const PwlVector w = state_at_phase(theta, m, sign);
+  const PwlVector& w = state_at_phase(theta, m, sign);
   return sign * system(m).force.dot(w);
 }
 
 void PwlPeriodicState::derivatives(double theta, double& first, double& second) const {
   int m = 0;
   double sign = 1.0;
-  const PwlVector w = state_at_phase(theta, m, sign);
+  const PwlVector& w = state_at_phase(theta, m, sign);
   const PwlModeSystem& s = system(m);
   first = sign * s.force_rate.dot(w) / omega_;
   second = sign * s.force_curvature.dot(w) / (omega_ * omega_);

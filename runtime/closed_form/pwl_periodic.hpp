@@ -40,6 +40,7 @@
 #include "runtime/closed_form/pwl_mode.hpp"
 #include "runtime/closed_form/pwl_warm_start.hpp"
 
+#include <array>
 #include <deque>
 #include <utility>
 #include <vector>
@@ -157,14 +158,25 @@ class PwlPeriodicState {
   void remember(bool ok, bool warm);
 
   // The state at phase theta, its mode, and the sign its force takes there (-1 in the
-  // mirrored half of an odd branch).
-  PwlVector state_at_phase(double theta, int& mode, double& sign) const;
+  // mirrored half of an odd branch). Valid until the next call.
+  const PwlVector& state_at_phase(double theta, int& mode, double& sign) const;
+  // The same in piece k at time t into the span (piece_at_phase of theta).
+  const PwlVector& state_in_piece(double theta, std::size_t k, double t) const;
   // The last state state_at_phase found: in piece last_piece_ at time last_t_ into the span
   // (kNoPiece: none since the solve).
   static constexpr std::size_t kNoPiece = static_cast<std::size_t>(-1);
   mutable std::size_t last_piece_ = kNoPiece;
   mutable double last_t_ = 0.0;
   mutable PwlVector last_w_;
+  // The last kRecent states found, by their phase: the force's maximum search asks for the
+  // state at a piece's end for the force there and again for the slope (pieces on either side).
+  static constexpr std::size_t kRecent = 4;
+  struct Recent {
+    double theta = 0.0;
+    PwlVector w;
+  };
+  mutable std::array<Recent, kRecent> recent_;
+  mutable std::size_t recent_count_ = 0, recent_next_ = 0;
   // The piece holding phase theta, the time t [s] into the span there and the sign as above.
   std::size_t piece_at_phase(double theta, double& t, double& sign) const;
 };
