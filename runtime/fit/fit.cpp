@@ -7,6 +7,7 @@
 #include "runtime/fit/force_offset.hpp"
 #include "runtime/fit/force_scales.hpp"
 #include "runtime/fit/harmonic_jacobian.hpp"
+#include "runtime/fit/history_scoring.hpp"
 #include "runtime/fit/separable_fit.hpp"
 #include "runtime/fit/parameter_bounds.hpp"
 #include "runtime/fit/yeoh_mean_curve.hpp"
@@ -352,7 +353,10 @@ FitResult fit(const Network& start, const std::vector<int>& free, const std::vec
             coordinates.logarithmic);
     }
     if (statistics.parameters.residuals == 0)
-      statistics = statistics_with_offsets(searches.predictions_for(final_method), data, score, z, coordinates.logarithmic);
+      statistics = all_histories(data)  // a block of samples at a time (history_scoring.hpp)
+                       ? history_statistics([&](const std::vector<double>& at) { return coordinates.network(at); }, data, score, z,
+                                            coordinates.logarithmic)
+                       : statistics_with_offsets(searches.predictions_for(final_method), data, score, z, coordinates.logarithmic);
     result.statistics = statistics.parameters;
     if (!result.statistics.has_noise_estimate())
       result.notes.push_back(
