@@ -79,11 +79,16 @@ std::vector<double> yeoh_start(const Network& start, const std::vector<int>& fre
       if (*hi - *lo > widest_range) widest = &set.history(), widest_range = *hi - *lo, offset = force_offset(set, {}, Offsets::declared);
     }
   if (!widest) return values;
-  std::vector<double> force = widest->force;  // the network's part: less a declared offset
-  for (double& f : force) f -= offset;
   std::array<YeohStartValue, 3> started;
   try {
-    started = yeoh_start_values(start.model(), t.yeohs.front(), free, {widest->drive.displacement, force});
+    // The largest loop alone is copied (a long history is not), its force the network's part:
+    // less a declared offset.
+    const auto [first, last] = largest_cycle(widest->drive.displacement);
+    const auto from = static_cast<std::ptrdiff_t>(first), to = static_cast<std::ptrdiff_t>(last) + 1;
+    LoopSamples loop{{widest->drive.displacement.begin() + from, widest->drive.displacement.begin() + to},
+                     {widest->force.begin() + from, widest->force.begin() + to}};
+    for (double& f : loop.force) f -= offset;
+    started = yeoh_start_values_of_loop(start.model(), t.yeohs.front(), free, loop);
   } catch (const UserError& e) {  // the record holds no usable loop: the start stays as written
     notes.push_back(fmt::format("no yeoh start from {}: {}", widest->path, e.what()));
     return values;
