@@ -3,12 +3,13 @@
 // quadratic form || A y - b ||^2 at any y, whatever the block size; fewer rows than columns.
 #include "runtime/fit/streaming_least_squares.hpp"
 
+#include "portable_random.hpp"
+
 #include <doctest/doctest.h>
 
 #include <Eigen/Dense>
 
 #include <cmath>
-#include <random>
 
 using namespace rheo;
 
@@ -17,11 +18,10 @@ namespace {
 // A random m x (n + 1) system [A | b] with columns of unlike scales (1e-3 to 1e3) and a slightly
 // collinear pair (1 %).
 Eigen::MatrixXd system_of(Eigen::Index m, Eigen::Index n, unsigned seed) {
-  std::mt19937_64 random(seed);
-  std::normal_distribution<double> normal(0.0, 1.0);
+  test::PortableRandom random(seed);
   Eigen::MatrixXd ab(m, n + 1);
   for (Eigen::Index i = 0; i < m; ++i)
-    for (Eigen::Index j = 0; j <= n; ++j) ab(i, j) = normal(random) * std::pow(10.0, static_cast<double>(j % 3) * 3.0 - 3.0);
+    for (Eigen::Index j = 0; j <= n; ++j) ab(i, j) = random.normal() * std::pow(10.0, static_cast<double>(j % 3) * 3.0 - 3.0);
   if (n >= 2) ab.col(1) = ab.col(0) * 1e3 + 1e-2 * ab.col(1);
   return ab;
 }
