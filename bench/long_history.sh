@@ -6,7 +6,7 @@
 # under /usr/bin/time -v (Debian's `time` package): wall and CPU time, peak memory (maximum
 # resident set).
 #
-#   bench/long_history.sh [--rows N] [--rate HZ] [--runs K] [--elements] [--hdf5] [--report-data] [--rheo PATH]
+#   bench/long_history.sh [--rows N] [--rate HZ] [--runs K] [--elements] [--hdf5] [--report-data] [--fit-data] [--rheo PATH]
 #
 # --hdf5: HDF5 in and out instead (docs/data-formats.md, "HDF5 files"): the input is the CSV
 # history simulated once by rheo into history-N-HZ.h5 (kept; rheo's result holds /time and
@@ -15,6 +15,10 @@
 # --report-data: `rheo report` of specimen D against a measured history instead, read as fits
 # and reports read their data: the model's own result over the CSV history (time, displacement,
 # force), simulated once into history-N-HZ-measured.csv (kept), the output report.html.
+#
+# --fit-data: `rheo fit` of a spring (`spring e (k = 300 N/mm in [1, 10000])`) to that measured
+# history instead: --max-evaluations 3, the fitted model written to fitted.rheo (a separable
+# solve and its standard errors: what a fit holds for a long history, docs/performance.md).
 #
 # Defaults: 1e7 rows at 10 kHz, 3 runs, build/rheo. The 24 h durability log of #28 is
 # `--rows 86400000 --rate 1000`. Input and output go to ${TMPDIR:-/tmp}/rheo-bench-history/
@@ -32,7 +36,8 @@ while [ $# -gt 0 ]; do
     --elements) elements=(--elements); shift ;;
     --hdf5) format=h5; shift ;;
     --report-data) format=report; shift ;;
-    -h|--help) sed -n '2,22p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
+    --fit-data) format=fit; shift ;;
+    -h|--help) sed -n '2,26p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
     *) echo "bench/long_history.sh: unknown argument '$1' (see --help)" >&2; exit 2 ;;
   esac
 done
@@ -68,7 +73,7 @@ if [ "$format" = h5 ]; then
     "$rheo" simulate "$model" -o "$input"
   fi
 fi
-if [ "$format" = report ]; then
+if [ "$format" = report ] || [ "$format" = fit ]; then
   input=$dir/history-$rows-$rate-measured.csv
   if [ ! -e "$input" ]; then
     echo "simulating $csv into $input (rheo simulate: time, displacement, force)" >&2
@@ -77,8 +82,14 @@ if [ "$format" = report ]; then
     "$rheo" simulate "$model" -o "$input.tmp"
     mv "$input.tmp" "$input"
   fi
+fi
+if [ "$format" = report ]; then
   sed -n '/^model /,/^}/p' examples/specimen_d.rheo >"$model"
   command=(report "$model" --data "$input" -o "$dir/report.html") out=$dir/report.html
+elif [ "$format" = fit ]; then
+  model=$dir/spring.rheo
+  printf 'model s {\n  spring e (k = 300 N/mm in [1, 10000])\n}\n' >"$model"
+  command=(fit "$model" --data "$input" --max-evaluations 3 -o "$dir/fitted.rheo") out=$dir/fitted.rheo
 else
   # The model block of the example, then one history protocol over the generated file.
   { sed -n '/^model /,/^}/p' examples/specimen_d.rheo

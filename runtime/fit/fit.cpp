@@ -7,6 +7,7 @@
 #include "runtime/fit/force_offset.hpp"
 #include "runtime/fit/force_scales.hpp"
 #include "runtime/fit/harmonic_jacobian.hpp"
+#include "runtime/fit/history_scoring.hpp"
 #include "runtime/fit/separable_fit.hpp"
 #include "runtime/fit/parameter_bounds.hpp"
 #include "runtime/fit/yeoh_mean_curve.hpp"
@@ -78,11 +79,16 @@ std::vector<double> yeoh_start(const Network& start, const std::vector<int>& fre
       if (*hi - *lo > widest_range) widest = &set.history(), widest_range = *hi - *lo, offset = force_offset(set, {}, Offsets::declared);
     }
   if (!widest) return values;
-  std::vector<double> force = widest->force;  // the network's part: less a declared offset
-  for (double& f : force) f -= offset;
   std::array<YeohStartValue, 3> started;
   try {
-    started = yeoh_start_values(start.model(), t.yeohs.front(), free, {widest->drive.displacement, force});
+    // The largest loop alone is copied (a long history is not), its force the network's part:
+    // less a declared offset.
+    const auto [first, last] = largest_cycle(widest->drive.displacement);
+    const auto from = static_cast<std::ptrdiff_t>(first), to = static_cast<std::ptrdiff_t>(last) + 1;
+    LoopSamples loop{{widest->drive.displacement.begin() + from, widest->drive.displacement.begin() + to},
+                     {widest->force.begin() + from, widest->force.begin() + to}};
+    for (double& f : loop.force) f -= offset;
+    started = yeoh_start_values_of_loop(start.model(), t.yeohs.front(), free, loop);
   } catch (const UserError& e) {  // the record holds no usable loop: the start stays as written
     notes.push_back(fmt::format("no yeoh start from {}: {}", widest->path, e.what()));
     return values;
@@ -352,7 +358,10 @@ FitResult fit(const Network& start, const std::vector<int>& free, const std::vec
             coordinates.logarithmic);
     }
     if (statistics.parameters.residuals == 0)
-      statistics = statistics_with_offsets(searches.predictions_for(final_method), data, score, z, coordinates.logarithmic);
+      statistics = all_histories(data)  // a block of samples at a time (history_scoring.hpp)
+                       ? history_statistics([&](const std::vector<double>& at) { return coordinates.network(at); }, data, score, z,
+                                            coordinates.logarithmic)
+                       : statistics_with_offsets(searches.predictions_for(final_method), data, score, z, coordinates.logarithmic);
     result.statistics = statistics.parameters;
     if (!result.statistics.has_noise_estimate())
       result.notes.push_back(

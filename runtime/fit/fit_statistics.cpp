@@ -13,7 +13,6 @@
 namespace rheo::runtime {
 namespace {
 
-constexpr double kRelativeStep = 1e-6;
 constexpr double kSingularTolerance = 1e-8;  // of the largest singular value
 constexpr double kNullComponent = 1e-6;
 constexpr double kUndeterminedRelativeError = 1e3;  // standard error over |value| beyond which a parameter is not identifiable
@@ -25,10 +24,7 @@ Eigen::VectorXd evaluate(const std::function<std::vector<double>(const std::vect
   if (expected_size != 0 && r.size() != expected_size)
     throw std::logic_error(fmt::format("parameter_statistics: the residual vector changed size ({} -> {})", expected_size, r.size()));
   for (double v : r)
-    if (!std::isfinite(v))
-      throw NumericalError(
-          "parameter_statistics: a residual is not finite near the optimum, so no standard errors can be computed; a "
-          "parameter is likely at the edge of the range the model can be simulated in: fix it or narrow its bounds");
+    if (!std::isfinite(v)) throw NumericalError(kStatisticsNotFinite);
   return Eigen::Map<const Eigen::VectorXd>(r.data(), static_cast<Eigen::Index>(r.size()));
 }
 
@@ -93,7 +89,7 @@ ParameterStatistics parameter_statistics(const std::function<std::vector<double>
   Eigen::MatrixXd jacobian(static_cast<Eigen::Index>(m), static_cast<Eigen::Index>(n));
   std::vector<double> shifted = z;
   for (std::size_t j = 0; j < n; ++j) {
-    const double h = kRelativeStep * std::max(1.0, std::abs(z[j]));
+    const double h = kStatisticsRelativeStep * std::max(1.0, std::abs(z[j]));
     shifted[j] = z[j] + h;
     const double up = shifted[j];
     const Eigen::VectorXd r_up = evaluate(residuals, shifted, m);
@@ -114,7 +110,18 @@ ParameterStatistics parameter_statistics(const Eigen::VectorXd& r0, const Eigen:
                                        logarithmic.size(), m, jacobian.rows(), jacobian.cols()));
   if (!r0.allFinite() || !jacobian.allFinite())
     throw NumericalError("parameter_statistics: a residual or its derivative is not finite at the optimum, so no standard errors can be computed");
-  const Eigen::JacobiSVD<Eigen::MatrixXd> svd(jacobian, Eigen::ComputeFullV);
+  return parameter_statistics_of_factor(jacobian, r0.squaredNorm(), m, z, logarithmic);
+}
+
+ParameterStatistics parameter_statistics_of_factor(const Eigen::MatrixXd& factor, double squared_residual_norm, std::size_t m,
+                                                   const std::vector<double>& z, const std::vector<bool>& logarithmic) {
+  const std::size_t n = z.size();
+  if (n == 0 || logarithmic.size() != n || factor.cols() != static_cast<Eigen::Index>(n) || m == 0)
+    throw std::logic_error(fmt::format("parameter_statistics: {} coordinates, {} log flags, {} residuals and a {} x {} factor", n,
+                                       logarithmic.size(), m, factor.rows(), factor.cols()));
+  if (!std::isfinite(squared_residual_norm) || !factor.allFinite())
+    throw NumericalError("parameter_statistics: a residual or its derivative is not finite at the optimum, so no standard errors can be computed");
+  const Eigen::JacobiSVD<Eigen::MatrixXd> svd(factor, Eigen::ComputeFullV);
   const Eigen::VectorXd& s = svd.singularValues();  // min(m, n) of them, decreasing
   const Eigen::MatrixXd& v = svd.matrixV();         // n x n; columns beyond min(m, n) span null directions
   const auto nn = static_cast<Eigen::Index>(n);
@@ -127,7 +134,7 @@ ParameterStatistics parameter_statistics(const Eigen::VectorXd& r0, const Eigen:
       ++out.rank;
     }
   out.residuals = static_cast<int>(m);
-  const double s2 = m > static_cast<std::size_t>(out.rank) ? r0.squaredNorm() / static_cast<double>(m - static_cast<std::size_t>(out.rank))
+  const double s2 = m > static_cast<std::size_t>(out.rank) ? squared_residual_norm / static_cast<double>(m - static_cast<std::size_t>(out.rank))
                                                            : std::numeric_limits<double>::quiet_NaN();
   const Eigen::MatrixXd covariance = v * inverse_square.asDiagonal() * v.transpose();  // Cov_z / s^2
 

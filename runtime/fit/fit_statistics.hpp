@@ -31,6 +31,7 @@
 
 #include <Eigen/Core>
 
+#include <cstddef>
 #include <functional>
 #include <vector>
 
@@ -61,5 +62,17 @@ ParameterStatistics parameter_statistics(const std::function<std::vector<double>
 // (e.g. by sensitivities, harmonic_jacobian.hpp).
 ParameterStatistics parameter_statistics(const Eigen::VectorXd& r0, const Eigen::MatrixXd& jacobian, const std::vector<double>& z,
                                          const std::vector<bool>& logarithmic);
+// The same from a matrix with J's singular values and right singular vectors (J itself, or the
+// triangular factor R of J = Q R that a StreamingLeastSquares gives without holding J), |r0|^2
+// and m, the number of residuals.
+ParameterStatistics parameter_statistics_of_factor(const Eigen::MatrixXd& factor, double squared_residual_norm, std::size_t residuals,
+                                                   const std::vector<double>& z, const std::vector<bool>& logarithmic);
+
+// The central differences' relative step (h_j above), for callers that difference themselves.
+inline constexpr double kStatisticsRelativeStep = 1e-6;
+// The NumericalError where a residual near the optimum is not finite.
+inline constexpr const char* kStatisticsNotFinite =
+    "parameter_statistics: a residual is not finite near the optimum, so no standard errors can be computed; a "
+    "parameter is likely at the edge of the range the model can be simulated in: fix it or narrow its bounds";
 
 }  // namespace rheo::runtime

@@ -48,10 +48,12 @@ StatisticsWithOffsets statistics_with_offsets(const std::function<std::vector<Pr
     for (std::size_t f = 0; f < data.size(); ++f) append_residuals(data[f], p.at(f), score, r);
     return r;
   };
-  const ParameterStatistics all = parameter_statistics(residuals, x, log_x);
+  return split_offsets(parameter_statistics(residuals, x, log_x), n, free_sets, data.size());
+}
 
+StatisticsWithOffsets split_offsets(const ParameterStatistics& all, std::size_t n, const std::vector<std::size_t>& free_sets, std::size_t data_sets) {
   StatisticsWithOffsets out;
-  out.offsets.resize(data.size());
+  out.offsets.resize(data_sets);
   out.parameters = all;
   out.parameters.standard_error.resize(n);
   out.parameters.identifiable.resize(n);

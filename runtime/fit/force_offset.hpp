@@ -20,6 +20,7 @@
 #include "runtime/fit/fit_statistics.hpp"
 #include "runtime/io/fit_data.hpp"
 
+#include <cstddef>
 #include <functional>
 #include <limits>
 #include <vector>
@@ -53,6 +54,10 @@ void add_offset_statistics(FittedOffset& fitted, const FittedOffset& statistics)
 // free offsets of DATA as extra coordinates (see above). PREDICTIONS(z): every data set's
 // prediction with Offsets::declared. Without free offsets this is parameter_statistics on the
 // residuals. Throws what parameter_statistics throws.
+// The statistics of the coordinates z (N of them) and, after them, the free offsets of the data
+// sets FREE_SETS (indices into the fit's DATA_SETS data sets, in that order), split.
+StatisticsWithOffsets split_offsets(const ParameterStatistics& all, std::size_t n, const std::vector<std::size_t>& free_sets, std::size_t data_sets);
+
 StatisticsWithOffsets statistics_with_offsets(const std::function<std::vector<Prediction>(const std::vector<double>&)>& predictions,
                                               const std::vector<FitDataSet>& data, const ScoreSettings& score, const std::vector<double>& z,
                                               const std::vector<bool>& logarithmic);

@@ -2,6 +2,7 @@
 
 #include "runtime/core/errors.hpp"
 #include "runtime/fit/bounded_least_squares.hpp"
+#include "runtime/fit/history_scoring.hpp"
 #include "runtime/fit/levenberg_marquardt.hpp"
 
 #include <Eigen/Dense>
@@ -121,6 +122,7 @@ ScaleSolution solve_scales(const Network& network, const std::vector<int>& scale
                            const std::vector<double>& upper, const std::vector<FitDataSet>& data, const ScoreSettings& score) {
   if (scales.size() != lower.size() || scales.size() != upper.size())
     throw std::logic_error("solve_scales: one lower and one upper bound per scale");
+  if (all_histories(data)) return solve_history_scales(network, scales, lower, upper, data, score);  // a block of samples at a time
   const AffineResponse response(network, scales, lower, upper, data, score.harmonic);
   const ScaleProblem problem(response, data, score);
   const Eigen::Index n = static_cast<Eigen::Index>(scales.size());

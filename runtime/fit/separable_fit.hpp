@@ -37,6 +37,8 @@ struct ScaleSolution {
 // `scales`: indices of model parameters that are force scales, with their bounds `lower`,
 // `upper` (internal units). The other parameters keep network's values. Throws what
 // evaluating the model throws (NumericalError for a point that cannot be simulated).
+// Data that are all histories are solved a block of samples at a time, holding no
+// per-sample array (history_scoring.hpp: the same minimum up to rounding).
 ScaleSolution solve_scales(const Network& network, const std::vector<int>& scales, const std::vector<double>& lower,
                            const std::vector<double>& upper, const std::vector<FitDataSet>& data, const ScoreSettings& score);
 

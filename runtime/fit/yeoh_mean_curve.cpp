@@ -118,7 +118,15 @@ LoopSamples loop_samples_from_table(const Table& table) {
 
 LoopSamples largest_loop(const LoopSamples& history) {
   check_sizes(history, "largest_loop");
-  const auto& u = history.displacement;
+  const auto [a, b] = largest_cycle(history.displacement);
+  LoopSamples loop;
+  loop.displacement.assign(history.displacement.begin() + static_cast<std::ptrdiff_t>(a),
+                           history.displacement.begin() + static_cast<std::ptrdiff_t>(b) + 1);
+  loop.force.assign(history.force.begin() + static_cast<std::ptrdiff_t>(a), history.force.begin() + static_cast<std::ptrdiff_t>(b) + 1);
+  return loop;
+}
+
+std::pair<std::size_t, std::size_t> largest_cycle(const std::vector<double>& u) {
   if (u.size() < 3) throw DataError("largest_loop: the record has fewer than 3 samples");
   const auto [lo_it, hi_it] = std::minmax_element(u.begin(), u.end());
   const double level = 0.5 * (*lo_it + *hi_it), range = *hi_it - *lo_it;
@@ -140,11 +148,7 @@ LoopSamples largest_loop(const LoopSamples& history) {
   std::size_t chosen = 0;
   for (std::size_t i = 0; i < cycles.size(); ++i)
     if (amplitude[i] >= (1.0 - 1e-3) * largest) chosen = i;
-  const auto [a, b] = cycles[chosen];
-  LoopSamples loop;
-  loop.displacement.assign(u.begin() + static_cast<std::ptrdiff_t>(a), u.begin() + static_cast<std::ptrdiff_t>(b) + 1);
-  loop.force.assign(history.force.begin() + static_cast<std::ptrdiff_t>(a), history.force.begin() + static_cast<std::ptrdiff_t>(b) + 1);
-  return loop;
+  return cycles[chosen];
 }
 
 MeanCurve mean_curve(const LoopSamples& loop, double turning_margin) {
@@ -220,7 +224,12 @@ YeohConstants yeoh_from_shape(const YeohConstants& least_squares, double elastic
 
 std::array<YeohStartValue, 3> yeoh_start_values(const lang::CheckedModel& model, const std::array<int, 3>& yeoh, const std::vector<int>& free,
                                                 const LoopSamples& record) {
-  const YeohConstants d = fit_yeoh_least_squares(mean_curve(largest_loop(record)));
+  return yeoh_start_values_of_loop(model, yeoh, free, largest_loop(record));
+}
+
+std::array<YeohStartValue, 3> yeoh_start_values_of_loop(const lang::CheckedModel& model, const std::array<int, 3>& yeoh,
+                                                        const std::vector<int>& free, const LoopSamples& loop) {
+  const YeohConstants d = fit_yeoh_least_squares(mean_curve(loop));
   const double constants[] = {d.d10, d.d20, d.d30};
   std::array<YeohStartValue, 3> out;
   for (std::size_t slot = 0; slot < 3; ++slot) {

@@ -22,6 +22,7 @@
 #include "runtime/io/history_csv.hpp"
 
 #include <array>
+#include <utility>
 #include <vector>
 
 namespace rheo::runtime {
@@ -53,6 +54,9 @@ LoopSamples loop_samples_from_table(const Table& table);
 // (max u - min u) / 2 over the cycle; the largest are those within 0.1 % of the maximum.
 // DataError when the record holds no full cycle.
 LoopSamples largest_loop(const LoopSamples& history);
+// Its first and last sample (inclusive) in the displacement record U, for callers that cut
+// the force themselves (a long history's, without copying it whole).
+std::pair<std::size_t, std::size_t> largest_cycle(const std::vector<double>& u);
 
 // The mean curve of the largest closed loop in `loop` (one or more cycles, any sampling):
 //  1. u_max, u_min and the range R = u_max - u_min over all samples.
@@ -96,5 +100,8 @@ struct YeohStartValue {
 // DataError (from largest_loop, mean_curve) when RECORD holds no usable loop.
 std::array<YeohStartValue, 3> yeoh_start_values(const lang::CheckedModel& model, const std::array<int, 3>& yeoh, const std::vector<int>& free,
                                                 const LoopSamples& record);
+// The same from the largest loop already cut (largest_loop, largest_cycle).
+std::array<YeohStartValue, 3> yeoh_start_values_of_loop(const lang::CheckedModel& model, const std::array<int, 3>& yeoh,
+                                                        const std::vector<int>& free, const LoopSamples& loop);
 
 }  // namespace rheo::runtime

@@ -13,16 +13,57 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
+#include <iterator>
 #include <optional>
 #include <stdexcept>
 
 namespace rheo::runtime {
 
+SampleRows::SampleRows(std::initializer_list<int> rows) {
+  for (int row : rows) push_back(row);
+}
+
+void SampleRows::push_back(int row) {
+  if (runs_.empty() || static_cast<long long>(row) != runs_.back().first_row + static_cast<long long>(size_ - runs_.back().first_sample))
+    runs_.push_back({size_, row});
+  ++size_;
+}
+
+void SampleRows::append(const std::vector<int>& rows) {
+  for (int row : rows) push_back(row);
+}
+
+void SampleRows::assign(std::size_t count, int row) {
+  clear();
+  for (std::size_t k = 0; k < count; ++k) push_back(row);
+}
+
+void SampleRows::clear() {
+  runs_.clear();
+  size_ = 0;
+}
+
+int SampleRows::operator[](std::size_t sample) const {
+  if (sample >= size_) throw std::out_of_range(fmt::format("SampleRows: sample {} of {}", sample, size_));
+  const auto run = std::prev(std::upper_bound(runs_.begin(), runs_.end(), sample, [](std::size_t k, const Run& r) { return k < r.first_sample; }));
+  return run->first_row + static_cast<int>(sample - run->first_sample);
+}
+
+std::vector<int> SampleRows::all() const {
+  std::vector<int> out;
+  out.reserve(size_);
+  for (std::size_t r = 0; r < runs_.size(); ++r) {
+    const std::size_t end = r + 1 < runs_.size() ? runs_[r + 1].first_sample : size_;
+    for (std::size_t k = runs_[r].first_sample; k < end; ++k) out.push_back(runs_[r].first_row + static_cast<int>(k - runs_[r].first_sample));
+  }
+  return out;
+}
+
 void HistoryData::append(const DrivePiece& piece, const std::vector<double>& piece_force) {
   drive.time.insert(drive.time.end(), piece.time.begin(), piece.time.end());
   drive.displacement.insert(drive.displacement.end(), piece.displacement.begin(), piece.displacement.end());
   force.insert(force.end(), piece_force.begin(), piece_force.end());
-  rows.insert(rows.end(), piece.rows.begin(), piece.rows.end());
+  rows.append(piece.rows);
 }
 
 void HistoryData::set_force_scale() {
@@ -71,7 +112,7 @@ std::optional<HistoryData> stream_measured_history(const std::string& path, cons
         const double rows = static_cast<double>(stream.file_size()) * static_cast<double>(force.size()) /
                             static_cast<double>(std::max<std::uint64_t>(stream.bytes_read(), 1));
         const auto n = static_cast<std::size_t>(std::min(1.02 * rows + 1024.0, static_cast<double>(most)));
-        h.drive.time.reserve(n), h.drive.displacement.reserve(n), h.force.reserve(n), h.rows.reserve(n);
+        h.drive.time.reserve(n), h.drive.displacement.reserve(n), h.force.reserve(n);
       }
       h.append(piece, force);
     }
@@ -91,7 +132,7 @@ HistoryData history_data_from_table(const Table& table, const DataReading& readi
   h.path = table.path;
   h.drive = drive_from_table(table, reading.columns);
   h.force = role_values(table, f, Role::force, reading.columns);
-  h.rows = table.rows;
+  h.rows.append(table.rows);
   h.set_force_scale();
   if (!(h.force_scale > 0.0)) throw DataError(drive_faults::zero_force(table.path, table.rows.front(), table.cell_column(0, f)));
   return h;

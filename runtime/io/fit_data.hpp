@@ -13,6 +13,8 @@
 #include "runtime/core/drive.hpp"
 #include "runtime/io/harmonic_data.hpp"
 
+#include <cstddef>
+#include <initializer_list>
 #include <optional>
 #include <string>
 #include <variant>
@@ -22,11 +24,44 @@ namespace rheo::runtime {
 
 struct DrivePiece;  // history_stream.hpp
 
+// The 1-based file line of each sample of a measured history (an HDF5 or MATLAB file's: the
+// sample's index), held as runs of consecutive lines: memory by the runs (a CSV's comment and
+// blank lines between data rows), not by the samples. The same rows in the same order are one
+// representation, so equal rows compare equal.
+class SampleRows {
+ public:
+  SampleRows() = default;
+  SampleRows(std::initializer_list<int> rows);
+
+  void push_back(int row);
+  void append(const std::vector<int>& rows);
+  void assign(std::size_t count, int row);  // COUNT samples on ROW (a run each where they repeat)
+  void clear();
+  std::size_t size() const { return size_; }
+  bool empty() const { return size_ == 0; }
+  int operator[](std::size_t sample) const;  // std::out_of_range beyond size()
+  int front() const { return (*this)[0]; }
+  std::vector<int> all() const;  // every sample's row, in order
+  std::size_t runs() const { return runs_.size(); }
+
+  bool operator==(const SampleRows& other) const = default;
+  friend bool operator==(const SampleRows& rows, const std::vector<int>& all) { return rows.all() == all; }
+
+ private:
+  struct Run {
+    std::size_t first_sample;  // its rows: first_row, first_row + 1, ... from this sample on
+    int first_row;
+    bool operator==(const Run&) const = default;
+  };
+  std::vector<Run> runs_;
+  std::size_t size_ = 0;
+};
+
 struct HistoryData {
   std::string path;
   Drive drive;                // the measured displacement; the network starts relaxed at its first sample
   std::vector<double> force;  // measured force at each drive sample [N]
-  std::vector<int> rows;      // 1-based file line of each sample
+  SampleRows rows;            // 1-based file line of each sample
   double force_scale = 1.0;   // max |F| [N]: residuals are relative to it
 
   // Appends the samples of PIECE and their forces FORCE [N] (one per sample), as a reader yields them.
@@ -54,9 +89,9 @@ struct FitDataSet {
   const HistoryData& history() const { return std::get<HistoryData>(data); }
 };
 
-// What a held sample of a measured history takes: time, displacement and force as doubles and
-// its row (or index).
-inline constexpr std::size_t kHeldSampleBytes = 3 * sizeof(double) + sizeof(int);
+// What a held sample of a measured history takes: time, displacement and force as doubles (its
+// row is in a run of SampleRows).
+inline constexpr std::size_t kHeldSampleBytes = 3 * sizeof(double);
 
 HistoryData history_data_from_table(const Table& table);
 HistoryData history_data_from_table(const Table& table, const DataReading& reading);

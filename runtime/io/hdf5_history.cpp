@@ -190,7 +190,7 @@ HistoryData read_hdf5_history(const std::string& path, const lang::SourceLocatio
   HistoryData h;
   h.path = path;
   const auto n = static_cast<std::size_t>(reader.samples());
-  h.drive.time.reserve(n), h.drive.displacement.reserve(n), h.force.reserve(n), h.rows.reserve(n);
+  h.drive.time.reserve(n), h.drive.displacement.reserve(n), h.force.reserve(n);
   DrivePiece piece;
   std::vector<double> force;
   while (reader.next(piece, &force)) h.append(piece, force);

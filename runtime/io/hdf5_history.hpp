@@ -89,8 +89,8 @@ class Hdf5HistoryReader {
 // SUNDIALS, JSON output), checked as the reader checks it; at most lang::max_drive_samples
 // samples (a DataError before anything is read beyond that).
 Drive read_hdf5_drive(const std::string& path, const lang::SourceLocation* named_at, const ColumnReading& reading, bool from_rest);
-// A measured history (time, displacement, force) for fits and reports, held as doubles and
-// each sample's index, kHeldSampleBytes a sample, within lang::max_table_bytes (the bound of a
+// A measured history (time, displacement, force) for fits and reports, held as doubles (each
+// sample's index its row), kHeldSampleBytes a sample, within lang::max_table_bytes (the bound of a
 // table held whole; a DataError before anything is read beyond it).
 HistoryData read_hdf5_history(const std::string& path, const lang::SourceLocation* named_at, const ColumnReading& reading);
 

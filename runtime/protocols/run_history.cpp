@@ -4,6 +4,8 @@
 #include "runtime/stepping/drive_stepper.hpp"
 #include "runtime/stepping/relaxed_state.hpp"
 
+#include <algorithm>
+
 namespace rheo::runtime {
 
 History run_history(const Network& network, const Drive& drive, bool elements, SolverChoice solver) {
@@ -42,6 +44,26 @@ std::vector<double> history_force(const Network& network, const Drive& drive, So
   for (std::size_t k = 0; k < force.size(); ++k)
     force[k] = k == 0 ? stepper.start(drive.time[0], drive.displacement[0]) : stepper.step(drive.time[k], drive.displacement[k]);
   return force;
+}
+
+HistoryForceStream::HistoryForceStream(const Network& network, const Drive& drive, SolverChoice solver) : drive_(drive) {
+  if (uses_sundials(network, solver)) whole_ = run_history(network, drive, false, solver).force;
+  else stepper_ = std::make_unique<DriveStepper>(network, false);
+}
+
+HistoryForceStream::~HistoryForceStream() = default;
+HistoryForceStream::HistoryForceStream(HistoryForceStream&&) noexcept = default;
+
+std::size_t HistoryForceStream::next(std::span<double> out) {
+  const std::size_t count = std::min(out.size(), drive_.time.size() - at_);
+  if (!stepper_) std::copy_n(whole_.begin() + static_cast<std::ptrdiff_t>(at_), count, out.begin());
+  else
+    for (std::size_t i = 0; i < count; ++i) {
+      const std::size_t k = at_ + i;
+      out[i] = k == 0 ? stepper_->start(drive_.time[0], drive_.displacement[0]) : stepper_->step(drive_.time[k], drive_.displacement[k]);
+    }
+  at_ += count;
+  return count;
 }
 
 }  // namespace rheo::runtime

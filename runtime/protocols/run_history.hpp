@@ -6,6 +6,11 @@
 #include "runtime/network/network.hpp"
 #include "runtime/protocols/solver_choice.hpp"
 
+#include <cstddef>
+#include <memory>
+#include <span>
+#include <vector>
+
 namespace rheo::runtime {
 
 // Simulates the drive from the relaxed state at its first displacement (stepping/relaxed_state.hpp;
@@ -15,5 +20,31 @@ History run_history(const Network& network, const Drive& drive, bool elements, S
 // Its force alone [N], one per drive sample, without copying the drive (fits score it at every
 // evaluation).
 std::vector<double> history_force(const Network& network, const Drive& drive, SolverChoice solver = SolverChoice::automatic);
+
+class DriveStepper;  // stepping/drive_stepper.hpp
+
+// history_force a block of samples at a time, the same numbers bit for bit, without holding
+// them all (fits score long histories so): on the fixed-step kernels one step per sample as
+// the blocks are asked for; where SUNDIALS takes the network, its whole force is computed at
+// construction and handed out in blocks. NETWORK and DRIVE must outlive the stream.
+class HistoryForceStream {
+ public:
+  HistoryForceStream(const Network& network, const Drive& drive, SolverChoice solver = SolverChoice::automatic);
+  ~HistoryForceStream();
+  HistoryForceStream(HistoryForceStream&&) noexcept;
+  HistoryForceStream& operator=(HistoryForceStream&&) = delete;
+  HistoryForceStream(const HistoryForceStream&) = delete;
+  HistoryForceStream& operator=(const HistoryForceStream&) = delete;
+
+  // The forces [N] of the next samples into OUT, as many as it holds or are left; their count
+  // (0 at the end). Throws what history_force throws.
+  std::size_t next(std::span<double> out);
+
+ private:
+  const Drive& drive_;
+  std::unique_ptr<DriveStepper> stepper_;  // fixed steps; null where SUNDIALS took the network
+  std::vector<double> whole_;              // SUNDIALS: every sample's force
+  std::size_t at_ = 0;                     // samples handed out
+};
 
 }  // namespace rheo::runtime

@@ -172,7 +172,7 @@ TEST_CASE("a CSV history is streamed into arrays: the same history, rows and fau
   CHECK(data_error(late) == whole_error);
   // The bound is on the samples held, said before more are held.
   CHECK_THROWS_WITH_AS(runtime::stream_measured_history(path, nullptr, {}, 20000),
-                       (path + ": error: the history has more than 20000 samples, the most a fit or report holds (512 MiB at 28 bytes a sample); "
+                       (path + ": error: the history has more than 20000 samples, the most a fit or report holds (512 MiB at 24 bytes a sample); "
                                "fit a part of it, or resample it")
                            .c_str(),
                        runtime::DataError);
@@ -194,4 +194,32 @@ TEST_CASE("files that are not streamed histories are left to whole-file reading"
   CHECK_FALSE(runtime::stream_measured_history(no_force, nullptr, named).has_value());
   CHECK_FALSE(runtime::stream_measured_history("/dev/null", nullptr, {}).has_value());
   CHECK_FALSE(runtime::stream_measured_history(RHEO_DATA_DIR, nullptr, {}).has_value());
+}
+
+TEST_CASE("SampleRows holds runs of consecutive lines: every row back by index, equal rows equal, memory by the runs") {
+  // Lines 3-6, a comment line, 8-9, a row repeated (an HDF5 index clamped), then 20.
+  const std::vector<int> lines{3, 4, 5, 6, 8, 9, 9, 20};
+  runtime::SampleRows rows;
+  rows.append({3, 4, 5});
+  for (std::size_t k = 3; k < lines.size(); ++k) rows.push_back(lines[k]);
+  CHECK(rows.size() == lines.size());
+  CHECK(rows == lines);
+  for (std::size_t k = 0; k < lines.size(); ++k) CHECK(rows[k] == lines[k]);
+  CHECK(rows.front() == 3);
+  CHECK(rows.runs() == 4);  // 3-6, 8-9, 9, 20
+  CHECK_THROWS_AS((void)rows[lines.size()], std::out_of_range);
+  CHECK(rows == runtime::SampleRows{3, 4, 5, 6, 8, 9, 9, 20});
+  CHECK_FALSE(rows == runtime::SampleRows{3, 4, 5, 6, 7, 9, 9, 20});
+  // A million consecutive lines are one run.
+  runtime::SampleRows many;
+  for (int line = 2; line < 1'000'002; ++line) many.push_back(line);
+  CHECK(many.size() == 1'000'000);
+  CHECK(many.runs() == 1);
+  CHECK(many[999'999] == 1'000'001);
+  CHECK(many == runtime::SampleRows(many));
+  runtime::SampleRows same;
+  same.assign(3, 0);
+  CHECK(same == std::vector<int>{0, 0, 0});
+  same.clear();
+  CHECK(same.empty());
 }

@@ -231,9 +231,9 @@ TEST_CASE("read_hdf5_drive and read_hdf5_history hold what the reader hands out"
 
 TEST_CASE("histories held whole are bounded before they are read: a drive by its samples, a measured history by its bytes") {
   const auto file = (scratch() / "huge.h5").string();
-  {  // chunked datasets of 2e7 samples never written: HDF5 stores no chunk of them
+  {  // chunked datasets of 3e7 samples never written: HDF5 stores no chunk of them
     const hid_t f = H5Fcreate(file.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT);
-    const hsize_t n = 20'000'001, chunk = 65536;
+    const hsize_t n = 30'000'001, chunk = 65536;
     for (const char* name : {"/time", "/displacement", "/force"}) {
       const hid_t space = H5Screate_simple(1, &n, nullptr);
       const hid_t layout = H5Pcreate(H5P_DATASET_CREATE);
@@ -245,12 +245,12 @@ TEST_CASE("histories held whole are bounded before they are read: a drive by its
     H5Fclose(f);
   }
   CHECK_THROWS_WITH_AS(read_hdf5_drive(file, nullptr, {}, false),
-                       (file + ": error: the history has 20000001 samples, more than the 10000000 rheo holds whole (SUNDIALS, JSON output); write it "
+                       (file + ": error: the history has 30000001 samples, more than the 10000000 rheo holds whole (SUNDIALS, JSON output); write it "
                                "as CSV or HDF5 on the fixed-step solver, which streams it, or split the file")
                            .c_str(),
                        DataError);
   CHECK_THROWS_WITH_AS(read_hdf5_history(file, nullptr, {}),
-                       (file + ": error: the history has 20000001 samples, more than the 19173961 a fit or report holds (512 MiB at 28 bytes a "
+                       (file + ": error: the history has 30000001 samples, more than the 22369621 a fit or report holds (512 MiB at 24 bytes a "
                                "sample); fit a part of it, or resample it")
                            .c_str(),
                        DataError);

@@ -259,7 +259,7 @@ Reading whole_measured(const std::string& text) {
   Reading r;
   try {
     const HistoryData h = history_data_from_table(parse_table("t.csv", text));
-    r.time = h.drive.time, r.displacement = h.drive.displacement, r.force = h.force, r.rows = h.rows;
+    r.time = h.drive.time, r.displacement = h.drive.displacement, r.force = h.force, r.rows = h.rows.all();
   } catch (const DataError& e) {
     r.error = e.what();
   }
