@@ -91,6 +91,7 @@ class TreeNewton {
   // leaves).
   void residual(double r, double scale, double rounding, bool force);
   int most_compliant(int chain) const;            // the member that takes the rounding remainder
+  int saturating(int chain, double force) const;  // the member bounding the saturation end `force` reaches (-1: none)
   double pivot_force(int node, double de) const;  // a pivot's force at increment de (its law)
 
   double& at(std::vector<double>& v, int node) const { return v[static_cast<std::size_t>(node)]; }
