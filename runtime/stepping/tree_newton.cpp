@@ -251,8 +251,10 @@ void TreeNewton::update_forward(int n, double de) {
   // onto it by rounding); onto F = 0 when crossing it (a chain with gaps decides its play there;
   // a quadratic dashpot's inverse, sgn(F) sqrt(|F|/q), would have Newton alternate about it).
   auto admissible = [&](double f) {
-    if (layout_.reaches_hi[i] ? f > d.hi : f >= d.hi) f = layout_.reaches_hi[i] ? d.hi : std::min(force + 0.5 * (d.hi - force), std::nextafter(d.hi, d.lo));
-    if (layout_.reaches_lo[i] ? f < d.lo : f <= d.lo) f = layout_.reaches_lo[i] ? d.lo : std::max(force + 0.5 * (d.lo - force), std::nextafter(d.lo, d.hi));
+    if (layout_.reaches_hi[i] ? f > d.hi : f >= d.hi)
+      f = layout_.reaches_hi[i] ? d.hi : std::min(force + 0.5 * (d.hi - force), std::nextafter(d.hi, d.lo));
+    if (layout_.reaches_lo[i] ? f < d.lo : f <= d.lo)
+      f = layout_.reaches_lo[i] ? d.lo : std::max(force + 0.5 * (d.lo - force), std::nextafter(d.lo, d.hi));
     if (kink && ((force > 0.0 && f < 0.0) || (force < 0.0 && f > 0.0) || (st == leave_up && f < 0.0) || (st == leave_down && f > 0.0))) f = 0.0;
     return f;
   };
@@ -292,37 +294,6 @@ void TreeNewton::update_forward(int n, double de) {
   }
   w_.target[i] = admissible(linear);
   update_members(w_.target[i], -1);
-}
-
-double TreeNewton::pivot_force(int n, double de) const {
-  if (role(n) == NewtonRole::member) return s_.forward(n, de).force;
-  const TreeNode& t = node(n);
-  double f = 0.0;  // closed members by their laws, chains as linearised
-  for (int k = 0; k < t.child_count; ++k) {
-    const int c = s_.child(t, k);
-    f += role(c) == NewtonRole::closed ? s_.forward(c, de).force : at(w_.hat, c) + at(w_.tangent, c) * (de - at(w_.input, c));
-  }
-  return f;
-}
-
-int TreeNewton::saturating(int n, double force) const {
-  const TreeNode& t = node(n);
-  const auto i = static_cast<std::size_t>(n);
-  const Interval d = layout_.domain[i];
-  const bool hi = layout_.saturates_hi[i] && force >= d.hi, lo = layout_.saturates_lo[i] && force <= d.lo;
-  for (int k = 0; k < t.child_count && (hi || lo); ++k)
-    if (const int c = s_.child(t, k); layout_.pivot[static_cast<std::size_t>(c)] && (hi ? s_.bounds(c).hi == d.hi : s_.bounds(c).lo == d.lo)) return c;
-  return -1;
-}
-
-int TreeNewton::most_compliant(int n) const {
-  const TreeNode& t = node(n);
-  int taker = -1;
-  double most = -1.0;
-  for (int k = 0; k < t.child_count; ++k)
-    if (const int c = s_.child(t, k); node(c).kind != NodeKind::gap && w_.tangent[static_cast<std::size_t>(c)] >= most)
-      most = w_.tangent[static_cast<std::size_t>(c)], taker = c;
-  return taker;
 }
 
 void TreeNewton::update_inverse(int n, double force) {
