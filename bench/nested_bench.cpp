@@ -3,7 +3,8 @@
 //  - the reproducers of tests/corpus/repro/backends/ that cost seconds per sample before the
 //    global Newton solve (runtime/stepping/tree_newton.hpp): 03 gap + bouc_wen, 05 bouc_wen +
 //    inerter behind a gap, 06 bouc_wen + yeoh + friction nested, 07 bouc_wen + Maxwell, 10
-//    depth-8 nesting; each beside the same elements all in the model's parallel block;
+//    depth-8 nesting, 11 and 12 bouc_wen chains saturating in double (tens of ms a step before
+//    their fix); each beside the same elements all in the model's parallel block;
 //  - a lone friction element and a lone bouc_wen (its k and fy).
 //  - depth 2 ... 8: a chain of Maxwell elements and blocks of friction elements nested `depth`
 //    blocks below the model's body, innermost a bouc_wen (or a spring), against the same
@@ -75,6 +76,27 @@ const char* const kFlat10 = R"(model m {
   spring (k = 258.933 N/mm)
   maxwell (k = 51.6768 N/mm, c = 0.244034 N*s/mm)
   spring (k = 433.339 N/mm)
+})";
+// The elements of reproducers 11 and 12 (differential seed 13, models 98 and 7), each in the
+// model's parallel block.
+const char* const kFlat11 = R"(model m {
+  spring (k = 6390.35 N/mm)
+  bouc_wen (k = 23.0303 N/mm, n = 3.51357, uy = 42.0732 um)
+  bouc_wen (k = 986.695 N/mm, n = 3.33631, fy = 1.54232 N)
+  poly_spring (k1 = 4251.24 N/mm, k2 = -94.3709 N/mm^2, k3 = 1.39742 N/mm^3)
+  quadratic_dashpot (cq = 0.0129264 N*s^2/mm^2)
+  dashpot (c = 0.622476 N*s/mm)
+  maxwell (k = 1536.28 N/mm, tau = 187.504 ms)
+})";
+const char* const kFlat12 = R"(model m {
+  bouc_wen (k = 10.3845 N/mm, n = 3.03517, uy = 25.7235 um)
+  quadratic_dashpot (cq = 0.00913806 N*s^2/mm^2)
+  bouc_wen (k = 281.07 N/mm, n = 2.04233, fy = 3.48572 N)
+  yeoh (D10 = 2.14497 N/mm, D20 = -0.197078 N/mm^3, D30 = 0.161742 N/mm^5)
+  spring (k = 1626.22 N/mm)
+  bouc_wen (k = 394.563 N/mm, n = 1.35602, fy = 1.15369 N)
+  bouc_wen (k = 540.701 N/mm, n = 1.57933, fy = 10.9988 N)
+  quadratic_dashpot (cq = 0.00443241 N*s^2/mm^2)
 })";
 const char* const kFriction = "model m { friction (k = 61.8286 N/mm, fy = 2.85385 N) }";
 const char* const kBoucWen = "model m { bouc_wen (k = 61.8286 N/mm, n = 1.70764, fy = 2.85385 N) }";
@@ -148,6 +170,10 @@ BENCHMARK_CAPTURE(step_cost, repro07_nested, repro("07_fixed_harmonic_noconv_bou
 BENCHMARK_CAPTURE(step_cost, repro07_flat, std::string(kFlat07))->Arg(50)->Arg(400);
 BENCHMARK_CAPTURE(step_cost, repro10_nested, repro("10_deep8_fixed_slow"))->Arg(50)->Arg(400);
 BENCHMARK_CAPTURE(step_cost, repro10_flat, std::string(kFlat10))->Arg(50)->Arg(400);
+BENCHMARK_CAPTURE(step_cost, repro11_nested, repro("11_fixed_slow_saturated_boucwen_chains"))->Arg(50)->Arg(400);
+BENCHMARK_CAPTURE(step_cost, repro11_flat, std::string(kFlat11))->Arg(50)->Arg(400);
+BENCHMARK_CAPTURE(step_cost, repro12_nested, repro("12_fixed_slow_saturated_boucwen_three_levels"))->Arg(50)->Arg(400);
+BENCHMARK_CAPTURE(step_cost, repro12_flat, std::string(kFlat12))->Arg(50)->Arg(400);
 BENCHMARK_CAPTURE(depth_cost, bouc_wen_nested, kInnerBoucWen, true, true)->DenseRange(2, 8);
 BENCHMARK_CAPTURE(depth_cost, bouc_wen_flat, kInnerBoucWen, false, true)->DenseRange(2, 8);
 BENCHMARK_CAPTURE(depth_cost, spring_nested, kInnerSpring, true, true)->DenseRange(2, 8);

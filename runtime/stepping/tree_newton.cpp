@@ -38,7 +38,11 @@ void TreeNewton::start(int n, double ratio) {
   if (role(n) == NewtonRole::chain) {  // inside the forces the chain carries
     const Interval d = layout_.domain[i];
     double f = std::clamp(s_.f_before(t), d.lo, d.hi);
-    if ((f == d.hi && !layout_.reaches_hi[i]) || (f == d.lo && !layout_.reaches_lo[i])) f = d.lo < 0.0 && d.hi > 0.0 ? 0.0 : 0.5 * (d.lo + d.hi);
+    // On an open end: just inside a saturation end (the force its members carry saturated in
+    // double, where the last step, or the nested solve, left it), else away from a peak.
+    const double away = d.lo < 0.0 && d.hi > 0.0 ? 0.0 : 0.5 * (d.lo + d.hi);
+    if (f == d.hi && !layout_.reaches_hi[i]) f = layout_.saturates_hi[i] ? std::nextafter(d.hi, d.lo) : away;
+    else if (f == d.lo && !layout_.reaches_lo[i]) f = layout_.saturates_lo[i] ? std::nextafter(d.lo, d.hi) : away;
     w_.x[i] = f;
   } else if (role(n) == NewtonRole::block || role(n) == NewtonRole::member) {
     w_.x[i] = ratio * w_.last[i];
@@ -156,9 +160,12 @@ TreeNewton::Lin TreeNewton::chain(int n, double de) {
   const double floor = 1.0 / (kTangentSpan * layout_.stiffness[i] + std::numeric_limits<double>::min());
   const double stiffness = 1.0 / std::clamp(sum_c, floor, kTangentSpan * kTangentSpan * floor);
   const double hat = force + (de - sum_hat) * stiffness;
-  // Where the chain asks for a force beyond an open end (a softening spring's peak, bouc_wen's
-  // fy) there is no solution however small the residual's scale has become near it.
-  if ((!layout_.reaches_hi[i] && hat >= d.hi) || (!layout_.reaches_lo[i] && hat <= d.lo)) converged_ = false, worst_ = kInf;
+  // Where the chain asks for a force beyond a softening spring's peak there is no solution
+  // however small the residual's scale has become near it. Beyond a saturation end there is
+  // (the saturating member elongates without bound): its residuals decide, and at a solution
+  // within an ulp of the end the linearised force may round beyond it.
+  if ((!layout_.reaches_hi[i] && !layout_.saturates_hi[i] && hat >= d.hi) || (!layout_.reaches_lo[i] && !layout_.saturates_lo[i] && hat <= d.lo))
+    converged_ = false, worst_ = kInf;
   w_.out[i] = force, w_.hat[i] = hat, w_.tangent[i] = stiffness;
   return {force, hat, stiffness};
 }
@@ -240,12 +247,14 @@ void TreeNewton::update_forward(int n, double de) {
   const State st = static_cast<State>(state(n));
   const Interval d = layout_.domain[i];
   const bool kink = layout_.kinked[i];
-  // The admissible force nearest to f: onto a reached cap; half way to an open end; onto F = 0
-  // when crossing it (a chain with gaps decides its play there; a quadratic dashpot's inverse,
-  // sgn(F) sqrt(|F|/q), would have Newton alternate about it).
+  // The admissible force nearest to f: onto a reached cap; half way to an open end (and never
+  // onto it by rounding); onto F = 0 when crossing it (a chain with gaps decides its play there;
+  // a quadratic dashpot's inverse, sgn(F) sqrt(|F|/q), would have Newton alternate about it).
   auto admissible = [&](double f) {
-    if (layout_.reaches_hi[i] ? f > d.hi : f >= d.hi) f = layout_.reaches_hi[i] ? d.hi : force + 0.5 * (d.hi - force);
-    if (layout_.reaches_lo[i] ? f < d.lo : f <= d.lo) f = layout_.reaches_lo[i] ? d.lo : force + 0.5 * (d.lo - force);
+    if (layout_.reaches_hi[i] ? f > d.hi : f >= d.hi)
+      f = layout_.reaches_hi[i] ? d.hi : std::min(force + 0.5 * (d.hi - force), std::nextafter(d.hi, d.lo));
+    if (layout_.reaches_lo[i] ? f < d.lo : f <= d.lo)
+      f = layout_.reaches_lo[i] ? d.lo : std::max(force + 0.5 * (d.lo - force), std::nextafter(d.lo, d.hi));
     if (kink && ((force > 0.0 && f < 0.0) || (force < 0.0 && f > 0.0) || (st == leave_up && f < 0.0) || (st == leave_down && f > 0.0))) f = 0.0;
     return f;
   };
@@ -260,8 +269,14 @@ void TreeNewton::update_forward(int n, double de) {
   // stays well conditioned (in F it is 0 * inf), and the force follows its law there,
   // F = F_p(de_p), below its caps by construction. With the others linearised at the force F,
   //   de_p (1 + C_o K_p) = de - sum_o hat_o - C_o (F_p - F - K_p de_p0).
-  const int pivot = settled ? -1 : most_compliant(n);
-  if (pivot >= 0 && layout_.pivot[static_cast<std::size_t>(pivot)] && at(w_.tangent, pivot) * w_.tangent[i] >= kPivot) {
+  // Where the linear step leaves through a saturation end, the member that bounds the chain
+  // there is the pivot whatever its compliance: linearised on the elastic side of its kink (at
+  // de_p = 0, unloading asked for) or far below saturation it would hold the chain at the end,
+  // half way at a time, while it takes up the increment saturated.
+  int pivot = settled ? -1 : most_compliant(n);
+  if (!(pivot >= 0 && layout_.pivot[static_cast<std::size_t>(pivot)] && at(w_.tangent, pivot) * w_.tangent[i] >= kPivot))
+    pivot = settled ? -1 : saturating(n, linear);
+  if (pivot >= 0) {
     double others = 0.0, compliance = 0.0;
     for (int k = 0; k < t.child_count; ++k)
       if (const int c = s_.child(t, k); c != pivot) others += at(w_.hat, c), compliance += at(w_.tangent, c);
@@ -279,27 +294,6 @@ void TreeNewton::update_forward(int n, double de) {
   }
   w_.target[i] = admissible(linear);
   update_members(w_.target[i], -1);
-}
-
-double TreeNewton::pivot_force(int n, double de) const {
-  if (role(n) == NewtonRole::member) return s_.forward(n, de).force;
-  const TreeNode& t = node(n);
-  double f = 0.0;  // closed members by their laws, chains as linearised
-  for (int k = 0; k < t.child_count; ++k) {
-    const int c = s_.child(t, k);
-    f += role(c) == NewtonRole::closed ? s_.forward(c, de).force : at(w_.hat, c) + at(w_.tangent, c) * (de - at(w_.input, c));
-  }
-  return f;
-}
-
-int TreeNewton::most_compliant(int n) const {
-  const TreeNode& t = node(n);
-  int taker = -1;
-  double most = -1.0;
-  for (int k = 0; k < t.child_count; ++k)
-    if (const int c = s_.child(t, k); node(c).kind != NodeKind::gap && w_.tangent[static_cast<std::size_t>(c)] >= most)
-      most = w_.tangent[static_cast<std::size_t>(c)], taker = c;
-  return taker;
 }
 
 void TreeNewton::update_inverse(int n, double force) {
@@ -361,8 +355,13 @@ bool TreeNewton::solve(int root, double de, double* after, double& force) {
       if (layout_.role[i] != NewtonRole::closed && layout_.role[i] != NewtonRole::sum) {
         // Still moving: by more than rounding of the unknown, or of the subtree's scale where
         // the unknown is near 0 (a quadratic dashpot's force, whose inverse is singular there).
-        const double scale = layout_.role[i] == NewtonRole::chain ? force_scale_ : length_scale_;
-        moves |= std::abs(w_.target[i] - w_.x[i]) > 4.0 * kEps * std::max(std::abs(w_.x[i]), scale);
+        const double scale = layout_.role[i] == NewtonRole::chain ? force_scale_ : length_scale_, step = std::abs(w_.target[i] - w_.x[i]);
+        moves |= step > 4.0 * kEps * std::max(std::abs(w_.x[i]), scale);
+        // A chain's force by less where its compliance is large (a quadratic dashpot's near
+        // F = 0, Newton approaching its root there from below) still moves if it changes the
+        // chain's elongations by more than stagnation accepts in its residual.
+        if (layout_.role[i] == NewtonRole::chain)
+          moves |= step > 4.0 * kEps * std::abs(w_.x[i]) && step > kStagnation * kRelTol * length_scale_ * w_.tangent[i];
       }
     }
     if (!moves) {  // the iterate is as good as its rounding allows (if close: else the tangents mislead)

@@ -1,4 +1,5 @@
-// Writing a converged step of the global Newton solve into the states (tree_newton.hpp).
+// Writing a converged step of the global Newton solve into the states, and the members of a
+// chain that take its rounding remainder or pivot its step (tree_newton.hpp).
 #include "runtime/stepping/tree_newton.hpp"
 
 #include <algorithm>
@@ -100,6 +101,38 @@ void TreeNewton::assign_chain(int n, double de, double* after) {
     assign_inverse(c, at(w_.out, c), force, after);
   }
   if (taker >= 0) assign_inverse(taker, de - taken, force, after);
+}
+
+double TreeNewton::pivot_force(int n, double de) const {
+  if (role(n) == NewtonRole::member) return s_.forward(n, de).force;
+  const TreeNode& t = node(n);
+  double f = 0.0;  // closed members by their laws, chains as linearised
+  for (int k = 0; k < t.child_count; ++k) {
+    const int c = s_.child(t, k);
+    f += role(c) == NewtonRole::closed ? s_.forward(c, de).force : at(w_.hat, c) + at(w_.tangent, c) * (de - at(w_.input, c));
+  }
+  return f;
+}
+
+int TreeNewton::saturating(int n, double force) const {
+  const TreeNode& t = node(n);
+  const auto i = static_cast<std::size_t>(n);
+  const Interval d = layout_.domain[i];
+  const bool hi = layout_.saturates_hi[i] && force >= d.hi, lo = layout_.saturates_lo[i] && force <= d.lo;
+  for (int k = 0; k < t.child_count && (hi || lo); ++k)
+    if (const int c = s_.child(t, k); layout_.pivot[static_cast<std::size_t>(c)] && (hi ? s_.bounds(c).hi == d.hi : s_.bounds(c).lo == d.lo))
+      return c;
+  return -1;
+}
+
+int TreeNewton::most_compliant(int n) const {
+  const TreeNode& t = node(n);
+  int taker = -1;
+  double most = -1.0;
+  for (int k = 0; k < t.child_count; ++k)
+    if (const int c = s_.child(t, k); node(c).kind != NodeKind::gap && w_.tangent[static_cast<std::size_t>(c)] >= most)
+      most = w_.tangent[static_cast<std::size_t>(c)], taker = c;
+  return taker;
 }
 
 }  // namespace rheo::runtime

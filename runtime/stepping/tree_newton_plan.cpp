@@ -22,6 +22,8 @@ void NewtonLayout::prepare(const Network& network, const std::vector<Interval>& 
   domain.assign(count, Interval{-kInf, kInf});
   reaches_hi.assign(count, 0);
   reaches_lo.assign(count, 0);
+  saturates_hi.assign(count, 0);
+  saturates_lo.assign(count, 0);
   stiffness.assign(count, 0.0);
   extent.assign(count, 1);
   pivot.assign(count, 0);
@@ -84,6 +86,7 @@ void NewtonLayout::prepare(const Network& network, const std::vector<Interval>& 
       if (!forward || n.capped_linear || n.rigid_when_stuck) return false;
       role[i] = NewtonRole::chain;
       Interval d = bounds[i];
+      bool peak_hi = false, peak_lo = false;
       for (int k = 0; k < n.child_count; ++k) {
         const std::size_t c = child(n, k);
         self(self, c, false);
@@ -96,10 +99,12 @@ void NewtonLayout::prepare(const Network& network, const std::vector<Interval>& 
           if (std::isfinite(r.hi)) hi = poly.force(r.hi);
           if (std::isfinite(r.lo)) lo = poly.force(r.lo);
         }
-        if (hi <= d.hi) d.hi = hi, reaches_hi[i] = 0;
-        if (lo >= d.lo) d.lo = lo, reaches_lo[i] = 0;
+        if (hi <= d.hi) d.hi = hi, reaches_hi[i] = 0, peak_hi = true;
+        if (lo >= d.lo) d.lo = lo, reaches_lo[i] = 0, peak_lo = true;
       }
       domain[i] = d;
+      saturates_hi[i] = static_cast<std::uint8_t>(std::isfinite(d.hi) && !reaches_hi[i] && !peak_hi);
+      saturates_lo[i] = static_cast<std::uint8_t>(std::isfinite(d.lo) && !reaches_lo[i] && !peak_lo);
       for (int k = 0; k < n.child_count; ++k)
         kinked[i] |= static_cast<std::uint8_t>(t.nodes[child(n, k)].kind == NodeKind::gap ||
                                                t.nodes[child(n, k)].kind == NodeKind::quadratic_dashpot);

@@ -35,6 +35,11 @@ struct NewtonLayout {
   // slider slips there: the chain's force stays at it while the rest slides) or one only
   // approached (bouc_wen saturating, a softening spring's peak: an open end).
   std::vector<std::uint8_t> reaches_hi, reaches_lo;
+  // Per chain: whether an open end is a bouc_wen's fy (or a sum of them across a block), which
+  // its members approach as they saturate and reach in rounding: the chain has a solution for
+  // every increment, its force within an ulp of the end once they saturate in double. The other
+  // open ends are a softening spring's peak, beyond which it has none.
+  std::vector<std::uint8_t> saturates_hi, saturates_lo;
   // Per node: a stiffness [N/mm] typical of the subtree below it (the sum of its members'
   // elastic and viscous stiffnesses at this step), which floors a block's tangent stiffness and
   // a chain's tangent compliance where every member is at a cap or rigid.
