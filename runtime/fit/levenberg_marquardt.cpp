@@ -1,14 +1,11 @@
 #include "runtime/fit/levenberg_marquardt.hpp"
 
 #include "runtime/core/errors.hpp"
-#include "runtime/core/parallel_for.hpp"
 #include "runtime/fit/bounded_least_squares.hpp"
 
 #include <algorithm>
 #include <cmath>
 #include <limits>
-#include <optional>
-#include <utility>
 #include <vector>
 
 namespace rheo::runtime {
@@ -169,18 +166,7 @@ LevenbergMarquardtResult levenberg_marquardt(const LeastSquaresProblem& problem,
     // First-order test: what the undamped step could still gain, by the linear model (not where
     // a column could not be differenced: it would look insensitive).
     const LinearModel model = linear_model(j, out.residuals);
-    // On several threads the first damped step is solved beside the undamped one (the same
-    // steps, so the same search, as solving it when it is needed).
-    std::optional<Step> first_step;
-    double undamped = 0.0;
-    if (resolved_threads(settings.threads) > 1) {
-      Step both[2];
-      parallel_for(2, settings.threads, [&](std::size_t k) { both[k] = damped_step(model, scale, k == 0 ? 0.0 : lambda, out.x, lower, upper); });
-      undamped = both[0].predicted;
-      first_step = std::move(both[1]);
-    } else {
-      undamped = damped_step(model, scale, 0.0, out.x, lower, upper).predicted;
-    }
+    const double undamped = damped_step(model, scale, 0.0, out.x, lower, upper).predicted;
     if (complete && undamped <= settings.decrease_tolerance * out.value) {
       out.status = "FTOL_REACHED";
       return out;
@@ -194,7 +180,7 @@ LevenbergMarquardtResult levenberg_marquardt(const LeastSquaresProblem& problem,
         out.status = "NO_DESCENT";
         return out;
       }
-      const Step step = first_step ? *std::exchange(first_step, std::nullopt) : damped_step(model, scale, lambda, out.x, lower, upper);
+      const Step step = damped_step(model, scale, lambda, out.x, lower, upper);
       const Eigen::VectorXd trial = (out.x + step.d).cwiseMax(lower).cwiseMin(upper);
       const Eigen::VectorXd trial_r = try_residuals(problem, trial);
       const double trial_value = trial_r.size() == out.residuals.size() ? trial_r.squaredNorm() : std::numeric_limits<double>::infinity();

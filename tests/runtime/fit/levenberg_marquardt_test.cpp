@@ -99,22 +99,6 @@ TEST_CASE("a bound that binds: the minimum on the face, as a one-dimensional sea
   }
 }
 
-TEST_CASE("on two threads the search takes the one thread's steps, bit for bit") {
-  // The face a <= 1.5 binds, so the damped steps go through the bounded solver's active set.
-  const Decay d;
-  LeastSquaresProblem p;
-  p.residuals = [&](const VectorXd& x) { return d.residuals(x); };
-  LevenbergMarquardtSettings one, two;
-  two.threads = 2;
-  const auto a = levenberg_marquardt(p, vec({1.0, 2.0}), vec({0.0, 0.0}), vec({1.5, 5.0}), one);
-  const auto b = levenberg_marquardt(p, vec({1.0, 2.0}), vec({0.0, 0.0}), vec({1.5, 5.0}), two);
-  CHECK(a.iterations > 2);
-  CHECK(b.iterations == a.iterations);
-  CHECK(b.status == a.status);
-  CHECK(b.value == a.value);
-  CHECK(b.x == a.x);
-}
-
 TEST_CASE("a given Jacobian is used instead of differences, and gives the same minimum") {
   const Decay d;
   int jacobians = 0, residual_calls = 0;
