@@ -32,7 +32,7 @@ struct Callbacks {
 namespace {
 DaeIntegrator* self(void* data) { return static_cast<DaeIntegrator*>(data); }
 
-// How far above the rounding of its node balances a switch force's Newton tolerance must stay.
+// How far above the rounding of its node balances a gap force's Newton tolerance must stay.
 constexpr double kRoundingMargin = 10.0;
 }  // namespace
 

@@ -22,6 +22,12 @@ runtime::History history(const std::string& source, const runtime::Drive& drive)
   return runtime::dae_history(test::network_from(source, "m"), drive, false);
 }
 
+// IDA's forces on the differential test's two-tone drive (1 ms samples) against fixed steps
+// extrapolated from 64 and 128 steps a sample (two_tone_reference.hpp), relative to max |F|.
+double two_tone_gap(const std::string& source) {
+  return test::gap_to_extrapolated_fixed_steps(test::network_from(source, "m"), history(source, test::two_tone_drive(1)).force);
+}
+
 runtime::Drive ramp(double u_end, double duration, int samples) {
   runtime::Drive d{{0.0}, {0.0}};
   for (int k = 1; k <= samples; ++k) {
@@ -152,9 +158,7 @@ TEST_CASE("a quadratic dashpot behind a stiff spring from rest: t(w) = (2 cq/k) 
 // F(64); the quadratic dashpot's constant-rate step is first order). Observed 1.6e-5 of max |F|.
 TEST_CASE("a quadratic dashpot behind a stiff spring on a two-tone drive from rest agrees with extrapolated fixed steps") {
   const std::string source = "model m { series { quadratic_dashpot (cq = 0.00913203 N*s^2/mm^2)\n spring (k = 4163.22 N/mm) } }";
-  const auto network = test::network_from(source, "m");
-  const auto ida = history(source, test::two_tone_drive(1));
-  CHECK(test::gap_to_extrapolated_fixed_steps(network, ida.force) < 1e-4);
+  CHECK(two_tone_gap(source) < 1e-4);
 }
 
 // A quadratic dashpot behind a stuck slider and a stiff spring carries 3.5e-3 N at 0.3 mm and
@@ -249,7 +253,7 @@ TEST_CASE("a friction element and a weaker slider in series both beyond yield at
 // time scale the failure comes back to solve_to, which restarts from consistent rates.
 // Against extrapolated fixed steps on the two-tone drive (observed 8.4e-5 of max |F|; 0.8 s).
 TEST_CASE("IDA recovers where its corrector fails at every other step (differential seed 11, model 16): fixed steps' forces") {
-  const auto network = test::network_from(R"(model m {
+  CHECK(two_tone_gap(R"(model m {
 series {
 yeoh (D10 = 9.64097 N/mm, D20 = 0 N/mm^3, D30 = 0 N/mm^5)
 poly_spring (k1 = 4306.44 N/mm, k2 = -106.724 N/mm^2, k3 = 2.71308 N/mm^3)
@@ -284,23 +288,16 @@ quadratic_dashpot (cq = 0.000984108 N*s^2/mm^2)
 }
 }
 }
-})",
-                                          "m");
-  const auto ida = runtime::dae_history(network, test::two_tone_drive(1), false);
-  CHECK(test::gap_to_extrapolated_fixed_steps(network, ida.force) < 5e-4);
+})") < 5e-4);
 }
 
 // Differential seed 17, model 108: the gap closes at t = 2.4 ms behind a 35366 N/mm spring and a
 // quadratic dashpot that carries 0.011 N at the history's rate scale. The gap's force had an
 // absolute tolerance of 1.1e-10 N and Newton 1e-6 of it, below the 2.7e-12 N that rounding of
 // a position puts into the node balances through the spring: the corrector failed at every h
-// (IDA_CONV_FAIL at h = 1e-14 s, and at 1e-21 s without the step floor). The switch forces'
-// tolerances now stay above that rounding. Observed 6e-10 of max |F| against fixed steps.
+// (IDA_CONV_FAIL at h = 1e-14 s, and at 1e-21 s without the step floor). A gap's force's
+// tolerance now stays above that rounding. Observed 6e-10 of max |F| against fixed steps.
 TEST_CASE("a gap closing behind a stiff spring and a quadratic dashpot (differential seed 17, model 108): fixed steps' forces") {
-  const auto network = test::network_from(
-      "model m { series { quadratic_dashpot (cq = 0.000919455 N*s^2/mm^2)\n gap (width = 0.111815 mm, center = 0.0159194 mm)\n"
-      " spring (k = 35366.3 N/mm) } }",
-      "m");
-  const auto ida = runtime::dae_history(network, test::two_tone_drive(1), false);
-  CHECK(test::gap_to_extrapolated_fixed_steps(network, ida.force) < 1e-6);
+  CHECK(two_tone_gap("model m { series { quadratic_dashpot (cq = 0.000919455 N*s^2/mm^2)\n gap (width = 0.111815 mm, center = 0.0159194 mm)\n"
+                     " spring (k = 35366.3 N/mm) } }") < 1e-6);
 }
