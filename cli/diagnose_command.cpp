@@ -89,7 +89,7 @@ std::unique_ptr<Prepared> prepare(const DiagnoseOptions& o) {
   if (jobs.size() != 1)
     throw runtime::UsageError(fmt::format("{} has {} fit blocks; choose the one to diagnose with --block N or --model NAME", o.fit.file, jobs.size()));
   p->job = std::move(jobs.front());
-  p->source = {o.fit.file, text, p->job.model->name};
+  p->source = {o.fit.file, text, p->job.model->name, p->job.lines_block};
   p->settings.fit = p->job.settings;
   if (o.steps_per_cycle > 0) p->settings.fit.score.harmonic.steps_per_cycle = o.steps_per_cycle;
   else if (!p->job.steps_per_cycle_given) p->settings.fit.score.harmonic.steps_per_cycle = 128;
@@ -194,6 +194,8 @@ Command add_refine_command(CLI::App& app) {
       std::cout << std::flush;  // before the next round's stages on standard error, in a log as on a terminal
       source.text = d.refined_text;
       if (d.after) settings.free = free_paths(*d.after);  // the added element's parameters join; a replaced one's leave
+      for (std::size_t k : d.freed_offsets)               // the offset the refined file fits, fitted in the later rounds too
+        p->job.data[k].force_offset = runtime::ForceOffset{.given = true, .free = true, .value = 0.0};
       interrupted = d.interrupted;
       if (d.verdict != dx::Verdict::named || interrupted) break;
       if (d.time_limited) {

@@ -181,6 +181,7 @@ std::vector<FitJob> fit_jobs(const lang::Program& program, const FitOptions& o) 
       for (const auto& d : block->data)
         job.data.push_back(runtime::read_fit_data(relative_to(o.file, d.file), d.weight, &d.where, runtime::reading_of(d)));
       job.lines = block->data;
+      job.lines_block = static_cast<int>(block - program.fits.data());
     }
     if (job.data.empty())
       throw runtime::UsageError(

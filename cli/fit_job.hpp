@@ -42,6 +42,7 @@ struct FitJob {
   std::vector<int> free;
   std::vector<runtime::FitDataSet> data;
   std::vector<lang::FitData> lines;  // the fit block's data lines read into `data`; empty for --data
+  int lines_block = -1;              // the index in the program's fits of the block `lines` come from; -1 for --data
   runtime::FitSettings settings;
   runtime::FitDescription description;
   std::string output;                  // fitted .rheo destination; empty: none

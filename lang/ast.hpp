@@ -110,6 +110,7 @@ struct FitLine {
   SourceLocation where;       // of the first word
   SourceLocation file_where;  // of the file name
   int file_begin = -1;        // byte offset of the file name's opening quote in the source text
+  int end = -1;               // data: byte offset just past the line's last setting (or its file name)
 };
 
 struct Fit {

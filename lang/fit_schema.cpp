@@ -204,7 +204,7 @@ FitSettings decode_fit_settings(const std::vector<Setting>& written) {
 }  // namespace
 
 FitData check_data_line(const ast::FitLine& line, std::vector<Diagnostic>& errors) {
-  FitData out{line.file, 1.0, line.file_where, {}, {}, {}, {}, {}, false, DuplicatePoints::average, {}};
+  FitData out{line.file, 1.0, line.file_where, {}, {}, {}, {}, {}, false, DuplicatePoints::average, {}, line.end};
   check_file_name(line.file, line.file_where, errors);
   std::map<std::string, SourceLocation> seen;
   for (const auto& node : line.settings) {

@@ -104,7 +104,7 @@ std::string write_fitted_source(const std::string& source, const std::string& fi
   }
   if (!errors.empty()) throw CompileError(std::move(errors), sources);
   for (const FittedSetting& setting : settings) {
-    if (setting.value_begin < 0 || setting.value_end <= setting.value_begin || static_cast<std::size_t>(setting.value_end) > source.size())
+    if (setting.value_begin < 0 || setting.value_end < setting.value_begin || static_cast<std::size_t>(setting.value_end) > source.size())
       throw std::logic_error(fmt::format("write_fitted_source: a data-line setting's value lies outside the given source of {}", file));
     edits.push_back({setting.value_begin, setting.value_end, setting.text});
   }

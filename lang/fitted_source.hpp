@@ -22,9 +22,10 @@ namespace rheo::lang {
 // range, a value is not finite, or a range lies outside SOURCE (SOURCE is not the text MODEL was
 // compiled from).
 // SETTINGS: values of data-line settings to write too (`force_offset = free` becomes
-// `force_offset = 123.4 N`), each replacing the byte range of its value in SOURCE.
+// `force_offset = 123.4 N`), each replacing the byte range of its value in SOURCE; an empty
+// range inserts its text there (`, force_offset = free` after a data line's last setting).
 struct FittedSetting {
-  int value_begin = -1, value_end = -1;  // [value_begin, value_end) in SOURCE
+  int value_begin = -1, value_end = -1;  // [value_begin, value_end) in SOURCE; value_begin == value_end: an insertion
   std::string text;                      // the value written there
 };
 std::string write_fitted_source(const std::string& source, const std::string& file, const CheckedModel& model, const std::vector<double>& values,

@@ -153,6 +153,7 @@ struct FitData {
   bool amplitude_is_strain = false;
   DuplicatePoints duplicates = DuplicatePoints::average;  // repeated points of a harmonic table
   ForceOffsetSetting force_offset;                        // of a history's force; no effect on a harmonic table
+  int end = -1;  // byte offset just past the line's last setting (or its file name) in where.file's text; -1 for --data
 };
 
 // `fit [MODEL] { ... }`.

@@ -176,6 +176,13 @@ struct fit_line_file {
 template <>
 struct action<g::fit_data_file> : fit_line_file {};
 template <>
+struct action<g::fit_data_line> {
+  template <typename ActionInput>
+  static void apply(const ActionInput& in, State& s) {
+    s.fit().lines.back().end = byte_offset(in) + static_cast<int>(in.size());
+  }
+};
+template <>
 struct action<g::fit_output_file> : fit_line_file {};
 template <>
 struct action<g::command_line_data_name> {

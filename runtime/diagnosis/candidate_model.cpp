@@ -22,6 +22,7 @@ std::string element_word(Effect effect) {
     case Effect::inertia: return "resonance";
     case Effect::asymmetry: return "asymmetric";
     case Effect::backlash: return "backlash";
+    case Effect::offset: return "offset";
     case Effect::none: break;
   }
   return "added";

@@ -138,9 +138,14 @@ double chi_square_ratio(double chi_square, int residual_terms, int parameters) {
   return std::sqrt(chi_square / std::max(1.0, static_cast<double>(residual_terms - parameters)));
 }
 
+int fitted_parameters(const FitResult& fit) {
+  const auto offsets = std::count_if(fit.datasets.begin(), fit.datasets.end(), [](const DataSetFit& set) { return set.force_offset.free; });
+  return static_cast<int>(fit.free.size()) + static_cast<int>(offsets);
+}
+
 double criterion(const FitResult& fit, int residual_terms, bool weighted, const NoiseEstimate& noise) {
   const double n = static_cast<double>(residual_terms);
-  const double penalty = static_cast<double>(fit.free.size()) * std::log(n);
+  const double penalty = static_cast<double>(fitted_parameters(fit)) * std::log(n);
   if (weighted) return noise_chi_square(fit, noise) + penalty;
   return n * std::log(std::max(fit.objective, 1e-300)) + penalty;
 }

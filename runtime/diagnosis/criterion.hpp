@@ -39,7 +39,11 @@ inline constexpr int kLikelihoodJacobians = 10;
 // sqrt(CHI_SQUARE / (N - P)): 1 where a fit of P parameters to N terms leaves only the noise.
 double chi_square_ratio(double chi_square, int residual_terms, int parameters);
 
-// BIC of FIT over N residual terms: chi^2 + p ln N when WEIGHTED, else N ln J + p ln N.
+// p of FIT: its free parameters and its fitted force offsets (one per history whose data line
+// has `force_offset = free`, fit/force_offset.hpp).
+int fitted_parameters(const FitResult& fit);
+
+// BIC of FIT over N residual terms: chi^2 + p ln N when WEIGHTED, else N ln J + p ln N, p = fitted_parameters.
 double criterion(const FitResult& fit, int residual_terms, bool weighted, const NoiseEstimate& noise);
 
 // The least chi^2 under NOISE over FIT's free parameters, searched from FIT's values: the

@@ -9,10 +9,12 @@
 #include "lang/source_edit.hpp"
 #include "runtime/diagnosis/candidate_model.hpp"
 #include "runtime/diagnosis/evidence_text.hpp"
+#include "runtime/diagnosis/offset_candidate.hpp"
 #include "runtime/diagnosis/refit.hpp"
 #include "runtime/fit/fit_scoring.hpp"
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 
 #include <algorithm>
 #include <chrono>
@@ -51,6 +53,7 @@ struct Chosen {
   Trial trial;
   Compiled compiled;  // owns the model result.network refers to
   FitResult result;
+  const std::vector<FitDataSet>* data = nullptr;  // as refitted: the offset candidate's frees force offsets
 };
 
 }  // namespace
@@ -133,7 +136,7 @@ class Diagnoser {
     d_.patterns = residual_patterns(d_.before, data_);
     d_.noise = estimate_noise(d_.before, data_);
     d_.noise_weighted = noise_weighted(data_, d_.noise);
-    const int p = static_cast<int>(d_.before.free.size());
+    const int p = fitted_parameters(d_.before);
     d_.criterion_before = criterion(d_.before, d_.residual_terms, d_.noise_weighted, d_.noise);
     d_.noise_ratio = noise_ratio(d_.gap_before, d_.noise, d_.residual_terms, p);
     if (d_.noise_weighted && !stopped()) {
@@ -173,22 +176,30 @@ class Diagnoser {
   void refit_leading(const std::vector<ScreenedEffect>& screened_effects) {
     const double leading_gain = screened_effects.empty() ? 0.0 : screened_effects.front().gain;
     int refitted = 0;
-    int to_refit = 0;  // the refits still to run, for their share of the time left
+    int to_refit = 0;  // the refits to run, for their share of the time left
+    int begun = 0;     // of those, begun
+    // The offset is refitted whatever its screen says, beside the leading effects: its screen
+    // holds the model still, while a preloaded history's static force (a yeoh's at the preload)
+    // takes up most of a constant that a refit gives back (rig_preloaded_history: screened 5 %,
+    // refitted to the noise), and its refit is one local search of the model's own parameters.
+    auto offset = [](const ScreenedEffect& e) { return e.effect == Effect::offset; };
     for (const ScreenedEffect& screened : screened_effects)
-      if (screened.gain >= std::max(s_.min_screen_gain, s_.relative_screen_gain * leading_gain)) ++to_refit;
-    to_refit = std::min(to_refit, s_.confirm);
+      if (!offset(screened) && screened.gain >= std::max(s_.min_screen_gain, s_.relative_screen_gain * leading_gain)) ++to_refit;
+    to_refit = std::min(to_refit, s_.confirm) + static_cast<int>(std::count_if(screened_effects.begin(), screened_effects.end(), offset));
     for (const ScreenedEffect& screened : screened_effects) {
       CandidateOutcome outcome;
       outcome.screened = screened;
       const Trial& trial = screened.trial;
       outcome.element = element_name(trial, screened.effect);
-      if (refitted >= s_.confirm || screened.gain < std::max(s_.min_screen_gain, s_.relative_screen_gain * leading_gain) || stopped()) {
+      const bool leading = refitted < s_.confirm && screened.gain >= std::max(s_.min_screen_gain, s_.relative_screen_gain * leading_gain);
+      if (!(leading || offset(screened)) || stopped()) {
         d_.candidates.push_back(outcome);
         continue;
       }
-      ++refitted;
+      refitted += leading && !offset(screened) ? 1 : 0;
+      ++begun;
       const std::size_t column_at = d_.candidates.size();
-      const std::optional<Trial> limit = refit_candidate(trial, outcome, 1.0 / (to_refit - refitted + 2));
+      const std::optional<Trial> limit = refit_candidate(trial, outcome, 1.0 / (to_refit - begun + 2));
       if (!limit || stopped()) continue;
       // The column's limit without inertia competes with it: where the data hold no resonance
       // (or cannot place it) the limit earns the coupling with one parameter fewer.
@@ -200,7 +211,7 @@ class Diagnoser {
           "the limit without inertia of the fluid column before it (its chamber and channel as a Maxwell "
           "element, tau = c/k = {:.4g} ms){}",
           limit->time * 1e3, outcome.unresolved.empty() ? "" : ", whose resonance the data cannot place");
-      const std::optional<Trial> restart = refit_candidate(*limit, limit_outcome, 1.0 / (to_refit - refitted + 2), &trial);
+      const std::optional<Trial> restart = refit_candidate(*limit, limit_outcome, 1.0 / (to_refit - begun + 2), &trial);
       // The column holds its limit (b -> 0): a column refit that does not end clearly below the
       // limit's gap (by more than the parsimony that would choose the limit) stopped outside
       // its basin, or found no use for its inertia, and searches again from the limit's optimum.
@@ -213,7 +224,7 @@ class Diagnoser {
       again.limit_of = fmt::format(
           "the fluid column again, started from its limit's optimum (its first refit stopped at {:.4g}, {} the limit's {:.4g})", column_gap,
           limit_gap < column_gap ? "above" : "not clearly below", limit_gap);
-      refit_candidate(*restart, again, 1.0 / (to_refit - refitted + 2));
+      refit_candidate(*restart, again, 1.0 / (to_refit - begun + 2));
     }
   }
 
@@ -277,6 +288,11 @@ class Diagnoser {
   std::optional<Trial> refit_candidate(const Trial& trial, CandidateOutcome& outcome, double share, const Trial* column = nullptr) {
     const auto started = std::chrono::steady_clock::now();
     stage(fmt::format("refitting with {} for {}", trial_summary(trial), effect_name(outcome.screened.effect)));
+    if (trial.shape == Shape::force_offset) {
+      FitResult result = refit_offsets(share);
+      judge(trial, outcome, share, started, base_, std::move(result), offset_data());
+      return std::nullopt;
+    }
     const std::string comment = fmt::format("candidate for {}", effect_name(outcome.screened.effect));
     Compiled candidate = compile(source_, with_trial(fitted_text_, *fitted_.model, trial, outcome.element, scales_.bounds, comment));
     std::vector<int> kept, added;
@@ -289,17 +305,26 @@ class Diagnoser {
     }
     FitResult result = staged_refit(Network::compile(*candidate.model), kept, added, data_, within(share));
     result.network = with_gaps_in_play(result.network);  // the same predictions, as a file can state them
-    outcome.refitted = true;
-    outcome.gap_after = fit_gap(result);
-    outcome.criterion = criterion(result, d_.residual_terms, d_.noise_weighted, d_.noise);
-    outcome.parameters = static_cast<int>(result.free.size());
-    outcome.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
-    d_.interrupted = d_.interrupted || result.interrupted;
-    d_.time_limited = d_.time_limited || result.time_limited;
     outcome.unresolved = resolved_resonance(trial, *candidate.model, result.network, outcome.element, scales_);
     std::optional<Trial> next;
     if (trial.shape == Shape::capped_column) next = resonance_free_limit(trial, *candidate.model, result.network, outcome.element);
     if (column != nullptr) next = column_from_limit(*column, *candidate.model, result.network, outcome.element);
+    judge(trial, outcome, share, started, std::move(candidate), std::move(result), data_);
+    return next;
+  }
+
+  // Step 4 for a refitted candidate (RESULT, refitted to DATA, of the model CANDIDATE owns):
+  // recorded in OUTCOME, and kept as the choice if it earns its parameters and is preferred to
+  // the choice so far.
+  void judge(const Trial& trial, CandidateOutcome& outcome, double share, std::chrono::steady_clock::time_point started, Compiled candidate,
+             FitResult result, const std::vector<FitDataSet>& data) {
+    outcome.refitted = true;
+    outcome.gap_after = fit_gap(result);
+    outcome.criterion = criterion(result, d_.residual_terms, d_.noise_weighted, d_.noise);
+    outcome.parameters = fitted_parameters(result);
+    outcome.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+    d_.interrupted = d_.interrupted || result.interrupted;
+    d_.time_limited = d_.time_limited || result.time_limited;
     // A gap just beyond the noise cannot fall by min_improvement; taking it to the noise earns
     // too, judged as the verdict is (criterion.hpp reaches_noise).
     const double penalty = outcome.parameters * std::log(static_cast<double>(d_.residual_terms));
@@ -311,19 +336,44 @@ class Diagnoser {
     // A candidate that may earn is judged, as the model was, at its likelihood's maximum; one
     // whose fit earns already keeps its fit's chi^2, an upper bound of its least.
     if (gains && d_.noise_weighted && !(outcome.criterion < d_.criterion_before) && !stopped()) {
-      outcome.criterion = least_chi_square(result, data_, d_.noise, within(share).fit, kLikelihoodJacobians * (outcome.parameters + 1)).chi_square +
+      outcome.criterion = least_chi_square(result, data, d_.noise, within(share).fit, kLikelihoodJacobians * (outcome.parameters + 1)).chi_square +
                           penalty;
       gains = drops || to_noise(outcome.criterion - penalty);
     }
     const bool earns = gains && outcome.criterion < d_.criterion_before;
     if (earns && (!chosen_ || preferred(outcome, d_.candidates[chosen_->candidate], s_.parsimony)))
-      chosen_ = Chosen{d_.candidates.size(), trial, std::move(candidate), std::move(result)};
+      chosen_ = Chosen{d_.candidates.size(), trial, std::move(candidate), std::move(result), &data};
     d_.candidates.push_back(outcome);
-    return next;
+  }
+
+  // The data with the force offsets the offset candidate frees (offset_candidate.hpp).
+  const std::vector<FitDataSet>& offset_data() {
+    if (!offset_data_) offset_data_ = with_free_offsets(data_, fixed_offsets(data_));
+    return *offset_data_;
+  }
+
+  // The offset candidate refitted: the model as fitted, every free parameter by one local search
+  // (refit.hpp local_search) with the offsets solved at every evaluation; it adds no shape
+  // parameter for a first stage to place.
+  FitResult refit_offsets(double share) {
+    const std::vector<FitDataSet>& data = offset_data();
+    const Network& start = d_.before.network;
+    const int n = static_cast<int>(d_.before.free.size());
+    const FitSettings settings = local_search(within(share).fit, affordable_evaluations(start, data, s_, kLocalJacobians * (n + 1)));
+    return fit(start, d_.before.free, data, settings);
+  }
+
+  // The fit block's data lines the data were read from (ModelSource::fit_block), one per data
+  // set, in source_.text; empty when they came from elsewhere.
+  std::vector<lang::FitData> data_lines() const {
+    const auto& fits = base_.program->fits;
+    if (source_.fit_block < 0 || static_cast<std::size_t>(source_.fit_block) >= fits.size()) return {};
+    const std::vector<lang::FitData>& lines = fits[static_cast<std::size_t>(source_.fit_block)].data;
+    return lines.size() == data_.size() ? lines : std::vector<lang::FitData>{};
   }
 
   // The model's residual as fitted, its chi^2 the least (criterion.hpp Residual).
-  Residual before_residual() const { return {d_.gap_before, d_.chi_square_before, static_cast<int>(d_.before.free.size())}; }
+  Residual before_residual() const { return {d_.gap_before, d_.chi_square_before, fitted_parameters(d_.before)}; }
 
   // Step 5: Levenberg-Marquardt over every free parameter of the chosen model again (refit.hpp
   // local_search), kept when no worse; its
@@ -332,10 +382,11 @@ class Diagnoser {
     if (stopped()) return;
     stage("polishing the refined model");
     const int n = static_cast<int>(chosen_->result.free.size());
-    FitSettings settings = local_search(within(1.0).fit, affordable_evaluations(chosen_->result.network, data_, s_, kLocalJacobians * (n + 1)));
+    const std::vector<FitDataSet>& data = *chosen_->data;
+    FitSettings settings = local_search(within(1.0).fit, affordable_evaluations(chosen_->result.network, data, s_, kLocalJacobians * (n + 1)));
     settings.statistics = settings_.standard_errors;
     settings.search.crawl_tolerance = kPolishCrawl;
-    FitResult polished = fit(chosen_->result.network, chosen_->result.free, data_, settings);
+    FitResult polished = fit(chosen_->result.network, chosen_->result.free, data, settings);
     d_.interrupted = polished.interrupted;
     d_.time_limited = d_.time_limited || polished.time_limited;
     polished.network = with_gaps_in_play(polished.network);
@@ -374,6 +425,7 @@ class Diagnoser {
     d_.gap_after = fit_gap(chosen_->result);
     d_.added_element = winner.element;
     d_.reason = effect_reason(d_, winner);
+    if (chosen_->trial.shape == Shape::force_offset) return finish_offset();
     const std::string comment = fmt::format("added by rheo diagnose: {}; {} {:.4g} -> {:.4g}", effect_name(d_.effect), d_.gap_name, d_.gap_before,
                                             d_.gap_after);
     const std::string structure = with_trial(fitted_text_, *fitted_.model, chosen_->trial, winner.element, scales_.bounds, comment);
@@ -384,6 +436,28 @@ class Diagnoser {
                                                 header);
     d_.added_summary = added_summary(chosen_->result, winner.element);
     d_.added_statement = statement_lines(d_.refined_text, source_, winner.element);
+    d_.after = std::move(chosen_->result);
+    d_.after_program = chosen_->compiled.program;
+    return std::move(d_);
+  }
+
+  // finish_refined for the offset candidate: the model's structure kept, `force_offset = free`
+  // written on the data lines of the histories whose offset it fits (or, for data given
+  // otherwise, the --data option that says so).
+  Diagnosis finish_offset() {
+    d_.freed_offsets = fixed_offsets(data_);
+    const OffsetText text = offset_text(source_.text, source_.file, data_lines(), d_.freed_offsets, chosen_->result);
+    const bool on_lines = !text.edits.empty() && text.edits.size() == d_.freed_offsets.size();
+    d_.added_element = "force_offset";
+    d_.added_summary = text.summary;
+    d_.added_statement = text.statement;
+    std::vector<std::string> header{fmt::format("Refined by `rheo diagnose`: effect offset; {} {:.4g} -> {:.4g}; fitted {}.", d_.gap_name,
+                                                d_.gap_before, d_.gap_after, text.summary)};
+    header.push_back(on_lines ? "force_offset = free is written on the data lines, so every fit of this file fits the offset."
+                              : "The data were not read from this file's data lines: give them as " +
+                                    fmt::format("{}", fmt::join(text.statement, " ")) + " to fit the offset again.");
+    d_.refined_text = lang::write_fitted_source(source_.text, source_.file, *base_.model, chosen_->result.network.parameters(),
+                                                chosen_->result.free, header, text.edits);
     d_.after = std::move(chosen_->result);
     d_.after_program = chosen_->compiled.program;
     return std::move(d_);
@@ -400,6 +474,7 @@ class Diagnoser {
   std::vector<std::string> kept_paths_;  // the free parameters of step 1, by path
   DataScales scales_;
   std::optional<Chosen> chosen_;
+  std::optional<std::vector<FitDataSet>> offset_data_;  // offset_data()
 };
 
 }  // namespace

@@ -5,7 +5,10 @@
 //   2. Describe the residual (patterns.hpp) and screen every effect (screen.hpp): the share of
 //      the objective the best element of its family would remove alone.
 //   3. Confirm the leading effects (at most `confirm`, screening gain >= `min_screen_gain` and
-//      >= `relative_screen_gain` times the leading one's):
+//      >= `relative_screen_gain` times the leading one's), and the offset wherever it is screened
+//      (offset_candidate.hpp: the histories' force offsets made free and every free parameter
+//      refitted by one local search; a constant that a preload's static force takes up as fitted
+//      screens low):
 //      write the element into the fitted model's source with bounds, compile it and refit in
 //      two stages: the new parameters alone, sampled over the range the data support and
 //      searched locally from the best samples and the screened element, then every free
@@ -63,6 +66,10 @@ struct ModelSource {
   std::string file;   // as given: names the source in messages and comments
   std::string text;   // the file's contents
   std::string model;  // the model to diagnose
+  // The fit block (index into the fits TEXT compiles to) whose data lines the data were read
+  // from, one line per data set: where a fitted force offset is written (offset_candidate.hpp);
+  // -1 when the data came from elsewhere (--data).
+  int fit_block = -1;
 };
 
 struct DiagnoseSettings {
@@ -147,12 +154,16 @@ struct Diagnosis {
   bool noise_weighted = false;               // the criterion is chi^2 under `noise` (criterion.hpp)
   double criterion_before = 0.0;
   std::vector<CandidateOutcome> candidates;  // every screened effect, screening order
-  std::string added_element;                 // name in the refined model; empty for none
+  std::string added_element;                 // name in the refined model (`force_offset` for the effect offset); empty for none
   std::string added_summary;                 // what it is, with its fitted values
-  std::vector<std::string> added_statement;  // its lines in the refined file
-  std::string refined_text;                  // the whole file with fitted values (and the element, with a comment)
-  bool interrupted = false;                  // a fit was stopped (Ctrl-C): the result so far
-  bool time_limited = false;                 // DiagnoseSettings::deadline cut a fit short or skipped one: the result so far
+  std::vector<std::string> added_statement;  // its lines in the refined file (offset: the data lines, or the --data option)
+  // The effect offset: the data sets (indices into the data) whose force offset the refined
+  // model fits (`force_offset = free`; their fitted values in after->datasets); a later round
+  // must read them so (rheo refine).
+  std::vector<std::size_t> freed_offsets;
+  std::string refined_text;   // the whole file with fitted values (and the element, with a comment)
+  bool interrupted = false;   // a fit was stopped (Ctrl-C): the result so far
+  bool time_limited = false;  // DiagnoseSettings::deadline cut a fit short or skipped one: the result so far
   // Own the models that before.network and after->network refer to.
   std::shared_ptr<const lang::Program> before_program, after_program;
 };

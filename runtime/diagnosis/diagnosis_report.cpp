@@ -121,6 +121,10 @@ std::string diagnosis_report_json(const std::string& source_file, const Diagnosi
         parameters.push_back(
             {{"path", p.path}, {"value", in_written_unit(p, d.after->network.parameter(static_cast<int>(i)))}, {"unit", written_unit(p)}});
     }
+    for (std::size_t k : d.freed_offsets)  // the effect offset: the data lines' fitted force offsets
+      parameters.push_back({{"path", fmt::format("data {}: force_offset", d.after->datasets.at(k).path)},
+                            {"value", d.after->datasets.at(k).force_offset.value},
+                            {"unit", "N"}});
     added.push_back({{"element", d.added_element}, {"effect", effect_name(d.effect)}, {"statement", d.added_statement}, {"parameters", parameters}});
   }
   j["criterion"] = criterion;

@@ -16,16 +16,18 @@ enum class Effect {
   inertia,                      // a resonance: stiffness rising above its trend, a phase peak
   asymmetry,                    // a law that is not odd: yield or stiffness differ in tension and compression
   backlash,                     // free play, possibly off-centre, before a branch engages
+  offset,                       // a constant force the measured history carries (a load cell's zero): the data line's force_offset
   none,                         // the residual is at the noise level
 };
 
-inline constexpr std::array<Effect, 7> kEffects{Effect::amplitude_dependence,
+inline constexpr std::array<Effect, 8> kEffects{Effect::amplitude_dependence,
                                                 Effect::rate_dependence,
                                                 Effect::nonlinear_elasticity,
                                                 Effect::coupled_amplitude_frequency,
                                                 Effect::inertia,
                                                 Effect::asymmetry,
-                                                Effect::backlash};
+                                                Effect::backlash,
+                                                Effect::offset};
 
 constexpr std::string_view effect_name(Effect effect) {
   switch (effect) {
@@ -36,6 +38,7 @@ constexpr std::string_view effect_name(Effect effect) {
     case Effect::inertia: return "inertia";
     case Effect::asymmetry: return "asymmetry";
     case Effect::backlash: return "backlash";
+    case Effect::offset: return "offset";
     case Effect::none: return "none";
   }
   return "none";

@@ -2,6 +2,7 @@
 
 #include "lang/frontend.hpp"
 #include "lang/source_edit.hpp"
+#include "runtime/diagnosis/criterion.hpp"
 #include "runtime/fit/fit_report.hpp"
 
 #include <fmt/format.h>
@@ -31,6 +32,7 @@ std::string pattern_sentence(Effect effect, const ResidualPatterns& p) {
       case Effect::inertia: return "the force residual follows the acceleration";
       case Effect::asymmetry: return "the force residual differs between tension and compression";
       case Effect::backlash: return "the force residual is largest where the loops turn, as free play before contact gives";
+      case Effect::offset: return "the force residual has a constant part, as a load cell's zero that is not subtracted gives";
       case Effect::none: return "the force residual shows no pattern an added element explains";
     }
   }
@@ -56,6 +58,7 @@ std::string pattern_sentence(Effect effect, const ResidualPatterns& p) {
           "the stiffness residual changes with amplitude ({:.0f} % of the residual varies with amplitude alone), as free "
           "play taken up at larger amplitudes does",
           percent(h.amplitude_share));
+    case Effect::offset: return "the histories' force residual has a constant part, as a load cell's zero that is not subtracted gives";
     case Effect::none: break;
   }
   return "the residual shows no pattern an added element explains";
@@ -71,7 +74,7 @@ std::string effect_reason(const Diagnosis& d, const CandidateOutcome& w) {
       "{}; {}; refitted with every parameter, {} fell from {:.4g} to {:.4g} ({:.2f} times lower) and BIC from {:.1f} to "
       "{:.1f} with {} more parameters",
       pattern_sentence(w.screened.effect, d.patterns), screened, d.gap_name, d.gap_before, w.gap_after, d.gap_before / w.gap_after,
-      d.criterion_before, w.criterion, w.parameters - static_cast<int>(d.before.free.size()));
+      d.criterion_before, w.criterion, w.parameters - fitted_parameters(d.before));
 }
 
 namespace {

@@ -196,6 +196,7 @@ std::vector<double Trial::*> location_fields(Shape shape) {
     case Shape::gapped_spring: return {&Trial::slip};
     case Shape::gapped_element: return {&Trial::slip, &Trial::bias};
     case Shape::one_sided_element: return {&Trial::bias};
+    case Shape::force_offset: return {};
   }
   return {};
 }
@@ -219,6 +220,21 @@ double size_even_spring(Trial& trial, const AddedObjective& objective, const std
   const double range = std::max(trial.stiffness, scales.bounds.stiffness) / scales.bounds.max_displacement;
   trial.k2 = minimise_1d([&](double x) { return objective({&square}, {x}); }, -range, range, 41, false);
   return objective({&square}, {trial.k2});
+}
+
+// The offset c of a force_offset trial: m = F + c on every history whose offset is not fitted
+// already (a constant signature there, zero elsewhere: harmonic measures do not see a constant
+// force), c within +-max|F_exp|; returns the objective there.
+double size_force_offset(Trial& trial, const AddedObjective& objective, const std::vector<FitDataSet>& data) {
+  Signature constant;
+  double range = 0.0;
+  for (const auto& set : data) {
+    constant.harmonic.emplace_back(set.is_harmonic() ? set.harmonic().size() : 0, Complex{0.0, 0.0});
+    constant.history.emplace_back(set.is_harmonic() ? 0 : set.history().force.size(), set.is_harmonic() || set.force_offset.free ? 0.0 : 1.0);
+    if (!set.is_harmonic() && !set.force_offset.free) range = std::max(range, set.history().force_scale);
+  }
+  trial.stiffness = minimise_1d([&](double c) { return objective({&constant}, {c}); }, -range, range, 41, false);
+  return objective({&constant}, {trial.stiffness});
 }
 
 // D20 and D30 of a yeoh trial by coordinate descent on the objective; returns that objective.
@@ -286,6 +302,8 @@ DataScales data_scales(const std::vector<FitDataSet>& data) {
   }
   s.bounds.max_displacement = max_u > 0.0 ? max_u : 1.0;
   s.has_history = std::any_of(data.begin(), data.end(), [](const FitDataSet& set) { return !set.is_harmonic(); });
+  s.fixed_offsets = static_cast<int>(
+      std::count_if(data.begin(), data.end(), [](const FitDataSet& set) { return !set.is_harmonic() && !set.force_offset.free; }));
   s.symmetric_drives = std::all_of(data.begin(), data.end(), [](const FitDataSet& set) {
     return set.is_harmonic() && std::all_of(set.harmonic().preload.begin(), set.harmonic().preload.end(), [](double p) { return p == 0.0; });
   });
@@ -341,6 +359,12 @@ std::vector<Trial> trial_family(Effect effect, const DataScales& s, const std::s
           family.back().bias = bias;
         }
       break;
+    case Effect::offset:
+      if (s.fixed_offsets > 0) {
+        add(Shape::force_offset, 0.0, 0.0, 0.0, 0.0);
+        family.back().offsets = s.fixed_offsets;
+      }
+      break;
     case Effect::none: break;
   }
   return family;
@@ -373,6 +397,7 @@ std::vector<ScreenedEffect> screen(const FitResult& fit, const std::vector<FitDa
     }
     if (trial.shape == Shape::yeoh) return size_yeoh(trial, objective, data, scales, root_spring);
     if (trial.shape == Shape::even_spring) return size_even_spring(trial, objective, data, scales, root_spring);
+    if (trial.shape == Shape::force_offset) return size_force_offset(trial, objective, data);
     trial.stiffness = 1.0;  // the signature is per unit stiffness; a refined trial arrives sized
     const Signature s = simulate_alone(trial, data, score, scales.bounds);
     trial.stiffness = minimise_1d([&](double a) { return objective({&s}, {a}); }, k_min, k_max, 30, true);
@@ -381,7 +406,8 @@ std::vector<ScreenedEffect> screen(const FitResult& fit, const std::vector<FitDa
   std::vector<ScreenedEffect> out;
   for (Effect effect : kEffects) {
     if (effect == Effect::nonlinear_elasticity && root_spring.has_yeoh) continue;
-    if (effect == Effect::asymmetry && !scales.has_history) continue;  // harmonic measures do not see it
+    if (effect == Effect::asymmetry && !scales.has_history) continue;     // harmonic measures do not see it
+    if (effect == Effect::offset && scales.fixed_offsets == 0) continue;  // no history, or every offset fitted already
     ScreenedEffect best;
     best.effect = effect;
     best.gain = -1.0;

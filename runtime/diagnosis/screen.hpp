@@ -14,6 +14,8 @@
 // A trial that rebuilds a root element e of the model (free play in front of it, its one-cap
 // yields split; element_text.hpp) replaces e's response s_e by its own s_p: F_m - s_e + a s_p,
 // minimised over a in [0.1, 10] (s_p and s_e simulated alone at the fitted values).
+// A force offset (offset_candidate.hpp) adds a constant c to the force of every history whose
+// offset is not fitted already, c minimised over +-max|F_exp| (harmonic measures do not see it).
 // gain = 1 - J(best)/J(0): the share of the objective the element would remove without any
 // other parameter moving; a cheap, optimistic-or-pessimistic proxy for the refit that
 // diagnose.hpp then does for the leading effects.
@@ -32,6 +34,7 @@ struct DataScales {
   double amplitude_low = 1.0, amplitude_high = 1.0;  // [mm]: measured amplitudes, or a history's turning points
   BoundScales bounds;                                // typical stiffness and largest displacement
   bool has_history = false;                          // some data set is a history
+  int fixed_offsets = 0;                             // histories whose force offset is not fitted (none, or declared)
   // Every data set is harmonic about zero displacement (no history, no preload). An element and
   // its mirror image (F(u) -> -F(-u): play centred at -c for +c) then score alike: the mirror's
   // periodic force under u0 sin(w t) is -F(t + T/2), which has the same max F - min F, loop

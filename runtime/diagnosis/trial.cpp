@@ -125,6 +125,7 @@ std::vector<std::string> trial_statement(const Trial& t, const std::string& name
                                   bounded(d30, 0.0, 5.0 * range / std::pow(u, 4), 1.0, "N/mm^5")));
       break;
     }
+    case Shape::force_offset: break;  // a data-line setting, not an element (force_offset.hpp)
   }
   return lines;
 }
@@ -162,6 +163,9 @@ std::string trial_summary(const Trial& t) {
       return fmt::format("free play (width = {:.4g} mm, center = {:.4g} mm) in front of '{}'", 2.0 * t.slip, t.bias * t.slip, t.replaces);
     case Shape::one_sided_element:
       return fmt::format("the yield forces of '{}' made one-sided (fy_pos = {:.3g} fy, fy_neg = {:.3g} fy)", t.replaces, 1.0 + t.bias, 1.0 - t.bias);
+    case Shape::force_offset:
+      return fmt::format("a force offset of {:.4g} N on the measured force{} (force_offset = free on {} data line{})", t.stiffness,
+                         t.offsets > 1 ? "s" : "", t.offsets > 1 ? "their" : "its", t.offsets > 1 ? "s" : "");
   }
   return {};
 }
@@ -180,6 +184,7 @@ int added_parameter_count(const Trial& t) {
     case Shape::gapped_spring: return 3;
     case Shape::gapped_element: return 2;
     case Shape::one_sided_element: return t.split_parameters;
+    case Shape::force_offset: return t.offsets;
   }
   return 0;
 }

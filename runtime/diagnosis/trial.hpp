@@ -62,13 +62,14 @@ enum class Shape {
   even_spring,
   gapped_spring,
   gapped_element,
-  one_sided_element
+  one_sided_element,
+  force_offset
 };
 
 struct Trial {
   Effect effect = Effect::none;
   Shape shape = Shape::maxwell;
-  double stiffness = 1.0;      // k [N/mm]
+  double stiffness = 1.0;      // k [N/mm]; force_offset: the offset c [N]
   double time = 0.0;           // tau [s]
   double slip = 0.0;           // uy, or fy/k of a slider [mm]
   double frequency = 0.0;      // f_r [Hz]
@@ -81,6 +82,7 @@ struct Trial {
                                // gapped_element, one_sided_element: the root element it rebuilds
   std::string inner;           // gapped_element, one_sided_element: the statement of `replaces` (lines), with bounds
   int split_parameters = 0;    // one_sided_element: the free parameters the split adds (1 per cap that was free, 2 per fixed one)
+  int offsets = 0;             // force_offset: the histories whose offset it frees (one parameter each)
 };
 
 // Scales of the measurement that bound the added parameters.
@@ -89,7 +91,7 @@ struct BoundScales {
   double max_displacement = 1.0;  // [mm]
 };
 
-// The statement of TRIAL named NAME, one line per element, with bounds on every parameter
+// The statement of TRIAL named NAME, one line per element (none for a force_offset), with bounds on every parameter
 // (wide, around the values, so that the refit can move them): k within [K/1e4, 10 K] of the
 // measured stiffness, times, slips, inertances and damping within three decades either side,
 // D20 within [-D, 5 D]/u^2 and D30 within [0, 5 D/u^4] for the largest displacement u, D the larger of

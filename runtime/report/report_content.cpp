@@ -55,7 +55,12 @@ ReportContent report_from_fit(const FitResult& r, const std::vector<FitDataSet>&
   }
   for (std::size_t k = 0; k < data.size() && k < r.datasets.size(); ++k) {
     if (data[k].is_harmonic()) content.harmonic.push_back(compare_harmonic(data[k].harmonic(), r.datasets[k].prediction.points, data[k].source));
-    else content.histories.push_back(compare_history(data[k], r.datasets[k].prediction));
+    else {
+      // The offset as fitted: a refined model may fit one its data line does not state (rheo diagnose, effect offset).
+      HistoryComparison& h = content.histories.emplace_back(compare_history(data[k], r.datasets[k].prediction));
+      const FittedOffset& fitted = r.datasets[k].force_offset;
+      h.offset = ForceOffset{.given = fitted.given, .free = fitted.free, .value = fitted.value};
+    }
   }
   if (content.harmonic.size() > 1) content.notes.push_back(fmt::format("all harmonic data: phi (5.1) = {:.6g}, err (6.1) = {:.4e}", r.phi, r.err));
   content.notes.push_back(fmt::format("{} evaluations in {:.2f} s; {}", r.evaluations, r.wall_seconds,

@@ -10,6 +10,7 @@
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 
@@ -121,4 +122,34 @@ TEST_CASE("rheo diagnose --time-limit stops in time with the results so far, and
   CHECK(progress.err.find("rheo: fitting model linear\nrheo: fitting model linear: 1 evaluations") != std::string::npos);
   CHECK(progress.err.find("\r") == std::string::npos);
   CHECK(nlohmann::json::parse(progress.out)["evidence"].contains("noise"));
+}
+
+// The rig history with its load cell's 150 N zero (examples/data/README.md), fitted without the
+// data line's force_offset: the preloaded yeoh takes up most of the constant as it is fitted, so
+// the offset screens low, and only its refit shows it (#24 item 1, `offset`).
+TEST_CASE("rheo refine: a load cell's zero no data line states is named offset, fitted to the 150 N it is, and the rounds end at none") {
+  const fs::path dir = rheo::test::scratch_directory("refine-offset");
+  const fs::path model = dir / "rig.rheo", final_model = dir / "rig_final.rheo";
+  std::ofstream(model) << "model bushing {\n"
+                          "  yeoh     rubber (D10 = 100 N/mm in [1, 10000], D20 = 0 N/mm^3 in [-100, 100], D30 = 0 N/mm^5 in [-10, 10])\n"
+                          "  maxwell  m1     (k = 100 N/mm in [1, 10000], tau = 10 ms in [0.01, 10000])\n"
+                          "  friction f1     (k = 300 N/mm in [1, 10000], uy = 30 um in [0.1, 10000])\n"
+                          "  friction f2     (k = 300 N/mm in [1, 10000], uy = 300 um in [0.1, 10000])\n"
+                          "}\n"
+                       << fmt::format("fit {{\n  data \"{}/rig_preloaded_history.csv\"  # no force_offset\n}}\n", RHEO_DATA_DIR);
+  const auto r = run_rheo(fmt::format("refine {} --rounds 3 -o {}", model.string(), final_model.string()));
+  CAPTURE(r.out);
+  CAPTURE(r.err);
+  REQUIRE(r.code == 0);
+  CHECK(r.out.find("round 1: RMS force residual = ") != std::string::npos);
+  CHECK(r.out.find("effect offset, added 'force_offset'") != std::string::npos);
+  CHECK(r.out.find("round 2: ") != std::string::npos);
+  CHECK(r.out.find("effect none") != std::string::npos);
+  const std::string text = rheo::test::read_file(final_model.string());
+  CHECK(text.find("rig_preloaded_history.csv\", force_offset = free  # no force_offset") != std::string::npos);
+  // The final file fits the offset again: 150 N to the data's digits.
+  const auto fitted = run_rheo(fmt::format("fit {} --json", final_model.string()));
+  REQUIRE(fitted.code == 0);
+  const auto j = nlohmann::json::parse(fitted.out);
+  CHECK(std::abs(j["data"][0]["force_offset"]["value"].get<double>() - 150.0) < 0.01);
 }

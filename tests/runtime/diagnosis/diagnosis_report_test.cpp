@@ -33,6 +33,7 @@ TEST_CASE("the diagnosis reports name an added parameter the refit left at its b
                   .added_element = "m3",
                   .added_summary = {},
                   .added_statement = {"maxwell m3 (k = 40 N/mm in [1, 10000], tau = 9999.93 ms in [0.01, 10000])"},
+                  .freed_offsets = {},
                   .refined_text = {},
                   .interrupted = false,
                   .time_limited = false,
