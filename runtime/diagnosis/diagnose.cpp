@@ -1,27 +1,23 @@
 #include "runtime/diagnosis/diagnose.hpp"
 
-#include "runtime/diagnosis/criterion.hpp"
-
-#include "runtime/diagnosis/element_text.hpp"
-
 #include "lang/fitted_source.hpp"
 #include "lang/frontend.hpp"
 #include "lang/source_edit.hpp"
 #include "runtime/diagnosis/candidate_model.hpp"
+#include "runtime/diagnosis/criterion.hpp"
 #include "runtime/diagnosis/evidence_text.hpp"
 #include "runtime/diagnosis/offset_candidate.hpp"
 #include "runtime/diagnosis/refit.hpp"
+#include "runtime/diagnosis/together.hpp"
 #include "runtime/fit/fit_scoring.hpp"
 
 #include <fmt/format.h>
-#include <fmt/ranges.h>
 
 #include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <limits>
 #include <memory>
-#include <numbers>
 #include <stdexcept>
 
 namespace rheo::runtime::diagnosis {
@@ -236,39 +232,12 @@ class Diagnoser {
   // play, the split from the best refitted asymmetry (0.2 where it had none). Named by the
   // effect that did better alone.
   void refit_together() {
-    const CandidateOutcome *played = nullptr, *split = nullptr;
-    for (const CandidateOutcome& c : d_.candidates) {
-      if (!c.refitted) continue;
-      const Shape shape = c.screened.trial.shape;
-      if ((shape == Shape::gapped_element || shape == Shape::gapped_spring) && (!played || c.gap_after < played->gap_after)) played = &c;
-      if ((shape == Shape::one_sided_element || shape == Shape::asymmetric_friction) && (!split || c.gap_after < split->gap_after)) split = &c;
-    }
-    if (!played || !split || stopped()) return;
-    const Network& fitted = d_.before.network;
-    const lang::Element* element = nullptr;
-    double largest_cap = 0.0;
-    for (const lang::Element& e : fitted.model().root.children) {
-      if (e.kind != lang::ElementKind::friction || e.parameters.size() != 2) continue;  // one cap both ways
-      const double cap = fitted.parameter(e.parameters[1]);
-      if (e.name == split->screened.trial.replaces) largest_cap = std::numeric_limits<double>::infinity(), element = &e;
-      if (cap > largest_cap) largest_cap = cap, element = &e;
-    }
-    if (element == nullptr) return;
-    const double bias = split->screened.trial.bias != 0.0 ? split->screened.trial.bias : 0.2;
-    const auto inner = element_text(fitted, *element, bias);
-    if (!inner) return;
-    const bool backlash_first = played->gap_after <= split->gap_after;
-    CandidateOutcome both;
-    both.screened = backlash_first ? played->screened : split->screened;
-    Trial& trial = both.screened.trial;
-    trial = Trial{};
-    trial.effect = both.screened.effect, trial.shape = Shape::gapped_element;
-    trial.slip = played->screened.trial.slip, trial.bias = played->screened.trial.bias;
-    trial.replaces = element->name, trial.inner = joined(*inner);
-    both.element = element_name(trial, both.screened.effect);
-    both.limit_of = fmt::format("free play in front of '{}' and its yield made one-sided, together: neither earned alone", element->name);
-    const Trial together = trial;
-    refit_candidate(together, both, 1.0);
+    if (stopped()) return;
+    std::optional<CandidateOutcome> both = played_and_split(d_.candidates, d_.before.network);
+    if (!both) return;
+    both->element = element_name(both->screened.trial, both->screened.effect);
+    const Trial together = both->screened.trial;
+    refit_candidate(together, *both, 1.0);
   }
 
   // The name of TRIAL's element in the candidate model: a new root name (`backlash` for the
@@ -352,25 +321,7 @@ class Diagnoser {
     return *offset_data_;
   }
 
-  // The offset candidate refitted: the model as fitted, every free parameter by one local search
-  // (refit.hpp local_search) with the offsets solved at every evaluation; it adds no shape
-  // parameter for a first stage to place.
-  FitResult refit_offsets(double share) {
-    const std::vector<FitDataSet>& data = offset_data();
-    const Network& start = d_.before.network;
-    const int n = static_cast<int>(d_.before.free.size());
-    const FitSettings settings = local_search(within(share).fit, affordable_evaluations(start, data, s_, kLocalJacobians * (n + 1)));
-    return fit(start, d_.before.free, data, settings);
-  }
-
-  // The fit block's data lines the data were read from (ModelSource::fit_block), one per data
-  // set, in source_.text; empty when they came from elsewhere.
-  std::vector<lang::FitData> data_lines() const {
-    const auto& fits = base_.program->fits;
-    if (source_.fit_block < 0 || static_cast<std::size_t>(source_.fit_block) >= fits.size()) return {};
-    const std::vector<lang::FitData>& lines = fits[static_cast<std::size_t>(source_.fit_block)].data;
-    return lines.size() == data_.size() ? lines : std::vector<lang::FitData>{};
-  }
+  FitResult refit_offsets(double share) { return refit_with_offsets(d_.before, offset_data(), within(share)); }
 
   // The model's residual as fitted, its chi^2 the least (criterion.hpp Residual).
   Residual before_residual() const { return {d_.gap_before, d_.chi_square_before, fitted_parameters(d_.before)}; }
@@ -446,16 +397,12 @@ class Diagnoser {
   // otherwise, the --data option that says so).
   Diagnosis finish_offset() {
     d_.freed_offsets = fixed_offsets(data_);
-    const OffsetText text = offset_text(source_.text, source_.file, data_lines(), d_.freed_offsets, chosen_->result);
-    const bool on_lines = !text.edits.empty() && text.edits.size() == d_.freed_offsets.size();
+    const std::vector<lang::FitData> lines = fit_block_lines(*base_.program, source_.fit_block, data_.size());
+    const OffsetText text = offset_text(source_.text, source_.file, lines, d_.freed_offsets, chosen_->result);
     d_.added_element = "force_offset";
     d_.added_summary = text.summary;
     d_.added_statement = text.statement;
-    std::vector<std::string> header{fmt::format("Refined by `rheo diagnose`: effect offset; {} {:.4g} -> {:.4g}; fitted {}.", d_.gap_name,
-                                                d_.gap_before, d_.gap_after, text.summary)};
-    header.push_back(on_lines ? "force_offset = free is written on the data lines, so every fit of this file fits the offset."
-                              : "The data were not read from this file's data lines: give them as " +
-                                    fmt::format("{}", fmt::join(text.statement, " ")) + " to fit the offset again.");
+    const std::vector<std::string> header = offset_header(text, d_.freed_offsets.size(), d_.gap_name, d_.gap_before, d_.gap_after);
     d_.refined_text = lang::write_fitted_source(source_.text, source_.file, *base_.model, chosen_->result.network.parameters(),
                                                 chosen_->result.free, header, text.edits);
     d_.after = std::move(chosen_->result);

@@ -1,6 +1,9 @@
 #include "runtime/diagnosis/offset_candidate.hpp"
 
+#include "runtime/diagnosis/refit.hpp"
+
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 
 #include <algorithm>
 
@@ -64,6 +67,29 @@ OffsetText offset_text(const std::string& text, const std::string& file, const s
     }
   }
   return out;
+}
+
+FitResult refit_with_offsets(const FitResult& before, const std::vector<FitDataSet>& freed_data, const DiagnoseSettings& settings) {
+  const int n = static_cast<int>(before.free.size());
+  const int evaluations = affordable_evaluations(before.network, freed_data, settings, kLocalJacobians * (n + 1));
+  return fit(before.network, before.free, freed_data, local_search(settings.fit, evaluations));
+}
+
+std::vector<lang::FitData> fit_block_lines(const lang::Program& program, int block, std::size_t count) {
+  if (block < 0 || static_cast<std::size_t>(block) >= program.fits.size()) return {};
+  const std::vector<lang::FitData>& lines = program.fits[static_cast<std::size_t>(block)].data;
+  return lines.size() == count ? lines : std::vector<lang::FitData>{};
+}
+
+std::vector<std::string> offset_header(const OffsetText& text, std::size_t freed, const std::string& gap_name, double before, double after) {
+  std::vector<std::string> header{
+      fmt::format("Refined by `rheo diagnose`: effect offset; {} {:.4g} -> {:.4g}; fitted {}.", gap_name, before, after, text.summary)};
+  if (!text.edits.empty() && text.edits.size() == freed)
+    header.emplace_back("force_offset = free is written on the data lines, so every fit of this file fits the offset.");
+  else
+    header.push_back(fmt::format("The data were not read from this file's data lines: give them as {} to fit the offset again.",
+                                 fmt::join(text.statement, " ")));
+  return header;
 }
 
 }  // namespace rheo::runtime::diagnosis

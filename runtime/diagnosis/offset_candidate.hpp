@@ -6,6 +6,7 @@
 
 #include "lang/fitted_source.hpp"
 #include "lang/model.hpp"
+#include "runtime/diagnosis/diagnose.hpp"
 #include "runtime/fit/fit.hpp"
 
 #include <string>
@@ -29,5 +30,17 @@ struct OffsetText {
 };
 OffsetText offset_text(const std::string& text, const std::string& file, const std::vector<lang::FitData>& lines,
                        const std::vector<std::size_t>& freed, const FitResult& refit);
+
+// BEFORE (the model as fitted) refitted to FREED_DATA (its histories' offsets made free): every
+// free parameter by one local search (refit.hpp local_search) within the budget of SETTINGS; the
+// offset adds no shape parameter for a first stage to place.
+FitResult refit_with_offsets(const FitResult& before, const std::vector<FitDataSet>& freed_data, const DiagnoseSettings& settings);
+
+// The data lines of PROGRAM's fit block BLOCK, where it has one per data set (COUNT); else empty.
+std::vector<lang::FitData> fit_block_lines(const lang::Program& program, int block, std::size_t count);
+
+// The refined file's header for the effect offset: the gap's fall (GAP_NAME, BEFORE -> AFTER),
+// the fitted values, and where `force_offset = free` is stated (on FREED data lines, or how).
+std::vector<std::string> offset_header(const OffsetText& text, std::size_t freed, const std::string& gap_name, double before, double after);
 
 }  // namespace rheo::runtime::diagnosis
