@@ -16,6 +16,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 #include <random>
 
 using namespace rheo;
@@ -73,6 +74,32 @@ TEST_CASE("diagnose on the friction damper's rig file: backlash, then asymmetry,
   CHECK(parameter(second, "backlash.f.fy_neg") == doctest::Approx(20000.0).epsilon(0.01));
   CHECK(parameter(second, "s.k") == doctest::Approx(30.0).epsilon(0.1));
   CHECK(second.after->datasets[0].prediction.force_offset == doctest::Approx(-575.0).epsilon(0.05));
+}
+
+TEST_CASE("refine on the friction damper's rig file with no force offset stated: offset, backlash, asymmetry, then none at the noise") {
+  // As issue 24 found the file: `spring || friction`, and nothing on the data line about the
+  // load cell's -650 N. Each round as rheo refine runs it: the offsets a round frees are fitted
+  // in the next.
+  std::vector<runtime::FitDataSet> data{rig_file()};
+  data[0].force_offset = {};
+  const double noise = test::rig_file::kNoise / data[0].history().force_scale;
+  dx::DiagnoseSettings settings;
+  settings.fit.score.harmonic.solver = runtime::SolverChoice::fixed;
+  std::string text = kStart;
+  std::vector<dx::Effect> named;
+  std::optional<dx::Diagnosis> last;
+  for (int round = 0; round < 5; ++round) {
+    last = dx::diagnose({"damper.rheo", text, "damper"}, data, settings);
+    MESSAGE(fmt::format("round {}: {} {:.4g} -> {:.4g}", round + 1, dx::verdict_name(*last), last->gap_before, last->gap_after));
+    for (std::size_t k : last->freed_offsets) data[k].force_offset = {.given = true, .free = true, .value = 0.0};
+    text = last->refined_text;
+    if (last->verdict != dx::Verdict::named) break;
+    named.push_back(last->effect);
+  }
+  CHECK(named == std::vector<dx::Effect>{dx::Effect::offset, dx::Effect::backlash, dx::Effect::asymmetry});
+  CHECK(last->verdict == dx::Verdict::none);
+  CHECK(last->gap_after < 1.4 * noise);  // the drift's 43 N RMS beside the 60 N of noise, as above
+  CHECK(last->before.datasets[0].prediction.force_offset == doctest::Approx(-575.0).epsilon(0.05));
 }
 
 TEST_CASE("diagnose, the rig file's programme through other values: play and one-sided yield that earn only together") {
