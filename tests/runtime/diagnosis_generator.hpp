@@ -40,6 +40,7 @@ enum class Hidden {
   split_yield,     // histories: the friction element's yield differs in tension and compression: asymmetry
   even_spring,     // histories: the spring has a k2 u^2 term: asymmetry
   capped_maxwell,  // histories: a slider-capped Maxwell arm added: coupled-amplitude-frequency
+  offset,          // histories: each file's force carries a constant (a load cell's zero), 2-10 % of max|F| either sign: offset
 };
 
 inline const char* hidden_name(Hidden h) {
@@ -52,6 +53,7 @@ inline const char* hidden_name(Hidden h) {
     case Hidden::split_yield: return "split-yield";
     case Hidden::even_spring: return "even-spring";
     case Hidden::capped_maxwell: return "capped-maxwell";
+    case Hidden::offset: return "offset";
   }
   return "?";
 }
@@ -63,6 +65,7 @@ struct Scenario {
   // K/K_exp - 1 and of the phase [rad], and the floor sqrt(sum s_K^2 + s_d^2)/n of err (6.1);
   // histories: RMS over files of the RMS force noise SD over max|F_exp|.
   double stiffness = 0.0, phase = 0.0, floor = 0.0, force = 0.0;
+  std::vector<double> offsets;  // Hidden offset: each history file's [N]
 };
 
 // Unit-variance noise: Gaussian, or Student's t with 5 degrees of freedom scaled by sqrt(3/5).
@@ -216,8 +219,9 @@ inline Scenario history_scenario(unsigned seed, Hidden hidden) {
   const NoiseDraw noise = draw_noise(random, true);
   const double f_mid = triangles ? rates.front() / (4.0 * a_max) : std::sqrt(rates.front() * rates.back());
   Scenario sc;
-  sc.truth = truth_with(base, hidden == Hidden::column ? Hidden::none : hidden, random, a_max, f_mid);
-  sc.start = start_without(hidden == Hidden::column ? Hidden::none : hidden);
+  const Hidden in_network = hidden == Hidden::column || hidden == Hidden::offset ? Hidden::none : hidden;
+  sc.truth = truth_with(base, in_network, random, a_max, f_mid);
+  sc.start = start_without(in_network);
   sc.description = fmt::format("{} file(s) of {} at {:.3g}..{:.3g} {}, {} cycles x {} samples, {} amplitudes, {}", files,
                                triangles ? "triangles" : "sines", rates.front(), rates.back(), triangles ? "mm/s" : "Hz", cycles, steps,
                                amplitudes.size(), noise.text(true));
@@ -239,6 +243,11 @@ inline Scenario history_scenario(unsigned seed, Hidden hidden) {
                         (noise.of_force ? noise.s * (0.2 * scale + std::abs(h.force[j])) : noise.s * scale);
       d.force.push_back(h.force[j] + sd * unit_noise(random, noise.heavy)), d.rows.push_back(static_cast<int>(d.rows.size()) + 2);
       file_sum += sd * sd;
+    }
+    if (hidden == Hidden::offset) {
+      const double offset = (random.unit() < 0.5 ? -1.0 : 1.0) * random.uniform(0.02, 0.1) * scale;
+      for (double& f : d.force) f += offset;
+      sc.offsets.push_back(offset);
     }
     for (double f : d.force) d.force_scale = std::max(d.force_scale, std::abs(f));
     sum += file_sum / static_cast<double>(d.force.size()) / (d.force_scale * d.force_scale);

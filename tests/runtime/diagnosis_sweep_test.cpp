@@ -43,6 +43,7 @@ dx::Effect expected(gen::Hidden h) {
     case gen::Hidden::split_yield:
     case gen::Hidden::even_spring: return dx::Effect::asymmetry;
     case gen::Hidden::capped_maxwell: return dx::Effect::coupled_amplitude_frequency;
+    case gen::Hidden::offset: return dx::Effect::offset;
   }
   return dx::Effect::none;
 }
@@ -55,8 +56,8 @@ struct Outcome {
   double noise_ratio = 0.0;  // estimated over true noise (the floor on grids, the force SD on histories)
 };
 
-Outcome run(const gen::Scenario& sc, gen::Hidden hidden, unsigned seed) {
-  const dx::Diagnosis d = test::diagnose(sc.start, sc.data);
+// D, diagnosed on SC (HIDDEN hidden in it, drawn with SEED), as the sweep counts it.
+Outcome outcome(const dx::Diagnosis& d, const gen::Scenario& sc, gen::Hidden hidden, unsigned seed) {
   Outcome o;
   const bool harmonic = sc.data.front().is_harmonic();
   o.noise_ratio = !d.noise.estimated ? 0.0 : harmonic ? d.noise.floor / sc.floor : d.noise.force / sc.force;
@@ -71,6 +72,8 @@ Outcome run(const gen::Scenario& sc, gen::Hidden hidden, unsigned seed) {
       d.chi_square_ratio, sc.description);
   return o;
 }
+
+Outcome run(const gen::Scenario& sc, gen::Hidden hidden, unsigned seed) { return outcome(test::diagnose(sc.start, sc.data), sc, hidden, seed); }
 
 struct Tally {
   int runs = 0, wrong = 0, right = 0, invisible = 0;
@@ -90,8 +93,8 @@ std::map<std::string, Tally> sweep(unsigned first, unsigned seeds) {
   std::map<std::string, Tally> tally;
   const char* only = std::getenv("RHEO_DIAGNOSE_SWEEP_ONLY");  // one case by its hidden_name, e.g. "none"
   const std::vector<gen::Hidden> on_grids{gen::Hidden::none, gen::Hidden::friction, gen::Hidden::maxwell, gen::Hidden::column, gen::Hidden::play};
-  const std::vector<gen::Hidden> on_histories{gen::Hidden::none,        gen::Hidden::friction,    gen::Hidden::maxwell,       gen::Hidden::play,
-                                              gen::Hidden::split_yield, gen::Hidden::even_spring, gen::Hidden::capped_maxwell};
+  const std::vector<gen::Hidden> on_histories{gen::Hidden::none,        gen::Hidden::friction,    gen::Hidden::maxwell,        gen::Hidden::play,
+                                              gen::Hidden::split_yield, gen::Hidden::even_spring, gen::Hidden::capped_maxwell, gen::Hidden::offset};
   for (unsigned seed = first; seed < first + seeds; ++seed)
     for (const bool history : {false, true}) {
       double none_gap = 0.0;
@@ -128,6 +131,25 @@ TEST_CASE("diagnose sweep: pure noise of fixed size on the force amplitude gives
     const Outcome o = run(sc, gen::Hidden::none, seed);
     INFO(o.line);
     CHECK_FALSE(o.wrong);
+  }
+}
+
+// A load cell's zero in every file, 2-10 % of max|F| of either sign (one file, then three, each
+// its own): named offset, the gap to the noise, and each file's offset recovered.
+TEST_CASE("diagnose sweep: a hidden force offset in one and in three history files is offset, each file's value recovered") {
+  for (const unsigned seed : {3u, 4u}) {
+    const gen::Scenario sc = gen::history_scenario(seed, gen::Hidden::offset);
+    const dx::Diagnosis d = test::diagnose(sc.start, sc.data);
+    const Outcome o = outcome(d, sc, gen::Hidden::offset, seed);
+    INFO(o.line);
+    CHECK(o.named_right);
+    REQUIRE(d.after.has_value());
+    CHECK(d.gap_after < 1.5 * sc.force);
+    REQUIRE(d.freed_offsets.size() == sc.offsets.size());
+    for (std::size_t k = 0; k < sc.offsets.size(); ++k) {
+      const double scale = sc.data[k].history().force_scale;
+      CHECK(std::abs(d.after->datasets[k].force_offset.value - sc.offsets[k]) < 0.005 * scale);
+    }
   }
 }
 
