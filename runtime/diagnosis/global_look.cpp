@@ -47,6 +47,12 @@ double objective_at(const Network& network, const std::vector<FitDataSet>& data,
   return std::isfinite(sum) ? sum : std::numeric_limits<double>::infinity();
 }
 
+// A position (a gap's centre): a length whose bounds hold zero inside. Its start, the screen's
+// (centred play, or play off-centre by half its half width), may sit where the objective cannot
+// tell it from its mirror image: on harmonic data about zero, play at -c scores as play at +c,
+// so at c = 0 the gradient vanishes and a local search never leaves the centre.
+bool is_position(const lang::Parameter& p) { return p.dimension == lang::dim::length && p.lower < 0.0 && p.upper > 0.0; }
+
 }  // namespace
 
 std::pair<double, double> supported_range(const Network& network, int index, const std::vector<FitDataSet>& data, const DataScales& s) {
@@ -70,13 +76,19 @@ std::vector<SampledStart> global_look(const Network& start, const std::vector<in
                                       const ScoreSettings& score, int samples, int starts) {
   const DataScales scales = data_scales(data);
   std::vector<int> sampled;
-  std::vector<std::pair<double, double>> box;  // ln of the supported range
+  std::vector<std::pair<double, double>> box;  // ln of the supported range; a position's bounds themselves
+  std::vector<bool> linear;                    // a position: sampled uniformly
   for (int i : added) {
     const lang::Parameter& p = start.model().parameters.at(static_cast<std::size_t>(i));
+    if (is_position(p)) {
+      sampled.push_back(i), box.emplace_back(p.lower, p.upper), linear.push_back(true);
+      continue;
+    }
     if (!(p.lower > 0.0)) continue;
     const auto [lo, hi] = supported_range(start, i, data, scales);
     sampled.push_back(i);
     box.emplace_back(std::log(lo), std::log(hi));
+    linear.push_back(false);
   }
   std::vector<SampledStart> points{{start.parameters(), objective_at(start, data, score)}};
   static constexpr unsigned kPrimes[] = {2, 3, 5, 7, 11, 13, 17, 19, 23, 29, 31, 37};
@@ -84,7 +96,8 @@ std::vector<SampledStart> global_look(const Network& start, const std::vector<in
     std::vector<double> values = start.parameters();
     for (std::size_t j = 0; j < sampled.size(); ++j) {
       const double t = radical_inverse(static_cast<unsigned long>(k), kPrimes[j % std::size(kPrimes)]);
-      values[static_cast<std::size_t>(sampled[j])] = std::exp(box[j].first + t * (box[j].second - box[j].first));
+      const double x = box[j].first + t * (box[j].second - box[j].first);
+      values[static_cast<std::size_t>(sampled[j])] = linear[j] ? x : std::exp(x);
     }
     const Network network = start.with_parameters(values);
     points.push_back({values, objective_at(network, data, score)});

@@ -10,7 +10,10 @@
 //   length (a slip)         [a_low / 30, a_high] over the measured amplitudes
 //   stiffness               [K / 300, 3 K], K the typical measured stiffness
 //   others (positive)       a decade either side of the start
-// Parameters whose bounds are not positive keep their start. The points are a Halton sequence
+//   position                uniform over its bounds: a length whose bounds hold zero inside (a
+//                           gap's centre, which a local search from a centred start cannot
+//                           leave on harmonic data about zero: the objective is even in it)
+// Other parameters whose bounds are not positive keep their start. The points are a Halton sequence
 // (bases 2, 3, 5, ...) over the log box, each scored by the fit's objective (fit_scoring.hpp,
 // method exact, free force offsets at their least-squares value).
 #pragma once

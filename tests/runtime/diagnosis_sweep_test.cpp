@@ -6,7 +6,8 @@
 //
 // The suite runs a few draws (fewer under AddressSanitizer); RHEO_DIAGNOSE_SWEEP=N runs N seeds
 // of every case (from RHEO_DIAGNOSE_SWEEP_FIRST, default 1; RHEO_DIAGNOSE_SWEEP_ONLY=none for one
-// case) and prints one line per diagnosis and the rates (about a minute per seed).
+// case) and prints one line per diagnosis and the rates (about a minute per seed);
+// RHEO_DIAGNOSE_SWEEP_VERBOSE=1 adds every candidate under its diagnosis.
 #include "runtime/diagnosis/diagnose.hpp"
 
 #include "diagnosis_generator.hpp"
@@ -70,6 +71,12 @@ Outcome outcome(const dx::Diagnosis& d, const gen::Scenario& sc, gen::Hidden hid
       harmonic ? fmt::format(" (K {:.3f}, phase {:.3f})", d.noise.stiffness / sc.stiffness, sc.phase > 0.0 ? d.noise.phase / sc.phase : 0.0)
                : std::string(),
       d.chi_square_ratio, sc.description);
+  if (std::getenv("RHEO_DIAGNOSE_SWEEP_VERBOSE")) o.line += "\n      truth: " + sc.truth;
+  if (std::getenv("RHEO_DIAGNOSE_SWEEP_VERBOSE"))  // every candidate, screened and refitted
+    for (const auto& c : d.candidates)
+      o.line += fmt::format("\n      {:28} screened {:.3f}  {}  {}", dx::effect_name(c.screened.effect), c.screened.gain,
+                            c.refitted ? fmt::format("gap {:.4g} BIC {:.1f} p {}", c.gap_after, c.criterion, c.parameters) : "not refitted",
+                            dx::trial_summary(c.screened.trial));
   return o;
 }
 

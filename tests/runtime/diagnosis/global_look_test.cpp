@@ -1,0 +1,64 @@
+// The global look of a candidate's refit (global_look.hpp): the screened start first, then the
+// sampled points; positive parameters log-uniform over what the data support, a position (a
+// gap's centre, bounds about zero) uniform over its bounds, other signed parameters kept.
+#include "runtime/diagnosis/global_look.hpp"
+
+#include "lang/frontend.hpp"
+#include "support.hpp"
+
+#include <doctest/doctest.h>
+
+#include <algorithm>
+#include <cmath>
+
+using namespace rheo;
+namespace dx = runtime::diagnosis;
+
+namespace {
+
+runtime::FitDataSet table() {
+  runtime::HarmonicData h;
+  h.path = "t.csv";
+  h.amplitude = {0.1, 0.3, 1.0, 0.1, 0.3, 1.0};
+  h.frequency = {1.0, 1.0, 1.0, 10.0, 10.0, 10.0};
+  h.stiffness = {300.0, 320.0, 400.0, 310.0, 330.0, 410.0};
+  h.phase = {0.05, 0.05, 0.05, 0.06, 0.06, 0.06};
+  h.rows = {2, 3, 4, 5, 6, 7};
+  return {"t.csv", 1.0, h};
+}
+
+}  // namespace
+
+TEST_CASE("global look: the start first, a gap's centre sampled over both signs, widths and stiffnesses log-uniform in their range") {
+  const lang::Program program = lang::compile_source("g.rheo", R"(model m {
+  spring s (k = 300 N/mm)
+  series b { gap g (width = 0.4 mm in [0.001, 5], center = 0 mm in [-1, 1])  spring k (k = 200 N/mm in [1, 10000]) }
+  yeoh y (D10 = 10 N/mm, D20 = 0 N/mm^3 in [-1, 1], D30 = 0 N/mm^5)
+})");
+  const runtime::Network start = runtime::Network::compile(program.models.front());
+  const int width = test::parameter_index(start, "b.g.width"), center = test::parameter_index(start, "b.g.center");
+  const int k = test::parameter_index(start, "b.k.k"), d20 = test::parameter_index(start, "y.D20");
+  const std::vector<runtime::FitDataSet> data{table()};
+  runtime::ScoreSettings score;
+  const int samples = 24;
+  const std::vector<dx::SampledStart> points = dx::global_look(start, {width, center, k, d20}, data, score, samples, samples + 1);
+  REQUIRE(points.size() == static_cast<std::size_t>(samples + 1));
+  CHECK(points.front().values == start.parameters());
+  double lowest = 1.0, highest = -1.0;
+  for (std::size_t j = 1; j < points.size(); ++j) {
+    const std::vector<double>& v = points[j].values;
+    const double c = v[static_cast<std::size_t>(center)];
+    CHECK(c >= -1.0);
+    CHECK(c <= 1.0);
+    lowest = std::min(lowest, c), highest = std::max(highest, c);
+    const auto [w_lo, w_hi] = dx::supported_range(start, width, data, dx::data_scales(data));
+    CHECK(v[static_cast<std::size_t>(width)] >= w_lo * (1 - 1e-12));
+    CHECK(v[static_cast<std::size_t>(width)] <= w_hi * (1 + 1e-12));
+    CHECK(v[static_cast<std::size_t>(d20)] == 0.0);  // signed, not a position: kept
+    CHECK(std::isfinite(points[j].objective));
+    if (j > 1) CHECK(points[j - 1].objective <= points[j].objective);  // best first after the start
+  }
+  // 24 Halton points (base 3 for the centre) cover [-1, 1]: both ends within a tenth.
+  CHECK(lowest < -0.8);
+  CHECK(highest > 0.8);
+}
