@@ -70,11 +70,12 @@ std::string effect_reason(const Diagnosis& d, const CandidateOutcome& w) {
                                                  percent(w.screened.gain))
                                    : fmt::format("a slider-capped fluid column alone would remove {:.0f} % of the objective, and {}, {}, earns it",
                                                  percent(w.screened.gain), trial_summary(w.screened.trial), w.limit_of);
+  const int more = w.parameters - fitted_parameters(d.before);
   return fmt::format(
       "{}; {}; refitted with every parameter, {} fell from {:.4g} to {:.4g} ({:.2f} times lower) and BIC from {:.1f} to "
-      "{:.1f} with {} more parameters",
+      "{:.1f} with {} more parameter{}",
       pattern_sentence(w.screened.effect, d.patterns), screened, d.gap_name, d.gap_before, w.gap_after, d.gap_before / w.gap_after,
-      d.criterion_before, w.criterion, w.parameters - fitted_parameters(d.before));
+      d.criterion_before, w.criterion, more, std::abs(more) == 1 ? "" : "s");
 }
 
 namespace {
