@@ -312,7 +312,7 @@ bool PwlPeriodicState::Run::cycle(int& m, const PwlVector& X0, PwlVector& X_T, P
       }
       *w = w_first;
       t += first;
-      if (Sp != nullptr) multiply(s.propagator(t - piece_start), PwlMatrix(*Sp), *Sp), piece_start = t;
+      if (Sp != nullptr) s.propagate(t - piece_start, *Sp), piece_start = t;
       g0_known = false;
       if (++switches > kMaxSwitchesPerCycle) return false;
       m = switch_at(m, fired, *w, Sp);
@@ -327,9 +327,8 @@ bool PwlPeriodicState::Run::cycle(int& m, const PwlVector& X0, PwlVector& X_T, P
   const PwlModeSystem& s = self.system(m);
   X_T = s.to_X.lazyProduct(*w);
   if (J != nullptr) {
-    PwlMatrix carried;
-    multiply(s.propagator(self.span_ - piece_start), S, carried);
-    multiply(s.to_X, carried, *J);
+    s.propagate(self.span_ - piece_start, S);
+    multiply(s.to_X, S, *J);
   }
   return true;
 }

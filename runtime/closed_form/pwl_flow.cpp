@@ -6,6 +6,7 @@
 #include <Eigen/LU>
 #include <unsupported/Eigen/MatrixFunctions>
 
+#include <array>
 #include <cmath>
 
 namespace rheo::runtime {
@@ -131,9 +132,10 @@ struct ModalFactors {
   double cos_step = 1.0, sin_step = 0.0;
 };
 
-void modal_factors(const PwlModeSystem& s, double tau, ModalFactors& f) {
+// Without DRIVE only decay and constant (plus, minus, cos_step and sin_step left as they were).
+void modal_factors(const PwlModeSystem& s, double tau, ModalFactors& f, bool drive = true) {
   const Complex i_omega(0.0, s.drive_omega);
-  f.cos_step = std::cos(s.drive_omega * tau), f.sin_step = std::sin(s.drive_omega * tau);
+  if (drive) f.cos_step = std::cos(s.drive_omega * tau), f.sin_step = std::sin(s.drive_omega * tau);
   const Complex e_plus(f.cos_step, f.sin_step), e_minus = std::conj(e_plus);
   f.decay.resize(s.nz), f.constant.resize(s.nz), f.plus.resize(s.nz), f.minus.resize(s.nz);
   Complex to_plus{0.0, 0.0}, to_minus{0.0, 0.0};  // mode j's responses to the drive, before g+-
@@ -145,6 +147,7 @@ void modal_factors(const PwlModeSystem& s, double tau, ModalFactors& f) {
       // first's, to the last bit, without another exponential.
       f.decay[j] = std::conj(f.decay[j - 1]);
       f.constant[j] = std::conj(f.constant[j - 1]);
+      if (!drive) continue;
       const Complex plus = std::conj(to_minus), minus = std::conj(to_plus);
       f.plus[j] = s.g_plus[j] * plus;
       f.minus[j] = s.g_minus[j] * minus;
@@ -154,6 +157,7 @@ void modal_factors(const PwlModeSystem& s, double tau, ModalFactors& f) {
     const Complex e = exponential(l * tau);
     f.decay[j] = e;
     f.constant[j] = response(e, 1.0, -l, s.gap_zero[j], tau);
+    if (!drive) continue;
     to_plus = response(e, e_plus, i_omega - l, s.gap_plus[j], tau);
     to_minus = response(e, e_minus, -i_omega - l, s.gap_minus[j], tau);
     f.plus[j] = s.g_plus[j] * to_plus;
@@ -267,6 +271,34 @@ PwlMatrix PwlModeSystem::propagator(double tau) const {
   P(sine(), sine()) = f.cos_step, P(sine(), cosine()) = f.sin_step;
   P(cosine(), sine()) = -f.sin_step, P(cosine(), cosine()) = f.cos_step;
   return P;
+}
+
+void PwlModeSystem::propagate(double tau, PwlMatrix& S) const {
+  if (tau == 0.0) return;
+  const Eigen::Index columns = S.cols();
+  if (!modal) {
+    const PwlMatrix P = (A * tau).exp(), before = S;
+    S.noalias() = P * before;
+    return;
+  }
+  thread_local ModalFactors f;  // as in advance()
+  modal_factors(*this, tau, f, false);
+  std::array<Complex, kPwlMaxDim> q;
+  for (Eigen::Index c = 0; c < columns; ++c) {
+    double* column = S.col(c).data();
+    for (int j = 0; j < nz; ++j) {
+      Complex free{0.0, 0.0}, held{0.0, 0.0};
+      for (int k = 0; k < nz; ++k) free += V_inverse(j, k) * column[k];
+      for (int k = 0; k < nh; ++k) held += phi(j, k) * column[nz + k];
+      q[static_cast<std::size_t>(j)] = f.decay[j] * free + f.constant[j] * held;
+    }
+    for (int r = 0; r < nz; ++r) {
+      double sum = 0.0;
+      for (int j = 0; j < nz; ++j)
+        sum += V(r, j).real() * q[static_cast<std::size_t>(j)].real() - V(r, j).imag() * q[static_cast<std::size_t>(j)].imag();
+      column[r] = sum;
+    }
+  }
 }
 
 Complex PwlModeSystem::phased_force_integral(double h, const PwlVector& w0) const {

@@ -147,6 +147,12 @@ struct PwlModeSystem {
   // lambda = 0, an undamped mass driven at resonance). Otherwise (a defective A_zz) the
   // exponential by Pade approximation with scaling and squaring.
   PwlMatrix propagator(double tau) const;
+  // S <- e^{A tau} S for sensitivities S (dim x any) whose rows one, s and c are zero (dw/dX0:
+  // the drive does not depend on the start): in modal coordinates the z rows are
+  // Re V (e^{lambda tau} V^-1 S_z + P(lambda, 0, tau) phi_h S_h) (phi_h: phi's held columns),
+  // the held rows stay; neither the propagator's drive columns nor a dim x dim product. Where
+  // A_zz is defective, by the exponential.
+  void propagate(double tau, PwlMatrix& S) const;
   PwlVector advance(double tau, const PwlVector& w) const;
   // w(tau + delta) from w = w(tau) by the Taylor series of e^{A delta}, where it reaches
   // rounding in a few terms (|delta| ||A^2||^(1/2) <= 0.05): the tail after term K is at most
