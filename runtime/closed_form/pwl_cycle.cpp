@@ -176,6 +176,12 @@ double PwlPeriodicState::Run::first_crossing(int m, int i, const PwlVector& w0, 
         const double c = cubic(x), dc = (3.0 * a3 * x + 2.0 * a2) * x + a1;
         (c > 0.0 ? a : b) = x;
         double next = dc != 0.0 ? x - c / dc : 0.5 * (a + b);
+        // Converged before the safeguard: Newton's last step may land on the bracket's end that
+        // x just became (c = 0 at the root), where a bisection would crawl to the same point.
+        if (std::abs(next - x) <= 1e-13) {
+          x = next;
+          break;
+        }
         if (!(next > a && next < b)) next = 0.5 * (a + b);
         if (std::abs(next - x) <= 1e-13) {
           x = next;
