@@ -27,7 +27,7 @@ bool leaving(double g, double dg, double ddg, double tol, double dtol) {
   return dg < -dtol || (dg <= dtol && ddg < 0.0);
 }
 
-using Stacked = Eigen::Matrix<double, Eigen::Dynamic, 1, 0, 3 * kPwlMaxDim, 1>;
+using Stacked = Eigen::Matrix<double, Eigen::Dynamic, 1, 0, 3 * kPwlMaxDim + 1, 1>;
 
 }  // namespace
 
@@ -57,8 +57,8 @@ const PwlPeriodicState::PwlGridStep& PwlPeriodicState::Run::grid_step(int m) {
   if (stacked.size() == 0) {
     const PwlModeSystem& s = self.system(m);
     const PwlMatrix E = s.propagator(step);
-    stacked.resize(s.dim + 2 * s.guards.rows(), s.dim);
-    stacked << E, s.guards * E, s.guard_rates * E;
+    stacked.resize(s.dim + 2 * s.guards.rows() + 1, s.dim);
+    stacked << E, s.guards * E, s.guard_rates * E, s.force_rate * E;
   }
   return stacked;
 }
@@ -263,8 +263,8 @@ int PwlPeriodicState::Run::switch_at(int m, int i, PwlVector& w, PwlMatrix* S) {
 }
 
 bool PwlPeriodicState::Run::cycle(int& m, const PwlVector& X0, PwlVector& X_T, PwlMatrix* J, bool record) {
-  // The state w (dim entries), the guards (g) and their slopes (g') at both ends of a step,
-  // stacked [w; g; g'] as the grid step's product gives them: the start's, the end's, exchanged
+  // The state w (dim entries), the guards (g), their slopes (g') and dF/dt at both ends of a
+  // step, stacked [w; g; g'; dF/dt] as the grid step's product gives them: the start's, the end's, exchanged
   // by pointer where a step ends without an event (no copies per step). The state is copied out
   // where a guard may cross within the step, or after a switch.
   Stacked ends[2];
@@ -280,16 +280,17 @@ bool PwlPeriodicState::Run::cycle(int& m, const PwlVector& X0, PwlVector& X_T, P
     Sp = &S;
   }
   const int grid_steps = self.half_wave_ ? kPwlGridPerCycle / 2 : kPwlGridPerCycle;
-  // [w; G w; G' w] of mode m into OUT.
+  // [w; G w; G' w; F' w] of mode m into OUT.
   auto stack = [&](const PwlVector& state, Stacked& out) {
     const PwlModeSystem& s = self.system(m);
     const Eigen::Index dim = s.dim, guards = s.guards.rows();
-    out.resize(dim + 2 * guards);
+    out.resize(dim + 2 * guards + 1);
     out.head(dim) = state;
     out.segment(dim, guards).noalias() = s.guards.lazyProduct(state);
-    out.tail(guards).noalias() = s.guard_rates.lazyProduct(state);
+    out.segment(dim + guards, guards).noalias() = s.guard_rates.lazyProduct(state);
+    out[dim + 2 * guards] = s.force_rate.dot(state);
   };
-  auto grid_slope = [&] { return self.system(m).force_rate.dot(at_start->head(self.system(m).dim)); };
+  auto grid_slope = [&] { return (*at_start)[at_start->size() - 1]; };
   stack(w, *at_start);
   if (record) {
     self.pieces_.assign(1, {0.0, m, w}), self.switch_phases_.clear();
@@ -320,7 +321,7 @@ bool PwlPeriodicState::Run::cycle(int& m, const PwlVector& X0, PwlVector& X_T, P
         copied = true;
       }
       const auto g0 = at_start->segment(dim, guards), g1 = at_end->segment(dim, guards);
-      const auto dg0 = at_start->tail(guards), dg1 = at_end->tail(guards);
+      const auto dg0 = at_start->segment(dim + guards, guards), dg1 = at_end->segment(dim + guards, guards);
       double first = std::numeric_limits<double>::infinity();
       int fired = -1;
       for (Eigen::Index i = 0; i < guards; ++i) {

@@ -16,8 +16,9 @@ struct PwlPeriodicState::Run {
   double step = 0.0;  // grid step T/64 [s]
 
   int mode_index(const PwlModeCode& code);
-  // [E; G E; G' E] for E = e^{A T/64} of mode m, G its guards and G' their rates: one product
-  // gives the state a grid step on, its guards and their slopes there.
+  // [E; G E; G' E; F' E] for E = e^{A T/64} of mode m, G its guards, G' their rates and F'
+  // the force's rate: one product gives the state a grid step on, its guards, their slopes and
+  // dF/dt there.
   const PwlGridStep& grid_step(int m);
   PwlVector advance(int m, double tau, const PwlVector& w) { return self.modes_[static_cast<std::size_t>(m)].advance(tau, w); }
 

@@ -137,9 +137,9 @@ class PwlPeriodicState {
   // (the points of a grid) until a solve is given another branch (new parameters).
   std::deque<std::pair<PwlModeCode, PwlModeStructure>> structures_;
   PwlBranch structures_branch_;
-  // Per mode (as modes_), built when first needed: e^{A T/64} stacked over the guards and
-  // guard rates it leads to; empty until then.
-  using PwlGridStep = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, 3 * kPwlMaxDim, kPwlMaxDim>;
+  // Per mode (as modes_), built when first needed: e^{A T/64} stacked over the guards, the
+  // guard rates and the force's rate it leads to; empty until then.
+  using PwlGridStep = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, 3 * kPwlMaxDim + 1, kPwlMaxDim>;
   std::vector<PwlGridStep> grid_step_;
   // Per mode (as modes_): its linear periodic state at unit amplitude (Run::linear_periodic_state), empty until needed.
   std::vector<PwlVector> linear_start_;
