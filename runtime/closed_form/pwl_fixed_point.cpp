@@ -31,7 +31,8 @@ PwlVector affine_fixed_point(const PwlMatrix& J, const PwlVector& X0, const PwlV
 
 namespace {
 
-// Where J - I is well conditioned the least-norm solution is the solution: by LU, several
+// Where J - I is well conditioned the least-norm solution is the solution: by LU (at the size
+// 4 by the closed-form inverse below), several
 // times cheaper than the orthogonal decomposition. Its reciprocal condition in the 1-norm,
 // 1/(||J - I|| ||(J - I)^-1||), from the inverse itself (at most 24 x 24: cheaper than the
 // estimator's repeated solves, and exact). False (OUT untouched) where it is below 1e-8.
