@@ -155,9 +155,6 @@ double stationary_point(const LoadingHalf& h, double lo, double hi, double k_ela
     if (first > 0.0) lo = x;
     else hi = x;
     const double newton = second < 0.0 ? x - first / second : lo - 1.0;
-    // Converged (checked before the bracket's safeguard: a root on the end that x just became
-    // would be approached by bisection, some 40 steps to the same point).
-    if (std::abs(newton - x) <= 1e-16 * (1.0 + std::abs(x))) return newton;
     const double next = (newton > lo && newton < hi) ? newton : 0.5 * (lo + hi);
     if (std::abs(next - x) <= 1e-16 * (1.0 + std::abs(x))) return next;
     x = next;
@@ -183,7 +180,8 @@ double stationary_point_between(const LoadingHalf& h, double lo, double hi, doub
     if (first > 0.0) lo = x, slope_lo = first;
     else hi = x, slope_hi = first;
     double next = second < 0.0 ? x - first / second : lo - 1.0;
-    // Converged, as in stationary_point (before the safeguard).
+    // Converged: checked before the bracket's safeguard (a root on the end that x just became
+    // would otherwise be approached by the chord and bisection, up to 45 steps to the same point).
     if (std::abs(next - x) <= 1e-16 * (1.0 + std::abs(x))) return next;
     if (!(next > lo && next < hi)) {
       if (probe && first > 0.0) {
