@@ -264,9 +264,9 @@ int PwlPeriodicState::Run::switch_at(int m, int i, PwlVector& w, PwlMatrix* S) {
 
 bool PwlPeriodicState::Run::cycle(int& m, const PwlVector& X0, PwlVector& X_T, PwlMatrix* J, bool record) {
   // The state w (dim entries), the guards (g), their slopes (g') and dF/dt at both ends of a
-  // step, stacked [w; g; g'; dF/dt] as the grid step's product gives them: the start's, the end's, exchanged
-  // by pointer where a step ends without an event (no copies per step). The state is copied out
-  // where a guard may cross within the step, or after a switch.
+  // step, stacked [w; g; g'; dF/dt] as the grid step's product gives them: the start's and the
+  // end's, exchanged by pointer where a step ends without an event (no copies per step). The
+  // state is copied out where a guard may cross within the step, or after a switch.
   Stacked ends[2];
   Stacked *at_start = &ends[0], *at_end = &ends[1];
   PwlVector w, w1;  // the state at the step's start and end, where copied out
