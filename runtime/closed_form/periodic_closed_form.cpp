@@ -180,6 +180,9 @@ double stationary_point_between(const LoadingHalf& h, double lo, double hi, doub
     if (first > 0.0) lo = x, slope_lo = first;
     else hi = x, slope_hi = first;
     double next = second < 0.0 ? x - first / second : lo - 1.0;
+    // Converged: checked before the bracket's safeguard (a root on the end that x just became
+    // would otherwise be approached by the chord and bisection, up to 45 steps to the same point).
+    if (std::abs(next - x) <= 1e-16 * (1.0 + std::abs(x))) return next;
     if (!(next > lo && next < hi)) {
       if (probe && first > 0.0) {
         probe = false;

@@ -2,6 +2,7 @@
 
 #include "runtime/network/leaf_kernels.hpp"
 
+#include <array>
 #include <numeric>
 
 namespace rheo::runtime {
@@ -73,10 +74,11 @@ struct BranchBuilder {
 // Whether the sliders and gaps, all rigid at once, form a forest on the graph in which the
 // terminal and ground are one node (both have prescribed positions): then in every mode the
 // rigid edges' constraints are independent and their forces determined.
+// BRANCH has at most kPwlMaxDim / 2 internal nodes (PwlBranch::build checks that first).
 bool switches_form_forest(const PwlBranch& branch) {
   const int known = branch.internal_nodes;  // terminal and ground
-  std::vector<int> parent(static_cast<std::size_t>(known + 1));
-  std::iota(parent.begin(), parent.end(), 0);
+  std::array<int, kPwlMaxDim / 2 + 1> parent{};
+  std::iota(parent.begin(), parent.begin() + known + 1, 0);
   auto find = [&](int x) {
     while (parent[static_cast<std::size_t>(x)] != x)
       x = parent[static_cast<std::size_t>(x)] = parent[static_cast<std::size_t>(parent[static_cast<std::size_t>(x)])];
@@ -95,7 +97,9 @@ bool switches_form_forest(const PwlBranch& branch) {
 }  // namespace
 
 bool PwlBranch::build(const Network& network, int root, PwlBranch& out) {
-  out = PwlBranch{};
+  // Emptied in place: a branch is built per harmonic point, its storage kept (no allocation).
+  out.internal_nodes = 0, out.odd = true;
+  out.edges.clear(), out.switches.clear();
   BranchBuilder builder{network, out};
   if (!builder.place(root, kPwlTerminal, kPwlGround)) return false;
   const int switches = static_cast<int>(out.switches.size());

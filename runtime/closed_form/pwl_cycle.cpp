@@ -27,7 +27,7 @@ bool leaving(double g, double dg, double ddg, double tol, double dtol) {
   return dg < -dtol || (dg <= dtol && ddg < 0.0);
 }
 
-using Stacked = Eigen::Matrix<double, Eigen::Dynamic, 1, 0, 3 * kPwlMaxDim, 1>;
+using Stacked = Eigen::Matrix<double, Eigen::Dynamic, 1, 0, 3 * kPwlMaxDim + 1, 1>;
 
 }  // namespace
 
@@ -57,8 +57,8 @@ const PwlPeriodicState::PwlGridStep& PwlPeriodicState::Run::grid_step(int m) {
   if (stacked.size() == 0) {
     const PwlModeSystem& s = self.system(m);
     const PwlMatrix E = s.propagator(step);
-    stacked.resize(s.dim + 2 * s.guards.rows(), s.dim);
-    stacked << E, s.guards * E, s.guard_rates * E;
+    stacked.resize(s.dim + 2 * s.guards.rows() + 1, s.dim);
+    stacked << E, s.guards * E, s.guard_rates * E, s.force_rate * E;
   }
   return stacked;
 }
@@ -176,6 +176,12 @@ double PwlPeriodicState::Run::first_crossing(int m, int i, const PwlVector& w0, 
         const double c = cubic(x), dc = (3.0 * a3 * x + 2.0 * a2) * x + a1;
         (c > 0.0 ? a : b) = x;
         double next = dc != 0.0 ? x - c / dc : 0.5 * (a + b);
+        // Converged before the safeguard: Newton's last step may land on the bracket's end that
+        // x just became (c = 0 at the root), where a bisection would crawl to the same point.
+        if (std::abs(next - x) <= 1e-13) {
+          x = next;
+          break;
+        }
         if (!(next > a && next < b)) next = 0.5 * (a + b);
         if (std::abs(next - x) <= 1e-13) {
           x = next;
@@ -257,11 +263,14 @@ int PwlPeriodicState::Run::switch_at(int m, int i, PwlVector& w, PwlMatrix* S) {
 }
 
 bool PwlPeriodicState::Run::cycle(int& m, const PwlVector& X0, PwlVector& X_T, PwlMatrix* J, bool record) {
-  // The state, the guards and their slopes at both ends of a step: the start's [0], the end's
-  // [1], exchanged by pointer where a step ends without an event (no copies per step).
-  PwlVector states[2], values[2], slopes[2];
-  PwlVector *w = &states[0], *w1 = &states[1], *g0 = &values[0], *g1 = &values[1], *dg0 = &slopes[0], *dg1 = &slopes[1];
-  m = settle(m, X0, 0.0, self.u0_, *w);
+  // The state w (dim entries), the guards (g), their slopes (g') and dF/dt at both ends of a
+  // step, stacked [w; g; g'; dF/dt] as the grid step's product gives them: the start's and the
+  // end's, exchanged by pointer where a step ends without an event (no copies per step). The
+  // state is copied out where a guard may cross within the step, or after a switch.
+  Stacked ends[2];
+  Stacked *at_start = &ends[0], *at_end = &ends[1];
+  PwlVector w, w1;  // the state at the step's start and end, where copied out
+  m = settle(m, X0, 0.0, self.u0_, w);
   if (m < 0) return false;
   PwlMatrix S;
   PwlMatrix* Sp = nullptr;
@@ -271,17 +280,29 @@ bool PwlPeriodicState::Run::cycle(int& m, const PwlVector& X0, PwlVector& X_T, P
     Sp = &S;
   }
   const int grid_steps = self.half_wave_ ? kPwlGridPerCycle / 2 : kPwlGridPerCycle;
-  auto grid_slope = [&] { return self.system(m).force_rate.dot(*w); };
+  // [w; G w; G' w; F' w] of mode m into OUT.
+  auto stack = [&](const PwlVector& state, Stacked& out) {
+    const PwlModeSystem& s = self.system(m);
+    const Eigen::Index dim = s.dim, guards = s.guards.rows();
+    out.resize(dim + 2 * guards + 1);
+    out.head(dim) = state;
+    out.segment(dim, guards).noalias() = s.guards.lazyProduct(state);
+    out.segment(dim + guards, guards).noalias() = s.guard_rates.lazyProduct(state);
+    out[dim + 2 * guards] = s.force_rate.dot(state);
+  };
+  auto grid_slope = [&] { return (*at_start)[at_start->size() - 1]; };
+  stack(w, *at_start);
   if (record) {
-    self.pieces_.assign(1, {0.0, m, *w}), self.switch_phases_.clear();
+    self.pieces_.assign(1, {0.0, m, w}), self.switch_phases_.clear();
     self.grid_slopes_.resize(static_cast<std::size_t>(grid_steps) + 1);
     self.grid_slopes_[0] = grid_slope();
   }
   int switches = 0;
   double t = 0.0, piece_start = 0.0;
   PwlVector w_cross, w_first;  // the state at a guard's crossing, and at the first one's
-  Stacked stacked;
-  bool g0_known = false;
+  // grid_step(m) once a full step needs it, looked up again after a switch (building a mode
+  // may move the storage).
+  const PwlGridStep* E = nullptr;
   for (int k = 0; k < grid_steps; ++k) {
     const double t_end = k + 1 == grid_steps ? self.span_ : (k + 1) * step;
     while (t < t_end) {
@@ -289,47 +310,51 @@ bool PwlPeriodicState::Run::cycle(int& m, const PwlVector& X0, PwlVector& X_T, P
       const double h = t_end - t;
       const bool full = std::abs(h - step) <= 1e-12 * step;
       const Eigen::Index dim = s.dim, guards = s.guards.rows();
-      if (!g0_known) g0->noalias() = s.guards.lazyProduct(*w), dg0->noalias() = s.guard_rates.lazyProduct(*w);
+      bool copied = false;  // w, w1 hold the step's ends
       if (full) {
-        multiply(grid_step(m), *w, stacked);
-        *w1 = stacked.head(dim), *g1 = stacked.segment(dim, guards), *dg1 = stacked.tail(guards);
+        if (E == nullptr) E = &grid_step(m);
+        multiply(*E, *at_start, *at_end);
       } else {
-        *w1 = advance(m, h, *w);
-        g1->noalias() = s.guards.lazyProduct(*w1), dg1->noalias() = s.guard_rates.lazyProduct(*w1);
+        w = at_start->head(dim);
+        w1 = advance(m, h, w);
+        stack(w1, *at_end);
+        copied = true;
       }
+      const auto g0 = at_start->segment(dim, guards), g1 = at_end->segment(dim, guards);
+      const auto dg0 = at_start->segment(dim + guards, guards), dg1 = at_end->segment(dim + guards, guards);
       double first = std::numeric_limits<double>::infinity();
       int fired = -1;
-      for (int i = 0; i < g0->size(); ++i) {
-        if ((*g1)[i] >= 0.0 && !((*dg0)[i] < 0.0 && (*dg1)[i] > 0.0)) continue;  // no crossing and no dip
-        const double tau = first_crossing(m, i, *w, *w1, h, (*g0)[i], (*g1)[i], (*dg0)[i], (*dg1)[i], w_cross);
-        if (tau < first) first = tau, fired = i, w_first = w_cross;
+      for (Eigen::Index i = 0; i < guards; ++i) {
+        if (g1[i] >= 0.0 && !(dg0[i] < 0.0 && dg1[i] > 0.0)) continue;  // no crossing and no dip
+        if (!copied) w = at_start->head(dim), w1 = at_end->head(dim), copied = true;
+        const double tau = first_crossing(m, static_cast<int>(i), w, w1, h, g0[i], g1[i], dg0[i], dg1[i], w_cross);
+        if (tau < first) first = tau, fired = static_cast<int>(i), w_first = w_cross;
       }
       if (fired < 0) {
-        std::swap(w, w1), std::swap(g0, g1), std::swap(dg0, dg1);
-        g0_known = true;
+        std::swap(at_start, at_end);
         t = t_end;
         break;
       }
-      *w = w_first;
+      w = w_first;
       t += first;
-      if (Sp != nullptr) multiply(s.propagator(t - piece_start), PwlMatrix(*Sp), *Sp), piece_start = t;
-      g0_known = false;
+      if (Sp != nullptr) s.propagate(t - piece_start, *Sp), piece_start = t;
       if (++switches > kMaxSwitchesPerCycle) return false;
-      m = switch_at(m, fired, *w, Sp);
+      m = switch_at(m, fired, w, Sp);
       if (m < 0) return false;
+      E = nullptr;
+      stack(w, *at_start);
       if (record) {
-        self.pieces_.push_back({t, m, *w});
+        self.pieces_.push_back({t, m, w});
         self.switch_phases_.push_back(std::fmod(self.omega_ * t, 2.0 * std::numbers::pi));
       }
     }
     if (record) self.grid_slopes_[static_cast<std::size_t>(k) + 1] = grid_slope();
   }
   const PwlModeSystem& s = self.system(m);
-  X_T = s.to_X.lazyProduct(*w);
+  X_T = s.to_X.lazyProduct(at_start->head(s.dim));
   if (J != nullptr) {
-    PwlMatrix carried;
-    multiply(s.propagator(self.span_ - piece_start), S, carried);
-    multiply(s.to_X, carried, *J);
+    s.propagate(self.span_ - piece_start, S);
+    multiply(s.to_X, S, *J);
   }
   return true;
 }

@@ -16,8 +16,9 @@ struct PwlPeriodicState::Run {
   double step = 0.0;  // grid step T/64 [s]
 
   int mode_index(const PwlModeCode& code);
-  // [E; G E; G' E] for E = e^{A T/64} of mode m, G its guards and G' their rates: one product
-  // gives the state a grid step on, its guards and their slopes there.
+  // [E; G E; G' E; F' E] for E = e^{A T/64} of mode m, G its guards, G' their rates and F'
+  // the force's rate: one product gives the state a grid step on, its guards, their slopes and
+  // dF/dt there.
   const PwlGridStep& grid_step(int m);
   PwlVector advance(int m, double tau, const PwlVector& w) { return self.modes_[static_cast<std::size_t>(m)].advance(tau, w); }
 
@@ -45,8 +46,9 @@ struct PwlPeriodicState::Run {
 
   // Follows the map's span (a period, or half of one for an odd branch) from X0, settled from
   // mode m: X at its end and, with `J`, dX/dX0; with `record`, the pieces, switch phases and
-  // first harmonic. False on failure. The sensitivities are carried by one propagator per
-  // piece (from its start to its switch or the span's end), not per grid step.
+  // first harmonic. False on failure. The sensitivities are carried through each piece (from
+  // its start to its switch or the span's end) at once, not per grid step
+  // (PwlModeSystem::propagate).
   bool cycle(int& m, const PwlVector& X0, PwlVector& X_T, PwlMatrix* J, bool record);
 
   // K'_1 and K''_1 of the recorded cycle, its pieces' integrals int F e^{i w t} dt in modal

@@ -14,8 +14,9 @@ namespace rheo::runtime {
 PwlVector affine_fixed_point(const PwlMatrix& J, const PwlVector& X0, const PwlVector& Y);
 
 // The same fixed point where no eigenvalue of J is 1 (no heap): the half-period map, on which
-// a never-slipping slider's offset has eigenvalue -1. By LU where J - I is well conditioned
-// (reciprocal condition above 1e-8), else by complete orthogonal decomposition: where an
+// a never-slipping slider's offset has eigenvalue -1. By LU (at the size 4, a slider-capped
+// column's map, by the closed-form inverse) where J - I is well conditioned (reciprocal
+// condition above 1e-8), else by complete orthogonal decomposition: where an
 // eigenvalue is 1 all the same, the step is the least-norm solution of (J - I) dX = X0 - Y.
 PwlVector least_norm_fixed_point(const PwlMatrix& J, const PwlVector& X0, const PwlVector& Y);
 

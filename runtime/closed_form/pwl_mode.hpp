@@ -64,26 +64,26 @@ inline void multiply(const PwlMatrix& a, const PwlMatrix& b, PwlMatrix& out) {
   }
 }
 
-// OUT = M v for a column-major matrix M of the event path's storage: where its column count
+// OUT = M v (v the first M.cols() entries of V) for a column-major matrix M of the event path's storage: where its column count
 // (a state's size, 4 to 8 for the usual branches) is small, at that size known to the
 // compiler (the columns unrolled), else as a general lazy product.
-template <int Columns, class Matrix, class Out>
-void multiply_fixed(const Matrix& m, const PwlVector& v, Out& out) {
+template <int Columns, class Matrix, class Vector, class Out>
+void multiply_fixed(const Matrix& m, const Vector& v, Out& out) {
   const Eigen::Map<const Eigen::Matrix<double, Eigen::Dynamic, Columns>> fixed(m.data(), m.rows(), Columns);
   const Eigen::Matrix<double, Columns, 1> x = v.template head<Columns>();
   out.resize(m.rows());
   out.noalias() = fixed.lazyProduct(x);
 }
 
-template <class Matrix, class Out>
-void multiply(const Matrix& m, const PwlVector& v, Out& out) {
+template <class Matrix, class Vector, class Out>
+void multiply(const Matrix& m, const Vector& v, Out& out) {
   switch (m.cols()) {
     case 4: multiply_fixed<4>(m, v, out); break;
     case 5: multiply_fixed<5>(m, v, out); break;
     case 6: multiply_fixed<6>(m, v, out); break;
     case 7: multiply_fixed<7>(m, v, out); break;
     case 8: multiply_fixed<8>(m, v, out); break;
-    default: out.noalias() = m.lazyProduct(v); break;
+    default: out.noalias() = m.lazyProduct(v.head(m.cols())); break;
   }
 }
 
@@ -147,6 +147,12 @@ struct PwlModeSystem {
   // lambda = 0, an undamped mass driven at resonance). Otherwise (a defective A_zz) the
   // exponential by Pade approximation with scaling and squaring.
   PwlMatrix propagator(double tau) const;
+  // S <- e^{A tau} S for sensitivities S (dim x any) whose rows one, s and c are zero (dw/dX0:
+  // the drive does not depend on the start): in modal coordinates the z rows are
+  // Re V (e^{lambda tau} V^-1 S_z + P(lambda, 0, tau) phi_h S_h) (phi_h: phi's held columns),
+  // the held rows stay; neither the propagator's drive columns nor a dim x dim product. Where
+  // A_zz is defective, by the exponential.
+  void propagate(double tau, PwlMatrix& S) const;
   PwlVector advance(double tau, const PwlVector& w) const;
   // w(tau + delta) from w = w(tau) by the Taylor series of e^{A delta}, where it reaches
   // rounding in a few terms (|delta| ||A^2||^(1/2) <= 0.05): the tail after term K is at most

@@ -11,8 +11,8 @@
 // sequence of events. The periodic state is its fixed point, found by Newton's method
 // (shooting): the Jacobian is propagated with the state, through each event by its saltation
 // matrix, J_new = dw_new/dX (dw/dX_old + A_old w dt) - A_new w_new dt with
-// dt = -g.dw/(g.A_old w) (g the guard that fired), and within a mode by one propagator per
-// piece. Directions the map leaves unchanged (a slider that never slips keeps any offset) keep
+// dt = -g.dw/(g.A_old w) (g the guard that fired), and within a mode piece by piece in its
+// modal coordinates (PwlModeSystem::propagate). Directions the map leaves unchanged (a slider that never slips keeps any offset) keep
 // the start's value: the branch starts at rest, as time stepping does, and (J - I) is solved
 // in the least-squares sense. A Newton step that does not lower the residual is halved once,
 // then a plain cycle is taken (numerics.md).
@@ -137,9 +137,9 @@ class PwlPeriodicState {
   // (the points of a grid) until a solve is given another branch (new parameters).
   std::deque<std::pair<PwlModeCode, PwlModeStructure>> structures_;
   PwlBranch structures_branch_;
-  // Per mode (as modes_), built when first needed: e^{A T/64} stacked over the guards and
-  // guard rates it leads to; empty until then.
-  using PwlGridStep = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, 3 * kPwlMaxDim, kPwlMaxDim>;
+  // Per mode (as modes_), built when first needed: e^{A T/64} stacked over the guards, the
+  // guard rates and the force's rate it leads to; empty until then.
+  using PwlGridStep = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, 3 * kPwlMaxDim + 1, kPwlMaxDim>;
   std::vector<PwlGridStep> grid_step_;
   // Per mode (as modes_): its linear periodic state at unit amplitude (Run::linear_periodic_state), empty until needed.
   std::vector<PwlVector> linear_start_;

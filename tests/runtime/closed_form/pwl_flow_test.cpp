@@ -1,7 +1,8 @@
 // The modal flow of a mode (pwl_flow.cpp) against an independent path: Eigen's Pade matrix
 // exponential of the augmented matrix, for the propagation and for the phased force integral
-// (the last column of the exponential of [[A + i w, w0], [0, 0]] h), in modes that are
-// diagonalisable, drift (a slipping dashpot: lambda = 0) or carry an undamped mass at resonance.
+// (the last column of the exponential of [[A + i w, w0], [0, 0]] h) and for the sensitivities'
+// propagation, in modes that are diagonalisable, drift (a slipping dashpot: lambda = 0) or carry
+// an undamped mass at resonance.
 #include "runtime/closed_form/pwl_mode.hpp"
 
 #include "support.hpp"
@@ -34,6 +35,14 @@ void check_flow(const runtime::PwlModeSystem& s) {
     const Eigen::MatrixXcd E = (augmented * tau).exp();
     const Complex integral = (s.force.cast<Complex>() * E.col(s.dim).head(s.dim)).value();
     CHECK(std::abs(s.phased_force_integral(tau, w) - integral) <= 1e-10 * (1e-12 + std::abs(integral)));
+    // Sensitivities dw/dX0 (rows one, s and c zero, the held rows not): propagate() against the
+    // exponential's product.
+    runtime::PwlMatrix S = runtime::PwlMatrix::Zero(s.dim, 3);
+    for (int c = 0; c < 3; ++c)
+      for (int r = 0; r < s.nz + s.nh; ++r) S(r, c) = std::sin(1.0 + r + 3.0 * c);
+    const Eigen::MatrixXd carried = (s.A * tau).exp() * S;
+    s.propagate(tau, S);
+    CHECK((S - carried).cwiseAbs().maxCoeff() <= 1e-10 * (1.0 + carried.cwiseAbs().maxCoeff()));
   }
   // The Taylor nudge: where it accepts a step it equals the exponential to rounding; steps of
   // a Newton iteration's size are accepted, a grid step's (T/64) or longer declined (for these

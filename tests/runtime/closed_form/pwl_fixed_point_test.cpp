@@ -1,0 +1,69 @@
+// The shooting's Newton step (pwl_fixed_point.cpp) against independent solves: the fixed point
+// of X -> Y + J (X - X0) by a full-pivoting LU of J - I in dynamic storage where that is
+// regular (the closed-form inverse at the size 4, the LU at 6), and the least-norm solution by
+// the SVD's pseudo-inverse where J has an eigenvalue 1 (a direction the map leaves in place).
+#include "runtime/closed_form/pwl_fixed_point.hpp"
+
+#include <doctest/doctest.h>
+#include <Eigen/LU>
+#include <Eigen/SVD>
+
+#include <cmath>
+
+using namespace rheo;
+
+namespace {
+
+// A map of size N with entries of order 1 and eigenvalues away from 1 (a contraction plus a
+// rotation-like coupling), and Y = J X0 + b.
+runtime::PwlMatrix map_of(int n, double scale) {
+  runtime::PwlMatrix J(n, n);
+  for (int r = 0; r < n; ++r)
+    for (int c = 0; c < n; ++c) J(r, c) = scale * std::sin(1.3 * r + 0.7 * c + 0.2);
+  return J;
+}
+
+runtime::PwlVector vector_of(int n, double phase) {
+  runtime::PwlVector v(n);
+  for (int i = 0; i < n; ++i) v[i] = std::cos(phase + 0.9 * i);
+  return v;
+}
+
+}  // namespace
+
+TEST_CASE("least_norm_fixed_point solves the Newton step of a regular map at sizes 4 and 6") {
+  for (int n : {4, 6}) {
+    for (double scale : {0.4, 3.0, -1.7}) {
+      const runtime::PwlMatrix J = map_of(n, scale);
+      const runtime::PwlVector X0 = vector_of(n, 0.3), Y = vector_of(n, 2.1);
+      const Eigen::MatrixXd J_minus_I = Eigen::MatrixXd(J) - Eigen::MatrixXd::Identity(n, n);
+      const Eigen::VectorXd expected = Eigen::VectorXd(X0) - J_minus_I.fullPivLu().solve(Eigen::VectorXd(Y - X0));
+      const runtime::PwlVector X = runtime::least_norm_fixed_point(J, X0, Y);
+      CAPTURE(n);
+      CAPTURE(scale);
+      REQUIRE(X.size() == n);
+      CHECK((Eigen::VectorXd(X) - expected).cwiseAbs().maxCoeff() <= 1e-12 * (1.0 + expected.cwiseAbs().maxCoeff()));
+      // And it is the fixed point: Y + J (X - X0) = X.
+      CHECK((Y + J * (X - X0) - X).cwiseAbs().maxCoeff() <= 1e-12 * (1.0 + expected.cwiseAbs().maxCoeff()));
+    }
+  }
+}
+
+TEST_CASE("least_norm_fixed_point takes the least-norm step where J has an eigenvalue 1 at sizes 4 and 6") {
+  for (int n : {4, 6}) {
+    // J = I + Q D Q^T with D's first entry 0: the first direction is left in place.
+    runtime::PwlMatrix Q = map_of(n, 1.0);
+    Q = Eigen::MatrixXd(Q).householderQr().householderQ();
+    Eigen::VectorXd d(n);
+    for (int i = 0; i < n; ++i) d[i] = i == 0 ? 0.0 : -0.5 - 0.3 * i;
+    const runtime::PwlMatrix J = Eigen::MatrixXd::Identity(n, n) + Eigen::MatrixXd(Q) * d.asDiagonal() * Eigen::MatrixXd(Q).transpose();
+    const runtime::PwlVector X0 = vector_of(n, 0.3), Y = vector_of(n, 2.1);
+    const Eigen::MatrixXd J_minus_I = Eigen::MatrixXd(J) - Eigen::MatrixXd::Identity(n, n);
+    const Eigen::VectorXd step = J_minus_I.jacobiSvd(Eigen::ComputeThinU | Eigen::ComputeThinV).setThreshold(1e-10).solve(Eigen::VectorXd(Y - X0));
+    const Eigen::VectorXd expected = Eigen::VectorXd(X0) - step;
+    const runtime::PwlVector X = runtime::least_norm_fixed_point(J, X0, Y);
+    CAPTURE(n);
+    REQUIRE(X.size() == n);
+    CHECK((Eigen::VectorXd(X) - expected).cwiseAbs().maxCoeff() <= 1e-10 * (1.0 + expected.cwiseAbs().maxCoeff()));
+  }
+}
