@@ -1,0 +1,80 @@
+#include "runtime/fit/damped_step.hpp"
+
+#include "runtime/fit/bounded_least_squares.hpp"
+
+#include <cmath>
+
+namespace rheo::runtime {
+
+DampedSteps::DampedSteps(const Eigen::MatrixXd& j, const Eigen::VectorXd& r) : j_(j), r_(r) {
+  const Eigen::HouseholderQR<Eigen::MatrixXd> qr(j);
+  const Eigen::Index k = std::min(j.rows(), j.cols());
+  reduced_ = qr.matrixQR().topRows(k).triangularView<Eigen::Upper>();
+  const Eigen::VectorXd qtr = qr.householderQ().adjoint() * r;
+  projected_ = qtr.head(k);
+}
+
+Eigen::VectorXd DampedSteps::unconstrained(double lambda, const Eigen::VectorXd& scale) const {
+  const Eigen::Index k = reduced_.rows(), n = reduced_.cols();
+  // S starts as R (zero rows below k where m < n), c as -Q^T r; each row sqrt(lambda) D_j e_j^T
+  // (right-hand side 0) is rotated into S's rows j..n-1 in turn, which leaves S upper triangular
+  // with S^T S = R^T R + lambda D^2 and the same least-squares minimiser.
+  Eigen::MatrixXd s = Eigen::MatrixXd::Zero(n, n);
+  s.topRows(k) = reduced_;
+  Eigen::VectorXd c = Eigen::VectorXd::Zero(n);
+  c.head(k) = -projected_;
+  Eigen::VectorXd row(n);
+  const double root = std::sqrt(lambda);
+  for (Eigen::Index j = 0; j < n; ++j) {
+    row.setZero();
+    row(j) = root * scale(j);
+    double rhs = 0.0;
+    for (Eigen::Index i = j; i < n; ++i) {
+      if (row(i) == 0.0) continue;
+      // The rotation [cs sn; -sn cs] zeroing row(i) against s(i, i) (MINPACK's qrsolv form).
+      double cs = 0.0, sn = 0.0;
+      if (std::abs(s(i, i)) < std::abs(row(i))) {
+        const double cotangent = s(i, i) / row(i);
+        sn = 0.5 / std::sqrt(0.25 + 0.25 * cotangent * cotangent);
+        cs = sn * cotangent;
+      } else {
+        const double tangent = row(i) / s(i, i);
+        cs = 0.5 / std::sqrt(0.25 + 0.25 * tangent * tangent);
+        sn = cs * tangent;
+      }
+      for (Eigen::Index l = i; l < n; ++l) {
+        const double upper = s(i, l), lower = row(l);
+        s(i, l) = cs * upper + sn * lower;
+        row(l) = -sn * upper + cs * lower;
+      }
+      const double upper = c(i);
+      c(i) = cs * upper + sn * rhs;
+      rhs = -sn * upper + cs * rhs;
+    }
+  }
+  return s.triangularView<Eigen::Upper>().solve(c);
+}
+
+DampedStep DampedSteps::step(double lambda, const Eigen::VectorXd& scale, const Eigen::VectorXd& lower, const Eigen::VectorXd& upper) const {
+  const Eigen::Index k = reduced_.rows(), n = reduced_.cols();
+  DampedStep out;
+  if (lambda > 0.0) {
+    // Strictly convex: the unconstrained minimiser, where the box holds it, is the bounded one.
+    out.d = unconstrained(lambda, scale);
+    const bool inside = out.d.allFinite() && (out.d.array() >= lower.array()).all() && (out.d.array() <= upper.array()).all();
+    if (!inside) out.d.resize(0);
+  }
+  if (out.d.size() == 0) {
+    Eigen::MatrixXd a(k + n, n);
+    a.topRows(k) = reduced_;
+    a.bottomRows(n) = (std::sqrt(lambda) * scale).asDiagonal();
+    Eigen::VectorXd b = Eigen::VectorXd::Zero(k + n);
+    b.head(k) = -projected_;
+    out.d = bounded_least_squares(a, b, lower, upper).x;
+    out.bounded = true;
+  }
+  out.predicted = r_.squaredNorm() - (j_ * out.d + r_).squaredNorm();
+  return out;
+}
+
+}  // namespace rheo::runtime
