@@ -1,17 +1,52 @@
 #include "runtime/fit/damped_step.hpp"
 
+#include "runtime/core/parallel_for.hpp"
 #include "runtime/fit/bounded_least_squares.hpp"
 
+#include <array>
 #include <cmath>
+#include <utility>
 
 namespace rheo::runtime {
 
-DampedSteps::DampedSteps(const Eigen::MatrixXd& j, const Eigen::VectorXd& r) : j_(j), r_(r) {
+namespace {
+
+// R and Q^T r of one block of rows (Householder; min(rows, n) of them).
+struct Triangle {
+  Eigen::MatrixXd r;
+  Eigen::VectorXd qtr;
+};
+
+Triangle triangle(const Eigen::Ref<const Eigen::MatrixXd>& j, const Eigen::Ref<const Eigen::VectorXd>& r) {
   const Eigen::HouseholderQR<Eigen::MatrixXd> qr(j);
   const Eigen::Index k = std::min(j.rows(), j.cols());
-  reduced_ = qr.matrixQR().topRows(k).triangularView<Eigen::Upper>();
   const Eigen::VectorXd qtr = qr.householderQ().adjoint() * r;
-  projected_ = qtr.head(k);
+  return {qr.matrixQR().topRows(k).triangularView<Eigen::Upper>(), qtr.head(k)};
+}
+
+}  // namespace
+
+DampedSteps::DampedSteps(const Eigen::MatrixXd& j, const Eigen::VectorXd& r, int threads) : j_(j), r_(r) {
+  const Eigen::Index m = j.rows(), n = j.cols();
+  if (m < kSplitRows * n) {
+    Triangle whole = triangle(j, r);
+    reduced_ = std::move(whole.r), projected_ = std::move(whole.qtr);
+    return;
+  }
+  // Two blocks of rows, each reduced on its own (side by side on two threads), then their
+  // stacked triangles: J = diag(Q1, Q2) [R1; R2] = diag(Q1, Q2) Q3 R (TSQR). The split does not
+  // depend on the threads, so neither does R.
+  const Eigen::Index half = m / 2;
+  std::array<Triangle, 2> blocks;
+  parallel_for(2, threads, [&](std::size_t b) {
+    blocks[b] = b == 0 ? triangle(j.topRows(half), r.head(half)) : triangle(j.bottomRows(m - half), r.tail(m - half));
+  });
+  Eigen::MatrixXd stacked(2 * n, n);
+  stacked << blocks[0].r, blocks[1].r;
+  Eigen::VectorXd stacked_qtr(2 * n);
+  stacked_qtr << blocks[0].qtr, blocks[1].qtr;
+  Triangle whole = triangle(stacked, stacked_qtr);
+  reduced_ = std::move(whole.r), projected_ = std::move(whole.qtr);
 }
 
 Eigen::VectorXd DampedSteps::unconstrained(double lambda, const Eigen::VectorXd& scale) const {
@@ -55,22 +90,30 @@ Eigen::VectorXd DampedSteps::unconstrained(double lambda, const Eigen::VectorXd&
   return s.triangularView<Eigen::Upper>().solve(c);
 }
 
-DampedStep DampedSteps::step(double lambda, const Eigen::VectorXd& scale, const Eigen::VectorXd& lower, const Eigen::VectorXd& upper) const {
+DampedStep DampedSteps::step(double lambda, const Eigen::VectorXd& scale, const Eigen::VectorXd& lower, const Eigen::VectorXd& upper,
+                             const Eigen::VectorXd& start) const {
   const Eigen::Index k = reduced_.rows(), n = reduced_.cols();
   DampedStep out;
+  Eigen::VectorXd from = start;
   if (lambda > 0.0) {
-    // Strictly convex: the unconstrained minimiser, where the box holds it, is the bounded one.
+    // Strictly convex: the unconstrained minimiser, where the box holds it, is the bounded one;
+    // else the bounded solver starts from it, clipped (the bounds it crossed held).
     out.d = unconstrained(lambda, scale);
     const bool inside = out.d.allFinite() && (out.d.array() >= lower.array()).all() && (out.d.array() <= upper.array()).all();
-    if (!inside) out.d.resize(0);
+    if (!inside) {
+      if (out.d.allFinite()) from = out.d;
+      out.d.resize(0);
+    }
   }
   if (out.d.size() == 0) {
-    Eigen::MatrixXd a(k + n, n);
+    // [R; sqrt(lambda) D] d = [-Q^T r; 0]; without damping the zero rows are left out.
+    const Eigen::Index rows = lambda > 0.0 ? k + n : k;
+    Eigen::MatrixXd a(rows, n);
     a.topRows(k) = reduced_;
-    a.bottomRows(n) = (std::sqrt(lambda) * scale).asDiagonal();
-    Eigen::VectorXd b = Eigen::VectorXd::Zero(k + n);
+    if (lambda > 0.0) a.bottomRows(n) = (std::sqrt(lambda) * scale).asDiagonal();
+    Eigen::VectorXd b = Eigen::VectorXd::Zero(rows);
     b.head(k) = -projected_;
-    out.d = bounded_least_squares(a, b, lower, upper).x;
+    out.d = bounded_least_squares(a, b, lower, upper, from).x;
     out.bounded = true;
   }
   out.predicted = r_.squaredNorm() - (j_ * out.d + r_).squaredNorm();

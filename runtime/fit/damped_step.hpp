@@ -27,13 +27,21 @@ struct DampedStep {
 
 class DampedSteps {
  public:
-  // J (m x n, finite) and r (m); both are copied.
-  DampedSteps(const Eigen::MatrixXd& j, const Eigen::VectorXd& r);
+  // J (m x n, finite) and r (m); both are copied. With m >= kSplitRows n, J's rows are reduced
+  // in two blocks, side by side on up to `threads` threads (parallel_for.hpp); the result does
+  // not depend on `threads`.
+  static constexpr Eigen::Index kSplitRows = 8;
+  DampedSteps(const Eigen::MatrixXd& j, const Eigen::VectorXd& r, int threads = 1);
 
   // The damped step for lambda >= 0 and column scales D (n, positive) within lower <= d <= upper
   // (lower <= 0 <= upper). lambda = 0: the bounded Gauss-Newton step (a minimum-norm one, in
   // column-scaled coordinates, where R is rank-deficient).
-  DampedStep step(double lambda, const Eigen::VectorXd& scale, const Eigen::VectorXd& lower, const Eigen::VectorXd& upper) const;
+  // `start`: where the bounded solver begins, if it runs (bounded_least_squares.hpp; empty: at
+  // zero), for lambda = 0; for lambda > 0 it begins from the unconstrained minimiser. The
+  // minimum value does not depend on it; the minimiser does only where lambda = 0 and R is
+  // rank-deficient.
+  DampedStep step(double lambda, const Eigen::VectorXd& scale, const Eigen::VectorXd& lower, const Eigen::VectorXd& upper,
+                  const Eigen::VectorXd& start = {}) const;
 
   // The unconstrained minimiser of || [R; sqrt(lambda) D] d + [Q^T r; 0] ||, lambda > 0, by Givens
   // rotations on R (no bound).

@@ -129,13 +129,15 @@ LevenbergMarquardtResult levenberg_marquardt(const LeastSquaresProblem& problem,
     // near singular the step runs into many bounds): || Q^T r ||^2 bounds the gain above, and
     // any damped step within the same box (the first one tried, needed anyway) below, so the
     // undamped step is solved only where neither bound decides.
-    const DampedSteps model(j, out.residuals);
+    const DampedSteps model(j, out.residuals, settings.threads);
     const double tolerance = settings.decrease_tolerance * out.value, near = kStagnationFactor * tolerance;
     std::optional<DampedStep> first;
     double undamped = model.decrease_bound();
     if (undamped > tolerance) {
       if (undamped > near) first = model.step(lambda, scale, lower - out.x, upper - out.x);
-      undamped = first && first->predicted > near ? first->predicted : model.step(0.0, scale, lower - out.x, upper - out.x).predicted;
+      undamped = first && first->predicted > near
+                     ? first->predicted
+                     : model.step(0.0, scale, lower - out.x, upper - out.x, first ? first->d : Eigen::VectorXd()).predicted;
     }
     if (complete && undamped <= tolerance) {
       out.status = "FTOL_REACHED";

@@ -67,6 +67,7 @@ struct LevenbergMarquardtSettings {
   double crawl_tolerance = 0.0;       // relative, on phi, per Jacobian (FTOL_REACHED above); 0: off
   double difference_step = 1e-7;      // forward differences: h_j = this * max(|x_j|, typical_j)
   Eigen::VectorXd typical;            // the size of each coordinate where x_j is near zero; empty: 1
+  int threads = 1;  // each Jacobian's QR on two blocks of rows side by side (damped_step.hpp); the search is the same for every value
 };
 
 struct LevenbergMarquardtResult {

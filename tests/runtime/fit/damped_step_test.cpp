@@ -151,3 +151,31 @@ TEST_CASE("a column that could not be differenced (zero, with the floor scale) d
     CHECK((step.d - want).norm() <= 1e-10 * want.norm());
   }
 }
+
+TEST_CASE("tall Jacobians, reduced in two blocks of rows: the direct solve's steps and gain, the same on one thread and two") {
+  test::PortableRandom rng(13);
+  for (int trial = 0; trial < 20; ++trial) {
+    const int n = 2 + trial % 6, m = static_cast<int>(runtime::DampedSteps::kSplitRows) * n + trial % 3 + 10 * (trial % 4);
+    const Problem p = random_problem(rng, m, n, 4.0);
+    const runtime::DampedSteps one(p.j, p.r, 1), two(p.j, p.r, 2);
+    CAPTURE(trial);
+    const VectorXd gauss_newton = p.j.colPivHouseholderQr().solve(-p.r);
+    CHECK(one.decrease_bound() == doctest::Approx(p.r.squaredNorm() - (p.j * gauss_newton + p.r).squaredNorm()).epsilon(1e-11));
+    CHECK(two.decrease_bound() == one.decrease_bound());
+    VectorXd lo(n), hi(n);
+    for (int c = 0; c < n; ++c) lo(c) = -rng.uniform(0.0, 0.3), hi(c) = rng.uniform(0.0, 0.3);
+    for (const double lambda : {0.0, 1e-3, 1.0}) {
+      CAPTURE(lambda);
+      if (lambda > 0.0) {
+        const VectorXd want = stacked(p, lambda).colPivHouseholderQr().solve(stacked_rhs(p));
+        const VectorXd got = one.unconstrained(lambda, p.scale);
+        CHECK((p.scale.asDiagonal() * (got - want)).norm() <= 1e-10 * (p.scale.asDiagonal() * want).norm());
+        CHECK((two.unconstrained(lambda, p.scale) - got).norm() == 0.0);
+      }
+      const auto want = runtime::bounded_least_squares(stacked(p, lambda), stacked_rhs(p), lo, hi);
+      const runtime::DampedStep got = one.step(lambda, p.scale, lo, hi);
+      CHECK(objective(p, lambda, got.d) == doctest::Approx(objective(p, lambda, want.x)).epsilon(1e-10));
+      CHECK((two.step(lambda, p.scale, lo, hi).d - got.d).norm() == 0.0);
+    }
+  }
+}
