@@ -7,7 +7,8 @@
 //   d = argmin || J d + r ||^2 + lambda || D d ||^2   subject to   lower <= x + d <= upper,
 // a bounded linear least-squares problem (bounded_least_squares.hpp), with D the largest column
 // norms of J seen so far (Marquardt's scaling as MINPACK keeps it: the step does not depend on
-// the units of x). A step is taken when phi falls; lambda follows the gain ratio rho = (actual
+// the units of x). Every step of one Jacobian comes from one QR factorisation of it
+// (damped_step.hpp). A step is taken when phi falls; lambda follows the gain ratio rho = (actual
 // decrease) / (decrease the linear model predicts) as Nielsen (1999) does:
 // lambda *= max(1/3, 1 - (2 rho - 1)^3) after a step, and lambda *= nu, nu *= 2 after a
 // rejected one.
