@@ -28,7 +28,7 @@ Triangle triangle(const Eigen::Ref<const Eigen::MatrixXd>& j, const Eigen::Ref<c
 
 DampedSteps::DampedSteps(const Eigen::MatrixXd& j, const Eigen::VectorXd& r, int threads) : j_(j), r_(r) {
   const Eigen::Index m = j.rows(), n = j.cols();
-  if (m < kSplitRows * n) {
+  if (n == 0 || m < kSplitRows * n) {
     Triangle whole = triangle(j, r);
     reduced_ = std::move(whole.r), projected_ = std::move(whole.qtr);
     return;
