@@ -57,7 +57,7 @@ double objective(const Problem& p, double lambda, const VectorXd& d) {
 
 }  // namespace
 
-TEST_CASE("damped steps without a binding bound: the Givens reduction of [R; sqrt(lambda) D] gives the direct solve's step") {
+TEST_CASE("damped steps without a binding bound: the Givens reduction of R stacked on sqrt(lambda) D gives the direct solve's step") {
   test::PortableRandom rng(11);
   for (int trial = 0; trial < 120; ++trial) {
     const int n = 1 + trial % 8, m = trial % 3 == 0 ? std::max(1, n - 2) : n + 3 * (trial % 5);  // some with fewer rows than columns
