@@ -1,6 +1,7 @@
 #include "runtime/fit/fit_scoring.hpp"
 #include "runtime/protocols/run_history.hpp"
 
+#include "runtime/core/parallel_for.hpp"
 #include "runtime/fit/force_offset.hpp"
 #include "runtime/fit/objective.hpp"
 
@@ -41,19 +42,25 @@ void append_residuals(const FitDataSet& set, const Prediction& prediction, const
   }
   const HarmonicData& d = set.harmonic();
   const double scale = std::sqrt(set.weight / (2.0 * static_cast<double>(d.size())));
-  for (std::size_t i = 0; i < d.size(); ++i) {
+  // Point i's two terms at first + 2i and first + 2i + 1, the points spread over the threads (a
+  // single evaluation's residuals would otherwise run on one thread between its points and the
+  // search's next step); each term is computed alike on any thread.
+  const std::size_t first = out.size();
+  out.resize(first + 2 * d.size());
+  parallel_for(d.size(), settings.harmonic.threads, [&](std::size_t i) {
     const CycleMeasures& m = prediction.points[i].measures;
     const double point_scale = d.weight.empty() ? scale : scale * std::sqrt(d.weight[i]);
+    double* terms = out.data() + first + 2 * i;
     if (settings.objective == FitObjective::phi) {
-      out.push_back(point_scale * std::sqrt(settings.stiffness_weight) * stiffness_residual(m.stiffness, m.phase, d.stiffness[i], d.phase[i]));
-      out.push_back(point_scale * std::sqrt(settings.damping_weight) * damping_residual(m.phase, d.phase[i]));
+      terms[0] = point_scale * std::sqrt(settings.stiffness_weight) * stiffness_residual(m.stiffness, m.phase, d.stiffness[i], d.phase[i]);
+      terms[1] = point_scale * std::sqrt(settings.damping_weight) * damping_residual(m.phase, d.phase[i]);
     } else {
       const std::complex<double> model = std::polar(m.stiffness, m.phase), measured = std::polar(d.stiffness[i], d.phase[i]);
       const std::complex<double> r = (model - measured) / d.stiffness[i];
-      out.push_back(point_scale * r.real());
-      out.push_back(point_scale * r.imag());
+      terms[0] = point_scale * r.real();
+      terms[1] = point_scale * r.imag();
     }
-  }
+  });
 }
 
 }  // namespace rheo::runtime

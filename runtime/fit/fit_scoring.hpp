@@ -60,7 +60,9 @@ enum class Offsets : std::uint8_t {
 Prediction predict(const Network& network, const FitDataSet& set, FitMethod method, const HarmonicOptions& harmonic,
                    const ThesisCorrection* correction, Offsets offsets = Offsets::applied);
 
-// Appends the weighted residual terms of one file (see above) to `out`.
+// Appends the weighted residual terms of one file (see above) to `out`; a harmonic table's
+// points spread over settings.harmonic.threads threads (parallel_for.hpp), the same terms for
+// every count.
 void append_residuals(const FitDataSet& set, const Prediction& prediction, const ScoreSettings& settings, std::vector<double>& out);
 
 }  // namespace rheo::runtime

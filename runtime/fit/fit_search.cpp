@@ -144,6 +144,7 @@ std::string least_squares_local(Tracker& tracker, const std::vector<double>& fro
   // Steps of 1e-6 max(|z|, 1): for z = ln p a relative change of 1e-6 to ~1e-5 in the parameter,
   // above the event-driven and time-stepped paths' convergence noise, below the response's curvature.
   lm.difference_step = 1e-6;
+  lm.threads = settings.threads;
   auto to_eigen = [](const std::vector<double>& v) { return Eigen::Map<const Eigen::VectorXd>(v.data(), static_cast<Eigen::Index>(v.size())); };
   try {
     return levenberg_marquardt(problem, to_eigen(from), to_eigen(lower), to_eigen(upper), lm).status;

@@ -1,11 +1,13 @@
 #include "runtime/fit/levenberg_marquardt.hpp"
 
 #include "runtime/core/errors.hpp"
-#include "runtime/fit/bounded_least_squares.hpp"
+#include "runtime/fit/damped_step.hpp"
 
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <optional>
+#include <utility>
 #include <vector>
 
 namespace rheo::runtime {
@@ -82,48 +84,6 @@ Eigen::MatrixXd difference_jacobian(const LeastSquaresProblem& problem, const Ei
   return j;
 }
 
-// The linear model of one Jacobian, reduced once for all its damped steps: with J = Q R (Q
-// orthonormal columns, k = min(m, n) of them), || J d + r ||^2 = || R d + Q^T r ||^2 + (|| r ||^2
-// - || Q^T r ||^2), the last term not depending on d. So each damped step is a bounded problem
-// of k + n rows instead of m + n (m residuals: hundreds of harmonic terms, thousands of history
-// samples), with the same minimiser; the column norms, which the solver scales by, are J's.
-struct LinearModel {
-  const Eigen::MatrixXd& j;
-  Eigen::VectorXd r;          // a copy: the search moves on from r when it takes a step
-  Eigen::MatrixXd reduced;    // R, k x n
-  Eigen::VectorXd projected;  // Q^T r, k
-};
-
-LinearModel linear_model(const Eigen::MatrixXd& j, const Eigen::VectorXd& r) {
-  const Eigen::HouseholderQR<Eigen::MatrixXd> qr(j);
-  const Eigen::Index k = std::min(j.rows(), j.cols());
-  LinearModel model{j, r, qr.matrixQR().topRows(k).triangularView<Eigen::Upper>(), {}};
-  const Eigen::VectorXd qtr = qr.householderQ().adjoint() * r;
-  model.projected = qtr.head(k);
-  return model;
-}
-
-// The step minimising || J d + r ||^2 + lambda || D d ||^2 within the box, and the decrease of
-// phi the linear model predicts for it, phi - || J d + r ||^2.
-struct Step {
-  Eigen::VectorXd d;
-  double predicted = 0.0;
-};
-
-Step damped_step(const LinearModel& model, const Eigen::VectorXd& scale, double lambda, const Eigen::VectorXd& x, const Eigen::VectorXd& lower,
-                 const Eigen::VectorXd& upper) {
-  const Eigen::Index k = model.reduced.rows(), n = model.reduced.cols();
-  Eigen::MatrixXd a(k + n, n);
-  a.topRows(k) = model.reduced;
-  a.bottomRows(n) = (std::sqrt(lambda) * scale).asDiagonal();
-  Eigen::VectorXd b = Eigen::VectorXd::Zero(k + n);
-  b.head(k) = -model.projected;
-  Step step;
-  step.d = bounded_least_squares(a, b, lower - x, upper - x).x;
-  step.predicted = model.r.squaredNorm() - (model.j * step.d + model.r).squaredNorm();
-  return step;
-}
-
 }  // namespace
 
 LevenbergMarquardtResult levenberg_marquardt(const LeastSquaresProblem& problem, const Eigen::VectorXd& start, const Eigen::VectorXd& lower,
@@ -164,23 +124,35 @@ LevenbergMarquardtResult levenberg_marquardt(const LeastSquaresProblem& problem,
     const Eigen::VectorXd norms = j.colwise().norm().transpose().cwiseMax(1e-300);
     scale = scale.size() == norms.size() ? Eigen::VectorXd(scale.cwiseMax(norms)) : norms;
     // First-order test: what the undamped step could still gain, by the linear model (not where
-    // a column could not be differenced: it would look insensitive).
-    const LinearModel model = linear_model(j, out.residuals);
-    const double undamped = damped_step(model, scale, 0.0, out.x, lower, upper).predicted;
-    if (complete && undamped <= settings.decrease_tolerance * out.value) {
+    // a column could not be differenced: it would look insensitive). Only that gain's order
+    // against the two tolerances below matters, and its bounded solve is the dearest (with R
+    // near singular the step runs into many bounds): || Q^T r ||^2 bounds the gain above, and
+    // any damped step within the same box (the first one tried, needed anyway) below, so the
+    // undamped step is solved only where neither bound decides.
+    const DampedSteps model(j, out.residuals, settings.threads);
+    const double tolerance = settings.decrease_tolerance * out.value, near = kStagnationFactor * tolerance;
+    std::optional<DampedStep> first;
+    double undamped = model.decrease_bound();
+    if (undamped > tolerance) {
+      if (undamped > near) first = model.step(lambda, scale, lower - out.x, upper - out.x);
+      undamped = first && first->predicted > near
+                     ? first->predicted
+                     : model.step(0.0, scale, lower - out.x, upper - out.x, first ? first->d : Eigen::VectorXd()).predicted;
+    }
+    if (complete && undamped <= tolerance) {
       out.status = "FTOL_REACHED";
       return out;
     }
     // The tests on a step below hold only where the undamped step has little left to gain: a
     // step heavy damping made tiny says nothing about a minimum.
-    const bool near_minimum = complete && undamped <= kStagnationFactor * settings.decrease_tolerance * out.value;
+    const bool near_minimum = complete && undamped <= near;
     bool taken = false;
     while (!taken) {
       if (lambda > 1e16) {
         out.status = "NO_DESCENT";
         return out;
       }
-      const Step step = damped_step(model, scale, lambda, out.x, lower, upper);
+      const DampedStep step = first ? *std::exchange(first, std::nullopt) : model.step(lambda, scale, lower - out.x, upper - out.x);
       const Eigen::VectorXd trial = (out.x + step.d).cwiseMax(lower).cwiseMin(upper);
       const Eigen::VectorXd trial_r = try_residuals(problem, trial);
       const double trial_value = trial_r.size() == out.residuals.size() ? trial_r.squaredNorm() : std::numeric_limits<double>::infinity();

@@ -7,7 +7,8 @@
 //   d = argmin || J d + r ||^2 + lambda || D d ||^2   subject to   lower <= x + d <= upper,
 // a bounded linear least-squares problem (bounded_least_squares.hpp), with D the largest column
 // norms of J seen so far (Marquardt's scaling as MINPACK keeps it: the step does not depend on
-// the units of x). A step is taken when phi falls; lambda follows the gain ratio rho = (actual
+// the units of x). Every step of one Jacobian comes from one QR factorisation of it
+// (damped_step.hpp). A step is taken when phi falls; lambda follows the gain ratio rho = (actual
 // decrease) / (decrease the linear model predicts) as Nielsen (1999) does:
 // lambda *= max(1/3, 1 - (2 rho - 1)^3) after a step, and lambda *= nu, nu *= 2 after a
 // rejected one.
@@ -67,6 +68,7 @@ struct LevenbergMarquardtSettings {
   double crawl_tolerance = 0.0;       // relative, on phi, per Jacobian (FTOL_REACHED above); 0: off
   double difference_step = 1e-7;      // forward differences: h_j = this * max(|x_j|, typical_j)
   Eigen::VectorXd typical;            // the size of each coordinate where x_j is near zero; empty: 1
+  int threads = 1;  // each Jacobian's QR on two blocks of rows side by side (damped_step.hpp); the search is the same for every value
 };
 
 struct LevenbergMarquardtResult {

@@ -146,6 +146,50 @@ TEST_CASE("a harmonic table's weight column multiplies its point's squared terms
   check_equal(weighted, {plain[0], plain[1], 2.0 * plain[2], 2.0 * plain[3]}, 1e-15);
 }
 
+TEST_CASE("a harmonic table's terms spread over threads: in point order after what `out` held, the hand values on 1, 2 and 3 threads") {
+  // The two points of two_point_table repeated 150 times (300 points, so each thread takes
+  // several runs of them); each pair of terms is then the hand values above scaled by
+  // sqrt(2 / 300) (the mean over the points).
+  runtime::FitDataSet set = two_point_table(2.0);
+  auto& d = std::get<runtime::HarmonicData>(set.data);
+  runtime::Prediction p;
+  const runtime::Prediction two = two_point_model();
+  const runtime::HarmonicData base = d;
+  d = {};
+  d.path = base.path;
+  for (int copy = 0; copy < 150; ++copy)
+    for (std::size_t i = 0; i < 2; ++i) {
+      d.amplitude.push_back(base.amplitude[i]);
+      d.frequency.push_back(base.frequency[i]);
+      d.stiffness.push_back(base.stiffness[i]);
+      d.phase.push_back(base.phase[i]);
+      d.rows.push_back(3 + static_cast<int>(d.rows.size()));
+      p.points.push_back(two.points[i]);
+    }
+  const std::vector<double> hand = {0.038729833462074176, 0.11673354720623175, -0.019364916731037088, -0.05708706522003674};
+  for (const runtime::FitObjective objective : {runtime::FitObjective::phi, runtime::FitObjective::least_squares}) {
+    runtime::ScoreSettings s;
+    s.objective = objective;
+    s.stiffness_weight = 0.3;
+    s.damping_weight = 0.7;
+    const std::vector<double> one = residuals_of(two_point_table(2.0), two, s);
+    if (objective == runtime::FitObjective::phi) check_equal(one, hand, 1e-15);
+    for (const int threads : {1, 2, 3}) {
+      CAPTURE(threads);
+      s.harmonic.threads = threads;
+      std::vector<double> r = {-1.0, -2.0};  // what `out` held stays in front
+      runtime::append_residuals(set, p, s, r);
+      REQUIRE(r.size() == 602);
+      CHECK(r[0] == -1.0);
+      CHECK(r[1] == -2.0);
+      for (std::size_t k = 0; k < 600; ++k) {
+        CAPTURE(k);
+        CHECK(r[2 + k] == doctest::Approx(one[k % 4] * std::sqrt(2.0 / 300.0)).epsilon(1e-14));
+      }
+    }
+  }
+}
+
 TEST_CASE("predict: approximate and corrected are thesis_approximation's response, pointwise in data order") {
   const auto network = test::network_from(
       "model m { spring e (k = 400) maxwell v (k = 60, tau = 5 ms) friction f1 (k = 300, uy = 40 um) friction f2 (k = 80, uy = 150 um) }", "m");
