@@ -54,7 +54,10 @@ void DaeIntegrator::rechoose_coordinates(double t) {
 // (rates_ahead): one just stuck where its slip rate crossed zero carries fy plus its dashpot's
 // force at the rate the root left, up to the positions' tolerance times a stiff spring's
 // stiffness (8e-5 N, 8e-6 fy, behind a 10627 N/mm spring, differential seed 41, model 71), and
-// slipping it again would restart it at that rate's wrong sign. True when no mode had to change.
+// slipping it again would restart it at that rate's wrong sign. A closed gap under tension
+// likewise opens only if still under tension then: one just closed on its stop may carry a
+// rounding residue of tension, and opened beyond its stop it has no root left to close it
+// (differential seed 53, model 106). True when no mode had to change.
 bool DaeIntegrator::switch_inconsistent_modes(double t, double horizon) {
   bool consistent = true;
   int furthest = -1;
@@ -71,6 +74,9 @@ bool DaeIntegrator::switch_inconsistent_modes(double t, double horizon) {
       const double later = ahead ? lambda + 1e-3 * horizon * at(rates_ahead_, i) : lambda;
       if (later * lambda > 0.0 && ratio(later) > 1.0 + 0.5 * kSlack) furthest = l, furthest_ratio = ratio(lambda);
     } else if (edge.kind == EdgeKind::gap && mode != 0 && lambda * mode < -1e-12 * options_.force_scale) {
+      if (!ahead) ahead = rates_ahead(t, horizon);
+      const double later = ahead ? lambda + 1e-3 * horizon * at(rates_ahead_, i) : lambda;
+      if (later * mode >= -1e-12 * options_.force_scale) continue;
       mode = 0;
       consistent = false;
     }
