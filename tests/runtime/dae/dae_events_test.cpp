@@ -1,7 +1,6 @@
 // DaeIntegrator's events (dae_events.cpp): restarts where sliders switch, against fixed steps at
 // fine steps on the differential test's two-tone drive (two_tone_reference.hpp).
 #include "runtime/dae/dae_protocols.hpp"
-#include "runtime/protocols/harmonic.hpp"
 #include "support.hpp"
 #include "two_tone_reference.hpp"
 
@@ -52,13 +51,8 @@ friction (k = 195.586 N/mm, fy = 0.521524 N)
 }
 })",
                                           "m");
-  runtime::HarmonicOptions options;
-  options.steady_state = runtime::SteadyState::time_stepping;
-  options.steps_per_cycle = 256;
-  options.solver = runtime::SolverChoice::sundials;
-  const auto ida = runtime::simulate_harmonic_point(network, 0.3, 2.0, options);
+  const auto [ida, gap] = test::ida_point_against_fixed_steps(network, 0.3, 2.0);
   REQUIRE(ida.converged);
-  const test::HarmonicGap gap = test::gap_to_extrapolated_fixed_point(network, ida, options);
   MESSAGE("IDA against fixed steps: K ", gap.stiffness, ", d ", gap.damping);
   CHECK(gap.stiffness < 1e-4);
   CHECK(gap.damping < 1e-4);
