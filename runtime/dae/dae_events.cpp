@@ -49,20 +49,34 @@ void DaeIntegrator::rechoose_coordinates(double t) {
 // forces the one furthest beyond (largest |lambda| / fy) slips; the others wait for the next
 // consistent state. Sliders in series carry one force: were all those beyond yield to slip at
 // once (a friction element and a weaker slider in series, both beyond yield in the linearised
-// start), the chain would need two forces, and IDACalcIC finds no consistent state. True when
-// no mode had to change.
-bool DaeIntegrator::switch_inconsistent_modes() {
+// start), the chain would need two forces, and IDACalcIC finds no consistent state. A stuck
+// slider counts as beyond yield only while its force is still beyond it after 1e-3 HORIZON
+// (rates_ahead): one just stuck where its slip rate crossed zero carries fy plus its dashpot's
+// force at the rate the root left, up to the positions' tolerance times a stiff spring's
+// stiffness (8e-5 N, 8e-6 fy, behind a 10627 N/mm spring, differential seed 41, model 71), and
+// slipping it again would restart it at that rate's wrong sign. A closed gap under tension
+// likewise opens only if still under tension then: one just closed on its stop may carry a
+// rounding residue of tension, and opened beyond its stop it has no root left to close it
+// (differential seed 53, model 106). True when no mode had to change.
+bool DaeIntegrator::switch_inconsistent_modes(double t, double horizon) {
   bool consistent = true;
   int furthest = -1;
   double furthest_ratio = 1.0 + 0.5 * kSlack;
+  bool ahead = false;  // rates_ahead_ holds this state's rates
   for (int l = 0; l < layout_.switch_forces; ++l) {
     const Edge& edge = switch_edge(l);
     std::int8_t& mode = at(modes_, l);
-    const double lambda = at(y_, layout_.switch_force(l));
-    if (edge.kind == EdgeKind::slider && mode == 0) {
-      const double ratio = lambda > 0.0 ? lambda / edge.p[0] : -lambda / edge.p[1];
-      if (ratio > furthest_ratio) furthest = l, furthest_ratio = ratio;
+    const int i = layout_.switch_force(l);
+    const double lambda = at(y_, i);
+    const auto ratio = [&edge](double force) { return force > 0.0 ? force / edge.p[0] : -force / edge.p[1]; };
+    if (edge.kind == EdgeKind::slider && mode == 0 && ratio(lambda) > furthest_ratio) {
+      if (!ahead) ahead = rates_ahead(t, horizon);
+      const double later = ahead ? lambda + 1e-3 * horizon * at(rates_ahead_, i) : lambda;
+      if (later * lambda > 0.0 && ratio(later) > 1.0 + 0.5 * kSlack) furthest = l, furthest_ratio = ratio(lambda);
     } else if (edge.kind == EdgeKind::gap && mode != 0 && lambda * mode < -1e-12 * options_.force_scale) {
+      if (!ahead) ahead = rates_ahead(t, horizon);
+      const double later = ahead ? lambda + 1e-3 * horizon * at(rates_ahead_, i) : lambda;
+      if (later * mode >= -1e-12 * options_.force_scale) continue;
       mode = 0;
       consistent = false;
     }
@@ -72,6 +86,41 @@ bool DaeIntegrator::switch_inconsistent_modes() {
     consistent = false;
   }
   return consistent;
+}
+
+bool DaeIntegrator::rates_ahead(double t, double horizon) {
+  std::copy(yp_.begin(), yp_.end(), rates_ahead_.begin());
+  const bool converged = try_euler_rates(t, 1e-3 * horizon);
+  std::swap(yp_, rates_ahead_);  // yp_ as IDACalcIC left it; rates_ahead_ the step's
+  return converged;
+}
+
+// IDACalcIC makes only the differential rates consistent; a slipping slider's root reads its
+// elongation's rate, a difference of node positions' rates, which stay as they were before the
+// restart. Where the slider stopped at the event (two sliders whose slip rates cross zero
+// together: the root of one is found, and the other's rate, a stale one, has already crossed)
+// the root is missed and the slider slips the wrong way until the next drive sample (differential
+// seed 41, model 71: 0.45 of max |F| off at the sample after a reversal).
+bool DaeIntegrator::stick_stopping_sliders(double t, double horizon) {
+  bool slipping = false;
+  for (int l = 0; l < layout_.switch_forces; ++l) slipping |= switch_edge(l).kind == EdgeKind::slider && at(modes_, l) != 0;
+  if (!slipping || !rates_ahead(t, horizon)) return true;
+  const DriveState drive = drive_at(t);
+  bool stopped = false;
+  for (int l = 0; l < layout_.switch_forces; ++l) {
+    const Edge& edge = switch_edge(l);
+    std::int8_t& mode = at(modes_, l);
+    if (edge.kind != EdgeKind::slider || mode == 0 || elongation_rate(rates_ahead_.data(), drive, edge) * mode >= 0.0) continue;
+    mode = 0;
+    at(held_, l) = elongation(y_.data(), drive, edge);
+    stopped = true;
+  }
+  if (stopped) return false;
+  for (int i = 0; i < layout_.size(); ++i)
+    if (!layout_.differential(i)) at(yp_, i) = at(rates_ahead_, i);
+  std::copy(yp_.begin(), yp_.end(), N_VGetArrayPointer(solver_->yp.get()));
+  sundials::check_ida(IDAReInit(solver_->ida.get(), t, solver_->y.get(), solver_->yp.get()), "IDAReInit");
+  return true;
 }
 
 // Re-initialises IDA at t (with new coordinates when the modes changed) and makes the state
@@ -130,7 +179,7 @@ void DaeIntegrator::restart(double t, bool modes_changed) {
     }
     sundials::check_ida(IDAGetConsistentIC(mem, solver_->y.get(), solver_->yp.get()), "IDAGetConsistentIC");
     copy_from_solver();
-    if (switch_inconsistent_modes()) return;
+    if (switch_inconsistent_modes(t, horizon) && stick_stopping_sliders(t, horizon)) return;
     if (attempt > 2 * layout_.switch_forces + 2)
       throw NumericalError(fmt::format("model '{}': the sliders and gaps find no consistent state at t = {:g} s", graph_.model, t));
     modes_changed = true;

@@ -32,6 +32,12 @@ void DaeIntegrator::initial_rates_by_euler_step(double t, double horizon) { eule
 // Newton with the matrix recomputed at every iterate (IDA's corrector keeps the one of its
 // predictor), from v = yp_; y_ is left as it is.
 void DaeIntegrator::euler_rates(double t, double h) {
+  if (!try_euler_rates(t, h))
+    throw NumericalError(fmt::format("model '{}': no consistent rates at t = {:g} s (Newton on a backward-Euler step of {:g} s did not converge)",
+                                     graph_.model, t, h));
+}
+
+bool DaeIntegrator::try_euler_rates(double t, double h) {
   const int n = layout_.size();
   const double per_second = options_.velocity_scale / options_.length_scale;
   Eigen::Map<Eigen::MatrixXd> matrix(solver_->euler_matrix.data(), n, n);
@@ -54,10 +60,9 @@ void DaeIntegrator::euler_rates(double t, double h) {
     // v seeds IDA's predictor (or moves y by h v): 1e-6 of the rate's scale is ample, and the
     // roundoff of G / h (forces to 1e-16 over steps of 1e-6 of the time scale) sets a floor of
     // about 1e-8 where the rates nearly vanish.
-    if (change <= 1e-6) return;
+    if (change <= 1e-6) return true;
   }
-  throw NumericalError(fmt::format("model '{}': no consistent rates at t = {:g} s (Newton on a backward-Euler step of {:g} s did not converge)",
-                                   graph_.model, t, h));
+  return false;
 }
 
 // One backward-Euler step of length h from (t, y_): see solve_to, where IDA's corrector fails

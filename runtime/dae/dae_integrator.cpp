@@ -112,6 +112,7 @@ DaeIntegrator::DaeIntegrator(const DaeGraph& graph, const DaeOptions& options) :
   r_probe_ = y_;
   y_probe_initial_ = y_;
   r_initial_ = y_;
+  rates_ahead_ = y_;
   scale_ = y_;
   for (int e : graph.bouc_wen_edges) nested_bouc_wen_ |= at(graph.edges, e).a >= 0 || at(graph.edges, e).b >= 0;
   root_direction_.assign(roots, 0);

@@ -141,13 +141,24 @@ class DaeIntegrator {
   void initial_rates_by_euler_step(double t, double horizon);
   // yp_ := the rates v of one backward-Euler step of H [s] from (T, y_): F(t + h, y_ + h v, v) = 0.
   void euler_rates(double t, double h);
+  // euler_rates without the exception: false (yp_ then undefined) where Newton did not converge.
+  bool try_euler_rates(double t, double h);
+  // After IDACalcIC: the rates of a backward-Euler step of 1e-3 HORIZON [s] into rates_ahead_
+  // (yp_ kept); false where that Newton did not converge. A consistent state's rates to O(h y''):
+  // what each unknown does within h.
+  bool rates_ahead(double t, double horizon);
+  // A slipping slider whose rate over the next 1e-3 HORIZON opposes its slip sticks (true: modes
+  // changed); else the algebraic rates of yp_ (which IDACalcIC leaves stale, and which the slip
+  // roots read) become those rates, and IDA is re-initialised with them.
+  bool stick_stopping_sliders(double t, double horizon);
+  std::vector<double> rates_ahead_;  // scratch of rates_ahead: y' over the next step
   // y_ := y_ + H v and time_ := T + H, v from euler_rates.
   void euler_step(double t, double h);
   void rechoose_coordinates(double t);
   // The rates of the rate edges' elongations the next rechoose_coordinates takes instead of those
   // of the current coordinates (a start from a moving state); empty otherwise.
   std::vector<double> start_rates_;
-  bool switch_inconsistent_modes();
+  bool switch_inconsistent_modes(double t, double horizon);
   void copy_from_solver();
   void switch_modes(double t, const std::vector<int>& found);
   double solve_to(double t_stop);

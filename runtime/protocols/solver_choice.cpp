@@ -15,11 +15,22 @@ int block_depth(const Topology& t, int index) {
   return node.child_count > 0 ? deepest + 1 : 0;
 }
 
+// Whether a bouc_wen lies below `index` with a series block on its way up (between internal nodes).
+bool nested_bouc_wen(const Topology& t, int index, bool below_series) {
+  const TreeNode& node = t.nodes[static_cast<std::size_t>(index)];
+  if (node.kind == NodeKind::bouc_wen) return below_series;
+  for (int i = 0; i < node.child_count; ++i)
+    if (nested_bouc_wen(t, t.children[static_cast<std::size_t>(node.first_child + i)], below_series || node.kind == NodeKind::series)) return true;
+  return false;
+}
+
 }  // namespace
 
 bool uses_sundials(const Network& network, SolverChoice choice) {
   if (choice != SolverChoice::automatic) return choice == SolverChoice::sundials;
   const Topology& t = network.topology();
+  for (int root : t.subtrees)
+    if (nested_bouc_wen(t, root, false)) return false;
   for (const auto& node : t.nodes)
     if (node.kind == NodeKind::inerter) return true;
   for (int root : t.subtrees)

@@ -5,7 +5,12 @@
 // kFixedStepMaxBlockDepth deep (the fixed-step tree solver nests one Newton solve per level,
 // so its cost grows geometrically with the depth: ~0.15 s per harmonic point at 3, ~10 s at 4),
 // and the fixed-step kernels otherwise (exact for networks whose elements all sit in the root
-// parallel block, first order in nested dashpots).
+// parallel block, first order in nested dashpots). A network with a bouc_wen inside a series
+// block (between internal nodes) takes fixed steps whatever its inerters and depth: IDA has no
+// event for the law's loading switch sgn(z de/dt), which there reads the rates of node positions
+// (algebraic unknowns), and where such a rate reverses behind a nearly saturated bouc_wen (large
+// n: nearly a slider) its corrector fails at every step size (IDA_CONV_FAIL; differential seed
+// 37, model 85), while fixed steps integrate the law over each step's elongation increment.
 #pragma once
 
 #include "lang/protocol_settings.hpp"

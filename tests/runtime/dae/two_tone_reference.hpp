@@ -61,4 +61,21 @@ inline HarmonicGap gap_to_extrapolated_fixed_point(const runtime::Network& netwo
           std::abs(ida.measures.damping - (2.0 * fine.measures.damping - coarse.measures.damping))};
 }
 
+// IDA's harmonic point of NETWORK at AMPLITUDE [mm] and FREQUENCY [Hz] (time stepping, 256
+// samples a cycle) and its gap to extrapolated fixed steps (gap_to_extrapolated_fixed_point; not
+// meaningful where ida.converged is false).
+struct IdaPointAgainstFixed {
+  runtime::HarmonicPoint ida;
+  HarmonicGap gap;
+};
+inline IdaPointAgainstFixed ida_point_against_fixed_steps(const runtime::Network& network, double amplitude, double frequency) {
+  runtime::HarmonicOptions options;
+  options.steady_state = runtime::SteadyState::time_stepping;
+  options.steps_per_cycle = 256;
+  options.solver = runtime::SolverChoice::sundials;
+  IdaPointAgainstFixed out{runtime::simulate_harmonic_point(network, amplitude, frequency, options), {}};
+  if (out.ida.converged) out.gap = gap_to_extrapolated_fixed_point(network, out.ida, options);
+  return out;
+}
+
 }  // namespace rheo::test
