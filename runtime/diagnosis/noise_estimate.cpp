@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <limits>
 #include <map>
 
 namespace rheo::runtime::diagnosis {
@@ -189,6 +190,69 @@ void estimate_harmonic(const FitResult& fit, const std::vector<FitDataSet>& data
   out.relative_error = variance > 0.0 ? 0.5 * se / (k->mean() + dmp->mean()) : 0.0;
 }
 
+// The noise variance of one history's residual R over times T, allowing the noise to be
+// correlated from sample to sample (a rig's anti-aliasing filter): the mean q(h) of the
+// pseudo-residuals at lag h (neighbours h samples either side) is, for noise of variance s^2
+// with lag-1 autocorrelation rho (AR(1)) plus a residual smooth over the lag (its curvature),
+//   q(h) = s^2 (1 - 4/3 rho^h + 1/3 rho^2h) + c h^4,
+// (uniform steps: e = r_j - (r_j-h + r_j+h)/2 has variance s^2 (3/2 - 2 rho^h + rho^2h / 2),
+// q = e^2 / (3/2)). Independent noise (rho = 0) gives q(h) = s^2 at every lag; correlated noise
+// is smoother at short lags and reaches s^2 as rho^h vanishes, so the lag-1 mean alone takes
+// rho = 0.5 noise for 0.65 s (0.38 s at rho = 0.8) and calls pure noise a systematic residual.
+// Fitted over lags 1..32 (at most an eighth of the samples) by weighted least squares (each lag
+// relative to its q), rho over [0, 0.95] in steps of 0.01, s^2 and c >= 0 solved for each.
+struct HistoryNoise {
+  double variance = 0.0;        // s^2
+  double relative_error = 0.0;  // of s^2: the lag-1 mean's, times q(1)'s share of s^2 taken back
+  int pseudo_residuals = 0;     // at lag 1
+  bool estimated = false;
+};
+
+HistoryNoise history_noise(const std::vector<double>& t, const std::vector<double>& r) {
+  HistoryNoise out;
+  std::vector<double> lags, means;
+  Moments first;
+  for (std::size_t h = 1; h <= 32 && 8 * h <= r.size(); h = h < 4 ? h + 1 : h + h / 2) {
+    Moments q;
+    for (std::size_t j = h; j + h < r.size(); ++j)
+      if (t[j + h] > t[j - h]) q.add(pseudo_q(t[j - h], r[j - h], t[j], r[j], t[j + h], r[j + h]));
+    if (h == 1) first = q;
+    if (q.m < kMinPseudoResiduals) break;
+    lags.push_back(static_cast<double>(h)), means.push_back(q.mean());
+  }
+  if (first.m < kMinPseudoResiduals) return out;
+  out.estimated = true;
+  out.pseudo_residuals = first.m;
+  out.variance = first.mean();
+  const double first_se = first.mean() > 0.0 ? first.standard_error() / first.mean() : 0.0;
+  out.relative_error = first_se;
+  if (lags.size() < 3) return out;
+  double best = std::numeric_limits<double>::infinity();
+  for (int step = 0; step <= 95; ++step) {
+    const double rho = 0.01 * step;
+    // Weighted normal equations of q(h) = s2 f(h) + c h^4, weights 1/q(h)^2, s2, c >= 0.
+    double aa = 0.0, ab = 0.0, bb = 0.0, ay = 0.0, by = 0.0, yy = 0.0;
+    for (std::size_t i = 0; i < lags.size(); ++i) {
+      const double w = means[i] > 0.0 ? 1.0 / means[i] : 0.0;
+      const double a = w * (1.0 - 4.0 / 3.0 * std::pow(rho, lags[i]) + std::pow(rho, 2.0 * lags[i]) / 3.0), b = w * std::pow(lags[i], 4),
+                   y = w * means[i];
+      aa += a * a, ab += a * b, bb += b * b, ay += a * y, by += b * y, yy += y * y;
+    }
+    double s2 = 0.0, c = 0.0;
+    if (const double det = aa * bb - ab * ab; det > 1e-12 * aa * bb) s2 = (ay * bb - by * ab) / det, c = (aa * by - ab * ay) / det;
+    if (s2 < 0.0 || c < 0.0) {  // one of them at its bound 0: the better of the two one-term fits
+      const double s2_alone = aa > 0.0 ? std::max(0.0, ay / aa) : 0.0, c_alone = bb > 0.0 ? std::max(0.0, by / bb) : 0.0;
+      const double r_s = yy - 2.0 * s2_alone * ay + s2_alone * s2_alone * aa, r_c = yy - 2.0 * c_alone * by + c_alone * c_alone * bb;
+      s2 = r_s <= r_c ? s2_alone : 0.0, c = r_s <= r_c ? 0.0 : c_alone;
+    }
+    const double residual = yy - 2.0 * (s2 * ay + c * by) + s2 * s2 * aa + 2.0 * s2 * c * ab + c * c * bb;
+    if (residual < best) best = residual, out.variance = s2;
+  }
+  // The lag-1 mean's relative error, scaled as s^2 exceeds it (the longer lags hold fewer independent pseudo-residuals).
+  out.relative_error = first_se * std::max(1.0, first.mean() > 0.0 ? out.variance / first.mean() : 1.0);
+  return out;
+}
+
 void estimate_histories(const FitResult& fit, const std::vector<FitDataSet>& data, NoiseEstimate& out) {
   double variance_sum = 0.0, se_sq = 0.0, lag_sum = 0.0, lag_weight = 0.0;
   int files = 0;
@@ -199,14 +263,12 @@ void estimate_histories(const FitResult& fit, const std::vector<FitDataSet>& dat
     const std::vector<double>& model = fit.datasets[s].prediction.force;
     std::vector<double> r(h.force.size());
     for (std::size_t j = 0; j < r.size(); ++j) r[j] = (model[j] - h.force[j]) / h.force_scale;
-    Moments q;
-    for (std::size_t j = 1; j + 1 < r.size(); ++j)
-      if (t[j + 1] > t[j - 1]) q.add(pseudo_q(t[j - 1], r[j - 1], t[j], r[j], t[j + 1], r[j + 1]));
-    if (q.m < kMinPseudoResiduals) continue;
+    const HistoryNoise noise = history_noise(t, r);
+    if (!noise.estimated) continue;
     ++files;
-    variance_sum += q.mean();
-    se_sq += q.standard_error() * q.standard_error();
-    out.pseudo_residuals += q.m;
+    variance_sum += noise.variance;
+    se_sq += std::pow(noise.relative_error * noise.variance, 2);
+    out.pseudo_residuals += noise.pseudo_residuals;
     double mean = 0.0;
     for (double v : r) mean += v;
     mean /= static_cast<double>(r.size());

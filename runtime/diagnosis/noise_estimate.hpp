@@ -21,7 +21,9 @@
 // estimates differ by more than two standard errors of their difference the lower one is taken,
 // else both are pooled (for r_K, r_d and the phase separately). Pure noise leaves
 //   err_noise = sqrt(sum_i s_K,i^2 + s_d,i^2) / n     (err = sqrt(sum r_K^2 + r_d^2) / n, n points).
-// Histories: r = (F - F_exp)/max|F_exp| along time, neighbours the adjacent samples; pure noise
+// Histories: r = (F - F_exp)/max|F_exp| along time, neighbours the samples h either side for
+// lags h = 1..32, the means fitted by noise correlated from sample to sample (AR(1)) plus a miss
+// smooth over the lag (noise_estimate.cpp history_noise); pure noise
 // leaves an RMS force residual of s per file, and the RMS over files as the gap takes it.
 //
 // Where the noise's size varies over the grid (noise_profile.hpp), the pseudo-residuals of the

@@ -204,7 +204,10 @@ inline Scenario harmonic_scenario(unsigned seed, Hidden hidden) {
 }
 
 // History files (Hidden column is drawn as none here: a resonance needs frequencies around it).
-inline Scenario history_scenario(unsigned seed, Hidden hidden) {
+// CORRELATION: the noise's lag-1 autocorrelation rho, an AR(1) process of the same variance
+// (e_j = rho e_j-1 + sqrt(1 - rho^2) z_j; a rig's anti-aliasing filter correlates its samples);
+// 0: independent samples, the draws as without it.
+inline Scenario history_scenario(unsigned seed, Hidden hidden, double correlation = 0.0) {
   PortableRandom random(seed * 104729u + 5u);
   const BaseValues base = draw_base(random);
   const int files = 1 + static_cast<int>(random.unit() * 3);
@@ -236,12 +239,14 @@ inline Scenario history_scenario(unsigned seed, Hidden hidden) {
     runtime::HistoryData d;
     d.path = fmt::format("generated_{}.csv", sc.data.size() + 1);
     d.drive = drive;
-    double file_sum = 0.0;
+    double file_sum = 0.0, colored = 0.0;
     for (std::size_t j = 0; j < h.force.size(); ++j) {
       const double u = std::abs(drive.displacement[j]);
       const double sd = hetero_factor(noise, std::max(u, amplitudes.back()), amplitudes.back(), a_max) *
                         (noise.of_force ? noise.s * (0.2 * scale + std::abs(h.force[j])) : noise.s * scale);
-      d.force.push_back(h.force[j] + sd * unit_noise(random, noise.heavy)), d.rows.push_back(static_cast<int>(d.rows.size()) + 2);
+      const double z = unit_noise(random, noise.heavy);
+      colored = j == 0 ? z : correlation * colored + std::sqrt(1.0 - correlation * correlation) * z;
+      d.force.push_back(h.force[j] + sd * colored), d.rows.push_back(static_cast<int>(d.rows.size()) + 2);
       file_sum += sd * sd;
     }
     if (hidden == Hidden::offset) {
