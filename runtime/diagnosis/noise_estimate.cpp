@@ -199,7 +199,8 @@ void estimate_harmonic(const FitResult& fit, const std::vector<FitDataSet>& data
 // q = e^2 / (3/2)). Independent noise (rho = 0) gives q(h) = s^2 at every lag; correlated noise
 // is smoother at short lags and reaches s^2 as rho^h vanishes, so the lag-1 mean alone takes
 // rho = 0.5 noise for 0.65 s (0.38 s at rho = 0.8) and calls pure noise a systematic residual.
-// Fitted over lags 1..32 (at most an eighth of the samples) by weighted least squares (each lag
+// Fitted over lags 1..H, H at most 32, an eighth of the samples and a quarter of the drive's
+// samples per radian (below), by weighted least squares (each lag
 // relative to its q), rho over [0, 0.95] in steps of 0.01, s^2 and c >= 0 solved for each.
 struct HistoryNoise {
   double variance = 0.0;        // s^2
@@ -208,11 +209,22 @@ struct HistoryNoise {
   bool estimated = false;
 };
 
-HistoryNoise history_noise(const std::vector<double>& t, const std::vector<double>& r) {
+HistoryNoise history_noise(const std::vector<double>& t, const std::vector<double>& u, const std::vector<double>& r) {
   HistoryNoise out;
   std::vector<double> lags, means;
   Moments first;
-  for (std::size_t h = 1; h <= 32 && 8 * h <= r.size(); h = h < 4 ? h + 1 : h + h / 2) {
+  // A miss is a function of the displacement's history, smooth over the lags only where they are
+  // short against the time the drive takes to move: at most a quarter of the samples per radian
+  // of the drive, RMS(u - mean u) / RMS(u_j+1 - u_j) (N / (2 pi) for a sine of N samples a cycle).
+  double mean_u = 0.0, spread = 0.0, steps = 0.0;
+  for (double v : u) mean_u += v / static_cast<double>(u.size());
+  for (std::size_t j = 0; j < u.size(); ++j) {
+    spread += (u[j] - mean_u) * (u[j] - mean_u);
+    if (j > 0) steps += (u[j] - u[j - 1]) * (u[j] - u[j - 1]);
+  }
+  const double per_radian = steps > 0.0 ? std::sqrt(spread / static_cast<double>(u.size()) / (steps / static_cast<double>(u.size() - 1))) : 0.0;
+  const auto longest = static_cast<std::size_t>(std::clamp(per_radian / 4.0, 1.0, 32.0));
+  for (std::size_t h = 1; h <= longest && 8 * h <= r.size(); h = h < 4 ? h + 1 : h + h / 2) {
     Moments q;
     for (std::size_t j = h; j + h < r.size(); ++j)
       if (t[j + h] > t[j - h]) q.add(pseudo_q(t[j - h], r[j - h], t[j], r[j], t[j + h], r[j + h]));
@@ -263,7 +275,7 @@ void estimate_histories(const FitResult& fit, const std::vector<FitDataSet>& dat
     const std::vector<double>& model = fit.datasets[s].prediction.force;
     std::vector<double> r(h.force.size());
     for (std::size_t j = 0; j < r.size(); ++j) r[j] = (model[j] - h.force[j]) / h.force_scale;
-    const HistoryNoise noise = history_noise(t, r);
+    const HistoryNoise noise = history_noise(t, h.drive.displacement, r);
     if (!noise.estimated) continue;
     ++files;
     variance_sum += noise.variance;

@@ -36,7 +36,9 @@ FitSettings local_search(const FitSettings& base, int evaluations);
 // searched by Levenberg-Marquardt from START and the best samples;
 // stage 2: every free parameter (KEPT and ADDED) by Levenberg-Marquardt from the best of stage
 // 1 and from START, the better kept (DiagnoseSettings budgets; a time limit in
-// settings.fit.time_limit is shared: half to stage 1). Both starts of stage 2 descend the
+// settings.fit.time_limit is shared: half to stage 1); the better search of stage 2, where its
+// budget ran out while it still descended, continues once with the same budget, to a crawl of
+// kPolishCrawl. Both starts of stage 2 descend the
 // residuals with the same budget, so that the result does not hang on which of the model's
 // equally good fits START holds (refit_test.cpp). The result counts the evaluations of both.
 FitResult staged_refit(const Network& start, const std::vector<int>& kept, const std::vector<int>& added, const std::vector<FitDataSet>& data,

@@ -117,7 +117,7 @@ TEST_CASE("diagnose, sine history: a load cell's zero of -8 % of the force that 
   CHECK(d.added_statement == std::vector<std::string>{"--data 'hidden_history.csv, force_offset = free'"});
 }
 
-TEST_CASE("diagnose, sine history: without an offset, offset is screened and not named; with every offset fitted it is not screened") {
+TEST_CASE("diagnose, sine history: without an offset, offset is screened and not named, and with every offset fitted it is not screened") {
   const runtime::FitDataSet clean = test::history_measurement(kTruth, runtime::quasistatic_sine({1.0, 0.5}, 0.5, 2, 200), 42);
   const dx::Diagnosis d = test::diagnose(kStart, {clean});
   CHECK(d.effect != dx::Effect::offset);
