@@ -45,6 +45,18 @@ double evaluation_work(const Network& network, const std::vector<FitDataSet>& da
   return work;
 }
 
+// The free stiffnesses of NETWORK's linear springs in its root parallel block among KEPT: the
+// linear stiffness a new element may need taken back from the model (free play engaging at the
+// larger amplitudes stiffens the data where the fitted springs had stiffened the model
+// everywhere), which stage 1 frees beside the new parameters (as the screen refits a history's linear
+// stiffness beside every trial, screen.cpp).
+std::vector<int> root_spring_stiffnesses(const Network& network, const std::vector<int>& kept) {
+  std::vector<int> out;
+  for (const auto& e : network.model().root.children)
+    if (e.kind == lang::ElementKind::spring && std::find(kept.begin(), kept.end(), e.parameters[0]) != kept.end()) out.push_back(e.parameters[0]);
+  return out;
+}
+
 }  // namespace
 
 int affordable_evaluations(const Network& network, const std::vector<FitDataSet>& data, const DiagnoseSettings& s, int floor) {
@@ -71,10 +83,14 @@ FitResult staged_refit(const Network& start, const std::vector<int>& kept, const
   const bool thorough = affordable >= settings.thorough_evaluations * (n_added + n_all);
   const auto started = std::chrono::steady_clock::now();
   auto seconds = [&] { return std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count(); };
-  // Stage 1: the global look, then a local search of the new parameters from each of its best points.
+  // Stage 1: the global look, then a local search of the new parameters and the root springs'
+  // stiffnesses from each of its best points.
   const int samples = std::max(settings.global_samples * n_added, std::min(affordable / 4, 4 * settings.global_samples * n_added));
   const std::vector<SampledStart> starts = global_look(start, added, data, settings.fit.score, samples, settings.global_starts);
-  const int per_start = thorough ? affordable / (2 * static_cast<int>(starts.size())) : kLocalJacobians * (n_added + 1);
+  std::vector<int> first_free = added;
+  for (int i : root_spring_stiffnesses(start, kept)) first_free.push_back(i);
+  std::sort(first_free.begin(), first_free.end());
+  const int per_start = thorough ? affordable / (2 * static_cast<int>(starts.size())) : kLocalJacobians * (static_cast<int>(first_free.size()) + 1);
   std::optional<FitResult> stage1;
   int evaluations = samples + 1, non_finite = 0;
   for (std::size_t k = 0; k < starts.size(); ++k) {
@@ -84,7 +100,7 @@ FitResult staged_refit(const Network& start, const std::vector<int>& kept, const
       if (*first.time_limit <= 0.0 && stage1) break;
       first.time_limit = std::max(1e-3, *first.time_limit);
     }
-    FitResult local = fit(start.with_parameters(starts[k].values), added, data, first);
+    FitResult local = fit(start.with_parameters(starts[k].values), first_free, data, first);
     evaluations += local.evaluations, non_finite += local.non_finite;
     const bool interrupted = local.interrupted;
     if (!stage1 || local.objective < stage1->objective) stage1 = std::move(local);

@@ -33,7 +33,10 @@ inline constexpr double kPolishCrawl = 1e-4;
 FitSettings local_search(const FitSettings& base, int evaluations);
 
 // Stage 1: the ADDED parameters sampled over the range the data support (global_look.hpp), then
-// searched by Levenberg-Marquardt from START and the best samples;
+// searched by Levenberg-Marquardt from START and the best samples, together with the
+// stiffnesses of the linear springs in the root block among KEPT (the stiffness the new element
+// takes over: free play engaging at the larger amplitudes, whose stiffening the fitted springs
+// had spread over every amplitude);
 // stage 2: every free parameter (KEPT and ADDED) by Levenberg-Marquardt from the best of stage
 // 1 and from START, the better kept (DiagnoseSettings budgets; a time limit in
 // settings.fit.time_limit is shared: half to stage 1); the better search of stage 2, where its

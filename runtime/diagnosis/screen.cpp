@@ -63,7 +63,8 @@ Signature simulate_alone(const Trial& trial, const std::vector<FitDataSet>& data
 }
 
 
-// Objective of the fitted model plus sum_b coefficient[b] * basis[b], as fit_scoring.hpp scores it.
+// Objective of the fitted model plus sum_b coefficient[b] * basis[b] and a refitted linear
+// stiffness (per data set), as fit_scoring.hpp scores it.
 // Called thousands of times a screen: the fitted K*_m of every harmonic point is formed once, and
 // each call writes the sums into scratch copies of the fitted predictions (not thread-safe).
 class AddedObjective {
@@ -84,17 +85,11 @@ class AddedObjective {
       const FitDataSet& set = data_[f];
       Prediction& p = scratch_[f];
       if (set.is_harmonic()) {
-        for (std::size_t j = 0; j < p.points.size(); ++j) {
-          CycleMeasures& m = p.points[j].measures;
-          Complex k = base_k_[f][j];
-          for (std::size_t b = 0; b < basis.size(); ++b) k += coefficient[b] * basis[b]->harmonic[f][j];
-          m.stiffness = std::abs(k);
-          m.phase = std::arg(k);
-        }
-      } else {
-        std::copy(base_force_[f].begin(), base_force_[f].end(), p.force.begin());
-        add_history(set, basis, coefficient, f, p.force);
+        sum += harmonic_objective(f, basis, coefficient);
+        continue;
       }
+      std::copy(base_force_[f].begin(), base_force_[f].end(), p.force.begin());
+      add_history(set, basis, coefficient, f, p.force);
       residuals_.clear();
       append_residuals(set, p, score_, residuals_);
       for (double r : residuals_) sum += r * r;
@@ -103,6 +98,55 @@ class AddedObjective {
   }
 
  private:
+  // Harmonic set F: K*_m + sum a s + beta at every point, beta (real, N/mm) the refit of the
+  // linear stiffness, as add_history refits it on a history: a trial that explains part of the
+  // stiffness (free play engaging at the larger amplitudes, say) is sized with the springs the
+  // model already has lowered to make room for it, as the refit will (refit.hpp, stage 1).
+  // Gauss-Newton on beta from 0, two steps each kept only where it lowers the objective: exact
+  // in one for the least-squares objective (its residuals are affine in beta), close for phi
+  // (eq. 5.38).
+  double harmonic_objective(std::size_t f, const std::vector<const Signature*>& basis, const std::vector<double>& coefficient) const {
+    const FitDataSet& set = data_[f];
+    Prediction& p = scratch_[f];
+    trial_k_.resize(p.points.size());
+    double scale = 0.0;
+    for (std::size_t j = 0; j < p.points.size(); ++j) {
+      Complex k = base_k_[f][j];
+      for (std::size_t b = 0; b < basis.size(); ++b) k += coefficient[b] * basis[b]->harmonic[f][j];
+      trial_k_[j] = k;
+      scale = std::max(scale, std::abs(k));
+    }
+    auto residuals_at = [&](double beta, std::vector<double>& out) {
+      for (std::size_t j = 0; j < p.points.size(); ++j) {
+        CycleMeasures& m = p.points[j].measures;
+        m.stiffness = std::abs(trial_k_[j] + beta);
+        m.phase = std::arg(trial_k_[j] + beta);
+      }
+      out.clear();
+      append_residuals(set, p, score_, out);
+      double sum = 0.0;
+      for (double r : out) sum += r * r;
+      return sum;
+    };
+    double beta = 0.0, best = residuals_at(0.0, residuals_);
+    const double h = 1e-6 * std::max(scale, 1e-300);
+    for (int step = 0; step < 2 && std::isfinite(best); ++step) {
+      residuals_at(beta + h, moved_);
+      double jr = 0.0, jj = 0.0;
+      for (std::size_t i = 0; i < moved_.size(); ++i) {
+        const double d = (moved_[i] - residuals_[i]) / h;
+        jr += d * residuals_[i], jj += d * d;
+      }
+      if (!(jj > 0.0)) break;
+      const double next = beta - jr / jj;
+      const double value = residuals_at(next, moved_);
+      if (!(value < best)) break;
+      beta = next, best = value;
+      residuals_.swap(moved_);
+    }
+    return best;
+  }
+
   // F_m + sum a s, then beta u + dc with beta the least-squares refit of the linear stiffness
   // and, for a free force offset (fit/force_offset.hpp), dc that of the offset, jointly:
   //   [u.u  sum u] [beta]   [u.r  ]
@@ -136,7 +180,8 @@ class AddedObjective {
   std::vector<std::vector<Complex>> base_k_;     // per set: K*_m per harmonic point
   std::vector<std::vector<double>> base_force_;  // per set: F_m per history sample
   mutable std::vector<Prediction> scratch_;      // per set: the fitted prediction, its measures or force rewritten per call
-  mutable std::vector<double> residuals_;
+  mutable std::vector<double> residuals_, moved_;
+  mutable std::vector<Complex> trial_k_;  // per harmonic point of the set at hand: K*_m + sum a s
 };
 
 // argmin over [lo, hi] of a unimodal-enough g: a scan of `count` points (log-spaced when lo > 0),

@@ -17,6 +17,10 @@ namespace {
 // decrease tolerance over this many iterations.
 constexpr std::size_t kStagnationWindow = 5;
 constexpr double kStagnationFactor = 100.0;
+// A differenced column below this share of the largest column's norm is numerically zero: its
+// parameter's effect on the residuals is below 1e-6 of the strongest's (below what a
+// differencing step resolves on the time-stepped paths), and it is held for that Jacobian.
+constexpr double kInsensitiveColumn = 1e-6;
 
 // r(x), or an empty vector where it is not finite or cannot be evaluated.
 Eigen::VectorXd try_residuals(const LeastSquaresProblem& problem, const Eigen::VectorXd& x) {
@@ -129,15 +133,23 @@ LevenbergMarquardtResult levenberg_marquardt(const LeastSquaresProblem& problem,
     // near singular the step runs into many bounds): || Q^T r ||^2 bounds the gain above, and
     // any damped step within the same box (the first one tried, needed anyway) below, so the
     // undamped step is solved only where neither bound decides.
+    // A column numerically zero against the largest (kInsensitiveColumn) carries no information
+    // on its parameter: the objective is flat there at the differencing step (a gap's centre
+    // where the data see only its width, a shape its element's force does not reach), and its
+    // scale, however floored, would let the linear model send that parameter across its box on
+    // the noise of its gradient (every such trial rejected, the damping driven up until every
+    // other step is negligible too). Such parameters are held for this Jacobian's steps.
+    Eigen::VectorXd step_lower = lower - out.x, step_upper = upper - out.x;
+    for (Eigen::Index c = 0; c < n; ++c)
+      if (norms(c) <= kInsensitiveColumn * norms.maxCoeff()) step_lower(c) = step_upper(c) = 0.0;
     const DampedSteps model(j, out.residuals, settings.threads);
     const double tolerance = settings.decrease_tolerance * out.value, near = kStagnationFactor * tolerance;
     std::optional<DampedStep> first;
     double undamped = model.decrease_bound();
     if (undamped > tolerance) {
-      if (undamped > near) first = model.step(lambda, scale, lower - out.x, upper - out.x);
-      undamped = first && first->predicted > near
-                     ? first->predicted
-                     : model.step(0.0, scale, lower - out.x, upper - out.x, first ? first->d : Eigen::VectorXd()).predicted;
+      if (undamped > near) first = model.step(lambda, scale, step_lower, step_upper);
+      undamped = first && first->predicted > near ? first->predicted
+                                                  : model.step(0.0, scale, step_lower, step_upper, first ? first->d : Eigen::VectorXd()).predicted;
     }
     if (complete && undamped <= tolerance) {
       out.status = "FTOL_REACHED";
@@ -152,7 +164,7 @@ LevenbergMarquardtResult levenberg_marquardt(const LeastSquaresProblem& problem,
         out.status = "NO_DESCENT";
         return out;
       }
-      const DampedStep step = first ? *std::exchange(first, std::nullopt) : model.step(lambda, scale, lower - out.x, upper - out.x);
+      const DampedStep step = first ? *std::exchange(first, std::nullopt) : model.step(lambda, scale, step_lower, step_upper);
       const Eigen::VectorXd trial = (out.x + step.d).cwiseMax(lower).cwiseMin(upper);
       const Eigen::VectorXd trial_r = try_residuals(problem, trial);
       const double trial_value = trial_r.size() == out.residuals.size() ? trial_r.squaredNorm() : std::numeric_limits<double>::infinity();

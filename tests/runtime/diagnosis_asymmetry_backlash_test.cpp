@@ -76,3 +76,14 @@ TEST_CASE("asymmetry is screened on histories only, backlash on harmonic tables 
   const auto family = dx::trial_family(dx::Effect::asymmetry, with_history, "s");
   CHECK(std::any_of(family.begin(), family.end(), [](const dx::Trial& t) { return t.shape == dx::Shape::asymmetric_friction; }));
 }
+
+// On a harmonic table the measures are even in the play's centre: at a centred start its
+// column is zero and, at any start, nearly so where both sides engage. The refit's searches
+// once stalled there (every damped step sent the centre across its box; levenberg_marquardt
+// holds such a parameter now) and left the spring behind the play where the screen put it.
+TEST_CASE("diagnose, harmonic table: a spring behind off-centre free play is backlash") {
+  const std::string truth = R"(model truth { spring s (k = 200 N/mm)  friction f (k = 300 N/mm, uy = 50 um)
+                               series b { gap g (width = 1 mm, center = 0.3 mm)  spring k (k = 600 N/mm) } })";
+  const dx::Diagnosis d = diagnose(kStart, {test::harmonic_measurement(truth, 34, {0.05, 0.1, 0.2, 0.3, 0.45, 0.6, 0.8, 1.0, 1.5, 2.0})});
+  require_effect(d, dx::Effect::backlash);
+}

@@ -168,3 +168,26 @@ TEST_CASE("a crawl tolerance ends the search where a Jacobian's step gains less 
   CHECK(plain.iterations > going.iterations);  // Marquardt's scaling keeps the largest column norm: the steps shrink as J does
   CHECK(std::abs(plain.x(0)) < 1e-3);
 }
+
+// r_i = a t_i - y_i + c^4 + 1e-10 (-1)^i c with y = 2 t: from (0, 0) the column of c is
+// numerically zero (1e-10 against 5.5 for a: a parameter the residuals feel only through
+// solver noise), its gradient noise. Scaled by its own column norm (Marquardt, MINPACK), every
+// damped step sent c across its box, where c^4 = 81 made every trial worse, and the damping
+// rose until the steps in a were negligible too: the search crawled through all its
+// iterations (MAXITER_REACHED, c wandered to 1.8e-3); held for that Jacobian, the search
+// solves a in a few.
+TEST_CASE("a parameter the residuals do not feel at the start is held: the others still descend") {
+  const VectorXd t = VectorXd::LinSpaced(7, 1.0, 4.0);
+  VectorXd alternating(7);
+  for (Eigen::Index i = 0; i < 7; ++i) alternating(i) = i % 2 == 0 ? 1.0 : -1.0;
+  LeastSquaresProblem p;
+  p.residuals = [&](const VectorXd& x) {
+    return ((x(0) - 2.0) * t.array() + std::pow(x(1), 4) + 1e-10 * x(1) * alternating.array()).matrix().eval();
+  };
+  const auto r = levenberg_marquardt(p, vec({0.0, 0.0}), vec({-10.0, -3.0}), vec({10.0, 3.0}), {});
+  CAPTURE(r.status);
+  CHECK(r.x(0) == doctest::Approx(2.0).epsilon(1e-9).scale(0.0));
+  CHECK(std::abs(r.x(1)) < 1e-3);
+  CHECK(r.value < 1e-18);
+  CHECK(r.iterations <= 5);
+}
