@@ -18,7 +18,6 @@
 #include "runtime/dae/dae_integrator_detail.hpp"
 
 #include <cmath>
-#include <utility>
 
 namespace rheo::runtime {
 
@@ -47,12 +46,10 @@ void DaeIntegrator::bouc_wen_roots(const DriveState& drive, const double* yp, do
 // likewise. Without it, a bouc_wen whose e' decays to 0 (the one that carries the chain's force
 // below its yield force while its saturated neighbour in series yields: e' = F'/k_t with F'
 // -> 0) had IDA's rounding of e' cross zero every 1e-10 s, 7e5 events in 2 ms of seed 37, model
-// 85. Inside the band the law may take the other branch: its z' is then off by at most
-// (k/fy) |z|^n |e'|, so by (k/fy) times the elongation traversed there, at most the band times
-// the duration: 1e-6 of the length scale over a history (whose velocity scale is the length over
-// the duration), 2 pi 1e-6 of the amplitude a cycle. At IDA's rtol (band 1e-8 of the velocity
-// scale) the model still took 886 events in its 1 s history (5.4 s); from 10 times that on, 35-45
-// (0.85 s), the forces within 1e-7 of max |F| of each other.
+// 85; with the band its 1 s history takes 18 events. Inside the band the law may take the other
+// branch: its z' is then off by at most (k/fy) |z|^n |e'|, so by (k/fy) times the elongation
+// traversed there, at most the band times the duration: 1e-6 of the length scale over a history
+// (whose velocity scale is the length over the duration), 2 pi 1e-6 of the amplitude a cycle.
 double DaeIntegrator::bouc_wen_rate_band() const { return 100.0 * options_.relative_tolerance * options_.velocity_scale; }
 
 void DaeIntegrator::start_bouc_wen_directions() {
@@ -69,23 +66,19 @@ void DaeIntegrator::set_bouc_wen_root_directions() {
 }
 
 void DaeIntegrator::reverse_bouc_wen_directions(const std::vector<int>& found) {
-  for (int b = 0; b < layout_.bouc_wen_states; ++b) {
-    if (at(found, 2 * layout_.switch_forces + b) == 0) continue;
-    at(bouc_wen_direction_, b) = static_cast<std::int8_t>(-at(bouc_wen_direction_, b));
-    bouc_wen_reversed_ = true;
-  }
+  for (int b = 0; b < layout_.bouc_wen_states; ++b)
+    if (at(found, 2 * layout_.switch_forces + b) != 0) at(bouc_wen_direction_, b) = static_cast<std::int8_t>(-at(bouc_wen_direction_, b));
 }
 
 // The rates of one backward-Euler step under the current directions; where a bouc_wen's e' there
-// opposes its d (the drive's rate jumped at a sample, or a start), d follows e' and the rates are
-// taken again. A root with direction -d would never see such an e' cross, and the law would stay
-// on the wrong branch until the next sample. The law is continuous at e' = 0, so where e' keeps
-// changing sign between the two (a reversal within roundoff) the last directions are kept.
+// is beyond the band against its d, d follows e' and the rates are taken again. At every restart:
+// at a start or a drive sample (the drive's rate jumps), and after a root. A root with direction
+// -d never sees such an e' cross, and the law keeps the wrong branch: two bouc_wen in series
+// whose rates reverse together at a drive reversal (differential seed 41, model 38) had IDA
+// report the first one's root again at the same instant, flipping its d back while its e' was
+// already beyond the band; its z then ran to -2.8 (K off by 0.9 %). Where e' keeps changing
+// sign between attempts (a reversal within the band's width) the last directions are kept.
 void DaeIntegrator::bouc_wen_consistent_rates(double t, double horizon) {
-  if (std::exchange(bouc_wen_reversed_, false)) {
-    initial_rates_by_euler_step(t, horizon);
-    return;
-  }
   const DriveState drive = drive_at(t);
   const double band = bouc_wen_rate_band();
   bool aligned = false, flipped = false;

@@ -167,13 +167,9 @@ class DaeIntegrator {
   void set_bouc_wen_root_directions();
   // Flips the direction of each bouc_wen whose root FOUND (IDAGetRootInfo's layout) reports.
   void reverse_bouc_wen_directions(const std::vector<int>& found);
-  // yp_ consistent at T for y_ (initial_rates_by_euler_step). At a start or a drive sample each
-  // bouc_wen's direction becomes that of its e' over that step; after a root, which IDA's own
-  // solution located, the reversed directions are kept (that step's 1e-6 of the drive's time
-  // scale may average over a faster swing of e', and realigning to it chattered: the root was
-  // found again at once, 40 events at one instant of differential seed 37, model 85).
+  // yp_ consistent at T for y_ (initial_rates_by_euler_step), with each bouc_wen's direction that
+  // of its e' there wherever e' is beyond bouc_wen_rate_band() against it.
   void bouc_wen_consistent_rates(double t, double horizon);
-  bool bouc_wen_reversed_ = false;  // the next restart follows a Bouc-Wen root
   // [mm/s]: how far e' must cross zero against d (dae_bouc_wen.cpp).
   double bouc_wen_rate_band() const;
   // Per Bouc-Wen state: +1 or -1, the sign of e' whose branch its law takes until its next root

@@ -11,46 +11,14 @@
 
 using namespace rheo;
 
-namespace {
-
-// Differential seed 37, model 85 (solver_choice_test): sharp bouc_wen elements (n up to 3.8,
-// yielding at 13 um) in series blocks beside inerters, five blocks deep.
-constexpr const char* kSeed37Model85 = R"(model m {
-series {
-spring (k = 43381.5 N/mm)
-parallel {
-bouc_wen (k = 12.5907 N/mm, n = 1.02764, fy = 3.57376 N)
-series {
-yeoh (D10 = 229.576 N/mm, D20 = -24.0131 N/mm^3, D30 = 15.3292 N/mm^5)
-series { spring (k = 40.0703 N/mm) parallel { inerter (b = 0.0122674 kg) dashpot (c = 2.89935 N*s/mm) } }
-}
-series {
-bouc_wen (k = 51.0288 N/mm, n = 3.76472, fy = 0.675519 N)
-parallel {
-bouc_wen (k = 372.424 N/mm, n = 2.2137, uy = 35.0081 um)
-series {
-spring (k = 140.772 N/mm)
-yeoh (D10 = 57.8861 N/mm, D20 = -12.2415 N/mm^3, D30 = 2.41895 N/mm^5)
-}
-}
-bouc_wen (k = 157.453 N/mm, n = 3.17353, fy = 0.554047 N)
-}
-}
-series { spring (k = 110.458 N/mm) parallel { inerter (b = 0.0254594 kg) dashpot (c = 0.113719 N*s/mm) } }
-}
-quadratic_dashpot (cq = 0.0162639 N*s^2/mm^2)
-})";
-
-}  // namespace
-
 // On the two-tone drive (1 ms samples) IDA's corrector failed at every step size 0.1 us after the
 // sample at 5 ms, where the elongation rates of the bouc_wen elements reverse behind one at
 // z = 0.999998 (IDA_CONV_FAIL; `solver = auto` takes fixed steps here, solver_choice_test). With
 // the branch fixed between roots of e' it runs; against fixed steps at 64 and 128 steps a sample,
-// extrapolated: observed 2.4e-7 of max |F| (fixed steps at one step a sample: 1.3e-2), with 4
+// extrapolated: observed 2.4e-7 of max |F| (fixed steps at one step a sample: 1.3e-2), with 2
 // Bouc-Wen events.
 TEST_CASE("IDA runs sharp bouc_wen elements in series blocks beside inerters (differential seed 37, model 85)") {
-  const auto network = test::network_from(kSeed37Model85, "m");
+  const auto network = test::network_from(test::kSeed37Model85, "m");
   runtime::DaeStatistics statistics;
   const auto history = runtime::dae_history(network, test::two_tone_drive(1), false, &statistics);
   const double gap = test::gap_to_extrapolated_fixed_steps(network, history.force);
@@ -63,7 +31,7 @@ TEST_CASE("IDA runs sharp bouc_wen elements in series blocks beside inerters (di
 // steps (not at samples), against fixed steps at 2048 and 4096 steps a cycle, extrapolated:
 // observed 7e-7 and 1.1e-5 in K, 3e-7 and 9e-6 in d.
 TEST_CASE("IDA's harmonic points of differential seed 37, model 85 agree with fixed steps") {
-  const auto network = test::network_from(kSeed37Model85, "m");
+  const auto network = test::network_from(test::kSeed37Model85, "m");
   for (const auto& [amplitude, frequency] : {std::pair{0.05, 2.0}, std::pair{0.4, 20.0}}) {
     CAPTURE(frequency);
     const auto point = test::ida_point_against_fixed_steps(network, amplitude, frequency);
@@ -71,4 +39,27 @@ TEST_CASE("IDA's harmonic points of differential seed 37, model 85 agree with fi
     CHECK(point.gap.stiffness < 1e-4);
     CHECK(point.gap.damping < 1e-4);
   }
+}
+
+// Differential seed 41, model 38: two bouc_wen in series, nothing else at the node between them,
+// beside a dashpot and a spring. At each drive reversal both elongation rates reverse together;
+// when IDA reported the softer one's root a second time at the same instant, flipping its
+// direction back while its e' was already beyond the band, no root was left to see it, its z ran
+// to -2.8 and K was off by 0.9 % (d by 0.035); every restart now realigns the directions.
+// Observed here within 1e-5 of fixed steps, extrapolated.
+TEST_CASE("two bouc_wen in series reversing together at the drive's reversals (differential seed 41, model 38)") {
+  const auto network = test::network_from(R"(model m {
+series {
+bouc_wen (k = 52.1003 N/mm, n = 1.94864, fy = 2.90096 N)
+bouc_wen (k = 293.632 N/mm, n = 2.36225, fy = 8.24911 N)
+}
+dashpot (c = 8.71785 N*s/mm)
+spring (k = 203.104 N/mm)
+})",
+                                          "m");
+  const auto point = test::ida_point_against_fixed_steps(network, 0.3, 2.0);
+  REQUIRE(point.ida.converged);
+  MESSAGE("K ", point.gap.stiffness, ", d ", point.gap.damping);
+  CHECK(point.gap.stiffness < 1e-4);
+  CHECK(point.gap.damping < 1e-4);
 }
