@@ -46,7 +46,7 @@ void DaeIntegrator::bouc_wen_roots(const DriveState& drive, const double* yp, do
 // likewise. Without it, a bouc_wen whose e' decays to 0 (the one that carries the chain's force
 // below its yield force while its saturated neighbour in series yields: e' = F'/k_t with F'
 // -> 0) had IDA's rounding of e' cross zero every 1e-10 s, 7e5 events in 2 ms of seed 37, model
-// 85; with the band its 1 s history takes 18 events. Inside the band the law may take the other
+// 85; with the band its two-tone history in dae_bouc_wen_test takes 4. Inside the band the law may take the other
 // branch: its z' is then off by at most (k/fy) |z|^n |e'|, so by (k/fy) times the elongation
 // traversed there, at most the band times the duration: 1e-6 of the length scale over a history
 // (whose velocity scale is the length over the duration), 2 pi 1e-6 of the amplitude a cycle.
@@ -65,19 +65,28 @@ void DaeIntegrator::set_bouc_wen_root_directions() {
   for (int b = 0; b < layout_.bouc_wen_states; ++b) at(root_direction_, 2 * layout_.switch_forces + b) = -at(bouc_wen_direction_, b);
 }
 
+// IDA goes on from the root without a restart: both branches give z' = (k/fy) e' (1 - |z|^n) or
+// (k/fy) e' at e' = -d b, which differ by (k/fy) b |z|^n, 1e-6 of the law's scale, so IDA's history
+// stays consistent, and its Newton matrix, formed on the old branch, is formed again where its
+// corrector does not converge. A restart took the rates of a backward-Euler step of 1e-6 of the
+// drive's time scale, whose positions' rates carry the balances' residual over that step
+// (IDA's tolerance over 1e-6 of the time scale: far beyond the band): their e' could oppose the
+// crossing IDA had just located, and the roots chattered (differential seed 41, model 11: 1e5
+// events 5e-14 s apart in 10 s), or, kept, left a direction against e' (seed 41, model 38: z ran to -2.8).
 void DaeIntegrator::reverse_bouc_wen_directions(const std::vector<int>& found) {
   for (int b = 0; b < layout_.bouc_wen_states; ++b)
     if (at(found, 2 * layout_.switch_forces + b) != 0) at(bouc_wen_direction_, b) = static_cast<std::int8_t>(-at(bouc_wen_direction_, b));
+  set_bouc_wen_root_directions();
+  sundials::check_ida(IDASetRootDirection(solver_->ida.get(), root_direction_.data()), "IDASetRootDirection");
+  ++events_;
 }
 
 // The rates of one backward-Euler step under the current directions; where a bouc_wen's e' there
-// is beyond the band against its d, d follows e' and the rates are taken again. At every restart:
-// at a start or a drive sample (the drive's rate jumps), and after a root. A root with direction
-// -d never sees such an e' cross, and the law keeps the wrong branch: two bouc_wen in series
-// whose rates reverse together at a drive reversal (differential seed 41, model 38) had IDA
-// report the first one's root again at the same instant, flipping its d back while its e' was
-// already beyond the band; its z then ran to -2.8 (K off by 0.9 %). Where e' keeps changing
-// sign between attempts (a reversal within the band's width) the last directions are kept.
+// is beyond the band against its d, d follows e' and the rates are taken again: at a start, at a
+// drive sample, where the drive's rate jumps, and where solve_to restarts after a failure. A
+// root with direction -d never sees such an e' cross, and the law would keep the wrong branch
+// until the next sample. Where e' keeps changing sign between attempts (a reversal within the
+// band's width) the last directions are kept.
 void DaeIntegrator::bouc_wen_consistent_rates(double t, double horizon) {
   const DriveState drive = drive_at(t);
   const double band = bouc_wen_rate_band();

@@ -236,7 +236,6 @@ void DaeIntegrator::switch_modes(double t, const std::vector<int>& found) {
       mode = 0;
     }
   }
-  reverse_bouc_wen_directions(found);
   ++events_;
   restart(t, true);
 }
@@ -304,7 +303,8 @@ double DaeIntegrator::solve_to(double t_stop) {
   time_ = t_reached;
   if (flag == IDA_ROOT_RETURN) {
     sundials::check_ida(IDAGetRootInfo(mem, roots_found_.data()), "IDAGetRootInfo");
-    switch_modes(t_reached, roots_found_);
+    if (nested_bouc_wen_) reverse_bouc_wen_directions(roots_found_);  // no sliders or gaps: Bouc-Wen roots only
+    else switch_modes(t_reached, roots_found_);
   }
   return t_reached;
 }

@@ -13,10 +13,10 @@
 //                     sign of the drive's rate u' for a bouc_wen between terminal and ground
 // Events (IDA root functions, two per switch edge, then one per Bouc-Wen state): a stuck
 // slider's force reaches +-fy; a slipping slider's rate crosses zero; an open gap's elongation
-// reaches +-w/2; a closed gap's force changes sign; a bouc_wen's e' crosses zero against d. At
-// an event the mode changes, the coordinates are re-chosen, IDA is re-initialised and IDACalcIC
-// makes the algebraic unknowns and the rates consistent (with a bouc_wen inside a block, where
-// there are no sliders or gaps, a backward-Euler step makes the rates consistent instead).
+// reaches +-w/2; a closed gap's force changes sign; a bouc_wen's e' crosses a band around zero
+// against d. At an event the mode changes, the coordinates are re-chosen, IDA is re-initialised
+// and IDACalcIC makes the algebraic unknowns and the rates consistent; at a Bouc-Wen root d
+// flips and IDA goes on (the law is continuous there; dae_bouc_wen.cpp).
 //
 // The drive is a sine (its rate and acceleration exact) or piecewise linear: each sample is a
 // stop time at which the rate jumps, and the integration restarts there.
@@ -165,10 +165,11 @@ class DaeIntegrator {
   void start_bouc_wen_directions();
   // root_direction_'s Bouc-Wen entries: e' may cross zero only from the side of its direction.
   void set_bouc_wen_root_directions();
-  // Flips the direction of each bouc_wen whose root FOUND (IDAGetRootInfo's layout) reports.
+  // At a root: flips the direction of each bouc_wen whose root FOUND (IDAGetRootInfo's layout)
+  // reports, and IDA goes on without a restart (dae_bouc_wen.cpp).
   void reverse_bouc_wen_directions(const std::vector<int>& found);
-  // yp_ consistent at T for y_ (initial_rates_by_euler_step), with each bouc_wen's direction that
-  // of its e' there wherever e' is beyond bouc_wen_rate_band() against it.
+  // At a restart: yp_ consistent at T for y_ (initial_rates_by_euler_step), with each bouc_wen's
+  // direction that of its e' there wherever e' is beyond bouc_wen_rate_band() against it.
   void bouc_wen_consistent_rates(double t, double horizon);
   // [mm/s]: how far e' must cross zero against d (dae_bouc_wen.cpp).
   double bouc_wen_rate_band() const;

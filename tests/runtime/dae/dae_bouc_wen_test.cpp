@@ -15,7 +15,7 @@ using namespace rheo;
 // sample at 5 ms, where the elongation rates of the bouc_wen elements reverse behind one at
 // z = 0.999998 (IDA_CONV_FAIL; `solver = auto` takes fixed steps here, solver_choice_test). With
 // the branch fixed between roots of e' it runs; against fixed steps at 64 and 128 steps a sample,
-// extrapolated: observed 2.4e-7 of max |F| (fixed steps at one step a sample: 1.3e-2), with 2
+// extrapolated: observed 2.4e-7 of max |F| (fixed steps at one step a sample: 1.3e-2), with 4
 // Bouc-Wen events.
 TEST_CASE("IDA runs sharp bouc_wen elements in series blocks beside inerters (differential seed 37, model 85)") {
   const auto network = test::network_from(test::kSeed37Model85, "m");
@@ -42,11 +42,12 @@ TEST_CASE("IDA's harmonic points of differential seed 37, model 85 agree with fi
 }
 
 // Differential seed 41, model 38: two bouc_wen in series, nothing else at the node between them,
-// beside a dashpot and a spring. At each drive reversal both elongation rates reverse together;
-// when IDA reported the softer one's root a second time at the same instant, flipping its
-// direction back while its e' was already beyond the band, no root was left to see it, its z ran
-// to -2.8 and K was off by 0.9 % (d by 0.035); every restart now realigns the directions.
-// Observed here within 1e-5 of fixed steps, extrapolated.
+// beside a dashpot and a spring. At each drive reversal both elongation rates reverse together.
+// When IDA restarted at a root, from the rates of a backward-Euler step, it reported the softer
+// one's root a second time at the same instant, flipping its direction back while its e' was
+// already beyond the band; no root was left to see it, its z ran to -2.8 and K was off by 0.9 %
+// (d by 0.035). IDA now goes on from a Bouc-Wen root without a restart. Observed within 1.2e-5
+// of fixed steps, extrapolated.
 TEST_CASE("two bouc_wen in series reversing together at the drive's reversals (differential seed 41, model 38)") {
   const auto network = test::network_from(R"(model m {
 series {
