@@ -8,8 +8,8 @@
 // parallel block, first order in nested dashpots). A network with a bouc_wen inside a series
 // block (between internal nodes) takes fixed steps whatever its inerters and depth: they
 // integrate the law over each step's elongation increment, within 1.3e-2 of max |F| at one step
-// a sample on differential seed 37, model 85, and about 90 times faster than IDA there (0.01 s
-// against 0.9 s for a 1 s history, docs/numerics.md). IDA, which failed there until the law's
+// a sample on differential seed 37, model 85, and far faster than IDA there (0.01 s against
+// 3.4 s for a 1 s history, docs/numerics.md). IDA, which failed there until the law's
 // loading switch became an event (dae_bouc_wen.cpp), is the accurate choice (2.4e-7).
 #pragma once
 

@@ -57,8 +57,8 @@ TEST_CASE("auto takes fixed steps for a network with a bouc_wen inside a series 
 // blocks beside inerters, five blocks deep. Auto took IDA (the inerters, the depth), whose
 // corrector failed at every step size 0.1 us after the drive sample at 5 ms, where the elongation
 // rates of the bouc_wen elements reverse behind one at z = 0.999998 (IDA_CONV_FAIL: a default
-// `rheo simulate` exited 5; IDA runs it now, dae_bouc_wen_test). Auto takes fixed steps, about
-// 90 times faster there; on the differential test's two-tone drive
+// `rheo simulate` exited 5; IDA runs it now, dae_bouc_wen_test). Auto takes fixed steps, far
+// faster there; on the differential test's two-tone drive
 // at one step a sample (the inerters' w dt up to 1.8) they lie within the differential test's
 // history tolerance, 2e-2 of max |F|, of fixed steps at 64 and 128 a sample, extrapolated
 // (observed 1.3e-2).
