@@ -42,7 +42,8 @@ void DaeIntegrator::rechoose_coordinates(double t) {
     at(root_direction_, 2 * l) = mode == 0 ? 1 : -mode;
     at(root_direction_, 2 * l + 1) = mode == 0 ? -1 : 0;
   }
-  if (layout_.switch_forces > 0) sundials::check_ida(IDASetRootDirection(solver_->ida.get(), root_direction_.data()), "IDASetRootDirection");
+  set_bouc_wen_root_directions();
+  if (root_count() > 0) sundials::check_ida(IDASetRootDirection(solver_->ida.get(), root_direction_.data()), "IDASetRootDirection");
 }
 
 // After IDACalcIC: a gap closed under tension opens, and of the sliders stuck beyond their yield
@@ -134,7 +135,7 @@ void DaeIntegrator::restart(double t, bool modes_changed) {
   for (int attempt = 0;; ++attempt) {
     if (modes_changed) rechoose_coordinates(t);
     const double horizon = time_horizon();
-    if (nested_bouc_wen_) initial_rates_by_euler_step(t, horizon);  // no sliders or gaps: y is consistent
+    if (nested_bouc_wen_) bouc_wen_consistent_rates(t, horizon);  // no sliders or gaps: y is consistent
     std::copy(y_.begin(), y_.end(), N_VGetArrayPointer(solver_->y.get()));
     std::copy(yp_.begin(), yp_.end(), N_VGetArrayPointer(solver_->yp.get()));
     collect_statistics();  // IDAReInit zeroes IDA's counters
@@ -302,7 +303,8 @@ double DaeIntegrator::solve_to(double t_stop) {
   time_ = t_reached;
   if (flag == IDA_ROOT_RETURN) {
     sundials::check_ida(IDAGetRootInfo(mem, roots_found_.data()), "IDAGetRootInfo");
-    switch_modes(t_reached, roots_found_);
+    if (nested_bouc_wen_) reverse_bouc_wen_directions(roots_found_);  // no sliders or gaps: Bouc-Wen roots only
+    else switch_modes(t_reached, roots_found_);
   }
   return t_reached;
 }

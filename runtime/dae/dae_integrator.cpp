@@ -98,7 +98,7 @@ DaeIntegrator::DaeIntegrator(const DaeGraph& graph, const DaeOptions& options) :
   switch_of_edge_ = index_of_edge(graph.switch_edges);
   bouc_wen_of_edge_ = index_of_edge(graph.bouc_wen_edges);
   const int n = layout_.size();
-  const auto roots = static_cast<std::size_t>(2 * layout_.switch_forces);  // two root functions per switch edge
+  const auto roots = static_cast<std::size_t>(root_count());
   rate_.assign(graph.rate_edges.size(), 0.0);
   acceleration_.assign(graph.rate_edges.size(), 0.0);
   force_.assign(ne, 0.0);
@@ -183,8 +183,8 @@ DaeIntegrator::DaeIntegrator(const DaeGraph& graph, const DaeOptions& options) :
   solver_->euler_matrix.assign(static_cast<std::size_t>(n) * static_cast<std::size_t>(n), 0.0);
   solver_->euler_lu = Eigen::PartialPivLU<Eigen::MatrixXd>(n);
   check_ida(IDASetNonlinConvCoef(mem, options_.newton_tolerance), "IDASetNonlinConvCoef");
-  if (layout_.switch_forces > 0) {
-    check_ida(IDARootInit(mem, 2 * layout_.switch_forces, Callbacks::roots), "IDARootInit");
+  if (root_count() > 0) {
+    check_ida(IDARootInit(mem, root_count(), Callbacks::roots), "IDARootInit");
     check_ida(IDASetNoInactiveRootWarn(mem), "IDASetNoInactiveRootWarn");
   }
 }
@@ -278,7 +278,7 @@ void DaeIntegrator::residual(double t, const double* y, const double* yp, double
     else if (edge.kind == EdgeKind::slider) r[i] = lambda - slip_force(edge, mode);
     else r[i] = lambda;
   }
-  const int s0 = layout_.rate_coordinate(0), w0 = layout_.inerter_velocity(0), z0 = layout_.bouc_wen_state(0);
+  const int s0 = layout_.rate_coordinate(0), w0 = layout_.inerter_velocity(0);
   for (int k = 0; k < layout_.rate_coordinates; ++k) {
     if (k < kinematics_.coordinates) {
       const Edge& edge = at(graph_.edges, at(graph_.rate_edges, at(kinematics_.coordinate_rate, k)));
@@ -292,14 +292,7 @@ void DaeIntegrator::residual(double t, const double* y, const double* yp, double
     const int slot = at(kinematics_.velocity_slot, j);
     if (slot >= 0) r[w0 + slot] = y[w0 + slot] - yp[s0 + j];
   }
-  for (int b = 0; b < layout_.bouc_wen_states; ++b) {
-    const Edge& edge = at(graph_.edges, at(graph_.bouc_wen_edges, b));
-    const double k = edge.p[0], n = edge.p[1], fy = edge.p[2];
-    const double z = y[z0 + b];
-    const double rate = elongation_rate(yp, drive, edge);
-    const double loading = z * rate > 0.0 ? 1.0 : 0.0;
-    r[z0 + b] = yp[z0 + b] - (k / fy) * rate * (1.0 - std::pow(std::abs(z), n) * loading);
-  }
+  bouc_wen_residuals(drive, y, yp, r);
 }
 
 void DaeIntegrator::use_own_jacobian(bool own) {
@@ -356,6 +349,7 @@ void DaeIntegrator::roots(double t, const double* y, const double* yp, double* g
       else out[0] = lambda, out[1] = 1.0;
     }
   }
+  bouc_wen_roots(drive, yp, g + 2 * layout_.switch_forces);
 }
 
 void DaeIntegrator::start(const DriveSignal& drive, const std::vector<double>* positions) {
@@ -367,6 +361,7 @@ void DaeIntegrator::start(const DriveSignal& drive, const std::vector<double>* p
   totals_ = {};
   modes_.assign(static_cast<std::size_t>(layout_.switch_forces), 0);  // sliders stuck, gaps open
   held_.assign(static_cast<std::size_t>(layout_.switch_forces), 0.0);
+  start_bouc_wen_directions();
   std::fill(y_.begin(), y_.end(), 0.0);
   std::fill(yp_.begin(), yp_.end(), 0.0);
   if (positions) {

@@ -8,11 +8,15 @@
 //   slider / gap      stuck or closed: e - e_held = 0;  slipping: lambda -+ fy = 0;  open: lambda = 0
 //   coordinate j      s_j - e_j(x, u) = 0                (slots beyond q: s' = 0)
 //   inerter coord j   w_j - s_j' = 0                     (unused slots: w' = 0)
-//   Bouc-Wen          z' - (k/fy) e' (1 - |z|^n (1 + sgn(z e'))/2) = 0, e' from the node rates
-// Events (IDA root functions, two per switch edge): a stuck slider's force reaches +-fy; a
-// slipping slider's rate crosses zero; an open gap's elongation reaches +-w/2; a closed gap's
-// force changes sign. At an event the mode changes, the coordinates are re-chosen, IDA is
-// re-initialised and IDACalcIC makes the algebraic unknowns and the rates consistent.
+//   Bouc-Wen          z' - (k/fy) e' (1 - |z|^n (1 + sgn(z d))/2) = 0, e' from the node rates,
+//                     d = +-1 the direction of e' fixed between events (dae_bouc_wen.cpp); the
+//                     sign of the drive's rate u' for a bouc_wen between terminal and ground
+// Events (IDA root functions, two per switch edge, then one per Bouc-Wen state): a stuck
+// slider's force reaches +-fy; a slipping slider's rate crosses zero; an open gap's elongation
+// reaches +-w/2; a closed gap's force changes sign; a bouc_wen's e' crosses a band around zero
+// against d. At an event the mode changes, the coordinates are re-chosen, IDA is re-initialised
+// and IDACalcIC makes the algebraic unknowns and the rates consistent; at a Bouc-Wen root d
+// flips and IDA goes on (the law is continuous there; dae_bouc_wen.cpp).
 //
 // The drive is a sine (its rate and acceleration exact) or piecewise linear: each sample is a
 // stop time at which the rate jumps, and the integration restarts there.
@@ -152,6 +156,27 @@ class DaeIntegrator {
   // roots read) become those rates, and IDA is re-initialised with them.
   bool stick_stopping_sliders(double t, double horizon);
   std::vector<double> rates_ahead_;  // scratch of rates_ahead: y' over the next step
+  // The Bouc-Wen rows of the residual, on the branch of each state's direction (dae_bouc_wen.cpp).
+  void bouc_wen_residuals(const DriveState& drive, const double* y, const double* yp, double* r) const;
+  // The Bouc-Wen root functions into G (one per state): e' where it has a direction, else 1.
+  void bouc_wen_roots(const DriveState& drive, const double* yp, double* g) const;
+  // Directions at a start: +1 inside a block (the first restart aligns them), 0 between terminal
+  // and ground.
+  void start_bouc_wen_directions();
+  // root_direction_'s Bouc-Wen entries: e' may cross zero only from the side of its direction.
+  void set_bouc_wen_root_directions();
+  // At a root: flips the direction of each bouc_wen whose root FOUND (IDAGetRootInfo's layout)
+  // reports, and IDA goes on without a restart (dae_bouc_wen.cpp).
+  void reverse_bouc_wen_directions(const std::vector<int>& found);
+  // At a restart: yp_ consistent at T for y_ (initial_rates_by_euler_step), with each bouc_wen's
+  // direction that of its e' there wherever e' is beyond bouc_wen_rate_band() against it.
+  void bouc_wen_consistent_rates(double t, double horizon);
+  // [mm/s]: how far e' must cross zero against d (dae_bouc_wen.cpp).
+  double bouc_wen_rate_band() const;
+  // Per Bouc-Wen state: +1 or -1, the sign of e' whose branch its law takes until its next root
+  // (a bouc_wen inside a block); 0 between terminal and ground (the branch of the drive's rate).
+  std::vector<std::int8_t> bouc_wen_direction_;
+  int root_count() const { return 2 * layout_.switch_forces + layout_.bouc_wen_states; }
   // y_ := y_ + H v and time_ := T + H, v from euler_rates.
   void euler_step(double t, double h);
   void rechoose_coordinates(double t);

@@ -1,5 +1,5 @@
 // The differential test's two-tone drive and the fixed-step reference the IDA tests hold a
-// history on it to; and the fixed-step reference of a harmonic point.
+// history on it to; the fixed-step reference of a harmonic point; and a network both hold to it.
 #pragma once
 
 #include "runtime/core/drive.hpp"
@@ -14,6 +14,34 @@
 #include <vector>
 
 namespace rheo::test {
+
+// Differential seed 37, model 85: sharp bouc_wen elements (n up to 3.8, yielding at 13 um) in series
+// blocks beside inerters, five blocks deep (dae_bouc_wen_test, solver_choice_test).
+inline constexpr const char* kSeed37Model85 = R"(model m {
+series {
+spring (k = 43381.5 N/mm)
+parallel {
+bouc_wen (k = 12.5907 N/mm, n = 1.02764, fy = 3.57376 N)
+series {
+yeoh (D10 = 229.576 N/mm, D20 = -24.0131 N/mm^3, D30 = 15.3292 N/mm^5)
+series { spring (k = 40.0703 N/mm) parallel { inerter (b = 0.0122674 kg) dashpot (c = 2.89935 N*s/mm) } }
+}
+series {
+bouc_wen (k = 51.0288 N/mm, n = 3.76472, fy = 0.675519 N)
+parallel {
+bouc_wen (k = 372.424 N/mm, n = 2.2137, uy = 35.0081 um)
+series {
+spring (k = 140.772 N/mm)
+yeoh (D10 = 57.8861 N/mm, D20 = -12.2415 N/mm^3, D30 = 2.41895 N/mm^5)
+}
+}
+bouc_wen (k = 157.453 N/mm, n = 3.17353, fy = 0.554047 N)
+}
+}
+series { spring (k = 110.458 N/mm) parallel { inerter (b = 0.0254594 kg) dashpot (c = 0.113719 N*s/mm) } }
+}
+quadratic_dashpot (cq = 0.0162639 N*s^2/mm^2)
+})";
 
 // From rest, 100 samples 1 ms apart of u(t) = 0.3 sin(2 pi 10 t) + 0.05 sin(2 pi 37 t) [mm]
 // (30 mm/s at once), each interval cut into `steps` equal ones: the same piecewise-linear drive.

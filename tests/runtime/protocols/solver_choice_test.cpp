@@ -57,37 +57,13 @@ TEST_CASE("auto takes fixed steps for a network with a bouc_wen inside a series 
 // blocks beside inerters, five blocks deep. Auto took IDA (the inerters, the depth), whose
 // corrector failed at every step size 0.1 us after the drive sample at 5 ms, where the elongation
 // rates of the bouc_wen elements reverse behind one at z = 0.999998 (IDA_CONV_FAIL: a default
-// `rheo simulate` exited 5). Auto now takes fixed steps; on the differential test's two-tone drive
+// `rheo simulate` exited 5; IDA runs it now, dae_bouc_wen_test). Auto takes fixed steps, far
+// faster there; on the differential test's two-tone drive
 // at one step a sample (the inerters' w dt up to 1.8) they lie within the differential test's
 // history tolerance, 2e-2 of max |F|, of fixed steps at 64 and 128 a sample, extrapolated
 // (observed 1.3e-2).
 TEST_CASE("auto runs sharp bouc_wen elements in series blocks beside inerters (differential seed 37, model 85)") {
-  const auto network = test::network_from(R"(model m {
-series {
-spring (k = 43381.5 N/mm)
-parallel {
-bouc_wen (k = 12.5907 N/mm, n = 1.02764, fy = 3.57376 N)
-series {
-yeoh (D10 = 229.576 N/mm, D20 = -24.0131 N/mm^3, D30 = 15.3292 N/mm^5)
-series { spring (k = 40.0703 N/mm) parallel { inerter (b = 0.0122674 kg) dashpot (c = 2.89935 N*s/mm) } }
-}
-series {
-bouc_wen (k = 51.0288 N/mm, n = 3.76472, fy = 0.675519 N)
-parallel {
-bouc_wen (k = 372.424 N/mm, n = 2.2137, uy = 35.0081 um)
-series {
-spring (k = 140.772 N/mm)
-yeoh (D10 = 57.8861 N/mm, D20 = -12.2415 N/mm^3, D30 = 2.41895 N/mm^5)
-}
-}
-bouc_wen (k = 157.453 N/mm, n = 3.17353, fy = 0.554047 N)
-}
-}
-series { spring (k = 110.458 N/mm) parallel { inerter (b = 0.0254594 kg) dashpot (c = 0.113719 N*s/mm) } }
-}
-quadratic_dashpot (cq = 0.0162639 N*s^2/mm^2)
-})",
-                                          "m");
+  const auto network = test::network_from(test::kSeed37Model85, "m");
   CHECK_FALSE(runtime::uses_sundials(network, runtime::SolverChoice::automatic));
   const auto history = runtime::run_history(network, test::two_tone_drive(1), false);
   const double gap = test::gap_to_extrapolated_fixed_steps(network, history.force);
