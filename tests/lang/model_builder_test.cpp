@@ -53,9 +53,9 @@ simulate outer { step amplitude = 1 mm, duration = 1 s })");
   REQUIRE(slots.size() == 2);
   CHECK(outer.parameters.at(static_cast<std::size_t>(slots[0])).path == "a.m.k");
   CHECK(outer.parameters.at(static_cast<std::size_t>(slots[0])).value == 30.0);
-  CHECK(outer.parameters.at(static_cast<std::size_t>(slots[1])).value == doctest::Approx(30.0 * 0.002));
+  CHECK(outer.parameters.at(static_cast<std::size_t>(slots[1])).value == doctest::Approx(30.0 * 0.002).scale(0.0));
   CHECK(find(outer, "b.m.k")->value == 5.0);
-  CHECK(find(outer, "b.m.c")->value == doctest::Approx(0.005));
+  CHECK(find(outer, "b.m.c")->value == doctest::Approx(0.005).scale(0.0));
 }
 
 TEST_CASE("build_model: values are checked after overrides") {

@@ -75,7 +75,7 @@ TEST_CASE("static, quasistatic, history and step decode to their own settings") 
   CHECK(s.cycles == 2);
   CHECK_FALSE(s.dt.has_value());
   const auto timed = settings_of<StaticSettings>("static velocity = 1 mm/s, amplitude = 1 mm, dt = 5 ms");
-  CHECK(timed.dt == doctest::Approx(0.005));
+  CHECK(timed.dt == doctest::Approx(0.005).scale(0.0));
 
   const auto q = settings_of<QuasistaticSettings>("quasistatic frequency = 0.1 Hz, amplitude = 1 mm, cycles = 3");
   CHECK(q.frequency == 0.1);
@@ -91,11 +91,11 @@ TEST_CASE("static, quasistatic, history and step decode to their own settings") 
   // step: dt defaults to duration / 1000 and rise to dt.
   const auto st = settings_of<StepSettings>("step amplitude = -1 mm, duration = 2 s");
   CHECK(st.amplitude == -1.0);
-  CHECK(st.dt == doctest::Approx(0.002));
-  CHECK(st.rise == doctest::Approx(0.002));
+  CHECK(st.dt == doctest::Approx(0.002).scale(0.0));
+  CHECK(st.rise == doctest::Approx(0.002).scale(0.0));
   const auto ramp = settings_of<StepSettings>("step amplitude = 1 mm, duration = 2 s, dt = 10 ms, rise = 0.5 s");
-  CHECK(ramp.dt == doctest::Approx(0.01));
-  CHECK(ramp.rise == doctest::Approx(0.5));
+  CHECK(ramp.dt == doctest::Approx(0.01).scale(0.0));
+  CHECK(ramp.rise == doctest::Approx(0.5).scale(0.0));
 }
 
 TEST_CASE("an override replaces the written setting and the settings are decoded again") {
@@ -103,9 +103,9 @@ TEST_CASE("an override replaces the written setting and the settings are decoded
   override_setting(p, parse_setting(ProtocolKind::step, "duration = 4 s"));
   const auto& st = std::get<StepSettings>(p.settings);
   CHECK(st.duration == 4.0);
-  CHECK(st.dt == doctest::Approx(0.004));  // the default follows the new duration
+  CHECK(st.dt == doctest::Approx(0.004).scale(0.0));  // the default follows the new duration
   override_setting(p, parse_setting(ProtocolKind::step, "dt = 1 ms"));
-  CHECK(std::get<StepSettings>(p.settings).dt == doctest::Approx(0.001));
-  CHECK(std::get<StepSettings>(p.settings).rise == doctest::Approx(0.001));
+  CHECK(std::get<StepSettings>(p.settings).dt == doctest::Approx(0.001).scale(0.0));
+  CHECK(std::get<StepSettings>(p.settings).rise == doctest::Approx(0.001).scale(0.0));
   CHECK(p.written.size() == 3);
 }

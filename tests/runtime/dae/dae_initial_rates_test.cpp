@@ -102,7 +102,7 @@ TEST_CASE("two quadratic dashpots in series at a constant rate: F = v^2 / (1/sqr
                              " quadratic_dashpot (cq = 0.00639128 N*s^2/mm^2) } }"}) {
     CAPTURE(source);
     const auto h = history(source, corners({{0.02, v * 0.02}}, 1e-3));
-    for (std::size_t j = 1; j < h.time.size(); ++j) CHECK(h.force[j] == doctest::Approx(expected).epsilon(1e-6));
+    for (std::size_t j = 1; j < h.time.size(); ++j) CHECK(h.force[j] == doctest::Approx(expected).epsilon(1e-6).scale(0.0));
   }
 }
 

@@ -29,7 +29,7 @@ TEST_CASE("a Maxwell element's linear periodic start is its phasor X = A k/(k + 
   REQUIRE(start->positions.size() == 1);
   REQUIRE(start->rate_edge_rates.size() == 1);
   const std::complex<double> x = amplitude * k / std::complex<double>(k, omega * c);  // the node between spring and dashpot
-  CHECK(start->positions[0] == doctest::Approx(x.imag()).epsilon(1e-12));
+  CHECK(start->positions[0] == doctest::Approx(x.imag()).epsilon(1e-12).scale(0.0));
   CHECK(start->rate_edge_rates[0] == doctest::Approx(omega * x.real()).epsilon(1e-12));  // the dashpot's elongation is the node's
   CHECK(x.imag() < -0.1);                                                                // far from rest at this phase
 }
@@ -79,7 +79,7 @@ TEST_CASE("IDA harmonic points start at the linear periodic state: a springpot's
     CHECK(point.converged);
     CHECK(point.cycles <= 3);
     CHECK(point.measures.stiffness == doctest::Approx(reference.measures.stiffness).epsilon(1e-6));
-    CHECK(point.measures.phase == doctest::Approx(reference.measures.phase).epsilon(1e-5));
+    CHECK(point.measures.phase == doctest::Approx(reference.measures.phase).epsilon(1e-5).scale(0.0));
   }
 }
 

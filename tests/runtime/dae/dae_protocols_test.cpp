@@ -133,7 +133,7 @@ TEST_CASE("IDA failing on a yeoh that softens in series names the yeoh and its l
   const auto dae = runtime::dae_harmonic_point(network, 0.5, 1.0, options);
   options.solver = runtime::SolverChoice::fixed;
   const auto fixed = runtime::simulate_harmonic_point(network, 0.5, 1.0, options);
-  CHECK(dae.measures.stiffness == doctest::Approx(fixed.measures.stiffness).epsilon(1e-5));
+  CHECK(dae.measures.stiffness == doctest::Approx(fixed.measures.stiffness).epsilon(1e-5).scale(0.0));
 }
 
 // Reproducer 09 of tests/corpus/repro/backends (issue 26): an undamped mass behind a slider. At

@@ -62,9 +62,9 @@ TEST_CASE("noise estimate, harmonic: pure noise of 1 % and 0.15 deg is found wit
     MESSAGE("floor " << n.floor << " err " << fit.err << " rel " << n.relative_error << " ratio " << dx::noise_ratio(fit.err, n, 2 * 147, 8)
                      << " k " << n.stiffness << " p " << n.phase << " m " << n.pseudo_residuals);
     REQUIRE(n.estimated);
-    CHECK(n.stiffness == doctest::Approx(0.01).epsilon(0.15));
-    CHECK(n.phase == doctest::Approx(kPhaseNoise).epsilon(0.15));
-    CHECK(n.floor == doctest::Approx(fit.err).epsilon(0.2));
+    CHECK(n.stiffness == doctest::Approx(0.01).epsilon(0.15).scale(0.0));
+    CHECK(n.phase == doctest::Approx(kPhaseNoise).epsilon(0.15).scale(0.0));
+    CHECK(n.floor == doctest::Approx(fit.err).epsilon(0.2).scale(0.0));
     CHECK(n.relative_error > 0.0);
     CHECK(n.relative_error < 0.2);
     CHECK_FALSE(dx::systematic(fit.err, n, 2 * 147, 8));
@@ -80,8 +80,8 @@ TEST_CASE("noise estimate, harmonic: a smooth miss several times the noise leave
   MESSAGE("floor " << n.floor << " err " << fit.err << " rel " << n.relative_error << " ratio " << dx::noise_ratio(fit.err, n, 2 * 147, 8) << " k "
                    << n.stiffness << " p " << n.phase << " m " << n.pseudo_residuals);
   REQUIRE(n.estimated);
-  CHECK(n.stiffness == doctest::Approx(0.01).epsilon(0.25));
-  CHECK(n.phase == doctest::Approx(kPhaseNoise).epsilon(0.25));
+  CHECK(n.stiffness == doctest::Approx(0.01).epsilon(0.25).scale(0.0));
+  CHECK(n.phase == doctest::Approx(kPhaseNoise).epsilon(0.25).scale(0.0));
   CHECK(dx::noise_ratio(fit.err, n, 2 * 147, 8) > 2.5);
   CHECK(dx::systematic(fit.err, n, 2 * 147, 8));
 }
@@ -139,7 +139,7 @@ TEST_CASE("noise estimate, history: white force noise is found under a smooth mi
   const auto [noise_only, d1] = history_fit([](double) { return 0.0; }, 0.003, 11);
   const dx::NoiseEstimate white = dx::estimate_noise(noise_only, d1);
   REQUIRE(white.estimated);
-  CHECK(white.force == doctest::Approx(0.003).epsilon(0.1));
+  CHECK(white.force == doctest::Approx(0.003).epsilon(0.1).scale(0.0));
   CHECK(std::abs(white.autocorrelation) < 0.15);
   CHECK_FALSE(dx::systematic(noise_only.datasets[0].err, white, 1201, 2));
 
@@ -147,7 +147,7 @@ TEST_CASE("noise estimate, history: white force noise is found under a smooth mi
   const auto [missed, d2] = history_fit([](double t) { return 0.05 * std::cos(2.0 * std::numbers::pi * t); }, 0.003, 12);
   const dx::NoiseEstimate smooth = dx::estimate_noise(missed, d2);
   REQUIRE(smooth.estimated);
-  CHECK(smooth.force == doctest::Approx(0.003).epsilon(0.1));
+  CHECK(smooth.force == doctest::Approx(0.003).epsilon(0.1).scale(0.0));
   CHECK(smooth.autocorrelation > 0.9);
   CHECK(dx::systematic(missed.datasets[0].err, smooth, 1201, 2));
 }
@@ -156,19 +156,24 @@ TEST_CASE("noise estimate, history: white force noise is found under a smooth mi
 // pseudo-residuals alone took noise of autocorrelation 0.5 for 0.65 of its size and 0.8 for 0.38
 // (pure noise called a systematic residual, 10 of 10 draws of the sweep's second generator); the
 // fit over lags finds its size, also under a smooth miss, and the miss stays systematic.
+// The estimate from one history of 1201 samples spreads as the noise is correlated (fewer
+// independent samples): over seeds 101-200 its ratio to the size has mean 0.99 and SD 0.035 at
+// rho 0.5, mean 0.97-0.98 and SD 0.085 at rho 0.8 (5-95 % range 0.85-1.10; seed 21 draws 0.76),
+// with or without the miss. The size is checked to 3.5 SD.
 TEST_CASE("noise estimate, history: correlated noise (AR(1), rho 0.5 and 0.8) is found at its size, under a smooth miss too") {
   for (const double rho : {0.5, 0.8}) {
     CAPTURE(rho);
+    const double spread = rho < 0.6 ? 0.12 : 0.3;  // relative
     const auto [noise_only, d1] = history_fit([](double) { return 0.0; }, 0.003, 21, rho);
     const dx::NoiseEstimate n = dx::estimate_noise(noise_only, d1);
     REQUIRE(n.estimated);
-    CHECK(n.force == doctest::Approx(0.003).epsilon(0.12));
-    CHECK(n.autocorrelation == doctest::Approx(rho).epsilon(0.15));
+    CHECK(n.force == doctest::Approx(0.003).epsilon(spread).scale(0.0));
+    CHECK(n.autocorrelation == doctest::Approx(rho).epsilon(0.15).scale(0.0));
     CHECK_FALSE(dx::systematic(noise_only.datasets[0].err, n, 1201, 2));
     const auto [missed, d2] = history_fit([](double t) { return 0.05 * std::cos(2.0 * std::numbers::pi * t); }, 0.003, 22, rho);
     const dx::NoiseEstimate m = dx::estimate_noise(missed, d2);
     REQUIRE(m.estimated);
-    CHECK(m.force == doctest::Approx(0.003).epsilon(0.12));
+    CHECK(m.force == doctest::Approx(0.003).epsilon(spread).scale(0.0));
     CHECK(dx::systematic(missed.datasets[0].err, m, 1201, 2));
   }
 }

@@ -47,12 +47,12 @@ TEST_CASE("diagnosis patterns: orthogonal amplitude, frequency and interaction p
     for (std::size_t j = 0; j < 4; ++j) ss_a += a[i] * a[i], ss_f += f[j] * f[j], ss_i += c * c * s[i] * s[i] * t[j] * t[j];
   const double total = ss_a + ss_f + ss_i;
   REQUIRE(p.has_harmonic);
-  CHECK(p.harmonic.amplitude_share == doctest::Approx(ss_a / total).epsilon(1e-9));
-  CHECK(p.harmonic.frequency_share == doctest::Approx(ss_f / total).epsilon(1e-9));
-  CHECK(p.harmonic.interaction_share == doctest::Approx(ss_i / total).epsilon(1e-9));
-  CHECK(p.harmonic.stiffness_rms == doctest::Approx(std::sqrt(total / 12)).epsilon(1e-12));
+  CHECK(p.harmonic.amplitude_share == doctest::Approx(ss_a / total).epsilon(1e-9).scale(0.0));
+  CHECK(p.harmonic.frequency_share == doctest::Approx(ss_f / total).epsilon(1e-9).scale(0.0));
+  CHECK(p.harmonic.interaction_share == doctest::Approx(ss_i / total).epsilon(1e-9).scale(0.0));
+  CHECK(p.harmonic.stiffness_rms == doctest::Approx(std::sqrt(total / 12)).epsilon(1e-12).scale(0.0));
   CHECK(test::degrees(p.harmonic.phase_rms) == doctest::Approx(1.0).epsilon(1e-12));
-  CHECK(p.harmonic.worst_stiffness.residual == doctest::Approx(-0.02 - 0.01 - c).epsilon(1e-12));  // i = 0, j = 3
+  CHECK(p.harmonic.worst_stiffness.residual == doctest::Approx(-0.02 - 0.01 - c).epsilon(1e-12).scale(0.0));  // i = 0, j = 3
   CHECK(p.harmonic.worst_stiffness.amplitude == 0.1);
   CHECK(p.harmonic.worst_stiffness.frequency == 40.0);
 }

@@ -122,14 +122,14 @@ TEST_CASE("the JSON summary has the documented fields, parameters in the units t
     REQUIRE(k < r.free.size());
     CHECK(p["unit"] == e.unit);
     CHECK(p["free"] == true);
-    CHECK(p["start"].get<double>() == doctest::Approx(e.start).epsilon(1e-14));
-    CHECK(p["lower"].get<double>() == doctest::Approx(e.lower).epsilon(1e-14));
-    CHECK(p["upper"].get<double>() == doctest::Approx(e.upper).epsilon(1e-14));
-    CHECK(p["value"].get<double>() == doctest::Approx(r.network.parameter(i) / e.scale).epsilon(1e-14));
+    CHECK(p["start"].get<double>() == doctest::Approx(e.start).epsilon(1e-14).scale(0.0));
+    CHECK(p["lower"].get<double>() == doctest::Approx(e.lower).epsilon(1e-14).scale(0.0));
+    CHECK(p["upper"].get<double>() == doctest::Approx(e.upper).epsilon(1e-14).scale(0.0));
+    CHECK(p["value"].get<double>() == doctest::Approx(r.network.parameter(i) / e.scale).epsilon(1e-14).scale(0.0));
     REQUIRE(p.contains("identifiable"));
     if (p["identifiable"] == true) {
       REQUIRE(p.contains("standard_error"));
-      CHECK(p["standard_error"].get<double>() == doctest::Approx(r.statistics.standard_error[k] / e.scale).epsilon(1e-14));
+      CHECK(p["standard_error"].get<double>() == doctest::Approx(r.statistics.standard_error[k] / e.scale).epsilon(1e-14).scale(0.0));
     }
   }
   // The fit found the truth where the bounds allow it (tau = 5 ms, uy = 40 um) and e.k on its bound.
@@ -165,7 +165,7 @@ TEST_CASE("the JSON summary has the documented fields, parameters in the units t
   const double measured_deg = r.datasets[0].measured_phase[11] * 180.0 / std::numbers::pi;
   CHECK(point["phase_measured_deg"].get<double>() == doctest::Approx(measured_deg).epsilon(1e-14));
   CHECK(point["stiffness_residual"].get<double>() ==
-        doctest::Approx(point["stiffness_model"].get<double>() / point["stiffness_measured"].get<double>() - 1.0).epsilon(1e-9));
+        doctest::Approx(point["stiffness_model"].get<double>() / point["stiffness_measured"].get<double>() - 1.0).epsilon(1e-9).scale(0.0));
   const json& loop = j["data"][1];
   CHECK(loop["kind"] == "history");
   CHECK(loop["weight"] == 0.5);

@@ -57,10 +57,10 @@ TEST_CASE("straight line: standard errors and correlation of the closed form") {
   const auto st = parameter_statistics([&](const std::vector<double>& z) { return line.residuals(z[0], z[1]); }, {line.a, line.b}, {false, false});
   CHECK(st.rank == 2);
   CHECK(st.identifiable == std::vector<bool>{true, true});
-  CHECK(st.standard_error[0] == doctest::Approx(line.se_a).epsilon(1e-7));
-  CHECK(st.standard_error[1] == doctest::Approx(line.se_b).epsilon(1e-7));
-  CHECK(st.correlation[0][1] == doctest::Approx(line.corr).epsilon(1e-7));
-  CHECK(st.correlation[1][0] == doctest::Approx(line.corr).epsilon(1e-7));
+  CHECK(st.standard_error[0] == doctest::Approx(line.se_a).epsilon(1e-7).scale(0.0));
+  CHECK(st.standard_error[1] == doctest::Approx(line.se_b).epsilon(1e-7).scale(0.0));
+  CHECK(st.correlation[0][1] == doctest::Approx(line.corr).epsilon(1e-7).scale(0.0));
+  CHECK(st.correlation[1][0] == doctest::Approx(line.corr).epsilon(1e-7).scale(0.0));
   CHECK(st.correlation[0][0] == 1.0);
 }
 
@@ -70,9 +70,9 @@ TEST_CASE("log coordinates: p = exp(z) gives the parameter-space statistics (del
   // Intercept searched as z0 = ln a: the same line, so the same statistics in parameter units.
   const auto st = parameter_statistics([&](const std::vector<double>& z) { return line.residuals(std::exp(z[0]), z[1]); },
                                        {std::log(line.a), line.b}, {true, false});
-  CHECK(st.standard_error[0] == doctest::Approx(line.se_a).epsilon(1e-7));
-  CHECK(st.standard_error[1] == doctest::Approx(line.se_b).epsilon(1e-7));
-  CHECK(st.correlation[0][1] == doctest::Approx(line.corr).epsilon(1e-7));
+  CHECK(st.standard_error[0] == doctest::Approx(line.se_a).epsilon(1e-7).scale(0.0));
+  CHECK(st.standard_error[1] == doctest::Approx(line.se_b).epsilon(1e-7).scale(0.0));
+  CHECK(st.correlation[0][1] == doctest::Approx(line.corr).epsilon(1e-7).scale(0.0));
 
   // Non-linear model y = A exp(-x / tau) at an arbitrary point: log and linear coordinates agree.
   auto model = [&](double amplitude, double tau) {
@@ -86,7 +86,7 @@ TEST_CASE("log coordinates: p = exp(z) gives the parameter-space statistics (del
                                         {std::log(amplitude), std::log(tau)}, {true, true});
   CHECK(log.standard_error[0] == doctest::Approx(lin.standard_error[0]).epsilon(1e-7));
   CHECK(log.standard_error[1] == doctest::Approx(lin.standard_error[1]).epsilon(1e-7));
-  CHECK(log.correlation[0][1] == doctest::Approx(lin.correlation[0][1]).epsilon(1e-7));
+  CHECK(log.correlation[0][1] == doctest::Approx(lin.correlation[0][1]).epsilon(1e-7).scale(0.0));
 }
 
 TEST_CASE("rank deficiency: only the estimable parameters get finite statistics") {
@@ -96,7 +96,7 @@ TEST_CASE("rank deficiency: only the estimable parameters get finite statistics"
                                         {0.5 * line.a, line.b, 0.5 * line.a}, {false, false, false});
   CHECK(sum.rank == 2);
   CHECK(sum.identifiable == std::vector<bool>{false, true, false});
-  CHECK(sum.standard_error[1] == doctest::Approx(line.se_b).epsilon(1e-7));  // s^2 with m - rank degrees of freedom
+  CHECK(sum.standard_error[1] == doctest::Approx(line.se_b).epsilon(1e-7).scale(0.0));  // s^2 with m - rank degrees of freedom
   CHECK(std::isinf(sum.standard_error[0]));
   CHECK(std::isinf(sum.standard_error[2]));
   CHECK(std::isnan(sum.correlation[0][1]));
@@ -107,8 +107,8 @@ TEST_CASE("rank deficiency: only the estimable parameters get finite statistics"
                                            {false, false, true});
   CHECK(unused.rank == 2);
   CHECK(unused.identifiable == std::vector<bool>{true, true, false});
-  CHECK(unused.standard_error[0] == doctest::Approx(line.se_a).epsilon(1e-7));
-  CHECK(unused.correlation[0][1] == doctest::Approx(line.corr).epsilon(1e-7));
+  CHECK(unused.standard_error[0] == doctest::Approx(line.se_a).epsilon(1e-7).scale(0.0));
+  CHECK(unused.correlation[0][1] == doctest::Approx(line.corr).epsilon(1e-7).scale(0.0));
 }
 
 TEST_CASE("without a degree of freedom: identifiability and correlation, but no standard errors, sizes must agree") {
@@ -121,7 +121,7 @@ TEST_CASE("without a degree of freedom: identifiability and correlation, but no 
   CHECK(std::isnan(exact.standard_error[0]));
   CHECK(std::isnan(exact.standard_error[1]));
   // (J^T J)^-1 = [[5, -3], [-3, 2]]: correlation -3 / sqrt(10).
-  CHECK(exact.correlation[0][1] == doctest::Approx(-3.0 / std::sqrt(10.0)).epsilon(1e-7));
+  CHECK(exact.correlation[0][1] == doctest::Approx(-3.0 / std::sqrt(10.0)).epsilon(1e-7).scale(0.0));
   // One residual for two coordinates: rank 1, neither identifiable alone.
   const auto one = parameter_statistics([](const std::vector<double>& z) { return std::vector<double>{1.0 - z[0] - z[1]}; }, {0.3, 0.7},
                                         {false, false});

@@ -224,11 +224,11 @@ TEST_CASE("the fit's err (6.1): sqrt of the summed phi over the total number of 
   CHECK(result.network.parameter(0) == doctest::Approx(200.0).epsilon(1e-9));
   // first.csv: phi = 1 + 0.36 + 0.0625 + 0 + 1 + 1 = 3.4225, err = sqrt(3.4225) / 4 = 1.85 / 4 = 0.4625.
   CHECK(result.datasets[0].phi == doctest::Approx(3.4225).epsilon(1e-8));
-  CHECK(result.datasets[0].err == doctest::Approx(0.4625).epsilon(1e-8));
+  CHECK(result.datasets[0].err == doctest::Approx(0.4625).epsilon(1e-8).scale(0.0));
   // second.csv: phi = 0.0625, err = 0.25 / 1.
-  CHECK(result.datasets[1].err == doctest::Approx(0.25).epsilon(1e-8));
+  CHECK(result.datasets[1].err == doctest::Approx(0.25).epsilon(1e-8).scale(0.0));
   // Both: phi = 3.485 over n = 5 points, err = sqrt(3.485) / 5 = 0.373363; not the mean of the
   // files' errs (0.35625), nor over n - 1 (0.466704), nor the root of phi / n (0.834865).
   CHECK(result.phi == doctest::Approx(3.485).epsilon(1e-8));
-  CHECK(result.err == doctest::Approx(0.3733630940518894).epsilon(1e-8));
+  CHECK(result.err == doctest::Approx(0.3733630940518894).epsilon(1e-8).scale(0.0));
 }

@@ -68,7 +68,7 @@ TEST_CASE("a straight line through scattered points: the normal equations' solut
   CAPTURE(r.status);
   CHECK(std::abs(r.x(0) - exact(0)) < 1e-7);
   CHECK(std::abs(r.x(1) - exact(1)) < 1e-7);
-  CHECK(r.value == doctest::Approx((a * exact - y).squaredNorm()).epsilon(1e-10));
+  CHECK(r.value == doctest::Approx((a * exact - y).squaredNorm()).epsilon(1e-10).scale(0.0));
   CHECK(r.status == "FTOL_REACHED");
 }
 
@@ -162,7 +162,7 @@ TEST_CASE("a crawl tolerance ends the search where a Jacobian's step gains less 
   const LevenbergMarquardtResult stopped = run(0.95), going = run(0.85), plain = run(0.0);
   CHECK(stopped.status == "FTOL_REACHED");
   CHECK(stopped.iterations == 1);
-  CHECK(stopped.x(0) == doctest::Approx(2.0 / 3.0).epsilon(1e-2));
+  CHECK(stopped.x(0) == doctest::Approx(2.0 / 3.0).epsilon(1e-2).scale(0.0));
   CHECK(going.iterations > 3);
   CHECK(std::abs(going.x(0)) < 0.5 * std::abs(stopped.x(0)));
   CHECK(plain.iterations > going.iterations);  // Marquardt's scaling keeps the largest column norm: the steps shrink as J does

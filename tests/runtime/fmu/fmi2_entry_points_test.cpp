@@ -80,7 +80,7 @@ TEST_CASE("fmi2 binary: a step input through the C interface relaxes a Maxwell a
   }
   double time = 0.0;
   CHECK(fmu.fmi2GetRealStatus(c, fmi2LastSuccessfulTime, &time) == fmi2OK);
-  CHECK(time == doctest::Approx(0.02));
+  CHECK(time == doctest::Approx(0.02).scale(0.0));
   CHECK(fmu.fmi2Terminate(c) == fmi2OK);
   fmu.fmi2FreeInstance(c);
   std::filesystem::remove_all(dir.parent_path());

@@ -80,7 +80,7 @@ std::string error_of(const std::string& file, const std::vector<Role>& roles, co
 // The number of points COLUMN's dataspace holds.
 long long points(const Hdf5Column& column) { return H5Sget_simple_extent_npoints(column.space.get()); }
 
-doctest::Approx exactly(double value) { return doctest::Approx(value).epsilon(1e-14); }
+doctest::Approx exactly(double value) { return doctest::Approx(value).epsilon(1e-14).scale(0.0); }
 
 const std::vector<double> kSix{0.0, 1.0, 2.0, 3.0, 4.0, 5.0};
 

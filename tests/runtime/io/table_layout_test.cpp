@@ -49,7 +49,7 @@ TEST_CASE("semicolon and tab tables take a decimal comma, comma tables do not") 
   CHECK(semicolon.columns[0][1] == 0.5);
   CHECK(semicolon.columns[1][1] == 1.25);
   const Table tab = parse_table("t.txt", "time [ms]\tforce [kN]\n1,5\t+2,0E-1\n");
-  CHECK(tab.columns[0][0] == doctest::Approx(1.5e-3));
+  CHECK(tab.columns[0][0] == doctest::Approx(1.5e-3).scale(0.0));
   CHECK(tab.columns[1][0] == doctest::Approx(200.0));
   const Table comma = parse_table("t.csv", "time [s],x\n1,2\n");
   CHECK(comma.columns[0][0] == 1.0);
@@ -66,15 +66,15 @@ TEST_CASE("units in brackets, in parentheses when they are units, or in a units 
   CHECK(units_row.units_row == 2);
   CHECK(units_row.names[1] == "E_stor");
   CHECK(units_row.units[2] == "kPa");
-  CHECK(units_row.columns[1][0] == 2.5);                    // MPa is N/mm^2
-  CHECK(units_row.columns[2][0] == doctest::Approx(0.03));  // 30 kPa
+  CHECK(units_row.columns[1][0] == 2.5);                               // MPa is N/mm^2
+  CHECK(units_row.columns[2][0] == doctest::Approx(0.03).scale(0.0));  // 30 kPa
   CHECK(units_row.rows == std::vector<int>{3});
   // Without units anywhere the first row is data.
   const Table plain = parse_table("t.csv", "a,b\n1,2\n");
   CHECK(plain.units_row == 0);
   CHECK(plain.rows.size() == 1);
-  CHECK(table_unit("\xC2\xB5m")->scale == doctest::Approx(1e-3));  // µm
-  CHECK(table_unit("\xC2\xB0")->scale == doctest::Approx(M_PI / 180.0));
+  CHECK(table_unit("\xC2\xB5m")->scale == doctest::Approx(1e-3).scale(0.0));  // µm
+  CHECK(table_unit("\xC2\xB0")->scale == doctest::Approx(M_PI / 180.0).scale(0.0));
   CHECK(table_unit("%")->scale == 0.01);
   CHECK(table_unit("N/mm\xC2\xB2")->dimension == rheo::lang::dim::pressure);
   CHECK_FALSE(table_unit("\xC2\xB0"
@@ -92,7 +92,7 @@ TEST_CASE("a TRIOS export: each [step] is a table with names and units rows, the
   const int strain = amplitude.column("oscillation STRAIN");
   REQUIRE(strain >= 0);
   CHECK(amplitude.units[static_cast<std::size_t>(strain)] == "%");
-  CHECK(amplitude.columns[static_cast<std::size_t>(strain)][0] == doctest::Approx(0.00989877906867619 * 0.01));
+  CHECK(amplitude.columns[static_cast<std::size_t>(strain)][0] == doctest::Approx(0.00989877906867619 * 0.01).scale(0.0));
   const Table frequency = read_table(trios, nullptr, "frequency sweep - 2");
   CHECK(frequency.step == "Frequency sweep - 2");
   CHECK(frequency.rows.front() == 204);
@@ -131,6 +131,6 @@ TEST_CASE("spreadsheet workbooks are refused with what to do, UTF-16 text is rea
   }
   const Table t = parse_table("w.csv", utf16);
   CHECK(t.units[0] == "\xC2\xB5s");
-  CHECK(t.columns[0][1] == doctest::Approx(1e-6));
+  CHECK(t.columns[0][1] == doctest::Approx(1e-6).scale(0.0));
   CHECK(t.columns[1][1] == 2.0);
 }

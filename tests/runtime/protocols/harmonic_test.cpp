@@ -219,7 +219,7 @@ TEST_CASE("spring in series with inerter || dashpot || spring: the phasor K*, fi
     const auto [e1, e2] = errors_at_2048_and_4096(net, f, k_star);
     CHECK(e1.stiffness < 3e-3);
     CHECK(e1.phase < 0.09);
-    CHECK(e2.stiffness / e1.stiffness == doctest::Approx(0.5).epsilon(0.1));  // first order
+    CHECK(e2.stiffness / e1.stiffness == doctest::Approx(0.5).epsilon(0.1).scale(0.0));  // first order
   }
 }
 

@@ -37,7 +37,7 @@ TEST_CASE("a relaxed start away from rest: the springs carry their force, the re
   CHECK(stepper.start(0.0, 0.5) == doctest::Approx(10.0));
   CHECK(stepper.element_force()[0] == doctest::Approx(10.0));
   CHECK(stepper.element_force()[1] == 0.0);
-  CHECK(stepper.element_elongation()[0] == doctest::Approx(0.5));
+  CHECK(stepper.element_elongation()[0] == doctest::Approx(0.5).scale(0.0));
   // Held: nothing changes.
   CHECK(stepper.step(1.0, 0.5) == doctest::Approx(10.0));
   CHECK_THROWS_AS(stepper.step(1.0, 0.6), std::logic_error);  // time must increase
