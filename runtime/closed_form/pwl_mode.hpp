@@ -33,6 +33,7 @@
 #include <Eigen/Dense>
 
 #include <algorithm>
+#include <array>
 #include <complex>
 #include <cstdint>
 #include <vector>
@@ -101,6 +102,13 @@ struct PwlTransition {
   double size(double u0) const { return std::max(scale, per_amplitude * u0); }
 };
 
+// Per modal coordinate j of a mode: 2 for the first of a conjugate pair (lambda_{j+1} =
+// conj(lambda_j), V's column j + 1 and V^-1's row j + 1 the conjugates of j's), 0 for the
+// second, 1 for a real eigenvalue. A real state's modal coordinates are then q_{j+1} =
+// conj(q_j) at every time, and a real quantity sum_j Re(V_ij q_j) is the sum of weight_j
+// Re(V_ij q_j): the flows form only the first of each pair.
+using PwlModalWeights = std::array<std::int8_t, kPwlMaxDim>;
+
 // What building a mode computes that depends on neither the amplitude nor the frequency (only
 // the drive's columns of w do): the constraint split x = P (h - rho u) + N y, the massive,
 // damped and algebraic directions with their inverted blocks, and the modal decomposition of
@@ -114,6 +122,7 @@ struct PwlModeStructure {
   bool modal = false;  // V, V_inverse and lambda hold a well-conditioned eigendecomposition of A_zz
   PwlComplexMatrix V, V_inverse;
   PwlComplexVector lambda;
+  PwlModalWeights weight;  // per modal coordinate (PwlModeSystem::weight)
 };
 
 struct PwlModeSystem {
@@ -171,6 +180,7 @@ struct PwlModeSystem {
   double drive_omega = 0.0;                        // w [rad/s]
   PwlComplexMatrix V, V_inverse;                   // nz x nz
   PwlComplexVector lambda;                         // nz
+  PwlModalWeights weight{};                        // nz: 2, 0 for a conjugate pair, 1 for a real eigenvalue
   PwlComplexMatrix phi;                            // nz x (nh + 1): V^-1 [A_zh, a_1]
   PwlComplexVector g_plus, g_minus;                // (1/2) V^-1 (a_c -+ i a_s) and its conjugate counterpart
   PwlComplexRow force_V;                           // force_z V
