@@ -49,19 +49,33 @@ using PwlComplexVector = Eigen::Matrix<std::complex<double>, Eigen::Dynamic, 1, 
 using PwlComplexRow = Eigen::Matrix<std::complex<double>, 1, Eigen::Dynamic, Eigen::RowMajor, 1, kPwlMaxDim>;
 using PwlComplexMatrix = Eigen::Matrix<std::complex<double>, Eigen::Dynamic, Eigen::Dynamic, 0, kPwlMaxDim, kPwlMaxDim>;
 
-// OUT = A B (OUT neither A nor B), column by column as sums of A's columns: for the event
-// path's small matrices, without the size dispatch of a general product.
-inline void multiply(const PwlMatrix& a, const PwlMatrix& b, PwlMatrix& out) {
-  const Eigen::Index rows = a.rows(), inner = a.cols(), cols = b.cols();
+// OUT = A B (OUT neither A nor B), column by column as sums of A's columns in the order of
+// k: for the event path's small matrices, without the size dispatch of a general product.
+// INNER > 0 is A's column count known to the compiler (the sum unrolled), 0 any.
+template <int Inner>
+void multiply_columns(const PwlMatrix& a, const PwlMatrix& b, PwlMatrix& out) {
+  const Eigen::Index rows = a.rows(), inner = Inner > 0 ? Inner : a.cols(), cols = b.cols();
   out.resize(rows, cols);
+  const double* from = a.data();  // column k at from + k rows
   for (Eigen::Index c = 0; c < cols; ++c) {
     double* column = out.col(c).data();
-    for (Eigen::Index r = 0; r < rows; ++r) column[r] = 0.0;
-    for (Eigen::Index k = 0; k < inner; ++k) {
-      const double factor = b(k, c);
-      const double* from = a.col(k).data();
-      for (Eigen::Index r = 0; r < rows; ++r) column[r] += from[r] * factor;
+    const double* factor = b.col(c).data();
+    for (Eigen::Index r = 0; r < rows; ++r) {
+      double sum = 0.0;
+      for (Eigen::Index k = 0; k < inner; ++k) sum += from[k * rows + r] * factor[k];
+      column[r] = sum;
     }
+  }
+}
+
+inline void multiply(const PwlMatrix& a, const PwlMatrix& b, PwlMatrix& out) {
+  switch (a.cols()) {
+    case 4: multiply_columns<4>(a, b, out); break;
+    case 5: multiply_columns<5>(a, b, out); break;
+    case 6: multiply_columns<6>(a, b, out); break;
+    case 7: multiply_columns<7>(a, b, out); break;
+    case 8: multiply_columns<8>(a, b, out); break;
+    default: multiply_columns<0>(a, b, out); break;
   }
 }
 
