@@ -36,6 +36,7 @@
 #include <array>
 #include <complex>
 #include <cstdint>
+#include <type_traits>
 #include <vector>
 
 namespace rheo::runtime {
@@ -68,15 +69,22 @@ void multiply_columns(const PwlMatrix& a, const PwlMatrix& b, PwlMatrix& out) {
   }
 }
 
-inline void multiply(const PwlMatrix& a, const PwlMatrix& b, PwlMatrix& out) {
-  switch (a.cols()) {
-    case 4: multiply_columns<4>(a, b, out); break;
-    case 5: multiply_columns<5>(a, b, out); break;
-    case 6: multiply_columns<6>(a, b, out); break;
-    case 7: multiply_columns<7>(a, b, out); break;
-    case 8: multiply_columns<8>(a, b, out); break;
-    default: multiply_columns<0>(a, b, out); break;
+// Calls f(std::integral_constant<int, n>) where n (a state's size, or A's column count) is 4 to
+// 8, the sizes of the usual branches (a slider-capped column: 5 and 6), f(integral_constant<int, 0>) otherwise.
+template <class F>
+void with_small_size(Eigen::Index n, F&& f) {
+  switch (n) {
+    case 4: f(std::integral_constant<int, 4>{}); break;
+    case 5: f(std::integral_constant<int, 5>{}); break;
+    case 6: f(std::integral_constant<int, 6>{}); break;
+    case 7: f(std::integral_constant<int, 7>{}); break;
+    case 8: f(std::integral_constant<int, 8>{}); break;
+    default: f(std::integral_constant<int, 0>{}); break;
   }
+}
+
+inline void multiply(const PwlMatrix& a, const PwlMatrix& b, PwlMatrix& out) {
+  with_small_size(a.cols(), [&](auto inner) { multiply_columns<decltype(inner)::value>(a, b, out); });
 }
 
 // OUT = M v (v the first M.cols() entries of V) for a column-major matrix M of the event path's storage: where its column count
@@ -92,14 +100,10 @@ void multiply_fixed(const Matrix& m, const Vector& v, Out& out) {
 
 template <class Matrix, class Vector, class Out>
 void multiply(const Matrix& m, const Vector& v, Out& out) {
-  switch (m.cols()) {
-    case 4: multiply_fixed<4>(m, v, out); break;
-    case 5: multiply_fixed<5>(m, v, out); break;
-    case 6: multiply_fixed<6>(m, v, out); break;
-    case 7: multiply_fixed<7>(m, v, out); break;
-    case 8: multiply_fixed<8>(m, v, out); break;
-    default: out.noalias() = m.lazyProduct(v.head(m.cols())); break;
-  }
+  with_small_size(m.cols(), [&](auto columns) {
+    if constexpr (decltype(columns)::value > 0) multiply_fixed<decltype(columns)::value>(m, v, out);
+    else out.noalias() = m.lazyProduct(v.head(m.cols()));
+  });
 }
 
 // One entry per PwlBranch::switches: slider 0 stuck, +1 / -1 slipping with F = fy+ / -fy- (de/dt
