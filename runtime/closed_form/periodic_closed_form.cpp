@@ -246,11 +246,12 @@ void piece_maximum_on_grid(LoadingHalf& h, double lo, double hi, double k_elasti
   double previous_slope = 0.0, unused = 0.0;
   h.closed_form_derivatives(std::sin(lo), std::cos(lo), k_elastic, previous_slope, unused);
   previous_slope = h.polarity * (previous_slope + h.branch_slopes[0]);
+  const auto& table = grid_sine_cosine();
   for (std::size_t j = 1; j < h.samples.size(); ++j) {
     const double theta = h.samples[j];
     const int index = h.sample_grid[j];
-    const double s = index < 0 ? std::sin(theta) : grid_sine_cosine()[static_cast<std::size_t>(index)].first;
-    const double c = index < 0 ? std::cos(theta) : grid_sine_cosine()[static_cast<std::size_t>(index)].second;
+    const double s = index < 0 ? std::sin(theta) : table[static_cast<std::size_t>(index)].first;
+    const double c = index < 0 ? std::cos(theta) : table[static_cast<std::size_t>(index)].second;
     double slope = 0.0;
     h.closed_form_derivatives(s, c, k_elastic, slope, unused);
     slope = h.polarity * (slope + h.branch_slopes[j]);

@@ -99,6 +99,17 @@ void decompose_state_block(const PwlMatrix& A, int nz, PwlModeStructure& structu
   structure.V = eig.eigenvectors();
   structure.lambda = eig.eigenvalues();
   structure.V_inverse = lu.inverse();
+  // The solver gives a complex pair's eigenvalues and eigenvectors exactly conjugate, the
+  // first with the positive imaginary part; V^-1's rows for them are conjugate to rounding,
+  // and made so exactly (PwlModalWeights).
+  for (int j = 0; j < nz; ++j) {
+    const std::complex<double> l = structure.lambda[j];
+    const bool pair = j + 1 < nz && l.imag() > 0.0 && structure.lambda[j + 1] == std::conj(l);
+    structure.weight[static_cast<std::size_t>(j)] = pair ? 2 : 1;
+    if (!pair) continue;
+    structure.V_inverse.row(j + 1) = structure.V_inverse.row(j).conjugate();
+    structure.weight[static_cast<std::size_t>(++j)] = 0;
+  }
   const double error = (structure.V * structure.lambda.asDiagonal() * structure.V_inverse - Azz.cast<Complex>()).cwiseAbs().maxCoeff();
   structure.modal = error <= 1e-11 * std::max(Azz.cwiseAbs().maxCoeff(), 1e-300);
 }
@@ -109,7 +120,7 @@ void PwlModeSystem::decompose(PwlModeStructure& structure) {
   modal = false;
   if (!structure.filled) decompose_state_block(A, nz, structure);
   if (!structure.modal) return;
-  V = structure.V, V_inverse = structure.V_inverse, lambda = structure.lambda;
+  V = structure.V, V_inverse = structure.V_inverse, lambda = structure.lambda, weight = structure.weight;
   // Complex temporaries are cleared on construction (9 kB each): the product is formed from
   // this thread's copy of the real block, without one.
   thread_local PwlComplexMatrix held;
@@ -186,6 +197,7 @@ PwlVector PwlModeSystem::advance(double tau, const PwlVector& w) const {
   const Complex E(c0, s0);
   q.resize(nz);
   for (int j = 0; j < nz; ++j) {
+    if (weight[static_cast<std::size_t>(j)] == 0) continue;  // the conjugate of q_{j-1}
     Complex free{0.0, 0.0}, held{0.0, 0.0};
     for (int k = 0; k < nz; ++k) free += V_inverse(j, k) * w[k];
     for (int k = 0; k <= nh; ++k) held += phi(j, k) * w[nz + k];
@@ -193,7 +205,10 @@ PwlVector PwlModeSystem::advance(double tau, const PwlVector& w) const {
   }
   for (int i = 0; i < nz; ++i) {
     double sum = 0.0;
-    for (int j = 0; j < nz; ++j) sum += V(i, j).real() * q[j].real() - V(i, j).imag() * q[j].imag();
+    for (int j = 0; j < nz; ++j) {
+      const double weight_j = weight[static_cast<std::size_t>(j)];
+      if (weight_j != 0.0) sum += weight_j * (V(i, j).real() * q[j].real() - V(i, j).imag() * q[j].imag());
+    }
     out[i] = sum;
   }
   out[sine()] = s0 * f.cos_step + c0 * f.sin_step;
@@ -293,6 +308,7 @@ void PwlModeSystem::propagate(double tau, PwlMatrix& S) const {
   for (Eigen::Index c = 0; c < columns; ++c) {
     double* column = S.col(c).data();
     for (int j = 0; j < nz; ++j) {
+      if (weight[static_cast<std::size_t>(j)] == 0) continue;  // the conjugate of q_{j-1}
       Complex free{0.0, 0.0}, held{0.0, 0.0};
       for (int k = 0; k < nz; ++k) free += V_inverse(j, k) * column[k];
       for (int k = 0; k < nh; ++k) held += phi(j, k) * column[nz + k];
@@ -300,8 +316,11 @@ void PwlModeSystem::propagate(double tau, PwlMatrix& S) const {
     }
     for (int r = 0; r < nz; ++r) {
       double sum = 0.0;
-      for (int j = 0; j < nz; ++j)
-        sum += V(r, j).real() * q[static_cast<std::size_t>(j)].real() - V(r, j).imag() * q[static_cast<std::size_t>(j)].imag();
+      for (int j = 0; j < nz; ++j) {
+        const double weight_j = weight[static_cast<std::size_t>(j)];
+        const Complex qj = q[static_cast<std::size_t>(j)];
+        if (weight_j != 0.0) sum += weight_j * (V(r, j).real() * qj.real() - V(r, j).imag() * qj.imag());
+      }
       column[r] = sum;
     }
   }

@@ -33,8 +33,10 @@
 #include <Eigen/Dense>
 
 #include <algorithm>
+#include <array>
 #include <complex>
 #include <cstdint>
+#include <type_traits>
 #include <vector>
 
 namespace rheo::runtime {
@@ -48,20 +50,41 @@ using PwlComplexVector = Eigen::Matrix<std::complex<double>, Eigen::Dynamic, 1, 
 using PwlComplexRow = Eigen::Matrix<std::complex<double>, 1, Eigen::Dynamic, Eigen::RowMajor, 1, kPwlMaxDim>;
 using PwlComplexMatrix = Eigen::Matrix<std::complex<double>, Eigen::Dynamic, Eigen::Dynamic, 0, kPwlMaxDim, kPwlMaxDim>;
 
-// OUT = A B (OUT neither A nor B), column by column as sums of A's columns: for the event
-// path's small matrices, without the size dispatch of a general product.
-inline void multiply(const PwlMatrix& a, const PwlMatrix& b, PwlMatrix& out) {
-  const Eigen::Index rows = a.rows(), inner = a.cols(), cols = b.cols();
+// OUT = A B (OUT neither A nor B), column by column as sums of A's columns in the order of
+// k: for the event path's small matrices, without the size dispatch of a general product.
+// INNER > 0 is A's column count known to the compiler (the sum unrolled), 0 any.
+template <int Inner>
+void multiply_columns(const PwlMatrix& a, const PwlMatrix& b, PwlMatrix& out) {
+  const Eigen::Index rows = a.rows(), inner = Inner > 0 ? Inner : a.cols(), cols = b.cols();
   out.resize(rows, cols);
+  const double* from = a.data();  // column k at from + k rows
   for (Eigen::Index c = 0; c < cols; ++c) {
     double* column = out.col(c).data();
-    for (Eigen::Index r = 0; r < rows; ++r) column[r] = 0.0;
-    for (Eigen::Index k = 0; k < inner; ++k) {
-      const double factor = b(k, c);
-      const double* from = a.col(k).data();
-      for (Eigen::Index r = 0; r < rows; ++r) column[r] += from[r] * factor;
+    const double* factor = b.col(c).data();
+    for (Eigen::Index r = 0; r < rows; ++r) {
+      double sum = 0.0;
+      for (Eigen::Index k = 0; k < inner; ++k) sum += from[k * rows + r] * factor[k];
+      column[r] = sum;
     }
   }
+}
+
+// Calls f(std::integral_constant<int, n>) where n (a state's size, or A's column count) is 4 to
+// 8, the sizes of the usual branches (a slider-capped column: 5 and 6), f(integral_constant<int, 0>) otherwise.
+template <class F>
+void with_small_size(Eigen::Index n, F&& f) {
+  switch (n) {
+    case 4: f(std::integral_constant<int, 4>{}); break;
+    case 5: f(std::integral_constant<int, 5>{}); break;
+    case 6: f(std::integral_constant<int, 6>{}); break;
+    case 7: f(std::integral_constant<int, 7>{}); break;
+    case 8: f(std::integral_constant<int, 8>{}); break;
+    default: f(std::integral_constant<int, 0>{}); break;
+  }
+}
+
+inline void multiply(const PwlMatrix& a, const PwlMatrix& b, PwlMatrix& out) {
+  with_small_size(a.cols(), [&](auto inner) { multiply_columns<decltype(inner)::value>(a, b, out); });
 }
 
 // OUT = M v (v the first M.cols() entries of V) for a column-major matrix M of the event path's storage: where its column count
@@ -77,14 +100,10 @@ void multiply_fixed(const Matrix& m, const Vector& v, Out& out) {
 
 template <class Matrix, class Vector, class Out>
 void multiply(const Matrix& m, const Vector& v, Out& out) {
-  switch (m.cols()) {
-    case 4: multiply_fixed<4>(m, v, out); break;
-    case 5: multiply_fixed<5>(m, v, out); break;
-    case 6: multiply_fixed<6>(m, v, out); break;
-    case 7: multiply_fixed<7>(m, v, out); break;
-    case 8: multiply_fixed<8>(m, v, out); break;
-    default: out.noalias() = m.lazyProduct(v.head(m.cols())); break;
-  }
+  with_small_size(m.cols(), [&](auto columns) {
+    if constexpr (decltype(columns)::value > 0) multiply_fixed<decltype(columns)::value>(m, v, out);
+    else out.noalias() = m.lazyProduct(v.head(m.cols()));
+  });
 }
 
 // One entry per PwlBranch::switches: slider 0 stuck, +1 / -1 slipping with F = fy+ / -fy- (de/dt
@@ -101,6 +120,13 @@ struct PwlTransition {
   double size(double u0) const { return std::max(scale, per_amplitude * u0); }
 };
 
+// Per modal coordinate j of a mode: 2 for the first of a conjugate pair (lambda_{j+1} =
+// conj(lambda_j), V's column j + 1 and V^-1's row j + 1 the conjugates of j's), 0 for the
+// second, 1 for a real eigenvalue. A real state's modal coordinates are then q_{j+1} =
+// conj(q_j) at every time, and a real quantity sum_j Re(V_ij q_j) is the sum of weight_j
+// Re(V_ij q_j): the flows form only the first of each pair.
+using PwlModalWeights = std::array<std::int8_t, kPwlMaxDim>;
+
 // What building a mode computes that depends on neither the amplitude nor the frequency (only
 // the drive's columns of w do): the constraint split x = P (h - rho u) + N y, the massive,
 // damped and algebraic directions with their inverted blocks, and the modal decomposition of
@@ -114,6 +140,7 @@ struct PwlModeStructure {
   bool modal = false;  // V, V_inverse and lambda hold a well-conditioned eigendecomposition of A_zz
   PwlComplexMatrix V, V_inverse;
   PwlComplexVector lambda;
+  PwlModalWeights weight;  // per modal coordinate (PwlModeSystem::weight)
 };
 
 struct PwlModeSystem {
@@ -171,6 +198,7 @@ struct PwlModeSystem {
   double drive_omega = 0.0;                        // w [rad/s]
   PwlComplexMatrix V, V_inverse;                   // nz x nz
   PwlComplexVector lambda;                         // nz
+  PwlModalWeights weight{};                        // nz: 2, 0 for a conjugate pair, 1 for a real eigenvalue
   PwlComplexMatrix phi;                            // nz x (nh + 1): V^-1 [A_zh, a_1]
   PwlComplexVector g_plus, g_minus;                // (1/2) V^-1 (a_c -+ i a_s) and its conjugate counterpart
   PwlComplexRow force_V;                           // force_z V

@@ -2,7 +2,8 @@
 // exponential of the augmented matrix, for the propagation and for the phased force integral
 // (the last column of the exponential of [[A + i w, w0], [0, 0]] h) and for the sensitivities'
 // propagation, in modes that are diagonalisable, drift (a slipping dashpot: lambda = 0) or carry
-// an undamped mass at resonance.
+// an undamped mass at resonance; a conjugate pair's second coordinate taken as the first's
+// conjugate (PwlModalWeights).
 #include "runtime/closed_form/pwl_mode.hpp"
 
 #include "support.hpp"
@@ -78,6 +79,14 @@ TEST_CASE("the modal flow equals the matrix exponential: a damped mass behind a 
     runtime::PwlModeSystem s;
     REQUIRE(runtime::build_pwl_mode(branch, runtime::PwlModeCode{static_cast<std::int8_t>(code)}, 2.0 * std::numbers::pi * 13.0, s));
     CHECK(s.modal);
+    // The column's mass gives one conjugate pair: the flows form its first coordinate only
+    // (PwlModalWeights), V^-1's rows exactly conjugate.
+    REQUIRE(s.nz == 2);
+    CHECK(s.lambda[0].imag() > 0.0);
+    CHECK(s.lambda[1] == std::conj(s.lambda[0]));
+    CHECK(s.weight[0] == 2);
+    CHECK(s.weight[1] == 0);
+    CHECK(s.V_inverse.row(1) == s.V_inverse.row(0).conjugate());
     check_flow(s);
   }
 }
@@ -88,6 +97,7 @@ TEST_CASE("the modal flow equals the matrix exponential where a slipping dashpot
   REQUIRE(runtime::build_pwl_mode(branch, runtime::PwlModeCode{1}, 2.0 * std::numbers::pi * 5.0, s));
   REQUIRE(s.modal);
   CHECK(std::abs(s.lambda[0]) < 1e-12);
+  CHECK(s.weight[0] == 1);  // a real eigenvalue
   check_flow(s);
 }
 
