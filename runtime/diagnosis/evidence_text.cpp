@@ -8,6 +8,7 @@
 #include <fmt/format.h>
 #include <fmt/ranges.h>
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 #include <utility>
@@ -64,7 +65,34 @@ std::string pattern_sentence(Effect effect, const ResidualPatterns& p) {
   return "the residual shows no pattern an added element explains";
 }
 
-std::string effect_reason(const Diagnosis& d, const CandidateOutcome& w) {
+namespace {
+
+// "; a yeoh spring in place of ... (nonlinear-elasticity) fits about as well (...)" for the
+// best refitted candidate of each effect other than W's that earned (BIC below the model's) and
+// whose gap is within PARSIMONY of W's; empty where there is none.
+std::string alike_candidates(const Diagnosis& d, const CandidateOutcome& w, double parsimony) {
+  auto alike = [&](const CandidateOutcome& c) {
+    return &c != &w && c.refitted && c.screened.effect != w.screened.effect && c.unresolved.empty() && c.criterion < d.criterion_before &&
+           c.gap_after <= (1.0 + parsimony) * w.gap_after;
+  };
+  std::string out;
+  for (const auto& c : d.candidates) {
+    if (!alike(c)) continue;
+    const bool better_of_its_effect = std::any_of(d.candidates.begin(), d.candidates.end(), [&](const CandidateOutcome& o) {
+      return &o != &c && alike(o) && o.screened.effect == c.screened.effect && o.gap_after < c.gap_after;
+    });
+    if (better_of_its_effect) continue;
+    const int more = c.parameters - w.parameters;
+    out += fmt::format("; {} ({}) fits about as well ({} {:.4g}, BIC {:.1f}, {} parameter{} {}): these data do not tell the two apart",
+                       trial_summary(c.screened.trial), effect_name(c.screened.effect), d.gap_name, c.gap_after, c.criterion, std::abs(more),
+                       std::abs(more) == 1 ? "" : "s", more >= 0 ? "more" : "fewer");
+  }
+  return out;
+}
+
+}  // namespace
+
+std::string effect_reason(const Diagnosis& d, const CandidateOutcome& w, double parsimony) {
   const std::string screened = w.limit_of.empty()
                                    ? fmt::format("{} alone would remove {:.0f} % of the objective", trial_summary(w.screened.trial),
                                                  percent(w.screened.gain))
@@ -72,10 +100,11 @@ std::string effect_reason(const Diagnosis& d, const CandidateOutcome& w) {
                                                  percent(w.screened.gain), trial_summary(w.screened.trial), w.limit_of);
   const int more = w.parameters - fitted_parameters(d.before);
   return fmt::format(
-      "{}; {}; refitted with every parameter, {} fell from {:.4g} to {:.4g} ({:.2f} times lower) and BIC from {:.1f} to "
-      "{:.1f} with {} more parameter{}",
-      pattern_sentence(w.screened.effect, d.patterns), screened, d.gap_name, d.gap_before, w.gap_after, d.gap_before / w.gap_after,
-      d.criterion_before, w.criterion, more, std::abs(more) == 1 ? "" : "s");
+             "{}; {}; refitted with every parameter, {} fell from {:.4g} to {:.4g} ({:.2f} times lower) and BIC from {:.1f} to "
+             "{:.1f} with {} more parameter{}",
+             pattern_sentence(w.screened.effect, d.patterns), screened, d.gap_name, d.gap_before, w.gap_after, d.gap_before / w.gap_after,
+             d.criterion_before, w.criterion, more, std::abs(more) == 1 ? "" : "s") +
+         alike_candidates(d, w, parsimony);
 }
 
 namespace {

@@ -13,8 +13,11 @@ namespace rheo::runtime::diagnosis {
 // at every frequency: the interaction holds 62 % of the residual".
 std::string pattern_sentence(Effect effect, const ResidualPatterns& patterns);
 
-// Why WINNER was chosen: its pattern sentence, its screening share, the gap and BIC.
-std::string effect_reason(const Diagnosis& diagnosis, const CandidateOutcome& winner);
+// Why WINNER was chosen: its pattern sentence, its screening share, the gap and BIC; and every
+// refitted candidate of another effect that earned and came within PARSIMONY of the winner's gap
+// (the data do not tell them apart: the winner has no more parameters, or a gap lower by more
+// than parsimony, DiagnoseSettings::parsimony).
+std::string effect_reason(const Diagnosis& diagnosis, const CandidateOutcome& winner, double parsimony);
 
 // Why nothing was added and the residual is noise: no candidate screened above the threshold, or
 // none earned its parameters; and the gap against the noise estimate.
