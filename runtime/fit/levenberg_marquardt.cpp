@@ -17,10 +17,14 @@ namespace {
 // decrease tolerance over this many iterations.
 constexpr std::size_t kStagnationWindow = 5;
 constexpr double kStagnationFactor = 100.0;
-// A differenced column below this share of the largest column's norm is numerically zero: its
-// parameter's effect on the residuals is below 1e-6 of the strongest's (below what a
-// differencing step resolves on the time-stepped paths), and it is held for that Jacobian.
-constexpr double kInsensitiveColumn = 1e-6;
+// A differenced column below this share of the largest column's norm is numerically zero: a
+// column that is zero in exact arithmetic differences to rounding, about 1e-16 |r| / h = 1e-10
+// |r| at the step of 1e-6 (fit_search.cpp), and 1e-8 leaves that a factor 100. Such a parameter
+// is held for that Jacobian's damped steps by a scale kHeldScale times the largest column's.
+// (At 1e-6 the specimen-D fit's unidentifiable friction parameters were held too, and its
+// two-thread speed-up fell from 1.75 to 1.5, the cause not pinned down.)
+constexpr double kInsensitiveColumn = 1e-8;
+constexpr double kHeldScale = 1e6;
 
 // r(x), or an empty vector where it is not finite or cannot be evaluated.
 Eigen::VectorXd try_residuals(const LeastSquaresProblem& problem, const Eigen::VectorXd& x) {
@@ -136,18 +140,22 @@ LevenbergMarquardtResult levenberg_marquardt(const LeastSquaresProblem& problem,
     // A column numerically zero against the largest (kInsensitiveColumn) carries no information
     // on its parameter: the objective is flat there at the differencing step (a gap's centre
     // where the data see only its width, a shape its element's force does not reach), and its
-    // scale, however floored, would let the linear model send that parameter across its box on
-    // the noise of its gradient (every such trial rejected, the damping driven up until every
-    // other step is negligible too). Such parameters are held for this Jacobian's steps.
-    Eigen::VectorXd step_lower = lower - out.x, step_upper = upper - out.x;
+    // scale, its own column norm, would let the linear model send that parameter across its box
+    // on the noise of its gradient (every such trial rejected, the damping driven up until every
+    // other step is negligible too). Such parameters are held for this Jacobian's damped steps
+    // by a scale kHeldScale times the largest column's: their steps are then below 1e-6 of the
+    // residual's size over that column (at the least damping, 1e-12), and the steps stay inside
+    // the box, without a bounded solve (closing their box instead made every step one).
+    Eigen::VectorXd step_scale = scale;
     for (Eigen::Index c = 0; c < n; ++c)
-      if (norms(c) <= kInsensitiveColumn * norms.maxCoeff()) step_lower(c) = step_upper(c) = 0.0;
+      if (norms(c) <= kInsensitiveColumn * norms.maxCoeff()) step_scale(c) = kHeldScale * norms.maxCoeff();
+    const Eigen::VectorXd step_lower = lower - out.x, step_upper = upper - out.x;
     const DampedSteps model(j, out.residuals, settings.threads);
     const double tolerance = settings.decrease_tolerance * out.value, near = kStagnationFactor * tolerance;
     std::optional<DampedStep> first;
     double undamped = model.decrease_bound();
     if (undamped > tolerance) {
-      if (undamped > near) first = model.step(lambda, scale, step_lower, step_upper);
+      if (undamped > near) first = model.step(lambda, step_scale, step_lower, step_upper);
       undamped = first && first->predicted > near ? first->predicted
                                                   : model.step(0.0, scale, step_lower, step_upper, first ? first->d : Eigen::VectorXd()).predicted;
     }
@@ -164,7 +172,7 @@ LevenbergMarquardtResult levenberg_marquardt(const LeastSquaresProblem& problem,
         out.status = "NO_DESCENT";
         return out;
       }
-      const DampedStep step = first ? *std::exchange(first, std::nullopt) : model.step(lambda, scale, step_lower, step_upper);
+      const DampedStep step = first ? *std::exchange(first, std::nullopt) : model.step(lambda, step_scale, step_lower, step_upper);
       const Eigen::VectorXd trial = (out.x + step.d).cwiseMax(lower).cwiseMin(upper);
       const Eigen::VectorXd trial_r = try_residuals(problem, trial);
       const double trial_value = trial_r.size() == out.residuals.size() ? trial_r.squaredNorm() : std::numeric_limits<double>::infinity();
