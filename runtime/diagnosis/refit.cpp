@@ -48,7 +48,7 @@ double evaluation_work(const Network& network, const std::vector<FitDataSet>& da
 // The free stiffnesses of NETWORK's linear springs in its root parallel block among KEPT: the
 // linear stiffness a new element may need taken back from the model (free play engaging at the
 // larger amplitudes stiffens the data where the fitted springs had stiffened the model
-// everywhere), which stage 1 frees beside the new parameters (as the screen refits a history's linear
+// everywhere), which stage 1 frees beside the new parameters (as the screen refits the linear
 // stiffness beside every trial, screen.cpp).
 std::vector<int> root_spring_stiffnesses(const Network& network, const std::vector<int>& kept) {
   std::vector<int> out;
