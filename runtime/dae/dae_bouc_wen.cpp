@@ -9,7 +9,7 @@
 // (differential seed 37, model 85, IDA_CONV_FAIL 0.1 us after a drive sample). So each bouc_wen
 // inside a block takes the branch of a direction d = +-1, the sign of e' assumed between events
 // (loading where z d > 0): its law is smooth in e' within a step, and a root function e' (crossing
-// from the side of d) ends the step where e' reverses; there d flips and IDA restarts. At z = 0,
+// from the side of d) ends the step where e' reverses; there d flips and IDA goes on (below). At z = 0,
 // where loading starts again with e' of one sign, both branches have the same value and slope.
 // A bouc_wen between the terminal and ground reads the drive's rate, which the residual knows
 // exactly: it takes the branch of sgn(z u') as before (d = 0, no root).

@@ -144,8 +144,7 @@ LevenbergMarquardtResult levenberg_marquardt(const LeastSquaresProblem& problem,
     // on the noise of its gradient (every such trial rejected, the damping driven up until every
     // other step is negligible too). Such parameters are held for this Jacobian's damped steps
     // by a scale kHeldScale times the largest column's: their steps are then below 1e-6 of the
-    // residual's size over that column (at the least damping, 1e-12), and the steps stay inside
-    // the box, without a bounded solve (closing their box instead made every step one).
+    // residual's size over that column (at the least damping, 1e-12), and within the box.
     Eigen::VectorXd step_scale = scale;
     for (Eigen::Index c = 0; c < n; ++c)
       if (norms(c) <= kInsensitiveColumn * norms.maxCoeff()) step_scale(c) = kHeldScale * norms.maxCoeff();
