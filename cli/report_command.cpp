@@ -63,7 +63,7 @@ void add_data(report::ReportContent& content, const runtime::Network& network, c
 }
 
 // The results of the model's simulate protocols, whatever format they would be written in. A
-// history the fixed-step kernels run is streamed into a digest (report/history_digest.hpp): a
+// history is streamed into a digest (report/history_digest.hpp): a
 // long one is drawn in constant memory, without the limits of a history held whole.
 void add_protocols(report::ReportContent& content, const runtime::Network& network, const lang::Program& program, const Options& o) {
   for (const auto& sim : program.simulations) {
@@ -71,7 +71,7 @@ void add_protocols(report::ReportContent& content, const runtime::Network& netwo
     for (lang::Protocol protocol : sim.protocols) {
       lang::common(protocol.settings).elements = false;  // the report draws the whole network's force
       const std::string label = fmt::format("{} protocol ({}:{})", lang::protocol_name(protocol.kind), protocol.where.file, protocol.where.line);
-      if (runtime::streams(network, protocol)) {
+      if (runtime::streams(protocol)) {
         report::HistoryDigest digest;
         const auto progress = Progress::start(false, std::nullopt);
         progress->label(fmt::format("history of model {}", network.model().name));

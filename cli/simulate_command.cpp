@@ -104,8 +104,8 @@ bool hdf5_destination(const std::string& destination) { return runtime::is_hdf5_
 
 // Histories stream where they are written as CSV or HDF5 (JSON holds whole arrays); a report
 // draws a streamed history from its digest (report/history_digest.hpp).
-bool streamed(const runtime::Network& network, const lang::Protocol& protocol, const std::string& destination) {
-  return runtime::streams(network, protocol) && (lang::common(protocol.settings).format == lang::OutputFormat::csv || hdf5_destination(destination));
+bool streamed(const lang::Protocol& protocol, const std::string& destination) {
+  return runtime::streams(protocol) && (lang::common(protocol.settings).format == lang::OutputFormat::csv || hdf5_destination(destination));
 }
 
 // DIGEST, when not null, also receives the history, for a report.
@@ -208,7 +208,7 @@ Command add_simulate_command(CLI::App& app) {
       const std::string label = fmt::format("{} protocol ({}:{})", lang::protocol_name(job.protocol.kind), job.protocol.where.file,
                                             job.protocol.where.line);
       if (o->report.any() && !report) report = runtime::report::report_for_model(network, o->file, "rheo simulate");
-      if (streamed(network, job.protocol, destinations[k])) {
+      if (streamed(job.protocol, destinations[k])) {
         std::optional<runtime::report::HistoryDigest> digest;
         if (report) digest.emplace();
         outcomes.push_back(run_streamed(network, job, destinations[k], o->file, digest ? &*digest : nullptr));

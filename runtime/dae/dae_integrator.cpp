@@ -398,7 +398,15 @@ void DaeIntegrator::start(const DriveSignal& drive, const DaeLinearStart& linear
 
 double DaeIntegrator::time_horizon() const {
   return drive_.kind == DriveSignal::Kind::sine ? 1e-3 / std::max(drive_.omega, std::numeric_limits<double>::min())
+         : drive_.duration > 0.0                ? 1e-3 * drive_.duration
                                                 : 1e-3 * (drive_.samples->time.back() - drive_.samples->time.front());
+}
+
+void DaeIntegrator::slide(const Drive& window, std::size_t segment) {
+  if (drive_.kind != DriveSignal::Kind::samples || window.time.size() < 2 || segment + 1 >= window.time.size())
+    throw std::logic_error("DaeIntegrator::slide: a window of a sampled drive, holding the interval of the current time");
+  drive_.samples = &window;
+  segment_ = segment;
 }
 
 double DaeIntegrator::advance(double t) {

@@ -40,6 +40,9 @@ struct DriveSignal {
   double omega = 0.0;              // rad/s
   const Drive* samples = nullptr;  // samples: linear between them; not owned
   double offset = 0.0;             // sine: u = offset + amplitude sin(omega t) [mm]
+  // samples: the whole drive's duration [s] where `samples` holds a window of it (slide()); 0:
+  // that of `samples`. It sets the time scale of restarts (time_horizon).
+  double duration = 0.0;
 };
 
 struct DaeOptions {
@@ -95,6 +98,13 @@ class DaeIntegrator {
   // sampled drive the force at a sample time is its left limit: rates are those of the piece
   // ending there (the fixed-step convention, run_history.hpp), as are element_outputs().
   double advance(double t);
+  // Sampled drives given a window at a time (a history streamed from its file): continues on
+  // WINDOW, a later stretch of the same drive (its times and displacements those of the drive,
+  // bit for bit), whose interval SEGMENT is the one the current time lies in or, where the last
+  // advance() stopped on a sample, ends at. The window must hold a sample after every time
+  // advance() is asked for before the next slide() (as the whole drive does but at its end), and
+  // outlive its use. The same advance() calls then give the numbers of the whole drive.
+  void slide(const Drive& window, std::size_t segment);
 
   double time() const { return time_; }
   // The unknowns y at the current time (layout above) and their rates.

@@ -1,5 +1,7 @@
 #include "runtime/dae/dae_protocols.hpp"
 
+#include "runtime/dae/dae_history_stepper.hpp"
+
 #include "runtime/core/geometric_settling.hpp"
 
 #include "runtime/core/errors.hpp"
@@ -72,11 +74,7 @@ double dae_newton_tolerance(const DaeGraph& graph, double length, double force_s
   return stiffest > 0.0 ? std::clamp(ida_default * force_scale / stiffest, floor, ida_default) : ida_default;
 }
 
-namespace {
-
-// IDA's own message when its corrector fails says nothing about why; a yeoh in series that
-// softens (its tangent reaching zero, YeohLaw::softening_elongation) is the usual reason.
-std::string softening_hint(const Network& network) {
+std::string dae_softening_hint(const Network& network) {
   const Topology& t = network.topology();
   std::string hint;
   for (const ElementProbe& probe : t.probes) {
@@ -94,9 +92,7 @@ std::string softening_hint(const Network& network) {
   return hint;
 }
 
-// Node positions of a start at rest at U0 from the elements' state (Topology::probes order, which
-// the graph's probes follow: both walk the model's tree in source order).
-std::vector<double> start_positions(const Network& network, const DaeGraph& graph, double u0, const StartAtRest& start) {
+std::vector<double> dae_start_positions(const Network& network, const DaeGraph& graph, double u0, const StartAtRest& start) {
   const auto& probes = network.topology().probes;
   if (probes.size() != graph.probes.size()) throw std::logic_error("dae: the graph's elements are not the network's");
   for (std::size_t i = 0; i < probes.size(); ++i)
@@ -104,12 +100,14 @@ std::vector<double> start_positions(const Network& network, const DaeGraph& grap
   return positions_at_rest(graph, u0, start.element_force, start.element_elongation);
 }
 
+namespace {
+
 template <class Run>
 auto with_softening_hint(const Network& network, Run run) {
   try {
     return run();
   } catch (const NumericalError& error) {
-    throw NumericalError(error.what() + softening_hint(network));
+    throw NumericalError(error.what() + dae_softening_hint(network));
   }
 }
 
@@ -127,7 +125,7 @@ HarmonicPoint harmonic_point(const Network& network, double amplitude, double fr
   const DriveSignal signal{DriveSignal::Kind::sine, amplitude, omega, nullptr, preload};
   if (preload != 0.0) {
     if (!start) throw std::logic_error("dae_harmonic_point: a preload needs the relaxed start");
-    const std::vector<double> positions = start_positions(network, graph, preload, *start);
+    const std::vector<double> positions = dae_start_positions(network, graph, preload, *start);
     integrator.start(signal, &positions);
   } else if (const std::optional<DaeLinearStart> linear = dae_linear_periodic_start(graph, amplitude, omega)) {
     integrator.start(signal, *linear);
@@ -190,58 +188,6 @@ HarmonicPoint harmonic_point(const Network& network, double amplitude, double fr
   return point;
 }
 
-History history(const Network& network, const Drive& drive, bool elements, DaeStatistics* statistics, const StartAtRest* start) {
-  const DaeGraph graph = DaeGraph::build(network);
-  double length = 0.0;
-  for (double u : drive.displacement) length = std::max(length, std::abs(u));
-  length = std::max(length, 1e-6);
-  const double duration = drive.time.back() - drive.time.front();
-  DaeOptions dae;
-  dae.relative_tolerance = kDaeRelativeTolerance;
-  dae.length_scale = length;
-  dae.velocity_scale = duration > 0.0 ? length / duration : 1.0;
-  dae.force_scale = dae_force_scale(network, length, dae.velocity_scale);
-  dae.newton_tolerance = dae_newton_tolerance(graph, length, dae.force_scale);
-  DaeIntegrator integrator(graph, dae);
-  if (start) {
-    const std::vector<double> positions = start_positions(network, graph, drive.displacement.front(), *start);
-    integrator.start({DriveSignal::Kind::samples, 0.0, 0.0, &drive}, &positions);
-  } else {
-    integrator.start({DriveSignal::Kind::samples, 0.0, 0.0, &drive});
-  }
-
-  History h;
-  const std::size_t n = drive.time.size();
-  h.time = drive.time;
-  h.displacement = drive.displacement;
-  h.force.assign(n, 0.0);
-  if (elements) {
-    for (const auto& probe : graph.probes) h.element_paths.push_back(probe.path);
-    h.element_force.assign(graph.probes.size(), std::vector<double>(n, 0.0));
-    h.element_elongation.assign(graph.probes.size(), std::vector<double>(n, 0.0));
-  }
-  if (start) {
-    h.force[0] = start->force;
-    for (std::size_t i = 0; elements && i < graph.probes.size(); ++i) {
-      h.element_force[i][0] = start->element_force[i];
-      h.element_elongation[i][0] = start->element_elongation[i];
-    }
-  }
-  std::vector<double> f, e;
-  for (std::size_t k = 1; k < n; ++k) {
-    h.force[k] = integrator.advance(drive.time[k]);
-    if (elements) {
-      integrator.element_outputs(f, e);
-      for (std::size_t i = 0; i < graph.probes.size(); ++i) {
-        h.element_force[i][k] = f[i];
-        h.element_elongation[i][k] = e[i];
-      }
-    }
-  }
-  if (statistics) *statistics = integrator.statistics();
-  return h;
-}
-
 }  // namespace
 
 HarmonicPoint dae_harmonic_point(const Network& network, double amplitude, double frequency, const HarmonicOptions& options,
@@ -250,7 +196,27 @@ HarmonicPoint dae_harmonic_point(const Network& network, double amplitude, doubl
 }
 
 History dae_history(const Network& network, const Drive& drive, bool elements, DaeStatistics* statistics, const StartAtRest* start) {
-  return with_softening_hint(network, [&] { return history(network, drive, elements, statistics, start); });
+  DaeHistoryStepper stepper(network, elements, DaeHistoryScales::of(drive));  // adds the softening hint to its failures
+  History h;
+  const std::size_t n = drive.time.size();
+  h.time = drive.time;
+  h.displacement = drive.displacement;
+  h.force.assign(n, 0.0);
+  const auto& probes = network.topology().probes;
+  if (elements) {
+    for (const auto& probe : probes) h.element_paths.push_back(probe.path);
+    h.element_force.assign(probes.size(), std::vector<double>(n, 0.0));
+    h.element_elongation.assign(probes.size(), std::vector<double>(n, 0.0));
+  }
+  for (std::size_t k = 0; k < n; ++k) {
+    h.force[k] = k == 0 ? stepper.start(drive.time[0], drive.displacement[0], start) : stepper.step(drive.time[k], drive.displacement[k]);
+    for (std::size_t i = 0; elements && i < probes.size(); ++i) {
+      h.element_force[i][k] = stepper.element_force()[i];
+      h.element_elongation[i][k] = stepper.element_elongation()[i];
+    }
+  }
+  if (statistics) *statistics = stepper.statistics();
+  return h;
 }
 
 }  // namespace rheo::runtime

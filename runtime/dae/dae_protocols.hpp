@@ -12,6 +12,9 @@
 #include "runtime/core/drive.hpp"
 #include "runtime/core/harmonic_point.hpp"
 
+#include <string>
+#include <vector>
+
 namespace rheo::runtime {
 
 // Relative tolerance of IDA for the protocols (absolute tolerances scale with the drive).
@@ -22,7 +25,7 @@ inline constexpr double kDaeRelativeTolerance = 1e-8;
 HarmonicPoint dae_harmonic_point(const Network& network, double amplitude, double frequency, const HarmonicOptions& options,
                                  DaeStatistics* statistics = nullptr, double preload = 0.0, const StartAtRest* start = nullptr);
 
-// From rest, or from START where given.
+// From rest, or from START where given (DaeHistoryStepper sample by sample).
 History dae_history(const Network& network, const Drive& drive, bool elements, DaeStatistics* statistics = nullptr,
                     const StartAtRest* start = nullptr);
 
@@ -39,5 +42,14 @@ double dae_force_scale(const Network& network, double length, double rate);
 // are unknowns, so a position error dx is a force error k dx in that spring; with the default
 // coefficient, a 1e9 N/mm spring in series with a 1 N/mm arm put 1e-2 errors in K.
 double dae_newton_tolerance(const DaeGraph& graph, double length, double force_scale);
+
+// What to add to a failure's message: IDA's own message when its corrector fails says nothing
+// about why, and a yeoh in series that softens (its tangent reaching zero,
+// YeohLaw::softening_elongation) is the usual reason. Empty where no yeoh softens.
+std::string dae_softening_hint(const Network& network);
+
+// Node positions [mm] of a start at rest at U0 [mm] from the elements' state START (Topology::probes
+// order, which the graph's probes follow: both walk the model's tree in source order).
+std::vector<double> dae_start_positions(const Network& network, const DaeGraph& graph, double u0, const StartAtRest& start);
 
 }  // namespace rheo::runtime

@@ -1,5 +1,6 @@
 #include "runtime/protocols/run_history.hpp"
 
+#include "runtime/dae/dae_history_stepper.hpp"
 #include "runtime/dae/dae_protocols.hpp"
 #include "runtime/stepping/drive_stepper.hpp"
 #include "runtime/stepping/relaxed_state.hpp"
@@ -46,8 +47,8 @@ std::vector<double> history_force(const Network& network, const Drive& drive, So
   return force;
 }
 
-HistoryForceStream::HistoryForceStream(const Network& network, const Drive& drive, SolverChoice solver) : drive_(drive) {
-  if (uses_sundials(network, solver)) whole_ = run_history(network, drive, false, solver).force;
+HistoryForceStream::HistoryForceStream(const Network& network, const Drive& drive, SolverChoice solver) : network_(network), drive_(drive) {
+  if (uses_sundials(network, solver)) ida_ = std::make_unique<DaeHistoryStepper>(network, false, DaeHistoryScales::of(drive));
   else stepper_ = std::make_unique<DriveStepper>(network, false);
 }
 
@@ -56,12 +57,20 @@ HistoryForceStream::HistoryForceStream(HistoryForceStream&&) noexcept = default;
 
 std::size_t HistoryForceStream::next(std::span<double> out) {
   const std::size_t count = std::min(out.size(), drive_.time.size() - at_);
-  if (!stepper_) std::copy_n(whole_.begin() + static_cast<std::ptrdiff_t>(at_), count, out.begin());
-  else
-    for (std::size_t i = 0; i < count; ++i) {
-      const std::size_t k = at_ + i;
-      out[i] = k == 0 ? stepper_->start(drive_.time[0], drive_.displacement[0]) : stepper_->step(drive_.time[k], drive_.displacement[k]);
+  for (std::size_t i = 0; i < count; ++i) {
+    const std::size_t k = at_ + i;
+    const double t = drive_.time[k], u = drive_.displacement[k];
+    if (stepper_) {
+      out[i] = k == 0 ? stepper_->start(t, u) : stepper_->step(t, u);
+    } else if (k > 0) {
+      out[i] = ida_->step(t, u);
+    } else if (u == 0.0) {
+      out[i] = ida_->start(t, u);
+    } else {  // as run_history starts IDA away from rest
+      const StartAtRest start = relaxed_start(network_, relaxed_state(network_, u));
+      out[i] = ida_->start(t, u, &start);
     }
+  }
   at_ += count;
   return count;
 }

@@ -21,12 +21,13 @@ History run_history(const Network& network, const Drive& drive, bool elements, S
 // evaluation).
 std::vector<double> history_force(const Network& network, const Drive& drive, SolverChoice solver = SolverChoice::automatic);
 
-class DriveStepper;  // stepping/drive_stepper.hpp
+class DriveStepper;       // stepping/drive_stepper.hpp
+class DaeHistoryStepper;  // dae/dae_history_stepper.hpp
 
 // history_force a block of samples at a time, the same numbers bit for bit, without holding
-// them all (fits score long histories so): on the fixed-step kernels one step per sample as
-// the blocks are asked for; where SUNDIALS takes the network, its whole force is computed at
-// construction and handed out in blocks. NETWORK and DRIVE must outlive the stream.
+// them all (fits score long histories so): one step per sample as the blocks are asked for, on
+// the fixed-step kernels or on IDA (dae_history_stepper.hpp). NETWORK and DRIVE must outlive
+// the stream.
 class HistoryForceStream {
  public:
   HistoryForceStream(const Network& network, const Drive& drive, SolverChoice solver = SolverChoice::automatic);
@@ -41,10 +42,11 @@ class HistoryForceStream {
   std::size_t next(std::span<double> out);
 
  private:
+  const Network& network_;
   const Drive& drive_;
-  std::unique_ptr<DriveStepper> stepper_;  // fixed steps; null where SUNDIALS took the network
-  std::vector<double> whole_;              // SUNDIALS: every sample's force
-  std::size_t at_ = 0;                     // samples handed out
+  std::unique_ptr<DriveStepper> stepper_;   // fixed steps; null where SUNDIALS took the network
+  std::unique_ptr<DaeHistoryStepper> ida_;  // SUNDIALS; else null
+  std::size_t at_ = 0;                      // samples handed out
 };
 
 }  // namespace rheo::runtime

@@ -39,13 +39,9 @@ struct RunContext {
   ResultHeader header;
 };
 
-// Histories name the backend in their header when it is not the fixed-step one.
-std::string solver_note(const Network& network, SolverChoice solver) {
-  return uses_sundials(network, solver) ? fmt::format(" solver=sundials (IDA, rtol {:g})", kDaeRelativeTolerance) : std::string();
-}
 
 ProtocolResult history_run(RunContext& c, const lang::CommonSettings& common, const Drive& drive, std::string description) {
-  c.header.protocol = std::move(description) + solver_note(c.network, common.solver);
+  c.header.protocol = std::move(description) + history_solver_note(c.network, common.solver);
   History h = run_history(c.network, drive, common.elements, common.solver);
   double reach = 0.0;
   for (double u : h.displacement) reach = std::max(reach, std::abs(u));
@@ -199,6 +195,10 @@ std::string yeoh_softening_note(const Network& network, double reach) {
           probe.path, e, reach, YeohLaw::monotone_advice);
   }
   return note;
+}
+
+std::string history_solver_note(const Network& network, SolverChoice solver) {
+  return uses_sundials(network, solver) ? fmt::format(" solver=sundials (IDA, rtol {:g})", kDaeRelativeTolerance) : std::string();
 }
 
 std::string history_file(const lang::HistorySettings& s, const std::string& source_file) {

@@ -20,5 +20,8 @@ ProtocolResult run_protocol(const Network& network, const lang::Protocol& protoc
 // reads, and the warnings for a drive reaching REACH [mm] (a root yeoh softening before it).
 std::string history_file(const lang::HistorySettings& settings, const std::string& source_file);
 std::string yeoh_softening_note(const Network& network, double reach);
+// What a history's header adds to its protocol's description where IDA runs it: " solver=sundials
+// (IDA, rtol 1e-08)"; empty on the fixed-step kernels.
+std::string history_solver_note(const Network& network, lang::SolverChoice solver);
 
 }  // namespace rheo::runtime

@@ -5,12 +5,15 @@
 #include "runtime/io/history_stream.hpp"
 #include "runtime/protocols/run_protocols.hpp"
 #include "runtime/protocols/solver_choice.hpp"
+#include "runtime/dae/dae_history_stepper.hpp"
 #include "runtime/stepping/drive_stepper.hpp"
+#include "runtime/stepping/relaxed_state.hpp"
 
 #include <fmt/format.h>
 
 #include <algorithm>
 #include <cmath>
+#include <memory>
 #include <stdexcept>
 #include <variant>
 
@@ -31,8 +34,9 @@ class Block {
 
   const std::vector<std::string>& element_paths() const { return piece_.element_paths; }
 
-  // One sample; the block goes to SINK when full.
-  void add(double t, double u, double force, const DriveStepper& stepper, HistorySink& sink) {
+  // One sample, its element outputs those STEPPER holds; the block goes to SINK when full.
+  template <class Stepper>
+  void add(double t, double u, double force, const Stepper& stepper, HistorySink& sink) {
     piece_.time[fill_] = t, piece_.displacement[fill_] = u, piece_.force[fill_] = force;
     for (std::size_t i = 0; i < piece_.element_paths.size(); ++i) {
       piece_.element_force[i][fill_] = stepper.element_force()[i];
@@ -65,37 +69,74 @@ class Block {
   double reach_ = 0.0;  // largest |u| [mm]
 };
 
-// The streamed run proper, from STREAM (a HistoryStream or an Hdf5HistoryReader); NotStreamable
-// when the file is to be read whole.
-template <class Stream>
-StreamedHistory streamed(const Network& network, const lang::HistorySettings& s, const ResultHeader& header, Stream& stream, HistorySink& sink,
-                         const std::function<void(const StreamStatus&)>& progress) {
-  DriveStepper stepper(network, s.elements);
-  Block block(network, s.elements);
-  sink.begin(header, block.element_paths());
+// IDA sample by sample (DaeHistoryStepper), started as run_history starts it: from rest at 0,
+// else from the relaxed state at the first displacement.
+class IdaStepper {
+ public:
+  IdaStepper(const Network& network, bool elements, const DaeHistoryScales& scales) : network_(network), stepper_(network, elements, scales) {}
+  double start(double t0, double u0) {
+    if (u0 == 0.0) return stepper_.start(t0, u0);
+    const StartAtRest start = relaxed_start(network_, relaxed_state(network_, u0));
+    return stepper_.start(t0, u0, &start);
+  }
+  double step(double t, double u) { return stepper_.step(t, u); }
+  const std::vector<double>& element_force() const { return stepper_.element_force(); }
+  const std::vector<double>& element_elongation() const { return stepper_.element_elongation(); }
+
+ private:
+  const Network& network_;
+  DaeHistoryStepper stepper_;
+};
+
+// Calls VISIT(t, u) for every sample of the drive STREAM hands out, its intervals cut into
+// SUBSTEPS as Drive refine() cuts them (the same arithmetic: the same numbers).
+template <class Stream, class Visit>
+void each_sample(Stream& stream, int substeps, Visit&& visit) {
   DrivePiece piece;
   bool started = false;
   double t_before = 0.0, u_before = 0.0;  // the last row's
-  try {
-    while (stream.next(piece)) {
-      for (std::size_t k = 0; k < piece.time.size(); ++k) {
-        const double t = piece.time[k], u = piece.displacement[k];
-        if (!started) {
-          block.add(t, u, stepper.start(t, u), stepper, sink);
-          started = true;
-        } else if (s.substeps <= 1) {
-          block.add(t, u, stepper.step(t, u), stepper, sink);
-        } else {
-          for (int j = 1; j <= s.substeps; ++j) {  // as Drive refine() cuts the interval
-            const double w = static_cast<double>(j) / s.substeps;
-            const double tj = t_before + w * (t - t_before), uj = u_before + w * (u - u_before);
-            block.add(tj, uj, stepper.step(tj, uj), stepper, sink);
-          }
+  while (stream.next(piece)) {
+    for (std::size_t k = 0; k < piece.time.size(); ++k) {
+      const double t = piece.time[k], u = piece.displacement[k];
+      if (!started || substeps <= 1) {
+        visit(t, u);
+        started = true;
+      } else {
+        for (int j = 1; j <= substeps; ++j) {
+          const double w = static_cast<double>(j) / substeps;
+          visit(t_before + w * (t - t_before), u_before + w * (u - u_before));
         }
-        t_before = t, u_before = u;
       }
+      t_before = t, u_before = u;
+    }
+    visit.piece_done();
+  }
+}
+
+// The streamed run proper, from STREAM (a HistoryStream or an Hdf5HistoryReader) on STEPPER
+// (DriveStepper or IdaStepper); NotStreamable when the file is to be read whole.
+template <class Stream, class Stepper>
+StreamedHistory streamed(const Network& network, const lang::HistorySettings& s, const ResultHeader& header, Stream& stream, Stepper& stepper,
+                         HistorySink& sink, const std::function<void(const StreamStatus&)>& progress) {
+  Block block(network, s.elements);
+  sink.begin(header, block.element_paths());
+  struct Visit {
+    Block& block;
+    Stepper& stepper;
+    HistorySink& sink;
+    Stream& stream;
+    const std::function<void(const StreamStatus&)>& progress;
+    bool started = false;
+    void operator()(double t, double u) {
+      block.add(t, u, started ? stepper.step(t, u) : stepper.start(t, u), stepper, sink);
+      started = true;
+    }
+    void piece_done() const {
       if (progress) progress({block.samples(), stream.bytes_read(), stream.file_size()});
     }
+  };
+  try {
+    each_sample(stream, s.substeps, Visit{block, stepper, sink, stream, progress});
     block.flush(sink);
   } catch (const NotStreamable&) {
     throw;
@@ -108,26 +149,42 @@ StreamedHistory streamed(const Network& network, const lang::HistorySettings& s,
 
 }  // namespace
 
-bool streams(const Network& network, const lang::Protocol& protocol) {
-  const auto* s = std::get_if<lang::HistorySettings>(&protocol.settings);
-  return s && !uses_sundials(network, s->solver);
-}
+bool streams(const lang::Protocol& protocol) { return std::holds_alternative<lang::HistorySettings>(protocol.settings); }
 
 StreamedHistory stream_history(const Network& network, const lang::Protocol& protocol, const std::string& source_file, HistorySink& sink,
                                const std::function<void(const StreamStatus&)>& progress) {
-  if (!streams(network, protocol)) throw std::logic_error("stream_history: the protocol does not stream");
+  if (!streams(protocol)) throw std::logic_error("stream_history: the protocol does not stream");
   const auto& s = std::get<lang::HistorySettings>(protocol.settings);
   const std::string file = history_file(s, source_file);
-  const ResultHeader header{network.model().name, source_file, fmt::format("history file={}", file)};
+  const ResultHeader header{network.model().name, source_file, fmt::format("history file={}", file) + history_solver_note(network, s.solver)};
   const bool from_rest = s.start == lang::HistoryStart::rest;
-  if (reads_as_hdf5(file)) {
-    Hdf5HistoryReader stream(file, &s.file_where, column_reading(s.columns), false, from_rest);
-    return streamed(network, s, header, stream, sink, progress);
-  }
+  const bool ida = uses_sundials(network, s.solver);
+  // Runs the file through a stream OPEN() makes; IDA's settings follow from the whole drive
+  // (dae_history_stepper.hpp), so the file is read once for them first.
+  const auto run = [&](const auto& open) {
+    auto stream = open();
+    if (!ida) {
+      DriveStepper stepper(network, s.elements);
+      return streamed(network, s, header, *stream, stepper, sink, progress);
+    }
+    struct Scan {
+      DaeHistoryScales scales;
+      void operator()(double t, double u) { scales.add(t, u); }
+      void piece_done() const {}
+    } scan;
+    each_sample(*stream, s.substeps, scan);
+    stream = open();
+    IdaStepper stepper(network, s.elements, scan.scales);
+    return streamed(network, s, header, *stream, stepper, sink, progress);
+  };
+  if (reads_as_hdf5(file))
+    return run([&] { return std::make_unique<Hdf5HistoryReader>(file, &s.file_where, column_reading(s.columns), false, from_rest); });
   try {
-    HistoryStream stream(file, &s.file_where, from_rest);
-    stream.read_columns(column_reading(s.columns));
-    return streamed(network, s, header, stream, sink, progress);
+    return run([&] {
+      auto stream = std::make_unique<HistoryStream>(file, &s.file_where, from_rest);
+      stream->read_columns(column_reading(s.columns));
+      return stream;
+    });
   } catch (const NotStreamable&) {}
   sink.restart();
   ProtocolResult whole = run_protocol(network, protocol, source_file);

@@ -25,8 +25,9 @@ namespace rheo::runtime {
 
 inline constexpr std::size_t kBlockSamples = 4096;
 
-// Whether PROTOCOL runs streamed: a `history` protocol on the fixed-step kernels.
-bool streams(const Network& network, const lang::Protocol& protocol);
+// Whether PROTOCOL runs streamed: a `history` protocol, on either integrator (on IDA the file
+// is read twice: first for the drive's reach and duration, which set IDA's tolerances).
+bool streams(const lang::Protocol& protocol);
 
 // How far a streamed run has come, after each piece: samples written so far and bytes of the
 // file read, of FILE_BYTES.
