@@ -4,6 +4,7 @@
 #include <unistd.h>
 
 #include <iostream>
+#include <string>
 
 namespace rheo::cli {
 
@@ -43,11 +44,19 @@ void Progress::evaluation(const runtime::SearchProgress& p) {
   }
 }
 
-void Progress::status(const std::string& line, double quiet) {
+std::string rough_duration(double seconds) {
+  if (seconds < 120.0) return fmt::format("{:.0f} s", seconds);
+  if (seconds < 7200.0) return fmt::format("{:.0f} min", seconds / 60.0);
+  return fmt::format("{:.1f} h", seconds / 3600.0);
+}
+
+void Progress::status(const std::string& line, double quiet, double done) {
   const auto now = std::chrono::steady_clock::now();
-  if (elapsed() < quiet || std::chrono::duration<double>(now - last_).count() < interval_) return;
+  const double clock = elapsed();
+  if (clock < quiet || std::chrono::duration<double>(now - last_).count() < interval_) return;
   last_ = now;
-  const std::string text = fmt::format("{}: {}, {:.0f} s", what_.empty() ? "running" : what_, line, elapsed());
+  std::string text = fmt::format("{}: {}, {:.0f} s", what_.empty() ? "running" : what_, line, clock);
+  if (done > 0.0 && done < 1.0) text += fmt::format(", about {} left", rough_duration(clock * (1.0 - done) / done));
   if (live_) {
     std::cerr << "\r  " << text << "   " << std::flush;
     line_open_ = true;
@@ -71,9 +80,10 @@ std::function<void(const std::string&)> Progress::stage_callback(const std::shar
 
 std::function<void(const runtime::StreamStatus&)> Progress::stream_callback(const std::shared_ptr<Progress>& progress) {
   return [progress](const runtime::StreamStatus& s) {
-    progress->status(s.file_bytes > 0 ? fmt::format("{} samples, {:.0f} % of the file read", s.samples,
-                                                    100.0 * static_cast<double>(s.bytes_read) / static_cast<double>(s.file_bytes))
-                                      : fmt::format("{} samples", s.samples));
+    const double read = s.file_bytes > 0 ? static_cast<double>(s.bytes_read) / static_cast<double>(s.file_bytes) : 0.0;
+    progress->status(
+        s.file_bytes > 0 ? fmt::format("{} samples, {:.0f} % of the file read", s.samples, 100.0 * read) : fmt::format("{} samples", s.samples),
+        kQuietStart, read);
   };
 }
 

@@ -22,6 +22,10 @@ inline constexpr double kLogInterval = 5.0;        // [s] between lines when sta
 inline constexpr double kRequestedInterval = 1.0;  // [s] between lines with --progress
 inline constexpr double kQuietStart = 3.0;         // [s] before the first status() line
 
+// A duration [s] in the unit a reader takes in at a glance: "40 s" below 2 min, "12 min" below
+// 2 h, "3.5 h" beyond.
+std::string rough_duration(double seconds);
+
 class Progress {
  public:
   // REQUESTED: --progress given; TIME_LIMIT: the command's bound [s], shown beside the clock.
@@ -35,14 +39,16 @@ class Progress {
   void evaluation(const runtime::SearchProgress& p);
   // A line of its own making (a streamed history's "N samples, P % of the file"), written as
   // evaluation() writes its lines, none in the first QUIET seconds: a short run stays silent.
-  void status(const std::string& line, double quiet = kQuietStart);
+  // DONE in (0, 1]: the share of the work done, for the time left at the pace so far after the
+  // clock ("about 4 min left"); 0: none said.
+  void status(const std::string& line, double quiet = kQuietStart, double done = 0.0);
   // Clears a live line before other output.
   void finish();
 
   // The callbacks bound to THIS (shared: they may outlive the caller's copy).
   static std::function<void(const runtime::SearchProgress&)> evaluation_callback(const std::shared_ptr<Progress>& progress);
   static std::function<void(const std::string&)> stage_callback(const std::shared_ptr<Progress>& progress);
-  // For stream_history: status() lines "N samples, P % of the file read".
+  // For stream_history: status() lines "N samples, P % of the file read", with the time left.
   static std::function<void(const runtime::StreamStatus&)> stream_callback(const std::shared_ptr<Progress>& progress);
 
  private:

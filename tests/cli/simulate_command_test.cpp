@@ -63,6 +63,25 @@ TEST_CASE("simulate streams a history to its output, the text the whole run rend
   CHECK(piped.out == whole);
 }
 
+// A history IDA runs (`auto` takes it for the inerter) streams too (more than one block of the
+// writer), the text the whole run renders.
+TEST_CASE("simulate streams a history on IDA, the text the whole run renders") {
+  write_history(dir() / "ida.csv", 9000);
+  const fs::path model = dir() / "ida.rheo";
+  std::ofstream(model) << "model h {\n  spring rubber (k = 800 N/mm)\n  series fluid { slider cap (fy = 60 N)  spring k1 (k = 600 N/mm)\n"
+                          "    parallel y { inerter column (b = 40 kg)  dashpot channel (c = 3 N*s/mm)  spring bulge (k = 150 N/mm) } }\n}\n"
+                       << "simulate {\n  history file = \"ida.csv\"\n  output \"ida_out.csv\"\n}\n";
+  const auto r = run_rheo(fmt::format("simulate '{}'", model.string()));
+  REQUIRE(r.code == 0);
+  CHECK(r.err.find("history of model h: 9000 samples written to") != std::string::npos);
+  const rheo::lang::Program program = rheo::lang::compile_source(model.string(), read(model));
+  const auto network = rheo::runtime::Network::compile(*program.find_model("h"));
+  const rheo::lang::Protocol& protocol = program.simulations.at(0).protocols.at(0);
+  const std::string whole = rheo::runtime::rendered(rheo::runtime::run_protocol(network, protocol, model.string()), rheo::lang::OutputFormat::csv);
+  CHECK(whole.find("solver=sundials") != std::string::npos);
+  CHECK(read(dir() / "ida_out.csv") == whole);
+}
+
 TEST_CASE("a fault late in a streamed history: its row and column, exit 4, no output and no temporary file, earlier outputs intact") {
   write_history(dir() / "late.csv", 120000, 110000, "11,0.5,7");
   const fs::path out = dir() / "late_out";

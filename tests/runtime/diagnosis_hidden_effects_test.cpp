@@ -212,7 +212,9 @@ TEST_CASE("diagnose, harmonic: data the model already explains gives none") {
 // noise (4 of the 10 draws from seed 100 named an effect when the BIC was N ln(J) + p ln N).
 // Under the noise-weighted criterion (criterion.hpp) no draw earns anything.
 TEST_CASE("diagnose, harmonic: data the model already explains gives none over several noise draws") {
+  // Under AddressSanitizer one draw (each takes about 45 s there): the statistics are the Release run's.
   for (const unsigned seed : {100u, 101u, 102u}) {
+    if (test::kUnderSanitizer && seed > 100u) break;
     CAPTURE(seed);
     const dx::Diagnosis d = diagnose(kExplainedStart, {harmonic_measurement(kExplainedTruth, seed)});
     require_none(d);
