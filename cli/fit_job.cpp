@@ -211,6 +211,7 @@ runtime::FitResult run_fit_job(const FitJob& job) {
   runtime::FitSettings settings = job.settings;
   const std::shared_ptr<Progress> progress = Progress::start(job.progress_lines, settings.time_limit);
   progress->label(fmt::format("fit {}", job.model->name));
+  progress->announce_budget();
   settings.progress = Progress::evaluation_callback(progress);
   InterruptScope interrupt_scope;
   settings.interrupt = interrupt_scope.flag();

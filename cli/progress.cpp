@@ -29,13 +29,24 @@ void Progress::stage(const std::string& what) {
 }
 
 void Progress::evaluation(const runtime::SearchProgress& p) {
+  const std::string what = what_.empty() ? "searching" : what_;
+  const double per_evaluation = p.evaluations > 0 ? p.seconds / p.evaluations : 0.0;
+  const double allowed = per_evaluation * std::max(0, p.limit - p.evaluations);  // [s] the budget's evaluations left at that cost
+  if (announce_ && p.evaluations == 1 && allowed > kAnnouncedBound) {
+    finish();
+    std::cerr << fmt::format(
+                     "rheo: {}: an evaluation takes about {}, so its budget of {} evaluations allows up to about {}; "
+                     "--time-limit or --max-evaluations bound it\n",
+                     what, rough_duration(per_evaluation), p.limit, rough_duration(allowed))
+              << std::flush;
+  }
   const auto now = std::chrono::steady_clock::now();
   if (!first_of_stage_ && std::chrono::duration<double>(now - last_).count() < interval_) return;
   first_of_stage_ = false;
   last_ = now;
   const std::string clock = time_limit_ ? fmt::format("{:.0f} s of {:g} s", elapsed(), *time_limit_) : fmt::format("{:.0f} s", elapsed());
-  const std::string line = fmt::format("{}: {} evaluations, best objective {:.6g} ({}), {}", what_.empty() ? "searching" : what_, p.evaluations,
-                                       p.best, p.stage, clock);
+  std::string line = fmt::format("{}: {} evaluations, best objective {:.6g} ({}), {}", what, p.evaluations, p.best, p.stage, clock);
+  if (allowed > 0.0) line += fmt::format("; the budget allows {} more", rough_duration(allowed));
   if (live_) {
     std::cerr << "\r  " << line << "   " << std::flush;
     line_open_ = true;
@@ -45,6 +56,9 @@ void Progress::evaluation(const runtime::SearchProgress& p) {
 }
 
 std::string rough_duration(double seconds) {
+  if (seconds < 1e-3) return fmt::format("{:.0f} us", seconds * 1e6);
+  if (seconds < 1e-2) return fmt::format("{:.1f} ms", seconds * 1e3);
+  if (seconds < 1.0) return fmt::format("{:.0f} ms", seconds * 1e3);
   if (seconds < 120.0) return fmt::format("{:.0f} s", seconds);
   if (seconds < 7200.0) return fmt::format("{:.0f} min", seconds / 60.0);
   return fmt::format("{:.1f} h", seconds / 3600.0);

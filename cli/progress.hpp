@@ -22,8 +22,10 @@ inline constexpr double kLogInterval = 5.0;        // [s] between lines when sta
 inline constexpr double kRequestedInterval = 1.0;  // [s] between lines with --progress
 inline constexpr double kQuietStart = 3.0;         // [s] before the first status() line
 
-// A duration [s] in the unit a reader takes in at a glance: "40 s" below 2 min, "12 min" below
-// 2 h, "3.5 h" beyond.
+inline constexpr double kAnnouncedBound = 10.0;  // [s] a search's budget must allow for announce_budget()'s line
+
+// A duration [s] in the unit a reader takes in at a glance: "40 us" below 1 ms, "0.7 ms" or
+// "120 ms" below 1 s, "40 s" below 2 min, "12 min" below 2 h, "3.5 h" beyond.
 std::string rough_duration(double seconds);
 
 class Progress {
@@ -35,8 +37,12 @@ class Progress {
   void stage(const std::string& what);
   // Names what runs without a line of its own (the progress lines carry it).
   void label(const std::string& what) { what_ = what; }
-  // For FitSettings::progress: called after every evaluation of a search.
+  // For FitSettings::progress: called after every evaluation of a search. Its lines say what the
+  // search's budget allows at the cost per evaluation so far ("the budget allows 30 s more").
   void evaluation(const runtime::SearchProgress& p);
+  // After the first evaluation of each search whose budget allows more than kAnnouncedBound, a
+  // line of its own at once: what an evaluation costs and how long the budget allows (`rheo fit`).
+  void announce_budget() { announce_ = true; }
   // A line of its own making (a streamed history's "N samples, P % of the file"), written as
   // evaluation() writes its lines, none in the first QUIET seconds: a short run stays silent.
   // DONE in (0, 1]: the share of the work done, for the time left at the pace so far after the
@@ -63,6 +69,7 @@ class Progress {
   bool line_open_ = false;  // a live line is on the screen
   bool requested_ = false;  // --progress: also a line at the first evaluation after each stage
   bool first_of_stage_ = false;
+  bool announce_ = false;
 };
 
 }  // namespace rheo::cli

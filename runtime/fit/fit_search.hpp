@@ -72,6 +72,8 @@ struct SearchProgress {
   int evaluations = 0;
   double best = 0.0;       // best objective so far
   const char* stage = "";  // "start", "sample", "local", "global" or "polish"
+  int limit = 0;           // the evaluations this search may reach: its budget, or what its deadline affords
+  double seconds = 0.0;    // wall time since the search began [s]
 };
 
 struct SearchResult {

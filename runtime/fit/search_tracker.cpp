@@ -59,7 +59,12 @@ void Tracker::record(const std::vector<double>& z, const Outcome& outcome) {
     best_value_ = outcome.value;
     best_z_ = z;
   }
-  if (progress_) progress_({evaluations_, best_value_, stage_});
+  report_progress();
+}
+
+void Tracker::report_progress() const {
+  if (progress_)
+    progress_({evaluations_, best_value_, stage_, limit_, std::chrono::duration<double>(std::chrono::steady_clock::now() - started_).count()});
 }
 
 double Tracker::operator()(const std::vector<double>& z) {
@@ -85,7 +90,7 @@ Eigen::MatrixXd Tracker::jacobian(const std::vector<double>& z) {
     j.resize(0, 0);
   }
   ++evaluations_;
-  if (progress_) progress_({evaluations_, best_value_, stage_});
+  report_progress();
   return j.allFinite() ? j : Eigen::MatrixXd();
 }
 

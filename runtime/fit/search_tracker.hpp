@@ -82,6 +82,7 @@ class Tracker {
   // Admits, evaluates and records ZS (batches, above); the outcomes in order.
   std::vector<Outcome> batch(const std::vector<std::vector<double>>& zs);
   void record(const std::vector<double>& z, const Outcome& outcome);
+  void report_progress() const;
 
   const Objective& objective_;
   const Residuals* residuals_;

@@ -22,7 +22,8 @@
 //   number. Timings match any number: the X of `in X s`, and the last number of a row in a table
 //   whose header line ends in `seconds`.
 // - Progress lines (`rheo: ...: N evaluations, best objective X (stage), N s`), which rheo writes
-//   every few seconds when standard error is no terminal and erases on a terminal, are left out
+//   every few seconds when standard error is no terminal and erases on a terminal, and the line
+//   on what a fit's budget allows (`rheo: fit m: an evaluation takes about ...`), are left out
 //   of what the command printed before comparing.
 #pragma once
 
@@ -201,10 +202,13 @@ inline bool line_matches(const std::string& shown, const std::string& actual, bo
   return true;
 }
 
-// rheo's periodic progress line (cli/progress.cpp), which a terminal shows as one line it erases.
+// rheo's periodic progress line (cli/progress.cpp), which a terminal shows as one line it erases,
+// and the line on what a fit's budget allows (its figures are timings).
 inline bool progress_line(const std::string& line) {
-  static const std::regex progress(R"(^rheo: .*: \d+ evaluations, best objective \S+ \([^)]*\), \d+ s( of \S+ s)?$)");
-  return std::regex_match(line, progress);
+  static const std::regex progress(R"(^rheo: .*: \d+ evaluations, best objective \S+ \([^)]*\), \d+ s( of \S+ s)?(; the budget allows .* more)?$)");
+  static const std::regex budget(
+      R"(^rheo: .*: an evaluation takes about .*, so its budget of \d+ evaluations allows up to about .*; --time-limit or --max-evaluations bound it$)");
+  return std::regex_match(line, progress) || std::regex_match(line, budget);
 }
 
 // What a transcript compares: the printed lines without progress lines and trailing blank lines.

@@ -168,7 +168,10 @@ TEST_CASE("docs transcripts: text must be equal and numbers agree to their print
 }
 
 TEST_CASE("docs transcripts: ... stands for one or more lines, progress lines are dropped") {
-  const std::vector<std::string> printed = printed_lines("a\nrheo: fit coupled: 2 evaluations, best objective 0.0113057 (sample), 8 s\nb 1\nc\nd\n\n");
+  const std::vector<std::string> printed = printed_lines(
+      "a\nrheo: fit coupled: 2 evaluations, best objective 0.0113057 (sample), 8 s\nb 1\n"
+      "rheo: fit coupled: an evaluation takes about 1.5 ms, so its budget of 20000 evaluations allows up to about 30 s; --time-limit or "
+      "--max-evaluations bound it\nc\nrheo: fit coupled: 9 evaluations, best objective 0.01 (local), 9 s of 60 s; the budget allows 12 min more\nd\n\n");
   CHECK(printed == std::vector<std::string>{"a", "b 1", "c", "d"});
   CHECK_FALSE(mismatch({"a", "b 1", "c", "d"}, printed));
   CHECK_FALSE(mismatch({"a", "...", "d"}, printed));

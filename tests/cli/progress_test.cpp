@@ -13,8 +13,12 @@
 
 using rheo::cli::Progress;
 
-TEST_CASE("durations are said in seconds, minutes or hours") {
-  CHECK(rheo::cli::rough_duration(0.4) == "0 s");
+TEST_CASE("durations are said in microseconds, milliseconds, seconds, minutes or hours") {
+  CHECK(rheo::cli::rough_duration(4.2e-5) == "42 us");
+  CHECK(rheo::cli::rough_duration(7.1e-4) == "710 us");
+  CHECK(rheo::cli::rough_duration(1.46e-3) == "1.5 ms");
+  CHECK(rheo::cli::rough_duration(0.4) == "400 ms");
+  CHECK(rheo::cli::rough_duration(1.4) == "1 s");
   CHECK(rheo::cli::rough_duration(119.0) == "119 s");
   CHECK(rheo::cli::rough_duration(150.0) == "2 min");
   CHECK(rheo::cli::rough_duration(7000.0) == "117 min");
@@ -38,4 +42,30 @@ TEST_CASE("a progress line says the time left at its pace so far") {
   const int clock = std::stoi(m[1].str()), left = std::stoi(m[2].str());
   CHECK(clock >= 1);
   CHECK(std::abs(left - 3 * clock) <= 2);  // each figure rounded to the second
+}
+
+TEST_CASE("a fit's progress says what its budget allows, and announces it at the start where that is long") {
+  std::ostringstream captured;
+  std::streambuf* const original = std::cerr.rdbuf(captured.rdbuf());
+  {
+    const auto progress = Progress::start(true, std::nullopt);
+    progress->label("fit m");
+    progress->announce_budget();
+    progress->evaluation({1, 0.5, "start", 20000, 1.5e-3});   // 19999 more at 1.5 ms: 30 s, announced
+    progress->evaluation({2, 0.4, "sample", 20000, 3.0e-3});  // within the second: no line
+    progress->stage("fit m");                                 // --progress: a line at the stage's first evaluation
+    progress->evaluation({100, 0.25, "local", 20000, 0.15});  // 19900 more at 1.5 ms
+  }
+  {
+    const auto progress = Progress::start(true, std::nullopt);
+    progress->label("fit small");
+    progress->announce_budget();
+    progress->evaluation({1, 0.5, "start", 100, 1e-3});  // 0.1 s allowed: nothing said
+  }
+  std::cerr.rdbuf(original);
+  CHECK(captured.str() ==
+        "rheo: fit m: an evaluation takes about 1.5 ms, so its budget of 20000 evaluations allows up to about 30 s; --time-limit or "
+        "--max-evaluations bound it\n"
+        "rheo: fit m\n"
+        "rheo: fit m: 100 evaluations, best objective 0.25 (local), 0 s; the budget allows 30 s more\n");
 }
