@@ -93,8 +93,8 @@ std::pair<runtime::FitResult, std::vector<runtime::FitDataSet>> grid_of(const st
 }  // namespace
 
 // Free play closing only at the top amplitude, behind a spring ten times the measured stiffness:
-// a parallel branch's force adds to the model's, so its first harmonic does too, and the spring
-// behind the true play removes the whole objective. Its half-width (1.7 mm) lies between the two
+// the screen adds the trial's K* to the model's (close for a branch in parallel: their forces
+// add), so the spring behind the true play removes nearly the whole objective. Its half-width (1.7 mm) lies between the two
 // largest amplitudes (1.6, 2 mm), where a unit spring engages for g = 0.068 of its k at 2 mm
 // (symmetric play: g = 1 - (2/pi)(asin(h/a) + (h/a) sqrt(1 - (h/a)^2))): the trial's k was
 // bounded by 3 times the measured stiffness (~300 N/mm) and could add no more than 94 N/mm of the
