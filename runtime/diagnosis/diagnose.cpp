@@ -126,6 +126,7 @@ class Diagnoser {
     stage(fmt::format("fitting model {}", source_.model));
     d_.before_program = base_.program;
     d_.before = fit(Network::compile(*base_.model), free, data_, within(1.0 / 3.0).fit);
+    d_.before.network = with_gaps_in_play(d_.before.network);  // the same predictions, as the fitted source can state them
     d_.time_limited = d_.before.time_limited;
     d_.gap_before = d_.gap_after = fit_gap(d_.before);
     d_.residual_terms = residual_terms(data_);

@@ -1,6 +1,7 @@
 #include "runtime/diagnosis/screen.hpp"
 
 #include "lang/frontend.hpp"
+#include "runtime/diagnosis/added_objective.hpp"
 #include "runtime/diagnosis/element_text.hpp"
 #include "runtime/fit/fit_scoring.hpp"
 
@@ -35,12 +36,6 @@ std::vector<double> turning_amplitudes(const std::vector<double>& u) {
   return out;
 }
 
-// The added response of one trial (or one yeoh basis function) on every data set.
-struct Signature {
-  std::vector<std::vector<Complex>> harmonic;  // per set (empty for histories): K*_c per point
-  std::vector<std::vector<double>> history;    // per set (empty for harmonic sets): s(t) per sample
-};
-
 // The response of STATEMENT (one or more element lines) alone on every data set.
 Signature simulate_statement(const std::string& statement, const std::vector<FitDataSet>& data, const ScoreSettings& score) {
   const lang::Program program = lang::compile_source("<diagnose probe>", "model probe {\n" + statement + "\n}\n");
@@ -56,133 +51,28 @@ Signature simulate_statement(const std::string& statement, const std::vector<Fit
   return s;
 }
 
+// The largest share of its stiffness k that a trial simulated at k = 1 (SIGNATURE) shows on DATA:
+// max |K*_c| over harmonic points, max |s| / max |u| over histories; within [1e-3, 1] (a
+// trial that never engages is sized as one fully engaged: its size then does not matter).
+double engaged_share(const Signature& signature, const std::vector<FitDataSet>& data) {
+  double share = 0.0;
+  for (std::size_t f = 0; f < data.size(); ++f) {
+    for (const Complex& k : signature.harmonic[f]) share = std::max(share, std::abs(k));
+    if (data[f].is_harmonic()) continue;
+    double u_max = 0.0, s_max = 0.0;
+    for (double u : data[f].history().drive.displacement) u_max = std::max(u_max, std::abs(u));
+    for (double s : signature.history[f]) s_max = std::max(s_max, std::abs(s));
+    if (u_max > 0.0) share = std::max(share, s_max / u_max);
+  }
+  return share > 0.0 ? std::clamp(share, 1e-3, 1.0) : 1.0;
+}
+
 Signature simulate_alone(const Trial& trial, const std::vector<FitDataSet>& data, const ScoreSettings& score, const BoundScales& bounds) {
   std::string text;
   for (const auto& line : trial_statement(trial, "added", bounds)) text += line + "\n";
   return simulate_statement(text, data, score);
 }
 
-
-// Objective of the fitted model plus sum_b coefficient[b] * basis[b] and a refitted linear
-// stiffness (per data set), as fit_scoring.hpp scores it.
-// Called thousands of times a screen: the fitted K*_m of every harmonic point is formed once, and
-// each call writes the sums into scratch copies of the fitted predictions (not thread-safe).
-class AddedObjective {
- public:
-  AddedObjective(const FitResult& fit, const std::vector<FitDataSet>& data, const ScoreSettings& score) : data_(data), score_(score) {
-    for (const auto& set : fit.datasets) {
-      scratch_.push_back(set.prediction);
-      base_force_.push_back(set.prediction.force);
-      std::vector<Complex> k;
-      for (const auto& point : set.prediction.points) k.push_back(std::polar(point.measures.stiffness, point.measures.phase));
-      base_k_.push_back(std::move(k));
-    }
-  }
-
-  double operator()(const std::vector<const Signature*>& basis, const std::vector<double>& coefficient) const {
-    double sum = 0.0;
-    for (std::size_t f = 0; f < data_.size(); ++f) {
-      const FitDataSet& set = data_[f];
-      Prediction& p = scratch_[f];
-      if (set.is_harmonic()) {
-        sum += harmonic_objective(f, basis, coefficient);
-        continue;
-      }
-      std::copy(base_force_[f].begin(), base_force_[f].end(), p.force.begin());
-      add_history(set, basis, coefficient, f, p.force);
-      residuals_.clear();
-      append_residuals(set, p, score_, residuals_);
-      for (double r : residuals_) sum += r * r;
-    }
-    return sum;
-  }
-
- private:
-  // Harmonic set F: K*_m + sum a s + beta at every point, beta (real, N/mm) the refit of the
-  // linear stiffness, as add_history refits it on a history: a trial that explains part of the
-  // stiffness (free play engaging at the larger amplitudes, say) is sized with the springs the
-  // model already has lowered to make room for it, as the refit will (refit.hpp, stage 1).
-  // Gauss-Newton on beta from 0, two steps each kept only where it lowers the objective: exact
-  // in one for the least-squares objective (its residuals are affine in beta), close for phi
-  // (eq. 5.38).
-  double harmonic_objective(std::size_t f, const std::vector<const Signature*>& basis, const std::vector<double>& coefficient) const {
-    const FitDataSet& set = data_[f];
-    Prediction& p = scratch_[f];
-    trial_k_.resize(p.points.size());
-    double scale = 0.0;
-    for (std::size_t j = 0; j < p.points.size(); ++j) {
-      Complex k = base_k_[f][j];
-      for (std::size_t b = 0; b < basis.size(); ++b) k += coefficient[b] * basis[b]->harmonic[f][j];
-      trial_k_[j] = k;
-      scale = std::max(scale, std::abs(k));
-    }
-    auto residuals_at = [&](double beta, std::vector<double>& out) {
-      for (std::size_t j = 0; j < p.points.size(); ++j) {
-        CycleMeasures& m = p.points[j].measures;
-        m.stiffness = std::abs(trial_k_[j] + beta);
-        m.phase = std::arg(trial_k_[j] + beta);
-      }
-      out.clear();
-      append_residuals(set, p, score_, out);
-      double sum = 0.0;
-      for (double r : out) sum += r * r;
-      return sum;
-    };
-    double beta = 0.0, best = residuals_at(0.0, residuals_);
-    const double h = 1e-6 * std::max(scale, 1e-300);
-    for (int step = 0; step < 2 && std::isfinite(best); ++step) {
-      residuals_at(beta + h, moved_);
-      double jr = 0.0, jj = 0.0;
-      for (std::size_t i = 0; i < moved_.size(); ++i) {
-        const double d = (moved_[i] - residuals_[i]) / h;
-        jr += d * residuals_[i], jj += d * d;
-      }
-      if (!(jj > 0.0)) break;
-      const double next = beta - jr / jj;
-      const double value = residuals_at(next, moved_);
-      if (!(value < best)) break;
-      beta = next, best = value;
-      residuals_.swap(moved_);
-    }
-    return best;
-  }
-
-  // F_m + sum a s, then beta u + dc with beta the least-squares refit of the linear stiffness
-  // and, for a free force offset (fit/force_offset.hpp), dc that of the offset, jointly:
-  //   [u.u  sum u] [beta]   [u.r  ]
-  //   [sum u   M ] [dc  ] = [sum r],  r = F_exp - F (M samples; dc = 0 for a declared offset).
-  static void add_history(const FitDataSet& set, const std::vector<const Signature*>& basis, const std::vector<double>& coefficient, std::size_t f,
-                          std::vector<double>& force) {
-    const HistoryData& h = set.history();
-    const std::vector<double>& u = h.drive.displacement;
-    double uu = 0.0, ur = 0.0, su = 0.0, sr = 0.0;
-    for (std::size_t j = 0; j < force.size(); ++j) {
-      for (std::size_t b = 0; b < basis.size(); ++b) force[j] += coefficient[b] * basis[b]->history[f][j];
-      uu += u[j] * u[j];
-      ur += u[j] * (h.force[j] - force[j]);
-      su += u[j];
-      sr += h.force[j] - force[j];
-    }
-    double beta = uu > 0.0 ? ur / uu : 0.0, dc = 0.0;
-    const auto m = static_cast<double>(force.size());
-    if (const double det = uu * m - su * su; set.force_offset.free && det > 1e-12 * uu * m) {
-      beta = (ur * m - su * sr) / det;
-      dc = (uu * sr - su * ur) / det;
-    } else if (set.force_offset.free) {
-      dc = sr / m;  // u is constant: the offset takes it all
-      beta = 0.0;
-    }
-    for (std::size_t j = 0; j < force.size(); ++j) force[j] += beta * u[j] + dc;
-  }
-
-  const std::vector<FitDataSet>& data_;
-  const ScoreSettings& score_;
-  std::vector<std::vector<Complex>> base_k_;     // per set: K*_m per harmonic point
-  std::vector<std::vector<double>> base_force_;  // per set: F_m per history sample
-  mutable std::vector<Prediction> scratch_;      // per set: the fitted prediction, its measures or force rewritten per call
-  mutable std::vector<double> residuals_, moved_;
-  mutable std::vector<Complex> trial_k_;  // per harmonic point of the set at hand: K*_m + sum a s
-};
 
 // argmin over [lo, hi] of a unimodal-enough g: a scan of `count` points (log-spaced when lo > 0),
 // then a golden section between the best point's neighbours.
@@ -445,7 +335,10 @@ std::vector<ScreenedEffect> screen(const FitResult& fit, const std::vector<FitDa
     if (trial.shape == Shape::force_offset) return size_force_offset(trial, objective, data);
     trial.stiffness = 1.0;  // the signature is per unit stiffness; a refined trial arrives sized
     const Signature s = simulate_alone(trial, data, score, scales.bounds);
-    trial.stiffness = minimise_1d([&](double a) { return objective({&s}, {a}); }, k_min, k_max, 30, true);
+    // A spring behind play adds k g at its most engaged point, g = engaged_share(s) <= 1 (g -> 0
+    // as the play's half-width nears the largest amplitude): the range bounds that added stiffness.
+    const double per_k = trial.shape == Shape::gapped_spring ? engaged_share(s, data) : 1.0;
+    trial.stiffness = minimise_1d([&](double a) { return objective({&s}, {a}); }, k_min / per_k, k_max / per_k, 30, true);
     return objective({&s}, {trial.stiffness});
   };
   std::vector<ScreenedEffect> out;

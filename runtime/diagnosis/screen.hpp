@@ -5,11 +5,11 @@
 // the frequencies) is simulated alone at unit stiffness on every data point: its complex
 // stiffness K*_c = K e^{i phase} per harmonic point, its force s(t) along each measured
 // history. Added in parallel with size a (its force scales with a), the model would give
-//   harmonic   K*_m + a K*_c   (first-harmonic superposition; exact for linear elements)
-//   history    F_m + a s(t) + beta u(t)   (beta: the refit of the linear stiffness, eliminated
-//                                          by least squares)
-// and the fit objective (fit_scoring.hpp) J(a) is minimised over a >= 0 (a log scan, then a
-// golden section). A yeoh spring in place of the root spring adds 4 D20 a^2 + 6 D30 a^4 to the
+//   harmonic   K*_m + a K*_c + beta   (first-harmonic superposition; exact for linear elements)
+//   history    F_m + a s(t) + beta u(t)
+// (beta: the refit of the linear stiffness; added_objective.hpp) and the fit objective
+// (fit_scoring.hpp) J(a) is minimised over a >= 0 (a log scan, then a golden section; a spring
+// behind play over the stiffness it adds where it engages most, not over its k). A yeoh spring in place of the root spring adds 4 D20 a^2 + 6 D30 a^4 to the
 // stiffness at amplitude a (4 D20 u^3 + 6 D30 u^5 to the force), minimised over D20 and D30.
 // A trial that rebuilds a root element e of the model (free play in front of it, its one-cap
 // yields split; element_text.hpp) replaces e's response s_e by its own s_p: F_m - s_e + a s_p,

@@ -3,20 +3,25 @@
 // compression, a stiffness with an even power, and free play off-centre, each diagnosed from a
 // model without it; and `asymmetry` is not offered where the data cannot show it (harmonic
 // tables only).
+#include "runtime/diagnosis/candidate_model.hpp"
 #include "runtime/diagnosis/diagnose.hpp"
 #include "runtime/diagnosis/screen.hpp"
 
+#include "diagnosis_generator.hpp"
 #include "diagnosis_support.hpp"
 
 #include <doctest/doctest.h>
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <cmath>
+#include <string>
 
 using namespace rheo;
 namespace dx = runtime::diagnosis;
 using test::diagnose;
 using test::history_measurement;
+namespace gen = test::generated;
 
 namespace {
 
@@ -86,4 +91,36 @@ TEST_CASE("diagnose, harmonic table: a spring behind off-centre free play is bac
                                series b { gap g (width = 1 mm, center = 0.3 mm)  spring k (k = 600 N/mm) } })";
   const dx::Diagnosis d = diagnose(kStart, {test::harmonic_measurement(truth, 34, {0.05, 0.1, 0.2, 0.3, 0.45, 0.6, 0.8, 1.0, 1.5, 2.0})});
   require_effect(d, dx::Effect::backlash);
+}
+
+// Play that closes only at the top amplitude (half-width 1.7 mm, centre 0.1 mm: between the two
+// largest amplitudes, 1.6 and 2 mm) behind a spring 15 times the model's: at 2 mm the spring adds
+// about 7 % of its k. The screen sized it with k at most 3 times the measured stiffness and
+// ranked it below a yeoh spring (0.35 against 0.39); sized by the stiffness it adds where it
+// engages, it leads, and its refit takes the gap from 0.087 to 0.023.
+TEST_CASE("diagnose, harmonic table: free play that closes only at the top amplitude is backlash, screened first") {
+  const std::string truth = R"(model truth { spring s (k = 200 N/mm)  friction f (k = 300 N/mm, uy = 50 um)
+                               series b { gap g (width = 3.4 mm, center = 0.1 mm)  spring k (k = 3000 N/mm) } })";
+  const dx::Diagnosis d = diagnose(kStart, {test::harmonic_measurement(truth, 35, {0.05, 0.1, 0.2, 0.5, 1.0, 1.6, 2.0})});
+  require_effect(d, dx::Effect::backlash);
+  REQUIRE_FALSE(d.candidates.empty());
+  CHECK(dx::effect_name(d.candidates.front().screened.effect) == dx::effect_name(dx::Effect::backlash));
+}
+
+// A model with free play fitted to a table where the search ends with the play's centre beyond
+// half its width (0.1 mm wide, centred at -0.66 mm: it acts as the stop touching at rest, centred
+// at -0.05 mm). The fitted source was written with that centre, which a .rheo file refuses
+// (`|center| <= width/2`): every candidate built on it threw. It is written now as the play it
+// acts as (candidate_model.hpp with_gaps_in_play), as the refitted candidates are.
+TEST_CASE("diagnose: a start model whose fitted play ends centred beyond half its width is written as the play it acts as") {
+  const gen::Scenario sc = gen::harmonic_scenario(7, gen::Hidden::play);
+  std::string start = sc.start;
+  start.insert(
+      start.rfind('}'),
+      "  series b { gap g (width = 0.4752 mm in [0.001, 3], center = -0.0264 mm in [-1.3, 1.3])  spring k (k = 704.6 N/mm in [1, 10000]) }\n");
+  const dx::Diagnosis d = diagnose(start, sc.data, false, 0);
+  const runtime::Network& fitted = d.before.network;
+  const double width = fitted.parameter(dx::parameter_index(fitted.model(), "b.g.width"));
+  const double center = fitted.parameter(dx::parameter_index(fitted.model(), "b.g.center"));
+  CHECK(std::abs(center) <= width / 2.0);
 }
