@@ -5,7 +5,7 @@
 // tolerances of docs/numerics.md ("Verification", differential row). The suite runs kModels
 // models (fewer under AddressSanitizer, whose build CI also runs); tests/differential/run runs
 // more (RHEO_DIFFERENTIAL_MODELS, RHEO_DIFFERENTIAL_SEED; RHEO_DIFFERENTIAL_VERBOSE=1 prints
-// each model's CPU time by part).
+// each model's CPU time by part; RHEO_DIFFERENTIAL_ONLY=i compares model i alone).
 //
 // Where the time goes (100 models, seed 2026): IDA, in the history (restarted at each of its
 // 100 samples) and in harmonic points; fixed steps take a few ms a model.
@@ -244,6 +244,7 @@ bool fixed_by_default(const std::string& source, const std::string& message) {
 
 TEST_CASE("differential: random networks to depth 6 agree between fixed steps and IDA") {
   const long models = environment("RHEO_DIFFERENTIAL_MODELS", kModels);
+  const long only = environment("RHEO_DIFFERENTIAL_ONLY", -1);  // the models before it are still drawn
   const auto seed = static_cast<std::uint64_t>(environment("RHEO_DIFFERENTIAL_SEED", static_cast<long>(kSeed)));
   test::RandomNetwork generator(seed, kMaxDepth);
   const char* verbose_setting = std::getenv("RHEO_DIFFERENTIAL_VERBOSE");
@@ -260,6 +261,7 @@ TEST_CASE("differential: random networks to depth 6 agree between fixed steps an
       ++refused;
       source = generator.model("m");
     }
+    if (only >= 0 && i != only) continue;
     CAPTURE(i);
     CAPTURE(source);  // a failure prints the model: save it as a reproducer
     const auto before = std::chrono::steady_clock::now();
@@ -285,7 +287,8 @@ TEST_CASE("differential: random networks to depth 6 agree between fixed steps an
           worst.harmonic_points, "; ", refused, " models drawn again; IDA failed on ", ida_failed_where_auto_is_fixed,
           " models that auto runs on fixed steps");
   // Few models are drawn again, and a fair share of points reach their periodic state within
-  // the cycle budget: the comparison is not vacuous.
+  // the cycle budget: the comparison is not vacuous (for a whole run, not one model).
+  if (only >= 0) return;
   CHECK(refused * 5 <= models);
   CHECK(worst.harmonic_compared * 4 >= worst.harmonic_points);
 }
