@@ -158,7 +158,7 @@ DaeIntegrator::DaeIntegrator(const DaeGraph& graph, const DaeOptions& options) :
           // Newton converges). Below it, the second-order term of a rate correction through a
           // quadratic dashpot beside the stuck slider, cq dv^2, moved the force back and forth
           // by the same amount at every Newton iteration: 8.4e-11 N against a threshold of
-          // 2e-14 N (a 2.05 N slider beside a 8017 N/mm spring, cq = 0.0031 N s^2/mm^2,
+          // 5.5e-13 N (a 2.05 N slider beside a 8017 N/mm spring, cq = 0.0031 N s^2/mm^2,
           // dv = 1.6e-4 mm/s, the predictor's rate error in a fast transient after a drive
           // sample, which does not shrink with h): IDA took the ratio of 1 for divergence and
           // failed the corrector down to its smallest step (differential seed 61, model 151).

@@ -300,11 +300,11 @@ TEST_CASE("a gap closing behind a stiff spring and a quadratic dashpot (differen
 // Differential seed 61, model 151 (reproducer 13 of tests/corpus/repro/backends on the 1 s
 // history): a stuck 2.05 N slider beside an 8017 N/mm spring, behind a quadratic dashpot and
 // beside a springpot. A drive sample starts a fast transient; in it the predictor's rates are
-// off by 1.6e-4 mm/s whatever h, and Newton's rate correction leaves cq dv^2 = 8e-11 N in the
+// off by 1.6e-4 mm/s whatever h, and Newton's rate correction leaves cq dv^2 = 8.4e-11 N in the
 // slider's force, undone at the next iteration. With the force's Newton threshold at the
-// network's lowered coefficient (2e-14 N) IDA read that as divergence and failed the corrector
+// network's lowered coefficient (5.5e-13 N) IDA read that as divergence and failed the corrector
 // down to its smallest step (IDA_CONV_FAIL at t = 0.017 s); with a rounding floor as the gaps'
-// (82 N, 2e-11 N) it still failed, and the fallback on IDA's own matrix took 500000 steps
+// (82 N, 2.2e-11 N) it still failed, and the fallback on IDA's own matrix took 500000 steps
 // (IDA_TOO_MUCH_WORK after 100 s). The force now has IDA's default share of its tolerance.
 // Observed 1.6e-6 of max |F|.
 TEST_CASE("a stuck slider beside a stiff spring behind quadratic dashpots (differential seed 61, model 151): fixed steps' forces") {
