@@ -5,7 +5,7 @@
 // tolerances of docs/numerics.md ("Verification", differential row). The suite runs kModels
 // models (fewer under AddressSanitizer, whose build CI also runs); tests/differential/run runs
 // more (RHEO_DIFFERENTIAL_MODELS, RHEO_DIFFERENTIAL_SEED; RHEO_DIFFERENTIAL_VERBOSE=1 prints
-// each model's CPU time by part; RHEO_DIFFERENTIAL_ONLY=i compares model i alone).
+// each model's CPU time by part; RHEO_DIFFERENTIAL_ONLY=i compares model i alone and prints its text).
 //
 // Where the time goes (100 models, seed 2026): IDA, in the history (restarted at each of its
 // 100 samples) and in harmonic points; fixed steps take a few ms a model.
@@ -267,6 +267,7 @@ TEST_CASE("differential: random networks to depth 6 agree between fixed steps an
       source = generator.model("m");
     }
     if (only >= 0 && i != only) continue;
+    if (only >= 0) MESSAGE(source);
     CAPTURE(i);
     CAPTURE(source);  // a failure prints the model: save it as a reproducer
     const auto before = std::chrono::steady_clock::now();
