@@ -185,7 +185,14 @@ class DaeIntegrator {
   std::vector<double> start_rates_;
   bool switch_inconsistent_modes(double t, double horizon);
   void copy_from_solver();
-  void switch_modes(double t, const std::vector<int>& found);
+  // At roots FOUND (IDAGetRootInfo's layout) at T: the modes switch and IDA restarts (true). A
+  // slipping slider whose slip rate crossed zero slips on where its rate over the next 1e-3 of
+  // the time horizon still points its way (rates_ahead): the root was a fast transient's (the
+  // force drops by kSlack fy as the slider starts to slip, and a stiff spring beside a quadratic
+  // dashpot relaxes in 1e-9 s). Where no mode switched, that backward-Euler step passes the
+  // transient and IDA restarts at its end (false). Not within two such steps of T_STOP, the next
+  // stop: there the slider sticks.
+  bool switch_modes(double t, double t_stop, const std::vector<int>& found);
   double solve_to(double t_stop);
   void collect_statistics();
   void stick_reversed_sliders();
