@@ -133,7 +133,7 @@ void DaeIntegrator::restart(double t, bool modes_changed) {
   }
   void* mem = solver_->ida.get();
   for (int attempt = 0;; ++attempt) {
-    if (modes_changed) rechoose_coordinates(t);
+    if (modes_changed) rechoose_coordinates(t), modes_changed_at_ = t;
     const double horizon = time_horizon();
     if (nested_bouc_wen_) bouc_wen_consistent_rates(t, horizon);  // no sliders or gaps: y is consistent
     std::copy(y_.begin(), y_.end(), N_VGetArrayPointer(solver_->y.get()));
@@ -218,14 +218,15 @@ void DaeIntegrator::copy_from_solver() {
 bool DaeIntegrator::switch_modes(double t, double t_stop, const std::vector<int>& found) {
   const DriveState drive = drive_at(t);
   const double horizon = time_horizon(), h = 1e-3 * horizon;
-  const bool room = t + 2.0 * h <= t_stop;  // for a backward-Euler step of h before the stop
-  bool ahead = false, switched = false;     // rates_ahead_ holds this state's rates
+  // Within h of the last switch, and with room for a backward-Euler step of h before the stop.
+  const bool transient = t < modes_changed_at_ + h && t + 2.0 * h <= t_stop;
+  bool ahead = false, switched = false;  // rates_ahead_ holds this state's rates
   for (int l = 0; l < layout_.switch_forces; ++l) {
     if (!at(found, 2 * l) && !at(found, 2 * l + 1)) continue;
     const Edge& edge = switch_edge(l);
     std::int8_t& mode = at(modes_, l);
     double& held = at(held_, l);
-    if (edge.kind == EdgeKind::slider && mode != 0 && room) {
+    if (edge.kind == EdgeKind::slider && mode != 0 && transient) {
       if (!ahead) ahead = rates_ahead(t, horizon);
       if (ahead && elongation_rate(rates_ahead_.data(), drive, edge) * mode > 0.0) continue;  // slips on
     }
