@@ -133,7 +133,7 @@ void DaeIntegrator::restart(double t, bool modes_changed) {
   }
   void* mem = solver_->ida.get();
   for (int attempt = 0;; ++attempt) {
-    if (modes_changed) rechoose_coordinates(t);
+    if (modes_changed) rechoose_coordinates(t), modes_changed_at_ = t;
     const double horizon = time_horizon();
     if (nested_bouc_wen_) bouc_wen_consistent_rates(t, horizon);  // no sliders or gaps: y is consistent
     std::copy(y_.begin(), y_.end(), N_VGetArrayPointer(solver_->y.get()));
@@ -215,13 +215,22 @@ void DaeIntegrator::copy_from_solver() {
   std::copy(yp, yp + layout_.size(), yp_.begin());
 }
 
-void DaeIntegrator::switch_modes(double t, const std::vector<int>& found) {
+bool DaeIntegrator::switch_modes(double t, double t_stop, const std::vector<int>& found) {
   const DriveState drive = drive_at(t);
+  const double horizon = time_horizon(), h = 1e-3 * horizon;
+  // Within h of the last switch, and with room for a backward-Euler step of h before the stop.
+  const bool transient = t < modes_changed_at_ + h && t + 2.0 * h <= t_stop;
+  bool ahead = false, switched = false;  // rates_ahead_ holds this state's rates
   for (int l = 0; l < layout_.switch_forces; ++l) {
     if (!at(found, 2 * l) && !at(found, 2 * l + 1)) continue;
     const Edge& edge = switch_edge(l);
     std::int8_t& mode = at(modes_, l);
     double& held = at(held_, l);
+    if (edge.kind == EdgeKind::slider && mode != 0 && transient) {
+      if (!ahead) ahead = rates_ahead(t, horizon);
+      if (ahead && elongation_rate(rates_ahead_.data(), drive, edge) * mode > 0.0) continue;  // slips on
+    }
+    switched = true;
     if (edge.kind == EdgeKind::slider) {
       if (mode == 0) {
         mode = at(y_, layout_.switch_force(l)) > 0.0 ? 1 : -1;
@@ -237,7 +246,15 @@ void DaeIntegrator::switch_modes(double t, const std::vector<int>& found) {
     }
   }
   ++events_;
-  restart(t, true);
+  if (switched) {
+    restart(t, true);
+    return true;
+  }
+  for (int i = 0; i < layout_.size(); ++i) at(y_, i) += h * at(rates_ahead_, i);  // rates_ahead: that step's rates
+  yp_ = rates_ahead_;
+  time_ = t + h;
+  restart(time_, false);
+  return false;
 }
 
 double DaeIntegrator::solve_to(double t_stop) {
@@ -304,7 +321,7 @@ double DaeIntegrator::solve_to(double t_stop) {
   if (flag == IDA_ROOT_RETURN) {
     sundials::check_ida(IDAGetRootInfo(mem, roots_found_.data()), "IDAGetRootInfo");
     if (nested_bouc_wen_) reverse_bouc_wen_directions(roots_found_);  // no sliders or gaps: Bouc-Wen roots only
-    else switch_modes(t_reached, roots_found_);
+    else switch_modes(t_reached, t_stop, roots_found_);
   }
   return t_reached;
 }

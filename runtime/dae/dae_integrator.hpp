@@ -195,7 +195,14 @@ class DaeIntegrator {
   std::vector<double> start_rates_;
   bool switch_inconsistent_modes(double t, double horizon);
   void copy_from_solver();
-  void switch_modes(double t, const std::vector<int>& found);
+  // At roots FOUND (IDAGetRootInfo's layout) at T: the modes switch and IDA restarts (true).
+  // Within h = 1e-3 of the time horizon of the last switch, a slipping slider whose slip rate
+  // crossed zero slips on where its rate over the next h still points its way (rates_ahead): the
+  // root was the switch's fast transient's (the force drops by kSlack fy as the slider starts to
+  // slip, and a stiff spring beside a quadratic dashpot relaxes in 1e-9 s). Where no mode
+  // switched, that backward-Euler step passes the transient and IDA restarts at its end (false).
+  // Not within 2 h of T_STOP, the next stop: there the slider sticks.
+  bool switch_modes(double t, double t_stop, const std::vector<int>& found);
   double solve_to(double t_stop);
   void collect_statistics();
   void stick_reversed_sliders();
@@ -225,7 +232,8 @@ class DaeIntegrator {
   std::vector<double> scale_;                      // each unknown's scale (its absolute tolerance / rtol)
   std::vector<int> root_direction_, roots_found_;  // scratch of restart and solve_to
   double time_ = 0.0;
-  bool first_step_ = false;  // the next IDA step is the first since a restart (solve_to)
+  bool first_step_ = false;        // the next IDA step is the first since a restart (solve_to)
+  double modes_changed_at_ = 0.0;  // [s]: the last restart with new modes (switch_modes)
   long events_ = 0;
   DaeStatistics totals_;  // steps and residual evaluations before the last re-initialisation
   std::exception_ptr error_;

@@ -18,6 +18,8 @@ namespace rheo::runtime {
 // fy is fy_pos on the tension side (F > 0) and fy_neg on the compression side.
 inline constexpr double kSlack = 1e-6;
 inline constexpr double kGapSlack = 1e-9;
+// IDA's default Newton convergence coefficient (IDASetNonlinConvCoef).
+inline constexpr double kIdaNewtonCoefficient = 0.33;
 
 // The force of slider EDGE slipping in direction MODE (+1 or -1): fy_pos or -fy_neg.
 inline double slip_force(const Edge& slider, int mode) { return mode > 0 ? slider.p[0] : -slider.p[1]; }

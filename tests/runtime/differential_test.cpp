@@ -5,7 +5,7 @@
 // tolerances of docs/numerics.md ("Verification", differential row). The suite runs kModels
 // models (fewer under AddressSanitizer, whose build CI also runs); tests/differential/run runs
 // more (RHEO_DIFFERENTIAL_MODELS, RHEO_DIFFERENTIAL_SEED; RHEO_DIFFERENTIAL_VERBOSE=1 prints
-// each model's CPU time by part).
+// each model's CPU time by part; RHEO_DIFFERENTIAL_ONLY=i compares model i alone and prints its text).
 //
 // Where the time goes (100 models, seed 2026): IDA, in the history (restarted at each of its
 // 100 samples) and in harmonic points; fixed steps take a few ms a model.
@@ -186,11 +186,16 @@ void compare(const std::string& source, double fastest_mass, Worst& worst) {
       // IDA's may be a transient's rounding residue instead of 0 (seed 17, model 108: 9e-223 N
       // where a quadratic dashpot has pushed the gap clear), or what its tolerances leave: a
       // position's tolerance, rtol times the length scale, through a spring in series with the
-      // open gap (seed 59, model 189: 3.3e-9 N, 6e-10 of the scale, where fixed steps give 0).
-      // Below 100 times IDA's rtol of what the network carries at this amplitude and rate
-      // counts as none.
-      const double no_force = 100.0 * runtime::kDaeRelativeTolerance *
-                              runtime::dae_force_scale(network, amplitude, 2.0 * std::numbers::pi * frequency * amplitude);
+      // open gap (seed 59, model 189: 3.3e-9 N, 6e-10 of the scale, where fixed steps give 0), or
+      // through the stiff springs in series with a gap that a dashpot beside them has pushed to
+      // touch at the end of the stroke (seed 71, model 169: 6.8e-6 N on IDA and 1.1e-5 N on fixed
+      // steps in 24 cycles, 1.8e-9 N when fixed steps settle further, behind 58375 and 8345 N/mm;
+      // the point's force tends to 0). Below 100 times IDA's rtol of what the network carries at
+      // this amplitude and rate, or 10 times what a position's tolerance carries through the
+      // stiffest spring (a weighted norm over the unknowns), counts as none.
+      const double no_force = runtime::kDaeRelativeTolerance *
+                              std::max(100.0 * runtime::dae_force_scale(network, amplitude, 2.0 * std::numbers::pi * frequency * amplitude),
+                                       10.0 * runtime::stiffest_spring_force(runtime::DaeGraph::build(network), amplitude));
       if (a.measures.force_amplitude <= no_force && b_fine.measures.force_amplitude <= no_force && b_coarse.measures.force_amplitude <= no_force)
         break;
       compared = true;
@@ -244,6 +249,7 @@ bool fixed_by_default(const std::string& source, const std::string& message) {
 
 TEST_CASE("differential: random networks to depth 6 agree between fixed steps and IDA") {
   const long models = environment("RHEO_DIFFERENTIAL_MODELS", kModels);
+  const long only = environment("RHEO_DIFFERENTIAL_ONLY", -1);  // the models before it are still drawn
   const auto seed = static_cast<std::uint64_t>(environment("RHEO_DIFFERENTIAL_SEED", static_cast<long>(kSeed)));
   test::RandomNetwork generator(seed, kMaxDepth);
   const char* verbose_setting = std::getenv("RHEO_DIFFERENTIAL_VERBOSE");
@@ -260,6 +266,8 @@ TEST_CASE("differential: random networks to depth 6 agree between fixed steps an
       ++refused;
       source = generator.model("m");
     }
+    if (only >= 0 && i != only) continue;
+    if (only >= 0) MESSAGE(source);
     CAPTURE(i);
     CAPTURE(source);  // a failure prints the model: save it as a reproducer
     const auto before = std::chrono::steady_clock::now();
@@ -269,7 +277,7 @@ TEST_CASE("differential: random networks to depth 6 agree between fixed steps an
       // Where `solver = auto` takes fixed steps (a bouc_wen inside a series block,
       // solver_choice.hpp), an IDA failure is counted and reported (seed 37, model 85 failed
       // with IDA_CONV_FAIL until the Bouc-Wen branch became an event, dae_bouc_wen.cpp; no
-      // model of seeds 37, 41, 53, 59 and 61 does now), and the default run must then succeed
+      // model of seeds 37, 41, 53, 59, 61, 67 and 71 fails on IDA now), and the default run must then succeed
       // with finite forces; the comparison covers the model only as far as IDA got.
       if (fixed_by_default(source, error.what())) ++ida_failed_where_auto_is_fixed;
     } catch (const std::exception& error) {
@@ -285,7 +293,8 @@ TEST_CASE("differential: random networks to depth 6 agree between fixed steps an
           worst.harmonic_points, "; ", refused, " models drawn again; IDA failed on ", ida_failed_where_auto_is_fixed,
           " models that auto runs on fixed steps");
   // Few models are drawn again, and a fair share of points reach their periodic state within
-  // the cycle budget: the comparison is not vacuous.
+  // the cycle budget: the comparison is not vacuous (for a whole run, not one model).
+  if (only >= 0) return;
   CHECK(refused * 5 <= models);
   CHECK(worst.harmonic_compared * 4 >= worst.harmonic_points);
 }

@@ -296,3 +296,32 @@ TEST_CASE("a gap closing behind a stiff spring and a quadratic dashpot (differen
   CHECK(two_tone_gap("model m { series { quadratic_dashpot (cq = 0.000919455 N*s^2/mm^2)\n gap (width = 0.111815 mm, center = 0.0159194 mm)\n"
                      " spring (k = 35366.3 N/mm) } }") < 1e-6);
 }
+
+// Differential seed 61, model 151 (reproducer 13 of tests/corpus/repro/backends on the 1 s
+// history): a stuck 2.05 N slider beside an 8017 N/mm spring, behind a quadratic dashpot and
+// beside a springpot. A drive sample starts a fast transient; in it the predictor's rates are
+// off by 1.6e-4 mm/s whatever h, and Newton's rate correction leaves cq dv^2 = 8.4e-11 N in the
+// slider's force, undone at the next iteration. With the force's Newton threshold at the
+// network's lowered coefficient (5.5e-13 N) IDA read that as divergence and failed the corrector
+// down to its smallest step (IDA_CONV_FAIL at t = 0.017 s); with a rounding floor as the gaps'
+// (82 N, 2.2e-11 N) it still failed, and the fallback on IDA's own matrix took 500000 steps
+// (IDA_TOO_MUCH_WORK after 100 s). The force now has IDA's default share of its tolerance.
+// Observed 1.6e-6 of max |F|.
+TEST_CASE("a stuck slider beside a stiff spring behind quadratic dashpots (differential seed 61, model 151): fixed steps' forces") {
+  CHECK(two_tone_gap(R"(model m {
+series {
+quadratic_dashpot (cq = 0.00370681 N*s^2/mm^2)
+parallel {
+springpot (k = 30.7469 N/mm, alpha = 0.817321, tau = 23.3591 ms, f_low = 1 Hz, f_high = 100 Hz)
+series {
+quadratic_dashpot (cq = 0.00310435 N*s^2/mm^2)
+parallel {
+poly_spring (k1 = 8017.87 N/mm, k2 = 0 N/mm^2, k3 = 0 N/mm^3)
+slider (fy = 2.05364 N)
+}
+}
+}
+}
+quadratic_dashpot (cq = 0.0626288 N*s^2/mm^2)
+})") < 1e-5);
+}
