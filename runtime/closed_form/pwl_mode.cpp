@@ -67,6 +67,7 @@ bool build_pwl_mode(const PwlBranch& branch, const PwlModeCode& code, double ome
   if (structure == nullptr) local = std::make_unique<PwlModeStructure>();
   PwlModeStructure& st = structure != nullptr ? *structure : *local;
   if (st.filled && !st.determinate) return false;
+  const bool first = !st.filled;  // this build fills the structure (and the frame below)
   const int n = branch.internal_nodes;
   if (!st.filled) {
     st.K = MatrixXd::Zero(n, n), st.C = st.K, st.M = st.K;
@@ -149,11 +150,13 @@ bool build_pwl_mode(const PwlBranch& branch, const PwlModeCode& code, double ome
   // Generalised force on y as a functional of w: N^T [ (K P rho - k_T) u + (C P rho - c_T) u'
   // + (M P rho - m_T) u'' - f_slip - K P h ], with u = u0 s, u' = w u0 c, u'' = -w^2 u0 s (u0 s
   // and u0 c the drive's entries of w).
-  MatrixXd Fy = MatrixXd::Zero(nq, dim);
-  Fy.middleCols(ih, r) = st.Fy_held;
-  Fy.col(i1) = st.Fy_one;
-  Fy.col(is) = N.transpose() * (st.drive_k - omega * omega * st.drive_m);
-  Fy.col(ic) = omega * N.transpose() * st.drive_c;
+  // Its drive's columns are formed below (Fd); in the frame they are zero.
+  MatrixXd Fy;
+  if (first) {
+    Fy = MatrixXd::Zero(nq, dim);
+    Fy.middleCols(ih, r) = st.Fy_held;
+    Fy.col(i1) = st.Fy_one;
+  }
 
   if (!st.filled) {
     // Selections of eta_d, eta_m, v_m from w, and the products of the condensation and the
@@ -185,42 +188,73 @@ bool build_pwl_mode(const PwlBranch& branch, const PwlModeCode& code, double ome
     if (r > 0) st.tensions = -(R * R.transpose()).inverse() * R;
   }
 
-  // Static condensation of the undamped massless directions: K_aa eta_a = Va^T Fy w - K_ad eta_d - K_am eta_m.
-  MatrixXd Ea = MatrixXd::Zero(na, dim);
-  if (na > 0) Ea = st.Kaa_inverse * (Va.transpose() * Fy - st.condensed);
-  // y = Va eta_a + Vd eta_d + Vm eta_m as a functional of w.
-  const MatrixXd Y = Va * Ea + st.Vd_Sd + st.Vm_Sm;
-  const MatrixXd elastic = Fy - Kq * Y;  // generalised force less the stiffness term
-
-  out.A = MatrixXd::Zero(dim, dim);
-  MatrixXd Ad = MatrixXd::Zero(nd, dim);
-  if (nd > 0) Ad = st.Cdd_inverse * (Vd.transpose() * elastic - st.damped_coupling);
-  out.A.middleRows(0, nd) = Ad;
-  out.A.middleRows(iz_m, nm) = st.Sv;
-  if (nm > 0) out.A.middleRows(iz_v, nm) = st.Mmm_inverse * (Vm.transpose() * elastic - st.Vm_Cq * (Vd * Ad + st.Vm_Sv));
+  // A's rows s and c hold only the drive's rotation, and its other columns than s and c no entry
+  // outside the z rows, so every product below is the same in those columns at every frequency:
+  // the build that fills the structure forms A, X's maps and the tensions whole and keeps them
+  // (the frame), and every build then forms the drive's columns alone, by the same products
+  // restricted to them, so that a mode is the same to the last bit whichever frequency built it
+  // first.
+  MatrixXd lambda;
+  if (first) {
+    // Static condensation of the undamped massless directions: K_aa eta_a = Va^T Fy w - K_ad eta_d - K_am eta_m.
+    MatrixXd Ea = MatrixXd::Zero(na, dim);
+    if (na > 0) Ea = st.Kaa_inverse * (Va.transpose() * Fy - st.condensed);
+    // y = Va eta_a + Vd eta_d + Vm eta_m as a functional of w.
+    const MatrixXd Y = Va * Ea + st.Vd_Sd + st.Vm_Sm;
+    const MatrixXd elastic = Fy - Kq * Y;  // generalised force less the stiffness term
+    out.A = MatrixXd::Zero(dim, dim);
+    MatrixXd Ad = MatrixXd::Zero(nd, dim);
+    if (nd > 0) Ad = st.Cdd_inverse * (Vd.transpose() * elastic - st.damped_coupling);
+    out.A.middleRows(0, nd) = Ad;
+    out.A.middleRows(iz_m, nm) = st.Sv;
+    if (nm > 0) out.A.middleRows(iz_v, nm) = st.Mmm_inverse * (Vm.transpose() * elastic - st.Vm_Cq * (Vd * Ad + st.Vm_Sv));
+    // Positions and velocities.
+    MatrixXd Lx = N * Y;
+    Lx.middleCols(ih, r) += P;
+    const MatrixXd Lv = Lx * out.A, La = Lv * out.A;
+    out.to_X.resize(2 * n, dim);
+    out.to_X << Lx, Lv;
+    // Tensions of the rigid edges from the full equilibrium.
+    lambda = MatrixXd::Zero(r, dim);
+    if (r > 0) {
+      MatrixXd residual = M * La + C * Lv + K * Lx;
+      residual.col(i1) += f_slip;
+      lambda = st.tensions * residual;
+    }
+    st.A_frame = out.A, st.to_X_frame = out.to_X, st.lambda_frame = lambda;
+  } else {
+    out.A = st.A_frame, out.to_X = st.to_X_frame, lambda = st.lambda_frame;
+  }
+  // The drive's columns: the generalised force's, then as above.
+  MatrixXd Fd(nq, 2);
+  Fd.col(0) = N.transpose() * (st.drive_k - omega * omega * st.drive_m);
+  Fd.col(1) = omega * N.transpose() * st.drive_c;
+  MatrixXd Ed = MatrixXd::Zero(na, 2);
+  if (na > 0) Ed = st.Kaa_inverse * (Va.transpose() * Fd - st.condensed.middleCols(is, 2));
+  const MatrixXd Yd = Va * Ed + st.Vd_Sd.middleCols(is, 2) + st.Vm_Sm.middleCols(is, 2);
+  const MatrixXd elastic_d = Fd - Kq * Yd;
+  MatrixXd Ad = MatrixXd::Zero(nd, 2);
+  if (nd > 0) Ad = st.Cdd_inverse * (Vd.transpose() * elastic_d - st.damped_coupling.middleCols(is, 2));
+  out.A.block(0, is, nd, 2) = Ad;
+  if (nm > 0) out.A.block(iz_v, is, nm, 2) = st.Mmm_inverse * (Vm.transpose() * elastic_d - st.Vm_Cq * (Vd * Ad + st.Vm_Sv.middleCols(is, 2)));
   out.drive_omega = omega;
   out.A(is, ic) = omega;
   out.A(ic, is) = -omega;
-
-  // Positions and velocities.
-  MatrixXd Lx = N * Y;
-  Lx.middleCols(ih, r) += P;
-  Lx.col(is) -= st.P_rho;
-  const MatrixXd Lv = Lx * out.A, La = Lv * out.A;
-  out.to_X.resize(2 * n, dim);
-  out.to_X << Lx, Lv;
+  MatrixXd Lx_d = N * Yd;
+  Lx_d.col(0) -= st.P_rho;
+  out.to_X.block(0, is, n, 2) = Lx_d;
+  const MatrixXd Lx = out.to_X.topRows(n);
+  const MatrixXd Lv_d = Lx * out.A.middleCols(is, 2);
+  out.to_X.block(n, is, n, 2) = Lv_d;
+  if (r > 0) {
+    const MatrixXd La_d = out.to_X.bottomRows(n) * out.A.middleCols(is, 2);
+    MatrixXd residual = M * La_d + C * Lv_d + K * Lx_d;
+    residual.col(0) += kT - omega * omega * mT;
+    residual.col(1) += omega * cT;
+    lambda.middleCols(is, 2) = st.tensions * residual;
+  }
   out.from_X = st.from_X;
   out.held_drive = rho;
-
-  // Tensions of the rigid edges from the full equilibrium.
-  MatrixXd lambda = MatrixXd::Zero(r, dim);
-  if (r > 0) {
-    MatrixXd residual = M * La + C * Lv + K * Lx;
-    residual.col(is) += kT - omega * omega * mT;
-    residual.col(ic) += omega * cT;
-    residual.col(i1) += f_slip;
-    lambda = st.tensions * residual;
-  }
 
   // Edge forces, the terminal force and the guards.
   out.force = RowVectorXd::Zero(dim);

@@ -156,6 +156,9 @@ struct PwlModeStructure {
   std::array<int, kPwlMaxDim> rigid{};  // edge indices of stuck sliders and closed gaps, in switch order
   int r = 0, guard_count = 0;
   double largest_k = 0.0;
+  // A, to_X and the tensions' map of the build that filled the structure, but for the drive's
+  // columns (build_pwl_mode: the same at every frequency).
+  PwlMatrix A_frame, to_X_frame, lambda_frame;
   bool modal = false;  // V, V_inverse and lambda hold a well-conditioned eigendecomposition of A_zz
   PwlComplexMatrix V, V_inverse;
   PwlComplexVector lambda;

@@ -1,5 +1,6 @@
 // A mode's build (pwl_mode.cpp) from the frequency-independent parts another frequency's build
-// kept (PwlModeStructure) against a build from scratch at the same frequency: every matrix,
+// kept (PwlModeStructure: its products and the frame of A, X's maps and the tensions but for the
+// drive's columns) against a build from scratch at the same frequency: every matrix,
 // row and modal factor the same to the last bit, for every mode of branches that hold a mass,
 // a damped massless node and an undamped one (static condensation), stuck and slipping.
 #include "runtime/closed_form/pwl_mode.hpp"
@@ -97,6 +98,10 @@ TEST_CASE("a mode built from another frequency's kept structure equals one built
       if (!determinate) continue;
       ++built;
       check_same(reused, scratch);
+      // And at the first frequency again: the build that kept the structure equals one from it.
+      runtime::PwlModeSystem again;
+      REQUIRE(runtime::build_pwl_mode(branch, code, first, again, &kept));
+      check_same(again, at_first);
       CHECK(at_first.A != reused.A);  // the drive's columns differ between the frequencies
     }
   }
