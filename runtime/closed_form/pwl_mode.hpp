@@ -163,6 +163,8 @@ struct PwlModeStructure {
   PwlComplexMatrix V, V_inverse;
   PwlComplexVector lambda;
   PwlModalWeights weight;  // per modal coordinate (PwlModeSystem::weight)
+  PwlComplexMatrix phi;    // PwlModeSystem::phi and force_V, which hold no drive column
+  PwlComplexRow force_V;
 };
 
 struct PwlModeSystem {
