@@ -35,9 +35,14 @@ int PwlPeriodicState::Run::mode_index(const PwlModeCode& code) {
   for (int i : self.active_)
     if (self.system(i).code == code) return i;
   PwlModeStructure* structure = nullptr;
-  for (auto& [known, st] : self.structures_)
-    if (known == code) structure = &st;
-  if (structure == nullptr) structure = &self.structures_.emplace_back(code, PwlModeStructure{}).second;
+  for (std::size_t k = 0; k < self.structure_count_ && structure == nullptr; ++k)
+    if (self.structures_[k].first == code) structure = &self.structures_[k].second;
+  if (structure == nullptr) {
+    if (self.structure_count_ == self.structures_.size()) self.structures_.emplace_back();
+    auto& [known, st] = self.structures_[self.structure_count_++];
+    known = code, st.filled = false, st.determinate = true;
+    structure = &st;
+  }
   // Built in place, over a mode of an earlier solve where there is one: a mode's
   // fixed-capacity storage is tens of kilobytes, not to be allocated and cleared per point.
   if (self.mode_count_ == self.modes_.size()) {

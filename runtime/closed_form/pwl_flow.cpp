@@ -121,15 +121,20 @@ void PwlModeSystem::decompose(PwlModeStructure& structure) {
   if (!structure.filled) decompose_state_block(A, nz, structure);
   if (!structure.modal) return;
   V = structure.V, V_inverse = structure.V_inverse, lambda = structure.lambda, weight = structure.weight;
-  // Complex temporaries are cleared on construction (9 kB each): the product is formed from
-  // this thread's copy of the real block, without one.
-  thread_local PwlComplexMatrix held;
-  held = A.block(0, nz, nz, nh + 1).cast<Complex>();
-  phi.noalias() = V_inverse * held;
+  // phi and force_V involve no drive column (the same at every frequency): formed by the build
+  // that fills the structure and kept there.
+  if (!structure.filled) {
+    // Complex temporaries are cleared on construction (9 kB each): the product is formed from
+    // this thread's copy of the real block, without one.
+    thread_local PwlComplexMatrix held;
+    held = A.block(0, nz, nz, nh + 1).cast<Complex>();
+    structure.phi.noalias() = V_inverse * held;
+    structure.force_V = force.head(nz).cast<Complex>() * V;
+  }
+  phi = structure.phi, force_V = structure.force_V;
   const PwlComplexVector a_c = A.col(cosine()).head(nz).cast<Complex>(), a_s = A.col(sine()).head(nz).cast<Complex>();
   g_plus = 0.5 * (V_inverse * (a_c - Complex(0.0, 1.0) * a_s));
   g_minus = 0.5 * (V_inverse * (a_c + Complex(0.0, 1.0) * a_s));
-  force_V = force.head(nz).cast<Complex>() * V;
   auto reciprocal = [](Complex d) { return d == 0.0 ? Complex(0.0) : 1.0 / d; };
   gap_zero.resize(nz), gap_plus.resize(nz), gap_minus.resize(nz);
   for (int j = 0; j < nz; ++j) {

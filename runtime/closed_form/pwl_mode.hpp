@@ -137,10 +137,34 @@ struct PwlModeStructure {
   bool determinate = true;  // false: the mode is indeterminate (build_pwl_mode returns false)
   PwlMatrix P, N, Vm, Vd, Va;
   PwlMatrix Kaa_inverse, Cdd_inverse, Mmm_inverse;
+  // The build's products that do not involve the drive's columns (pwl_mode.cpp names them as its
+  // equations do), kept so that a build at another frequency forms only the rest: the same
+  // expressions of the same operands, so a mode is the same to the last bit whichever frequency
+  // filled its structure.
+  PwlMatrix K, C, M;                                      // n x n Laplacians
+  PwlVector kT, cT, mT, f_slip;                           // n: terminal couplings, slip forces
+  PwlMatrix R;                                            // r x n
+  PwlVector rho, P_rho;                                   // r, n
+  PwlVector drive_k, drive_m, drive_c;                    // K P rho - k_T, M P rho - m_T, C P rho - c_T
+  PwlMatrix Kq, Cq, Fy_held;                              // N^T K N, N^T C N, -N^T K P
+  PwlVector Fy_one;                                       // -N^T f_slip
+  PwlMatrix Sd, Sm, Sv, Vd_Sd, Vm_Sm, Vm_Sv;              // selections of w and their images in y
+  PwlMatrix condensed, damped_coupling, Vm_Cq, tensions;  // Va^T Kq (Vd Sd + Vm Sm), Vd^T Cq Vm Sv, Vm^T Cq, -(R R^T)^-1 R
+  PwlMatrix from_X;
+  std::vector<PwlVector> incidence;  // per edge: e = incidence . x + terminal u
+  std::vector<double> terminal;
+  std::array<int, kPwlMaxDim> rigid{};  // edge indices of stuck sliders and closed gaps, in switch order
+  int r = 0, guard_count = 0;
+  double largest_k = 0.0;
+  // A, to_X and the tensions' map of the build that filled the structure, but for the drive's
+  // columns (build_pwl_mode: the same at every frequency).
+  PwlMatrix A_frame, to_X_frame, lambda_frame;
   bool modal = false;  // V, V_inverse and lambda hold a well-conditioned eigendecomposition of A_zz
   PwlComplexMatrix V, V_inverse;
   PwlComplexVector lambda;
   PwlModalWeights weight;  // per modal coordinate (PwlModeSystem::weight)
+  PwlComplexMatrix phi;    // PwlModeSystem::phi and force_V, which hold no drive column
+  PwlComplexRow force_V;
 };
 
 struct PwlModeSystem {

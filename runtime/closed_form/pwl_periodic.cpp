@@ -32,7 +32,7 @@ bool same_start(const PwlStart& a, const PwlStart& b) { return a.mode == b.mode 
 bool PwlPeriodicState::solve(const PwlBranch& branch, double u0, double omega, const PwlStart* from) {
   u0_ = u0, omega_ = omega, period_ = 2.0 * std::numbers::pi / omega;
   half_wave_ = branch.odd;
-  if (!same_branch(branch, structures_branch_)) structures_.clear(), structures_branch_ = branch, solved_count_ = 0, mode_count_ = 0;
+  if (!same_branch(branch, structures_branch_)) structure_count_ = 0, structures_branch_ = branch, solved_count_ = 0, mode_count_ = 0;
   if (mode_count_ >= kMaxModes) mode_count_ = 0;  // built again as needed: a mode is the same whenever it is built
   active_.clear();
   for (std::size_t i = 0; i < mode_count_; ++i)

@@ -133,9 +133,12 @@ class PwlPeriodicState {
   std::vector<double> mode_omega_;
   std::size_t mode_count_ = 0;
   std::vector<int> active_;
-  // The drive-independent parts of every mode built for structures_branch_, kept across solves
-  // (the points of a grid) until a solve is given another branch (new parameters).
+  // The drive-independent parts of every mode built for structures_branch_, the first
+  // structure_count_, kept across solves (the points of a grid) until a solve is given another
+  // branch (new parameters); the rest is storage kept from earlier branches, refilled in place
+  // (a structure's complex storage, ~18 kB, is cleared when constructed).
   std::deque<std::pair<PwlModeCode, PwlModeStructure>> structures_;
+  std::size_t structure_count_ = 0;
   PwlBranch structures_branch_;
   // Per mode (as modes_), built when first needed: e^{A T/64} stacked over the guards, the
   // guard rates and the force's rate it leads to; empty until then.

@@ -13,6 +13,7 @@
 #include <algorithm>
 #include <numbers>
 #include <tuple>
+#include <utility>
 #include <vector>
 
 using namespace rheo;
@@ -407,4 +408,27 @@ TEST_CASE("a solve of the same branch at a drive solved before restores that res
   CHECK(kept.loss() == fresh_other.loss());
   REQUIRE(kept.solve(branch, 0.5, 2.0 * std::numbers::pi * 11.0));
   CHECK(std::abs(kept.loss() - fresh_other.loss()) > 1e-3 * std::abs(kept.loss()));
+}
+
+TEST_CASE("a branch with other values refills the storage of the last branch's modes: the same bits as a fresh state") {
+  // The column's mass changes the modes' state block (its eigendecomposition, kept per mode):
+  // a state that solved the first branch, then the second, then the first again gives each
+  // the bits of a state that never solved another.
+  const std::string text = kOddBranches[0];
+  const auto heavy_net = test::network_from(std::string(text).replace(text.find("40 kg"), 5, "55 kg"), "a");
+  const runtime::PwlBranch light = branch_of(test::network_from(text, "a")), heavy = branch_of(heavy_net);
+  runtime::PwlPeriodicState kept;
+  for (const runtime::PwlBranch* branch : {&light, &heavy, &light}) {
+    for (const auto& [u0, f] : {std::pair{0.5, 11.0}, std::pair{2.0, 40.0}}) {
+      CAPTURE(u0);
+      CAPTURE(f);
+      const double omega = 2.0 * std::numbers::pi * f;
+      runtime::PwlPeriodicState fresh;
+      REQUIRE(fresh.solve(*branch, u0, omega));
+      REQUIRE(kept.solve(*branch, u0, omega));
+      CHECK(kept.storage() == fresh.storage());
+      CHECK(kept.loss() == fresh.loss());
+      CHECK(kept.cycles() == fresh.cycles());
+    }
+  }
 }
