@@ -5,6 +5,7 @@
 
 #include <iostream>
 #include <string>
+#include <string_view>
 
 namespace rheo::cli {
 
@@ -29,7 +30,7 @@ void Progress::stage(const std::string& what) {
 }
 
 void Progress::evaluation(const runtime::SearchProgress& p) {
-  const std::string what = what_.empty() ? "searching" : what_;
+  const std::string_view what = what_.empty() ? std::string_view("searching") : std::string_view(what_);
   const double per_evaluation = p.evaluations > 0 ? p.seconds / p.evaluations : 0.0;
   const double allowed = per_evaluation * std::max(0, p.limit - p.evaluations);  // [s] the budget's evaluations left at that cost
   if (announce_ && p.evaluations == 1 && allowed > kAnnouncedBound) {

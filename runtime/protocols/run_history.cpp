@@ -9,12 +9,18 @@
 
 namespace rheo::runtime {
 
+double start_on_ida(const Network& network, DaeHistoryStepper& stepper, double t0, double u0) {
+  if (u0 == 0.0) return stepper.start(t0, u0);
+  const StartAtRest start = relaxed_start(network, relaxed_state(network, u0));
+  return stepper.start(t0, u0, &start);
+}
+
 History run_history(const Network& network, const Drive& drive, bool elements, SolverChoice solver) {
   const double u0 = drive.displacement.front();
   if (uses_sundials(network, solver)) {
     if (u0 == 0.0) return dae_history(network, drive, elements);
     const StartAtRest start = relaxed_start(network, relaxed_state(network, u0));
-    return dae_history(network, drive, elements, nullptr, &start);
+    return dae_history(network, drive, elements, nullptr, &start);  // as start_on_ida starts it
   }
   DriveStepper stepper(network, elements);
   History h;
@@ -60,16 +66,8 @@ std::size_t HistoryForceStream::next(std::span<double> out) {
   for (std::size_t i = 0; i < count; ++i) {
     const std::size_t k = at_ + i;
     const double t = drive_.time[k], u = drive_.displacement[k];
-    if (stepper_) {
-      out[i] = k == 0 ? stepper_->start(t, u) : stepper_->step(t, u);
-    } else if (k > 0) {
-      out[i] = ida_->step(t, u);
-    } else if (u == 0.0) {
-      out[i] = ida_->start(t, u);
-    } else {  // as run_history starts IDA away from rest
-      const StartAtRest start = relaxed_start(network_, relaxed_state(network_, u));
-      out[i] = ida_->start(t, u, &start);
-    }
+    if (stepper_) out[i] = k == 0 ? stepper_->start(t, u) : stepper_->step(t, u);
+    else out[i] = k == 0 ? start_on_ida(network_, *ida_, t, u) : ida_->step(t, u);
   }
   at_ += count;
   return count;

@@ -24,6 +24,11 @@ std::vector<double> history_force(const Network& network, const Drive& drive, So
 class DriveStepper;       // stepping/drive_stepper.hpp
 class DaeHistoryStepper;  // dae/dae_history_stepper.hpp
 
+// Sample 0 of a history on IDA at time T0 [s] and displacement U0 [mm], started as every history
+// on IDA starts (run_history, HistoryForceStream, stream_history.hpp): from rest at 0, else from
+// the relaxed state at U0 (stepping/relaxed_state.hpp). Returns its force [N].
+double start_on_ida(const Network& network, DaeHistoryStepper& stepper, double t0, double u0);
+
 // history_force a block of samples at a time, the same numbers bit for bit, without holding
 // them all (fits score long histories so): one step per sample as the blocks are asked for, on
 // the fixed-step kernels or on IDA (dae_history_stepper.hpp). NETWORK and DRIVE must outlive

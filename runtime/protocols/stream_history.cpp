@@ -3,11 +3,11 @@
 #include "lang/protocol_schema.hpp"
 #include "runtime/io/hdf5_history.hpp"
 #include "runtime/io/history_stream.hpp"
+#include "runtime/protocols/run_history.hpp"
 #include "runtime/protocols/run_protocols.hpp"
 #include "runtime/protocols/solver_choice.hpp"
 #include "runtime/dae/dae_history_stepper.hpp"
 #include "runtime/stepping/drive_stepper.hpp"
-#include "runtime/stepping/relaxed_state.hpp"
 
 #include <fmt/format.h>
 
@@ -69,16 +69,11 @@ class Block {
   double reach_ = 0.0;  // largest |u| [mm]
 };
 
-// IDA sample by sample (DaeHistoryStepper), started as run_history starts it: from rest at 0,
-// else from the relaxed state at the first displacement.
+// IDA sample by sample (DaeHistoryStepper), started as run_history starts it (start_on_ida).
 class IdaStepper {
  public:
   IdaStepper(const Network& network, bool elements, const DaeHistoryScales& scales) : network_(network), stepper_(network, elements, scales) {}
-  double start(double t0, double u0) {
-    if (u0 == 0.0) return stepper_.start(t0, u0);
-    const StartAtRest start = relaxed_start(network_, relaxed_state(network_, u0));
-    return stepper_.start(t0, u0, &start);
-  }
+  double start(double t0, double u0) { return start_on_ida(network_, stepper_, t0, u0); }
   double step(double t, double u) { return stepper_.step(t, u); }
   const std::vector<double>& element_force() const { return stepper_.element_force(); }
   const std::vector<double>& element_elongation() const { return stepper_.element_elongation(); }
