@@ -1,6 +1,7 @@
 #include "runtime/closed_form/pwl_periodic.hpp"
 
 #include "runtime/closed_form/pwl_cycle.hpp"
+#include "runtime/closed_form/pwl_describing.hpp"
 #include "runtime/closed_form/pwl_fixed_point.hpp"
 
 #include <algorithm>
@@ -123,7 +124,9 @@ bool PwlPeriodicState::shoot(Run& run, const PwlStart* from) {
   if (from != nullptr && !warm) return false;
   int start_mode = run.mode_index(warm ? from->mode : PwlModeCode(branch.switches.size(), 0));
   if (start_mode < 0) return false;
-  PwlVector X0 = warm ? from->X0 : run.linear_periodic_state(start_mode), X_T, last_end;
+  PwlVector X0, X_T, last_end;
+  if (warm) X0 = from->X0;
+  else if (!half_wave_ || !pwl_describing_start(branch, u0, omega, X0)) X0 = run.linear_periodic_state(start_mode);
   // Newton's method on X_T(X0) - X0 = 0 in scaled coordinates, globalised: a step that does not
   // lower the residual (the events moved under it) is halved once, and if that does not help
   // either, one plain cycle is taken from where the last one ended (a lightly damped fluid

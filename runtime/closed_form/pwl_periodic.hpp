@@ -30,7 +30,9 @@
 // symmetric one, the fixed point of the half-period map X0 -> -X(T/2), found the same way at
 // half the cost. It is the state time stepping reaches from rest: rest and the stuck linear
 // periodic start are symmetric, and the offsets of sliders that never slip stay zero (the half
-// map flips them, so its fixed point has none).
+// map flips them, so its fixed point has none). An odd branch with one slider that slips
+// starts from a describing-function estimate of that state instead (pwl_describing.hpp),
+// symmetric too and a function of the point alone.
 //
 // The cycle then yields the first harmonic exactly, K'_1 + i K''_1 = (w/(pi u0)) int_0^T
 // F(t) e^{i w t} dt, each piece's integral in modal closed form, and

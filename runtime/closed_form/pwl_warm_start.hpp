@@ -3,7 +3,7 @@
 // piecewise-linear subtree (its ordinal among the point's event-driven subtrees), the start of
 // the cycle that closed on itself, i.e. the periodic state and the mode it settles from; each
 // column's evaluation (one parameter moved by a relative 1e-6) starts the same point's Newton
-// iteration there instead of at the stuck linear start, and needs about two cycles instead of
+// iteration there instead of at the cold start, and needs about two cycles instead of
 // four (numerics.md, "Warm starts").
 //
 // Deterministic across thread counts: every column starts from the same base, whichever thread
