@@ -292,6 +292,7 @@ class Diagnoser {
     outcome.gap_after = fit_gap(result);
     outcome.criterion = criterion(result, d_.residual_terms, d_.noise_weighted, d_.noise);
     outcome.parameters = fitted_parameters(result);
+    if (trial.shape != Shape::force_offset) outcome.fitted = added_summary(result, outcome.element);
     outcome.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
     d_.interrupted = d_.interrupted || result.interrupted;
     d_.time_limited = d_.time_limited || result.time_limited;

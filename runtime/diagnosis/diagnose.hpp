@@ -123,6 +123,7 @@ struct CandidateOutcome {
   double criterion = 0.0;  // BIC of the refitted model
   int parameters = 0;      // its free parameters
   double wall_seconds = 0.0;
+  std::string fitted;  // the added element's refitted values ("backlash.play.width = 0.91 mm, ..."); empty for the offset
   // Why the candidate cannot earn whatever it gains, or empty: a refitted resonance outside
   // the measured frequencies (diagnose.cpp resolved_resonance).
   std::string unresolved;

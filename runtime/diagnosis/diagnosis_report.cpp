@@ -88,6 +88,7 @@ std::string diagnosis_report_json(const std::string& source_file, const Diagnosi
     if (!c.unresolved.empty()) e["unresolved"] = c.unresolved;
     if (!c.limit_of.empty()) e["limit_of"] = c.limit_of;
     if (c.refitted) e["gap_after"] = c.gap_after, e["criterion"] = c.criterion, e["parameters"] = c.parameters, e["wall_seconds"] = c.wall_seconds;
+    if (c.refitted && !c.fitted.empty()) e["fitted"] = c.fitted;
     candidates.push_back(e);
   }
   evidence["candidates"] = candidates;

@@ -11,7 +11,8 @@
 //              frequency_hz, residual}, worst_phase: {amplitude_mm, frequency_hz, residual_deg},
 //              phase_peak: {frequency_hz, excess_deg}}, histories: [{file, rms, max, worst_displacement_mm}],
 //              candidates: [{effect, screened_gain, element, trial, refitted, gap_after?,
-//              criterion?, parameters?, wall_seconds?, unresolved?}]  (unresolved: why a
+//              criterion?, parameters?, wall_seconds?, fitted? (the added element's refitted values),
+//              unresolved?}]  (unresolved: why a
 //              refitted resonance cannot earn),
 //              noise: null | {floor (the gap noise alone leaves), relative_error, ratio (the gap
 //              over it, for the model's degrees of freedom), pseudo_residuals, stiffness?,
