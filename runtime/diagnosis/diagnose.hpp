@@ -139,6 +139,11 @@ struct Diagnosis {
   Verdict verdict = Verdict::none;
   Effect effect = Effect::none;  // the effect named; none for the verdicts none and unexplained
   std::string reason;            // why, with numbers
+  // The verdict named: the other effects whose best refitted candidate earned too and fits
+  // within DiagnoseSettings::parsimony of the named one's gap (evidence_text.hpp
+  // alike_candidates): these data do not tell them apart from `effect`, which the rules of step
+  // 4 chose (fewer parameters, else the lower BIC). Empty when the data tell them apart.
+  std::vector<Effect> alike;
   ResidualPatterns patterns;     // of the model as fitted
   NoiseEstimate noise;           // behind the residual of the model as fitted, or at its least chi^2 where weighted
   double noise_ratio = 0.0;      // gap_before over the floor noise leaves (noise_estimate.hpp); 0 without an estimate

@@ -5,6 +5,9 @@
 //           "coupled-amplitude-frequency" | "inertia" | "none" | "unexplained" (the verdict,
 //           diagnose.hpp: none is a residual at the noise, unexplained one beyond it that no
 //           candidate removes)
+//   alike: [effect...]: for a named effect, the other effects whose refitted candidate earned
+//           and fits within the parsimony margin of its gap (the data do not tell them apart;
+//           diagnose.hpp Diagnosis::alike); [] otherwise
 //   evidence: {reason, patterns: [text...], harmonic?: {points, stiffness_rms, phase_rms_deg,
 //              amplitude_share, frequency_share, interaction_share, interaction_measured (false: the
 //              grid cannot measure it, the share is 0 and coupling is not screened), worst_stiffness: {amplitude_mm,

@@ -1,5 +1,6 @@
 // runtime/diagnosis/diagnosis_report.hpp: the reports of `rheo diagnose` say which parameters
-// of the refitted model ended at a bound, as `rheo fit`'s does.
+// of the refitted model ended at a bound, as `rheo fit`'s does, and the JSON which effects the
+// data do not tell apart from the one named.
 #include "runtime/diagnosis/diagnosis_report.hpp"
 
 #include "support.hpp"
@@ -18,6 +19,7 @@ TEST_CASE("the diagnosis reports name an added parameter the refit left at its b
   dx::Diagnosis d{.verdict = dx::Verdict::named,
                   .effect = dx::Effect::rate_dependence,
                   .reason = {},
+                  .alike = {dx::Effect::amplitude_dependence},
                   .patterns = {},
                   .noise = {},
                   .noise_ratio = 0.0,
@@ -46,4 +48,6 @@ TEST_CASE("the diagnosis reports name an added parameter the refit left at its b
   CHECK(text.find("m3.k =") == std::string::npos);
   const auto j = nlohmann::json::parse(dx::diagnosis_report_json("m.rheo", d, ""));
   CHECK(j.at("at_bounds") == nlohmann::json::array({"m3.tau = 9999.93 ms is at its upper bound 10000: widen it?"}));
+  // The effects the data do not tell apart from the one named (Diagnosis::alike).
+  CHECK(j.at("alike") == nlohmann::json::array({"amplitude-dependence"}));
 }
