@@ -144,9 +144,9 @@ struct Diagnosis {
   // alike_candidates): these data do not tell them apart from `effect`, which the rules of step
   // 4 chose (fewer parameters, else the lower BIC). Empty when the data tell them apart.
   std::vector<Effect> alike;
-  ResidualPatterns patterns;     // of the model as fitted
-  NoiseEstimate noise;           // behind the residual of the model as fitted, or at its least chi^2 where weighted
-  double noise_ratio = 0.0;      // gap_before over the floor noise leaves (noise_estimate.hpp); 0 without an estimate
+  ResidualPatterns patterns;  // of the model as fitted
+  NoiseEstimate noise;        // behind the residual of the model as fitted, or at its least chi^2 where weighted
+  double noise_ratio = 0.0;   // gap_before over the floor noise leaves (noise_estimate.hpp); 0 without an estimate
   // Where the criterion is noise-weighted: the least chi^2 of the model as fitted
   // (criterion.hpp least_chi_square) and sqrt(chi^2 / (N - p)), the residual at the likelihood's
   // maximum over the noise, which judges none against unexplained in place of noise_ratio.

@@ -109,7 +109,8 @@ std::string diagnosis_report_json(const std::string& source_file, const Diagnosi
 
   json alike = json::array();
   for (Effect e : d.alike) alike.push_back(effect_name(e));
-  json j{{"effect", verdict_name(d)}, {"alike", alike}, {"evidence", evidence}, {"gap_measure", d.gap_name}, {"err_before", d.gap_before}, {"err_after", d.gap_after}};
+  json j{{"effect", verdict_name(d)},  {"alike", alike},          {"evidence", evidence}, {"gap_measure", d.gap_name},
+         {"err_before", d.gap_before}, {"err_after", d.gap_after}};
   json criterion{{"name", "BIC"}, {"residual_terms", d.residual_terms}, {"noise_weighted", d.noise_weighted}, {"before", d.criterion_before}};
   json added = json::array();
   if (d.after) {
