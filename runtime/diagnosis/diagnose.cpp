@@ -292,6 +292,7 @@ class Diagnoser {
     outcome.gap_after = fit_gap(result);
     outcome.criterion = criterion(result, d_.residual_terms, d_.noise_weighted, d_.noise);
     outcome.parameters = fitted_parameters(result);
+    if (trial.shape != Shape::force_offset) outcome.fitted = added_summary(result, outcome.element);
     outcome.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
     d_.interrupted = d_.interrupted || result.interrupted;
     d_.time_limited = d_.time_limited || result.time_limited;
@@ -377,6 +378,7 @@ class Diagnoser {
     d_.gap_after = fit_gap(chosen_->result);
     d_.added_element = winner.element;
     d_.reason = effect_reason(d_, winner, s_.parsimony);
+    for (const CandidateOutcome* alike : alike_candidates(d_, winner, s_.parsimony)) d_.alike.push_back(alike->screened.effect);
     if (chosen_->trial.shape == Shape::force_offset) return finish_offset();
     const std::string comment = fmt::format("added by rheo diagnose: {}; {} {:.4g} -> {:.4g}", effect_name(d_.effect), d_.gap_name, d_.gap_before,
                                             d_.gap_after);

@@ -123,6 +123,7 @@ struct CandidateOutcome {
   double criterion = 0.0;  // BIC of the refitted model
   int parameters = 0;      // its free parameters
   double wall_seconds = 0.0;
+  std::string fitted;  // the added element's refitted values ("backlash.play.width = 0.91 mm, ..."); empty for the offset
   // Why the candidate cannot earn whatever it gains, or empty: a refitted resonance outside
   // the measured frequencies (diagnose.cpp resolved_resonance).
   std::string unresolved;
@@ -138,9 +139,14 @@ struct Diagnosis {
   Verdict verdict = Verdict::none;
   Effect effect = Effect::none;  // the effect named; none for the verdicts none and unexplained
   std::string reason;            // why, with numbers
-  ResidualPatterns patterns;     // of the model as fitted
-  NoiseEstimate noise;           // behind the residual of the model as fitted, or at its least chi^2 where weighted
-  double noise_ratio = 0.0;      // gap_before over the floor noise leaves (noise_estimate.hpp); 0 without an estimate
+  // The verdict named: the other effects whose best refitted candidate earned too and fits
+  // within DiagnoseSettings::parsimony of the named one's gap (evidence_text.hpp
+  // alike_candidates): these data do not tell them apart from `effect`, which the rules of step
+  // 4 chose (fewer parameters, else the lower BIC). Empty when the data tell them apart.
+  std::vector<Effect> alike;
+  ResidualPatterns patterns;  // of the model as fitted
+  NoiseEstimate noise;        // behind the residual of the model as fitted, or at its least chi^2 where weighted
+  double noise_ratio = 0.0;   // gap_before over the floor noise leaves (noise_estimate.hpp); 0 without an estimate
   // Where the criterion is noise-weighted: the least chi^2 of the model as fitted
   // (criterion.hpp least_chi_square) and sqrt(chi^2 / (N - p)), the residual at the likelihood's
   // maximum over the noise, which judges none against unexplained in place of noise_ratio.

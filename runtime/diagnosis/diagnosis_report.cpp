@@ -88,6 +88,7 @@ std::string diagnosis_report_json(const std::string& source_file, const Diagnosi
     if (!c.unresolved.empty()) e["unresolved"] = c.unresolved;
     if (!c.limit_of.empty()) e["limit_of"] = c.limit_of;
     if (c.refitted) e["gap_after"] = c.gap_after, e["criterion"] = c.criterion, e["parameters"] = c.parameters, e["wall_seconds"] = c.wall_seconds;
+    if (c.refitted && !c.fitted.empty()) e["fitted"] = c.fitted;
     candidates.push_back(e);
   }
   evidence["candidates"] = candidates;
@@ -106,7 +107,10 @@ std::string diagnosis_report_json(const std::string& source_file, const Diagnosi
     evidence["noise"]["least_chi_square"] = d.chi_square_before, evidence["noise"]["chi_square_ratio"] = d.chi_square_ratio;
   if (n.estimated && !d.patterns.has_harmonic) evidence["noise"]["force"] = n.force, evidence["noise"]["autocorrelation"] = n.autocorrelation;
 
-  json j{{"effect", verdict_name(d)}, {"evidence", evidence}, {"gap_measure", d.gap_name}, {"err_before", d.gap_before}, {"err_after", d.gap_after}};
+  json alike = json::array();
+  for (Effect e : d.alike) alike.push_back(effect_name(e));
+  json j{{"effect", verdict_name(d)},  {"alike", alike},          {"evidence", evidence}, {"gap_measure", d.gap_name},
+         {"err_before", d.gap_before}, {"err_after", d.gap_after}};
   json criterion{{"name", "BIC"}, {"residual_terms", d.residual_terms}, {"noise_weighted", d.noise_weighted}, {"before", d.criterion_before}};
   json added = json::array();
   if (d.after) {

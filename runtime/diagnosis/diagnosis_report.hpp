@@ -5,13 +5,17 @@
 //           "coupled-amplitude-frequency" | "inertia" | "none" | "unexplained" (the verdict,
 //           diagnose.hpp: none is a residual at the noise, unexplained one beyond it that no
 //           candidate removes)
+//   alike: [effect...]: for a named effect, the other effects whose refitted candidate earned
+//           and fits within the parsimony margin of its gap (the data do not tell them apart;
+//           diagnose.hpp Diagnosis::alike); [] otherwise
 //   evidence: {reason, patterns: [text...], harmonic?: {points, stiffness_rms, phase_rms_deg,
 //              amplitude_share, frequency_share, interaction_share, interaction_measured (false: the
 //              grid cannot measure it, the share is 0 and coupling is not screened), worst_stiffness: {amplitude_mm,
 //              frequency_hz, residual}, worst_phase: {amplitude_mm, frequency_hz, residual_deg},
 //              phase_peak: {frequency_hz, excess_deg}}, histories: [{file, rms, max, worst_displacement_mm}],
 //              candidates: [{effect, screened_gain, element, trial, refitted, gap_after?,
-//              criterion?, parameters?, wall_seconds?, unresolved?}]  (unresolved: why a
+//              criterion?, parameters?, wall_seconds?, fitted? (the added element's refitted values),
+//              unresolved?}]  (unresolved: why a
 //              refitted resonance cannot earn),
 //              noise: null | {floor (the gap noise alone leaves), relative_error, ratio (the gap
 //              over it, for the model's degrees of freedom), pseudo_residuals, stiffness?,

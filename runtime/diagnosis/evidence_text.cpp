@@ -65,26 +65,32 @@ std::string pattern_sentence(Effect effect, const ResidualPatterns& p) {
   return "the residual shows no pattern an added element explains";
 }
 
-namespace {
-
-// "; a yeoh spring in place of ... (nonlinear-elasticity) fits about as well (...)" for the
-// best refitted candidate of each effect other than W's that earned (BIC below the model's) and
-// whose gap is within PARSIMONY of W's; empty where there is none.
-std::string alike_candidates(const Diagnosis& d, const CandidateOutcome& w, double parsimony) {
+std::vector<const CandidateOutcome*> alike_candidates(const Diagnosis& d, const CandidateOutcome& w, double parsimony) {
   auto alike = [&](const CandidateOutcome& c) {
     return &c != &w && c.refitted && c.screened.effect != w.screened.effect && c.unresolved.empty() && c.criterion < d.criterion_before &&
            c.gap_after <= (1.0 + parsimony) * w.gap_after;
   };
-  std::string out;
+  std::vector<const CandidateOutcome*> out;
   for (const auto& c : d.candidates) {
     if (!alike(c)) continue;
     const bool better_of_its_effect = std::any_of(d.candidates.begin(), d.candidates.end(), [&](const CandidateOutcome& o) {
       return &o != &c && alike(o) && o.screened.effect == c.screened.effect && o.gap_after < c.gap_after;
     });
-    if (better_of_its_effect) continue;
-    const int more = c.parameters - w.parameters;
+    if (!better_of_its_effect) out.push_back(&c);
+  }
+  return out;
+}
+
+namespace {
+
+// "; a yeoh spring in place of ... (nonlinear-elasticity) fits about as well (...)" for each of
+// alike_candidates; empty where there is none.
+std::string alike_sentences(const Diagnosis& d, const CandidateOutcome& w, double parsimony) {
+  std::string out;
+  for (const CandidateOutcome* c : alike_candidates(d, w, parsimony)) {
+    const int more = c->parameters - w.parameters;
     out += fmt::format("; {} ({}) fits about as well ({} {:.4g}, BIC {:.1f}, {} parameter{} {}): these data do not tell the two apart",
-                       trial_summary(c.screened.trial), effect_name(c.screened.effect), d.gap_name, c.gap_after, c.criterion, std::abs(more),
+                       trial_summary(c->screened.trial), effect_name(c->screened.effect), d.gap_name, c->gap_after, c->criterion, std::abs(more),
                        std::abs(more) == 1 ? "" : "s", more >= 0 ? "more" : "fewer");
   }
   return out;
@@ -104,7 +110,7 @@ std::string effect_reason(const Diagnosis& d, const CandidateOutcome& w, double 
              "{:.1f} with {} more parameter{}",
              pattern_sentence(w.screened.effect, d.patterns), screened, d.gap_name, d.gap_before, w.gap_after, d.gap_before / w.gap_after,
              d.criterion_before, w.criterion, more, std::abs(more) == 1 ? "" : "s") +
-         alike_candidates(d, w, parsimony);
+         alike_sentences(d, w, parsimony);
 }
 
 namespace {

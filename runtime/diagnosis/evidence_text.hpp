@@ -19,6 +19,11 @@ std::string pattern_sentence(Effect effect, const ResidualPatterns& patterns);
 // than parsimony, DiagnoseSettings::parsimony).
 std::string effect_reason(const Diagnosis& diagnosis, const CandidateOutcome& winner, double parsimony);
 
+// The candidates effect_reason names as fitting about as well as WINNER: of each other effect,
+// its best refitted candidate that earned (BIC below the model's, its resonance resolved) and
+// whose gap is within PARSIMONY of WINNER's; in the order of DIAGNOSIS.candidates.
+std::vector<const CandidateOutcome*> alike_candidates(const Diagnosis& diagnosis, const CandidateOutcome& winner, double parsimony);
+
 // Why nothing was added and the residual is noise: no candidate screened above the threshold, or
 // none earned its parameters; and the gap against the noise estimate.
 std::string none_reason(const Diagnosis& diagnosis, const DiagnoseSettings& settings);

@@ -131,6 +131,17 @@ TEST_CASE("diagnose, the rig file's programme through other values: play and one
   const auto together = std::find_if(d.candidates.begin(), d.candidates.end(), [](const dx::CandidateOutcome& c) { return c.chosen; });
   REQUIRE(together != d.candidates.end());
   CHECK(together->limit_of.find("neither earned alone") != std::string::npos);
+  // Its refitted values (CandidateOutcome::fitted; JSON candidates[].fitted), before the polish.
+  CAPTURE(together->fitted);
+  const auto written = [&](const std::string& path) {
+    const std::size_t at = together->fitted.find(path + " = ");
+    return at == std::string::npos ? 0.0 : std::stod(together->fitted.substr(at + path.size() + 3));
+  };
+  // Before the polish the centre sat at the play's edge (-w/2: the stop touching at rest), which the polish leaves.
+  CHECK(written("backlash.play.width") == doctest::Approx(4.0).epsilon(0.05));
+  CHECK(written("backlash.play.center") < -0.9);
+  CHECK(written("backlash.f.fy_pos") == doctest::Approx(20000.0).epsilon(0.02));
+  CHECK(together->fitted.find("backlash.f.fy_neg = ") != std::string::npos);
   for (const dx::CandidateOutcome& c : d.candidates)  // alone, none earned its parameters
     if (c.refitted && !c.chosen) CHECK(c.gap_after > 0.75 * d.gap_before);
   REQUIRE(d.after.has_value());

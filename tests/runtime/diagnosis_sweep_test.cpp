@@ -6,7 +6,7 @@
 //
 // The suite runs a few draws (fewer under AddressSanitizer); RHEO_DIAGNOSE_SWEEP=N runs N seeds
 // of every case (from RHEO_DIAGNOSE_SWEEP_FIRST, default 1; RHEO_DIAGNOSE_SWEEP_ONLY=none for one
-// case) and prints one line per diagnosis and the rates (about a minute per seed);
+// case, RHEO_DIAGNOSE_SWEEP_KIND=harmonic or history for one kind of data) and prints one line per diagnosis and the rates (about a minute per seed);
 // RHEO_DIAGNOSE_SWEEP_VERBOSE=1 adds every candidate under its diagnosis.
 #include "runtime/diagnosis/diagnose.hpp"
 
@@ -76,7 +76,8 @@ Outcome outcome(const dx::Diagnosis& d, const gen::Scenario& sc, gen::Hidden hid
     for (const auto& c : d.candidates)
       o.line += fmt::format("\n      {:28} screened {:.3f}  {}  {}", dx::effect_name(c.screened.effect), c.screened.gain,
                             c.refitted ? fmt::format("gap {:.4g} BIC {:.1f} p {}", c.gap_after, c.criterion, c.parameters) : "not refitted",
-                            dx::trial_summary(c.screened.trial));
+                            dx::trial_summary(c.screened.trial)) +
+                (c.refitted && !c.fitted.empty() ? "\n        refitted: " + c.fitted : std::string());
   return o;
 }
 
@@ -99,6 +100,7 @@ struct Tally {
 std::map<std::string, Tally> sweep(unsigned first, unsigned seeds) {
   std::map<std::string, Tally> tally;
   const char* only = std::getenv("RHEO_DIAGNOSE_SWEEP_ONLY");        // one case by its hidden_name, e.g. "none"
+  const char* kind = std::getenv("RHEO_DIAGNOSE_SWEEP_KIND");        // "harmonic" or "history": one kind of data only
   const char* rho = std::getenv("RHEO_DIAGNOSE_SWEEP_CORRELATION");  // the history noise's lag-1 autocorrelation
   const double correlation = rho ? std::atof(rho) : 0.0;
   const std::vector<gen::Hidden> on_grids{gen::Hidden::none, gen::Hidden::friction, gen::Hidden::maxwell, gen::Hidden::column, gen::Hidden::play};
@@ -106,6 +108,7 @@ std::map<std::string, Tally> sweep(unsigned first, unsigned seeds) {
                                               gen::Hidden::split_yield, gen::Hidden::even_spring, gen::Hidden::capped_maxwell, gen::Hidden::offset};
   for (unsigned seed = first; seed < first + seeds; ++seed)
     for (const bool history : {false, true}) {
+      if (kind && std::string(kind) != (history ? "history" : "harmonic")) continue;
       double none_gap = 0.0;
       for (gen::Hidden h : history ? on_histories : on_grids) {
         if (only && std::string(only) != gen::hidden_name(h)) continue;

@@ -1,5 +1,6 @@
 // runtime/diagnosis/diagnosis_report.hpp: the reports of `rheo diagnose` say which parameters
-// of the refitted model ended at a bound, as `rheo fit`'s does.
+// of the refitted model ended at a bound, as `rheo fit`'s does, and the JSON which effects the
+// data do not tell apart from the one named.
 #include "runtime/diagnosis/diagnosis_report.hpp"
 
 #include "support.hpp"
@@ -18,6 +19,7 @@ TEST_CASE("the diagnosis reports name an added parameter the refit left at its b
   dx::Diagnosis d{.verdict = dx::Verdict::named,
                   .effect = dx::Effect::rate_dependence,
                   .reason = {},
+                  .alike = {dx::Effect::amplitude_dependence},
                   .patterns = {},
                   .noise = {},
                   .noise_ratio = 0.0,
@@ -39,6 +41,9 @@ TEST_CASE("the diagnosis reports name an added parameter the refit left at its b
                   .time_limited = false,
                   .before_program = {},
                   .after_program = {}};
+  dx::CandidateOutcome refitted;
+  refitted.refitted = true, refitted.element = "m3", refitted.fitted = "m3.k = 40 N/mm, m3.tau = 9999.93 ms";
+  d.candidates.push_back(refitted);
   const std::string text = dx::diagnosis_report_text("m.rheo", d);
   CAPTURE(text);
   CHECK(text.find("  m3.tau = 9999.93 ms is at its upper bound 10000: widen it?\n") != std::string::npos);
@@ -46,4 +51,8 @@ TEST_CASE("the diagnosis reports name an added parameter the refit left at its b
   CHECK(text.find("m3.k =") == std::string::npos);
   const auto j = nlohmann::json::parse(dx::diagnosis_report_json("m.rheo", d, ""));
   CHECK(j.at("at_bounds") == nlohmann::json::array({"m3.tau = 9999.93 ms is at its upper bound 10000: widen it?"}));
+  // The effects the data do not tell apart from the one named (Diagnosis::alike).
+  CHECK(j.at("alike") == nlohmann::json::array({"amplitude-dependence"}));
+  // Each refitted candidate's fitted values.
+  CHECK(j.at("evidence").at("candidates").at(0).at("fitted") == "m3.k = 40 N/mm, m3.tau = 9999.93 ms");
 }

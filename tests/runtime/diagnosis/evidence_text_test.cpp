@@ -47,4 +47,13 @@ TEST_CASE("a named effect's reason names the candidates of other effects that fi
   CHECK(backlash.find("(nonlinear-elasticity) fits about as well (err (6.1) 0.01, BIC 290.0, 1 parameter fewer)") != std::string::npos);
   CHECK(backlash.find("fits about as well") == backlash.rfind("fits about as well"));
   CHECK(effect_reason(d, d.candidates[1], 0.02).find("fits about as well") == std::string::npos);
+  // The same candidates as a list (Diagnosis::alike, JSON `alike`): for the yeoh the backlash
+  // refit, for the backlash the yeoh's better refit only, within 2 % none.
+  const auto for_yeoh = alike_candidates(d, d.candidates.front(), 0.1);
+  REQUIRE(for_yeoh.size() == 1);
+  CHECK(for_yeoh.front() == &d.candidates[1]);
+  const auto for_backlash = alike_candidates(d, d.candidates[1], 0.1);
+  REQUIRE(for_backlash.size() == 1);
+  CHECK(for_backlash.front() == &d.candidates[3]);
+  CHECK(alike_candidates(d, d.candidates[1], 0.02).empty());
 }
