@@ -6,7 +6,7 @@
 # under /usr/bin/time -v (Debian's `time` package): wall and CPU time, peak memory (maximum
 # resident set).
 #
-#   bench/long_history.sh [--rows N] [--rate HZ] [--runs K] [--elements] [--hdf5] [--report-data] [--fit-data] [--rheo PATH]
+#   bench/long_history.sh [--rows N] [--rate HZ] [--runs K] [--elements] [--hdf5] [--report-data] [--fit-data] [--fit-shape] [--rheo PATH]
 #
 # --hdf5: HDF5 in and out instead (docs/data-formats.md, "HDF5 files"): the input is the CSV
 # history simulated once by rheo into history-N-HZ.h5 (kept; rheo's result holds /time and
@@ -19,6 +19,10 @@
 # --fit-data: `rheo fit` of a spring (`spring e (k = 300 N/mm in [1, 10000])`) to that measured
 # history instead: --max-evaluations 3, the fitted model written to fitted.rheo (a separable
 # solve and its standard errors: what a fit holds for a long history, docs/performance.md).
+#
+# --fit-shape: the same with no force scale free, so the plain Levenberg-Marquardt search runs
+# (a Maxwell time and a yield force free, every stiffness held; --max-evaluations 30): its
+# differenced Jacobians are formed as the samples stream past (runtime/fit/history_jacobian.hpp).
 #
 # Defaults: 1e7 rows at 10 kHz, 3 runs, build/rheo. The 24 h durability log of #28 is
 # `--rows 86400000 --rate 1000`. Input and output go to ${TMPDIR:-/tmp}/rheo-bench-history/
@@ -37,7 +41,8 @@ while [ $# -gt 0 ]; do
     --hdf5) format=h5; shift ;;
     --report-data) format=report; shift ;;
     --fit-data) format=fit; shift ;;
-    -h|--help) sed -n '2,26p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
+    --fit-shape) format=fit-shape; shift ;;
+    -h|--help) sed -n '2,30p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
     *) echo "bench/long_history.sh: unknown argument '$1' (see --help)" >&2; exit 2 ;;
   esac
 done
@@ -73,7 +78,7 @@ if [ "$format" = h5 ]; then
     "$rheo" simulate "$model" -o "$input"
   fi
 fi
-if [ "$format" = report ] || [ "$format" = fit ]; then
+if [ "$format" = report ] || [ "$format" = fit ] || [ "$format" = fit-shape ]; then
   input=$dir/history-$rows-$rate-measured.csv
   if [ ! -e "$input" ]; then
     echo "simulating $csv into $input (rheo simulate: time, displacement, force)" >&2
@@ -90,6 +95,10 @@ elif [ "$format" = fit ]; then
   model=$dir/spring.rheo
   printf 'model s {\n  spring e (k = 300 N/mm in [1, 10000])\n}\n' >"$model"
   command=(fit "$model" --data "$input" --max-evaluations 3 -o "$dir/fitted.rheo") out=$dir/fitted.rheo
+elif [ "$format" = fit-shape ]; then
+  model=$dir/shape.rheo
+  printf 'model s {\n  spring e (k = 1000 N/mm)\n  maxwell m (k = 300 N/mm, tau = 20 ms in [0.1, 1000])\n  friction f (k = 500 N/mm, fy = 50 N in [1, 1000])\n}\n' >"$model"
+  command=(fit "$model" --data "$input" --max-evaluations 30 -o "$dir/fitted.rheo") out=$dir/fitted.rheo
 else
   # The model block of the example, then one history protocol over the generated file.
   { sed -n '/^model /,/^}/p' examples/specimen_d.rheo

@@ -7,6 +7,7 @@
 #include "runtime/fit/force_offset.hpp"
 #include "runtime/fit/force_scales.hpp"
 #include "runtime/fit/harmonic_jacobian.hpp"
+#include "runtime/fit/history_jacobian.hpp"
 #include "runtime/fit/history_scoring.hpp"
 #include "runtime/fit/separable_fit.hpp"
 #include "runtime/fit/parameter_bounds.hpp"
@@ -124,6 +125,13 @@ class StagedSearch {
   StagedSearch(const Coordinates& coordinates, const std::vector<FitDataSet>& data, const FitSettings& settings, FitResult& result)
       : coordinates_(coordinates), data_(data), settings_(settings), result_(result) {}
 
+  // The bytes of a differenced Jacobian of the data's residuals in N coordinates (8 m N).
+  std::size_t whole_jacobian_bytes(std::size_t n) const {
+    std::size_t m = 0;
+    for (const FitDataSet& set : data_) m += set.is_harmonic() ? 2 * set.harmonic().size() : set.history().force.size();
+    return sizeof(double) * m * n;
+  }
+
   // The residual vector of METHOD at z (for `corrected`, with the factors found so far).
   std::function<std::vector<double>(const std::vector<double>&)> residuals_for(FitMethod method) const {
     return [this, method](const std::vector<double>& z) { return residuals(coordinates_.network(z), data_, settings_.score, method, corrections_); };
@@ -151,8 +159,22 @@ class StagedSearch {
     search.extra_starts.insert(search.extra_starts.end(), extra_starts.begin(), extra_starts.end());
     if (settings_.sensitivities && residual_jacobian_applies(coordinates_.network(from), data_, settings_.score, method))
       search.jacobian = [this](const std::vector<double>& z) { return residual_jacobian(coordinates_, z, data_, settings_.score).jacobian; };
-    const SearchResult found = search_least_squares(r, from, coordinates_.lower, coordinates_.upper, coordinates_.logarithmic, search,
-                                                    settings_.progress, settings_.interrupt);
+    // A long history's residuals are never held: phi and each Jacobian streamed (history_jacobian.hpp).
+    const bool by_value = method == FitMethod::exact && !search.jacobian && all_histories(data_) &&
+                          whole_jacobian_bytes(from.size()) > settings_.whole_jacobian_bytes;
+    if (by_value)
+      search.reduced_jacobian = [this](const std::vector<double>& z, const std::vector<double>& steps) -> std::optional<ReducedJacobian> {
+        std::optional<ReducedHistoryJacobian> reduced = reduced_history_jacobian(
+            [this](const std::vector<double>& at) { return coordinates_.network(at); }, data_, settings_.score, z, steps);
+        if (!reduced) return std::nullopt;
+        return ReducedJacobian{std::move(reduced->r), std::move(reduced->c), std::move(reduced->moved_values)};
+      };
+    const Objective phi = [this](const std::vector<double>& z) { return history_phi(coordinates_.network(z), data_, settings_.score); };
+    const SearchResult found = by_value
+                                   ? search_least_squares_by_value(phi, history_residual_count(data_), from, coordinates_.lower, coordinates_.upper,
+                                                                   coordinates_.logarithmic, search, settings_.progress, settings_.interrupt)
+                                   : search_least_squares(r, from, coordinates_.lower, coordinates_.upper, coordinates_.logarithmic, search,
+                                                          settings_.progress, settings_.interrupt);
     result_.evaluations += found.evaluations;
     result_.non_finite += found.non_finite;
     if (result_.first_failure.empty()) result_.first_failure = found.first_failure;

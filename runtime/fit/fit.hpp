@@ -51,6 +51,11 @@ struct FitSettings {
   // Jacobians from the analytic sensitivities (one evaluation each) instead of n differenced
   // evaluations.
   bool sensitivities = true;
+  // Exact method, every data set a history: where the differenced Jacobian's m x n doubles
+  // would take more bytes than this, Levenberg-Marquardt takes it reduced to n x n while the
+  // samples stream past (history_jacobian.hpp) instead of holding it and n moved residual
+  // vectors. 0: always reduced.
+  std::size_t whole_jacobian_bytes = std::size_t{64} << 20;
   // Standard errors and correlations at the optimum (a Jacobian: about 2 evaluations per free
   // parameter); off, FitResult::statistics stays empty.
   bool statistics = true;

@@ -10,6 +10,7 @@
 
 #include <algorithm>
 #include <array>
+#include <stdexcept>
 #include <cmath>
 #include <limits>
 #include <numeric>
@@ -84,7 +85,7 @@ std::vector<std::pair<double, std::vector<double>>> sample_box(Tracker& tracker,
 // Levenberg-Marquardt from FROM on the tracker's residuals, within BUDGET evaluations; the
 // NLopt-style status. A start whose residuals are not finite ends it at once.
 std::string least_squares_local(Tracker& tracker, const std::vector<double>& from, int budget, const std::vector<double>& lower,
-                                const std::vector<double>& upper, const SearchSettings& settings) {
+                                const std::vector<double>& upper, const SearchSettings& settings, std::size_t residual_count) {
   const int first = tracker.evaluations();
   LeastSquaresProblem problem;
   // Warm starts (closed_form/pwl_warm_start.hpp). Every single evaluation (the start, a trial
@@ -98,7 +99,14 @@ std::string least_squares_local(Tracker& tracker, const std::vector<double>& fro
   PwlWarmStarts* latest = &stores[0];       // the last single evaluation's
   const PwlWarmStarts* accepted = nullptr;  // the accepted point's (sealed)
   Eigen::VectorXd latest_x;
-  bool latest_accepted = false;  // latest_x is the accepted point (its states in *accepted)
+  bool latest_accepted = false;    // latest_x is the accepted point (its states in *accepted)
+  if (!tracker.has_residuals()) {  // phi alone, each Jacobian reduced (search_least_squares_by_value)
+    problem.value = [&](const Eigen::VectorXd& x) {
+      if (tracker.evaluations() - first >= budget) throw LocalBudgetSpent{};
+      return tracker(std::vector<double>(x.data(), x.data() + x.size()));
+    };
+    problem.residual_count = residual_count;
+  }
   problem.residuals = [&](const Eigen::VectorXd& x) {
     if (tracker.evaluations() - first >= budget) throw LocalBudgetSpent{};
     latest->clear();
@@ -136,6 +144,14 @@ std::string least_squares_local(Tracker& tracker, const std::vector<double>& fro
       if (tracker.evaluations() - first >= budget) throw LocalBudgetSpent{};
       return tracker.jacobian(std::vector<double>(x.data(), x.data() + x.size()));
     };
+  if (tracker.has_reduced_jacobian())  // a long history's Jacobian, never held whole (history_jacobian.hpp)
+    problem.reduced_jacobian = [&](const Eigen::VectorXd& x, const Eigen::VectorXd& steps) -> std::optional<LeastSquaresProblem::Reduced> {
+      if (tracker.evaluations() - first + (steps.array() != 0.0).count() > budget) throw LocalBudgetSpent{};
+      std::optional<ReducedJacobian> reduced = tracker.reduced_jacobian(std::vector<double>(x.data(), x.data() + x.size()),
+                                                                        std::vector<double>(steps.data(), steps.data() + steps.size()));
+      if (!reduced) return std::nullopt;
+      return LeastSquaresProblem::Reduced{std::move(reduced->r), std::move(reduced->c)};
+    };
   LevenbergMarquardtSettings lm;
   lm.max_iterations = std::min(budget, kMaxLocalIterations);
   lm.step_tolerance = settings.tolerance;
@@ -155,17 +171,20 @@ std::string least_squares_local(Tracker& tracker, const std::vector<double>& fro
   }
 }
 
+// RESIDUAL_COUNT: m where the objective is a sum of m squares given by its value alone
+// (search_least_squares_by_value), else unused.
 SearchResult search_with(const Objective& objective, const Residuals* residuals, const std::vector<double>& start, const std::vector<double>& lower,
                          const std::vector<double>& upper, const std::vector<bool>& logarithmic, const SearchSettings& settings,
-                         const std::function<void(const SearchProgress&)>& progress, const std::atomic<bool>* interrupt) {
+                         const std::function<void(const SearchProgress&)>& progress, const std::atomic<bool>* interrupt,
+                         std::size_t residual_count = 0) {
   const std::size_t n = start.size();
   Tracker tracker(objective, residuals, progress, interrupt, settings);
   const Objective tracked = [&](const std::vector<double>& z) { return tracker(z); };
   SearchResult result;
   auto remaining = [&] { return tracker.limit() - tracker.evaluations(); };
   auto local = [&](const std::vector<double>& from, int budget, Algorithm algorithm) {
-    if (tracker.has_residuals() && !settings.algorithm) {
-      result.status = least_squares_local(tracker, from, std::max(1, budget), lower, upper, settings);
+    if ((tracker.has_residuals() || residual_count > 0) && !settings.algorithm) {
+      result.status = least_squares_local(tracker, from, std::max(1, budget), lower, upper, settings, residual_count);
       return;
     }
     OptimizerSettings o;
@@ -256,6 +275,15 @@ SearchResult search_least_squares(const Residuals& residuals, const std::vector<
                                   const std::function<void(const SearchProgress&)>& progress, const std::atomic<bool>* interrupt) {
   const Objective unused = [](const std::vector<double>&) { return 0.0; };
   return search_with(unused, &residuals, start, lower, upper, logarithmic, settings, progress, interrupt);
+}
+
+SearchResult search_least_squares_by_value(const Objective& objective, std::size_t residual_count, const std::vector<double>& start,
+                                           const std::vector<double>& lower, const std::vector<double>& upper, const std::vector<bool>& logarithmic,
+                                           const SearchSettings& settings, const std::function<void(const SearchProgress&)>& progress,
+                                           const std::atomic<bool>* interrupt) {
+  if (!settings.reduced_jacobian || residual_count == 0)
+    throw std::logic_error("search_least_squares_by_value: a reduced Jacobian and the number of residuals are needed");
+  return search_with(objective, nullptr, start, lower, upper, logarithmic, settings, progress, interrupt, residual_count);
 }
 
 }  // namespace rheo::runtime

@@ -45,6 +45,16 @@ namespace rheo::runtime {
 // (harmonic_jacobian.hpp); a matrix with no columns where it is not available there.
 using ResidualJacobian = std::function<Eigen::MatrixXd(const std::vector<double>& z)>;
 
+// A differenced Jacobian of the residuals at z with forward steps STEPS (0: a zero column)
+// reduced to n rows (levenberg_marquardt.hpp, LeastSquaresProblem::reduced_jacobian), and phi
+// at each moved point z + steps_k e_k (NaN where steps_k = 0); nullopt where it cannot be formed.
+struct ReducedJacobian {
+  Eigen::MatrixXd r;
+  Eigen::VectorXd c;
+  std::vector<double> moved_values;
+};
+using ReducedResidualJacobian = std::function<std::optional<ReducedJacobian>(const std::vector<double>& z, const std::vector<double>& steps)>;
+
 struct SearchSettings {
   std::optional<Algorithm> algorithm;  // nullopt: the default strategy above
   int max_evaluations = 20000;         // over all stages
@@ -66,6 +76,11 @@ struct SearchSettings {
   // Optional, for search_least_squares: the Levenberg-Marquardt stages take their Jacobians from
   // it instead of differencing n evaluations; each call counts as one evaluation.
   ResidualJacobian jacobian;
+  // Optional, for search_least_squares without `jacobian`: the Levenberg-Marquardt stages take
+  // their differenced Jacobians from it, reduced, instead of n residual vectors (residuals too
+  // many to hold n times: history_jacobian.hpp); each call counts as its moved points'
+  // evaluations, recorded with their values.
+  ReducedResidualJacobian reduced_jacobian;
 };
 
 struct SearchProgress {
@@ -103,5 +118,14 @@ SearchResult search(const Objective& objective, const std::vector<double>& start
 SearchResult search_least_squares(const Residuals& residuals, const std::vector<double>& start, const std::vector<double>& lower,
                                   const std::vector<double>& upper, const std::vector<bool>& logarithmic, const SearchSettings& settings,
                                   const std::function<void(const SearchProgress&)>& progress = {}, const std::atomic<bool>* interrupt = nullptr);
+
+// The same search where the residuals are too many to hold even once (a long history's):
+// OBJECTIVE gives phi = sum_i r_i(z)^2 of RESIDUAL_COUNT residuals alone, and with no algorithm
+// named the local stages are Levenberg-Marquardt taking each Jacobian reduced from
+// settings.reduced_jacobian (needed; it counts its moved points as evaluations).
+SearchResult search_least_squares_by_value(const Objective& objective, std::size_t residual_count, const std::vector<double>& start,
+                                           const std::vector<double>& lower, const std::vector<double>& upper, const std::vector<bool>& logarithmic,
+                                           const SearchSettings& settings, const std::function<void(const SearchProgress&)>& progress = {},
+                                           const std::atomic<bool>* interrupt = nullptr);
 
 }  // namespace rheo::runtime

@@ -3,47 +3,19 @@
 #include "runtime/core/errors.hpp"
 #include "runtime/fit/bounded_least_squares.hpp"
 #include "runtime/fit/fit_statistics.hpp"
+#include "runtime/fit/history_blocks.hpp"
 #include "runtime/fit/streaming_least_squares.hpp"
-#include "runtime/protocols/run_history.hpp"
 
 #include <Eigen/Dense>
 
 #include <algorithm>
 #include <cmath>
-#include <span>
 #include <stdexcept>
 
 namespace rheo::runtime {
-namespace {
-
-constexpr Eigen::Index kBlock = 1024;  // samples simulated per network before their rows are formed
-
-// The forces of NETWORKS over H's drive in lockstep, a block at a time:
-// visit(first, count, forces), forces(i, k) the force [N] of network k at sample first + i.
-template <class Visit>
-void for_each_block(const std::vector<Network>& networks, const HistoryData& h, SolverChoice solver, Visit&& visit) {
-  std::vector<HistoryForceStream> streams;
-  streams.reserve(networks.size());
-  for (const Network& network : networks) streams.emplace_back(network, h.drive, solver);
-  Eigen::MatrixXd forces(kBlock, static_cast<Eigen::Index>(networks.size()));
-  for (std::size_t first = 0; first < h.force.size();) {
-    std::size_t count = 0;
-    for (std::size_t k = 0; k < streams.size(); ++k)
-      count = streams[k].next(std::span<double>(forces.col(static_cast<Eigen::Index>(k)).data(), static_cast<std::size_t>(kBlock)));
-    if (count == 0) throw std::logic_error("for_each_block: the drive has fewer samples than the measured force");
-    visit(first, count, forces);
-    first += count;
-  }
-}
-
-// sqrt(w / M) / max|F_exp|: the weight of one of SET's residuals (fit_scoring.hpp).
-double residual_scale(const FitDataSet& set) {
-  return std::sqrt(set.weight / static_cast<double>(set.history().force.size())) / set.history().force_scale;
-}
-
-bool free_offset(const FitDataSet& set) { return set.force_offset.given && set.force_offset.free; }
-
-}  // namespace
+using history_blocks::for_each_block;
+using history_blocks::free_offset;
+using history_blocks::residual_scale;
 
 bool all_histories(const std::vector<FitDataSet>& data) {
   return !data.empty() && std::none_of(data.begin(), data.end(), [](const FitDataSet& set) { return set.is_harmonic(); });
@@ -82,18 +54,19 @@ ScaleSolution solve_history_scales(const Network& network, const std::vector<int
   for (std::size_t f = 0; f < data.size(); ++f) {
     const HistoryData& measured = data[f].history();
     const double scale = residual_scale(data[f]), declared = force_offset(data[f], {}, Offsets::declared);
-    for_each_block(networks, measured, score.harmonic.solver, [&](std::size_t first, std::size_t count, const Eigen::MatrixXd& forces) {
-      if (!forces.topRows(static_cast<Eigen::Index>(count)).allFinite())
-        throw NumericalError("the model's response at these parameters is not finite (NaN or infinite force); its scales cannot be solved");
-      for (std::size_t i = 0; i < count; ++i) {
-        const auto ii = static_cast<Eigen::Index>(i);
-        double* row = rows.next_row();
-        if (offset_column[f] >= 0) row[offset_column[f]] = scale;
-        const double f0 = forces(ii, 0);
-        for (Eigen::Index k = 0; k < ns; ++k) row[offsets + k] = scale * ((forces(ii, k + 1) - f0) / h(k));
-        row[offsets + ns] = -scale * (f0 + declared - measured.force[first + i]);
-      }
-    });
+    for_each_block(
+        networks, measured, score.harmonic.solver, score.harmonic.threads, [&](std::size_t first, std::size_t count, const Eigen::MatrixXd& forces) {
+          if (!forces.topRows(static_cast<Eigen::Index>(count)).allFinite())
+            throw NumericalError("the model's response at these parameters is not finite (NaN or infinite force); its scales cannot be solved");
+          for (std::size_t i = 0; i < count; ++i) {
+            const auto ii = static_cast<Eigen::Index>(i);
+            double* row = rows.next_row();
+            if (offset_column[f] >= 0) row[offset_column[f]] = scale;
+            const double f0 = forces(ii, 0);
+            for (Eigen::Index k = 0; k < ns; ++k) row[offsets + k] = scale * ((forces(ii, k + 1) - f0) / h(k));
+            row[offsets + ns] = -scale * (f0 + declared - measured.force[first + i]);
+          }
+        });
   }
   const Eigen::MatrixXd r = rows.r();
   const Eigen::VectorXd c = rows.c();
@@ -127,9 +100,10 @@ StatisticsWithOffsets history_statistics(const std::function<Network(const std::
     // force_offset's mean, in its order of operations: sum (F_exp - F), then / M.
     const HistoryData& measured = data[f].history();
     double sum = 0.0;
-    for_each_block({networks.front()}, measured, solver, [&](std::size_t first, std::size_t count, const Eigen::MatrixXd& forces) {
-      for (std::size_t i = 0; i < count; ++i) sum += measured.force[first + i] - (forces(static_cast<Eigen::Index>(i), 0) + 0.0);
-    });
+    for_each_block({networks.front()}, measured, solver, score.harmonic.threads,
+                   [&](std::size_t first, std::size_t count, const Eigen::MatrixXd& forces) {
+                     for (std::size_t i = 0; i < count; ++i) sum += measured.force[first + i] - (forces(static_cast<Eigen::Index>(i), 0) + 0.0);
+                   });
     free_sets.push_back(f);
     x.push_back(sum / static_cast<double>(measured.force.size()));
     log_x.push_back(false);
@@ -162,7 +136,7 @@ StatisticsWithOffsets history_statistics(const std::function<Network(const std::
       const double with_offsets = k < free_sets.size() ? force + declared + c : force + declared;
       return scale * (with_offsets - f_exp);
     };
-    for_each_block(networks, measured, solver, [&](std::size_t first, std::size_t count, const Eigen::MatrixXd& forces) {
+    for_each_block(networks, measured, solver, score.harmonic.threads, [&](std::size_t first, std::size_t count, const Eigen::MatrixXd& forces) {
       for (std::size_t i = 0; i < count; ++i) {
         const auto ii = static_cast<Eigen::Index>(i);
         const double f_exp = measured.force[first + i];

@@ -7,6 +7,7 @@
 #include <cmath>
 #include <limits>
 #include <optional>
+#include <stdexcept>
 #include <utility>
 #include <vector>
 
@@ -36,6 +37,35 @@ Eigen::VectorXd try_residuals(const LeastSquaresProblem& problem, const Eigen::V
   }
 }
 
+// phi(x) of a problem given by its value (LeastSquaresProblem::value): +inf where it is not
+// finite or cannot be evaluated.
+double try_value(const LeastSquaresProblem& problem, const Eigen::VectorXd& x) {
+  try {
+    const double v = problem.value(x);
+    return std::isfinite(v) ? v : std::numeric_limits<double>::infinity();
+  } catch (const NumericalError&) {
+    return std::numeric_limits<double>::infinity();
+  }
+}
+
+// The reduced Jacobian with STEPS; failing that, once more with each step reversed where the box
+// allows (else that column zero, and `complete` false). nullopt where neither can be formed.
+std::optional<LeastSquaresProblem::Reduced> reduced_jacobian(const LeastSquaresProblem& problem, const Eigen::VectorXd& x,
+                                                             const Eigen::VectorXd& steps, const Eigen::VectorXd& lower,
+                                                             const Eigen::VectorXd& upper, bool& complete) {
+  const Eigen::Index n = x.size();
+  const auto usable = [n](const std::optional<LeastSquaresProblem::Reduced>& r) {
+    return r && r->r.rows() == n && r->r.cols() == n && r->c.size() == n;
+  };
+  std::optional<LeastSquaresProblem::Reduced> reduced = problem.reduced_jacobian(x, steps);
+  if (usable(reduced) || !problem.value) return usable(reduced) ? reduced : std::nullopt;
+  Eigen::VectorXd reversed = -steps;
+  for (Eigen::Index c = 0; c < n; ++c)
+    if (x(c) + reversed(c) > upper(c) || x(c) + reversed(c) < lower(c)) reversed(c) = 0.0, complete = complete && steps(c) == 0.0;
+  reduced = problem.reduced_jacobian(x, reversed);
+  return usable(reduced) ? reduced : std::nullopt;
+}
+
 // r at each of XS: the problem's batch, or try_residuals on each in turn.
 std::vector<Eigen::VectorXd> try_residuals(const LeastSquaresProblem& problem, const std::vector<Eigen::VectorXd>& xs) {
   if (!problem.residuals_batch) {
@@ -50,22 +80,28 @@ std::vector<Eigen::VectorXd> try_residuals(const LeastSquaresProblem& problem, c
   return out;
 }
 
-// Forward differences, each step into the box: forwards, else backwards, else (a box narrower
-// than the step) to the farther bound. The moved points are independent: every column's first
-// step is evaluated as one batch, then, as a second, the other way for each column whose moved
-// point could not be evaluated; where neither can, the column is zero and `complete` is false.
-Eigen::MatrixXd difference_jacobian(const LeastSquaresProblem& problem, const Eigen::VectorXd& x, const Eigen::VectorXd& r,
-                                    const Eigen::VectorXd& lower, const Eigen::VectorXd& upper, const Eigen::VectorXd& typical,
-                                    double relative_step, bool& complete) {
-  Eigen::MatrixXd j = Eigen::MatrixXd::Zero(r.size(), x.size());
-  std::vector<double> steps(static_cast<std::size_t>(x.size()), 0.0);
-  std::vector<bool> done(steps.size(), false);
+// The forward differences' steps, each into the box: forwards, else backwards, else (a box
+// narrower than the step) to the farther bound; 0 for a box of zero width.
+Eigen::VectorXd difference_steps(const Eigen::VectorXd& x, const Eigen::VectorXd& lower, const Eigen::VectorXd& upper,
+                                 const Eigen::VectorXd& typical, double relative_step) {
+  Eigen::VectorXd steps(x.size());
   for (Eigen::Index c = 0; c < x.size(); ++c) {
     const double step = relative_step * std::max(std::abs(x(c)), typical(c));
     const double room_up = upper(c) - x(c), room_down = x(c) - lower(c);
-    steps[static_cast<std::size_t>(c)] = room_up >= step ? step : room_down >= step ? -step : room_up >= room_down ? room_up : -room_down;
-    done[static_cast<std::size_t>(c)] = steps[static_cast<std::size_t>(c)] == 0.0;  // a box of zero width: the coordinate cannot move
+    steps(c) = room_up >= step ? step : room_down >= step ? -step : room_up >= room_down ? room_up : -room_down;
   }
+  return steps;
+}
+
+// Forward differences with the steps above. The moved points are independent: every column's
+// first step is evaluated as one batch, then, as a second, the other way for each column whose
+// moved point could not be evaluated; where neither can, the column is zero and `complete` is false.
+Eigen::MatrixXd difference_jacobian(const LeastSquaresProblem& problem, const Eigen::VectorXd& x, const Eigen::VectorXd& r,
+                                    const Eigen::VectorXd& lower, const Eigen::VectorXd& upper, const Eigen::VectorXd& step_sizes, bool& complete) {
+  Eigen::MatrixXd j = Eigen::MatrixXd::Zero(r.size(), x.size());
+  std::vector<double> steps(step_sizes.data(), step_sizes.data() + step_sizes.size());
+  std::vector<bool> done(steps.size(), false);
+  for (std::size_t c = 0; c < steps.size(); ++c) done[c] = steps[c] == 0.0;  // a box of zero width: the coordinate cannot move
   for (int attempt = 0; attempt < 2; ++attempt) {
     std::vector<Eigen::Index> columns;
     std::vector<double> hs;
@@ -100,10 +136,17 @@ LevenbergMarquardtResult levenberg_marquardt(const LeastSquaresProblem& problem,
   const Eigen::VectorXd typical = settings.typical.size() == n ? settings.typical : Eigen::VectorXd::Ones(n);
   LevenbergMarquardtResult out;
   out.x = start.cwiseMax(lower).cwiseMin(upper);
-  out.residuals = try_residuals(problem, out.x);
-  if (out.residuals.size() == 0) throw NumericalError("the residuals at the start of the least-squares search are not finite");
-  out.value = out.residuals.squaredNorm();
-  const double floor = 1e-28 * static_cast<double>(out.residuals.size());
+  const bool by_value = static_cast<bool>(problem.value);
+  if (by_value && !problem.reduced_jacobian) throw std::logic_error("levenberg_marquardt: a problem given by its value needs reduced_jacobian");
+  if (by_value) {
+    out.value = try_value(problem, out.x);
+    if (!std::isfinite(out.value)) throw NumericalError("the residuals at the start of the least-squares search are not finite");
+  } else {
+    out.residuals = try_residuals(problem, out.x);
+    if (out.residuals.size() == 0) throw NumericalError("the residuals at the start of the least-squares search are not finite");
+    out.value = out.residuals.squaredNorm();
+  }
+  const double floor = 1e-28 * static_cast<double>(by_value ? problem.residual_count : static_cast<std::size_t>(out.residuals.size()));
   double lambda = 1e-3, nu = 2.0;
   out.status = "MAXITER_REACHED";
   std::vector<double> history;  // phi at each Jacobian
@@ -121,8 +164,19 @@ LevenbergMarquardtResult levenberg_marquardt(const LeastSquaresProblem& problem,
     }
     bool complete = true;
     Eigen::MatrixXd j;
+    Eigen::VectorXd linear_r = out.residuals;  // r, or c of a reduced Jacobian: the linear model is || j d + linear_r ||^2 + const
     if (problem.jacobian) j = problem.jacobian(out.x, out.residuals);
-    if (j.cols() == 0) j = difference_jacobian(problem, out.x, out.residuals, lower, upper, typical, settings.difference_step, complete);
+    if (j.cols() == 0) {
+      const Eigen::VectorXd steps = difference_steps(out.x, lower, upper, typical, settings.difference_step);
+      std::optional<LeastSquaresProblem::Reduced> reduced;
+      if (problem.reduced_jacobian && !problem.jacobian) reduced = reduced_jacobian(problem, out.x, steps, lower, upper, complete);
+      if (reduced) j = std::move(reduced->r), linear_r = std::move(reduced->c);
+      else if (!by_value) j = difference_jacobian(problem, out.x, out.residuals, lower, upper, steps, complete);
+      else {
+        out.status = "NO_DESCENT";  // no linear model can be formed here
+        return out;
+      }
+    }
     ++out.iterations;
     if (!j.allFinite()) {
       out.status = "NO_DESCENT";
@@ -149,7 +203,7 @@ LevenbergMarquardtResult levenberg_marquardt(const LeastSquaresProblem& problem,
     for (Eigen::Index c = 0; c < n; ++c)
       if (norms(c) <= kInsensitiveColumn * norms.maxCoeff()) step_scale(c) = kHeldScale * norms.maxCoeff();
     const Eigen::VectorXd step_lower = lower - out.x, step_upper = upper - out.x;
-    const DampedSteps model(j, out.residuals, settings.threads);
+    const DampedSteps model(j, linear_r, settings.threads);
     const double tolerance = settings.decrease_tolerance * out.value, near = kStagnationFactor * tolerance;
     std::optional<DampedStep> first;
     double undamped = model.decrease_bound();
@@ -173,8 +227,10 @@ LevenbergMarquardtResult levenberg_marquardt(const LeastSquaresProblem& problem,
       }
       const DampedStep step = first ? *std::exchange(first, std::nullopt) : model.step(lambda, step_scale, step_lower, step_upper);
       const Eigen::VectorXd trial = (out.x + step.d).cwiseMax(lower).cwiseMin(upper);
-      const Eigen::VectorXd trial_r = try_residuals(problem, trial);
-      const double trial_value = trial_r.size() == out.residuals.size() ? trial_r.squaredNorm() : std::numeric_limits<double>::infinity();
+      const Eigen::VectorXd trial_r = by_value ? Eigen::VectorXd() : try_residuals(problem, trial);
+      const double trial_value = by_value                                 ? try_value(problem, trial)
+                                 : trial_r.size() == out.residuals.size() ? trial_r.squaredNorm()
+                                                                          : std::numeric_limits<double>::infinity();
       if (!(trial_value < out.value)) {
         lambda *= nu;
         nu *= 2.0;

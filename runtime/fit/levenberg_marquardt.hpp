@@ -41,7 +41,9 @@
 
 #include <Eigen/Dense>
 
+#include <cstddef>
 #include <functional>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -59,6 +61,25 @@ struct LeastSquaresProblem {
   // Optional: dr/dx at x, where the residuals are r; a matrix with no columns where it is not
   // available at x. Empty, or no columns: forward differences.
   std::function<Eigen::MatrixXd(const Eigen::VectorXd& x, const Eigen::VectorXd& r)> jacobian;
+  // Optional, where no `jacobian` is given, for residuals too many to hold n more vectors of
+  // (a long history's): the forward-differenced Jacobian at x with the steps STEPS (step_j = 0:
+  // a zero column), given reduced to n rows: R and c with, for the residuals r at x,
+  //   || J d + r ||^2 = || R d + c ||^2 + (|| r ||^2 - || c ||^2)   for every d
+  // (R the triangular factor of J and c = Q^T r; history_jacobian.hpp). The damped steps need
+  // nothing else (damped_step.hpp). nullopt where a moved point cannot be evaluated: the
+  // columns are then differenced from `residuals` as without it.
+  struct Reduced {
+    Eigen::MatrixXd r;  // n x n
+    Eigen::VectorXd c;  // n
+  };
+  std::function<std::optional<Reduced>(const Eigen::VectorXd& x, const Eigen::VectorXd& steps)> reduced_jacobian;
+  // Optional, with reduced_jacobian, where even one residual vector is too long to hold: phi(x)
+  // alone (NaN or NumericalError where x cannot be evaluated), and `residuals` is not called.
+  // A reduced Jacobian that cannot be formed is tried once more with every step reversed where
+  // the box allows (else that column is zero); where that fails too the search ends
+  // ("NO_DESCENT"). RESIDUAL_COUNT: m, for the rounding floor of phi ("STOPVAL_REACHED").
+  std::function<double(const Eigen::VectorXd& x)> value;
+  std::size_t residual_count = 0;
 };
 
 struct LevenbergMarquardtSettings {

@@ -15,6 +15,7 @@ Tracker::Tracker(const Objective& objective, const Residuals* residuals, const s
     : objective_(objective),
       residuals_(residuals),
       jacobian_(residuals ? settings.jacobian : ResidualJacobian{}),
+      reduced_jacobian_(settings.reduced_jacobian),
       progress_(progress),
       interrupt_(interrupt),
       threads_(settings.threads),
@@ -92,6 +93,25 @@ Eigen::MatrixXd Tracker::jacobian(const std::vector<double>& z) {
   ++evaluations_;
   report_progress();
   return j.allFinite() ? j : Eigen::MatrixXd();
+}
+
+std::optional<ReducedJacobian> Tracker::reduced_jacobian(const std::vector<double>& z, const std::vector<double>& steps) {
+  const int moved = static_cast<int>(std::count_if(steps.begin(), steps.end(), [](double h) { return h != 0.0; }));
+  const auto now = std::chrono::steady_clock::now();
+  for (int ahead = 0; ahead < moved; ++ahead)
+    if (const std::exception_ptr stop = stop_before(ahead, now)) std::rethrow_exception(stop);
+  std::optional<ReducedJacobian> reduced = reduced_jacobian_(z, steps);
+  if (!reduced) return std::nullopt;
+  std::vector<double> at = z;
+  for (std::size_t k = 0; k < steps.size(); ++k) {
+    if (steps[k] == 0.0) continue;
+    at[k] = z[k] + steps[k];
+    Outcome outcome;
+    outcome.value = k < reduced->moved_values.size() ? reduced->moved_values[k] : std::numeric_limits<double>::quiet_NaN();
+    record(at, outcome);
+    at[k] = z[k];
+  }
+  return reduced;
 }
 
 std::vector<Tracker::Outcome> Tracker::batch(const std::vector<std::vector<double>>& zs) {

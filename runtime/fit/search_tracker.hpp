@@ -51,6 +51,12 @@ class Tracker {
 
   bool has_residuals() const { return residuals_ != nullptr; }
   bool has_jacobian() const { return static_cast<bool>(jacobian_); }
+  bool has_reduced_jacobian() const { return static_cast<bool>(reduced_jacobian_); }
+  // The settings' reduced Jacobian at z with STEPS (SearchSettings::reduced_jacobian): its moved
+  // points are admitted as a batch's would be (all of them, or the stop the first one left out
+  // would meet is thrown), then each is recorded as an evaluation with its value; nullopt
+  // (nothing recorded) where it cannot be formed.
+  std::optional<ReducedJacobian> reduced_jacobian(const std::vector<double>& z, const std::vector<double>& steps);
   // The settings' Jacobian at z, counted as one evaluation (the stops as for an evaluation); a
   // matrix with no columns where it throws NumericalError or is not finite.
   Eigen::MatrixXd jacobian(const std::vector<double>& z);
@@ -87,6 +93,7 @@ class Tracker {
   const Objective& objective_;
   const Residuals* residuals_;
   ResidualJacobian jacobian_;
+  ReducedResidualJacobian reduced_jacobian_;
   std::vector<double> last_residuals_;
   const std::function<void(const SearchProgress&)>& progress_;
   const std::atomic<bool>* interrupt_;
