@@ -113,7 +113,7 @@ for ((run = 1; run <= runs; ++run)); do
   awk -F': ' -v out="$(stat -c %s "$out")" '
     /Elapsed \(wall clock\)/ { wall = $2 } /User time/ { user = $2 } /System time/ { sys = $2 }
     /Maximum resident set size/ { rss = $2 }
-    END { printf "wall %s, CPU %.2f s (user %.2f + sys %.2f), peak memory %.1f MB, %d bytes out\n",
+    END { printf "wall %s, CPU %.2f s (user %.2f + sys %.2f), peak memory %.1f MB, %s bytes out\n",
           wall, user + sys, user, sys, rss / 1024, out }' "$dir/time.log"
 done
 rm -f "$out" "$dir/time.log"
