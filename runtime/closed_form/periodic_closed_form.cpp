@@ -13,6 +13,7 @@
 #include <cmath>
 #include <limits>
 #include <complex>
+#include <deque>
 #include <numbers>
 #include <vector>
 
@@ -376,7 +377,8 @@ std::optional<HarmonicPoint> try_closed_form_harmonic_point(const Network& netwo
     storage += m.storage;
     loss += m.loss;
   }
-  thread_local std::vector<PwlPeriodicState> event_branches;
+  // A deque: a state's modes are referred to by address (PwlPeriodicState is not copyable).
+  thread_local std::deque<PwlPeriodicState> event_branches;
   thread_local PwlBranch branch;
   std::size_t events_used = 0;
   int cycles = 0;                                // followed by the event-driven branches

@@ -51,6 +51,10 @@ namespace rheo::runtime {
 
 class PwlPeriodicState {
  public:
+  // Not copyable or movable: its mode table (systems_) holds the addresses of its own modes.
+  PwlPeriodicState() = default;
+  PwlPeriodicState(const PwlPeriodicState&) = delete;
+  PwlPeriodicState& operator=(const PwlPeriodicState&) = delete;
   // False when the event-driven path cannot settle this branch: a mode that would be
   // indeterminate, more than 10000 switches in a cycle, or no fixed point after 60 cycles. The
   // caller then time-steps the point. A solve of the same branch (every edge and value equal)
