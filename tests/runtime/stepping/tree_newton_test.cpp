@@ -17,6 +17,7 @@
 #include "support.hpp"
 
 #include <doctest/doctest.h>
+#include <fmt/format.h>
 
 #include <algorithm>
 #include <atomic>
@@ -251,11 +252,13 @@ double two_tone(double t) { return 0.3 * std::sin(2 * std::numbers::pi * 10 * t)
 // at rates that add, F = cq v |v| with 1 / sqrt(cq) = 1 / sqrt(cq_a) + 1 / sqrt(cq_b), exact for
 // the constant rate v = de / dt of a step (leaf_kernels.hpp).
 TEST_CASE("tree_newton: quadratic dashpots from rest converge from the secant start where the zero start fails, to their closed form") {
+  constexpr double a1 = 0.0272, a2 = 0.0816, b1 = 0.00202, b2 = 0.000138;  // N*s^2/mm^2
   const runtime::Network network = test::network_from(
-      "model m { series { parallel { quadratic_dashpot (cq = 0.0272 N*s^2/mm^2) quadratic_dashpot (cq = 0.0816 N*s^2/mm^2) }"
-      " parallel { quadratic_dashpot (cq = 0.00202 N*s^2/mm^2) quadratic_dashpot (cq = 0.000138 N*s^2/mm^2) } } }",
+      fmt::format("model m {{ series {{ parallel {{ quadratic_dashpot (cq = {} N*s^2/mm^2) quadratic_dashpot (cq = {} N*s^2/mm^2) }}"
+                  " parallel {{ quadratic_dashpot (cq = {} N*s^2/mm^2) quadratic_dashpot (cq = {} N*s^2/mm^2) }} }} }}",
+                  a1, a2, b1, b2),
       "m");
-  const double cq = std::pow(1.0 / std::sqrt(0.0272 + 0.0816) + 1.0 / std::sqrt(0.00202 + 0.000138), -2.0);  // N*s^2/mm^2
+  const double cq = std::pow(1.0 / std::sqrt(a1 + a2) + 1.0 / std::sqrt(b1 + b2), -2.0);  // N*s^2/mm^2
   const runtime::Simulator simulator(network);
   const runtime::StepPlan plan = runtime::StepPlan::make(network, kTwoToneDt);
   const runtime::NewtonWork& work = plan.tree.work;
