@@ -76,7 +76,7 @@ constexpr double kWholeBudget = 1.0;
 struct Tally {
   long runs = 0, iterative = 0, compared = 0, truncated = 0, nested_failed = 0;
   double worst_force = 0.0, worst_state = 0.0;
-  long solves = 0, evaluations = 0, fallbacks = 0;
+  long solves = 0, evaluations = 0, restarts = 0, fallbacks = 0;
 };
 
 struct Scales {
@@ -161,7 +161,7 @@ void compare(const std::string& source, double amplitude, Tally& tally, bool who
   CHECK(worst_force <= kTolerance * force_scale);
   CHECK(worst_state <= kTolerance);
   const runtime::NewtonWork& work = newton.tree.work;
-  tally.solves += work.solves, tally.evaluations += work.evaluations, tally.fallbacks += work.fallbacks;
+  tally.solves += work.solves, tally.evaluations += work.evaluations, tally.restarts += work.restarts, tally.fallbacks += work.fallbacks;
 }
 
 }  // namespace
@@ -180,7 +180,8 @@ TEST_CASE("tree_newton: random nested networks to depth 6 step as the nested sol
   }
   MESSAGE(tally.iterative, " of ", tally.runs, " runs iterate; ", tally.compared, " steps compared, ", tally.truncated,
           " runs cut short by the nested solve's time, ", tally.nested_failed, " by its cap; worst force ", tally.worst_force, ", state ",
-          tally.worst_state, "; ", tally.evaluations, " evaluations in ", tally.solves, " solves, ", tally.fallbacks, " fallbacks");
+          tally.worst_state, "; ", tally.evaluations, " evaluations in ", tally.solves, " solves, ", tally.restarts, " from the secant start, ",
+          tally.fallbacks, " fallbacks");
   // Not vacuous: most runs have a subtree to iterate, and most of their steps are compared
   // (observed 62 %; every step is checked for equilibrium).
   CHECK(tally.iterative * 2 >= tally.runs);
