@@ -27,36 +27,6 @@ void TreeNewton::residual(double r, double scale, double rounding, bool force) {
   merit_ += q * q;
 }
 
-void TreeNewton::start(int n, double ratio) {
-  const TreeNode& t = node(n);
-  const auto i = static_cast<std::size_t>(n);
-  if (role(n) == NewtonRole::closed) return;
-  // A block's or member's increment starts from its increment over the plan's last step, scaled
-  // by the ratio of the increments (a secant predictor; 0 on a fresh plan or after a fallback).
-  // A chain's force starts from its force before the step: predicted too (its change scaled),
-  // it overshoots kinks (repro 06 at 0.4 mm: 24 evaluations a step and fallbacks, against 13).
-  if (role(n) == NewtonRole::chain) {  // inside the forces the chain carries
-    const Interval d = layout_.domain[i];
-    double f = std::clamp(s_.f_before(t), d.lo, d.hi);
-    // On an open end: just inside a saturation end (the force its members carry saturated in
-    // double, where the last step, or the nested solve, left it), else away from a peak.
-    const double away = d.lo < 0.0 && d.hi > 0.0 ? 0.0 : 0.5 * (d.lo + d.hi);
-    if (f == d.hi && !layout_.reaches_hi[i]) f = layout_.saturates_hi[i] ? std::nextafter(d.hi, d.lo) : away;
-    else if (f == d.lo && !layout_.reaches_lo[i]) f = layout_.saturates_lo[i] ? std::nextafter(d.lo, d.hi) : away;
-    w_.x[i] = f;
-  } else if (role(n) == NewtonRole::block || role(n) == NewtonRole::member) {
-    w_.x[i] = ratio * w_.last[i];
-  }
-  for (int k = 0; k < t.child_count; ++k) start(s_.child(t, k), ratio);
-}
-
-void TreeNewton::remember(int n) {
-  const TreeNode& t = node(n);
-  const auto i = static_cast<std::size_t>(n);
-  if (role(n) == NewtonRole::block || role(n) == NewtonRole::member) w_.last[i] = w_.x[i];
-  for (int k = 0; k < t.child_count; ++k) remember(s_.child(t, k));
-}
-
 double TreeNewton::evaluate(int root, double de) {
   ++w_.evaluations;
   merit_ = 0.0;
@@ -322,7 +292,15 @@ bool TreeNewton::advance(int root, double de, double* after, double& force) {
   const double previous = w_.last_de[first];
   w_.last_de[first] = 0.0;  // a fallback leaves the next step without a predictor
   start(root, previous != 0.0 ? std::clamp(de / previous, -2.0, 2.0) : 0.0);
-  if (!solve(root, de, after, force)) {
+  bool converged = solve(root, de, after, force);
+  if (!converged && de != 0.0) {  // once more from the secant start (tree_newton.hpp)
+    ++w_.restarts;
+    start(root, 0.0);
+    secant(root, de);
+    share(root, de);
+    converged = solve(root, de, after, force);
+  }
+  if (!converged) {
     std::fill(w_.last.begin() + root, w_.last.begin() + root + layout_.extent[first], 0.0);
     return false;
   }

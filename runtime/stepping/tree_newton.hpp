@@ -53,7 +53,16 @@
 // step scaled by the ratio of the subtree's increments (a secant predictor), chain forces from
 // their forces before the step.
 //
-// A step that does not converge within NewtonLayout::max_iterations (or the plan's lowered
+// Where that start is 0 (a fresh plan, after a rest or a fallback) and a member's law has no
+// slope there, the first update is far off: with quadratic dashpots at rest (q de |de|, slope 0
+// at de = 0) a block of them holds the chain's whole compliance, pivots its step with the whole
+// increment, and the solve diverges from a force 10^2 times the answer (differential seed 61,
+// model 157, reproducer 14: the first step of its history at 37 us; two blocks of quadratic
+// dashpots in series, tree_newton_test). A step that does not converge from its start is solved
+// once more from the secant start: the increment split down the tree as a linear network of the
+// nodes' secant stiffnesses over the subtree's increment, (F(de) - F(0)) / de (a quadratic
+// dashpot's q |de| over it, not 0), which converges there in 9 iterations. A step that does not
+// converge from either start within NewtonLayout::max_iterations (or the plan's lowered
 // iteration cap) falls back to TreeSolver's nested solve, which is exact where it converges and
 // whose errors (an exhausted cap, a softening spring asked for more than its peak) name the
 // element. Rare: none in about 23000 steps of random networks of every element kind to depth 6 (1
@@ -82,8 +91,13 @@ class TreeNewton {
   };
 
   bool solve(int root, double de, double* after, double& force);
-  void start(int node, double ratio);    // the first iterate
-  void remember(int node);               // the converged changes, for the next step's start
+  void start(int node, double ratio);  // the first iterate
+  void remember(int node);             // the converged changes, for the next step's start
+  // The secant start: each node's secant stiffness [N/mm] over the subtree's increment de
+  // (F(de) - F(0)) / de, blocks adding, chains adding compliances, into `target`; then de split
+  // down the tree by them into the blocks' and members' increments.
+  double secant(int node, double de);
+  void share(int node, double de);
   double evaluate(int root, double de);  // the merit; sets converged_
   Lin forward(int node, double de);
   Lin inverse(int node, double force);

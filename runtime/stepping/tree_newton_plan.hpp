@@ -76,8 +76,9 @@ struct NewtonWork {
   // Per node: the evaluation's regime (NewtonWork::State values).
   std::vector<std::int8_t> state;
   // Counts for tests and benchmarks: steps solved here, evaluations of every member they took,
-  // and steps that fell back to the nested solve.
-  long solves = 0, evaluations = 0, fallbacks = 0;
+  // steps solved again from the secant start (tree_newton.hpp) and steps that fell back to the
+  // nested solve.
+  long solves = 0, evaluations = 0, restarts = 0, fallbacks = 0;
   void resize(std::size_t nodes);
 };
 

@@ -17,6 +17,7 @@
 #include "support.hpp"
 
 #include <doctest/doctest.h>
+#include <fmt/format.h>
 
 #include <algorithm>
 #include <atomic>
@@ -75,7 +76,7 @@ constexpr double kWholeBudget = 1.0;
 struct Tally {
   long runs = 0, iterative = 0, compared = 0, truncated = 0, nested_failed = 0;
   double worst_force = 0.0, worst_state = 0.0;
-  long solves = 0, evaluations = 0, fallbacks = 0;
+  long solves = 0, evaluations = 0, restarts = 0, fallbacks = 0;
 };
 
 struct Scales {
@@ -160,7 +161,7 @@ void compare(const std::string& source, double amplitude, Tally& tally, bool who
   CHECK(worst_force <= kTolerance * force_scale);
   CHECK(worst_state <= kTolerance);
   const runtime::NewtonWork& work = newton.tree.work;
-  tally.solves += work.solves, tally.evaluations += work.evaluations, tally.fallbacks += work.fallbacks;
+  tally.solves += work.solves, tally.evaluations += work.evaluations, tally.restarts += work.restarts, tally.fallbacks += work.fallbacks;
 }
 
 }  // namespace
@@ -179,7 +180,8 @@ TEST_CASE("tree_newton: random nested networks to depth 6 step as the nested sol
   }
   MESSAGE(tally.iterative, " of ", tally.runs, " runs iterate; ", tally.compared, " steps compared, ", tally.truncated,
           " runs cut short by the nested solve's time, ", tally.nested_failed, " by its cap; worst force ", tally.worst_force, ", state ",
-          tally.worst_state, "; ", tally.evaluations, " evaluations in ", tally.solves, " solves, ", tally.fallbacks, " fallbacks");
+          tally.worst_state, "; ", tally.evaluations, " evaluations in ", tally.solves, " solves, ", tally.restarts, " from the secant start, ",
+          tally.fallbacks, " fallbacks");
   // Not vacuous: most runs have a subtree to iterate, and most of their steps are compared
   // (observed 62 %; every step is checked for equilibrium).
   CHECK(tally.iterative * 2 >= tally.runs);
@@ -233,4 +235,72 @@ TEST_CASE("tree_newton: steps of nested bouc_wen and of depth-8 nesting allocate
     CHECK(allocations.load() == before);
     CHECK(plan.tree.work.solves == 2000);
   }
+}
+
+// Steps of the global solve from rest, on the differential test's two-tone drive (0.3 mm at
+// 10 Hz + 0.05 mm at 37 Hz) at 27 steps a 1 ms sample: 37 us, as differential seed 61, model 157
+// took them.
+namespace {
+constexpr double kTwoToneDt = 1e-3 / 27;  // s
+constexpr int kTwoToneSteps = 2700;       // 0.1 s
+double two_tone(double t) { return 0.3 * std::sin(2 * std::numbers::pi * 10 * t) + 0.05 * std::sin(2 * std::numbers::pi * 37 * t); }
+}  // namespace
+
+// Two parallel blocks of quadratic dashpots in series: at rest every block's tangent stiffness
+// 2 cq |de| / dt^2 is 0, the first step's start (a fresh plan) is 0, and its solve does not
+// converge from there (tree_newton.hpp); it is solved again from the secant start. Closed form:
+// a block is a quadratic dashpot of the sum of its cq, and two in series carry a common force
+// at rates that add, F = cq v |v| with 1 / sqrt(cq) = 1 / sqrt(cq_a) + 1 / sqrt(cq_b), exact for
+// the constant rate v = de / dt of a step (leaf_kernels.hpp). Observed 4e-16 of the largest
+// force. Without the second start every step falls back (a fallback leaves the next without a
+// predictor), and the nested solve's forces are 3e-11 off.
+TEST_CASE("tree_newton: quadratic dashpots from rest converge from the secant start where the zero start fails, to their closed form") {
+  constexpr double a1 = 0.0272, a2 = 0.0816, b1 = 0.00202, b2 = 0.000138;  // N*s^2/mm^2
+  const runtime::Network network = test::network_from(
+      fmt::format("model m {{ series {{ parallel {{ quadratic_dashpot (cq = {} N*s^2/mm^2) quadratic_dashpot (cq = {} N*s^2/mm^2) }}"
+                  " parallel {{ quadratic_dashpot (cq = {} N*s^2/mm^2) quadratic_dashpot (cq = {} N*s^2/mm^2) }} }} }}",
+                  a1, a2, b1, b2),
+      "m");
+  const double cq = std::pow(1.0 / std::sqrt(a1 + a2) + 1.0 / std::sqrt(b1 + b2), -2.0);  // N*s^2/mm^2
+  const runtime::Simulator simulator(network);
+  const runtime::StepPlan plan = runtime::StepPlan::make(network, kTwoToneDt);
+  const runtime::NewtonWork& work = plan.tree.work;
+  runtime::State a = simulator.rest_state(), b = a;
+  double u = 0.0, scale = 0.0, worst = 0.0;
+  for (int k = 1; k <= kTwoToneSteps; ++k) {
+    const double t = kTwoToneDt * k, next = two_tone(t), v = (next - u) / kTwoToneDt;
+    const double force = simulator.step(plan, a, next, b, t);
+    scale = std::max(scale, cq * v * v);
+    worst = std::max(worst, std::abs(force - cq * std::abs(v) * v));
+    if (k == 1) {
+      CHECK(work.restarts == 1);  // the zero start did not converge
+      CHECK(work.fallbacks == 0);
+    }
+    u = next;
+    std::swap(a, b);
+  }
+  CHECK(work.solves == kTwoToneSteps);
+  CHECK(work.restarts == 1);  // every later step converges from the secant predictor
+  CHECK(work.fallbacks == 0);
+  MESSAGE("worst force ", worst / scale, " of the largest");
+  CHECK(worst <= 1e-12 * scale);
+}
+
+// Reproducer 14 (differential seed 61, model 157): quadratic dashpots in blocks of a chain with
+// a bouc_wen and inerters. Its first step fell back to the nested solve, which took 15 s for it;
+// from the secant start no step falls back. Its forces against IDA's: cli_repro_backends_test.
+TEST_CASE("tree_newton: differential seed 61 model 157 from rest steps without the nested solve") {
+  const runtime::Network network = test::network_from(
+      test::read_file(std::string(RHEO_CORPUS_DIR) + "/repro/backends/14_fixed_slow_quadratic_dashpots_from_rest.rheo"), "m");
+  const runtime::Simulator simulator(network);
+  const runtime::StepPlan plan = runtime::StepPlan::make(network, kTwoToneDt);
+  runtime::State a = simulator.rest_state(), b = a;
+  for (int k = 1; k <= kTwoToneSteps; ++k) {
+    const double t = kTwoToneDt * k;
+    REQUIRE(std::isfinite(simulator.step(plan, a, two_tone(t), b, t)));
+    if (k == 1) CHECK(plan.tree.work.restarts == 1);
+    std::swap(a, b);
+  }
+  CHECK(plan.tree.work.fallbacks == 0);
+  CHECK(plan.tree.work.restarts <= 2);  // observed 1: the first step
 }
