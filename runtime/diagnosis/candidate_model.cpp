@@ -72,7 +72,9 @@ std::string resolved_resonance(const Trial& trial, const lang::CheckedModel& mod
   if (trial.shape != Shape::tuned_column && trial.shape != Shape::capped_column) return {};
   const int k = parameter_index(model, element + ".chamber.k"), b = parameter_index(model, element + ".column.mass.b");
   if (k < 0 || b < 0) throw std::logic_error(fmt::format("diagnose: the fluid column '{}' lacks chamber.k or column.mass.b", element));
-  const double resonance = std::sqrt(network.parameter(k) / network.parameter(b)) / (2.0 * std::numbers::pi);  // [Hz]
+  const int walls = parameter_index(model, element + ".column.bulge.k");  // the column's node rests on k + k_b
+  const double stiffness = network.parameter(k) + (walls >= 0 ? network.parameter(walls) : 0.0);
+  const double resonance = std::sqrt(stiffness / network.parameter(b)) / (2.0 * std::numbers::pi);  // [Hz]
   constexpr double kMargin = 1.1;
   if (resonance >= kMargin * scales.frequency_low && resonance <= scales.frequency_high / kMargin) return {};
   return fmt::format(
@@ -112,6 +114,20 @@ Trial column_from_limit(const Trial& column, const lang::CheckedModel& model, co
   restart.time = 0.0;
   restart.damping_ratio = std::numbers::pi * column.frequency * value("arm.tau");
   return restart;
+}
+
+Trial bulged_column(const Trial& column, const lang::CheckedModel& model, const Network& refitted, const std::string& element) {
+  auto value = [&](const std::string& path) { return refitted_value(model, refitted, element, path); };
+  Trial bulged = column;
+  bulged.shape = Shape::capped_column;
+  bulged.stiffness = value("chamber.k");
+  const double b = value("column.mass.b");  // trial.cpp: b = k / (2 pi f)^2, c = 2 zeta sqrt(k b)
+  bulged.frequency = std::sqrt(bulged.stiffness / b) / (2.0 * std::numbers::pi);
+  bulged.damping_ratio = value("column.channel.c") / (2.0 * std::sqrt(bulged.stiffness * b));
+  bulged.slip = value("cap.fy") / bulged.stiffness;
+  bulged.time = 0.0;
+  bulged.bulge = kBulgeStart * bulged.stiffness;
+  return bulged;
 }
 
 Network with_gaps_in_play(const Network& network) {

@@ -21,8 +21,9 @@ std::string candidate_name(const lang::CheckedModel& model, Effect effect);
 std::string with_trial(const std::string& fitted_text, const lang::CheckedModel& fitted, const Trial& trial, const std::string& name,
                        const BoundScales& bounds, const std::string& comment);
 
-// Empty when the resonance of a refitted fluid column (the element ELEMENT of MODEL) lies inside
-// the measured frequencies with a margin of 10 % either side, else why not. Shapes without a
+// Empty when the resonance of a refitted fluid column (the element ELEMENT of MODEL;
+// sqrt((k + k_b)/b) / (2 pi) with its walls' spring) lies inside the measured frequencies with a
+// margin of 10 % either side, else why not. Shapes without a
 // resonance are always resolved.
 std::string resolved_resonance(const Trial& trial, const lang::CheckedModel& model, const Network& network, const std::string& element,
                                const DataScales& scales);
@@ -45,5 +46,15 @@ Trial resonance_free_limit(const Trial& column, const lang::CheckedModel& model,
 // holds its limit (b -> 0), so a column refit that ends above its limit's gap stopped outside
 // its basin; this is where to search it again.
 Trial column_from_limit(const Trial& column, const lang::CheckedModel& model, const Network& refitted, const std::string& element);
+
+// The refitted slider-capped fluid column ELEMENT (cap fy, chamber k, mass b, channel c; no
+// walls' spring yet) with the chamber walls' compliance beside its mass and channel: a spring
+// `bulge` from the column's node to ground, k_b started at kBulgeStart k (the refit moves it
+// within the stiffness bounds). The column's node then rests on k + k_b, so the resonance
+// sqrt((k + k_b)/b) / (2 pi) and the static stiffness behind the cap k k_b / (k + k_b) are set
+// by two springs, not one: a stiffness the rubber's springs alone cannot carry at low
+// frequency. The standard library's hydromount has it (k2).
+inline constexpr double kBulgeStart = 0.25;
+Trial bulged_column(const Trial& column, const lang::CheckedModel& model, const Network& refitted, const std::string& element);
 
 }  // namespace rheo::runtime::diagnosis

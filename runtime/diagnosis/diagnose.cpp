@@ -169,7 +169,8 @@ class Diagnoser {
   }
 
   // Step 3: the leading effects refitted (a refitted capped fluid column is followed by its limit
-  // without inertia); the others recorded as screened only.
+  // without inertia, and where it stops short of the noise by itself with its walls' spring);
+  // the others recorded as screened only.
   void refit_leading(const std::vector<ScreenedEffect>& screened_effects) {
     const double leading_gain = screened_effects.empty() ? 0.0 : screened_effects.front().gain;
     int refitted = 0;
@@ -195,34 +196,65 @@ class Diagnoser {
       }
       refitted += leading && !offset(screened) ? 1 : 0;
       ++begun;
+      const double share = 1.0 / (to_refit - begun + 2);
       const std::size_t column_at = d_.candidates.size();
-      const std::optional<Trial> limit = refit_candidate(trial, outcome, 1.0 / (to_refit - begun + 2));
-      if (!limit || stopped()) continue;
-      // The column's limit without inertia competes with it: where the data hold no resonance
-      // (or cannot place it) the limit earns the coupling with one parameter fewer.
-      CandidateOutcome limit_outcome;
-      limit_outcome.screened = screened;
-      limit_outcome.screened.trial = *limit;
-      limit_outcome.element = outcome.element;
-      limit_outcome.limit_of = fmt::format(
-          "the limit without inertia of the fluid column before it (its chamber and channel as a Maxwell "
-          "element, tau = c/k = {:.4g} ms){}",
-          limit->time * 1e3, outcome.unresolved.empty() ? "" : ", whose resonance the data cannot place");
-      const std::optional<Trial> restart = refit_candidate(*limit, limit_outcome, 1.0 / (to_refit - begun + 2), &trial);
-      // The column holds its limit (b -> 0): a column refit that does not end clearly below the
-      // limit's gap (by more than the parsimony that would choose the limit) stopped outside
-      // its basin, or found no use for its inertia, and searches again from the limit's optimum.
-      const double column_gap = d_.candidates[column_at].gap_after, limit_gap = d_.candidates.back().gap_after;
-      if (!restart || stopped() || !(limit_gap <= (1.0 + s_.parsimony) * column_gap)) continue;
-      CandidateOutcome again;
-      again.screened = screened;
-      again.screened.trial = *restart;
-      again.element = outcome.element;
-      again.limit_of = fmt::format(
-          "the fluid column again, started from its limit's optimum (its first refit stopped at {:.4g}, {} the limit's {:.4g})", column_gap,
-          limit_gap < column_gap ? "above" : "not clearly below", limit_gap);
-      refit_candidate(*restart, again, 1.0 / (to_refit - begun + 2));
+      std::optional<Trial> bulged;  // the best refitted column's, with its walls' spring
+      const std::optional<Trial> limit = refit_candidate(trial, outcome, share, nullptr, &bulged);
+      if (limit && !stopped()) refit_limit(screened, outcome, trial, *limit, column_at, share, bulged);
+      if (!bulged || stopped() || column_reaches_noise(column_at)) continue;
+      // A column that stops short of the noise may miss the stiffness its node rests on: the
+      // chamber walls' spring beside the mass and channel (candidate_model.hpp bulged_column).
+      CandidateOutcome walls;
+      walls.screened = screened;
+      walls.screened.trial = *bulged;
+      walls.element = outcome.element;
+      walls.limit_of = fmt::format(
+          "the fluid column with the chamber walls' spring beside its mass and channel, started from the column's optimum (err {:.4g})",
+          d_.candidates[column_at].gap_after);
+      refit_candidate(*bulged, walls, share);
     }
+  }
+
+  // The column's limit without inertia competes with it: where the data hold no resonance (or
+  // cannot place it) the limit earns the coupling with one parameter fewer. Where the column
+  // stops above its limit, it is searched again from the limit's optimum; BULGED becomes that
+  // search's walls' start where it ends lower than the column at COLUMN_AT.
+  void refit_limit(const ScreenedEffect& screened, const CandidateOutcome& outcome, const Trial& trial, const Trial& limit, std::size_t column_at,
+                   double share, std::optional<Trial>& bulged) {
+    CandidateOutcome limit_outcome;
+    limit_outcome.screened = screened;
+    limit_outcome.screened.trial = limit;
+    limit_outcome.element = outcome.element;
+    limit_outcome.limit_of = fmt::format(
+        "the limit without inertia of the fluid column before it (its chamber and channel as a Maxwell "
+        "element, tau = c/k = {:.4g} ms){}",
+        limit.time * 1e3, outcome.unresolved.empty() ? "" : ", whose resonance the data cannot place");
+    const std::optional<Trial> restart = refit_candidate(limit, limit_outcome, share, &trial);
+    // The column holds its limit (b -> 0): a column refit that does not end clearly below the
+    // limit's gap (by more than the parsimony that would choose the limit) stopped outside
+    // its basin, or found no use for its inertia, and searches again from the limit's optimum.
+    const double column_gap = d_.candidates[column_at].gap_after, limit_gap = d_.candidates.back().gap_after;
+    if (!restart || stopped() || !(limit_gap <= (1.0 + s_.parsimony) * column_gap)) return;
+    CandidateOutcome again;
+    again.screened = screened;
+    again.screened.trial = *restart;
+    again.element = outcome.element;
+    again.limit_of = fmt::format("the fluid column again, started from its limit's optimum (its first refit stopped at {:.4g}, {} the limit's {:.4g})",
+                                 column_gap, limit_gap < column_gap ? "above" : "not clearly below", limit_gap);
+    std::optional<Trial> bulged_again;
+    refit_candidate(*restart, again, share, nullptr, &bulged_again);
+    if (bulged_again && d_.candidates.back().gap_after < column_gap) bulged = bulged_again;
+  }
+
+  // Whether the column refitted at COLUMN_AT (or the search again after it, the last candidate
+  // where that ended lower) leaves no more than the noise, as judge() counts reaching it.
+  bool column_reaches_noise(std::size_t column_at) const {
+    const CandidateOutcome* best = &d_.candidates[column_at];
+    for (std::size_t i = column_at; i < d_.candidates.size(); ++i)
+      if (d_.candidates[i].screened.trial.shape == Shape::capped_column && d_.candidates[i].gap_after < best->gap_after) best = &d_.candidates[i];
+    const double penalty = best->parameters * std::log(static_cast<double>(d_.residual_terms));
+    return reaches_noise(before_residual(), {best->gap_after, best->criterion - penalty, best->parameters}, d_.noise, d_.residual_terms,
+                         d_.noise_weighted);
   }
 
   // Step 4 again where no candidate earned alone but both free play and asymmetry were
@@ -255,7 +287,9 @@ class Diagnoser {
   // preferred to the choice so far. Returns the limit without inertia of a capped fluid column,
   // and for the limit of COLUMN (given) that column started from the limit's optimum.
   // SHARE: of the time left, for this refit.
-  std::optional<Trial> refit_candidate(const Trial& trial, CandidateOutcome& outcome, double share, const Trial* column = nullptr) {
+  // BULGED, where given, receives a refitted capped column's start with its walls' spring.
+  std::optional<Trial> refit_candidate(const Trial& trial, CandidateOutcome& outcome, double share, const Trial* column = nullptr,
+                                       std::optional<Trial>* bulged = nullptr) {
     const auto started = std::chrono::steady_clock::now();
     stage(fmt::format("refitting with {} for {}", trial_summary(trial), effect_name(outcome.screened.effect)));
     if (trial.shape == Shape::force_offset) {
@@ -273,11 +307,23 @@ class Diagnoser {
       if (p.free && p.path.starts_with(outcome.element + ".") && std::find(kept.begin(), kept.end(), static_cast<int>(i)) == kept.end())
         added.push_back(static_cast<int>(i));
     }
+    if (trial.shape == Shape::capped_column && trial.bulge > 0.0) {
+      // The column's own parameters start at its refitted optimum, kept: the global look searches
+      // the walls' spring alone (over the whole column's bounds it reaches undamped corners whose
+      // periodic state does not settle, time-stepped at seconds a point).
+      const int walls = parameter_index(*candidate.model, outcome.element + ".column.bulge.k");
+      for (int i : added)
+        if (i != walls) kept.push_back(i);
+      added.assign(1, walls);
+    }
     FitResult result = staged_refit(Network::compile(*candidate.model), kept, added, data_, within(share));
     result.network = with_gaps_in_play(result.network);  // the same predictions, as a file can state them
     outcome.unresolved = resolved_resonance(trial, *candidate.model, result.network, outcome.element, scales_);
     std::optional<Trial> next;
-    if (trial.shape == Shape::capped_column) next = resonance_free_limit(trial, *candidate.model, result.network, outcome.element);
+    if (trial.shape == Shape::capped_column && trial.bulge == 0.0)
+      next = resonance_free_limit(trial, *candidate.model, result.network, outcome.element);
+    if (trial.shape == Shape::capped_column && trial.bulge == 0.0 && bulged != nullptr)
+      *bulged = bulged_column(trial, *candidate.model, result.network, outcome.element);
     if (column != nullptr) next = column_from_limit(*column, *candidate.model, result.network, outcome.element);
     judge(trial, outcome, share, started, std::move(candidate), std::move(result), data_);
     return next;

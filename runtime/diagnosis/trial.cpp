@@ -41,12 +41,14 @@ std::string stiffness_argument(double k, const BoundScales& s) {
 double inertance(const Trial& t) { return t.stiffness / std::pow(2.0 * std::numbers::pi * t.frequency, 2); }     // N*s^2/mm
 double column_damping(const Trial& t) { return 2.0 * t.damping_ratio * std::sqrt(t.stiffness * inertance(t)); }  // N*s/mm
 
-// Lines of the fluid column: spring `chamber` onto `inerter` and `dashpot` in parallel.
+// Lines of the fluid column: spring `chamber` onto `inerter`, `dashpot` and (where t.bulge > 0)
+// the walls' spring `bulge` in parallel.
 void column_lines(const Trial& t, const BoundScales& s, std::vector<std::string>& lines) {
   lines.push_back(fmt::format("  spring  chamber (k = {})", stiffness_argument(t.stiffness, s)));
   lines.push_back("  parallel column {");
   lines.push_back(fmt::format("    inerter mass    (b = {})", around(inertance(t), 1e-3, "kg")));
   lines.push_back(fmt::format("    dashpot channel (c = {})", around(column_damping(t), 1.0, "N*s/mm")));
+  if (t.bulge > 0.0) lines.push_back(fmt::format("    spring  bulge   (k = {})", stiffness_argument(t.bulge, s)));
   lines.push_back("  }");
 }
 
@@ -138,6 +140,13 @@ std::string trial_summary(const Trial& t) {
       return fmt::format("a slider (fy = {:.4g} N) in series with a Maxwell element (k = {:.4g} N/mm, tau = {:.4g} ms)", t.stiffness * t.slip,
                          t.stiffness, t.time * 1e3);
     case Shape::capped_column:
+      if (t.bulge > 0.0) {  // the column's resonance and damping ratio with the walls' spring beside the chamber: k + k_b
+        const double stiffer = std::sqrt(1.0 + t.bulge / t.stiffness);
+        return fmt::format(
+            "a slider (fy = {:.4g} N) capping a fluid column (k = {:.4g} N/mm, resonance {:.3g} Hz, damping ratio {:.2g}) with bulging "
+            "walls (k = {:.4g} N/mm)",
+            t.stiffness * t.slip, t.stiffness, t.frequency * stiffer, t.damping_ratio / stiffer, t.bulge);
+      }
       return fmt::format("a slider (fy = {:.4g} N) capping a fluid column (k = {:.4g} N/mm, resonance {:.3g} Hz, damping ratio {:.2g})",
                          t.stiffness * t.slip, t.stiffness, t.frequency, t.damping_ratio);
     case Shape::tuned_column:
@@ -175,7 +184,7 @@ int added_parameter_count(const Trial& t) {
     case Shape::maxwell:
     case Shape::friction: return 2;
     case Shape::capped_maxwell: return 3;
-    case Shape::capped_column: return 4;
+    case Shape::capped_column: return t.bulge > 0.0 ? 5 : 4;
     case Shape::tuned_column: return 3;
     case Shape::mass: return 1;
     case Shape::yeoh: return t.replaces.empty() ? 3 : 2;

@@ -78,6 +78,7 @@ struct Trial {
   double d30 = 0.0;            // yeoh [N/mm^5]
   double bias = 0.0;           // asymmetric_friction, gapped_spring, gapped_element, one_sided_element [-], in (-1, 1)
   double k2 = 0.0;             // even_spring [N/mm^2]
+  double bulge = 0.0;          // capped_column: the chamber walls' stiffness k_b [N/mm] beside the column's mass and channel (0: none)
   std::string replaces;        // yeoh, even_spring: the root spring it replaces; empty: added;
                                // gapped_element, one_sided_element: the root element it rebuilds
   std::string inner;           // gapped_element, one_sided_element: the statement of `replaces` (lines), with bounds

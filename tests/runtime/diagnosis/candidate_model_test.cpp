@@ -1,14 +1,18 @@
 // Candidates as models (candidate_model.hpp): a refitted gap written as a file can state it; a
-// fluid column and its limit without inertia, each started from the other.
+// fluid column and its limit without inertia, each started from the other; a column with its
+// walls' spring, started from the column.
 #include "runtime/diagnosis/candidate_model.hpp"
 
+#include "runtime/diagnosis/screen.hpp"
 #include "runtime/diagnosis/trial.hpp"
+#include "runtime/protocols/harmonic.hpp"
 #include "runtime/protocols/run_history.hpp"
 #include "support.hpp"
 
 #include <doctest/doctest.h>
 
 #include <cmath>
+#include <complex>
 #include <numbers>
 
 using namespace rheo;
@@ -64,4 +68,50 @@ TEST_CASE("a capped Maxwell element's optimum restarts the fluid column it is th
   CHECK(back.stiffness == doctest::Approx(250.0).epsilon(1e-9));
   CHECK(back.time == doctest::Approx(4e-3).epsilon(1e-9).scale(0));
   CHECK(back.slip * back.stiffness == doctest::Approx(30.0).epsilon(1e-9));
+}
+
+TEST_CASE("a refitted fluid column restarts with its walls' spring: the column as refitted, k_b = k/4, resonating at sqrt((k + k_b)/b)") {
+  // The column as a refit leaves it (the cap too high to slip at these amplitudes).
+  const runtime::Network column = test::network_from(
+      "model m { spring s (k = 100 N/mm)  series c { slider cap (fy = 5000 N in [0.1, 1e5])  spring chamber (k = 400 N/mm in [1, 1e4])  "
+      "parallel column { inerter mass (b = 25 kg in [0.1, 1000])  dashpot channel (c = 1.5 N*s/mm in [0.01, 100]) } } }",
+      "m");
+  runtime::diagnosis::Trial screened;
+  screened.shape = runtime::diagnosis::Shape::capped_column, screened.frequency = 10.0, screened.damping_ratio = 0.5;
+  const auto bulged = runtime::diagnosis::bulged_column(screened, column.model(), column, "c");
+  const double k = 400.0, b = 25e-3, c = 1.5, k_b = runtime::diagnosis::kBulgeStart * k;  // N/mm, N s^2/mm, N s/mm
+  CHECK(bulged.shape == runtime::diagnosis::Shape::capped_column);
+  CHECK(bulged.stiffness == k);
+  CHECK(bulged.bulge == k_b);
+  CHECK(bulged.slip * bulged.stiffness == doctest::Approx(5000.0).epsilon(1e-14));
+  CHECK(bulged.frequency == doctest::Approx(std::sqrt(k / b) / (2.0 * std::numbers::pi)).epsilon(1e-14));
+  CHECK(bulged.damping_ratio == doctest::Approx(c / (2.0 * std::sqrt(k * b))).epsilon(1e-14));
+  CHECK(runtime::diagnosis::added_parameter_count(bulged) == 5);
+  // Written as a model: the column's values, the walls' spring beside its mass and channel, and
+  // K* of the stuck column 1/(1/k + 1/(k_b + i w c - b w^2)) beside the spring.
+  std::string text = "model m { spring s (k = 100 N/mm)\n";
+  for (const std::string& line : runtime::diagnosis::trial_statement(bulged, "c", {400.0, 1.0})) text += line + "\n";
+  const runtime::Network walled = test::network_from(text + "}", "m");
+  CHECK(walled.parameter(test::parameter_index(walled, "c.column.bulge.k")) == doctest::Approx(k_b).epsilon(1e-9));
+  CHECK(walled.parameter(test::parameter_index(walled, "c.column.mass.b")) == doctest::Approx(b).epsilon(1e-5));  // b written to 6 digits
+  CHECK(walled.parameter(test::parameter_index(walled, "c.column.channel.c")) == doctest::Approx(c).epsilon(1e-9));
+  runtime::HarmonicOptions options;
+  options.definition = runtime::HarmonicDefinition::first_harmonic;
+  const double resonance = std::sqrt((k + k_b) / b) / (2.0 * std::numbers::pi);
+  for (double f : {0.5 * resonance, resonance, 2.0 * resonance}) {
+    CAPTURE(f);
+    const double w = 2.0 * std::numbers::pi * f;
+    const std::complex<double> expected = 100.0 + 1.0 / (1.0 / k + 1.0 / std::complex<double>(k_b - b * w * w, w * c));
+    const auto point = runtime::simulate_harmonic_point(walled, 0.1, f, options);
+    CHECK(point.measures.storage == doctest::Approx(expected.real()).epsilon(1e-4));
+    CHECK(point.measures.loss == doctest::Approx(expected.imag()).epsilon(1e-4));
+  }
+  // The resonance the data must place is the walled one: inside a band around it, outside a band
+  // around the column's own sqrt(k/b) that excludes it.
+  runtime::diagnosis::DataScales around_walled, around_column;
+  around_walled.frequency_low = 0.5 * resonance, around_walled.frequency_high = 2.0 * resonance;
+  around_column.frequency_low = 0.5 * bulged.frequency, around_column.frequency_high = 1.05 * bulged.frequency;
+  CHECK(resonance > 1.05 * bulged.frequency);
+  CHECK(runtime::diagnosis::resolved_resonance(bulged, walled.model(), walled, "c", around_walled).empty());
+  CHECK(!runtime::diagnosis::resolved_resonance(bulged, walled.model(), walled, "c", around_column).empty());
 }

@@ -5,6 +5,7 @@
 #include "runtime/network/network.hpp"
 
 #include <doctest/doctest.h>
+#include <fmt/format.h>
 
 #include <cmath>
 #include <complex>
@@ -55,6 +56,17 @@ TEST_CASE("diagnosis trial: every shape writes a statement that compiles, with b
     CHECK(bounded == dx::added_parameter_count(trial));  // an added yeoh: D10, D20, D30
     CHECK(!dx::trial_summary(trial).empty());
   }
+  dx::Trial walled = trial_of(dx::Shape::capped_column);
+  walled.bulge = 50.0;
+  int bounded = 0;
+  for (const auto& p : compiled(walled).models.front().parameters) bounded += p.free ? 1 : 0;
+  CHECK(bounded == dx::added_parameter_count(walled));  // the column's four and the walls' k
+  CHECK(bounded == 5);
+  // Its resonance and damping ratio on the two springs the column's node rests on, k + k_b.
+  const std::string summary = dx::trial_summary(walled);
+  CHECK(summary.find(fmt::format("resonance {:.3g} Hz", 20.0 * std::sqrt(1.25))) != std::string::npos);
+  CHECK(summary.find(fmt::format("damping ratio {:.2g}", 0.3 / std::sqrt(1.25))) != std::string::npos);
+  CHECK(summary.find("walls (k = 50 N/mm)") != std::string::npos);
 }
 
 TEST_CASE("diagnosis trial: the tuned column resonates where its frequency says (closed form K*)") {
