@@ -6,6 +6,7 @@
 // values and in which branch carries the effect, so that no threshold is tuned to one case.
 #include "runtime/diagnosis/diagnose.hpp"
 #include "runtime/diagnosis/diagnosis_report.hpp"
+#include "runtime/fit/objective.hpp"
 
 #include "diagnosis_support.hpp"
 #include "runtime/protocols/run_history.hpp"
@@ -150,7 +151,18 @@ TEST_CASE("diagnose, harmonic: a hydromount's slider-capped fluid column is coup
   friction f (k = 100 N/mm in [1, 10000], uy = 50 um in [0.1, 10000])
 }
 )";
-  require_effect(diagnose(start, {harmonic_measurement(truth, 13)}), dx::Effect::coupled_amplitude_frequency);
+  const runtime::FitDataSet data = harmonic_measurement(truth, 13);
+  const dx::Diagnosis d = diagnose(start, {data});
+  require_effect(d, dx::Effect::coupled_amplitude_frequency);
+  // The column alone cannot hold the stiffness its node rests on (the walls' 100 N/mm): with the
+  // walls' spring the refined model reaches the noise, the err (6.1) of the generating model
+  // itself on these data (its exact periodic state, an independent path to the floor).
+  const runtime::Network generating = test::network_from(truth, "truth");
+  const double floor = runtime::thesis_err(
+      runtime::relative_residuals(data.harmonic(), runtime::simulate_at(generating, data.harmonic(), test::simulation_options())));
+  MESSAGE("the generating model's err (6.1) on the data: " << floor);
+  CHECK(d.gap_after <= 1.05 * floor);
+  CHECK(d.refined_text.find("spring  bulge") != std::string::npos);
 }
 
 // Two Maxwell elements keep every measured phase above a few degrees, so that the phase noise
