@@ -9,6 +9,7 @@
 #include "support.hpp"
 
 #include <doctest/doctest.h>
+#include <fmt/format.h>
 
 #include <cmath>
 #include <stdexcept>
@@ -164,24 +165,16 @@ TEST_CASE("linear subtrees beside non-linear root elements: the closed form agre
 // first event-driven evaluation of this thread.
 TEST_CASE("two slider-capped fluid columns side by side: the event-driven state of both is the sum of each alone") {
   static_assert(!std::is_copy_constructible_v<runtime::PwlPeriodicState>, "a copy would refer to the original's modes");
-  const char* column_a = R"(series a {
-      slider  cap_a (fy = 26 N)
-      spring  k_a (k = 225 N/mm)
-      parallel y_a {
-        inerter m_a (b = 7.5 kg)
-        dashpot c_a (c = 0.35 N*s/mm)
-      }
-    })";
-  const char* column_b = R"(series b {
-      slider  cap_b (fy = 14.6 N)
-      spring  k_b (k = 8.3 N/mm)
-      parallel y_b {
-        inerter m_b (b = 10.5 kg)
-        dashpot c_b (c = 0.05 N*s/mm)
-      }
-    })";
+  // A slider (fy [N]) capping a chamber spring (k [N/mm]) onto a column (b [kg], c [N s/mm]).
+  const auto column = [](const std::string& name, double fy, double k, double b, double c) {
+    return fmt::format(
+        "series {0} {{ slider cap (fy = {1} N)  spring chamber (k = {2} N/mm)  "
+        "parallel y {{ inerter mass (b = {3} kg)  dashpot channel (c = {4} N*s/mm) }} }}",
+        name, fy, k, b, c);
+  };
+  const std::string column_a = column("a", 26.0, 225.0, 7.5, 0.35), column_b = column("b", 14.6, 8.3, 10.5, 0.05);
   const auto model = [](const std::string& body) { return "model m {\n  spring rubber (k = 470 N/mm)\n  " + body + "\n}"; };
-  const runtime::Network both = test::network_from(model(std::string(column_a) + "\n  " + column_b), "m");
+  const runtime::Network both = test::network_from(model(column_a + "\n  " + column_b), "m");
   const runtime::Network only_a = test::network_from(model(column_a), "m");
   const runtime::Network only_b = test::network_from(model(column_b), "m");
   const runtime::Network rubber = test::network_from(model(""), "m");
