@@ -208,7 +208,7 @@ bool PwlPeriodicState::shoot(Run& run, const PwlStart* from) {
       const PwlVector Xs = X0.cwiseQuotient(scale), Ys = X_T.cwiseQuotient(scale);
       step = scale.cwiseProduct(half_wave_ ? least_norm_fixed_point(Js, Xs, Ys) : affine_fixed_point(Js, Xs, Ys)) - X0;
       X0 = base + step;
-      expect_closed = size <= kQuadratic || converge_on_sequence(run, X0, scale, mirror);
+      expect_closed = size <= kQuadratic || converge_on_sequence(run, X0, scale, mirror, size);
     } else if (fraction == 1.0) {
       fraction *= 0.5;
       X0 = base + fraction * step;
@@ -221,11 +221,10 @@ bool PwlPeriodicState::shoot(Run& run, const PwlStart* from) {
   return false;
 }
 
-bool PwlPeriodicState::converge_on_sequence(Run& run, PwlVector& X0, const PwlVector& scale, double mirror) {
+bool PwlPeriodicState::converge_on_sequence(Run& run, PwlVector& X0, const PwlVector& scale, double mirror, double last) {
   if (!replays_ || pieces_.size() < 2 || !half_wave_) return false;
   PwlVector X = X0, Y;
   PwlMatrix J;
-  double last = std::numeric_limits<double>::infinity();
   for (int k = 0; k < kMaxReplays; ++k) {
     if (!run.replay(X, Y, J)) return false;
     Y *= mirror;

@@ -166,12 +166,13 @@ class PwlPeriodicState {
   std::size_t solved_count_ = 0, solved_next_ = 0;
 
   bool shoot(Run& run, const PwlStart* from);
-  // Newton's method from X0 on the map of the last recorded cycle's sequence of switches
-  // (Run::replay) until its residual is at rounding: true with X0 that fixed point, which the
-  // next followed cycle confirms where the periodic state keeps that sequence. False (X0
-  // untouched) where the sequence cannot be kept or Newton does not converge on it.
-  bool converge_on_sequence(Run& run, PwlVector& X0, const PwlVector& scale,
-                            double mirror);  // the periodic state by shooting (the solve proper), from FROM or cold
+  // Newton's method from X0 (the Newton step from the last recorded cycle, whose residual was
+  // LAST) on the map of that cycle's sequence of switches (Run::replay) until its residual is
+  // at rounding: true with X0 that fixed point, which the next followed cycle confirms where
+  // the periodic state keeps that sequence. False (X0 untouched) where the sequence cannot be
+  // kept or Newton does not converge on it.
+  bool converge_on_sequence(Run& run, PwlVector& X0, const PwlVector& scale, double mirror,
+                            double last);  // the periodic state by shooting (the solve proper), from FROM or cold
   bool restore(Run& run, const Solved& solved);
   void remember(bool ok, bool warm);
 

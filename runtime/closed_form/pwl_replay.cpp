@@ -33,6 +33,9 @@ bool PwlPeriodicState::Run::replay(const PwlVector& X0, PwlVector& X_T, PwlMatri
         tau += delta;
         if (std::abs(delta) <= converged) break;
       }
+      // A switch at the piece's start (the cycle's "now": its guard already at zero there)
+      // lands a rounding error either side of it.
+      if (tau < 0.0 && tau > -1e-12 * step) tau = 0.0;
       if (!(tau >= 0.0 && t + tau < self.span_)) return false;
       s.propagate(tau, S);
       w.swap(w_tau);
