@@ -230,18 +230,23 @@ double PwlPeriodicState::Run::first_crossing(int m, int i, const PwlVector& w0, 
   return hi;
 }
 
-int PwlPeriodicState::Run::switch_at(int m, int i, PwlVector& w, PwlMatrix* S) {
+int PwlPeriodicState::Run::switch_at(int m, int i, PwlVector& w, PwlMatrix* S, int to) {
   const PwlModeSystem& old = self.system(m);
   PwlVector X;
   multiply(old.to_X, w, X);
   const double s_drive = w[old.sine()], c_drive = w[old.cosine()];  // u0 sin(w t), u0 cos(w t)
-  PwlModeCode& code = self.switch_code_;
-  code = old.code;
-  const PwlTransition& tr = old.transitions[static_cast<std::size_t>(i)];
-  code[static_cast<std::size_t>(tr.which)] = tr.to;
   PwlVector w_new;
-  const int next = settle(mode_index(code), X, s_drive, c_drive, w_new);
-  if (next < 0) return -1;
+  int next = to;
+  if (to >= 0) {
+    w_new = self.system(to).state_at(X, s_drive, c_drive);
+  } else {
+    PwlModeCode& code = self.switch_code_;
+    code = old.code;
+    const PwlTransition& tr = old.transitions[static_cast<std::size_t>(i)];
+    code[static_cast<std::size_t>(tr.which)] = tr.to;
+    next = settle(mode_index(code), X, s_drive, c_drive, w_new);
+    if (next < 0) return -1;
+  }
   if (S != nullptr) {
     const PwlModeSystem& o = self.system(m);
     const PwlModeSystem& n = self.system(next);
@@ -298,7 +303,7 @@ bool PwlPeriodicState::Run::cycle(int& m, const PwlVector& X0, PwlVector& X_T, P
   auto grid_slope = [&] { return (*at_start)[at_start->size() - 1]; };
   stack(w, *at_start);
   if (record) {
-    self.pieces_.assign(1, {0.0, m, w}), self.switch_phases_.clear();
+    self.pieces_.assign(1, {0.0, m, w}), self.switch_phases_.clear(), self.fired_.clear();
     self.grid_slopes_.resize(static_cast<std::size_t>(grid_steps) + 1);
     self.grid_slopes_[0] = grid_slope();
   }
@@ -349,6 +354,7 @@ bool PwlPeriodicState::Run::cycle(int& m, const PwlVector& X0, PwlVector& X_T, P
       E = nullptr;
       stack(w, *at_start);
       if (record) {
+        self.fired_.push_back(fired);
         self.pieces_.push_back({t, m, w});
         self.switch_phases_.push_back(std::fmod(self.omega_ * t, 2.0 * std::numbers::pi));
       }

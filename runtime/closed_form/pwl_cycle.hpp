@@ -41,8 +41,9 @@ struct PwlPeriodicState::Run {
                         PwlVector& w_at);
 
   // Switches from mode m (state w, whose drive entries give the time) through guard i; with sensitivities S (dw/dX0)
-  // applies the saltation matrix. Returns the new mode or -1.
-  int switch_at(int m, int i, PwlVector& w, PwlMatrix* S);
+  // applies the saltation matrix. Returns the new mode or -1. With TO (>= 0), into that mode
+  // as it is, not settled (a replayed switch whose settled mode is known).
+  int switch_at(int m, int i, PwlVector& w, PwlMatrix* S, int to = -1);
 
   // Follows the map's span (a period, or half of one for an odd branch) from X0, settled from
   // mode m: X at its end and, with `J`, dX/dX0; with `record`, the pieces, switch phases and
@@ -50,6 +51,16 @@ struct PwlPeriodicState::Run {
   // its start to its switch or the span's end) at once, not per grid step
   // (PwlModeSystem::propagate).
   bool cycle(int& m, const PwlVector& X0, PwlVector& X_T, PwlMatrix* J, bool record);
+
+  // The span's map from X0 along the sequence of switches the last recorded cycle made (its
+  // pieces' modes and the guards that fired), with no grid and no other guard checked: each
+  // switch time by Newton's method on its guard from the recorded one, the state between by
+  // the exact flow. X at the span's end and J = dX/dX0 (through each switch by its saltation
+  // matrix), for Newton's method on the map of that sequence (PwlPeriodicState::shoot). False
+  // where the sequence is not kept: a crossing not found (a guard not falling through zero
+  // there, a time outside the span or before the last switch) or a switch to another mode.
+  // Whether the sequence holds (no other guard reached) only a followed cycle tells.
+  bool replay(const PwlVector& X0, PwlVector& X_T, PwlMatrix& J);
 
   // K'_1 and K''_1 of the recorded cycle, its pieces' integrals int F e^{i w t} dt in modal
   // closed form. Over a half period of an odd branch the integral is half the period's (F and

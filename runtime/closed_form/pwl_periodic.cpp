@@ -14,6 +14,12 @@ namespace {
 
 constexpr int kMaxCycles = 60;
 constexpr double kPeriodicTolerance = 1e-11;
+// Newton's iterations on the map of one sequence of switches (Run::replay) between followed
+// cycles: at most, and the residual (scaled, as the shooting's) at which the next followed
+// cycle is expected to close.
+constexpr int kMaxReplays = 8;
+constexpr double kReplayTolerance = 1e-13;
+constexpr double kQuadraticReplay = 1e-5;
 constexpr std::size_t kMaxSolved = 2048;  // solves kept per branch (about 1.5 kB each)
 constexpr std::size_t kMaxModes = 192;    // modes kept per branch (about 65 kB each, most of it capacity never touched)
 
@@ -202,7 +208,7 @@ bool PwlPeriodicState::shoot(Run& run, const PwlStart* from) {
       const PwlVector Xs = X0.cwiseQuotient(scale), Ys = X_T.cwiseQuotient(scale);
       step = scale.cwiseProduct(half_wave_ ? least_norm_fixed_point(Js, Xs, Ys) : affine_fixed_point(Js, Xs, Ys)) - X0;
       X0 = base + step;
-      expect_closed = size <= kQuadratic;
+      expect_closed = size <= kQuadratic || converge_on_sequence(run, X0, scale, mirror, size);
     } else if (fraction == 1.0) {
       fraction *= 0.5;
       X0 = base + fraction * step;
@@ -210,6 +216,33 @@ bool PwlPeriodicState::shoot(Run& run, const PwlStart* from) {
       base_size = std::numeric_limits<double>::infinity();
       X0 = X_T;
       average_next = half_wave_;
+    }
+  }
+  return false;
+}
+
+bool PwlPeriodicState::converge_on_sequence(Run& run, PwlVector& X0, const PwlVector& scale, double mirror, double last) {
+  if (!replays_ || pieces_.size() < 2 || !half_wave_) return false;
+  PwlVector X = X0, Y;
+  PwlMatrix J;
+  for (int k = 0; k < kMaxReplays; ++k) {
+    if (!run.replay(X, Y, J)) return false;
+    Y *= mirror;
+    const double size = (Y - X).cwiseQuotient(scale).cwiseAbs().maxCoeff();
+    if (!(size < last)) return false;  // not converging (or not finite)
+    if (size <= kReplayTolerance) {
+      X0 = X;
+      return true;
+    }
+    // Newton's residual after this step, C size^2 with C from the last step's.
+    const double expected = size * size * (size / (last * last));
+    last = size;
+    J *= mirror;
+    const PwlMatrix Js = scale.cwiseInverse().asDiagonal() * J * scale.asDiagonal();
+    X = scale.cwiseProduct(least_norm_fixed_point(Js, X.cwiseQuotient(scale), Y.cwiseQuotient(scale)));
+    if (size <= kQuadraticReplay && expected <= kReplayTolerance) {
+      X0 = X;
+      return true;
     }
   }
   return false;

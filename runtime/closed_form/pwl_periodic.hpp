@@ -51,10 +51,14 @@ namespace rheo::runtime {
 
 class PwlPeriodicState {
  public:
+  // REPLAYS: whether the shooting converges Newton's method on the map of a followed cycle's
+  // sequence of switches (Run::replay) before following the next cycle; false follows a cycle
+  // per Newton step, as a second path to the same periodic states (pwl_replay_test).
+  explicit PwlPeriodicState(bool replays = true) : replays_(replays) {}
   // Not copyable or movable: its mode table (systems_) holds the addresses of its own modes.
-  PwlPeriodicState() = default;
   PwlPeriodicState(const PwlPeriodicState&) = delete;
   PwlPeriodicState& operator=(const PwlPeriodicState&) = delete;
+
   // False when the event-driven path cannot settle this branch: a mode that would be
   // indeterminate, more than 10000 switches in a cycle, or no fixed point after 60 cycles. The
   // caller then time-steps the point. A solve of the same branch (every edge and value equal)
@@ -122,6 +126,7 @@ class PwlPeriodicState {
     PwlStart start;
   };
 
+  bool replays_ = true;
   double u0_ = 0.0, omega_ = 0.0, period_ = 0.0;
   bool half_wave_ = false;  // an odd branch: the pieces cover [0, T/2), the rest is their mirror
   double span_ = 0.0;       // T/2 or T [s]
@@ -153,6 +158,7 @@ class PwlPeriodicState {
   // Per mode (as modes_): its linear periodic state at unit amplitude (Run::linear_periodic_state), empty until needed.
   std::vector<PwlVector> linear_start_;
   std::vector<Piece> pieces_;
+  std::vector<int> fired_;  // the guard of pieces_[k]'s mode through which piece k + 1 began
   std::vector<double> switch_phases_;
   std::vector<double> grid_slopes_;        // dF/dt [N/s] at the span's grid points k T/64, k = 0..32 or 64 (grid_slope())
   PwlModeCode settle_code_, switch_code_;  // scratch of Run::settle and Run::switch_at (no allocation per event)
@@ -162,7 +168,14 @@ class PwlPeriodicState {
   std::vector<Solved> solved_;
   std::size_t solved_count_ = 0, solved_next_ = 0;
 
-  bool shoot(Run& run, const PwlStart* from);  // the periodic state by shooting (the solve proper), from FROM or cold
+  bool shoot(Run& run, const PwlStart* from);
+  // Newton's method from X0 (the Newton step from the last recorded cycle, whose residual was
+  // LAST) on the map of that cycle's sequence of switches (Run::replay) until its residual is
+  // at rounding: true with X0 that fixed point, which the next followed cycle confirms where
+  // the periodic state keeps that sequence. False (X0 untouched) where the sequence cannot be
+  // kept or Newton does not converge on it.
+  bool converge_on_sequence(Run& run, PwlVector& X0, const PwlVector& scale, double mirror,
+                            double last);  // the periodic state by shooting (the solve proper), from FROM or cold
   bool restore(Run& run, const Solved& solved);
   void remember(bool ok, bool warm);
 

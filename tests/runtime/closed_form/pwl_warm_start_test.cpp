@@ -1,6 +1,6 @@
 // Warm starts of the event path's shooting (pwl_warm_start.hpp): a column of a differenced
 // Jacobian started from the base point's periodic states reaches the periodic state the cold
-// start reaches, to the shooting's tolerance, in fewer cycles; a column that leaves the subtree
+// start reaches, to the shooting's tolerance, in fewer cycles (or no more); a column that leaves the subtree
 // unchanged gets the base's bits; and the results do not depend on the thread count.
 #include "runtime/closed_form/pwl_warm_start.hpp"
 #include "runtime/core/evaluation_context.hpp"
@@ -51,9 +51,10 @@ int total_cycles(const std::vector<runtime::HarmonicPoint>& points) {
 }
 
 // The base evaluation recorded, then columns moving each of `paths` by a relative 1e-6:
-// warm against cold, and warm on 1 thread against warm on 2.
+// warm against cold (in fewer cycles where FEWER, else in no more), and warm on 1 thread
+// against warm on 2.
 void check_columns(const runtime::Network& base, const runtime::HarmonicData& grid, const std::vector<std::string>& paths,
-                   const std::vector<std::string>& outside) {
+                   const std::vector<std::string>& outside, bool fewer) {
   runtime::PwlWarmStarts states;
   const auto base_points = evaluate(base, grid, 2, {&states, nullptr});
   states.seal();
@@ -78,7 +79,8 @@ void check_columns(const runtime::Network& base, const runtime::HarmonicData& gr
       CHECK(warm[i].measures.stiffness == warm2[i].measures.stiffness);  // bitwise: the same start, whichever thread
       CHECK(warm[i].measures.phase == warm2[i].measures.phase);
     }
-    CHECK(total_cycles(warm) < total_cycles(cold));
+    if (fewer) CHECK(total_cycles(warm) < total_cycles(cold));
+    else CHECK(total_cycles(warm) <= total_cycles(cold));
   }
   for (const std::string& path : paths) {  // a trial step's move, 1 %: the same periodic state as the cold start's
     CAPTURE(path);
@@ -112,12 +114,15 @@ void check_columns(const runtime::Network& base, const runtime::HarmonicData& gr
 
 TEST_CASE("warm-started columns of the hydrobushing grid reach the cold start's periodic states in fewer cycles") {
   const runtime::Network network = example_network("hydrobushing_fit.rheo", "coupled");
-  check_columns(network, example_grid("hydrobushing_harmonic.csv"), {"fluid.fy", "fluid.k1", "fluid.b", "fluid.c", "fluid.k2"}, {"m1.k"});
+  check_columns(network, example_grid("hydrobushing_harmonic.csv"), {"fluid.fy", "fluid.k1", "fluid.b", "fluid.c", "fluid.k2"}, {"m1.k"}, true);
 }
 
-TEST_CASE("warm-started columns of the coupled bushing reach the cold start's periodic states in fewer cycles") {
+// Its cold start already closes in two cycles a slipping point (one, Newton's iterations on its
+// sequence of switches, then the closing one: pwl_replay_test): the warm start saves those
+// iterations, not cycles.
+TEST_CASE("warm-started columns of the coupled bushing reach the cold start's periodic states in no more cycles") {
   const runtime::Network network = example_network("coupled_bushing_fit.rheo", "coupled");
-  check_columns(network, example_grid("coupled_bushing_harmonic.csv"), {"arm.s.fy", "arm.ma.k", "arm.ma.tau"}, {"f1.uy"});
+  check_columns(network, example_grid("coupled_bushing_harmonic.csv"), {"arm.s.fy", "arm.ma.k", "arm.ma.tau"}, {"f1.uy"}, false);
 }
 
 TEST_CASE("warm starts: records found by point and subtree once sealed, storage kept across clear") {
