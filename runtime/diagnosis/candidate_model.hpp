@@ -54,7 +54,7 @@ Trial column_from_limit(const Trial& column, const lang::CheckedModel& model, co
 // sqrt((k + k_b)/b) / (2 pi) and the static stiffness behind the cap k k_b / (k + k_b) are set
 // by two springs, not one: a stiffness the rubber's springs alone cannot carry at low
 // frequency. The standard library's hydromount has it (k2).
-inline constexpr double kBulgeStart = 0.25;
+inline constexpr double kBulgeStart = 0.5;
 Trial bulged_column(const Trial& column, const lang::CheckedModel& model, const Network& refitted, const std::string& element);
 
 }  // namespace rheo::runtime::diagnosis

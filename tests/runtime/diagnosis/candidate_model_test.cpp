@@ -70,7 +70,7 @@ TEST_CASE("a capped Maxwell element's optimum restarts the fluid column it is th
   CHECK(back.slip * back.stiffness == doctest::Approx(30.0).epsilon(1e-9));
 }
 
-TEST_CASE("a refitted fluid column restarts with its walls' spring: the column as refitted, k_b = k/4, resonating at sqrt((k + k_b)/b)") {
+TEST_CASE("a refitted fluid column restarts with its walls' spring: the column as refitted, k_b = kBulgeStart k, resonating at sqrt((k + k_b)/b)") {
   // The column as a refit leaves it (the cap too high to slip at these amplitudes).
   const runtime::Network column = test::network_from(
       "model m { spring s (k = 100 N/mm)  series c { slider cap (fy = 5000 N in [0.1, 1e5])  spring chamber (k = 400 N/mm in [1, 1e4])  "
