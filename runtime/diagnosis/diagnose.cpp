@@ -252,9 +252,15 @@ class Diagnoser {
     const CandidateOutcome* best = &d_.candidates[column_at];
     for (std::size_t i = column_at; i < d_.candidates.size(); ++i)
       if (d_.candidates[i].screened.trial.shape == Shape::capped_column && d_.candidates[i].gap_after < best->gap_after) best = &d_.candidates[i];
-    const double penalty = best->parameters * std::log(static_cast<double>(d_.residual_terms));
-    return reaches_noise(before_residual(), {best->gap_after, best->criterion - penalty, best->parameters}, d_.noise, d_.residual_terms,
-                         d_.noise_weighted);
+    return outcome_reaches_noise(*best);
+  }
+
+  // BIC's parameter penalty p ln N of OUTCOME, and whether OUTCOME (its criterion less that
+  // penalty the chi^2) reaches the noise as the verdict judges it (criterion.hpp reaches_noise).
+  double penalty(const CandidateOutcome& outcome) const { return outcome.parameters * std::log(static_cast<double>(d_.residual_terms)); }
+  bool outcome_reaches_noise(const CandidateOutcome& outcome) const {
+    return reaches_noise(before_residual(), {outcome.gap_after, outcome.criterion - penalty(outcome), outcome.parameters}, d_.noise,
+                         d_.residual_terms, d_.noise_weighted);
   }
 
   // Step 4 again where no candidate earned alone but both free play and asymmetry were
@@ -344,18 +350,14 @@ class Diagnoser {
     d_.time_limited = d_.time_limited || result.time_limited;
     // A gap just beyond the noise cannot fall by min_improvement; taking it to the noise earns
     // too, judged as the verdict is (criterion.hpp reaches_noise).
-    const double penalty = outcome.parameters * std::log(static_cast<double>(d_.residual_terms));
-    auto to_noise = [&](double chi_square) {
-      return reaches_noise(before_residual(), {outcome.gap_after, chi_square, outcome.parameters}, d_.noise, d_.residual_terms, d_.noise_weighted);
-    };
     const bool drops = outcome.gap_after <= (1.0 - s_.min_improvement) * d_.gap_before;
-    bool gains = outcome.unresolved.empty() && (drops || to_noise(outcome.criterion - penalty));
+    bool gains = outcome.unresolved.empty() && (drops || outcome_reaches_noise(outcome));
     // A candidate that may earn is judged, as the model was, at its likelihood's maximum; one
     // whose fit earns already keeps its fit's chi^2, an upper bound of its least.
     if (gains && d_.noise_weighted && !(outcome.criterion < d_.criterion_before) && !stopped()) {
       outcome.criterion = least_chi_square(result, data, d_.noise, within(share).fit, kLikelihoodJacobians * (outcome.parameters + 1)).chi_square +
-                          penalty;
-      gains = drops || to_noise(outcome.criterion - penalty);
+                          penalty(outcome);
+      gains = drops || outcome_reaches_noise(outcome);
     }
     const bool earns = gains && outcome.criterion < d_.criterion_before;
     if (earns && (!chosen_ || preferred(outcome, d_.candidates[chosen_->candidate], s_.parsimony)))

@@ -125,13 +125,6 @@ class StagedSearch {
   StagedSearch(const Coordinates& coordinates, const std::vector<FitDataSet>& data, const FitSettings& settings, FitResult& result)
       : coordinates_(coordinates), data_(data), settings_(settings), result_(result) {}
 
-  // The bytes of a differenced Jacobian of the data's residuals in N coordinates (8 m N).
-  std::size_t whole_jacobian_bytes(std::size_t n) const {
-    std::size_t m = 0;
-    for (const FitDataSet& set : data_) m += set.is_harmonic() ? 2 * set.harmonic().size() : set.history().force.size();
-    return sizeof(double) * m * n;
-  }
-
   // The residual vector of METHOD at z (for `corrected`, with the factors found so far).
   std::function<std::vector<double>(const std::vector<double>&)> residuals_for(FitMethod method) const {
     return [this, method](const std::vector<double>& z) { return residuals(coordinates_.network(z), data_, settings_.score, method, corrections_); };
@@ -160,8 +153,9 @@ class StagedSearch {
     if (settings_.sensitivities && residual_jacobian_applies(coordinates_.network(from), data_, settings_.score, method))
       search.jacobian = [this](const std::vector<double>& z) { return residual_jacobian(coordinates_, z, data_, settings_.score).jacobian; };
     // A long history's residuals are never held: phi and each Jacobian streamed (history_jacobian.hpp).
+    // The bytes of the differenced Jacobian, 8 m n for m residuals in n coordinates.
     const bool by_value = method == FitMethod::exact && !search.jacobian && all_histories(data_) &&
-                          whole_jacobian_bytes(from.size()) > settings_.whole_jacobian_bytes;
+                          sizeof(double) * history_residual_count(data_) * from.size() > settings_.whole_jacobian_bytes;
     if (by_value)
       search.reduced_jacobian = [this](const std::vector<double>& z, const std::vector<double>& steps) -> std::optional<ReducedJacobian> {
         std::optional<ReducedHistoryJacobian> reduced = reduced_history_jacobian(

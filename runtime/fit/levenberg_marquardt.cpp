@@ -58,7 +58,8 @@ std::optional<LeastSquaresProblem::Reduced> reduced_jacobian(const LeastSquaresP
     return r && r->r.rows() == n && r->r.cols() == n && r->c.size() == n;
   };
   std::optional<LeastSquaresProblem::Reduced> reduced = problem.reduced_jacobian(x, steps);
-  if (usable(reduced) || !problem.value) return usable(reduced) ? reduced : std::nullopt;
+  if (usable(reduced)) return reduced;
+  if (!problem.value) return std::nullopt;  // the caller differences the columns from the residuals
   Eigen::VectorXd reversed = -steps;
   for (Eigen::Index c = 0; c < n; ++c)
     if (x(c) + reversed(c) > upper(c) || x(c) + reversed(c) < lower(c)) reversed(c) = 0.0, complete = complete && steps(c) == 0.0;
