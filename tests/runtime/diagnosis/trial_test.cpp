@@ -58,8 +58,10 @@ TEST_CASE("diagnosis trial: every shape writes a statement that compiles, with b
   }
   dx::Trial walled = trial_of(dx::Shape::capped_column);
   walled.bulge = 50.0;
+  // The program held by name: a range-for over a member of a temporary reads freed memory.
+  const lang::Program walled_program = compiled(walled);
   int bounded = 0;
-  for (const auto& p : compiled(walled).models.front().parameters) bounded += p.free ? 1 : 0;
+  for (const auto& p : walled_program.models.front().parameters) bounded += p.free ? 1 : 0;
   CHECK(bounded == dx::added_parameter_count(walled));  // the column's four and the walls' k
   CHECK(bounded == 5);
   // Its resonance and damping ratio on the two springs the column's node rests on, k + k_b.
