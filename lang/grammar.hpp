@@ -207,7 +207,11 @@ struct setting_next : if_must<seq<sep, one<','>>, sep, setting> {};
 // `history "drive.csv"`, the file without its key (as a data line writes it): its own message.
 struct protocol_file_key : failure {};
 struct protocol_bare_string : seq<at<one<'"'>>, must<protocol_file_key>> {};
-struct protocol_line : seq<protocol_kind, sep, sor<protocol_bare_string, must<setting>>, star<setting_next>> {};
+// A setting where a protocol's kind was expected (`solver = fixed` on a line of its own, or a
+// setting after another without ','): its own message.
+struct protocol_setting_alone : failure {};
+struct protocol_bare_setting : seq<at<one<'='>>, must<protocol_setting_alone>> {};
+struct protocol_line : seq<protocol_kind, sep, sor<protocol_bare_string, protocol_bare_setting, must<setting>>, star<setting_next>> {};
 struct output_file : string_literal {};
 struct output_line : if_must<kw_output, sep, output_file> {};
 struct directive_line : sor<output_line, protocol_line> {};

@@ -47,6 +47,7 @@ template <> inline constexpr const char* errors::message<range_step_keyword> = "
 template <> inline constexpr const char* errors::message<range_step> = "expected the step of the range after 'step', found {found}";
 template <> inline constexpr const char* errors::message<setting> = "expected a setting `KEY = VALUE`, found {found}";
 template <> inline constexpr const char* errors::message<protocol_file_key> = "a protocol's file is a setting: write `file = \"NAME.csv\"` (e.g. history file = \"drive.csv\"), found {found}";
+template <> inline constexpr const char* errors::message<protocol_setting_alone> = "a setting needs its protocol: a simulate block's line starts with its protocol (harmonic, static, quasistatic, history, step) and its settings follow it, each after a ',' (e.g. harmonic frequency = [10] Hz, amplitude = [1] mm, solver = fixed); or a ',' is missing before the setting, found {found}";
 template <> inline constexpr const char* errors::message<setting_equals> = "expected '=' after the setting name, found {found}";
 template <> inline constexpr const char* errors::message<setting_value> = "expected a value, a list [..], a range FROM .. TO step STEP or a \"string\" after '=', found {found}";
 template <> inline constexpr const char* errors::message<output_file> = "expected a file name in double quotes after 'output', found {found}";

@@ -9,9 +9,10 @@
 namespace rheo::runtime {
 namespace {
 
-// Spins before sleeping: about 50-100 us on current x86 cores, longer than the gap between the
-// evaluations of a fit, shorter than anything a user would notice as load.
-constexpr int spin_rounds = 1 << 14;
+// Spins before sleeping: a few microseconds to tens of them (a pause costs 10-140 cycles by the
+// core), about the gap between the evaluations of a fit. Longer spins cost the other runnable
+// threads of a busy machine their CPU, and a caller no longer waits for a helper to wake.
+constexpr int spin_rounds = 1 << 11;
 
 inline void relax() noexcept {
 #if defined(__x86_64__) || defined(__i386__)
@@ -67,10 +68,24 @@ void WorkerPool::helper_loop(int index, std::uint64_t seen) noexcept {
   for (;;) {
     seen = wait_change(ticket_, seen);
     if (stopping_.load(std::memory_order_acquire)) return;
-    if (static_cast<std::uint64_t>(index) >= (seen & 0xffffU)) continue;
+    if (static_cast<std::uint64_t>(index) >= (seen & 0xffffU) || !join(seen >> 16)) continue;
     call_(job_);
-    if (pending_.fetch_sub(1, std::memory_order_acq_rel) == 1) pending_.notify_one();
+    leave();
   }
+}
+
+bool WorkerPool::join(std::uint64_t job) noexcept {
+  const std::uint64_t number = job & 0xffffffffU;
+  std::uint64_t state = joined_.load(std::memory_order_acquire);
+  for (;;) {
+    if ((state >> 32) != number || (state & kClosed) != 0) return false;
+    if (joined_.compare_exchange_weak(state, state + 1, std::memory_order_acq_rel, std::memory_order_acquire)) return true;
+  }
+}
+
+void WorkerPool::leave() noexcept {
+  const std::uint64_t after = joined_.fetch_sub(1, std::memory_order_acq_rel) - 1;
+  if ((after & kWorking) == 0 && (after & kClosed) != 0) joined_.notify_one();
 }
 
 void WorkerPool::run_erased(int helpers, void* job, Trampoline call) noexcept {
@@ -82,14 +97,16 @@ void WorkerPool::run_erased(int helpers, void* job, Trampoline call) noexcept {
   const int taking_part = std::min({helpers, static_cast<int>(threads_.size()), 0xffff});
   job_ = job;
   call_ = call;
-  pending_.store(taking_part, std::memory_order_release);
   const std::uint64_t number = (ticket_.load(std::memory_order_relaxed) >> 16) + 1;
+  joined_.store((number & 0xffffffffU) << 32, std::memory_order_release);
   ticket_.store((number << 16) | static_cast<std::uint64_t>(taking_part), std::memory_order_release);
   ticket_.notify_all();
   inside_job = true;
   call(job);
   inside_job = false;
-  for (int left = pending_.load(std::memory_order_acquire); left != 0; left = pending_.load(std::memory_order_acquire)) wait_change(pending_, left);
+  // Closed: a helper not yet woken stays out; those working are waited for.
+  for (std::uint64_t state = joined_.fetch_or(kClosed, std::memory_order_acq_rel) | kClosed; (state & kWorking) != 0;)
+    state = wait_change(joined_, state);
 }
 
 }  // namespace rheo::runtime

@@ -84,7 +84,14 @@ std::string harmonic_method(const Network& network, const HarmonicOptions& optio
   return fmt::format("harmonic steady_state=time_stepping steps_per_cycle={} tolerance={:g}", options.steps_per_cycle, options.tolerance);
 }
 
-std::string harmonic_notes(const Network& network, const std::vector<HarmonicPoint>& points, const std::vector<double>& amplitudes) {
+// A stalled point on fixed steps with an inerter may be the step's own artefact: Newmark's
+// relation (Tustin's map of b s^2, periodic_start.hpp) maps a mode far faster than the step (an
+// inerter beside a dashpot with b/c << dt) to z near -1, barely damped, and a nonlinear spring
+// in the chain can keep it ringing (differential seed 2026, model 191: 128 steps a cycle ring,
+// 256 settle in 6 cycles).
+std::string harmonic_notes(const Network& network, const HarmonicOptions& options, const std::vector<HarmonicPoint>& points,
+                           const std::vector<double>& amplitudes) {
+  const bool stepped_inerter = has_inerter(network) && !uses_closed_form(network, options) && !uses_sundials(network, options.solver);
   std::string notes;
   for (const auto& point : points)
     if (!point.converged && point.stalled)
@@ -92,8 +99,11 @@ std::string harmonic_notes(const Network& network, const std::vector<HarmonicPoi
           "warning: amplitude {:g} mm, frequency {:g} Hz did not reach steady state in {} cycles (residual {:.2e}, not falling: the "
           "state's change over a cycle did not halve from the second to the last quarter of the cycles); an undamped free oscillation, "
           "such as a mass on springs with no dashpot or slipping friction in its loop, has no unique periodic state: add damping to it, "
-          "or raise cycles_max if a mode is that slow\n",
-          point.amplitude, point.frequency, point.cycles, point.residual);
+          "or raise cycles_max if a mode is that slow{}\n",
+          point.amplitude, point.frequency, point.cycles, point.residual,
+          stepped_inerter ? "; on fixed steps an inerter's step relation (Newmark's) also leaves a mode much faster than the step "
+                            "ringing nearly undamped (an inerter beside a stiff dashpot): raise steps_per_cycle or take solver = sundials"
+                          : "");
     else if (!point.converged)
       notes += fmt::format(
           "warning: amplitude {:g} mm, frequency {:g} Hz did not reach steady state in {} cycles (residual {:.2e}); "
@@ -121,7 +131,7 @@ ProtocolResult run(RunContext& c, const lang::HarmonicSettings& s) {
   for (const auto& point : grid.points) not_converged += point.converged ? 0 : 1;
   std::vector<double> reach = s.amplitudes;  // the largest |u| each amplitude drives to
   for (double& u : reach) u += std::abs(s.preload);
-  std::string notes = harmonic_notes(c.network, grid.points, reach);
+  std::string notes = harmonic_notes(c.network, options, grid.points, reach);
   return ProtocolResult{c.header, std::move(grid), not_converged, std::move(notes)};
 }
 

@@ -31,10 +31,15 @@ bool uses_sundials(const Network& network, SolverChoice choice) {
   const Topology& t = network.topology();
   for (int root : t.subtrees)
     if (nested_bouc_wen(t, root, false)) return false;
-  for (const auto& node : t.nodes)
-    if (node.kind == NodeKind::inerter) return true;
+  if (has_inerter(network)) return true;
   for (int root : t.subtrees)
     if (block_depth(t, root) > kFixedStepMaxBlockDepth) return true;
+  return false;
+}
+
+bool has_inerter(const Network& network) {
+  for (const auto& node : network.topology().nodes)
+    if (node.kind == NodeKind::inerter) return true;
   return false;
 }
 

@@ -28,4 +28,7 @@ inline constexpr int kFixedStepMaxBlockDepth = 3;  // nested blocks below the mo
 // Whether `choice` resolves to the SUNDIALS backend for this network.
 bool uses_sundials(const Network& network, SolverChoice choice);
 
+// Whether the network holds an inerter anywhere.
+bool has_inerter(const Network& network);
+
 }  // namespace rheo::runtime

@@ -229,7 +229,8 @@ TEST_CASE("parse: a word after a number that is no unit is named as such, a miss
   CHECK(nmm.find("p.rheo:2:23: error: expected ')' to close the argument list of 'spring s', found 'Nmm'; 'Nmm' is not a unit rheo "
                  "knows: use N, kN, mN, mm, m, cm, um, in, s, ms, us, min, Hz, kHz, kg, g, rad, Pa, kPa, MPa, GPa, deg, %, combined with") == 0);
   const std::string comma = parse_error("model m { spring s (k = 1) }\nsimulate { harmonic frequency = 1 Hz, amplitude = 1 cycles_max = 2 }\n");
-  CHECK(comma.find("p.rheo:2:64: error: expected a setting `KEY = VALUE`, found '='") == 0);
+  CHECK(comma.find("p.rheo:2:64: error: a setting needs its protocol: ") == 0);
+  CHECK(comma.find("or a ',' is missing before the setting, found '='") != std::string::npos);
   CHECK(comma.find("is not a unit") == std::string::npos);
   // After a known unit the word is no unit's fault either.
   CHECK(parse_error("model m {\n  spring s (k = 1 N/mm extra)\n}\n").find("is not a unit") == std::string::npos);

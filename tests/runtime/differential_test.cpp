@@ -167,9 +167,9 @@ void compare(const std::string& source, double fastest_mass, Worst& worst) {
       ++worst.fixed_settled_late;
       options.max_cycles = kSettleBudget * kCycles;
       p = runtime::simulate_harmonic_point(network, amplitude, frequency, options);
-      options.max_cycles = kCycles;
       CHECK_MESSAGE(p.converged, "fixed steps (", steps_per_cycle, " a cycle) do not settle in ", options.max_cycles,
                     " cycles where IDA settles in ", a.cycles);
+      options.max_cycles = kCycles;
       return p;
     };
     double stiffness = 0.0, damping = 0.0;

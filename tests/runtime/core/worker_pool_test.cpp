@@ -8,24 +8,61 @@
 
 #include <algorithm>
 #include <atomic>
+#include <chrono>
 #include <numeric>
 #include <thread>
 #include <vector>
 
 using namespace rheo;
 
-TEST_CASE("a job runs on the caller and on the helpers asked for, which stay for the next job") {
+// The caller's call waits (up to 10 s) until every helper asked for has joined, so that each
+// has the time to take the job up: then every one does, and each once.
+TEST_CASE("a job runs on the caller and on the helpers asked for that join while it runs, which stay for the next job") {
   runtime::WorkerPool pool;
   std::atomic<int> calls{0};
-  auto job = [&]() noexcept { calls.fetch_add(1); };
+  int target = 0;  // the count of calls the caller waits for
+  const std::thread::id caller = std::this_thread::get_id();
+  auto job = [&]() noexcept {
+    const int now = calls.fetch_add(1) + 1;
+    if (std::this_thread::get_id() != caller) return;
+    const auto until = std::chrono::steady_clock::now() + std::chrono::seconds(10);
+    for (int seen = now; seen < target && std::chrono::steady_clock::now() < until; seen = calls.load()) std::this_thread::yield();
+  };
+  target = 4;
   pool.run(3, job);
   CHECK(calls.load() == 4);
   CHECK(pool.helper_count() == 3);
-  for (int round = 0; round < 2000; ++round) pool.run(round % 4, job);  // fewer helpers than there are, too
-  CHECK(calls.load() == 4 + 5000);                                      // rounds take 1, 2, 3, 4 callers in turn: 10 calls per 4 rounds
+  int total = 4;
+  for (int round = 0; round < 2000; ++round) {  // fewer helpers than there are, too: 1, 2, 3, 4 callers in turn
+    total += round % 4 + 1;
+    target = total;
+    pool.run(round % 4, job);
+    CHECK(calls.load() == total);  // no helper beyond those asked for, none twice, none after run returned
+  }
   CHECK(pool.helper_count() == 3);
+  target = total + 1;
   pool.run(0, job);
-  CHECK(calls.load() == 4 + 5000 + 1);
+  CHECK(calls.load() == total + 1);
+}
+
+// A caller whose call returns at once does not wait for helpers to wake: each helper asked for
+// takes part at most once, and a helper that joins after the caller's call has returned
+// never does (its count would appear after run() returned).
+TEST_CASE("a job the caller finishes alone is not waited on by helpers that wake late") {
+  runtime::WorkerPool pool;
+  std::atomic<int> calls{0};
+  auto job = [&]() noexcept { calls.fetch_add(1); };
+  for (int round = 0; round < 2000; ++round) {
+    const int before = calls.load();
+    pool.run(3, job);
+    const int after = calls.load();
+    CHECK(after - before >= 1);
+    CHECK(after - before <= 4);
+  }
+  std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  const int settled = calls.load();
+  std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  CHECK(calls.load() == settled);  // nothing runs a job after its run() returned
 }
 
 TEST_CASE("every item of many short parallel_for calls is done once, on any number of threads") {
