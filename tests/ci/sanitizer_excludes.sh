@@ -1,24 +1,34 @@
 #!/usr/bin/env bash
-# Prints the ctest -E expression that leaves out the test cases named in SKIPS (one exact ctest
-# name a line, '#' comments; tests/ci/sanitizer_skips.txt) from the tests of BUILD_DIR. Fails,
-# naming the line, when a name matches no test of BUILD_DIR, so that a renamed case cannot
-# silently stop being left out (or a typo go unnoticed). Each name is matched whole: the
-# regular-expression characters of a name are escaped and the expression anchored.
+# Prints the ctest -E expression that leaves out of the sanitizer run (.ci/run) every test case
+# whose cost in a Release run exceeded SECONDS: COSTS is that run's CTestCostData.txt (ctest
+# writes it to BUILD/Testing/Temporary/; a line per test, "NAME RUNS AVERAGE_SECONDS", then a
+# line "---" and the names of failed tests). The cases left out are the whole diagnoses, fits and
+# transcripts that take 5-50x longer under AddressSanitizer; the code they run is run by the
+# cheaper cases too, and the Release run ran them all. Prints on standard error how many cases
+# are left out and their Release time. Fails when COSTS is missing or lists no test.
+#
+#   sanitizer_excludes.sh COSTS SECONDS
 set -euo pipefail
-build=${1:?usage: sanitizer_excludes.sh BUILD_DIR SKIPS}
-skips=${2:?usage: sanitizer_excludes.sh BUILD_DIR SKIPS}
-names=$(ctest --test-dir "$build" -N | sed -n 's/^ *Test *#[0-9]*: //p')
-expression=
-line_number=0
-while IFS= read -r line || [ -n "$line" ]; do
-  line_number=$((line_number + 1))
-  case $line in '' | '#'*) continue ;; esac
-  if ! grep -qxF -- "$line" <<<"$names"; then
-    echo "$skips:$line_number: no test of $build is named '$line': correct the name or remove the line" >&2
-    exit 1
-  fi
-  escaped=$(sed 's/[][\.^$*+?()|{}]/\\&/g' <<<"$line")
-  expression+="${expression:+|}^${escaped}\$"
-done <"$skips"
-[ -n "$expression" ] || { echo "$skips: no test names" >&2; exit 1; }
-printf '%s\n' "$expression"
+costs=${1:?usage: sanitizer_excludes.sh COSTS SECONDS}
+seconds=${2:?usage: sanitizer_excludes.sh COSTS SECONDS}
+[ -s "$costs" ] || { echo "$costs: no test costs (run the Release suite first: it writes them)" >&2; exit 1; }
+# NAME may hold spaces: the last two fields are the count of runs and the average.
+awk -v limit="$seconds" -v file="$costs" '
+  $0 == "---" { exit }
+  NF >= 3 {
+    tests++
+    cost = $NF
+    if (cost + 0 <= limit + 0) next
+    name = $0
+    sub(/ +[^ ]+ +[^ ]+$/, "", name)
+    gsub(/[][\\.^$*+?()|{}]/, "\\\\&", name)
+    expression = expression (expression == "" ? "" : "|") "^" name "$"
+    left_out++
+    total += cost
+  }
+  END {
+    if (tests == 0) { print file ": lists no test" > "/dev/stderr"; exit 1 }
+    printf "sanitizer run: %d of %d test cases left out (over %s s in the Release run, %.0f s there in all)\n", left_out, tests, limit, total > "/dev/stderr"
+    # ctest -E needs an expression; one that matches no name leaves nothing out.
+    print (expression == "" ? "^$" : expression)
+  }' "$costs"

@@ -53,7 +53,8 @@ std::vector<std::array<double, 3>> simulated(const std::string& file) {
 // The cards' storage and loss, K = E* / (modulus per stiffness), against the simulated ones.
 void check_cards(const rheo::test::ReadMaterial& m, const std::vector<std::array<double, 3>>& points, double modulus_per_stiffness) {
   REQUIRE(!m.terms.empty());
-  for (const auto& [f, storage, loss] : points) {
+  for (const auto& point : points) {
+    const double f = point[0], storage = point[1], loss = point[2];  // not a structured binding: Clang 14 cannot capture one
     const auto k = rheo::test::complex_young(m, f) / modulus_per_stiffness;
     CHECK_MESSAGE(std::abs(k.real() / storage - 1.0) <= 1e-9, "storage at " << f << " Hz: " << k.real() << " vs " << storage);
     CHECK_MESSAGE(std::abs(k.imag() / loss - 1.0) <= 1e-9, "loss at " << f << " Hz: " << k.imag() << " vs " << loss);

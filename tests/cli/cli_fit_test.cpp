@@ -305,7 +305,9 @@ TEST_CASE("--yeoh-start writes the least-squares constants of the static loop's 
   const lang::CheckedModel* model = program.find_model("specimen_d");
   REQUIRE(model != nullptr);
   const std::pair<const char*, double> expected[] = {{"rubber.D10", want.d10}, {"rubber.D20", want.d20}, {"rubber.D30", want.d30}};
-  for (const auto& [path, value] : expected) {
+  for (const auto& entry : expected) {  // not a structured binding: Clang 14 cannot capture one
+    const auto& [path_binding, value] = entry;
+    const std::string path = path_binding;
     CAPTURE(path);
     const auto p = std::find_if(model->parameters.begin(), model->parameters.end(), [&](const auto& q) { return q.path == path; });
     REQUIRE(p != model->parameters.end());
@@ -451,10 +453,11 @@ TEST_CASE("--time-limit (or the block's time_limit) stops the search in time and
   const fs::path file = scratch() / "time_limit.rheo", bounded = scratch() / "time_limit_block.rheo";
   write_text(file, model + fmt::format("fit {{\n  data \"{}\"\n}}\n", example("data/coupled_bushing_harmonic.csv")));
   write_text(bounded, model + fmt::format("fit {{\n  data \"{}\"\n  time_limit = 50 ms\n}}\n", example("data/coupled_bushing_harmonic.csv")));
-  for (const auto& [command, limit] :
+  for (const auto& [command_binding, limit] :
        std::vector<std::pair<std::string, std::string>>{{fmt::format("fit {} --time-limit 0.05s --json", file.string()), "0.05 s"},
                                                         {fmt::format("fit {} --time-limit '0.0005 min' --json", file.string()), "0.03 s"},
                                                         {fmt::format("fit {} --json", bounded.string()), "0.05 s"}}) {
+    const std::string command = command_binding;  // Clang 14 cannot capture a structured binding
     CAPTURE(command);
     const Run r = run(command);
     REQUIRE(r.code == 0);

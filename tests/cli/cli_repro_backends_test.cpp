@@ -262,7 +262,9 @@ std::pair<std::vector<std::vector<double>>, std::vector<std::vector<double>>> gr
 }  // namespace
 
 TEST_CASE("repro backends 09: the harmonic grid of the undamped mass behind a slider settles on both integrators, and they agree") {
-  const auto [a, b] = grids_on_both("09_undamped_inerter_harmonic", 120, 120);
+  const auto grids = grids_on_both("09_undamped_inerter_harmonic", 120, 120);
+  const auto& a = grids.first;  // not a structured binding: Clang 14 cannot capture one
+  const auto& b = grids.second;
   for (std::size_t i = 0; i < a.size(); ++i) {
     CAPTURE(a[i][0]);
     CAPTURE(a[i][1]);
@@ -305,7 +307,9 @@ TEST_CASE("repro backends 03, 05, 06 and 07: nested bouc_wen on fixed steps, his
 // 07 (bouc_wen + Maxwell in series) is the one of them IDA integrates: its harmonic grid, an
 // independent path, agrees (observed 5e-6 in stiffness, 5e-6 in damping).
 TEST_CASE("repro backends 07: the fixed-step harmonic grid of bouc_wen + Maxwell agrees with IDA's") {
-  const auto [a, b] = grids_on_both("07_fixed_harmonic_noconv_boucwen_maxwell", 20, 60);
+  const auto grids = grids_on_both("07_fixed_harmonic_noconv_boucwen_maxwell", 20, 60);
+  const auto& a = grids.first;  // not a structured binding: Clang 14 cannot capture one
+  const auto& b = grids.second;
   for (std::size_t i = 0; i < a.size(); ++i) {
     CAPTURE(i);
     CHECK(a[i][2] == doctest::Approx(b[i][2]).epsilon(1e-4));  // stiffness

@@ -143,7 +143,8 @@ void compare(const std::string& source, double fastest_mass, Worst& worst) {
   options.steady_state = runtime::SteadyState::time_stepping;
   options.max_cycles = kCycles;
   options.tolerance = kPeriodicity;
-  for (const auto& [amplitude, frequency] : {std::pair{0.3, 2.0}, std::pair{0.05, 20.0}}) {
+  for (const auto& level : {std::pair{0.3, 2.0}, std::pair{0.05, 20.0}}) {
+    const double amplitude = level.first, frequency = level.second;  // not a structured binding: Clang 14 cannot capture one
     CAPTURE(amplitude);
     CAPTURE(frequency);
     options.steps_per_cycle = 2 * kStepsPerCycle;

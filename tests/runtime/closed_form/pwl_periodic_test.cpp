@@ -419,7 +419,8 @@ TEST_CASE("a branch with other values refills the storage of the last branch's m
   const runtime::PwlBranch light = branch_of(test::network_from(text, "a")), heavy = branch_of(heavy_net);
   runtime::PwlPeriodicState kept;
   for (const runtime::PwlBranch* branch : {&light, &heavy, &light}) {
-    for (const auto& [u0, f] : {std::pair{0.5, 11.0}, std::pair{2.0, 40.0}}) {
+    for (const auto& point : {std::pair{0.5, 11.0}, std::pair{2.0, 40.0}}) {
+      const double u0 = point.first, f = point.second;  // not a structured binding: Clang 14 cannot capture one
       CAPTURE(u0);
       CAPTURE(f);
       const double omega = 2.0 * std::numbers::pi * f;

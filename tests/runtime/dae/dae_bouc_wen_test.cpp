@@ -32,7 +32,8 @@ TEST_CASE("IDA runs sharp bouc_wen elements in series blocks beside inerters (di
 // observed 7e-7 and 1.1e-5 in K, 3e-7 and 9e-6 in d.
 TEST_CASE("IDA's harmonic points of differential seed 37, model 85 agree with fixed steps") {
   const auto network = test::network_from(test::kSeed37Model85, "m");
-  for (const auto& [amplitude, frequency] : {std::pair{0.05, 2.0}, std::pair{0.4, 20.0}}) {
+  for (const auto& level : {std::pair{0.05, 2.0}, std::pair{0.4, 20.0}}) {
+    const double amplitude = level.first, frequency = level.second;  // not a structured binding: Clang 14 cannot capture one
     CAPTURE(frequency);
     const auto point = test::ida_point_against_fixed_steps(network, amplitude, frequency);
     REQUIRE(point.ida.converged);

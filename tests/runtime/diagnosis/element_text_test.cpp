@@ -54,7 +54,9 @@ TEST_CASE("element_text: every root element compiles back to its parameters, val
   const auto original = by_path(network.model());
   const auto again = by_path(test::model_from("model m {\n" + body + "}\n", "m"));
   REQUIRE(again.size() == original.size());
-  for (const auto& [path, p] : original) {
+  for (const auto& entry : original) {
+    const auto& path = entry.first;  // not a structured binding: Clang 14 cannot capture one
+    const auto& p = entry.second;
     CAPTURE(path);
     REQUIRE(again.count(path) == 1);
     const lang::Parameter& q = again.at(path);

@@ -1,0 +1,38 @@
+#!/usr/bin/env bash
+# sanitizer_excludes.sh leaves out exactly the cases whose Release cost exceeds the limit, names
+# with spaces and regular-expression characters matched whole, and refuses a missing or empty
+# cost file.
+set -uo pipefail
+script=${1:?usage: sanitizer_excludes_test.sh PATH/TO/sanitizer_excludes.sh}
+dir=$(mktemp -d)
+trap 'rm -rf "$dir"' EXIT
+failures=0
+fail() { echo "FAIL: $*"; failures=$((failures + 1)); }
+
+cat >"$dir/costs" <<'COSTS'
+runtime:a cheap case 1 0.2
+runtime:diagnose, harmonic: a slow case (#24) with 1e-9 2 31.5
+lang:exactly at the limit 1 5
+runtime:a case a little over it [x] 3 5.01
+---
+runtime:a failed case
+COSTS
+expression=$("$script" "$dir/costs" 5 2>"$dir/err") || fail "exit status $? on a valid file"
+expected='^runtime:diagnose, harmonic: a slow case \(#24\) with 1e-9$|^runtime:a case a little over it \[x\]$'
+[ "$expression" = "$expected" ] || fail "expression '$expression', expected '$expected'"
+grep -q "2 of 4 test cases left out" "$dir/err" || fail "summary: $(cat "$dir/err")"
+# The expression, given to grep -E as ctest uses it, matches the slow names and no other.
+names=$(printf '%s\n' "runtime:a cheap case" "runtime:diagnose, harmonic: a slow case (#24) with 1e-9" \
+  "lang:exactly at the limit" "runtime:a case a little over it [x]" "runtime:a case a little over it x")
+matched=$(grep -cE -- "$expression" <<<"$names")
+[ "$matched" -eq 2 ] || fail "the expression matches $matched names, not 2"
+
+expression=$("$script" "$dir/costs" 100 2>/dev/null) || fail "exit status $? with nothing over the limit"
+[ "$expression" = '^$' ] || fail "nothing over the limit gives '$expression', expected '^\$'"
+! grep -qE -- "$expression" <<<"$names" || fail "'^\$' matches a name"
+
+: >"$dir/empty"
+"$script" "$dir/empty" 5 >/dev/null 2>&1 && fail "an empty cost file is accepted"
+"$script" "$dir/missing" 5 >/dev/null 2>&1 && fail "a missing cost file is accepted"
+[ $failures -eq 0 ] && echo "sanitizer_excludes: 6 checks passed"
+exit $failures
