@@ -126,7 +126,9 @@ TEST_CASE("report in a browser: headless chromium renders every figure with its 
   const auto series = figures(dom, "class=\"series\"");
   REQUIRE(series.size() == expected_series.size());
   std::set<std::string> seen;
-  for (const auto& [name, n] : series) {
+  for (const auto& figure : series) {
+    const auto& name = figure.first;  // not a structured binding: Clang 14 cannot capture one
+    const auto& n = figure.second;
     CAPTURE(name);
     REQUIRE(expected_series.count(name) == 1);
     CHECK(n == expected_series.at(name));

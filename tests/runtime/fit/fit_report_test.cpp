@@ -183,7 +183,9 @@ TEST_CASE("the text report lists every free parameter with its unit, the data an
   CHECK(text.find("data grid.csv (harmonic, 12 points, weight 1)") != std::string::npos);
   CHECK(text.find("data loop.csv (history, ") != std::string::npos);
   CHECK(text.find("method exact, objective phi, optimizer default, seed 3") != std::string::npos);
-  for (const auto& [path, unit] : {std::pair{"e.k", "N/mm"}, {"m.k", "N/mm"}, {"m.tau", "ms"}, {"f.k", "N/mm"}, {"f.uy", "um"}}) {
+  for (const auto& row : {std::pair{"e.k", "N/mm"}, {"m.k", "N/mm"}, {"m.tau", "ms"}, {"f.k", "N/mm"}, {"f.uy", "um"}}) {
+    const char* const path = row.first;  // not a structured binding: Clang 14 cannot capture one
+    const char* const unit = row.second;
     CAPTURE(path);
     const auto line_start = text.find(std::string("\n  ") + path + " ");
     REQUIRE(line_start != std::string::npos);
