@@ -306,8 +306,8 @@ TEST_CASE("--yeoh-start writes the least-squares constants of the static loop's 
   REQUIRE(model != nullptr);
   const std::pair<const char*, double> expected[] = {{"rubber.D10", want.d10}, {"rubber.D20", want.d20}, {"rubber.D30", want.d30}};
   for (const auto& entry : expected) {  // not a structured binding: Clang 14 cannot capture one
-    const auto& [path_binding, value] = entry;
-    const std::string path = path_binding;
+    const std::string path = entry.first;
+    const double value = entry.second;
     CAPTURE(path);
     const auto p = std::find_if(model->parameters.begin(), model->parameters.end(), [&](const auto& q) { return q.path == path; });
     REQUIRE(p != model->parameters.end());
