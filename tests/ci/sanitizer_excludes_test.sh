@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # sanitizer_excludes.sh leaves out exactly the cases whose Release time (ctest's LastTest.log)
-# exceeds the limit, names with spaces and regular-expression characters matched whole, and
-# refuses a missing or empty log.
+# exceeds the limit, names with spaces and regular-expression characters matched whole, except
+# the sanitizer build's fixture setups, and refuses a missing or empty log or an unlisted build.
 set -uo pipefail
 script=${1:?usage: sanitizer_excludes_test.sh PATH/TO/sanitizer_excludes.sh}
 dir=$(mktemp -d)
@@ -20,24 +20,39 @@ block() {  # block I NAME SECONDS: one case's record in ctest's LastTest.log
   block 2 "runtime:diagnose, harmonic: a slow case (#24) with 1e-9" "  31.50"
   block 3 "lang:exactly at the limit" "   5.00"
   block 4 "runtime:a case a little over it [x]" "   5.01"
+  block 5 "fixture_build" "  40.00"
   echo "End testing: Nov 29 04:01 UTC"
 } >"$dir/costs"
-expression=$("$script" "$dir/costs" 5 2>"$dir/err") || fail "exit status $? on a valid file"
+# The sanitizer build, as ctest reads it: fixture_build sets up the fixture the second case needs
+# (ctest -E would drop it and fail that case); a setup only by its name's likeness is not one.
+mkdir "$dir/build"
+cat >"$dir/build/CTestTestfile.cmake" <<'TESTS'
+add_test([=[runtime:a cheap case]=] "true")
+add_test([=[runtime:diagnose, harmonic: a slow case (#24) with 1e-9]=] "true")
+set_tests_properties([=[runtime:diagnose, harmonic: a slow case (#24) with 1e-9]=] PROPERTIES FIXTURES_REQUIRED "built" LABELS "FIXTURES_SETUP")
+add_test([=[lang:exactly at the limit]=] "true")
+add_test([=[runtime:a case a little over it [x]]=] "true")
+add_test([=[fixture_build]=] "true")
+set_tests_properties([=[fixture_build]=] PROPERTIES FIXTURES_SETUP "built")
+TESTS
+expression=$("$script" "$dir/costs" 5 "$dir/build" 2>"$dir/err") || fail "exit status $? on a valid file"
 expected='^runtime:diagnose, harmonic: a slow case \(#24\) with 1e-9$|^runtime:a case a little over it \[x\]$'
 [ "$expression" = "$expected" ] || fail "expression '$expression', expected '$expected'"
-grep -q "2 of 4 test cases left out" "$dir/err" || fail "summary: $(cat "$dir/err")"
+grep -q "2 of 5 test cases left out" "$dir/err" || fail "summary: $(cat "$dir/err")"
 # The expression, given to grep -E as ctest uses it, matches the slow names and no other.
 names=$(printf '%s\n' "runtime:a cheap case" "runtime:diagnose, harmonic: a slow case (#24) with 1e-9" \
   "lang:exactly at the limit" "runtime:a case a little over it [x]" "runtime:a case a little over it x")
 matched=$(grep -cE -- "$expression" <<<"$names")
 [ "$matched" -eq 2 ] || fail "the expression matches $matched names, not 2"
 
-expression=$("$script" "$dir/costs" 100 2>/dev/null) || fail "exit status $? with nothing over the limit"
+expression=$("$script" "$dir/costs" 100 "$dir/build" 2>/dev/null) || fail "exit status $? with nothing over the limit"
 [ "$expression" = '^$' ] || fail "nothing over the limit gives '$expression', expected '^\$'"
 ! grep -qE -- "$expression" <<<"$names" || fail "'^\$' matches a name"
 
 : >"$dir/empty"
-"$script" "$dir/empty" 5 >/dev/null 2>&1 && fail "an empty log is accepted"
-"$script" "$dir/missing" 5 >/dev/null 2>&1 && fail "a missing log is accepted"
-[ $failures -eq 0 ] && echo "sanitizer_excludes: 6 checks passed"
+"$script" "$dir/empty" 5 "$dir/build" >/dev/null 2>&1 && fail "an empty log is accepted"
+"$script" "$dir/missing" 5 "$dir/build" >/dev/null 2>&1 && fail "a missing log is accepted"
+"$script" "$dir/costs" 5 >/dev/null 2>&1 && fail "no sanitizer build is accepted"
+"$script" "$dir/costs" 5 "$dir/missing" >/dev/null 2>&1 && fail "a build ctest cannot list is accepted"
+[ $failures -eq 0 ] && echo "sanitizer_excludes: 8 checks passed"
 exit $failures
