@@ -283,9 +283,13 @@ bool build_pwl_mode(const PwlBranch& branch, const PwlModeCode& code, double ome
         if (state == 0) {
           force = lambda.row(rigid_index++);
           RowVectorXd upper = -force, lower = force;  // fy+ - F >= 0, F + fy- >= 0
+          // Sized max(fy, k u0) as a closed gap's force is: the force follows from positions
+          // through springs up to the stiffest, so its rounding is ~eps k u0. Sized by fy alone,
+          // a slider with fy far below k u0 (1e-4 N behind 7840 N/mm, as a diagnosis's global
+          // look samples) read rounding as leaving at every check and no mode held it.
           upper[i1] += e.value, lower[i1] += e.cap_neg;
-          guard(upper, which, 1, e.value, 0.0);
-          guard(lower, which, -1, e.cap_neg, 0.0);
+          guard(upper, which, 1, e.value, st.largest_k);
+          guard(lower, which, -1, e.cap_neg, st.largest_k);
         } else {
           force[i1] = e.slip_force(state);
           guard(state * elongation * out.A, which, 0, 0.0, omega);  // u0 w

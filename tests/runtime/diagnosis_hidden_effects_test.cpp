@@ -224,7 +224,7 @@ TEST_CASE("diagnose, harmonic: data the model already explains gives none") {
 // noise (4 of the 10 draws from seed 100 named an effect when the BIC was N ln(J) + p ln N).
 // Under the noise-weighted criterion (criterion.hpp) no draw earns anything.
 TEST_CASE("diagnose, harmonic: data the model already explains gives none over several noise draws") {
-  // Under AddressSanitizer one draw (each takes about 45 s there): the statistics are the Release run's.
+  // Under AddressSanitizer one draw (each several times the ~1.5 s here): the statistics are the Release run's.
   for (const unsigned seed : {100u, 101u, 102u}) {
     if (test::kUnderSanitizer && seed > 100u) break;
     CAPTURE(seed);
@@ -235,7 +235,7 @@ TEST_CASE("diagnose, harmonic: data the model already explains gives none over s
 }
 
 // The false-positive rate on pure noise: of ten draws (five under AddressSanitizer, where each
-// diagnosis takes several times the 6 s here), at most one may name an effect or call the
+// diagnosis takes several times the 1-15 s here), at most one may name an effect or call the
 // residual unexplained. Judged on the fits of eq. 5.1, whose damping terms follow the phase noise
 // of a few nearly elastic points, 3 of these 10 draws did (7 of the 40 from seed 100: a
 // slider-capped Maxwell arm named, or a fit drawn to those points called unexplained at twice

@@ -1,6 +1,9 @@
 // Measurements with a known truth for the diagnose tests: data simulated from a model given as
 // text, with the noise of examples/data (stiffness x (1 + 0.01 N(0,1)), phase + 0.15 deg
-// N(0,1); histories: force + 0.003 max|F| N(0,1)), and diagnose() with the tests' settings.
+// N(0,1); histories: force + 0.003 max|F| N(0,1)), and diagnose() with the tests' settings:
+// harmonic tables by the default solver, as rheo diagnose runs them (closed forms and
+// event-driven periodic states; fixed steps until 2026-11-29, 5-10x the time), histories by
+// fixed steps.
 #pragma once
 
 #include "runtime/diagnosis/diagnose.hpp"
@@ -78,6 +81,10 @@ inline rheo::runtime::diagnosis::Diagnosis diagnose(const std::string& start, co
   s.fit.score.harmonic = simulation_options();
   s.fit.score.harmonic.steps_per_cycle = 128;
   s.fit.score.harmonic.tolerance = 1e-6;
+  // As rheo diagnose runs (cli/diagnose_command.cpp): harmonic tables by the default solver
+  // (closed forms and event-driven periodic states), fixed steps where histories are fitted.
+  const bool histories = std::any_of(data.begin(), data.end(), [](const rheo::runtime::FitDataSet& d) { return !d.is_harmonic(); });
+  if (!histories) s.fit.score.harmonic.solver = rheo::runtime::SolverChoice::automatic;
   return rheo::runtime::diagnosis::diagnose({"start.rheo", start, "start"}, data, s);
 }
 

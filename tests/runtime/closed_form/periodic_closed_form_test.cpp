@@ -195,3 +195,42 @@ TEST_CASE("two slider-capped fluid columns side by side: the event-driven state 
       CHECK(std::abs(sum.measures.loss - loss) <= 1e-9 * sum.measures.storage);
     }
 }
+
+// A slider's force while stuck follows from positions through springs up to the stiffest, k, so
+// it carries rounding of ~eps k u0. With its guard's tolerance set by fy alone, a slider yielding
+// at 1e-4 N in front of a 7840 N/mm chamber (as a diagnosis's global look samples one) read that
+// rounding as leaving at every check, no mode could hold it, and every point fell back to IDA.
+// Independent paths: the branch carries at most fy, so the thesis stiffness is the spring's
+// within fy/u0 (max F - min F differs by at most 2 fy, reached where it slips at both extremes);
+// and IDA.
+TEST_CASE("a slider yielding far below its chamber's k u0: the event path holds it, within fy/u0 of the spring alone and as IDA") {
+  HarmonicOptions ida;
+  ida.solver = runtime::SolverChoice::sundials;
+  ida.tolerance = 1e-7;
+  for (const double fy : {7.6e-5, 1e-3, 0.2}) {
+    const auto net = test::network_from(fmt::format(R"(
+      model m {{
+        spring s (k = 700 N/mm)
+        series c {{
+          slider cap (fy = {} N)
+          spring chamber (k = 7840 N/mm)
+          parallel column {{ inerter mass (b = 4.6 N*s^2/mm)  dashpot channel (c = 18.9 N*s/mm) }}
+        }}
+      }})",
+                                                    fy),
+                                        "m");
+    for (const double u0 : {0.05, 2.0})
+      for (const double f : {2.0, 20.0}) {
+        CAPTURE(fy);
+        CAPTURE(u0);
+        CAPTURE(f);
+        const auto exact = runtime::try_closed_form_harmonic_point(net, u0, f, HarmonicDefinition::thesis);
+        REQUIRE(exact.has_value());
+        CHECK(std::abs(exact->measures.stiffness - 700.0) <= fy / u0 + 1e-12 * 700.0);  // reached where the slider slips at the extremes
+        const auto stepped = runtime::simulate_harmonic_point(net, u0, f, ida);
+        REQUIRE(stepped.converged);
+        CHECK(std::abs(stepped.measures.stiffness - exact->measures.stiffness) <= 2e-5 * exact->measures.stiffness);
+        CHECK(std::abs(stepped.measures.phase - exact->measures.phase) <= 2e-5);
+      }
+  }
+}
