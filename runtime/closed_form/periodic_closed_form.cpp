@@ -356,7 +356,7 @@ HarmonicPoint closed_form_harmonic_point(const Network& network, double amplitud
   if (auto point = try_closed_form_harmonic_point(network, amplitude, frequency, definition, preload)) return *point;
   throw NumericalError(fmt::format(
       "model '{}': the event-driven periodic state at {:g} mm and {:g} Hz did not settle (a slider or gap "
-      "switching without end, no periodic state within 60 cycles, or a preload on a gap, whose play is fixed in space); use steady_state = time_stepping",
+      "switching without end, no periodic state within 460 cycles, or a preload on a gap, whose play is fixed in space); use steady_state = time_stepping",
       network.model().name, amplitude, frequency));
 }
 

@@ -12,7 +12,10 @@
 namespace rheo::runtime {
 namespace {
 
+// Cycles of the globalised Newton shooting, then of plain cycles (settle_by_cycles) where that
+// did not close; time stepping's default is 400 cycles too.
 constexpr int kMaxCycles = 60;
+constexpr int kMaxSettlingCycles = 400;
 constexpr double kPeriodicTolerance = 1e-11;
 // Newton's iterations on the map of one sequence of switches (Run::replay) between followed
 // cycles: at most, and the residual (scaled, as the shooting's) at which the next followed
@@ -166,20 +169,7 @@ bool PwlPeriodicState::shoot(Run& run, const PwlStart* from) {
     const PwlVector residual = (X_T - X0).cwiseQuotient(scale);
     const double size = residual.cwiseAbs().maxCoeff();
     if (!std::isfinite(size)) return false;
-    if (size <= kPeriodicTolerance) {
-      start_.X0 = X0;
-      start_.mode.assign(system(start_mode).code.begin(), system(start_mode).code.end());
-      run.first_harmonic();
-      if (half_wave_) {
-        // The other half is this one mirrored: its switches half a period later.
-        const std::size_t n_half = switch_phases_.size();
-        for (std::size_t k = 0; k < n_half; ++k) switch_phases_.push_back(switch_phases_[k] + std::numbers::pi);
-        return true;
-      }
-      // The whole period was followed: the force's extrema are searched over all of it
-      // (periodic_closed_form.cpp), so it need not be half-wave symmetric.
-      return true;
-    }
+    if (size <= kPeriodicTolerance) return close(run, X0, start_mode);
     if (expect_closed) {  // it did not close: the same cycle again, with its sensitivities
       expect_closed = false;
       m = start_mode;
@@ -217,6 +207,45 @@ bool PwlPeriodicState::shoot(Run& run, const PwlStart* from) {
       X0 = X_T;
       average_next = half_wave_;
     }
+  }
+  return settle_by_cycles(run, last_end, start_mode, scale, mirror);
+}
+
+bool PwlPeriodicState::close(Run& run, const PwlVector& X0, int start_mode) {
+  start_.X0 = X0;
+  start_.mode.assign(system(start_mode).code.begin(), system(start_mode).code.end());
+  run.first_harmonic();
+  if (half_wave_) {
+    // The other half is this one mirrored: its switches half a period later.
+    const std::size_t n_half = switch_phases_.size();
+    for (std::size_t k = 0; k < n_half; ++k) switch_phases_.push_back(switch_phases_[k] + std::numbers::pi);
+  }
+  // Otherwise the whole period was followed: the force's extrema are searched over all of it
+  // (periodic_closed_form.cpp), so it need not be half-wave symmetric.
+  return true;
+}
+
+bool PwlPeriodicState::settle_by_cycles(Run& run, PwlVector X0, int start_mode, const PwlVector& scale, double mirror) {
+  PwlVector X_T;
+  double last = std::numeric_limits<double>::infinity();
+  for (int k = 0; k < kMaxSettlingCycles; ++k, ++cycles_) {
+    int m = start_mode;
+    if (!run.cycle(m, X0, X_T, nullptr, true)) return false;
+    X_T *= mirror;
+    const double size = (X_T - X0).cwiseQuotient(scale).cwiseAbs().maxCoeff();
+    if (!std::isfinite(size)) return false;
+    if (size <= kPeriodicTolerance) return close(run, X0, start_mode);
+    if (half_wave_) {
+      PwlModeCode mirrored = system(m).code;
+      for (auto& state : mirrored) state = static_cast<std::int8_t>(-state);
+      m = run.mode_index(mirrored);
+      if (m < 0) return false;
+    }
+    start_mode = m;
+    PwlVector next = X_T;
+    if (!(size < last && converge_on_sequence(run, next, scale, mirror, size))) next = X_T;
+    last = size;
+    X0 = next;
   }
   return false;
 }

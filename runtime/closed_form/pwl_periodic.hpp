@@ -60,7 +60,8 @@ class PwlPeriodicState {
   PwlPeriodicState& operator=(const PwlPeriodicState&) = delete;
 
   // False when the event-driven path cannot settle this branch: a mode that would be
-  // indeterminate, more than 10000 switches in a cycle, or no fixed point after 60 cycles. The
+  // indeterminate, more than 10000 switches in a cycle, or no fixed point after 60 cycles of
+  // Newton's shooting and 400 plain cycles after them (settle_by_cycles). The
   // caller then time-steps the point. A solve of the same branch (every edge and value equal)
   // at a drive solved before (up to 2048 drives) restores that result.
   // With FROM (pwl_warm_start.hpp: the start() of a solve of this point with nearby parameters)
@@ -169,6 +170,15 @@ class PwlPeriodicState {
   std::size_t solved_count_ = 0, solved_next_ = 0;
 
   bool shoot(Run& run, const PwlStart* from);
+  // Records the cycle just followed from X0 in START_MODE, which closed on itself, as the
+  // periodic one. True.
+  bool close(Run& run, const PwlVector& X0, int start_mode);
+  // Where the shooting's Newton steps do not settle (a lightly damped column near resonance
+  // behind a weak slider changes its sequence of switches at every step): plain cycles of the
+  // exact map from X0, a state the branch reached, in START_MODE, as time stepping settles, with
+  // Newton on a cycle's sequence of switches (converge_on_sequence) wherever the residual fell.
+  // At most kMaxSettlingCycles; false where they do not close.
+  bool settle_by_cycles(Run& run, PwlVector X0, int start_mode, const PwlVector& scale, double mirror);
   // Newton's method from X0 (the Newton step from the last recorded cycle, whose residual was
   // LAST) on the map of that cycle's sequence of switches (Run::replay) until its residual is
   // at rounding: true with X0 that fixed point, which the next followed cycle confirms where
