@@ -15,6 +15,10 @@ AddedObjective::AddedObjective(const FitResult& fit, const std::vector<FitDataSe
     for (const auto& point : set.prediction.points) k.push_back(std::polar(point.measures.stiffness, point.measures.phase));
     base_k_.push_back(std::move(k));
   }
+  for (const FitDataSet& set : data) {
+    harmonic_terms_.emplace_back();
+    if (set.is_harmonic()) harmonic_terms_.back().emplace(set, score);
+  }
 }
 
 double AddedObjective::operator()(const std::vector<const Signature*>& basis, const std::vector<double>& coefficient) const {
@@ -39,28 +43,18 @@ double AddedObjective::operator()(const std::vector<const Signature*>& basis, co
 // objective: exact in one for the least-squares objective (its residuals are affine in beta),
 // close for phi (eq. 5.38).
 double AddedObjective::harmonic_objective(std::size_t f, const std::vector<const Signature*>& basis, const std::vector<double>& coefficient) const {
-  const FitDataSet& set = data_[f];
-  Prediction& p = scratch_[f];
-  trial_k_.resize(p.points.size());
+  const std::size_t points = base_k_[f].size();
+  trial_k_.resize(points);
   double scale = 0.0;
-  for (std::size_t j = 0; j < p.points.size(); ++j) {
+  for (std::size_t j = 0; j < points; ++j) {
     Complex k = base_k_[f][j];
     for (std::size_t b = 0; b < basis.size(); ++b) k += coefficient[b] * basis[b]->harmonic[f][j];
     trial_k_[j] = k;
     scale = std::max(scale, std::abs(k));
   }
-  auto residuals_at = [&](double beta, std::vector<double>& out) {
-    for (std::size_t j = 0; j < p.points.size(); ++j) {
-      CycleMeasures& m = p.points[j].measures;
-      m.stiffness = std::abs(trial_k_[j] + beta);
-      m.phase = std::arg(trial_k_[j] + beta);
-    }
-    out.clear();
-    append_residuals(set, p, score_, out);
-    double sum = 0.0;
-    for (double r : out) sum += r * r;
-    return sum;
-  };
+  // The terms append_residuals gives for stiffness |K*| and phase arg K*, without the angle.
+  const ComplexResiduals& terms = *harmonic_terms_[f];
+  auto residuals_at = [&](double beta, std::vector<double>& out) { return terms.terms(trial_k_, beta, out); };
   double beta = 0.0, best = residuals_at(0.0, residuals_);
   const double h = 1e-6 * std::max(scale, 1e-300);
   for (int step = 0; step < 2 && std::isfinite(best); ++step) {

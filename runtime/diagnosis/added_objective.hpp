@@ -8,10 +8,12 @@
 // make room for it, as the refit will (refit.hpp, stage 1).
 #pragma once
 
+#include "runtime/fit/complex_residuals.hpp"
 #include "runtime/fit/fit.hpp"
 #include "runtime/fit/fit_scoring.hpp"
 
 #include <complex>
+#include <optional>
 #include <vector>
 
 namespace rheo::runtime::diagnosis {
@@ -41,6 +43,7 @@ class AddedObjective {
   const std::vector<FitDataSet>& data_;
   const ScoreSettings& score_;
   std::vector<std::vector<std::complex<double>>> base_k_;  // per set: K*_m per harmonic point
+  std::vector<std::optional<ComplexResiduals>> harmonic_terms_;  // per set (nothing for histories)
   std::vector<std::vector<double>> base_force_;            // per set: F_m per history sample
   mutable std::vector<Prediction> scratch_;                // per set: the fitted prediction, its measures or force rewritten per call
   mutable std::vector<double> residuals_, moved_;
