@@ -24,8 +24,9 @@ struct Signature {
   std::vector<std::vector<double>> history;                 // per set (empty for harmonic sets): s(t) per sample
 };
 
-// Called thousands of times a screen: the fitted K*_m of every harmonic point is formed once, and
-// each call writes the sums into scratch copies of the fitted predictions (not thread-safe).
+// Called thousands of times a screen: the fitted K*_m of every harmonic point is formed once, each
+// call scores the sums K* directly (complex_residuals.hpp) and writes a history's sum into a
+// scratch copy of its fitted prediction (not thread-safe).
 class AddedObjective {
  public:
   // FIT: the model fitted to DATA (its predictions are read; DATA and SCORE must outlive this).
@@ -42,10 +43,10 @@ class AddedObjective {
 
   const std::vector<FitDataSet>& data_;
   const ScoreSettings& score_;
-  std::vector<std::vector<std::complex<double>>> base_k_;  // per set: K*_m per harmonic point
+  std::vector<std::vector<std::complex<double>>> base_k_;        // per set: K*_m per harmonic point
   std::vector<std::optional<ComplexResiduals>> harmonic_terms_;  // per set (nothing for histories)
-  std::vector<std::vector<double>> base_force_;            // per set: F_m per history sample
-  mutable std::vector<Prediction> scratch_;                // per set: the fitted prediction, its measures or force rewritten per call
+  std::vector<std::vector<double>> base_force_;                  // per set: F_m per history sample
+  mutable std::vector<Prediction> scratch_;                      // per set: the fitted prediction, a history's force rewritten per call
   mutable std::vector<double> residuals_, moved_;
   mutable std::vector<std::complex<double>> trial_k_;  // per harmonic point of the set at hand: K*_m + sum a s
 };

@@ -27,12 +27,12 @@ class ComplexResiduals {
 
  private:
   struct Point {
-    double stiffness_scale = 0.0;  // the point's scale times sqrt(w_K)
-    double damping_scale = 0.0;    // times sqrt(w_d); 0 where the measured phase leaves the term out
-    double signed_measured = 1.0;  // K_exp signed by its storage part [N/mm]
-    double measured_sine = 1.0;    // sin(phase_exp)
-    std::complex<double> measured;  // K_exp e^{i phase_exp} [N/mm]
-    double measured_stiffness = 1.0;
+    double stiffness_scale = 0.0;     // the point's scale times sqrt(w_K)
+    double damping_scale = 0.0;       // times sqrt(w_d); 0 where the measured phase leaves the term out
+    double signed_measured = 1.0;     // K_exp signed by its storage part [N/mm]
+    double measured_sine = 1.0;       // sin(phase_exp)
+    std::complex<double> measured;    // K_exp e^{i phase_exp} [N/mm]
+    double measured_stiffness = 1.0;  // K_exp [N/mm], the least-squares terms' divisor
   };
   bool phi_;
   std::vector<Point> points_;

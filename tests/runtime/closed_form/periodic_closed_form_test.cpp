@@ -227,7 +227,7 @@ TEST_CASE("a slider yielding far below its chamber's k u0: the event path holds 
         const auto exact = runtime::try_closed_form_harmonic_point(net, u0, f, HarmonicDefinition::thesis);
         REQUIRE(exact.has_value());
         CHECK(std::abs(exact->measures.stiffness - 700.0) <= fy / u0 + 1e-12 * 700.0);  // reached where the slider slips at the extremes
-        if (f > 2.0) continue;  // IDA at 2 Hz alone: it costs 10x more at 20 Hz
+        if (f > 2.0) continue;                                                          // IDA at 2 Hz alone: it costs 10x more at 20 Hz
         const auto stepped = runtime::simulate_harmonic_point(net, u0, f, ida);
         REQUIRE(stepped.converged);
         CHECK(std::abs(stepped.measures.stiffness - exact->measures.stiffness) <= 2e-5 * exact->measures.stiffness);
