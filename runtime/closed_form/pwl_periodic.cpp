@@ -208,7 +208,8 @@ bool PwlPeriodicState::shoot(Run& run, const PwlStart* from) {
       average_next = half_wave_;
     }
   }
-  return settle_by_cycles(run, last_end, start_mode, scale, mirror);
+  // A warm start's failure is followed by the cold one (solve), which settles by plain cycles.
+  return from == nullptr && settle_by_cycles(run, last_end, start_mode, scale, mirror);
 }
 
 bool PwlPeriodicState::close(Run& run, const PwlVector& X0, int start_mode) {
@@ -226,11 +227,18 @@ bool PwlPeriodicState::close(Run& run, const PwlVector& X0, int start_mode) {
 }
 
 bool PwlPeriodicState::settle_by_cycles(Run& run, PwlVector X0, int start_mode, const PwlVector& scale, double mirror) {
-  PwlVector X_T;
+  PwlVector X_T, reached = X0;  // the last plain cycle's end, a state the branch reached
+  int reached_mode = start_mode;
   double last = std::numeric_limits<double>::infinity();
   for (int k = 0; k < kMaxSettlingCycles; ++k, ++cycles_) {
     int m = start_mode;
-    if (!run.cycle(m, X0, X_T, nullptr, true)) return false;
+    if (!run.cycle(m, X0, X_T, nullptr, true)) {
+      // A start from Newton on a sequence no mode settles (a slider held beyond its cap): the
+      // plain cycles go on from where the last one ended.
+      if (X0 == reached) return false;
+      X0 = reached, start_mode = reached_mode;
+      continue;
+    }
     X_T *= mirror;
     const double size = (X_T - X0).cwiseQuotient(scale).cwiseAbs().maxCoeff();
     if (!std::isfinite(size)) return false;
@@ -242,6 +250,7 @@ bool PwlPeriodicState::settle_by_cycles(Run& run, PwlVector X0, int start_mode, 
       if (m < 0) return false;
     }
     start_mode = m;
+    reached = X_T, reached_mode = m;
     PwlVector next = X_T;
     if (!(size < last && converge_on_sequence(run, next, scale, mirror, size))) next = X_T;
     last = size;

@@ -176,8 +176,10 @@ class PwlPeriodicState {
   // Where the shooting's Newton steps do not settle (a lightly damped column near resonance
   // behind a weak slider changes its sequence of switches at every step): plain cycles of the
   // exact map from X0, a state the branch reached, in START_MODE, as time stepping settles, with
-  // Newton on a cycle's sequence of switches (converge_on_sequence) wherever the residual fell.
-  // At most kMaxSettlingCycles; false where they do not close.
+  // Newton on a cycle's sequence of switches (converge_on_sequence) wherever the residual fell
+  // (where a cycle from Newton's start fails, from the last plain cycle's end again). At most
+  // kMaxSettlingCycles, for cold solves only (a warm one that fails is solved cold); false
+  // where they do not close.
   bool settle_by_cycles(Run& run, PwlVector X0, int start_mode, const PwlVector& scale, double mirror);
   // Newton's method from X0 (the Newton step from the last recorded cycle, whose residual was
   // LAST) on the map of that cycle's sequence of switches (Run::replay) until its residual is

@@ -19,8 +19,8 @@ log=${1:?$usage}
 seconds=${2:?$usage}
 build=${3:?$usage}
 [ -s "$log" ] || { echo "$log: no test log (run the Release suite first: ctest writes it)" >&2; exit 1; }
-listing=$(ctest --test-dir "$build" --show-only=json-v1) \
-  || { echo "$build: ctest cannot list its tests (configure it first)" >&2; exit 1; }
+listing=$(ctest --test-dir "$build" --show-only=json-v1) && grep -q '"name" : "' <<<"$listing" \
+  || { echo "$build: ctest lists no tests there (configure it first)" >&2; exit 1; }
 # ctest's json-v1 listing writes one key per line, keys sorted: a test's "name" line is followed by
 # its "properties" (or the object's end), a property's "name" line by that property's "value".
 fixture_setups=$(awk '

@@ -21,10 +21,12 @@ block() {  # block I NAME SECONDS: one case's record in ctest's LastTest.log
   block 3 "lang:exactly at the limit" "   5.00"
   block 4 "runtime:a case a little over it [x]" "   5.01"
   block 5 "fixture_build" "  40.00"
+  block 6 'a "quoted" setup \ with a backslash' "  12.00"
   echo "End testing: Nov 29 04:01 UTC"
 } >"$dir/costs"
 # The sanitizer build, as ctest reads it: fixture_build sets up the fixture the second case needs
-# (ctest -E would drop it and fail that case); a setup only by its name's likeness is not one.
+# (ctest -E would drop it and fail that case); a setup only by its name's likeness is not one; a
+# setup's name with quotes and a backslash (escaped in ctest's JSON) is read back as it is.
 mkdir "$dir/build"
 cat >"$dir/build/CTestTestfile.cmake" <<'TESTS'
 add_test([=[runtime:a cheap case]=] "true")
@@ -34,11 +36,13 @@ add_test([=[lang:exactly at the limit]=] "true")
 add_test([=[runtime:a case a little over it [x]]=] "true")
 add_test([=[fixture_build]=] "true")
 set_tests_properties([=[fixture_build]=] PROPERTIES FIXTURES_SETUP "built")
+add_test([=[a "quoted" setup \ with a backslash]=] "true")
+set_tests_properties([=[a "quoted" setup \ with a backslash]=] PROPERTIES FIXTURES_SETUP "other")
 TESTS
 expression=$("$script" "$dir/costs" 5 "$dir/build" 2>"$dir/err") || fail "exit status $? on a valid file"
 expected='^runtime:diagnose, harmonic: a slow case \(#24\) with 1e-9$|^runtime:a case a little over it \[x\]$'
 [ "$expression" = "$expected" ] || fail "expression '$expression', expected '$expected'"
-grep -q "2 of 5 test cases left out" "$dir/err" || fail "summary: $(cat "$dir/err")"
+grep -q "2 of 6 test cases left out" "$dir/err" || fail "summary: $(cat "$dir/err")"
 # The expression, given to grep -E as ctest uses it, matches the slow names and no other.
 names=$(printf '%s\n' "runtime:a cheap case" "runtime:diagnose, harmonic: a slow case (#24) with 1e-9" \
   "lang:exactly at the limit" "runtime:a case a little over it [x]" "runtime:a case a little over it x")
@@ -54,5 +58,7 @@ expression=$("$script" "$dir/costs" 100 "$dir/build" 2>/dev/null) || fail "exit 
 "$script" "$dir/missing" 5 "$dir/build" >/dev/null 2>&1 && fail "a missing log is accepted"
 "$script" "$dir/costs" 5 >/dev/null 2>&1 && fail "no sanitizer build is accepted"
 "$script" "$dir/costs" 5 "$dir/missing" >/dev/null 2>&1 && fail "a build ctest cannot list is accepted"
-[ $failures -eq 0 ] && echo "sanitizer_excludes: 8 checks passed"
+mkdir "$dir/unconfigured"
+"$script" "$dir/costs" 5 "$dir/unconfigured" >/dev/null 2>&1 && fail "a build with no tests is accepted"
+[ $failures -eq 0 ] && echo "sanitizer_excludes: 9 checks passed"
 exit $failures
