@@ -177,12 +177,8 @@ bool PwlPeriodicState::shoot(Run& run, const PwlStart* from) {
       X_T *= mirror;
     }
     J *= mirror;
-    if (half_wave_) {
-      PwlModeCode mirrored = system(m).code;
-      for (auto& state : mirrored) state = static_cast<std::int8_t>(-state);
-      m = run.mode_index(mirrored);
-      if (m < 0) return false;
-    }
+    m = next_start(run, m);
+    if (m < 0) return false;
     start_mode = m;
     if (average_next) {
       // A plain step on the half map is two, X1 = P(X0) and X2 = P(X1), averaged: a slider
@@ -210,6 +206,13 @@ bool PwlPeriodicState::shoot(Run& run, const PwlStart* from) {
   }
   // A warm start's failure is followed by the cold one (solve), which settles by plain cycles.
   return from == nullptr && settle_by_cycles(run, last_end, start_mode, scale, mirror);
+}
+
+int PwlPeriodicState::next_start(Run& run, int end_mode) {
+  if (!half_wave_) return end_mode;
+  PwlModeCode mirrored = system(end_mode).code;
+  for (auto& state : mirrored) state = static_cast<std::int8_t>(-state);
+  return run.mode_index(mirrored);
 }
 
 bool PwlPeriodicState::close(Run& run, const PwlVector& X0, int start_mode) {
@@ -243,12 +246,8 @@ bool PwlPeriodicState::settle_by_cycles(Run& run, PwlVector X0, int start_mode, 
     const double size = (X_T - X0).cwiseQuotient(scale).cwiseAbs().maxCoeff();
     if (!std::isfinite(size)) return false;
     if (size <= kPeriodicTolerance) return close(run, X0, start_mode);
-    if (half_wave_) {
-      PwlModeCode mirrored = system(m).code;
-      for (auto& state : mirrored) state = static_cast<std::int8_t>(-state);
-      m = run.mode_index(mirrored);
-      if (m < 0) return false;
-    }
+    m = next_start(run, m);
+    if (m < 0) return false;
     start_mode = m;
     reached = X_T, reached_mode = m;
     PwlVector next = X_T;

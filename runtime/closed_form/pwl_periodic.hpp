@@ -173,6 +173,9 @@ class PwlPeriodicState {
   // Records the cycle just followed from X0 in START_MODE, which closed on itself, as the
   // periodic one. True.
   bool close(Run& run, const PwlVector& X0, int start_mode);
+  // The mode the next cycle starts in after one ending in END_MODE: that mode, mirrored on the
+  // half map (its sliders' slip reversed). -1 where it cannot be built.
+  int next_start(Run& run, int end_mode);
   // Where the shooting's Newton steps do not settle (a lightly damped column near resonance
   // behind a weak slider changes its sequence of switches at every step): plain cycles of the
   // exact map from X0, a state the branch reached, in START_MODE, as time stepping settles, with
