@@ -4,12 +4,12 @@
 #include "runtime/fit/fit_coordinates.hpp"
 #include "runtime/fit/fit_scoring.hpp"
 #include "runtime/fit/fit_search.hpp"
+#include "runtime/fit/objective.hpp"
 
 #include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <limits>
-#include <numbers>
 
 namespace rheo::runtime::diagnosis {
 
@@ -29,7 +29,7 @@ namespace {
 // The variance of a damping term r_d at the measured phase PHASE under NOISE (criterion.hpp) at
 // amplitude A, frequency F; 0 where eq. 5.1 leaves the term out (phase outside (0, pi)).
 double damping_variance(double phase, const NoiseEstimate& noise, double a, double f) {
-  if (!(phase > 0.0 && phase < std::numbers::pi)) return 0.0;
+  if (!keeps_damping_term(phase)) return 0.0;
   const double s_phi2 = noise.phase * noise.phase * noise.phase_profile.factor(a, f), cot = std::cos(phase) / std::sin(phase);
   return s_phi2 * cot * cot + 0.5 * s_phi2 * s_phi2;
 }

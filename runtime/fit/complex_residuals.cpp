@@ -1,7 +1,7 @@
 #include "runtime/fit/complex_residuals.hpp"
+#include "runtime/fit/objective.hpp"
 
 #include <cmath>
-#include <numbers>
 #include <stdexcept>
 
 namespace rheo::runtime {
@@ -9,17 +9,16 @@ namespace rheo::runtime {
 ComplexResiduals::ComplexResiduals(const FitDataSet& set, const ScoreSettings& score) : phi_(score.objective == FitObjective::phi) {
   if (!set.is_harmonic()) throw std::logic_error("complex residuals need a harmonic data set");
   const HarmonicData& d = set.harmonic();
-  const double scale = std::sqrt(set.weight / (2.0 * static_cast<double>(d.size())));
   points_.resize(d.size());
   for (std::size_t i = 0; i < d.size(); ++i) {
     Point& p = points_[i];
-    const double point_scale = d.weight.empty() ? scale : scale * std::sqrt(d.weight[i]);
+    const double point_scale = harmonic_point_scale(set, i);
     const double phase = d.phase[i];
     if (phi_) {
       p.stiffness_scale = point_scale * std::sqrt(score.stiffness_weight);
-      const bool damped = phase > 0.0 && phase < std::numbers::pi;  // damping_residual's condition
+      const bool damped = keeps_damping_term(phase);
       p.damping_scale = damped ? point_scale * std::sqrt(score.damping_weight) : 0.0;
-      p.signed_measured = std::cos(phase) < 0.0 ? -d.stiffness[i] : d.stiffness[i];
+      p.signed_measured = signed_stiffness(d.stiffness[i], phase);
       p.measured_sine = damped ? std::sin(phase) : 1.0;
     } else {
       p.stiffness_scale = p.damping_scale = point_scale;

@@ -41,7 +41,6 @@ void append_residuals(const FitDataSet& set, const Prediction& prediction, const
     return;
   }
   const HarmonicData& d = set.harmonic();
-  const double scale = std::sqrt(set.weight / (2.0 * static_cast<double>(d.size())));
   // Point i's two terms at first + 2i and first + 2i + 1, the points spread over the threads (a
   // single evaluation's residuals would otherwise run on one thread between its points and the
   // search's next step); each term is computed alike on any thread.
@@ -49,7 +48,7 @@ void append_residuals(const FitDataSet& set, const Prediction& prediction, const
   out.resize(first + 2 * d.size());
   parallel_for(d.size(), settings.harmonic.threads, [&](std::size_t i) {
     const CycleMeasures& m = prediction.points[i].measures;
-    const double point_scale = d.weight.empty() ? scale : scale * std::sqrt(d.weight[i]);
+    const double point_scale = harmonic_point_scale(set, i);
     double* terms = out.data() + first + 2 * i;
     if (settings.objective == FitObjective::phi) {
       terms[0] = point_scale * std::sqrt(settings.stiffness_weight) * stiffness_residual(m.stiffness, m.phase, d.stiffness[i], d.phase[i]);

@@ -25,6 +25,7 @@
 #include "runtime/protocols/harmonic.hpp"
 #include "runtime/fit/thesis_approximation.hpp"
 
+#include <cmath>
 #include <cstdint>
 #include <vector>
 
@@ -40,6 +41,14 @@ struct ScoreSettings {
   FitMethod method = FitMethod::exact;
   HarmonicOptions harmonic;
 };
+
+// Harmonic point I's factor in its set's residual terms: sqrt(set weight / 2 n), times the square
+// root of the point's own weight where the file gives one.
+inline double harmonic_point_scale(const FitDataSet& set, std::size_t i) {
+  const HarmonicData& d = set.harmonic();
+  const double scale = std::sqrt(set.weight / (2.0 * static_cast<double>(d.size())));
+  return d.weight.empty() ? scale : scale * std::sqrt(d.weight[i]);
+}
 
 struct Prediction {
   std::vector<HarmonicPoint> points;  // harmonic file: one per data point, same order

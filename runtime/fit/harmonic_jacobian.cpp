@@ -3,11 +3,11 @@
 #include "runtime/closed_form/closed_form_sensitivity.hpp"
 #include "runtime/core/errors.hpp"
 #include "runtime/core/parallel_for.hpp"
+#include "runtime/fit/objective.hpp"
 #include "runtime/protocols/harmonic.hpp"
 
 #include <algorithm>
 #include <cmath>
-#include <numbers>
 #include <optional>
 #include <stdexcept>
 
@@ -45,21 +45,19 @@ void point_rows(const FitDataSet& set, std::size_t i, const HarmonicSensitivity&
                 Eigen::MatrixXd& jacobian, Eigen::Index row) {
   const HarmonicData& d = set.harmonic();
   const HarmonicDefinition definition = settings.harmonic.definition;
-  const double scale = std::sqrt(set.weight / (2.0 * static_cast<double>(d.size())));
   const auto n = dc_dz.cols();
   const Eigen::Map<const Eigen::VectorXd> f(s.force_amplitude.data(), dc_dz.rows()), k1(s.storage.data(), dc_dz.rows()),
       k2(s.loss.data(), dc_dz.rows());
   const Eigen::VectorXd df = dc_dz.transpose() * f, dk1 = dc_dz.transpose() * k1, dk2 = dc_dz.transpose() * k2;
   const CycleMeasures& m = s.point.measures;
-  const double g = d.weight.empty() ? scale : scale * std::sqrt(d.weight[i]);
+  const double g = harmonic_point_scale(set, i);
   const double measured_k = d.stiffness[i], measured_phase = d.phase[i];
   for (Eigen::Index j = 0; j < n; ++j) {
     const MeasureDerivative dm = measure_derivative(s, definition, df(j), dk1(j), dk2(j));
     if (settings.objective == FitObjective::phi) {
       const double model_sign = std::cos(m.phase) < 0.0 ? -1.0 : 1.0, measured_sign = std::cos(measured_phase) < 0.0 ? -1.0 : 1.0;
       jacobian(row, j) = g * std::sqrt(settings.stiffness_weight) * model_sign * dm.stiffness / (measured_sign * measured_k);
-      const bool damping_term = measured_phase > 0.0 && measured_phase < std::numbers::pi;
-      jacobian(row + 1, j) = damping_term ? g * std::sqrt(settings.damping_weight) * dm.sine / std::sin(measured_phase) : 0.0;
+      jacobian(row + 1, j) = keeps_damping_term(measured_phase) ? g * std::sqrt(settings.damping_weight) * dm.sine / std::sin(measured_phase) : 0.0;
     } else {
       const double sine = std::sin(m.phase), cosine = std::cos(m.phase);
       jacobian(row, j) = g * (dm.stiffness * cosine + m.stiffness * dm.cosine) / measured_k;

@@ -12,11 +12,10 @@
 namespace rheo::runtime {
 
 double damping_residual(double model_phase, double measured_phase) {
-  return measured_phase > 0.0 && measured_phase < std::numbers::pi ? std::sin(model_phase) / std::sin(measured_phase) - 1.0 : 0.0;
+  return keeps_damping_term(measured_phase) ? std::sin(model_phase) / std::sin(measured_phase) - 1.0 : 0.0;
 }
 
 double stiffness_residual(double model_stiffness, double model_phase, double measured_stiffness, double measured_phase) {
-  const auto signed_stiffness = [](double stiffness, double phase) { return std::cos(phase) < 0.0 ? -stiffness : stiffness; };
   return signed_stiffness(model_stiffness, model_phase) / signed_stiffness(measured_stiffness, measured_phase) - 1.0;
 }
 

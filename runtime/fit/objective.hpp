@@ -8,6 +8,8 @@
 #include "runtime/protocols/harmonic.hpp"
 #include "runtime/io/harmonic_data.hpp"
 
+#include <cmath>
+#include <numbers>
 #include <string>
 #include <vector>
 
@@ -18,12 +20,16 @@ namespace rheo::runtime {
 // nearly undamped mass-dominated) point can give (it has no relative error: the quotient changes
 // sign or is infinite).
 double damping_residual(double model_phase, double measured_phase);
+// Whether eq. 5.1 keeps a point's damping term: its measured phase [rad] in (0, pi).
+inline bool keeps_damping_term(double measured_phase) { return measured_phase > 0.0 && measured_phase < std::numbers::pi; }
 
 // Eq. 5.1's relative stiffness error K_th / K_exp - 1 [-], each stiffness [N/mm] signed by its
 // storage part: a point above a resonance (phase [rad] beyond pi/2, where the thesis definition
 // writes 180 deg - asin d) counts as -K. Below every resonance this is eq. 5.1 unchanged; a model
 // on the other side of a resonance than the data scores <= -1, not a match.
 double stiffness_residual(double model_stiffness, double model_phase, double measured_stiffness, double measured_phase);
+// A stiffness [N/mm] signed by its storage part, -K where cos(phase) < 0, as stiffness_residual signs both.
+inline double signed_stiffness(double stiffness, double phase) { return std::cos(phase) < 0.0 ? -stiffness : stiffness; }
 
 // "FILE:ROW: phase ... <= 0 ..." (or >= 180 deg) for each such point of `data`, for the fit's notes.
 std::vector<std::string> damping_left_out(const HarmonicData& data);
