@@ -18,7 +18,6 @@
 
 #include <fmt/format.h>
 
-#include <algorithm>
 
 #include <chrono>
 #include <filesystem>
@@ -93,12 +92,6 @@ std::unique_ptr<Prepared> prepare(const DiagnoseOptions& o) {
   p->settings.fit = p->job.settings;
   if (o.steps_per_cycle > 0) p->settings.fit.score.harmonic.steps_per_cycle = o.steps_per_cycle;
   else if (!p->job.steps_per_cycle_given) p->settings.fit.score.harmonic.steps_per_cycle = 128;
-  // Time histories of candidates that nest sliders and inerters would go to IDA under `auto`,
-  // which restarts at every sample: they keep the fixed-step kernels (one exact step per
-  // sample). Harmonic data alone keep `auto`: the candidates' exact paths (numerics.md).
-  const bool histories = std::any_of(p->job.data.begin(), p->job.data.end(), [](const runtime::FitDataSet& set) { return !set.is_harmonic(); });
-  if (histories && p->settings.fit.score.harmonic.solver == runtime::SolverChoice::automatic)
-    p->settings.fit.score.harmonic.solver = runtime::SolverChoice::fixed;
   for (int i : p->job.free) p->settings.free.push_back(p->job.model->parameters[static_cast<std::size_t>(i)].path);
   p->settings.confirm = o.candidates;
   p->settings.standard_errors = o.report.any();  // the report's parameter table shows them

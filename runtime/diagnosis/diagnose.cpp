@@ -74,6 +74,8 @@ class Diagnoser {
       : source_(source), data_(data), settings_(settings), s_(settings), base_(compile(source, source.text)) {
     s_.fit.score.method = FitMethod::exact;
     s_.fit.statistics = settings.standard_errors;
+    const bool histories = std::any_of(data.begin(), data.end(), [](const FitDataSet& set) { return !set.is_harmonic(); });
+    if (histories && s_.fit.score.harmonic.solver == SolverChoice::automatic) s_.fit.score.harmonic.solver = SolverChoice::fixed;
   }
 
   Diagnosis run() {

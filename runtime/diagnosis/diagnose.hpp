@@ -73,7 +73,11 @@ struct ModelSource {
 };
 
 struct DiagnoseSettings {
-  FitSettings fit;                     // every fit (the method is always exact)
+  // Every fit (the method is always exact). Its solver `auto` diagnoses time histories by fixed
+  // steps: candidates that nest sliders and inerters would go to IDA, which restarts at every
+  // sample, where the fixed-step kernels take one exact step per sample. Harmonic tables alone
+  // keep `auto`: the candidates' closed forms and event-driven periodic states (numerics.md).
+  FitSettings fit;
   std::vector<std::string> free;       // paths of the model's free parameters; empty: every one with bounds
   int confirm = 3;                     // leading effects refitted
   double min_screen_gain = 0.01;       // effects screened below this are not refitted,

@@ -81,10 +81,9 @@ inline rheo::runtime::diagnosis::Diagnosis diagnose(const std::string& start, co
   s.fit.score.harmonic = simulation_options();
   s.fit.score.harmonic.steps_per_cycle = 128;
   s.fit.score.harmonic.tolerance = 1e-6;
-  // As rheo diagnose runs (cli/diagnose_command.cpp): harmonic tables by the default solver
-  // (closed forms and event-driven periodic states), fixed steps where histories are fitted.
-  const bool histories = std::any_of(data.begin(), data.end(), [](const rheo::runtime::FitDataSet& d) { return !d.is_harmonic(); });
-  if (!histories) s.fit.score.harmonic.solver = rheo::runtime::SolverChoice::automatic;
+  // As rheo diagnose runs: the default solver, which diagnose() turns to fixed steps where
+  // histories are fitted (DiagnoseSettings::fit).
+  s.fit.score.harmonic.solver = rheo::runtime::SolverChoice::automatic;
   return rheo::runtime::diagnosis::diagnose({"start.rheo", start, "start"}, data, s);
 }
 
