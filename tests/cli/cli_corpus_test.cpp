@@ -22,6 +22,8 @@
 #include <string>
 #include <vector>
 
+namespace cli_corpus_test {
+
 namespace fs = std::filesystem;
 using rheo::test::run_rheo;
 using namespace std::string_literals;
@@ -236,3 +238,5 @@ TEST_CASE("a data or history file that cannot be read is reported where the .rhe
   const auto given = run_rheo("fit " + fit.string() + " --data " + (scratch() / "absent.csv").string());
   CHECK(given.err.find((scratch() / "absent.csv").string() + ": error: cannot read the file (No such file or directory)") == 0);
 }
+
+}  // namespace cli_corpus_test

@@ -11,6 +11,8 @@
 #include <fstream>
 #include <string>
 
+namespace cli_data_option_test {
+
 using nlohmann::json;
 using rheo::test::run_rheo;
 namespace fs = std::filesystem;
@@ -97,3 +99,5 @@ TEST_CASE("rheo fit: repeated points are averaged with a note in the report, --d
   CHECK(unknown.code == 2);
   CHECK(contains(unknown.err, "duplicates"));
 }
+
+}  // namespace cli_data_option_test

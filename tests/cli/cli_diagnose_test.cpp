@@ -14,6 +14,8 @@
 #include <filesystem>
 #include <fstream>
 
+namespace cli_diagnose_test {
+
 using rheo::test::count;
 using rheo::test::run_rheo;
 namespace fs = std::filesystem;
@@ -153,3 +155,5 @@ TEST_CASE("rheo refine: a load cell's zero no data line states is named offset, 
   const auto j = nlohmann::json::parse(fitted.out);
   CHECK(std::abs(j["data"][0]["force_offset"]["value"].get<double>() - 150.0) < 0.01);
 }
+
+}  // namespace cli_diagnose_test

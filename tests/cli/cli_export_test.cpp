@@ -11,6 +11,8 @@
 #include <string>
 #include <vector>
 
+namespace cli_export_test {
+
 namespace fs = std::filesystem;
 
 namespace {
@@ -99,3 +101,5 @@ TEST_CASE("rheo export: usage errors: FMI versions other than 2 and 3, no output
   CHECK(listing(dir) == std::vector<std::string>{"b.fmu", "two.rheo"});
   fs::remove_all(dir);
 }
+
+}  // namespace cli_export_test

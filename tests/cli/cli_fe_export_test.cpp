@@ -14,6 +14,8 @@
 #include <fstream>
 #include <string>
 
+namespace cli_fe_export_test {
+
 namespace fs = std::filesystem;
 using rheo::test::run_rheo;
 
@@ -158,3 +160,5 @@ TEST_CASE("rheo export: destinations are checked before any work, and a failure 
   CHECK(r.code == 2);
   CHECK(r.err.find("give two specimen geometries") != std::string::npos);
 }
+
+}  // namespace cli_fe_export_test

@@ -26,6 +26,8 @@
 #include <sstream>
 #include <thread>
 
+namespace cli_fit_test {
+
 using namespace rheo;
 using nlohmann::json;
 namespace fs = std::filesystem;
@@ -482,3 +484,5 @@ TEST_CASE("--block N runs only the N-th fit block, so -o can name its output") {
   CHECK(result["method"] == "approximate");
   CHECK(fs::exists(out));
 }
+
+}  // namespace cli_fit_test

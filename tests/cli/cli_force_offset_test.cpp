@@ -18,6 +18,8 @@
 #include <fstream>
 #include <sstream>
 
+namespace cli_force_offset_test {
+
 using namespace rheo;
 using nlohmann::json;
 namespace fs = std::filesystem;
@@ -103,3 +105,5 @@ TEST_CASE("--data with force_offset = free: the fitted file's header says how to
   CHECK(wrong.code == 2);
   CHECK(contains(wrong.err, "force_offset needs a force unit"));
 }
+
+}  // namespace cli_force_offset_test

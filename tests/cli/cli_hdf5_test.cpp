@@ -22,6 +22,8 @@
 #include <tuple>
 #include <vector>
 
+namespace cli_hdf5_test {
+
 namespace fs = std::filesystem;
 namespace h5 = rheo::test::hdf5;
 namespace mat = rheo::test::matlab;
@@ -279,3 +281,5 @@ TEST_CASE("a MATLAB v7.3 file drives a history and is fitted as the same history
   CHECK(old.err.find((dir() / "old.mat").string() + ": error: this is a MATLAB v5/v7 MAT-file (the default of save), which rheo cannot read; "
                                                     "re-save it as v7.3") != std::string::npos);
 }
+
+}  // namespace cli_hdf5_test

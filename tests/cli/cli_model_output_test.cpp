@@ -14,6 +14,8 @@
 #include <string>
 #include <vector>
 
+namespace cli_model_output_test {
+
 namespace fs = std::filesystem;
 using rheo::test::run_rheo;
 
@@ -69,3 +71,5 @@ TEST_CASE("check warns of a data file that does not exist, naming where, and exi
   CHECK(r.code == 0);
   CHECK(r.err.find(fmt::format("{}:3:8: warning: data file 'nowhere/h.csv' does not exist", file.string())) != std::string::npos);
 }
+
+}  // namespace cli_model_output_test

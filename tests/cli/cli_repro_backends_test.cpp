@@ -16,6 +16,8 @@
 #include <utility>
 #include <vector>
 
+namespace cli_repro_backends_test {
+
 namespace fs = std::filesystem;
 using rheo::test::BinaryRun;
 using rheo::test::run_rheo;
@@ -375,3 +377,5 @@ TEST_CASE("repro backends 15: an inerter beside a stiff dashpot rings on coarse 
   REQUIRE(rows.size() == 4);
   for (const auto& row : rows) CHECK(row.back() == 1.0);
 }
+
+}  // namespace cli_repro_backends_test

@@ -9,6 +9,8 @@
 #include <filesystem>
 #include <fstream>
 
+namespace cli_test {
+
 namespace fs = std::filesystem;
 
 namespace {
@@ -200,3 +202,5 @@ TEST_CASE("--version prints the version of project(VERSION) in CMakeLists.txt") 
   CHECK(r.code == 0);
   CHECK(r.output == fmt::format("rheo {}\n", RHEO_PROJECT_VERSION));
 }
+
+}  // namespace cli_test

@@ -13,6 +13,8 @@
 #include <string>
 #include <vector>
 
+namespace docs_cli_test {
+
 namespace {
 
 std::vector<std::string> lines_of(const std::string& text) {
@@ -122,3 +124,5 @@ TEST_CASE("docs/cli.md documents every option of every command's --help") {
     }
   }
 }
+
+}  // namespace docs_cli_test

@@ -15,6 +15,8 @@
 #include <string>
 #include <vector>
 
+namespace docs_outputs_test {
+
 namespace fs = std::filesystem;
 
 namespace {
@@ -65,3 +67,5 @@ TEST_CASE("every file the tutorial's commands and the examples' output lines wri
   CHECK_FALSE(ignored("examples/bushing_d.rheo"));  // the sources are not
   CHECK_FALSE(ignored("docs/tutorial.md"));
 }
+
+}  // namespace docs_outputs_test

@@ -20,6 +20,8 @@
 #include <string>
 #include <vector>
 
+namespace docs_transcripts_test {
+
 namespace fs = std::filesystem;
 using namespace rheo::test::transcripts;
 
@@ -212,3 +214,5 @@ TEST_CASE("docs transcripts: the slow commands of docs/tutorial.md print what it
 TEST_CASE("docs transcripts: the commands of README.md print what it shows") { CHECK(check_transcripts("README.md") >= 3); }
 
 TEST_CASE("docs transcripts: the commands of docs/cli.md print what it shows") { CHECK(check_transcripts("docs/cli.md") >= 4); }
+
+}  // namespace docs_transcripts_test

@@ -11,6 +11,8 @@
 #include <sstream>
 #include <thread>
 
+namespace progress_test {
+
 using rheo::cli::Progress;
 
 TEST_CASE("durations are said in microseconds, milliseconds, seconds, minutes or hours") {
@@ -69,3 +71,5 @@ TEST_CASE("a fit's progress says what its budget allows, and announces it at the
         "rheo: fit m\n"
         "rheo: fit m: 100 evaluations, best objective 0.25 (local), 0 s; the budget allows 30 s more\n");
 }
+
+}  // namespace progress_test

@@ -10,6 +10,8 @@
 #include <cmath>
 #include <fstream>
 
+namespace report_cli_test {
+
 using rheo::test::count;
 using rheo::test::run_rheo;
 
@@ -187,3 +189,5 @@ TEST_CASE("rheo report draws a history protocol from its stream, the page of the
   for (std::size_t at; (at = page.find("rheo report")) != std::string::npos;) page.replace(at, 11, "rheo simulate");
   CHECK(page == rheo::test::read_file((dir / "held.html").string()));
 }
+
+}  // namespace report_cli_test

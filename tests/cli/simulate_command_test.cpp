@@ -16,6 +16,8 @@
 #include <fstream>
 #include <sstream>
 
+namespace simulate_command_test {
+
 namespace fs = std::filesystem;
 using rheo::test::run_rheo;
 
@@ -126,3 +128,5 @@ TEST_CASE("simulate --report on a streamed history draws the page of the history
   CHECK(read(dir() / "longer.html").find("data-figure=\"hysteresis\"") != std::string::npos);
   CHECK(read(dir() / "drawn_out.csv").find("\n14.9999") != std::string::npos);  // the output is whole
 }
+
+}  // namespace simulate_command_test

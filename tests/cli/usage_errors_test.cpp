@@ -8,6 +8,8 @@
 
 #include <string>
 
+namespace usage_errors_test {
+
 using rheo::test::run_rheo;
 
 namespace {
@@ -63,3 +65,5 @@ TEST_CASE("an unknown --protocol names the nearest protocol, one the file lacks 
   check_usage_error(run_rheo("simulate " + example("bushing_d.rheo") + " --protocol step"), "has no step protocol; its protocols are harmonic");
   check_usage_error(run_rheo("simulate " + example("bushing_d.rheo") + " --model bushing_e"), "did you mean");
 }
+
+}  // namespace usage_errors_test

@@ -4,6 +4,8 @@
 
 #include <doctest/doctest.h>
 
+namespace checker_test {
+
 using namespace rheo::lang;
 
 TEST_CASE("check: imported models are checked first and can be instantiated") {
@@ -78,3 +80,5 @@ TEST_CASE("check: a misspelt parameter is reported once, not again as a missing 
   CHECK(errors[0].message.find("unknown parameter 'tua' for maxwell 'm1'; did you mean 'tau'?") != std::string::npos);
   CHECK(errors[1].message.find("unknown parameter 'kk' for spring 's'; did you mean 'k'?") != std::string::npos);
 }
+
+}  // namespace checker_test

@@ -14,6 +14,8 @@
 #include <regex>
 #include <sstream>
 
+namespace corpus_test {
+
 namespace fs = std::filesystem;
 using namespace rheo::lang;
 using namespace std::string_literals;
@@ -153,3 +155,5 @@ TEST_CASE("corpus: generated hostile files report the expected error at the rule
   }
   fs::remove_all(dir);
 }
+
+}  // namespace corpus_test

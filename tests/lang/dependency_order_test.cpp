@@ -4,6 +4,8 @@
 
 #include <vector>
 
+namespace dependency_order_test {
+
 using namespace rheo::lang;
 
 namespace {
@@ -50,3 +52,5 @@ TEST_CASE("visit_in_dependency_order: a chain a million long needs no call stack
   REQUIRE(r.cycles.size() == 1);
   CHECK(r.cycles[0].size() == static_cast<std::size_t>(n));
 }
+
+}  // namespace dependency_order_test

@@ -14,6 +14,8 @@
 #include <sstream>
 #include <string>
 
+namespace docs_language_test {
+
 using namespace rheo::lang;
 
 namespace {
@@ -98,3 +100,5 @@ TEST_CASE("docs/language.md: every standard-library model has a row") {
     CHECK(!row(stdlib, name).empty());
   }
 }
+
+}  // namespace docs_language_test

@@ -17,6 +17,8 @@
 #include <string>
 #include <vector>
 
+namespace docs_samples_test {
+
 using namespace rheo::lang;
 
 namespace {
@@ -110,3 +112,5 @@ TEST_CASE("docs: the inline series and parallel statements of language.md parse 
   }
   CHECK(statements >= 1);  // the gap row's example at least
 }
+
+}  // namespace docs_samples_test

@@ -4,6 +4,8 @@
 
 #include <doctest/doctest.h>
 
+namespace expressions_test {
+
 using namespace rheo::lang;
 
 namespace {
@@ -67,3 +69,5 @@ TEST_CASE("literal_unit: the unit written on a (negated) literal") {
   auto sum = parse_setting_text("e", "x = 3 N/mm + 1 N/mm");
   CHECK(literal_unit(*sum.value.items.at(0)).empty());
 }
+
+}  // namespace expressions_test

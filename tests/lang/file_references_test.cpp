@@ -7,6 +7,8 @@
 
 #include <string>
 
+namespace file_references_test {
+
 using namespace rheo::lang;
 
 namespace {
@@ -51,3 +53,5 @@ TEST_CASE("relocated source: relative names rewritten from the new folder, the r
   CHECK(relocated_source(kSource, "/p/q/a.rheo", "/p/q/sub/b.rheo").find("\"../data/h.csv\"") != std::string::npos);  // one down
   CHECK(relocated_source(kSource, "/p/q/sub/../a.rheo", "/p/b.rheo").find("\"q/data/h.csv\"") != std::string::npos);  // one up, normalised
 }
+
+}  // namespace file_references_test

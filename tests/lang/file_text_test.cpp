@@ -8,6 +8,8 @@
 #include <fstream>
 #include <unistd.h>
 
+namespace file_text_test {
+
 using rheo::lang::read_file_text;
 namespace fs = std::filesystem;
 
@@ -49,3 +51,5 @@ TEST_CASE("read_file_text reads up to its bound and refuses more, naming the bou
   CHECK(endless.failure == "it is larger than 1 MiB, the most rheo reads");
   fs::remove_all(dir);
 }
+
+}  // namespace file_text_test

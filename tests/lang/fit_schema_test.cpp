@@ -5,6 +5,8 @@
 
 #include <doctest/doctest.h>
 
+namespace fit_schema_test {
+
 using namespace rheo::lang;
 
 namespace {
@@ -206,3 +208,5 @@ TEST_CASE("--data takes force_offset like a data line") {
   CHECK(d.force_offset.free);
   CHECK_THROWS_AS(parse_data_option("rig.csv, force_offset = 3 s"), CompileError);
 }
+
+}  // namespace fit_schema_test

@@ -8,6 +8,8 @@
 #include <cmath>
 #include <stdexcept>
 
+namespace fitted_source_test {
+
 using namespace rheo::lang;
 
 namespace {
@@ -188,3 +190,5 @@ TEST_CASE("write_fitted_source: one-sided yield forces, a gap's center and poly_
   const Program again = compile_source("rig.rheo", written);
   CHECK(again.find_model("rig")->parameters[static_cast<std::size_t>(changed[1])].value == doctest::Approx(21000.0));
 }
+
+}  // namespace fitted_source_test

@@ -7,6 +7,8 @@
 #include <cmath>
 #include <string_view>
 
+namespace frontend_test {
+
 using namespace rheo::lang;
 
 namespace {
@@ -175,3 +177,5 @@ TEST_CASE("compile_source: 10 MB files check in time and memory proportional to 
   CHECK(errors.size() > 300000);
   CHECK(formatted < 600 * errors.size());
 }
+
+}  // namespace frontend_test

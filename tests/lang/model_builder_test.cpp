@@ -2,6 +2,8 @@
 
 #include <doctest/doctest.h>
 
+namespace model_builder_test {
+
 using namespace rheo::lang;
 
 namespace {
@@ -129,3 +131,5 @@ TEST_CASE("build_model: a chain of 100,000 parameter references resolves, a cycl
     CHECK(e.diagnostics()[0].message.find("-> p100000 -> p0; a parameter cannot depend on itself") != std::string::npos);
   }
 }
+
+}  // namespace model_builder_test

@@ -4,6 +4,8 @@
 
 #include <cmath>
 
+namespace model_test {
+
 using namespace rheo::lang;
 using Op = Expression::Op;
 
@@ -26,3 +28,5 @@ TEST_CASE("Program::find_model looks up by name") {
   CHECK(prog.find_model("a") == &prog.models[0]);
   CHECK(prog.find_model("b") == nullptr);
 }
+
+}  // namespace model_test

@@ -3,6 +3,8 @@
 #include <doctest/doctest.h>
 #include <fmt/format.h>
 
+namespace names_test {
+
 using namespace rheo::lang;
 
 TEST_CASE("closest suggests only plausible names") {
@@ -37,3 +39,5 @@ TEST_CASE("with_article and show_value word dimensions and values") {
   CHECK(show_value(0.004335, dim::time, "ms") == "4.335 ms");
   CHECK(show_value(2.0, dim::damping, "") == "2 N*s/mm");
 }
+
+}  // namespace names_test

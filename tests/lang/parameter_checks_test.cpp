@@ -4,6 +4,8 @@
 
 #include <doctest/doctest.h>
 
+namespace parameter_checks_test {
+
 using namespace rheo::lang;
 
 TEST_CASE("describe_parameter: element parameters by owner, model parameters by name") {
@@ -35,3 +37,5 @@ TEST_CASE("check_bounds: plain bounds take the value's unit, the parameter becom
   REQUIRE(errors.size() == 1);
   CHECK(errors[0].message == "parameter 'k0' = 100 um lies outside its bounds [1 um, 10 um]");
 }
+
+}  // namespace parameter_checks_test

@@ -5,6 +5,8 @@
 #include <doctest/doctest.h>
 #include <fmt/format.h>
 
+namespace parser_test {
+
 using namespace rheo::lang;
 
 namespace {
@@ -235,3 +237,5 @@ TEST_CASE("parse: a word after a number that is no unit is named as such, a miss
   // After a known unit the word is no unit's fault either.
   CHECK(parse_error("model m {\n  spring s (k = 1 N/mm extra)\n}\n").find("is not a unit") == std::string::npos);
 }
+
+}  // namespace parser_test

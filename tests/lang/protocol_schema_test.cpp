@@ -4,6 +4,8 @@
 
 #include <doctest/doctest.h>
 
+namespace protocol_schema_test {
+
 using namespace rheo::lang;
 
 namespace {
@@ -87,3 +89,5 @@ TEST_CASE("a history's columns: time and displacement by name or HDF5 path, deco
   CHECK_FALSE(check(ProtocolKind::harmonic, "columns = \"time = t\"", errors));  // histories only
   CHECK(errors.size() == 1);
 }
+
+}  // namespace protocol_schema_test

@@ -8,6 +8,8 @@
 
 #include <variant>
 
+namespace protocol_settings_test {
+
 using namespace rheo::lang;
 
 namespace {
@@ -109,3 +111,5 @@ TEST_CASE("an override replaces the written setting and the settings are decoded
   CHECK(std::get<StepSettings>(p.settings).rise == doctest::Approx(0.001).scale(0.0));
   CHECK(p.written.size() == 3);
 }
+
+}  // namespace protocol_settings_test

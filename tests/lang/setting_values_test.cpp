@@ -4,6 +4,8 @@
 
 #include <doctest/doctest.h>
 
+namespace setting_values_test {
+
 using namespace rheo::lang;
 
 namespace {
@@ -46,3 +48,5 @@ TEST_CASE("check_setting_value: parameter paths, one or a list") {
   CHECK(errors[0].message == "free takes a list of parameter paths, e.g. `free = [m1.k, m1.tau]`");
   CHECK(errors[2].where.column == 17);  // a binary expression is located at its operator
 }
+
+}  // namespace setting_values_test

@@ -6,6 +6,8 @@
 
 #include <stdexcept>
 
+namespace source_edit_test {
+
 using namespace rheo::lang;
 
 namespace {
@@ -82,3 +84,5 @@ TEST_CASE("source_edit: text that is not the model's source is refused") {
   CHECK_THROWS_AS(model_body_close("model a { spring s (k = 1)", *p.find_model("a")), std::logic_error);
   CHECK(line_indent("x\n   y", 4) == "   ");
 }
+
+}  // namespace source_edit_test

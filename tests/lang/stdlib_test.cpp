@@ -4,6 +4,8 @@
 
 #include <doctest/doctest.h>
 
+namespace stdlib_test {
+
 using namespace rheo::lang;
 
 TEST_CASE("stdlib: the documented modules are embedded") {
@@ -109,3 +111,5 @@ TEST_CASE("stdlib: hydromount is a rubber spring beside a slider, a spring and t
   CHECK(kinds(ufluid.children[1]) == std::vector<K>{K::inerter, K::dashpot, K::spring});
   CHECK(value(*w, "h.fluid.y.column.b") == doctest::Approx(0.020).scale(0.0));  // the override reaches the inerter
 }
+
+}  // namespace stdlib_test

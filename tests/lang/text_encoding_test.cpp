@@ -4,6 +4,8 @@
 
 #include <string>
 
+namespace text_encoding_test {
+
 using namespace rheo::lang;
 using namespace std::string_literals;
 
@@ -54,3 +56,5 @@ TEST_CASE("position_of: 1-based line and byte column") {
   CHECK(position_of("ab\ncd", 4).column == 2);
   CHECK(position_of("é\nx\xff", 4).column == 2);
 }
+
+}  // namespace text_encoding_test

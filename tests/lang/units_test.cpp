@@ -2,6 +2,8 @@
 
 #include <doctest/doctest.h>
 
+namespace units_test {
+
 using namespace rheo::lang;
 
 TEST_CASE("parse_unit: compound units and scales") {
@@ -74,3 +76,5 @@ TEST_CASE("a unit written with the micro sign is spelt with u, the way rheo read
                              "furlong")
             .empty());  // no unit either way
 }
+
+}  // namespace units_test

@@ -17,6 +17,8 @@
 #include <cmath>
 #include <string>
 
+namespace diagnosis_asymmetry_backlash_test {
+
 using namespace rheo;
 namespace dx = runtime::diagnosis;
 using test::diagnose;
@@ -124,3 +126,5 @@ TEST_CASE("diagnose: a start model whose fitted play ends centred beyond half it
   const double center = fitted.parameter(dx::parameter_index(fitted.model(), "b.g.center"));
   CHECK(std::abs(center) <= width / 2.0);
 }
+
+}  // namespace diagnosis_asymmetry_backlash_test

@@ -18,6 +18,8 @@
 #include <numbers>
 #include <random>
 
+namespace diagnosis_hidden_effects_test {
+
 using namespace rheo;
 namespace dx = runtime::diagnosis;
 using test::diagnose;
@@ -315,3 +317,5 @@ TEST_CASE("diagnose, static loops the model already explains give none") {
   const runtime::Drive drive = runtime::static_triangle({3.0, 1.0, 0.3}, 0.05, 1, 400);
   require_none(diagnose(start, {history_measurement(truth, drive, 12)}));
 }
+
+}  // namespace diagnosis_hidden_effects_test

@@ -19,6 +19,8 @@
 #include <optional>
 #include <random>
 
+namespace diagnosis_rig_file_test {
+
 using namespace rheo;
 namespace dx = runtime::diagnosis;
 
@@ -152,3 +154,5 @@ TEST_CASE("diagnose, the rig file's programme through other values: play and one
   CHECK(parameter(d, "backlash.f.fy_neg") == doctest::Approx(12000.0).epsilon(0.01));
   CHECK(d.refined_text.find("series backlash") != std::string::npos);
 }
+
+}  // namespace diagnosis_rig_file_test

@@ -22,6 +22,8 @@
 #include <map>
 #include <numbers>
 
+namespace diagnosis_sweep_test {
+
 using namespace rheo;
 namespace dx = runtime::diagnosis;
 namespace gen = test::generated;
@@ -208,3 +210,5 @@ TEST_CASE("diagnose noise estimate over pure-noise draws of the 6 x 6 grid (RHEO
   std::cout << fmt::format("floor est/true: geometric mean {:.3f}, mean |ln| {:.3f}, worst {:.3f}\n", std::exp(sum_log / seeds),
                            sum_abs_log / seeds, worst);
 }
+
+}  // namespace diagnosis_sweep_test

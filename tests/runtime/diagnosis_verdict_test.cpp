@@ -16,6 +16,8 @@
 #include <cmath>
 #include <numbers>
 
+namespace diagnosis_verdict_test {
+
 using namespace rheo;
 namespace dx = runtime::diagnosis;
 using test::diagnose;
@@ -188,3 +190,5 @@ TEST_CASE("diagnose verdict, harmonic: the noise is estimated where the likeliho
     CHECK(d.verdict == dx::Verdict::none);
   }
 }
+
+}  // namespace diagnosis_verdict_test

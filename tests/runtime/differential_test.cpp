@@ -30,6 +30,8 @@
 #include <ctime>
 #include <numbers>
 
+namespace differential_test {
+
 using namespace rheo;
 
 namespace {
@@ -314,3 +316,5 @@ TEST_CASE("differential: the generator is deterministic and covers every element
     CHECK(text.find(kind) != std::string::npos);
   }
 }
+
+}  // namespace differential_test

@@ -21,6 +21,8 @@
 #include <tuple>
 #include <vector>
 
+namespace examples_fit_test {
+
 using namespace rheo;
 using namespace rheo::test::examples;
 
@@ -346,3 +348,5 @@ TEST_CASE("examples/friction_damper_refine.rheo: refine names backlash, then asy
   CHECK(after < 1.4 * 60.0 / largest);  // 60 N of noise in the file
   CHECK(rheo_run(fmt::format("check {} > /dev/null", refined.string())) == 0);
 }
+
+}  // namespace examples_fit_test

@@ -23,6 +23,8 @@
 #include <string>
 #include <vector>
 
+namespace examples_test {
+
 using namespace rheo;
 using namespace rheo::test::examples;
 
@@ -188,3 +190,5 @@ TEST_CASE("every example is run by a test: a new one fails here until it is") {
                      "specimen_b_fit.rheo",  "specimen_c.rheo",          "specimen_c_fit.rheo",       "specimen_d.rheo",
                      "specimen_d_fit.rheo",  "specimen_d_fit_all.rheo",  "specimen_d_methods.rheo",   "trios_amplitude_sweep_fit.rheo"});
 }
+
+}  // namespace examples_test

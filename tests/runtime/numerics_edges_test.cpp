@@ -17,6 +17,8 @@
 #include <complex>
 #include <numbers>
 
+namespace numerics_edges_test {
+
 using namespace rheo;
 
 namespace {
@@ -207,3 +209,5 @@ TEST_CASE("a fit with a fixed seed repeats bit for bit, on one thread, two or th
     CHECK(c.statistics.standard_error == a.statistics.standard_error);
   }
 }
+
+}  // namespace numerics_edges_test

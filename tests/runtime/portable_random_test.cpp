@@ -15,6 +15,8 @@
 #include <string>
 #include <vector>
 
+namespace portable_random_test {
+
 namespace fs = std::filesystem;
 using namespace rheo;
 
@@ -81,3 +83,5 @@ TEST_CASE("no source, benchmark or test draws through a std::*_distribution or s
   CAPTURE(fmt::format("{}", fmt::join(found, ", ")));
   CHECK(found.empty());
 }
+
+}  // namespace portable_random_test

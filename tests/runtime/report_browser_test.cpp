@@ -20,6 +20,8 @@
 #include <map>
 #include <set>
 
+namespace report_browser_test {
+
 namespace fs = std::filesystem;
 using rheo::test::count;
 
@@ -188,3 +190,5 @@ TEST_CASE("report in a browser: a diagnosis report draws the model before dashed
   CHECK(fs::exists(screenshot));
   MESSAGE(fmt::format("screenshot of the rendered diagnosis report: {}", screenshot.string()));
 }
+
+}  // namespace report_browser_test

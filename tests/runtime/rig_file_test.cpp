@@ -11,6 +11,8 @@
 #include <cstdlib>
 #include <fstream>
 
+namespace rig_file_test {
+
 using namespace rheo;
 
 TEST_CASE("examples/data/friction_damper_rig.csv is what its generator writes, within the last digit") {
@@ -31,3 +33,5 @@ TEST_CASE("examples/data/friction_damper_rig.csv is what its generator writes, w
         break;
       }
 }
+
+}  // namespace rig_file_test

@@ -15,6 +15,8 @@
 #include <complex>
 #include <functional>
 
+namespace stdlib_models_test {
+
 using namespace rheo;
 
 namespace {
@@ -246,3 +248,5 @@ TEST_CASE("every stdlib model is covered above") {
                                           "kelvin_voigt", "maxwell2", "maxwell3", "nonlinear_series_friction_maxwell", "nonlinear_viscoplastic",
                                           "series_friction_maxwell", "viscoplastic", "zener"});
 }
+
+}  // namespace stdlib_models_test

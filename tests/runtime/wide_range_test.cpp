@@ -27,6 +27,8 @@
 #include <string>
 #include <vector>
 
+namespace wide_range_test {
+
 using namespace rheo;
 
 namespace {
@@ -202,3 +204,5 @@ TEST_CASE("the reader takes a master curve from 1e-20 to 1e20 Hz and a fit recov
     CHECK(result.network.parameter(test::parameter_index(start, fmt::format("m{}.k", i))) == doctest::Approx(arm_k(i)).epsilon(1e-6));
   }
 }
+
+}  // namespace wide_range_test

@@ -13,6 +13,8 @@
 #include <cmath>
 #include <numbers>
 
+namespace closed_form_sensitivity_test {
+
 using namespace rheo;
 
 namespace {
@@ -104,3 +106,5 @@ TEST_CASE("measure derivatives follow measures_from under both definitions") {
     CHECK(d.cosine == doctest::Approx((std::cos(plus.phase) - std::cos(minus.phase)) / (2.0 * h)).epsilon(1e-8).scale(1.0));
   }
 }
+
+}  // namespace closed_form_sensitivity_test

@@ -15,6 +15,8 @@
 #include <cmath>
 #include <numbers>
 
+namespace periodic_closed_form_asymmetric_test {
+
 using namespace rheo;
 using runtime::HarmonicDefinition;
 using runtime::HarmonicOptions;
@@ -141,3 +143,5 @@ TEST_CASE("nested one-sided caps and off-centre gaps take the event path over th
   const auto o = runtime::closed_form_harmonic_point(offset, 0.25, 5.0, HarmonicDefinition::thesis);
   CHECK(test::relative_error(o.measures.stiffness, c.measures.stiffness) > 0.05);
 }
+
+}  // namespace periodic_closed_form_asymmetric_test

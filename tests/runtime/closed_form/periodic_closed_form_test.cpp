@@ -15,6 +15,8 @@
 #include <stdexcept>
 #include <type_traits>
 
+namespace periodic_closed_form_test {
+
 using namespace rheo;
 using runtime::HarmonicDefinition;
 using runtime::HarmonicOptions;
@@ -271,3 +273,5 @@ TEST_CASE("a lightly damped column near resonance behind a weak slider: the even
   }
   CHECK(settled_by_cycles == 1);  // the case the plain cycles are for is among these points
 }
+
+}  // namespace periodic_closed_form_test

@@ -7,6 +7,8 @@
 
 #include <doctest/doctest.h>
 
+namespace phasor_test {
+
 using namespace rheo;
 
 TEST_CASE("phasor composition: series spring + Kelvin-Voigt block (standard linear solid)") {
@@ -85,3 +87,5 @@ TEST_CASE("phasor composition: an inerter is K* = -b w^2, in parallel and in ser
   CHECK_FALSE(k_star("model i { series { gap g (width = 1 mm) spring s (k = 1) } }", 30.0));
   CHECK_FALSE(k_star("model i { bouc_wen w (k = 1, n = 1, fy = 1) }", 30.0));
 }
+
+}  // namespace phasor_test

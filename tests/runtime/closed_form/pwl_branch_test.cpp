@@ -8,6 +8,8 @@
 
 #include <string>
 
+namespace pwl_branch_test {
+
 using namespace rheo;
 
 TEST_CASE("a friction element behind a spring: three nodes' worth of edges, one switch") {
@@ -42,3 +44,5 @@ TEST_CASE("branches the event path does not take") {
   CHECK_FALSE(runtime::PwlBranch::build(big, big.topology().subtrees[0], branch));
   CHECK_FALSE(runtime::has_closed_form_periodic_state(big));
 }
+
+}  // namespace pwl_branch_test

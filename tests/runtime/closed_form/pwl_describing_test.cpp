@@ -14,6 +14,8 @@
 #include <numbers>
 #include <string>
 
+namespace pwl_describing_test {
+
 using namespace rheo;
 
 namespace {
@@ -121,3 +123,5 @@ TEST_CASE("the describing start reaches the periodic states a start from rest re
   const double arm_cycles = check_grid(arm, example_grid("coupled_bushing_harmonic.csv"));
   MESSAGE("slider and Maxwell arm: " << arm_cycles << " cycles a point");
 }
+
+}  // namespace pwl_describing_test

@@ -10,6 +10,8 @@
 
 #include <cmath>
 
+namespace pwl_fixed_point_test {
+
 using namespace rheo;
 
 namespace {
@@ -67,3 +69,5 @@ TEST_CASE("least_norm_fixed_point takes the least-norm step where J has an eigen
     CHECK((Eigen::VectorXd(X) - expected).cwiseAbs().maxCoeff() <= 1e-10 * (1.0 + expected.cwiseAbs().maxCoeff()));
   }
 }
+
+}  // namespace pwl_fixed_point_test

@@ -14,6 +14,8 @@
 #include <complex>
 #include <numbers>
 
+namespace pwl_flow_test {
+
 using namespace rheo;
 
 namespace {
@@ -112,3 +114,5 @@ TEST_CASE("the modal flow equals the matrix exponential for an undamped mass dri
   REQUIRE(s.modal);
   check_flow(s);
 }
+
+}  // namespace pwl_flow_test

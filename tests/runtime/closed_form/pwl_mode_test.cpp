@@ -13,6 +13,8 @@
 #include <string>
 #include <vector>
 
+namespace pwl_mode_test {
+
 using namespace rheo;
 
 namespace {
@@ -107,3 +109,5 @@ TEST_CASE("a mode built from another frequency's kept structure equals one built
   }
   CHECK(built >= 10);
 }
+
+}  // namespace pwl_mode_test

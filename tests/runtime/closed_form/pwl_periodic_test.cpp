@@ -16,6 +16,8 @@
 #include <utility>
 #include <vector>
 
+namespace pwl_periodic_test {
+
 using namespace rheo;
 using runtime::HarmonicDefinition;
 
@@ -433,3 +435,5 @@ TEST_CASE("a branch with other values refills the storage of the last branch's m
     }
   }
 }
+
+}  // namespace pwl_periodic_test

@@ -14,6 +14,8 @@
 #include <numbers>
 #include <string>
 
+namespace pwl_replay_test {
+
 using namespace rheo;
 
 namespace {
@@ -76,3 +78,5 @@ TEST_CASE("a slider before a Maxwell arm: the plain shooting's periodic states, 
   MESSAGE("slider and Maxwell arm: " << cycles.replayed << " cycles a point, plain " << cycles.plain);
   CHECK(cycles.replayed <= cycles.plain);
 }
+
+}  // namespace pwl_replay_test

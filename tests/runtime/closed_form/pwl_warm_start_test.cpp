@@ -15,6 +15,8 @@
 #include <string>
 #include <vector>
 
+namespace pwl_warm_start_test {
+
 using namespace rheo;
 
 namespace {
@@ -145,3 +147,5 @@ TEST_CASE("warm starts: records found by point and subtree once sealed, storage 
   CHECK(states.size() == 0);
   CHECK(states.find(2.0, 10.0, 0) == nullptr);
 }
+
+}  // namespace pwl_warm_start_test

@@ -6,6 +6,8 @@
 #include <numbers>
 #include <vector>
 
+namespace cycle_measures_test {
+
 using namespace rheo::runtime;
 
 TEST_CASE("an ellipse: F^ = K u0, U = pi F^ u0 sin(delta), both definitions agree") {
@@ -63,3 +65,5 @@ TEST_CASE("above a resonance (K'_1 < 0) the thesis phase lies beyond 90 deg, as 
   CHECK(measures_from(2.0, -5.0, 0.0, 0.4, HarmonicDefinition::thesis).phase == doctest::Approx(std::numbers::pi));
   CHECK(measures_from(2.0, 5.0, 0.0, 0.4, HarmonicDefinition::thesis).phase == doctest::Approx(0.0));
 }
+
+}  // namespace cycle_measures_test

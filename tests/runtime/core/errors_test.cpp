@@ -15,6 +15,8 @@
 #include <string>
 #include <type_traits>
 
+namespace errors_test {
+
 using namespace rheo;
 
 namespace {
@@ -99,3 +101,5 @@ TEST_CASE("fitted values that put a springpot's f_low above its f_high are a mod
   CHECK_THROWS_WITH_AS(net.with_parameters(values), doctest::Contains("give f_low and f_high bounds that do not overlap"), ModelError);
   CHECK_THROWS_WITH_AS(net.with_parameters(values), doctest::Contains("test.rheo:2:"), ModelError);
 }
+
+}  // namespace errors_test

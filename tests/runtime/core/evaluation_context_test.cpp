@@ -7,6 +7,8 @@
 #include <cstdint>
 #include <thread>
 
+namespace evaluation_context_test {
+
 using namespace rheo;
 
 TEST_CASE("an evaluation scope sets this thread's context and restores the one before, nested or not") {
@@ -30,3 +32,5 @@ TEST_CASE("an evaluation scope sets this thread's context and restores the one b
   }
   CHECK(runtime::evaluation_context().record == nullptr);
 }
+
+}  // namespace evaluation_context_test

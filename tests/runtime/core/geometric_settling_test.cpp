@@ -8,6 +8,8 @@
 #include <cmath>
 #include <vector>
 
+namespace geometric_settling_test {
+
 using rheo::runtime::ComponentSettling;
 using rheo::runtime::steady_contraction;
 
@@ -49,3 +51,5 @@ TEST_CASE("component settling: a change that flips sign, speeds up or slows down
   const std::vector<std::vector<double>> states = {{0.0, 0.0, 0.0}, {1.0, 1.0, 1.0}, {0.2, 1.5, 2.0}, {0.84, 1.95, 3.0}};
   for (const auto& s : states) CHECK_FALSE(settling.record(s, target));
 }
+
+}  // namespace geometric_settling_test

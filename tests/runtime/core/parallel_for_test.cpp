@@ -14,6 +14,8 @@
 #include <thread>
 #include <vector>
 
+namespace parallel_for_test {
+
 using namespace rheo;
 
 TEST_CASE("parallel_for calls the body once per item on any number of threads") {
@@ -97,3 +99,5 @@ TEST_CASE("a harmonic grid is the same bit for bit on one thread and on several"
     CHECK(b[i].cycles == a[i].cycles);
   }
 }
+
+}  // namespace parallel_for_test

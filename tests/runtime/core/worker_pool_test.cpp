@@ -13,6 +13,8 @@
 #include <thread>
 #include <vector>
 
+namespace worker_pool_test {
+
 using namespace rheo;
 
 // The caller's call waits (up to 10 s) until every helper asked for has joined, so that each
@@ -96,3 +98,5 @@ TEST_CASE("a parallel_for inside an item, or beside another caller's, runs and f
   CHECK(sums[0] == 200L * 4950);
   CHECK(sums[1] == 200L * 4950);
 }
+
+}  // namespace worker_pool_test

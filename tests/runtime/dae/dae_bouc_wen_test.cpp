@@ -9,6 +9,8 @@
 
 #include <utility>
 
+namespace dae_bouc_wen_test {
+
 using namespace rheo;
 
 // On the two-tone drive (1 ms samples) IDA's corrector failed at every step size 0.1 us after the
@@ -65,3 +67,5 @@ spring (k = 203.104 N/mm)
   CHECK(point.gap.stiffness < 1e-4);
   CHECK(point.gap.damping < 1e-4);
 }
+
+}  // namespace dae_bouc_wen_test

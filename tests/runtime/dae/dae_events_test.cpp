@@ -6,6 +6,8 @@
 
 #include <doctest/doctest.h>
 
+namespace dae_events_test {
+
 using namespace rheo;
 
 // Differential seed 41, model 71: the friction element's slider and the 9.49 N slider beside the
@@ -105,3 +107,5 @@ springpot (k = 5.8134 N/mm, alpha = 0.857213, tau = 35.7898 ms, f_low = 1 Hz, f_
   CHECK(statistics.events < 100);
   CHECK(gap < 1e-4);
 }
+
+}  // namespace dae_events_test

@@ -6,6 +6,8 @@
 
 #include <doctest/doctest.h>
 
+namespace dae_graph_test {
+
 using namespace rheo;
 using runtime::EdgeKind;
 
@@ -83,3 +85,5 @@ TEST_CASE("refused: a nested bouc_wen in a network with sliders or gaps, not a b
   CHECK_NOTHROW(runtime::DaeGraph::build(
       test::network_from("model m { series c { bouc_wen b (k = 100 N/mm, n = 2, fy = 1 N)\n spring k (k = 50 N/mm) } }", "m")));
 }
+
+}  // namespace dae_graph_test

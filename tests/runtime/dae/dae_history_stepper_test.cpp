@@ -15,6 +15,8 @@
 #include <cstring>
 #include <optional>
 
+namespace dae_history_stepper_test {
+
 using namespace rheo;
 
 namespace {
@@ -122,3 +124,5 @@ TEST_CASE("DaeHistoryScales sample by sample are those of the whole drive") {
   for (double u : drive.displacement) reach = std::max(reach, std::abs(u));
   CHECK(of.reach == reach);
 }
+
+}  // namespace dae_history_stepper_test

@@ -15,6 +15,8 @@
 #include <functional>
 #include <numbers>
 
+namespace dae_initial_rates_test {
+
 using namespace rheo;
 
 namespace {
@@ -137,3 +139,5 @@ TEST_CASE("a quadratic dashpot and a dashpot behind a gap that closes at a const
     else CHECK(h.force[j] == doctest::Approx(c * (v - v1)).epsilon(1e-6));
   }
 }
+
+}  // namespace dae_initial_rates_test

@@ -14,6 +14,8 @@
 
 #include <complex>
 
+namespace dae_integrator_test {
+
 using namespace rheo;
 
 namespace {
@@ -327,3 +329,5 @@ slider (fy = 2.05364 N)
 quadratic_dashpot (cq = 0.0626288 N*s^2/mm^2)
 })") < 1e-5);
 }
+
+}  // namespace dae_integrator_test

@@ -12,6 +12,8 @@
 #include <complex>
 #include <numbers>
 
+namespace dae_linear_start_test {
+
 using namespace rheo;
 using runtime::EdgeKind;
 
@@ -103,3 +105,5 @@ TEST_CASE("IDA harmonic point of an undamped mass behind a stuck slider (issue 2
   CHECK(point.measures.stiffness == doctest::Approx(reference.measures.stiffness).epsilon(1e-5));
   CHECK(point.measures.phase == doctest::Approx(reference.measures.phase).epsilon(1e-4));
 }
+
+}  // namespace dae_linear_start_test

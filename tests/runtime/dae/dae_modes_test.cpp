@@ -6,6 +6,8 @@
 
 #include <doctest/doctest.h>
 
+namespace dae_modes_test {
+
 using namespace rheo;
 
 TEST_CASE("two dashpots in parallel share one coordinate") {
@@ -53,3 +55,5 @@ TEST_CASE("an inerter held to the drive by a stuck slider is refused with advice
                        runtime::NumericalError);
   CHECK_NOTHROW(runtime::ModeKinematics::make(graph, {1}));
 }
+
+}  // namespace dae_modes_test

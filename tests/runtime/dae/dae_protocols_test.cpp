@@ -22,6 +22,8 @@
 #include <sstream>
 #include <vector>
 
+namespace dae_protocols_test {
+
 using namespace rheo;
 
 TEST_CASE("examples/hydrobushing.rheo on IDA: the event-driven periodic state, and the reference file to its accuracy") {
@@ -208,3 +210,5 @@ TEST_CASE("IDA harmonic point: a springpot behind a gap settles by the geometric
     CHECK(gap.damping < 1e-4);
   }
 }
+
+}  // namespace dae_protocols_test

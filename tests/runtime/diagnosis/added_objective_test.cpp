@@ -10,6 +10,8 @@
 #include <complex>
 #include <numbers>
 
+namespace added_objective_test {
+
 using namespace rheo;
 namespace dx = runtime::diagnosis;
 using Complex = std::complex<double>;
@@ -141,3 +143,5 @@ TEST_CASE("added objective: under phi the refitted beta reaches the least object
   CHECK(objective({}, {}) == doctest::Approx(least).epsilon(1e-3));
   CHECK(phi_at(t, none, 0.0) > 1.5 * least);
 }
+
+}  // namespace added_objective_test

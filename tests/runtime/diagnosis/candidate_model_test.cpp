@@ -15,6 +15,8 @@
 #include <complex>
 #include <numbers>
 
+namespace candidate_model_test {
+
 using namespace rheo;
 
 TEST_CASE("a refitted gap centre beyond half the width is written at the edge of the play, with the same predictions") {
@@ -115,3 +117,5 @@ TEST_CASE("a refitted fluid column restarts with its walls' spring: the column a
   CHECK(runtime::diagnosis::resolved_resonance(bulged, walled.model(), walled, "c", around_walled).empty());
   CHECK(!runtime::diagnosis::resolved_resonance(bulged, walled.model(), walled, "c", around_column).empty());
 }
+
+}  // namespace candidate_model_test

@@ -11,6 +11,8 @@
 #include <cmath>
 #include <numbers>
 
+namespace criterion_test {
+
 using namespace rheo;
 namespace dx = runtime::diagnosis;
 
@@ -125,3 +127,5 @@ TEST_CASE("diagnose criterion, weighted: reaches_noise judges on chi^2 over N - 
   CHECK_FALSE(dx::reaches_noise({1.02 * 0.003, 1.96 * 395.0, 5}, {1.0 * 0.003, 1.69 * 393.0, 7}, n, terms, true));
   CHECK(dx::residual_ratio({0.003, 1.96 * 395.0, 5}, n, terms, true) == doctest::Approx(1.4).epsilon(1e-12));
 }
+
+}  // namespace criterion_test

@@ -13,6 +13,8 @@
 
 #include <stdexcept>
 
+namespace diagnosis_html_test {
+
 using namespace rheo;
 namespace dx = runtime::diagnosis;
 using test::count;
@@ -102,3 +104,5 @@ TEST_CASE("diagnosis html: none draws the model as fitted, without a baseline, a
   CHECK(html.find("network-before") == std::string::npos);
   CHECK_THROWS_AS(dx::diagnosis_report_content({}, data, kDescription, "rheo diagnose"), std::logic_error);
 }
+
+}  // namespace diagnosis_html_test

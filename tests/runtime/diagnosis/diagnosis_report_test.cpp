@@ -8,6 +8,8 @@
 #include <doctest/doctest.h>
 #include <nlohmann/json.hpp>
 
+namespace diagnosis_report_test {
+
 using namespace rheo;
 namespace dx = rheo::runtime::diagnosis;
 
@@ -56,3 +58,5 @@ TEST_CASE("the diagnosis reports name an added parameter the refit left at its b
   // Each refitted candidate's fitted values.
   CHECK(j.at("evidence").at("candidates").at(0).at("fitted") == "m3.k = 40 N/mm, m3.tau = 9999.93 ms");
 }
+
+}  // namespace diagnosis_report_test

@@ -14,6 +14,8 @@
 #include <string>
 #include <vector>
 
+namespace element_text_test {
+
 using namespace rheo;
 namespace dx = runtime::diagnosis;
 
@@ -123,3 +125,5 @@ TEST_CASE("gapped_element_family: harmonic points about zero see play at -c as a
   CHECK(biases(true, "r") == std::vector<double>{0.0, 0.5});
   CHECK(biases(true, "a") == std::vector<double>{-0.5, 0.0, 0.5});  // one-sided caps
 }
+
+}  // namespace element_text_test

@@ -4,6 +4,8 @@
 
 #include <doctest/doctest.h>
 
+namespace evidence_text_test {
+
 using namespace rheo::runtime::diagnosis;
 
 namespace {
@@ -57,3 +59,5 @@ TEST_CASE("a named effect's reason names the candidates of other effects that fi
   CHECK(for_backlash.front() == &d.candidates[3]);
   CHECK(alike_candidates(d, d.candidates[1], 0.02).empty());
 }
+
+}  // namespace evidence_text_test

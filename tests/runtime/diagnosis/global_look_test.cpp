@@ -11,6 +11,8 @@
 #include <algorithm>
 #include <cmath>
 
+namespace global_look_test {
+
 using namespace rheo;
 namespace dx = runtime::diagnosis;
 
@@ -62,3 +64,5 @@ TEST_CASE("global look: the start first, a gap's centre sampled over both signs,
   CHECK(lowest < -0.8);
   CHECK(highest > 0.8);
 }
+
+}  // namespace global_look_test

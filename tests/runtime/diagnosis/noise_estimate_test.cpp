@@ -11,6 +11,8 @@
 #include <cmath>
 #include <numbers>
 
+namespace noise_estimate_test {
+
 using namespace rheo;
 namespace dx = runtime::diagnosis;
 
@@ -177,3 +179,5 @@ TEST_CASE("noise estimate, history: correlated noise (AR(1), rho 0.5 and 0.8) is
     CHECK(dx::systematic(missed.datasets[0].err, m, 1201, 2));
   }
 }
+
+}  // namespace noise_estimate_test

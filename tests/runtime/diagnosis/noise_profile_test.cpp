@@ -12,6 +12,8 @@
 #include <utility>
 #include <vector>
 
+namespace noise_profile_test {
+
 using namespace rheo;
 namespace dx = runtime::diagnosis;
 
@@ -75,3 +77,5 @@ TEST_CASE("noise profile: noise of one size gives no profile (factor 1) over ten
   const auto [terms, points] = draw(-2.0, 0.0, 4);
   CHECK_FALSE(dx::fit_noise_profile({terms.begin(), terms.begin() + 5}, points).varies);
 }
+
+}  // namespace noise_profile_test

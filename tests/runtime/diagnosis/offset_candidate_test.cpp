@@ -13,6 +13,8 @@
 #include <algorithm>
 #include <cmath>
 
+namespace offset_candidate_test {
+
 using namespace rheo;
 namespace dx = runtime::diagnosis;
 
@@ -128,3 +130,5 @@ TEST_CASE("diagnose, sine history: without an offset, offset is screened and not
   CHECK(std::none_of(free.candidates.begin(), free.candidates.end(),
                      [](const dx::CandidateOutcome& c) { return c.screened.effect == dx::Effect::offset; }));
 }
+
+}  // namespace offset_candidate_test

@@ -6,6 +6,8 @@
 
 #include <cmath>
 
+namespace patterns_test {
+
 using namespace rheo;
 
 namespace {
@@ -100,3 +102,5 @@ TEST_CASE("diagnosis patterns: the interaction's degrees of freedom, (n_a - 1)(n
   const auto l_plus = patterns_of([](std::size_t i, std::size_t j) { return i == 1 || j == 1 || (i == 2 && j == 3); });
   CHECK(l_plus.interaction_dof == 1);
 }
+
+}  // namespace patterns_test

@@ -8,6 +8,8 @@
 
 #include <algorithm>
 
+namespace refit_test {
+
 using namespace rheo;
 
 TEST_CASE("diagnose refits: a local search is Levenberg-Marquardt from one point within its budget, without statistics") {
@@ -90,3 +92,5 @@ TEST_CASE("diagnose refits: a fluid column refitted onto an uncoupled fit that s
   CHECK(refit.err < 1.1 * 6.97e-3);
   CHECK(refit.err > 0.9 * 6.87e-3);  // no better than the polished diagnosis: the noise leaves ~6e-3
 }
+
+}  // namespace refit_test

@@ -8,6 +8,8 @@
 #include <complex>
 #include <numbers>
 
+namespace screen_test {
+
 using namespace rheo;
 namespace dx = runtime::diagnosis;
 
@@ -118,3 +120,5 @@ TEST_CASE("diagnosis screen: a stiff spring behind play that closes only at the 
   CHECK(play->trial.slip * (1.0 - std::abs(play->trial.bias)) > 1.6);
   CHECK(play->trial.slip * (1.0 - std::abs(play->trial.bias)) < 2.0);
 }
+
+}  // namespace screen_test

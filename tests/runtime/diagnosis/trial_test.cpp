@@ -11,6 +11,8 @@
 #include <complex>
 #include <numbers>
 
+namespace trial_test {
+
 using namespace rheo;
 namespace dx = runtime::diagnosis;
 
@@ -124,3 +126,5 @@ TEST_CASE("diagnosis trial: the mass is -k at its reference frequency (closed fo
     CHECK(point.measures.phase == doctest::Approx(std::numbers::pi).epsilon(1e-9));
   }
 }
+
+}  // namespace trial_test

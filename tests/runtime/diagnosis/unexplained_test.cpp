@@ -10,6 +10,8 @@
 #include <functional>
 #include <numbers>
 
+namespace unexplained_test {
+
 using namespace rheo;
 namespace dx = runtime::diagnosis;
 
@@ -61,3 +63,5 @@ TEST_CASE("unexplained shape, history: a constant offset and a yield force are r
     CHECK(shape.resembles_share > 0.5);
   }
 }
+
+}  // namespace unexplained_test

@@ -10,6 +10,8 @@
 
 #include <string>
 
+namespace abaqus_cards_test {
+
 using namespace rheo;
 namespace fe = runtime::fe;
 
@@ -92,3 +94,5 @@ TEST_CASE("abaqus cards: a model of springs alone is an elastic material, withou
   CHECK(text.find("*ELASTIC\n120., 0.49\n") != std::string::npos);
   CHECK(text.find("\n*VISCOELASTIC") == std::string::npos);
 }
+
+}  // namespace abaqus_cards_test

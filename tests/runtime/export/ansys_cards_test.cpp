@@ -11,6 +11,8 @@
 
 #include <string>
 
+namespace ansys_cards_test {
+
 using namespace rheo;
 namespace fe = runtime::fe;
 
@@ -53,3 +55,5 @@ TEST_CASE("ansys cards: more than 100 Prony pairs are refused at the springpot t
   CHECK_THROWS_WITH_AS(fe::ansys_material(cards, {}, kSource), doctest::Contains("test.rheo:3:3: error: model 'wide' makes"), ModelError);
   CHECK_THROWS_WITH_AS(fe::ansys_material(cards, {}, kSource), doctest::Contains("at most 100 pairs (springpot 'sp'"), ModelError);
 }
+
+}  // namespace ansys_cards_test

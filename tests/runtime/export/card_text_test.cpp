@@ -7,6 +7,8 @@
 #include <cstdlib>
 #include <string>
 
+namespace card_text_test {
+
 using namespace rheo;
 namespace fe = runtime::fe;
 
@@ -25,3 +27,5 @@ TEST_CASE("card material mapping: M is E, or G with E = 2 (1 + nu) G") {
   CHECK(fe::young_modulus(10.0, {fe::ModulusKind::young, 0.3}) == 10.0);
   CHECK(fe::young_modulus(10.0, {fe::ModulusKind::shear, 0.5}) == 30.0);
 }
+
+}  // namespace card_text_test

@@ -14,6 +14,8 @@
 #include <fstream>
 #include <map>
 
+namespace fmu_export_test {
+
 using namespace rheo;
 
 namespace {
@@ -103,3 +105,5 @@ TEST_CASE("fmu export: blocks nested deeper than the fixed-step kernels take are
   CHECK_NOTHROW(runtime::exporter::check_fmu_steppable(
       test::network_from(test::read_file(std::string(RHEO_EXAMPLES_DIR) + "/hydrobushing.rheo"), "hydrobushing")));
 }
+
+}  // namespace fmu_export_test

@@ -8,6 +8,8 @@
 
 #include <doctest/doctest.h>
 
+namespace fmu_model_description_test {
+
 using namespace rheo;
 
 namespace {
@@ -110,3 +112,5 @@ TEST_CASE("fmu description: FMI 3.0 declares every variable as a Float64, time a
   CHECK_FALSE(has(fmi2, "independent"));
   CHECK_FALSE(has(fmi2, "name=\"time\""));
 }
+
+}  // namespace fmu_model_description_test

@@ -13,6 +13,8 @@
 #include <numbers>
 #include <string>
 
+namespace prony_cards_test {
+
 using namespace rheo;
 namespace fe = runtime::fe;
 
@@ -156,3 +158,5 @@ TEST_CASE("prony cards: --leave-out names a branch, with advice when it does not
   CHECK_THROWS_WITH_AS(fe::prony_cards(network, std::nullopt, {"k", "play", "f"}), doctest::Contains("nothing of model 'm' is left to export"),
                        UsageError);
 }
+
+}  // namespace prony_cards_test

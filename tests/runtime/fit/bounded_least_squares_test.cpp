@@ -11,6 +11,8 @@
 #include <limits>
 #include <stdexcept>
 
+namespace bounded_least_squares_test {
+
 using namespace rheo;
 
 namespace {
@@ -103,3 +105,5 @@ TEST_CASE("mismatched sizes, crossed bounds and non-finite entries are refused")
   bad(1) = std::nan("");
   CHECK_THROWS_AS(runtime::bounded_least_squares(a, bad, lo, hi), std::invalid_argument);
 }
+
+}  // namespace bounded_least_squares_test

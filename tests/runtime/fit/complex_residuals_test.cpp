@@ -13,6 +13,8 @@
 #include <numbers>
 #include <stdexcept>
 
+namespace complex_residuals_test {
+
 using namespace rheo;
 
 namespace {
@@ -95,3 +97,5 @@ TEST_CASE("complex residuals: a history, or a model of another size, is refused"
   std::vector<double> out;
   CHECK_THROWS_AS(residuals.terms(std::vector<std::complex<double>>(4, {100.0, 10.0}), 0.0, out), std::logic_error);
 }
+
+}  // namespace complex_residuals_test

@@ -12,6 +12,8 @@
 #include <cmath>
 #include <limits>
 
+namespace damped_step_test {
+
 using namespace rheo;
 using Eigen::MatrixXd;
 using Eigen::VectorXd;
@@ -179,3 +181,5 @@ TEST_CASE("tall Jacobians, reduced in two blocks of rows: the direct solve's ste
     }
   }
 }
+
+}  // namespace damped_step_test

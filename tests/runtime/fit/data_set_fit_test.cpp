@@ -8,6 +8,8 @@
 
 #include <cmath>
 
+namespace data_set_fit_test {
+
 using namespace rheo;
 
 TEST_CASE("data_set_fit: a history's err and worst residual include its declared or fitted offset") {
@@ -35,3 +37,5 @@ TEST_CASE("data_set_fit: a history's err and worst residual include its declared
   CHECK(fitted.err == doctest::Approx(std::sqrt(sum / 3.0) / 27.0).epsilon(1e-14).scale(0.0));
   CHECK(std::isnan(fitted.force_offset.standard_error));  // statistics come from the fit
 }
+
+}  // namespace data_set_fit_test

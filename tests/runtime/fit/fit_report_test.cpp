@@ -14,6 +14,8 @@
 #include <algorithm>
 #include <cmath>
 
+namespace fit_report_test {
+
 using namespace rheo;
 using nlohmann::json;
 
@@ -298,3 +300,5 @@ TEST_CASE("two stiffnesses in series are not identifiable, and the report names 
   const json j = json::parse(runtime::fit_report_json({}, r));
   CHECK(j["not_identifiable_together"] == json::array({json::array({"c.k1.k", "c.k2.k"})}));
 }
+
+}  // namespace fit_report_test

@@ -15,6 +15,8 @@
 #include <numbers>
 #include <stdexcept>
 
+namespace fit_scoring_test {
+
 using namespace rheo;
 
 namespace {
@@ -261,3 +263,5 @@ TEST_CASE("predict: a history is simulated whatever the method") {
   // e = 0.1 -> 10 + 5; e = -0.2 -> -20 - 5 (slipped back); e = 0.4 -> 40 + 5.
   check_equal(simulated, {0.0, 15.0, -25.0, 45.0}, 1e-12);
 }
+
+}  // namespace fit_scoring_test

@@ -17,6 +17,8 @@
 #include <string>
 #include <thread>
 
+namespace fit_search_test {
+
 using namespace rheo::runtime;
 
 namespace {
@@ -437,3 +439,5 @@ TEST_CASE("an extra start equal to the start is searched from once, and a sample
     if (!duplicate) CHECK(std::count(after_samples, points.end(), std::vector<double>{0.5, 0.5, 0.5}) == 1);
   }
 }
+
+}  // namespace fit_search_test

@@ -7,6 +7,8 @@
 #include <cmath>
 #include <stdexcept>
 
+namespace fit_statistics_test {
+
 using runtime_stats = rheo::runtime::ParameterStatistics;
 using rheo::runtime::parameter_statistics;
 
@@ -147,3 +149,5 @@ TEST_CASE("groups that act together count the combinations the data leave free")
   CHECK(st.together[1] == std::vector<int>{1, 4});
   CHECK(st.undetermined[1] == 1);
 }
+
+}  // namespace fit_statistics_test

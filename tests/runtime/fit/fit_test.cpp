@@ -16,6 +16,8 @@
 #include <numbers>
 #include <sstream>
 
+namespace fit_test {
+
 using namespace rheo;
 
 namespace {
@@ -232,3 +234,5 @@ TEST_CASE("the fit's err (6.1): sqrt of the summed phi over the total number of 
   CHECK(result.phi == doctest::Approx(3.485).epsilon(1e-8));
   CHECK(result.err == doctest::Approx(0.3733630940518894).epsilon(1e-8).scale(0.0));
 }
+
+}  // namespace fit_test

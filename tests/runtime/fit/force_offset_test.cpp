@@ -14,6 +14,8 @@
 #include <cmath>
 #include <numeric>
 
+namespace force_offset_test {
+
 using namespace rheo;
 
 namespace {
@@ -163,3 +165,5 @@ TEST_CASE("an offset the data cannot tell from the model is reported not identif
   CHECK_FALSE(r.datasets.at(0).force_offset.identifiable);
   CHECK_FALSE(r.statistics.identifiable.at(0));
 }
+
+}  // namespace force_offset_test

@@ -10,6 +10,8 @@
 #include <string>
 #include <vector>
 
+namespace force_scales_test {
+
 using namespace rheo;
 
 namespace {
@@ -48,3 +50,5 @@ TEST_CASE("a springpot's k scales its Maxwell modes, its alpha does not") {
   CHECK(scale_paths("model m { spring s (k = 1) springpot p (k = 10 in [1, 100], alpha = 0.3 in [0.1, 0.9], tau = 1 s, f_low = 0.1 Hz, "
                     "f_high = 100 Hz) }") == std::vector<std::string>{"p.k"});
 }
+
+}  // namespace force_scales_test

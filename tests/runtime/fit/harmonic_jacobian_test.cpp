@@ -13,6 +13,8 @@
 
 #include <cmath>
 
+namespace harmonic_jacobian_test {
+
 using namespace rheo;
 
 namespace {
@@ -151,3 +153,5 @@ TEST_CASE("a fit by sensitivities reaches the noise-free truth as the difference
   CHECK(by_sensitivities.objective <= std::max(1e-14, 2.0 * differenced.objective));
   CHECK(by_sensitivities.evaluations < differenced.evaluations);
 }
+
+}  // namespace harmonic_jacobian_test

@@ -20,6 +20,8 @@
 #include <string>
 #include <vector>
 
+namespace history_jacobian_test {
+
 using namespace rheo;
 
 namespace {
@@ -142,3 +144,5 @@ TEST_CASE("fit on histories with the reduced Jacobian: the minimum of the whole-
   for (std::size_t i = 0; i < a.statistics.standard_error.size(); ++i)
     CHECK(test::relative_error(b.statistics.standard_error[i], a.statistics.standard_error[i]) < 1e-3);
 }
+
+}  // namespace history_jacobian_test

@@ -19,6 +19,8 @@
 #include <cmath>
 #include <string>
 
+namespace history_scoring_test {
+
 using namespace rheo;
 
 namespace {
@@ -134,3 +136,5 @@ TEST_CASE("streamed statistics: the standard errors and correlations of the full
   REQUIRE(o.correlation.size() == w.correlation.size());
   for (std::size_t j = 0; j < o.correlation.size(); ++j) CHECK(std::abs(o.correlation[j] - w.correlation[j]) < 1e-9);
 }
+
+}  // namespace history_scoring_test

@@ -9,6 +9,8 @@
 #include <cmath>
 #include <limits>
 
+namespace levenberg_marquardt_test {
+
 using namespace rheo::runtime;
 using Eigen::VectorXd;
 
@@ -191,3 +193,5 @@ TEST_CASE("a parameter the residuals do not feel at the start is held: the other
   CHECK(r.value < 1e-18);
   CHECK(r.iterations <= 5);
 }
+
+}  // namespace levenberg_marquardt_test

@@ -10,6 +10,8 @@
 #include <numbers>
 #include <vector>
 
+namespace objective_test {
+
 using namespace rheo;
 
 namespace {
@@ -118,3 +120,5 @@ TEST_CASE("err (6.1) and phi (5.1, 5.38) on four hand-computed points, one with 
   // Eq. 5.38 with k = 0.7: 0.7 (0.0009 + 0.0004 + 0.0001) + 0.3 (0.01 + 0.01) = 0.00698.
   CHECK(runtime::phi(r, 0.7, 0.3) == doctest::Approx(0.00698).epsilon(1e-13).scale(0.0));
 }
+
+}  // namespace objective_test

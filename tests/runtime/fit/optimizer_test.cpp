@@ -7,6 +7,8 @@
 #include <cmath>
 #include <stdexcept>
 
+namespace optimizer_test {
+
 using namespace rheo::runtime;
 
 TEST_CASE("minimize finds the minimum of a bounded quadratic, local and global") {
@@ -56,3 +58,5 @@ TEST_CASE("a NaN region beside the start does not derail BOBYQA's model (finite 
   CHECK(r.value == doctest::Approx(0.5).epsilon(1e-9).scale(0.0));
   CHECK(r.x[0] == doctest::Approx(2.0).epsilon(1e-5));
 }
+
+}  // namespace optimizer_test

@@ -11,6 +11,8 @@
 
 #include <numbers>
 
+namespace order_study_test {
+
 using namespace rheo;
 
 namespace {
@@ -119,3 +121,5 @@ TEST_CASE("order study: a structure with one copy more starts from the fit of th
       }
   }
 }
+
+}  // namespace order_study_test

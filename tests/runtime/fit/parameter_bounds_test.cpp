@@ -6,6 +6,8 @@
 
 #include <cmath>
 
+namespace parameter_bounds_test {
+
 using namespace rheo;
 
 namespace {
@@ -42,3 +44,5 @@ TEST_CASE("a parameter without bounds is at none") {
   fixed.lower = fixed.upper = 1.0;
   CHECK(runtime::bound_reached(fixed, 1.0) == runtime::BoundSide::none);
 }
+
+}  // namespace parameter_bounds_test

@@ -15,6 +15,8 @@
 #include <tuple>
 #include <vector>
 
+namespace search_tracker_test {
+
 using namespace rheo::runtime;
 
 namespace {
@@ -105,3 +107,5 @@ TEST_CASE("a batch's evaluations run at once on two threads") {
   search_least_squares(waiting, start, lower, upper, linear5, s);
   CHECK(overlapped.load());
 }
+
+}  // namespace search_tracker_test

@@ -15,6 +15,8 @@
 #include <cmath>
 #include <string>
 
+namespace separable_fit_test {
+
 using namespace rheo;
 
 namespace {
@@ -148,3 +150,5 @@ TEST_CASE("a fit with free shapes solves its scales inside the search and finds 
   CHECK(separable.notes.front().find("3 of the 5 free parameters solved exactly") == 0);
   MESSAGE("evaluations: separable " << separable.evaluations << ", plain " << plain.evaluations);
 }
+
+}  // namespace separable_fit_test

@@ -11,6 +11,8 @@
 
 #include <cmath>
 
+namespace streaming_least_squares_test {
+
 using namespace rheo;
 
 namespace {
@@ -73,3 +75,5 @@ TEST_CASE("streamed least squares with fewer rows than columns: the quadratic fo
   CHECK(s.rest() < 1e-12 * ab.norm());
   CHECK_THROWS_AS(runtime::StreamingLeastSquares(0), std::logic_error);
 }
+
+}  // namespace streaming_least_squares_test

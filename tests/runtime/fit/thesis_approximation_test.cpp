@@ -14,6 +14,8 @@
 #include <cmath>
 #include <stdexcept>
 
+namespace thesis_approximation_test {
+
 using namespace rheo;
 using std::numbers::pi;
 using test::relative_error;
@@ -222,3 +224,5 @@ TEST_CASE("the correction refuses points that do not match") {
   auto copy = a;
   CHECK_THROWS_AS(runtime::apply_correction({{1.0}, {1.0}}, copy), std::logic_error);
 }
+
+}  // namespace thesis_approximation_test

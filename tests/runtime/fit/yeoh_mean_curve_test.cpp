@@ -14,6 +14,8 @@
 #include <algorithm>
 #include <cmath>
 
+namespace yeoh_mean_curve_test {
+
 using namespace rheo;
 using test::relative_error;
 
@@ -213,3 +215,5 @@ TEST_CASE("yeoh start values: the loop's constants, free ones clamped into their
   CHECK(relative_error(started[2].unclamped, kTableD4.d30) < 1e-9);
   CHECK_THROWS_AS(runtime::yeoh_start_values(model, yeoh, free, {{0.0, 1.0, 2.0}, {0.0, 1.0, 2.0}}), runtime::DataError);
 }
+
+}  // namespace yeoh_mean_curve_test

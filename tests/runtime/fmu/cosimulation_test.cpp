@@ -12,6 +12,8 @@
 #include <limits>
 #include <numbers>
 
+namespace cosimulation_test {
+
 using namespace rheo;
 using runtime::fmu::CoSimulation;
 
@@ -256,3 +258,5 @@ TEST_CASE("fmu: the independent variable time reads the last communication point
   CHECK_THROWS_WITH_AS(c.set_real(time, 1.0), doctest::Contains("time is the independent variable"), UsageError);
   CHECK(c.get_real(time) == 0.75);
 }
+
+}  // namespace cosimulation_test

@@ -15,6 +15,8 @@
 #include <limits>
 #include <regex>
 
+namespace fmi2_entry_points_test {
+
 using namespace rheo;
 
 namespace {
@@ -190,3 +192,5 @@ TEST_CASE("fmi2 binary: an FMU state serialized to bytes and read back repeats t
   fmu.fmi2FreeInstance(c);
   std::filesystem::remove_all(dir.parent_path());
 }
+
+}  // namespace fmi2_entry_points_test

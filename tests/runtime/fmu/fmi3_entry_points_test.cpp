@@ -16,6 +16,8 @@
 #include <limits>
 #include <regex>
 
+namespace fmi3_entry_points_test {
+
 using namespace rheo;
 
 namespace {
@@ -295,3 +297,5 @@ TEST_CASE("fmi3 binary: fmi3Terminate is taken in Step Mode, before or after ste
   CHECK(s.get_force(force) == fmi3OK);
   CHECK(force == 5.0);  // the last step's result, readable in Terminated
 }
+
+}  // namespace fmi3_entry_points_test

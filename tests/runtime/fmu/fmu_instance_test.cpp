@@ -11,6 +11,8 @@
 #include <string>
 #include <vector>
 
+namespace fmu_instance_test {
+
 using namespace rheo;
 using runtime::fmu::Outcome;
 
@@ -66,3 +68,5 @@ TEST_CASE("fmu instance: states are handed out, found, refused when foreign or f
   // States left when the instance goes are freed with it (the sanitizer builds find a leak).
   i.new_state(s);
 }
+
+}  // namespace fmu_instance_test

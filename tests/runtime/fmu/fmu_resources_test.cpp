@@ -10,6 +10,8 @@
 #include <filesystem>
 #include <fstream>
 
+namespace fmu_resources_test {
+
 using namespace rheo;
 using runtime::fmu::resource_folder;
 
@@ -40,3 +42,5 @@ TEST_CASE("fmu resources: the model loads when the GUID is the resources' own, a
   CHECK_THROWS_WITH_AS(runtime::fmu::load_cosimulation(dir.string(), guid, "9.9.9"), doctest::Contains("model_name.txt"), DataError);
   std::filesystem::remove_all(dir);
 }
+
+}  // namespace fmu_resources_test

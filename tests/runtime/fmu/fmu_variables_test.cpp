@@ -10,6 +10,8 @@
 #include <limits>
 #include <regex>
 
+namespace fmu_variables_test {
+
 using namespace rheo;
 using runtime::fmu::Causality;
 
@@ -89,3 +91,5 @@ TEST_CASE("fmu guid: a 128-bit fingerprint of version, model and source, each of
   CHECK(g != runtime::fmu::fmu_guid("0.1.0", "n", "model m { spring s (k = 1) }"));
   CHECK(g != runtime::fmu::fmu_guid("0.1.0", "m", "model m { spring s (k = 2) }"));
 }
+
+}  // namespace fmu_variables_test

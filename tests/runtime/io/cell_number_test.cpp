@@ -12,6 +12,8 @@
 #include <random>
 #include <string>
 
+namespace cell_number_test {
+
 using namespace rheo::runtime;
 
 TEST_CASE("a cell reads as the double strtod reads, bit for bit, on random decimal text") {
@@ -57,3 +59,5 @@ TEST_CASE("a leading plus, a decimal comma where the layout has one, and cells t
   CHECK(cell_as_read("+1,5", true) == "1.5");
   CHECK(cell_as_read("+1,5", false) == "1,5");
 }
+
+}  // namespace cell_number_test

@@ -13,6 +13,8 @@
 #include <numbers>
 #include <string>
 
+namespace column_roles_test {
+
 using namespace rheo::runtime;
 
 namespace {
@@ -150,3 +152,5 @@ TEST_CASE("the shared TRIOS export reads as harmonic data from a data line alone
   CHECK_THROWS_WITH_AS(read_fit_data(trios, 1.0, nullptr, reading),
                        doctest::Contains("trios_multi_technique.txt:236:1: error: a measured history needs a column 'force [N]'"), DataError);
 }
+
+}  // namespace column_roles_test

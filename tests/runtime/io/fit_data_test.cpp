@@ -15,6 +15,8 @@
 #include <fstream>
 #include <numbers>
 
+namespace fit_data_test {
+
 using namespace rheo;
 namespace fs = std::filesystem;
 
@@ -223,3 +225,5 @@ TEST_CASE("SampleRows holds runs of consecutive lines: every row back by index, 
   same.clear();
   CHECK(same.empty());
 }
+
+}  // namespace fit_data_test

@@ -9,6 +9,8 @@
 #include <cmath>
 #include <numbers>
 
+namespace harmonic_data_test {
+
 using namespace rheo::runtime;
 
 namespace {
@@ -153,3 +155,5 @@ TEST_CASE("a preload column (mean displacement, or a strain with the height) giv
   CHECK(strain.preload[0] == doctest::Approx(0.5).scale(0.0));
   CHECK(error_of("amplitude [mm],frequency [Hz],stiffness [N/mm],phase [deg],preload [s]\n0.5,10,300,5,1\n").find("h.csv:1:") == 0);
 }
+
+}  // namespace harmonic_data_test

@@ -20,6 +20,8 @@
 #include <unistd.h>
 #include <vector>
 
+namespace hdf5_history_test {
+
 using namespace rheo::runtime;
 namespace fs = std::filesystem;
 using rheo::test::hdf5::DatasetSpec;
@@ -255,3 +257,5 @@ TEST_CASE("histories held whole are bounded before they are read: a drive by its
                            .c_str(),
                        DataError);
 }
+
+}  // namespace hdf5_history_test

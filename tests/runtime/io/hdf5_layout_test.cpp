@@ -18,6 +18,8 @@
 #include <utility>
 #include <vector>
 
+namespace hdf5_layout_test {
+
 using namespace rheo::runtime;
 namespace fs = std::filesystem;
 using rheo::test::hdf5::DatasetSpec;
@@ -279,3 +281,5 @@ TEST_CASE("layout faults are DataErrors naming the file and the dataset, with wh
     CHECK(displacement_at("/bare []").find(file + ": error: /bare (displacement) has no unit") == 0);
   }
 }
+
+}  // namespace hdf5_layout_test

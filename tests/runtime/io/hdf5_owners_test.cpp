@@ -8,6 +8,8 @@
 #include <string>
 #include <utility>
 
+namespace hdf5_owners_test {
+
 using namespace rheo::runtime;
 
 TEST_CASE("a failed HDF5 call is a DataError naming the file, the call, its object and HDF5's description") {
@@ -49,3 +51,5 @@ TEST_CASE("an HDF5 owner closes its handle once: when it goes, when moved over, 
   CHECK_FALSE(a);
   CHECK(a.close() == 0);  // nothing open: nothing to close
 }
+
+}  // namespace hdf5_owners_test

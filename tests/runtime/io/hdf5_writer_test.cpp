@@ -20,6 +20,8 @@
 #include <unistd.h>
 #include <vector>
 
+namespace hdf5_writer_test {
+
 using namespace rheo::runtime;
 namespace fs = std::filesystem;
 namespace h5 = rheo::test::hdf5;
@@ -203,3 +205,5 @@ TEST_CASE("a .mat output refuses an element name MATLAB cannot take as a struct 
   writer.commit();
   CHECK(matio_column(file, {"force"}).size() == 10);
 }
+
+}  // namespace hdf5_writer_test

@@ -7,6 +7,8 @@
 
 #include <string>
 
+namespace history_csv_test {
+
 using namespace rheo::runtime;
 
 namespace {
@@ -119,3 +121,5 @@ TEST_CASE("a table that almost matches says what rheo expected and what it found
   const std::string used = drive_error("time,displacement\n0,0\ns,mm\n");
   CHECK(used.find("'s' reads as a unit: units go in the names row") != std::string::npos);
 }
+
+}  // namespace history_csv_test

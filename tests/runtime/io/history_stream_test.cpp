@@ -17,6 +17,8 @@
 #include <string>
 #include <vector>
 
+namespace history_stream_test {
+
 using namespace rheo::runtime;
 using namespace std::string_literals;
 
@@ -360,3 +362,5 @@ TEST_CASE("the header and first rows are read before any piece, to tell a table'
   HistoryStream bad_stream("b.csv", bad, false);
   CHECK(bad_stream.header() == nullptr);
 }
+
+}  // namespace history_stream_test

@@ -18,6 +18,8 @@
 #include <limits>
 #include <sstream>
 
+namespace history_writer_test {
+
 using namespace rheo::runtime;
 namespace fs = std::filesystem;
 
@@ -113,3 +115,5 @@ TEST_CASE("a history written in pieces is history_csv's text, and every number r
   }
   fs::remove(out);
 }
+
+}  // namespace history_writer_test

@@ -21,6 +21,8 @@
 #include <unistd.h>
 #include <vector>
 
+namespace matlab_file_test {
+
 using namespace rheo::runtime;
 namespace fs = std::filesystem;
 using rheo::test::matlab::Kind;
@@ -207,3 +209,5 @@ TEST_CASE("a MATLAB file is measured data: a history, its data line's settings o
       (file + ": error: a MATLAB file is read as a history, so the data line's step (of a TRIOS export) does not apply; remove it").c_str(),
       DataError);
 }
+
+}  // namespace matlab_file_test

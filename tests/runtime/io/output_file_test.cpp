@@ -12,6 +12,8 @@
 #include <fstream>
 #include <sstream>
 
+namespace output_file_test {
+
 using namespace rheo::runtime;
 namespace fs = std::filesystem;
 
@@ -150,3 +152,5 @@ TEST_CASE("a pending output falls back cleanly where the system has no O_TMPFILE
   }
   fs::remove_all(dir);
 }
+
+}  // namespace output_file_test

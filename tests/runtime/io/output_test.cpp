@@ -11,6 +11,8 @@
 #include <fstream>
 #include <sstream>
 
+namespace output_test {
+
 using namespace rheo::runtime;
 namespace fs = std::filesystem;
 
@@ -42,3 +44,5 @@ TEST_CASE("history numbers are short where the double is: 1e-04 s as 0.0001, 2 m
   const std::string text = history_csv({"m", "m.rheo", "history"}, h);
   CHECK(text.find("\n0.0001,2,1000000000000000\n1e-05,0.30000000000000004,7.8475241592896845\n1e+16,-0,5e-324\n") != std::string::npos);
 }
+
+}  // namespace output_test

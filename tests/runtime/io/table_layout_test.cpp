@@ -11,6 +11,8 @@
 #include <cmath>
 #include <string>
 
+namespace table_layout_test {
+
 using namespace rheo::runtime;
 using namespace std::string_literals;
 
@@ -134,3 +136,5 @@ TEST_CASE("spreadsheet workbooks are refused with what to do, UTF-16 text is rea
   CHECK(t.columns[0][1] == doctest::Approx(1e-6).scale(0.0));
   CHECK(t.columns[1][1] == 2.0);
 }
+
+}  // namespace table_layout_test

@@ -8,6 +8,8 @@
 
 #include <cmath>
 
+namespace table_rows_test {
+
 using namespace rheo::runtime;
 
 TEST_CASE("lines that are blank or comments are passed over, the rest are names, units and data") {
@@ -38,3 +40,5 @@ TEST_CASE("lines that are blank or comments are passed over, the rest are names,
   CHECK_THROWS_WITH_AS(rows.line("3,4,5", 7), doctest::Contains("t.csv:7:5: error: this row has 3 values, the header has 2 columns"), DataError);
   rows.finish(2);
 }
+
+}  // namespace table_rows_test

@@ -10,6 +10,8 @@
 #include <algorithm>
 #include <cmath>
 
+namespace bouc_wen_test {
+
 using namespace rheo;
 
 namespace {
@@ -204,3 +206,5 @@ TEST_CASE("bouc_wen (n = 0.3) behind a spring on the reproducer's history: fixed
   MESSAGE("worst |F_fixed - F_ida| = " << worst << " N");
   CHECK(worst < 1e-6 * 1600.0);
 }
+
+}  // namespace bouc_wen_test

@@ -6,6 +6,8 @@
 
 #include <cmath>
 
+namespace leaf_kernels_test {
+
 using namespace rheo::runtime;
 
 TEST_CASE("one-sided return mapping: the trial force clamped to [-fy_neg, fy_pos]") {
@@ -43,3 +45,5 @@ TEST_CASE("a gap's centre is taken within +-width/2") {
   CHECK(gap_center(1.0, 0.7) == 0.5);
   CHECK(gap_center(1.0, -0.7) == -0.5);
 }
+
+}  // namespace leaf_kernels_test

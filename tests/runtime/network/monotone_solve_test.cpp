@@ -7,6 +7,8 @@
 #include <cmath>
 #include <limits>
 
+namespace monotone_solve_test {
+
 using rheo::runtime::ForceSlope;
 using rheo::runtime::solve_monotone;
 
@@ -40,3 +42,5 @@ TEST_CASE("solve_monotone: no root, or a cap too small, is NaN after a bounded n
   CHECK(calls < 50);
   CHECK(solve_monotone(cubic, 0.0, 1.0, -INFINITY, INFINITY, 1e-15) == doctest::Approx(std::cbrt(2.0)).epsilon(1e-14));
 }
+
+}  // namespace monotone_solve_test

@@ -11,6 +11,8 @@
 
 #include <vector>
 
+namespace network_test {
+
 using namespace rheo;
 
 TEST_CASE("root leaves are grouped by kind into flat arrays") {
@@ -235,3 +237,5 @@ TEST_CASE("a gap whose rest position lies outside its play is a model error at i
   CHECK(runtime::gap_center(1.0, 3.0) == 0.5);
   CHECK(runtime::gap_center(1.0, -0.2) == -0.2);
 }
+
+}  // namespace network_test

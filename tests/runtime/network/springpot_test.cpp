@@ -16,6 +16,8 @@
 #include <numbers>
 #include <vector>
 
+namespace springpot_test {
+
 using namespace rheo;
 using Complex = std::complex<double>;
 
@@ -164,3 +166,5 @@ TEST_CASE("fixed steps and IDA agree on a springpot history: a spring, a springp
   CHECK(worst < 1e-3 * scale);
   CHECK(worst_element < 1e-3 * scale);
 }
+
+}  // namespace springpot_test

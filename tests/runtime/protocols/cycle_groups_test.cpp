@@ -9,6 +9,8 @@
 
 #include <vector>
 
+namespace cycle_groups_test {
+
 using namespace rheo;
 
 TEST_CASE("cycle groups: the root's states and each subtree's, and a skip moves only a group that contracts, by its own rate") {
@@ -61,3 +63,5 @@ TEST_CASE("cycle groups: the root's states and each subtree's, and a skip moves 
     else CHECK(state[i] == end[i]);
   }
 }
+
+}  // namespace cycle_groups_test

@@ -12,6 +12,8 @@
 #include <cmath>
 #include <numbers>
 
+namespace harmonic_preload_test {
+
 using namespace rheo;
 using runtime::HarmonicOptions;
 using runtime::SteadyState;
@@ -118,3 +120,5 @@ TEST_CASE("a gap's play is fixed in space: from a preload past it the branch is 
   CHECK(test::relative_error(stepped.measures.stiffness, 500.0) < 1e-6);  // past the play at p = 1 > 0.5 + 0.2: both springs
   CHECK(test::relative_error(ida.measures.stiffness, 500.0) < 1e-6);
 }
+
+}  // namespace harmonic_preload_test

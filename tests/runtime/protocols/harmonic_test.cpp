@@ -18,6 +18,8 @@
 #include <complex>
 #include <numbers>
 
+namespace harmonic_test {
+
 using namespace rheo;
 using runtime::HarmonicDefinition;
 using runtime::HarmonicOptions;
@@ -430,3 +432,5 @@ TEST_CASE("fixed steps: an undamped swing inside a gap's play is stalled, not sh
   CHECK(settled.converged);
   CHECK_FALSE(settled.stalled);
 }
+
+}  // namespace harmonic_test

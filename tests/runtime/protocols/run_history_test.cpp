@@ -13,6 +13,8 @@
 #include <algorithm>
 #include <cmath>
 
+namespace run_history_test {
+
 using namespace rheo;
 using lang::SolverChoice;
 
@@ -160,3 +162,5 @@ TEST_CASE("HistoryForceStream hands out history_force bit for bit, in blocks of 
       }
     }
 }
+
+}  // namespace run_history_test

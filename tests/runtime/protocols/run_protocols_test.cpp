@@ -11,6 +11,8 @@
 #include <doctest/doctest.h>
 #include <nlohmann/json.hpp>
 
+namespace run_protocols_test {
+
 using namespace rheo;
 
 namespace {
@@ -128,3 +130,5 @@ TEST_CASE("work limits: a protocol asking for more samples or steps than lang/li
   // At the limits they run: 10^7 samples are not built here, but the largest cheap case is.
   CHECK(run_first(model + "simulate { step amplitude = 1 mm, duration = 1 s, dt = 1 ms }", "w.rheo").result.size() == 1001);
 }
+
+}  // namespace run_protocols_test

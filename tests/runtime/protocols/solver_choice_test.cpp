@@ -7,6 +7,8 @@
 #include <doctest/doctest.h>
 #include <fmt/format.h>
 
+namespace solver_choice_test {
+
 using namespace rheo;
 
 TEST_CASE("auto takes SUNDIALS for a network with an inerter, fixed steps otherwise") {
@@ -70,3 +72,5 @@ TEST_CASE("auto runs sharp bouc_wen elements in series blocks beside inerters (d
   MESSAGE("auto against fine fixed steps: ", gap, " of max |F|");
   CHECK(gap < 2e-2);
 }
+
+}  // namespace solver_choice_test

@@ -21,6 +21,8 @@
 #include <filesystem>
 #include <fstream>
 
+namespace stream_history_test {
+
 using namespace rheo;
 namespace fs = std::filesystem;
 
@@ -241,3 +243,5 @@ TEST_CASE("a history on IDA streams with the whole run's samples bit for bit") {
     CHECK(w.force.front() != 0.0);  // relaxed away from rest
   }
 }
+
+}  // namespace stream_history_test

@@ -5,6 +5,8 @@
 #include <string>
 #include <vector>
 
+namespace axis_ticks_test {
+
 using namespace rheo::runtime::report;
 
 namespace {
@@ -104,3 +106,5 @@ TEST_CASE("report axis ticks: a linear axis keeps 1-2-5 steps, labels without ex
   CHECK(labels(ticks) == std::vector<std::string>{"0", "0.5", "1", "1.5", "2", "2.5"});
   CHECK(labels(linear_ticks(0.0, 4e6, 4)).back() == "4e6");
 }
+
+}  // namespace axis_ticks_test

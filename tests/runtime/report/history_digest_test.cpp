@@ -7,6 +7,8 @@
 #include <cstdint>
 #include <vector>
 
+namespace history_digest_test {
+
 using rheo::runtime::History;
 using rheo::runtime::report::HistoryDigest;
 
@@ -84,3 +86,5 @@ TEST_CASE("a history digest restarted forgets what it kept, as a stream read who
   CHECK(digest.stride() == 1);
   CHECK(digest.comparison("x").displacement == std::vector<double>{0, 1, 2, 3, 4, 5, 6, 7, 8, 9});
 }
+
+}  // namespace history_digest_test

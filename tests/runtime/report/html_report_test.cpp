@@ -8,6 +8,8 @@
 
 #include <cmath>
 
+namespace html_report_test {
+
 using namespace rheo;
 using rheo::test::count;
 
@@ -128,3 +130,5 @@ TEST_CASE("report html: a history from a preloaded start says the model starts r
   loop.offset_value = 150.0;
   CHECK(runtime::report::html_report(content).find("150 N (force_offset as declared on the data line)") != std::string::npos);
 }
+
+}  // namespace html_report_test

@@ -4,6 +4,8 @@
 
 #include <doctest/doctest.h>
 
+namespace network_diagram_test {
+
 using namespace rheo;
 using rheo::test::count;
 
@@ -51,3 +53,5 @@ TEST_CASE("report network diagram: a long series chain is wider than a parallel 
   CHECK(count(a, "class=\"element\"") == 3);
   CHECK(count(b, "class=\"element\"") == 3);
 }
+
+}  // namespace network_diagram_test

@@ -8,6 +8,8 @@
 
 #include <cmath>
 
+namespace report_content_test {
+
 using namespace rheo;
 
 namespace {
@@ -70,3 +72,5 @@ TEST_CASE("report content: the model's parameters in the units written, with bou
   CHECK(content.parameters[0].bounds == "[1, 10]");
   CHECK(runtime::report::escape("a&<>\"'") == "a&amp;&lt;&gt;&quot;&#39;");
 }
+
+}  // namespace report_content_test

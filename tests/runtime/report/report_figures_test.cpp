@@ -7,6 +7,8 @@
 #include <cmath>
 #include <numbers>
 
+namespace report_figures_test {
+
 using namespace rheo;
 using runtime::report::HarmonicComparison;
 using runtime::report::Plot;
@@ -119,3 +121,5 @@ TEST_CASE("report figures: the stiffness axis is linear over a narrow range and 
   CHECK(wide[0].y.scale == Scale::log);
   CHECK(wide[1].y.scale == Scale::linear);  // phase never
 }
+
+}  // namespace report_figures_test

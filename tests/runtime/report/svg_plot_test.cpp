@@ -8,6 +8,8 @@
 #include <cstring>
 #include <limits>
 
+namespace svg_plot_test {
+
 using namespace rheo::runtime::report;
 using rheo::test::count;
 using rheo::test::xml_problem;
@@ -157,3 +159,5 @@ TEST_CASE("report svg plot: on a log axis the markers set the range, a line far 
   for (const Label& l : tick_labels(render_svg(plot, true), "end")) deep = deep || std::stod(l.text) < 1e-10;
   CHECK(deep);
 }
+
+}  // namespace svg_plot_test

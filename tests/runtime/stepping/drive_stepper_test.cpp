@@ -9,6 +9,8 @@
 
 #include <cmath>
 
+namespace drive_stepper_test {
+
 using namespace rheo;
 
 TEST_CASE("spring, dashpot and Maxwell arm stepped sample by sample match their hand solutions") {
@@ -42,3 +44,5 @@ TEST_CASE("a relaxed start away from rest: the springs carry their force, the re
   CHECK(stepper.step(1.0, 0.5) == doctest::Approx(10.0));
   CHECK_THROWS_AS(stepper.step(1.0, 0.6), std::logic_error);  // time must increase
 }
+
+}  // namespace drive_stepper_test

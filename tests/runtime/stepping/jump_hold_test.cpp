@@ -15,6 +15,8 @@
 #include <stdexcept>
 #include <string>
 
+namespace jump_hold_test {
+
 using namespace rheo;
 
 namespace {
@@ -159,3 +161,5 @@ TEST_CASE("jump_hold: subtrees that are not piecewise affine are left to the two
     CHECK_THROWS_AS(runtime::JumpHoldStep(net, 1e-3, 1e-6), std::logic_error);
   }
 }
+
+}  // namespace jump_hold_test

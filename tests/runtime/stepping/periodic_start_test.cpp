@@ -13,6 +13,8 @@
 #include <cmath>
 #include <numbers>
 
+namespace periodic_start_test {
+
 using namespace rheo;
 
 namespace {
@@ -105,3 +107,5 @@ TEST_CASE("periodic start: a slider-capped chain whose cap holds starts periodic
   CHECK(largest_value(slipped.start) == 0.0);
   CHECK(largest_change(slipped) > 1e-3);
 }
+
+}  // namespace periodic_start_test

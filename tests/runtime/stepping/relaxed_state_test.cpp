@@ -11,6 +11,8 @@
 
 #include <cmath>
 
+namespace relaxed_state_test {
+
 using namespace rheo;
 
 namespace {
@@ -127,3 +129,5 @@ TEST_CASE("a relaxed start: fixed steps and IDA agree on a nested network over a
   MESSAGE("largest difference " << worst / scale << " of max |F| " << scale << " N");
   CHECK(worst < 1e-5 * scale);
 }
+
+}  // namespace relaxed_state_test

@@ -11,6 +11,8 @@
 #include <algorithm>
 #include <cmath>
 
+namespace simulator_test {
+
 using namespace rheo;
 
 TEST_CASE("a Maxwell element relaxes as exp(-t/tau) after a step (eq. B.53)") {
@@ -131,3 +133,5 @@ TEST_CASE("an inerter driven directly: a rate change gives a force pulse of impu
   const double expected[] = {0, 2, -1, 0, 0, 0, 0, 0, 0, 0, 0, -4, 2, 0, 0, 0, 0, 0, 0, 0, 0};
   for (std::size_t i = 0; i < h.time.size(); ++i) CHECK(std::abs(h.force[i] - expected[i] * b * r / dt) < 1e-9);
 }
+
+}  // namespace simulator_test

@@ -54,6 +54,8 @@ void operator delete[](void* p, std::size_t) noexcept { std::free(p); }
 void operator delete(void* p, const std::nothrow_t&) noexcept { std::free(p); }
 void operator delete[](void* p, const std::nothrow_t&) noexcept { std::free(p); }
 
+namespace tree_newton_test {
+
 using namespace rheo;
 
 namespace {
@@ -304,3 +306,5 @@ TEST_CASE("tree_newton: differential seed 61 model 157 from rest steps without t
   CHECK(plan.tree.work.fallbacks == 0);
   CHECK(plan.tree.work.restarts <= 2);  // observed 1: the first step
 }
+
+}  // namespace tree_newton_test

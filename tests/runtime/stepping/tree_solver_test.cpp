@@ -13,6 +13,8 @@
 #include <numbers>
 #include <vector>
 
+namespace tree_solver_test {
+
 using namespace rheo;
 
 namespace {
@@ -423,3 +425,5 @@ TEST_CASE("the nested solve: a spring in series with a saturated bouc_wen carrie
   MESSAGE("worst |F_s - k e_s| = " << worst << " N");
   CHECK(worst < 1e-12 * fy);
 }
+
+}  // namespace tree_solver_test
