@@ -18,7 +18,6 @@
 
 #include <fmt/format.h>
 
-
 #include <chrono>
 #include <filesystem>
 #include <iostream>

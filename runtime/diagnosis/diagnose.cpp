@@ -74,8 +74,7 @@ class Diagnoser {
       : source_(source), data_(data), settings_(settings), s_(settings), base_(compile(source, source.text)) {
     s_.fit.score.method = FitMethod::exact;
     s_.fit.statistics = settings.standard_errors;
-    const bool histories = std::any_of(data.begin(), data.end(), [](const FitDataSet& set) { return !set.is_harmonic(); });
-    if (histories && s_.fit.score.harmonic.solver == SolverChoice::automatic) s_.fit.score.harmonic.solver = SolverChoice::fixed;
+    s_.fit.score.harmonic.solver = diagnosis_solver(settings.fit.score.harmonic.solver, data);
   }
 
   Diagnosis run() {
@@ -481,6 +480,11 @@ class Diagnoser {
 
 std::string_view verdict_name(const Diagnosis& diagnosis) {
   return diagnosis.verdict == Verdict::unexplained ? "unexplained" : effect_name(diagnosis.effect);
+}
+
+SolverChoice diagnosis_solver(SolverChoice asked, const std::vector<FitDataSet>& data) {
+  const bool histories = std::any_of(data.begin(), data.end(), [](const FitDataSet& set) { return !set.is_harmonic(); });
+  return histories && asked == SolverChoice::automatic ? SolverChoice::fixed : asked;
 }
 
 Diagnosis diagnose(const ModelSource& source, const std::vector<FitDataSet>& data, const DiagnoseSettings& settings) {

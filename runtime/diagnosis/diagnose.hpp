@@ -73,11 +73,7 @@ struct ModelSource {
 };
 
 struct DiagnoseSettings {
-  // Every fit (the method is always exact). Its solver `auto` diagnoses time histories by fixed
-  // steps: candidates that nest sliders and inerters would go to IDA, which restarts at every
-  // sample, where the fixed-step kernels take one exact step per sample. Harmonic tables alone
-  // keep `auto`: the candidates' closed forms and event-driven periodic states (numerics.md).
-  FitSettings fit;
+  FitSettings fit;                     // every fit (the method is always exact; the solver as diagnosis_solver says)
   std::vector<std::string> free;       // paths of the model's free parameters; empty: every one with bounds
   int confirm = 3;                     // leading effects refitted
   double min_screen_gain = 0.01;       // effects screened below this are not refitted,
@@ -177,6 +173,13 @@ struct Diagnosis {
   // Own the models that before.network and after->network refer to.
   std::shared_ptr<const lang::Program> before_program, after_program;
 };
+
+// The solver diagnose() fits DATA by when its settings ask for ASKED. `auto` becomes fixed steps
+// where DATA hold a time history: candidates that nest sliders and inerters would go to IDA,
+// which restarts at every sample, where the fixed-step kernels take one exact step per sample.
+// Harmonic tables alone keep `auto`: the candidates' closed forms and event-driven periodic
+// states (numerics.md). Any other choice stands.
+SolverChoice diagnosis_solver(SolverChoice asked, const std::vector<FitDataSet>& data);
 
 // Throws what fit() throws, and lang::CompileError when SOURCE does not compile; std::logic_error
 // (a bug of the caller) when SOURCE has no model SOURCE.model or SETTINGS.free names a parameter

@@ -82,7 +82,7 @@ inline rheo::runtime::diagnosis::Diagnosis diagnose(const std::string& start, co
   s.fit.score.harmonic.steps_per_cycle = 128;
   s.fit.score.harmonic.tolerance = 1e-6;
   // As rheo diagnose runs: the default solver, which diagnose() turns to fixed steps where
-  // histories are fitted (DiagnoseSettings::fit).
+  // histories are fitted (diagnosis_solver).
   s.fit.score.harmonic.solver = rheo::runtime::SolverChoice::automatic;
   return rheo::runtime::diagnosis::diagnose({"start.rheo", start, "start"}, data, s);
 }
