@@ -55,8 +55,10 @@ void point_rows(const FitDataSet& set, std::size_t i, const HarmonicSensitivity&
   for (Eigen::Index j = 0; j < n; ++j) {
     const MeasureDerivative dm = measure_derivative(s, definition, df(j), dk1(j), dk2(j));
     if (settings.objective == FitObjective::phi) {
-      const double model_sign = std::cos(m.phase) < 0.0 ? -1.0 : 1.0, measured_sign = std::cos(measured_phase) < 0.0 ? -1.0 : 1.0;
-      jacobian(row, j) = g * std::sqrt(settings.stiffness_weight) * model_sign * dm.stiffness / (measured_sign * measured_k);
+      // d(stiffness_residual): both stiffnesses signed as eq. 5.1's term signs them (the sign is
+      // constant between resonances, so the model's derivative takes the model's sign).
+      jacobian(row, j) = g * std::sqrt(settings.stiffness_weight) * signed_stiffness(dm.stiffness, m.phase) /
+                         signed_stiffness(measured_k, measured_phase);
       jacobian(row + 1, j) = keeps_damping_term(measured_phase) ? g * std::sqrt(settings.damping_weight) * dm.sine / std::sin(measured_phase) : 0.0;
     } else {
       const double sine = std::sin(m.phase), cosine = std::cos(m.phase);
