@@ -44,6 +44,10 @@ struct HarmonicPoint {
   // not approaching a periodic one within reach (an undamped free oscillation, which has no
   // unique periodic state, or a mode far slower than cycles_max periods).
   bool stalled = false;
+  // A geometric skip of the state's slow part (ComponentSettling) led where the integrator found
+  // no consistent state, and was undone: a drift taken for a slow contraction, such as a slider
+  // that ratchets (it slips further one way every cycle, in a chain with no static stiffness).
+  bool skip_refused = false;
 };
 
 // Watches the state's change over each cycle of a point for `stalled` (at least 4 cycles): the

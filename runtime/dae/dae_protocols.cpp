@@ -152,7 +152,7 @@ HarmonicPoint harmonic_point(const Network& network, double amplitude, double fr
   std::vector<double> settling_scales(static_cast<std::size_t>(graph.internal_nodes), amplitude);
   settling_scales.resize(integrator.settling_state().size(), 1.0);
   ComponentSettling settling(std::move(settling_scales), tolerance);
-  std::vector<double> skipped;
+  std::vector<double> skipped, cycle_state;
   int first_check = 1;
   for (int cycle = 1; cycle <= options.max_cycles; ++cycle) {
     cycle_start = integrator.state();  // reuses the capacity
@@ -179,11 +179,20 @@ HarmonicPoint harmonic_point(const Network& network, double amplitude, double fr
     if (cycle >= first_check) stall.add(cycle, options.max_cycles, change);  // not the cycle a skip ended
     point.stalled = cycle == options.max_cycles && stall.stalled(options.max_cycles);
     if (cycle < options.max_cycles && settling.record(integrator.settling_state(), skipped)) {
-      integrator.move_to(skipped);
-      settling.forget();
-      first_check = cycle + 2;
+      cycle_state = integrator.settling_state();
+      try {
+        integrator.move_to(skipped);
+        settling.forget();
+        first_check = cycle + 2;
+      } catch (const NumericalError&) {
+        // No consistent state there (a drift taken for a slow contraction moved the nonlinear
+        // springs far out): back to where the cycle ended, without moving those components again.
+        integrator.move_to(cycle_state);
+        settling.refuse_last();
+      }
     }
   }
+  point.skip_refused = settling.refused();
   if (statistics) *statistics = integrator.statistics();
   return point;
 }

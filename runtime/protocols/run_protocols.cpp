@@ -94,7 +94,16 @@ std::string harmonic_notes(const Network& network, const HarmonicOptions& option
   const bool stepped_inerter = has_inerter(network) && !uses_closed_form(network, options) && !uses_sundials(network, options.solver);
   std::string notes;
   for (const auto& point : points)
-    if (!point.converged && point.stalled)
+    if (!point.converged && point.skip_refused)
+      notes += fmt::format(
+          "warning: amplitude {:g} mm, frequency {:g} Hz did not reach steady state in {} cycles (residual {:.2e}): part of the "
+          "state moved on by nearly the same amount every cycle, and where that would settle IDA found no consistent state; a "
+          "chain whose element yields further one way each cycle ratchets and has no periodic state, such as a slider whose "
+          "yield forces differ (fy_pos, fy_neg) in series with elements that hold no static force (a springpot, a Maxwell "
+          "element or a dashpot with no spring beside them): give the chain a spring in parallel, or check the yield forces; "
+          "the measures are those of the last cycle\n",
+          point.amplitude, point.frequency, point.cycles, point.residual);
+    else if (!point.converged && point.stalled)
       notes += fmt::format(
           "warning: amplitude {:g} mm, frequency {:g} Hz did not reach steady state in {} cycles (residual {:.2e}, not falling: the "
           "state's change over a cycle did not halve from the second to the last quarter of the cycles); an undamped free oscillation, "

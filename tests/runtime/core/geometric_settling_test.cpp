@@ -52,4 +52,19 @@ TEST_CASE("component settling: a change that flips sign, speeds up or slows down
   for (const auto& s : states) CHECK_FALSE(settling.record(s, target));
 }
 
+TEST_CASE("component settling: a skip the integrator could not take is not tried again for its components, others still skip") {
+  // Component 0 contracts at 0.9 from the start; component 1 holds still, then contracts at 0.5.
+  ComponentSettling settling({1.0, 1.0}, 1e-9);
+  std::vector<double> target;
+  const auto state = [](int n) { return std::vector<double>{2.0 - std::pow(0.9, n), n < 4 ? 1.0 : 2.0 - std::pow(0.5, n - 3)}; };
+  for (int n = 0; n < 4; ++n) CHECK(settling.record(state(n), target) == (n == 3));
+  CHECK_FALSE(settling.refused());
+  settling.refuse_last();  // the integrator found no state at component 0's limit
+  CHECK(settling.refused());
+  for (int n = 4; n < 6; ++n) CHECK_FALSE(settling.record(state(n), target));
+  REQUIRE(settling.record(state(6), target));
+  CHECK(target[0] == state(6)[0]);
+  CHECK(target[1] == doctest::Approx(2.0).epsilon(1e-12));
+}
+
 }  // namespace geometric_settling_test

@@ -184,6 +184,44 @@ TEST_CASE("IDA harmonic point: an undamped free oscillation is stalled, a slow g
   CHECK(settled.measures.stiffness >= closed_form * (1.0 - 1.2e-3));
 }
 
+// Differential seed 73, model 243: a slider yielding at 0.64 N in tension and 7.6 N in
+// compression, in series with a springpot (no static stiffness) and nonlinear springs. At 0.05
+// mm / 20 Hz it slips only in tension and ratchets: its positions move on by about 0.04 mm every
+// cycle. Those changes' rates (0.9995) passed as a slow contraction, the geometric skip moved the
+// positions by 83 mm, and IDA found no consistent state there (IDACalcIC, exit 5). The skip is
+// undone and its components are not moved again: the point runs its cycles and is reported as not
+// converged, its skip refused, with finite measures.
+constexpr int kSamples = 256;  // a cycle
+constexpr int kCycles = 24;    // the skip comes after 16
+
+TEST_CASE("IDA harmonic point: a ratchet's drift is not skipped to where IDA finds no state (differential seed 73, model 243)") {
+  const auto network = test::network_from(
+      "model m { series {\n"
+      " springpot (k = 206.225 N/mm, alpha = 0.879664, tau = 2.75324 ms, f_low = 1 Hz, f_high = 100 Hz)\n"
+      " parallel { maxwell (k = 1294.07 N/mm, tau = 16.6889 ms)\n"
+      "  series { poly_spring (k1 = 12.0284 N/mm, k2 = 3.44644 N/mm^2, k3 = 17.0796 N/mm^3)\n"
+      "   parallel { yeoh (D10 = 438.194 N/mm, D20 = 0 N/mm^3, D30 = 0 N/mm^5)\n"
+      "    maxwell (k = 1605.99 N/mm, tau = 1.0062 ms)\n"
+      "    poly_spring (k1 = 1271.29 N/mm, k2 = -2273.61 N/mm^2, k3 = 1673.52 N/mm^3) } } }\n"
+      " slider (fy_pos = 0.640767 N, fy_neg = 7.63665 N)\n"
+      " poly_spring (k1 = 134.613 N/mm, k2 = 0 N/mm^2, k3 = 0 N/mm^3) } }",
+      "m");
+  runtime::HarmonicOptions options;
+  options.solver = runtime::SolverChoice::sundials;
+  options.steady_state = runtime::SteadyState::time_stepping;
+  options.steps_per_cycle = kSamples;
+  options.tolerance = 1e-6;
+  options.max_cycles = kCycles;
+  runtime::HarmonicPoint point;
+  REQUIRE_NOTHROW(point = runtime::simulate_harmonic_point(network, 0.05, 20.0, options));
+  CHECK_FALSE(point.converged);
+  CHECK(point.skip_refused);
+  CHECK(point.cycles == kCycles);
+  CHECK(std::isfinite(point.measures.stiffness));
+  CHECK(point.measures.stiffness > 0.0);
+  CHECK(std::isfinite(point.measures.phase));
+}
+
 // A springpot behind a gap: IDA's point starts from rest (no linear start with a gap), and the
 // chain's slow tail (l_hi (1 + alpha)/alpha, seconds) settled by 1e-4 a cycle: 400 cycles and
 // 22 s without reaching a change of 1e-6. The component-wise geometric skip settles it in under
