@@ -38,10 +38,13 @@ CycleGroups::CycleGroups(const Topology& topology) : topology_(topology), group_
 double CycleGroups::measure(const std::vector<double>& start, const std::vector<double>& end, const CycleScales& scales) {
   previous_change_.swap(change_);
   previous_rate_.swap(rate_);
+  previous_slot_change_.swap(slot_change_);
+  slot_change_.resize(start.size());
   std::fill(change_.begin(), change_.end(), 0.0);
   double largest = 0.0;
   for (std::size_t i = 0; i < start.size(); ++i) {
-    const double change = std::abs(end[i] - start[i]) / scales.of(topology_.state_scales[i]);
+    slot_change_[i] = (end[i] - start[i]) / scales.of(topology_.state_scales[i]);
+    const double change = std::abs(slot_change_[i]);
     double& group = change_[static_cast<std::size_t>(group_of_slot_[i])];
     group = std::max(group, change);
     largest = std::max(largest, change);
@@ -53,13 +56,21 @@ double CycleGroups::measure(const std::vector<double>& start, const std::vector<
 bool CycleGroups::skip_contracting(const std::vector<double>& cycle_start, std::vector<double>& state) const {
   bool moved = false;
   for (std::size_t g = 0; g < change_.size(); ++g) {
-    if (!steady_contraction(rate_[g], previous_rate_[g])) continue;
+    if (!steady_contraction(rate_[g], previous_rate_[g]) || !along_last_change(g)) continue;
     const double factor = rate_[g] / (1.0 - rate_[g]);
     for (std::size_t i = 0; i < state.size(); ++i)
       if (static_cast<std::size_t>(group_of_slot_[i]) == g) state[i] += factor * (state[i] - cycle_start[i]);
     moved = true;
   }
   return moved;
+}
+
+bool CycleGroups::along_last_change(std::size_t g) const {
+  if (previous_slot_change_.size() != slot_change_.size()) return false;
+  double off = 0.0;
+  for (std::size_t i = 0; i < slot_change_.size(); ++i)
+    if (static_cast<std::size_t>(group_of_slot_[i]) == g) off = std::max(off, std::abs(slot_change_[i] - rate_[g] * previous_slot_change_[i]));
+  return off <= kAlongLastChange * change_[g];
 }
 
 }  // namespace rheo::runtime
