@@ -33,8 +33,9 @@ class CycleGroups {
   // The largest change of any state over the cycle from START to END, relative to its scale;
   // each group's own largest change and its rate against the last cycle's are kept.
   double measure(const std::vector<double>& start, const std::vector<double>& end, const CycleScales& scales);
-  // Moves every group whose change contracts steadily (its rates of the last two cycles) to its
-  // geometric limit from the cycle that started at CYCLE_START; true if any moved.
+  // Moves every group whose change contracts steadily (its rates of the last two cycles), and
+  // along its last change (along_last_change), to its geometric limit from the cycle that started
+  // at CYCLE_START; true if any moved.
   bool skip_contracting(const std::vector<double>& cycle_start, std::vector<double>& state) const;
 
   int groups() const { return static_cast<int>(change_.size()); }
