@@ -143,6 +143,12 @@ int fitted_parameters(const FitResult& fit) {
   return static_cast<int>(fit.free.size()) + static_cast<int>(offsets);
 }
 
+bool decisively_lower(double richer, double simpler, int parameters, int residual_terms) {
+  const double chi_square = richer - parameters * std::log(static_cast<double>(residual_terms));
+  const double overdispersion = residual_terms > parameters ? std::max(1.0, chi_square / (residual_terms - parameters)) : 1.0;
+  return simpler - richer > kDecisiveCriterion * overdispersion;
+}
+
 double criterion(const FitResult& fit, int residual_terms, bool weighted, const NoiseEstimate& noise) {
   const double n = static_cast<double>(residual_terms);
   const double penalty = static_cast<double>(fitted_parameters(fit)) * std::log(n);

@@ -46,6 +46,17 @@ int fitted_parameters(const FitResult& fit);
 // BIC of FIT over N residual terms: chi^2 + p ln N when WEIGHTED, else N ln J + p ln N, p = fitted_parameters.
 double criterion(const FitResult& fit, int residual_terms, bool weighted, const NoiseEstimate& noise);
 
+// A noise-weighted BIC RICHER of a model of P parameters over N residual terms lower than the
+// BIC SIMPLER of one with fewer parameters by more than kDecisiveCriterion times the
+// overdispersion c = max(1, chi^2_richer / (N - P)), chi^2_richer = RICHER - P ln N: evidence
+// "very strong" on Kass and Raftery's scale (J. Am. Stat. Assoc. 90, 1995: a BIC lower by more
+// than 10), with the noise taken at the size of the richer fit's residual where that is beyond
+// the estimate (every chi^2 difference is then c times what noise of the residual's size gives;
+// the quasi-likelihood's scaling). Diagnose lets the simpler of two candidates that fit within
+// its parsimony margin win unless the richer one's BIC is decisively lower (diagnose.hpp step 4).
+inline constexpr double kDecisiveCriterion = 10.0;
+bool decisively_lower(double richer, double simpler, int parameters, int residual_terms);
+
 // The least chi^2 under NOISE over FIT's free parameters, searched from FIT's values: the
 // -2 ln L at the likelihood's maximum, which the BIC assumes. A fit minimises eq. 5.1, whose
 // damping terms weigh a point by 1/sin^2(phase_exp) however noisy it is, so near the few nearly

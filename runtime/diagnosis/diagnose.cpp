@@ -35,15 +35,6 @@ Compiled compile(const ModelSource& source, const std::string& text) {
   return {program, model};
 }
 
-// Whether candidate A is preferred to B: the one with fewer parameters when its gap is within
-// `parsimony` of the other's (the coupled shapes hold friction and Maxwell elements as limits,
-// so they always fit at least as well), else the lower BIC.
-bool preferred(const CandidateOutcome& a, const CandidateOutcome& b, double parsimony) {
-  if (a.parameters < b.parameters && a.gap_after <= (1.0 + parsimony) * b.gap_after) return true;
-  if (b.parameters < a.parameters && b.gap_after <= (1.0 + parsimony) * a.gap_after) return false;
-  return a.criterion < b.criterion;
-}
-
 struct Chosen {
   std::size_t candidate = 0;
   Trial trial;
@@ -356,14 +347,41 @@ class Diagnoser {
     // A candidate that may earn is judged, as the model was, at its likelihood's maximum; one
     // whose fit earns already keeps its fit's chi^2, an upper bound of its least.
     if (gains && d_.noise_weighted && !(outcome.criterion < d_.criterion_before) && !stopped()) {
-      outcome.criterion = least_chi_square(result, data, d_.noise, within(share).fit, kLikelihoodJacobians * (outcome.parameters + 1)).chi_square +
-                          penalty(outcome);
+      at_likelihood_maximum(outcome, result, data, share);
       gains = drops || outcome_reaches_noise(outcome);
     }
     const bool earns = gains && outcome.criterion < d_.criterion_before;
-    if (earns && (!chosen_ || preferred(outcome, d_.candidates[chosen_->candidate], s_.parsimony)))
+    if (earns && (!chosen_ || preferred_to_choice(outcome, result, data, share)))
       chosen_ = Chosen{d_.candidates.size(), trial, std::move(candidate), std::move(result), &data};
     d_.candidates.push_back(outcome);
+  }
+
+  // OUTCOME's criterion at its likelihood's maximum, searched from its fit RESULT to DATA.
+  void at_likelihood_maximum(CandidateOutcome& outcome, const FitResult& result, const std::vector<FitDataSet>& data, double share) {
+    const int evaluations = kLikelihoodJacobians * (outcome.parameters + 1);
+    outcome.criterion = least_chi_square(result, data, d_.noise, within(share).fit, evaluations).chi_square + penalty(outcome);
+    outcome.at_likelihood_maximum = true;
+  }
+
+  // Whether OUTCOME (its fit RESULT to DATA), which earns, is preferred to the choice so far: the
+  // one with fewer parameters when its gap is within `parsimony` of the other's (the coupled
+  // shapes hold friction and Maxwell elements as limits, so they always fit at least as well),
+  // unless the other's BIC is decisively lower, judged with both at their likelihood's maximum
+  // (criterion.hpp decisively_lower: free play that engages at the largest amplitudes fits
+  // within the margin of a stiffening yeoh spring's gap with a chi^2 half of the spring's);
+  // else the lower BIC.
+  bool preferred_to_choice(CandidateOutcome& outcome, const FitResult& result, const std::vector<FitDataSet>& data, double share) {
+    CandidateOutcome& choice = d_.candidates[chosen_->candidate];
+    if (outcome.parameters == choice.parameters) return outcome.criterion < choice.criterion;
+    const bool outcome_simpler = outcome.parameters < choice.parameters;
+    CandidateOutcome& simpler = outcome_simpler ? outcome : choice;
+    CandidateOutcome& richer = outcome_simpler ? choice : outcome;
+    if (!(simpler.gap_after <= (1.0 + s_.parsimony) * richer.gap_after)) return outcome.criterion < choice.criterion;
+    if (!d_.noise_weighted || !decisively_lower(richer.criterion, simpler.criterion, richer.parameters, d_.residual_terms) || stopped())
+      return outcome_simpler;
+    if (!outcome.at_likelihood_maximum) at_likelihood_maximum(outcome, result, data, share);
+    if (!choice.at_likelihood_maximum) at_likelihood_maximum(choice, chosen_->result, *chosen_->data, share);
+    return decisively_lower(richer.criterion, simpler.criterion, richer.parameters, d_.residual_terms) != outcome_simpler;
   }
 
   // The data with the force offsets the offset candidate frees (offset_candidate.hpp).

@@ -19,8 +19,9 @@
 //      phase noise; else N ln(J), J the minimised objective, the noise's size profiled out;
 //      so that a larger model must earn its parameters: a candidate earns when its BIC is below
 //      the model's and it lowers the gap by at least `min_improvement`. Of those that earn, the
-//      one with fewer parameters wins if its gap is within `parsimony` of the other's, else the
-//      lower BIC. Where none earns but free play and asymmetry were both refitted, play in
+//      one with fewer parameters wins if its gap is within `parsimony` of the other's, unless
+//      the other's noise-weighted BIC is decisively lower (criterion.hpp decisively_lower, both
+//      judged at their likelihood's maximum); else the lower BIC. Where none earns but free play and asymmetry were both refitted, play in
 //      front of a friction element made one-sided is refitted as one more candidate.
 //      A resonance (the fluid-column shapes) earns only where the measurement
 //      resolves it: refitted to f_r = sqrt(k/b)/(2 pi), a measured frequency must lie at least
@@ -121,7 +122,11 @@ struct CandidateOutcome {
   std::string element;     // name of the added (or replacing) element
   double gap_after = 0.0;  // after the two-stage refit (before any polish)
   double criterion = 0.0;  // BIC of the refitted model
-  int parameters = 0;      // its free parameters
+  // Whether `criterion` is at the likelihood's maximum (criterion.hpp least_chi_square), not
+  // the fit's own chi^2 (an upper bound of its least); always false where the criterion is not
+  // noise-weighted.
+  bool at_likelihood_maximum = false;
+  int parameters = 0;  // its free parameters
   double wall_seconds = 0.0;
   std::string fitted;  // the added element's refitted values ("backlash.play.width = 0.91 mm, ..."); empty for the offset
   // Why the candidate cannot earn whatever it gains, or empty: a refitted resonance outside

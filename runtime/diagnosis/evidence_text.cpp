@@ -68,7 +68,8 @@ std::string pattern_sentence(Effect effect, const ResidualPatterns& p) {
 std::vector<const CandidateOutcome*> alike_candidates(const Diagnosis& d, const CandidateOutcome& w, double parsimony) {
   auto alike = [&](const CandidateOutcome& c) {
     return &c != &w && c.refitted && c.screened.effect != w.screened.effect && c.unresolved.empty() && c.criterion < d.criterion_before &&
-           c.gap_after <= (1.0 + parsimony) * w.gap_after;
+           c.gap_after <= (1.0 + parsimony) * w.gap_after &&
+           !(d.noise_weighted && w.parameters > c.parameters && decisively_lower(w.criterion, c.criterion, w.parameters, d.residual_terms));
   };
   std::vector<const CandidateOutcome*> out;
   for (const auto& c : d.candidates) {
@@ -96,6 +97,27 @@ std::string alike_sentences(const Diagnosis& d, const CandidateOutcome& w, doubl
   return out;
 }
 
+// "; a yeoh spring ... (nonlinear-elasticity) comes within 10 % of the gap with 1 parameter fewer,
+// but ..." for each refitted candidate of another effect that earned with fewer parameters and a
+// gap within PARSIMONY of W's, but a decisively higher BIC (criterion.hpp decisively_lower).
+std::string outweighed_sentences(const Diagnosis& d, const CandidateOutcome& w, double parsimony) {
+  std::string out;
+  if (!d.noise_weighted) return out;
+  for (const CandidateOutcome& c : d.candidates) {
+    if (!c.refitted || c.screened.effect == w.screened.effect || !c.unresolved.empty() || !(c.criterion < d.criterion_before) ||
+        c.parameters >= w.parameters || !(c.gap_after <= (1.0 + parsimony) * w.gap_after) ||
+        !decisively_lower(w.criterion, c.criterion, w.parameters, d.residual_terms))
+      continue;
+    const int fewer = w.parameters - c.parameters;
+    out += fmt::format(
+        "; {} ({}) comes within {:.0f} % of the gap with {} parameter{} fewer ({} {:.4g}), but its BIC is {:.1f} higher, "
+        "which the data decide",
+        trial_summary(c.screened.trial), effect_name(c.screened.effect), 100.0 * parsimony, fewer, fewer == 1 ? "" : "s", d.gap_name, c.gap_after,
+        c.criterion - w.criterion);
+  }
+  return out;
+}
+
 }  // namespace
 
 std::string effect_reason(const Diagnosis& d, const CandidateOutcome& w, double parsimony) {
@@ -110,7 +132,7 @@ std::string effect_reason(const Diagnosis& d, const CandidateOutcome& w, double 
              "{:.1f} with {} more parameter{}",
              pattern_sentence(w.screened.effect, d.patterns), screened, d.gap_name, d.gap_before, w.gap_after, d.gap_before / w.gap_after,
              d.criterion_before, w.criterion, more, std::abs(more) == 1 ? "" : "s") +
-         alike_sentences(d, w, parsimony);
+         alike_sentences(d, w, parsimony) + outweighed_sentences(d, w, parsimony);
 }
 
 namespace {

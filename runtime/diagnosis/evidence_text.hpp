@@ -21,7 +21,9 @@ std::string effect_reason(const Diagnosis& diagnosis, const CandidateOutcome& wi
 
 // The candidates effect_reason names as fitting about as well as WINNER: of each other effect,
 // its best refitted candidate that earned (BIC below the model's, its resonance resolved) and
-// whose gap is within PARSIMONY of WINNER's; in the order of DIAGNOSIS.candidates.
+// whose gap is within PARSIMONY of WINNER's, unless WINNER has more parameters and a
+// decisively lower noise-weighted BIC (criterion.hpp decisively_lower: the data tell them
+// apart); in the order of DIAGNOSIS.candidates.
 std::vector<const CandidateOutcome*> alike_candidates(const Diagnosis& diagnosis, const CandidateOutcome& winner, double parsimony);
 
 // Why nothing was added and the residual is noise: no candidate screened above the threshold, or

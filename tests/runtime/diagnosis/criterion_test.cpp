@@ -128,4 +128,21 @@ TEST_CASE("diagnose criterion, weighted: reaches_noise judges on chi^2 over N - 
   CHECK(dx::residual_ratio({0.003, 1.96 * 395.0, 5}, n, terms, true) == doctest::Approx(1.4).epsilon(1e-12));
 }
 
+// decisively_lower: BIC_simpler - BIC_richer > 10 c, c = max(1, chi^2_richer / (N - p)),
+// chi^2_richer = BIC_richer - p ln N. N = 100, p = 8: ln 100 = 4.60517.
+TEST_CASE("diagnose criterion: a richer model's lower BIC is decisive beyond 10 times the overdispersion of its residual") {
+  const int n = 100, p = 8;
+  const double penalty = p * std::log(100.0);
+  // chi^2 = 92 = N - p: c = 1, the margin 10.
+  CHECK(dx::decisively_lower(92.0 + penalty, 92.0 + penalty + 10.01, p, n));
+  CHECK_FALSE(dx::decisively_lower(92.0 + penalty, 92.0 + penalty + 9.99, p, n));
+  // chi^2 = 46 < N - p: c stays 1.
+  CHECK(dx::decisively_lower(46.0 + penalty, 46.0 + penalty + 10.01, p, n));
+  // chi^2 = 920: c = 10, the margin 100.
+  CHECK(dx::decisively_lower(920.0 + penalty, 920.0 + penalty + 100.1, p, n));
+  CHECK_FALSE(dx::decisively_lower(920.0 + penalty, 920.0 + penalty + 99.9, p, n));
+  // A higher BIC is never decisively lower.
+  CHECK_FALSE(dx::decisively_lower(920.0 + penalty, 900.0 + penalty, p, n));
+}
+
 }  // namespace criterion_test

@@ -4,6 +4,8 @@
 
 #include <doctest/doctest.h>
 
+#include <cmath>
+
 namespace evidence_text_test {
 
 using namespace rheo::runtime::diagnosis;
@@ -58,6 +60,29 @@ TEST_CASE("a named effect's reason names the candidates of other effects that fi
   REQUIRE(for_backlash.size() == 1);
   CHECK(for_backlash.front() == &d.candidates[3]);
   CHECK(alike_candidates(d, d.candidates[1], 0.02).empty());
+}
+
+// Under a noise-weighted criterion, a winner with more parameters whose BIC is lower than a
+// within-margin candidate's by more than 10 times its residual's overdispersion
+// (criterion.hpp decisively_lower) is not "alike" it: the reason says the data decide.
+TEST_CASE("a named effect's reason says where the data decide against a candidate with fewer parameters that fits within the margin") {
+  Diagnosis d;
+  d.gap_name = "err (6.1)";
+  d.gap_before = 0.05, d.criterion_before = 1000.0;
+  d.noise_weighted = true, d.residual_terms = 100;
+  const double penalty_8 = 8 * std::log(100.0);
+  d.candidates.push_back(refitted(Effect::backlash, Shape::gapped_spring, 0.0096, 92.0 + penalty_8, 8));            // c = 1
+  d.candidates.push_back(refitted(Effect::nonlinear_elasticity, Shape::yeoh, 0.0103, 92.0 + penalty_8 + 25.0, 7));  // 25 higher: decided
+  const std::string reason = effect_reason(d, d.candidates.front(), 0.1);
+  CAPTURE(reason);
+  CHECK(reason.find("fits about as well") == std::string::npos);
+  CHECK(reason.find("(nonlinear-elasticity) comes within 10 % of the gap with 1 parameter fewer (err (6.1) 0.0103), but its BIC is 25.0 higher, "
+                    "which the data decide") != std::string::npos);
+  CHECK(alike_candidates(d, d.candidates.front(), 0.1).empty());
+  // 9 higher: not decided, alike.
+  d.candidates[1].criterion = 92.0 + penalty_8 + 9.0;
+  CHECK(alike_candidates(d, d.candidates.front(), 0.1).size() == 1);
+  CHECK(effect_reason(d, d.candidates.front(), 0.1).find("which the data decide") == std::string::npos);
 }
 
 }  // namespace evidence_text_test
