@@ -134,6 +134,12 @@ bool reaches_noise(const Residual& before, const Residual& after, const NoiseEst
          !beyond_noise_ratio(residual_ratio(after, noise, residual_terms, weighted), noise);
 }
 
+bool lowers_residual(const Residual& before, const Residual& after, double share, int residual_terms, bool weighted) {
+  if (after.gap <= (1.0 - share) * before.gap) return true;
+  return weighted && chi_square_ratio(after.chi_square, residual_terms, after.parameters) <=
+                         (1.0 - share) * chi_square_ratio(before.chi_square, residual_terms, before.parameters);
+}
+
 double chi_square_ratio(double chi_square, int residual_terms, int parameters) {
   return std::sqrt(chi_square / std::max(1.0, static_cast<double>(residual_terms - parameters)));
 }

@@ -340,15 +340,19 @@ class Diagnoser {
     outcome.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
     d_.interrupted = d_.interrupted || result.interrupted;
     d_.time_limited = d_.time_limited || result.time_limited;
-    // A gap just beyond the noise cannot fall by min_improvement; taking it to the noise earns
-    // too, judged as the verdict is (criterion.hpp reaches_noise).
-    const bool drops = outcome.gap_after <= (1.0 - s_.min_improvement) * d_.gap_before;
-    bool gains = outcome.unresolved.empty() && (drops || outcome_reaches_noise(outcome));
+    // The residual falls by min_improvement (criterion.hpp lowers_residual: the gap, or where
+    // weighted the residual over the noise); a gap just beyond the noise cannot, and taking it
+    // to the noise earns too, judged as the verdict is (criterion.hpp reaches_noise).
+    auto drops = [&] {
+      return lowers_residual(before_residual(), {outcome.gap_after, outcome.criterion - penalty(outcome), outcome.parameters}, s_.min_improvement,
+                             d_.residual_terms, d_.noise_weighted);
+    };
+    bool gains = outcome.unresolved.empty() && (drops() || outcome_reaches_noise(outcome));
     // A candidate that may earn is judged, as the model was, at its likelihood's maximum; one
     // whose fit earns already keeps its fit's chi^2, an upper bound of its least.
     if (gains && d_.noise_weighted && !(outcome.criterion < d_.criterion_before) && !stopped()) {
       at_likelihood_maximum(outcome, result, data, share);
-      gains = drops || outcome_reaches_noise(outcome);
+      gains = drops() || outcome_reaches_noise(outcome);
     }
     const bool earns = gains && outcome.criterion < d_.criterion_before;
     if (earns && (!chosen_ || preferred_to_choice(outcome, result, data, share)))

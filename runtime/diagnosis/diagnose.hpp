@@ -18,7 +18,8 @@
 //      a noise estimate, -2 ln L is the chi^2 of the residuals under the estimated stiffness and
 //      phase noise; else N ln(J), J the minimised objective, the noise's size profiled out;
 //      so that a larger model must earn its parameters: a candidate earns when its BIC is below
-//      the model's and it lowers the gap by at least `min_improvement`. Of those that earn, the
+//      the model's and it lowers the gap (or where weighted its residual over the noise,
+//      criterion.hpp lowers_residual) by at least `min_improvement`. Of those that earn, the
 //      one with fewer parameters wins if its gap is within `parsimony` of the other's, unless
 //      the other's noise-weighted BIC is decisively lower (criterion.hpp decisively_lower, both
 //      judged at their likelihood's maximum); else the lower BIC. Where none earns but free play and asymmetry were both refitted, play in

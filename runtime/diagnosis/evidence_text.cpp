@@ -160,9 +160,9 @@ std::string without_noise(const Diagnosis& d, const DiagnoseSettings& s) {
                        best->unresolved);
   return fmt::format(
       "the best candidate, {} for {}, lowered {} only from {:.4g} to {:.4g} and BIC from {:.1f} to {:.1f}; an element must "
-      "lower BIC and the gap by {:.0f} % to earn its parameters",
+      "lower BIC and the gap{} by {:.0f} % to earn its parameters",
       trial_summary(best->screened.trial), effect_name(best->screened.effect), d.gap_name, d.gap_before, best->gap_after, d.criterion_before,
-      best->criterion, percent(s.min_improvement));
+      best->criterion, d.noise_weighted ? " or its residual over the noise" : "", percent(s.min_improvement));
 }
 
 std::string range_text(const LevelRange& r, const char* unit) {

@@ -7,7 +7,8 @@
 // The suite runs a few draws (fewer under AddressSanitizer); RHEO_DIAGNOSE_SWEEP=N runs N seeds
 // of every case (from RHEO_DIAGNOSE_SWEEP_FIRST, default 1; RHEO_DIAGNOSE_SWEEP_ONLY=none for one
 // case, RHEO_DIAGNOSE_SWEEP_KIND=harmonic or history for one kind of data) and prints one line per diagnosis and the rates (about a minute per seed);
-// RHEO_DIAGNOSE_SWEEP_VERBOSE=1 adds every candidate under its diagnosis.
+// RHEO_DIAGNOSE_SWEEP_VERBOSE=1 adds every candidate under its diagnosis; RHEO_DIAGNOSE_SWEEP_DUMP=DIR
+// writes each harmonic draw as a model and a table for the command line (dump below).
 #include "runtime/diagnosis/diagnose.hpp"
 
 #include "diagnosis_generator.hpp"
@@ -18,6 +19,7 @@
 
 #include <cmath>
 #include <cstdlib>
+#include <fstream>
 #include <iostream>
 #include <map>
 #include <numbers>
@@ -83,7 +85,26 @@ Outcome outcome(const dx::Diagnosis& d, const gen::Scenario& sc, gen::Hidden hid
   return o;
 }
 
-Outcome run(const gen::Scenario& sc, gen::Hidden hidden, unsigned seed) { return outcome(test::diagnose(sc.start, sc.data), sc, hidden, seed); }
+// With RHEO_DIAGNOSE_SWEEP_DUMP=DIR, a harmonic draw's start model and table are written to
+// DIR/<hidden>_<seed>.rheo and .csv, for `rheo diagnose DIR/play_3.rheo` (the model's fit block
+// names the table).
+void dump(const gen::Scenario& sc, gen::Hidden hidden, unsigned seed) {
+  const char* dir = std::getenv("RHEO_DIAGNOSE_SWEEP_DUMP");
+  if (!dir || !sc.data.front().is_harmonic()) return;
+  const std::string stem = fmt::format("{}/{}_{}", dir, gen::hidden_name(hidden), seed);
+  std::ofstream csv(stem + ".csv");
+  csv << "amplitude [mm],frequency [Hz],stiffness [N/mm],phase [deg]\n";
+  const auto& h = sc.data.front().harmonic();
+  for (std::size_t i = 0; i < h.size(); ++i)
+    csv << fmt::format("{:.17g},{:.17g},{:.17g},{:.17g}\n", h.amplitude[i], h.frequency[i], h.stiffness[i], h.phase[i] * 180.0 / std::numbers::pi);
+  std::ofstream model(stem + ".rheo");
+  model << "# " << sc.truth << "\n" << sc.start << fmt::format("fit start {{\n  data \"{}_{}.csv\"\n}}\n", gen::hidden_name(hidden), seed);
+}
+
+Outcome run(const gen::Scenario& sc, gen::Hidden hidden, unsigned seed) {
+  dump(sc, hidden, seed);
+  return outcome(test::diagnose(sc.start, sc.data), sc, hidden, seed);
+}
 
 struct Tally {
   int runs = 0, wrong = 0, right = 0, invisible = 0;

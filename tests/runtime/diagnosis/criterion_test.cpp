@@ -145,4 +145,22 @@ TEST_CASE("diagnose criterion: a richer model's lower BIC is decisive beyond 10 
   CHECK_FALSE(dx::decisively_lower(920.0 + penalty, 900.0 + penalty, p, n));
 }
 
+// lowers_residual: the gap falls by the share, or where weighted sqrt(chi^2 / (N - p)) does.
+// N = 70: before chi^2 2523 over 65 (ratio 6.230), after 504 over 63 (ratio 2.828, 55 % lower),
+// the gap 0.052 -> 0.0435 (16 % lower).
+TEST_CASE("diagnose criterion: a residual falls by the share in its gap, or where weighted in sqrt(chi^2 / (N - p))") {
+  const dx::Residual before{0.052, 2523.0, 5}, after{0.0435, 504.0, 7};
+  CHECK(dx::lowers_residual(before, after, 0.25, 70, true));
+  CHECK_FALSE(dx::lowers_residual(before, after, 0.25, 70, false));
+  CHECK_FALSE(dx::lowers_residual(before, after, 0.6, 70, true));  // 55 % is not 60 %
+  // The gap alone, weighted or not: 0.052 -> 0.039 is 25 %.
+  const dx::Residual gap_only{0.039, 2523.0, 7};
+  CHECK(dx::lowers_residual(before, gap_only, 0.25, 70, true));
+  CHECK(dx::lowers_residual(before, gap_only, 0.25, 70, false));
+  // chi^2 / (N - p) exactly 0.75^2 of before's: the boundary holds.
+  const dx::Residual boundary{0.052, 2523.0 / 65.0 * 0.5625 * 63.0, 7};
+  CHECK(dx::lowers_residual(before, boundary, 0.25 - 1e-12, 70, true));
+  CHECK_FALSE(dx::lowers_residual(before, boundary, 0.25 + 1e-9, 70, true));
+}
+
 }  // namespace criterion_test
