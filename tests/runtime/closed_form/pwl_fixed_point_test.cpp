@@ -70,4 +70,30 @@ TEST_CASE("least_norm_fixed_point takes the least-norm step where J has an eigen
   }
 }
 
+// J - I of a stiff, nearly undamped node's half-period map in the shooting's scales (a column of
+// 2e-9 kg behind 1232 N/mm at 0.86 Hz, pwl_periodic_test): regular, but its rows differ by 1e6
+// and its unscaled 1-norm condition is 1e-12. The rank-revealing solve with its threshold of 1e-10
+// takes it for rank 3 and leaves the step near zero; the step must be the solution, here about
+// 1 in the velocity. At the size 6 the same block beside a regular 2 x 2 one (the LU path).
+TEST_CASE("least_norm_fixed_point solves a regular map whose rows differ by 1e6 as the regular map it is") {
+  Eigen::Matrix4d stiff;
+  stiff << -1, 0, 0, 0, -0.314948, -0.685052, 0, -8.13516e-08, 0, 0, 0, 0, -1.54272e+06, 1.54272e+06, 0, -0.685051;
+  for (int n : {4, 6}) {
+    runtime::PwlMatrix J = runtime::PwlMatrix::Zero(n, n);
+    J.topLeftCorner(4, 4) = stiff;
+    if (n == 6) J.bottomRightCorner(2, 2) << 0.3, -0.4, 0.5, 0.2;
+    runtime::PwlVector X0 = runtime::PwlVector::Zero(n), Y = runtime::PwlVector::Zero(n);
+    X0.head(4) << 4.80468e-07, -6.11795e-07, 1, 0;
+    Y.head(4) << -4.80468e-07, 3.4914e-07, 1, 3.09454e-10;
+    if (n == 6) X0.tail(2) << 0.1, -0.2, Y.tail(2) << 0.3, 0.1;
+    const Eigen::MatrixXd J_minus_I = Eigen::MatrixXd(J) - Eigen::MatrixXd::Identity(n, n);
+    const Eigen::VectorXd expected = Eigen::VectorXd(X0) - J_minus_I.fullPivLu().solve(Eigen::VectorXd(Y - X0));
+    const runtime::PwlVector X = runtime::least_norm_fixed_point(J, X0, Y);
+    CAPTURE(n);
+    REQUIRE(X.size() == n);
+    CHECK(std::abs(expected[3]) > 0.5);  // the velocity's step is of order 1 (the rank-3 solve left it near 0)
+    CHECK((Eigen::VectorXd(X) - expected).cwiseAbs().maxCoeff() <= 1e-8);
+  }
+}
+
 }  // namespace pwl_fixed_point_test
