@@ -53,6 +53,7 @@ double equilibrated_rcond(const Matrix& a, const Matrix& inverse) {
   for (Eigen::Index j = 0; j < inverse.cols(); ++j) {
     double column = 0.0;
     for (Eigen::Index i = 0; i < inverse.rows(); ++i) column += d[static_cast<std::size_t>(i)] * std::abs(inverse(i, j));
+    if (!std::isfinite(column)) return 0.0;  // std::max would pass over a NaN
     norm = std::max(norm, column);
   }
   return 1.0 / norm;

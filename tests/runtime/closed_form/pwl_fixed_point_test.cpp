@@ -96,4 +96,24 @@ TEST_CASE("least_norm_fixed_point solves a regular map whose rows differ by 1e6 
   }
 }
 
+// J - I exactly singular (a coordinate whose end the map does not move: a zero row): the
+// closed-form inverse gives infinite and NaN entries, the LU no inverse; both must fail the
+// condition test and leave the least-norm solution, finite.
+TEST_CASE("least_norm_fixed_point takes the least-norm step where J - I has a zero row, at sizes 4 and 6") {
+  for (int n : {4, 6}) {
+    runtime::PwlMatrix J = map_of(n, 0.4);
+    J.row(0).setZero();
+    J(0, 0) = 1.0;
+    const runtime::PwlVector X0 = vector_of(n, 0.3), Y = vector_of(n, 2.1);
+    const Eigen::MatrixXd J_minus_I = Eigen::MatrixXd(J) - Eigen::MatrixXd::Identity(n, n);
+    const Eigen::VectorXd step = J_minus_I.jacobiSvd(Eigen::ComputeThinU | Eigen::ComputeThinV).setThreshold(1e-10).solve(Eigen::VectorXd(Y - X0));
+    const Eigen::VectorXd expected = Eigen::VectorXd(X0) - step;
+    const runtime::PwlVector X = runtime::least_norm_fixed_point(J, X0, Y);
+    CAPTURE(n);
+    REQUIRE(X.size() == n);
+    REQUIRE(X.allFinite());
+    CHECK((Eigen::VectorXd(X) - expected).cwiseAbs().maxCoeff() <= 1e-10 * (1.0 + expected.cwiseAbs().maxCoeff()));
+  }
+}
+
 }  // namespace pwl_fixed_point_test
