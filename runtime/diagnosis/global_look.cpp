@@ -59,15 +59,22 @@ std::pair<double, double> supported_range(const Network& network, int index, con
   const lang::Parameter& p = network.model().parameters.at(static_cast<std::size_t>(index));
   const double start = network.parameter(index), two_pi = 2.0 * std::numbers::pi;
   std::pair<double, double> range{start / 10.0, start * 10.0};
+  const double k_lo = s.bounds.stiffness / 300.0, k_hi = 3.0 * s.bounds.stiffness;
+  const double w_lo = two_pi * s.frequency_low, w_hi = two_pi * s.frequency_high;
+  const double tau_lo = 1.0 / w_hi / 3.0, tau_hi = 3.0 / w_lo;
   if (p.dimension == lang::dim::force) {
     const auto [lo, hi] = force_range(data);
     range = {lo / 10.0, hi};
   } else if (p.dimension == lang::dim::time) {
-    range = {1.0 / (two_pi * s.frequency_high) / 3.0, 3.0 / (two_pi * s.frequency_low)};
+    range = {tau_lo, tau_hi};
   } else if (p.dimension == lang::dim::length) {
     range = {s.amplitude_low / 30.0, s.amplitude_high};
   } else if (p.dimension == lang::dim::stiffness) {
-    range = {s.bounds.stiffness / 300.0, 3.0 * s.bounds.stiffness};
+    range = {k_lo, k_hi};
+  } else if (p.dimension == lang::dim::mass) {
+    range = {k_lo / (w_hi * w_hi), k_hi / (w_lo * w_lo)};
+  } else if (p.dimension == lang::dim::damping) {
+    range = {k_lo * tau_lo, k_hi * tau_hi};
   }
   return {std::clamp(range.first, p.lower, p.upper), std::clamp(range.second, p.lower, p.upper)};
 }

@@ -246,4 +246,20 @@ TEST_CASE("diagnose noise estimate over pure-noise draws of the 6 x 6 grid (RHEO
                            sum_abs_log / seeds, worst);
 }
 
+// A fluid column resonating at 9 Hz (107 N/mm onto 33 kg, damping ratio 0.18) between the
+// grid's 2.8 and 11.9 Hz: the screen, with the model's other elements held, sizes its column at
+// the top of the band (57 Hz), and the refit's global look sampled the column's mass a decade
+// either side of that (with the screened chamber, resonances above 18 Hz); its local searches stayed there (err 0.0317,
+// a resonance at the band's edge that cannot earn: unexplained). Masses and dampings are sampled
+// over what resonates, and relaxes, within the measured band (global_look.hpp): err 0.00935, the
+// true structure's own fit.
+TEST_CASE("diagnose sweep: a column resonating inside the band far from where the screen sized it is inertia, at the true structure's gap") {
+  const gen::Scenario sc = gen::harmonic_scenario(4, gen::Hidden::column);
+  const dx::Diagnosis d = test::diagnose(sc.start, sc.data);
+  const Outcome o = outcome(d, sc, gen::Hidden::column, 4);
+  INFO(o.line);
+  CHECK(o.named_right);
+  CHECK(d.gap_after < 0.0105);  // the truth's structure fitted from the truth: 0.00935
+}
+
 }  // namespace diagnosis_sweep_test

@@ -65,4 +65,37 @@ TEST_CASE("global look: the start first, a gap's centre sampled over both signs,
   CHECK(highest > 0.8);
 }
 
+// A column (a chamber k onto a mass m and a channel c in parallel) that the band can see:
+// resonating at 1-10 Hz, the measured frequencies, with a damping ratio 0.1-1 and a chamber of
+// K/100 to K (K = 330 N/mm, the table's median stiffness). Its mass and damping lie within
+// their supported ranges; a decade either side of the start's mass (a column resonating at
+// 300 Hz) reaches 95 Hz on its chamber, not the band.
+TEST_CASE("global look: masses and dampings range over the columns that resonate within the measured band") {
+  const lang::Program program = lang::compile_source("g.rheo", R"(model m {
+  spring s (k = 300 N/mm)
+  series c { spring k (k = 30 N/mm in [0.01, 10000])  parallel y { inerter b (b = 0.0084 kg in [1e-9, 1e9])  dashpot d (c = 0.005 N*s/mm in [1e-9, 1e9]) } }
+})");
+  const runtime::Network start = runtime::Network::compile(program.models.front());
+  const std::vector<runtime::FitDataSet> data{table()};
+  const dx::DataScales scales = dx::data_scales(data);
+  const auto [m_lo, m_hi] = dx::supported_range(start, test::parameter_index(start, "c.y.b.b"), data, scales);
+  const auto [c_lo, c_hi] = dx::supported_range(start, test::parameter_index(start, "c.y.d.c"), data, scales);
+  const double big_k = scales.bounds.stiffness, two_pi = 2.0 * std::acos(-1.0);
+  for (double k : {big_k / 100.0, big_k})
+    for (double f : {1.0, 10.0})
+      for (double zeta : {0.1, 1.0}) {
+        const double w = two_pi * f, m = k / (w * w), c = 2.0 * zeta * std::sqrt(k * m);
+        INFO("k = " << k << " N/mm, f = " << f << " Hz, zeta = " << zeta);
+        CHECK(m >= m_lo);
+        CHECK(m <= m_hi);
+        CHECK(c >= c_lo);
+        CHECK(c <= c_hi);
+      }
+  CHECK(big_k == 330.0);
+  const double start_mass = start.parameter(test::parameter_index(start, "c.y.b.b"));
+  const double at_10_hz = 30.0 / (two_pi * two_pi * 100.0);  // on the start's chamber
+  CHECK(at_10_hz > 10.0 * start_mass);
+  CHECK(at_10_hz < m_hi);
+}
+
 }  // namespace global_look_test
