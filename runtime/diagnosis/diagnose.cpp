@@ -151,7 +151,7 @@ class Diagnoser {
   std::vector<ScreenedEffect> screen_effects() {
     if (stopped()) return {};
     stage("screening the effects");
-    std::vector<ScreenedEffect> screened = screen(d_.before, data_, s_.fit.score);
+    std::vector<ScreenedEffect> screened = screen(d_.before, data_, s_.fit.score, s_.parsimony);
     // Harmonic sweeps that measure no interaction (patterns.hpp) give no evidence of coupling,
     // and a coupled element that fits them would be named for what they cannot show.
     const bool histories = std::any_of(data_.begin(), data_.end(), [](const FitDataSet& set) { return !set.is_harmonic(); });
@@ -193,6 +193,7 @@ class Diagnoser {
       std::optional<Trial> bulged;  // the best refitted column's, with its walls' spring
       const std::optional<Trial> limit = refit_candidate(trial, outcome, share, nullptr, &bulged);
       if (limit && !stopped()) refit_limit(screened, outcome, trial, *limit, column_at, share, bulged);
+      if (screened.simpler && !stopped() && !limit) refit_simpler(screened, share);
       if (!bulged || stopped() || column_reaches_noise(column_at)) continue;
       // A column that stops short of the noise may miss the stiffness its node rests on: the
       // chamber walls' spring beside the mass and channel (candidate_model.hpp bulged_column).
@@ -205,6 +206,20 @@ class Diagnoser {
           d_.candidates[column_at].gap_after);
       refit_candidate(*bulged, walls, share);
     }
+  }
+
+  // The screen's simpler member of the effect, which screened within the parsimony margin of its
+  // best (screen.hpp ScreenedEffect::simpler), refitted beside it. (A capped fluid column's
+  // simpler member, the capped Maxwell element, is its limit without inertia, refitted anyway.)
+  void refit_simpler(const ScreenedEffect& screened, double share) {
+    CandidateOutcome simpler;
+    simpler.screened = screened;
+    simpler.screened.trial = *screened.simpler;
+    simpler.element = element_name(*screened.simpler, screened.effect);
+    const int fewer = added_parameter_count(screened.trial) - added_parameter_count(*screened.simpler);
+    simpler.limit_of = fmt::format("with {} parameter{} fewer, screened within the parsimony margin of it", fewer, fewer == 1 ? "" : "s");
+    simpler.screened_as = trial_summary(screened.trial);
+    refit_candidate(*screened.simpler, simpler, share);
   }
 
   // The column's limit without inertia competes with it: where the data hold no resonance (or

@@ -137,8 +137,12 @@ struct CandidateOutcome {
   // Empty, or why this trial was refitted although not screened: the limit without inertia of
   // the candidate before it (a refitted slider-capped fluid column becomes the slider-capped
   // Maxwell element of its chamber and channel, which earns where the data hold no resonance
-  // or cannot place it).
+  // or cannot place it); the screen's simpler member of the effect (screen.hpp
+  // ScreenedEffect::simpler); free play and a one-sided yield together (together.hpp).
   std::string limit_of;
+  // With limit_of: the screen's best member of the effect, where it is not a slider-capped
+  // fluid column (the reason names what was screened, then what was refitted instead or beside).
+  std::string screened_as;
   bool chosen = false;  // the element added
 };
 

@@ -121,11 +121,11 @@ std::string outweighed_sentences(const Diagnosis& d, const CandidateOutcome& w, 
 }  // namespace
 
 std::string effect_reason(const Diagnosis& d, const CandidateOutcome& w, double parsimony) {
-  const std::string screened = w.limit_of.empty()
-                                   ? fmt::format("{} alone would remove {:.0f} % of the objective", trial_summary(w.screened.trial),
-                                                 percent(w.screened.gain))
-                                   : fmt::format("a slider-capped fluid column alone would remove {:.0f} % of the objective, and {}, {}, earns it",
-                                                 percent(w.screened.gain), trial_summary(w.screened.trial), w.limit_of);
+  const std::string screened = w.limit_of.empty() ? fmt::format("{} alone would remove {:.0f} % of the objective", trial_summary(w.screened.trial),
+                                                                percent(w.screened.gain))
+                                                  : fmt::format("{} alone would remove {:.0f} % of the objective, and {}, {}, earns it",
+                                                                w.screened_as.empty() ? "a slider-capped fluid column" : w.screened_as,
+                                                                percent(w.screened.gain), trial_summary(w.screened.trial), w.limit_of);
   const int more = w.parameters - fitted_parameters(d.before);
   return fmt::format(
              "{}; {}; refitted with every parameter, {} fell from {:.4g} to {:.4g} ({:.2f} times lower) and BIC from {:.1f} to "

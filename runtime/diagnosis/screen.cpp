@@ -305,7 +305,7 @@ std::vector<Trial> trial_family(Effect effect, const DataScales& s, const std::s
   return family;
 }
 
-std::vector<ScreenedEffect> screen(const FitResult& fit, const std::vector<FitDataSet>& data, const ScoreSettings& score) {
+std::vector<ScreenedEffect> screen(const FitResult& fit, const std::vector<FitDataSet>& data, const ScoreSettings& score, double parsimony) {
   const DataScales scales = data_scales(data);
   const AddedObjective objective(fit, data, score);
   const double base = objective({}, {});
@@ -381,6 +381,11 @@ std::vector<ScreenedEffect> screen(const FitResult& fit, const std::vector<FitDa
       const double gain = base > 0.0 ? std::max(0.0, 1.0 - value / base) : 0.0;
       if (gain > best.gain) best.gain = gain, best.trial = trial;
     }
+    // What the best leaves, and the simplest shape that leaves at most (1 + parsimony)^2 of it.
+    const double best_left = (1.0 - best.gain) * base, margin = (1.0 + parsimony) * (1.0 + parsimony);
+    for (const auto& [trial, value] : best_of_shape)
+      if (added_parameter_count(trial) < added_parameter_count(best.simpler ? *best.simpler : best.trial) && value <= margin * best_left)
+        best.simpler = trial;
     out.push_back(best);
   }
   std::stable_sort(out.begin(), out.end(), [](const ScreenedEffect& a, const ScreenedEffect& b) { return a.gain > b.gain; });

@@ -24,6 +24,7 @@
 #include "runtime/diagnosis/trial.hpp"
 #include "runtime/fit/fit.hpp"
 
+#include <optional>
 #include <vector>
 
 namespace rheo::runtime::diagnosis {
@@ -49,12 +50,21 @@ struct ScreenedEffect {
   Trial trial;        // the family member with the largest gain, sized by its best a (stiffness)
   double gain = 0.0;  // share of the objective it removes, in [0, 1]
   int trials = 0;     // family members simulated
+  // The best member of a shape that adds fewer parameters than `trial` (added_parameter_count)
+  // where the objective it leaves is within (1 + parsimony)^2 of what `trial` leaves: a gap
+  // within the verdict's parsimony margin, closer than the screen's one-factor sizing (the
+  // model's own elements held) can rank them. Refitted beside `trial` (diagnose.hpp step 3), so
+  // that the verdict's parsimony has both to choose from: the yield forces of the model's own
+  // friction element made one-sided (1 parameter) screened within 0.2 % of an added one-sided
+  // friction element (3).
+  std::optional<Trial> simpler;
 };
 
 // FIT: the model fitted to DATA. Effects the model cannot take (a yeoh spring where the root
 // already has one) or the data cannot show (asymmetry without a history: harmonic measures see
 // only a law's odd part and a yield force's mean) are left out; the others are sorted by gain, largest first.
-std::vector<ScreenedEffect> screen(const FitResult& fit, const std::vector<FitDataSet>& data, const ScoreSettings& score);
+// PARSIMONY: DiagnoseSettings::parsimony, for ScreenedEffect::simpler.
+std::vector<ScreenedEffect> screen(const FitResult& fit, const std::vector<FitDataSet>& data, const ScoreSettings& score, double parsimony);
 
 // The trials of EFFECT over SCALES at unit stiffness (the yeoh one is sized by screen()).
 // ROOT_SPRING names the root spring a yeoh replaces ("" when it is added).

@@ -38,6 +38,7 @@ std::optional<CandidateOutcome> played_and_split(const std::vector<CandidateOutc
   trial.slip = played->screened.trial.slip, trial.bias = played->screened.trial.bias;
   trial.replaces = element->name, trial.inner = joined(*inner);
   both.limit_of = fmt::format("free play in front of '{}' and its yield made one-sided, together: neither earned alone", element->name);
+  both.screened_as = trial_summary((backlash_first ? played : split)->screened.trial);
   return both;
 }
 

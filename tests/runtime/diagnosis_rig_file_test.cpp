@@ -133,6 +133,10 @@ TEST_CASE("diagnose, the rig file's programme through other values: play and one
   const auto together = std::find_if(d.candidates.begin(), d.candidates.end(), [](const dx::CandidateOutcome& c) { return c.chosen; });
   REQUIRE(together != d.candidates.end());
   CHECK(together->limit_of.find("neither earned alone") != std::string::npos);
+  // The reason names what was screened (it named a slider-capped fluid column for every refit
+  // that was not the screen's own).
+  CHECK(d.reason.find(together->screened_as + " alone would remove") != std::string::npos);
+  CHECK(d.reason.find("fluid column") == std::string::npos);
   // Its refitted values (CandidateOutcome::fitted; JSON candidates[].fitted), before the polish.
   CAPTURE(together->fitted);
   const auto written = [&](const std::string& path) {

@@ -37,7 +37,7 @@ TEST_CASE("diagnosis screen: a Maxwell element missing from a linear model is fo
   score.harmonic.steps_per_cycle = 128;
   score.harmonic.solver = runtime::SolverChoice::fixed;
   score.harmonic.tolerance = 1e-6;
-  const auto screened = dx::screen(fit, data, score);
+  const auto screened = dx::screen(fit, data, score, 0.1);
   REQUIRE(!screened.empty());
   const dx::ScreenedEffect* rate = nullptr;
   for (const auto& s : screened)
@@ -108,7 +108,7 @@ TEST_CASE("diagnosis screen: a stiff spring behind play that closes only at the 
   const auto [fit, data] = grid_of(model, truth, {0.1, 0.3, 1.0, 1.6, 2.0}, {1.0, 10.0});
   runtime::ScoreSettings score;
   score.harmonic = exact_cycles();
-  const auto screened = dx::screen(fit, data, score);
+  const auto screened = dx::screen(fit, data, score, 0.1);
   const dx::ScreenedEffect* play = nullptr;
   for (const auto& s : screened)
     if (s.effect == dx::Effect::backlash) play = &s;
