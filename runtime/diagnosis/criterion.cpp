@@ -149,10 +149,23 @@ int fitted_parameters(const FitResult& fit) {
   return static_cast<int>(fit.free.size()) + static_cast<int>(offsets);
 }
 
-bool decisively_lower(double richer, double simpler, int parameters, int residual_terms) {
+namespace {
+
+// RICHER below SIMPLER by more than EVIDENCE times the overdispersion of the richer fit (above).
+bool lower_by(double richer, double simpler, int parameters, int residual_terms, double evidence) {
   const double chi_square = richer - parameters * std::log(static_cast<double>(residual_terms));
   const double overdispersion = residual_terms > parameters ? std::max(1.0, chi_square / (residual_terms - parameters)) : 1.0;
-  return simpler - richer > kDecisiveCriterion * overdispersion;
+  return simpler - richer > evidence * overdispersion;
+}
+
+}  // namespace
+
+bool decisively_lower(double richer, double simpler, int parameters, int residual_terms) {
+  return lower_by(richer, simpler, parameters, residual_terms, kDecisiveCriterion);
+}
+
+bool positively_lower(double richer, double simpler, int parameters, int residual_terms) {
+  return lower_by(richer, simpler, parameters, residual_terms, kPositiveCriterion);
 }
 
 double criterion(const FitResult& fit, int residual_terms, bool weighted, const NoiseEstimate& noise) {

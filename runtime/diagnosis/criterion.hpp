@@ -57,6 +57,14 @@ double criterion(const FitResult& fit, int residual_terms, bool weighted, const 
 inline constexpr double kDecisiveCriterion = 10.0;
 bool decisively_lower(double richer, double simpler, int parameters, int residual_terms);
 
+// The same by more than kPositiveCriterion times c: evidence "positive" on that scale (a BIC
+// lower by more than 2; below that "not worth more than a bare mention"). Diagnose lets the
+// simpler of two candidates whose gaps lie beyond its parsimony margin win unless the richer
+// one's BIC is positively lower (diagnose.hpp step 4): a richer refit whose BIC is lower by
+// 1.2 has not shown that its parameter is needed.
+inline constexpr double kPositiveCriterion = 2.0;
+bool positively_lower(double richer, double simpler, int parameters, int residual_terms);
+
 // The least chi^2 under NOISE over FIT's free parameters, searched from FIT's values: the
 // -2 ln L at the likelihood's maximum, which the BIC assumes. A fit minimises eq. 5.1, whose
 // damping terms weigh a point by 1/sin^2(phase_exp) however noisy it is, so near the few nearly

@@ -385,21 +385,41 @@ class Diagnoser {
   // Whether OUTCOME (its fit RESULT to DATA), which earns, is preferred to the choice so far: the
   // one with fewer parameters when its gap is within `parsimony` of the other's (the coupled
   // shapes hold friction and Maxwell elements as limits, so they always fit at least as well),
-  // unless the other's BIC is decisively lower, judged with both at their likelihood's maximum
-  // (criterion.hpp decisively_lower: free play that engages at the largest amplitudes fits
-  // within the margin of a stiffening yeoh spring's gap with a chi^2 half of the spring's);
-  // else the lower BIC.
+  // unless the other's BIC is decisively lower (criterion.hpp decisively_lower: free play that
+  // engages at the largest amplitudes fits within the margin of a stiffening yeoh spring's gap
+  // with a chi^2 half of the spring's); else the lower BIC. Where the criterion is weighted by
+  // the noise, BICs are compared with both at their likelihood's maximum, as the model's own is
+  // (criterion_before): eq. 5.1's damping terms at phases near the phase noise can leave one
+  // refit's chi^2 far above its least and not another's (a friction element's refit at 307, a
+  // capped Maxwell arm's at 120; their least 100 and 99, one parameter apart); and of two
+  // whose gaps lie beyond the margin the richer wins only where its BIC is positively lower
+  // (criterion.hpp positively_lower), else the simpler.
   bool preferred_to_choice(CandidateOutcome& outcome, const FitResult& result, const std::vector<FitDataSet>& data, double share) {
     CandidateOutcome& choice = d_.candidates[chosen_->candidate];
-    if (outcome.parameters == choice.parameters) return outcome.criterion < choice.criterion;
+    auto both_at_maximum = [&] {
+      if (!d_.noise_weighted || stopped()) return;
+      if (!outcome.at_likelihood_maximum) at_likelihood_maximum(outcome, result, data, share);
+      if (!choice.at_likelihood_maximum) at_likelihood_maximum(choice, chosen_->result, *chosen_->data, share);
+    };
     const bool outcome_simpler = outcome.parameters < choice.parameters;
     CandidateOutcome& simpler = outcome_simpler ? outcome : choice;
     CandidateOutcome& richer = outcome_simpler ? choice : outcome;
-    if (!(simpler.gap_after <= (1.0 + s_.parsimony) * richer.gap_after)) return outcome.criterion < choice.criterion;
+    const bool within_margin = simpler.gap_after <= (1.0 + s_.parsimony) * richer.gap_after;
+    if (outcome.parameters == choice.parameters || (!d_.noise_weighted && !within_margin)) {
+      both_at_maximum();
+      return outcome.criterion < choice.criterion;
+    }
+    if (!within_margin) {
+      // The simpler's least first: where the richer's BIC as refitted (at or above its least, its
+      // overdispersion too) is positively lower already, its least is not needed.
+      if (!stopped() && !simpler.at_likelihood_maximum)
+        at_likelihood_maximum(simpler, outcome_simpler ? result : chosen_->result, outcome_simpler ? data : *chosen_->data, share);
+      if (!positively_lower(richer.criterion, simpler.criterion, richer.parameters, d_.residual_terms)) both_at_maximum();
+      return positively_lower(richer.criterion, simpler.criterion, richer.parameters, d_.residual_terms) != outcome_simpler;
+    }
     if (!d_.noise_weighted || !decisively_lower(richer.criterion, simpler.criterion, richer.parameters, d_.residual_terms) || stopped())
       return outcome_simpler;
-    if (!outcome.at_likelihood_maximum) at_likelihood_maximum(outcome, result, data, share);
-    if (!choice.at_likelihood_maximum) at_likelihood_maximum(choice, chosen_->result, *chosen_->data, share);
+    both_at_maximum();
     return decisively_lower(richer.criterion, simpler.criterion, richer.parameters, d_.residual_terms) != outcome_simpler;
   }
 

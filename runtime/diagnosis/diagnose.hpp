@@ -22,7 +22,9 @@
 //      criterion.hpp lowers_residual) by at least `min_improvement`. Of those that earn, the
 //      one with fewer parameters wins if its gap is within `parsimony` of the other's, unless
 //      the other's noise-weighted BIC is decisively lower (criterion.hpp decisively_lower, both
-//      judged at their likelihood's maximum); else the lower BIC. Where none earns but free
+//      judged at their likelihood's maximum); else the lower BIC (where noise-weighted, both
+//      at their likelihood's maximum too, and the richer only where its BIC is positively
+//      lower, criterion.hpp positively_lower). Where none earns but free
 //      play and asymmetry were both refitted, play in
 //      front of a friction element made one-sided is refitted as one more candidate.
 //      A resonance (the fluid-column shapes) earns only where the measurement

@@ -145,6 +145,21 @@ TEST_CASE("diagnose criterion: a richer model's lower BIC is decisive beyond 10 
   CHECK_FALSE(dx::decisively_lower(920.0 + penalty, 900.0 + penalty, p, n));
 }
 
+// positively_lower: the same with 2 c. The friction and capped Maxwell refits of a hidden
+// friction element (diagnosis_sweep_test.cpp, seed 8): BIC 82.8 (p 5) and 81.6 (p 6) over 50
+// terms, 1.2 apart: not positive evidence for the richer (c = (81.6 - 6 ln 50) / 44 = 1.32).
+TEST_CASE("diagnose criterion: a richer model's lower BIC is positive evidence beyond 2 times the overdispersion of its residual") {
+  const int n = 100, p = 8;
+  const double penalty = p * std::log(100.0);
+  CHECK(dx::positively_lower(92.0 + penalty, 92.0 + penalty + 2.01, p, n));
+  CHECK_FALSE(dx::positively_lower(92.0 + penalty, 92.0 + penalty + 1.99, p, n));
+  CHECK(dx::positively_lower(920.0 + penalty, 920.0 + penalty + 20.1, p, n));
+  CHECK_FALSE(dx::positively_lower(920.0 + penalty, 920.0 + penalty + 19.9, p, n));
+  CHECK_FALSE(dx::positively_lower(81.6, 82.8, 6, 50));
+  CHECK(dx::positively_lower(81.6, 82.8 + 1.5, 6, 50));        // 2.7 apart
+  CHECK_FALSE(dx::positively_lower(81.6, 82.8 + 1.4, 6, 50));  // 2.6 apart
+}
+
 // lowers_residual: the gap falls by the share, or where weighted sqrt(chi^2 / (N - p)) does.
 // N = 70: before chi^2 2523 over 65 (ratio 6.230), after 504 over 63 (ratio 2.828, 55 % lower),
 // the gap 0.052 -> 0.0435 (16 % lower).
