@@ -86,20 +86,39 @@ Outcome outcome(const dx::Diagnosis& d, const gen::Scenario& sc, gen::Hidden hid
   return o;
 }
 
-// With RHEO_DIAGNOSE_SWEEP_DUMP=DIR, a harmonic draw's start model and table are written to
-// DIR/<hidden>_<seed>.rheo and .csv, for `rheo diagnose DIR/play_3.rheo` (the model's fit block
-// names the table).
+// With RHEO_DIAGNOSE_SWEEP_DUMP=DIR, a draw's start model and data are written to
+// DIR/<hidden>_<seed>.rheo and .csv (a harmonic table; a history's files <hidden>_<seed>_<k>.csv
+// with the word history in the stem, <hidden>_history_<seed>), for `rheo diagnose
+// DIR/play_3.rheo` (the model's fit block names the data; the truth in its first line).
 void dump(const gen::Scenario& sc, gen::Hidden hidden, unsigned seed) {
   const char* dir = std::getenv("RHEO_DIAGNOSE_SWEEP_DUMP");
-  if (!dir || !sc.data.front().is_harmonic()) return;
-  const std::string stem = fmt::format("{}/{}_{}", dir, gen::hidden_name(hidden), seed);
-  std::ofstream csv(stem + ".csv");
-  csv << "amplitude [mm],frequency [Hz],stiffness [N/mm],phase [deg]\n";
-  const auto& h = sc.data.front().harmonic();
-  for (std::size_t i = 0; i < h.size(); ++i)
-    csv << fmt::format("{:.17g},{:.17g},{:.17g},{:.17g}\n", h.amplitude[i], h.frequency[i], h.stiffness[i], h.phase[i] * 180.0 / std::numbers::pi);
-  std::ofstream model(stem + ".rheo");
-  model << "# " << sc.truth << "\n" << sc.start << fmt::format("fit start {{\n  data \"{}_{}.csv\"\n}}\n", gen::hidden_name(hidden), seed);
+  if (!dir) return;
+  const bool harmonic = sc.data.front().is_harmonic();
+  const std::string name = fmt::format("{}{}_{}", gen::hidden_name(hidden), harmonic ? "" : "_history", seed);
+  std::string lines;
+  for (std::size_t k = 0; k < sc.data.size(); ++k) {
+    const std::string file = harmonic ? name + ".csv" : fmt::format("{}_{}.csv", name, k + 1);
+    std::ofstream csv(fmt::format("{}/{}", dir, file));
+    if (harmonic) {
+      csv << "amplitude [mm],frequency [Hz],stiffness [N/mm],phase [deg]\n";
+      const auto& h = sc.data[k].harmonic();
+      for (std::size_t i = 0; i < h.size(); ++i)
+        csv << fmt::format("{:.17g},{:.17g},{:.17g},{:.17g}\n", h.amplitude[i], h.frequency[i], h.stiffness[i],
+                           h.phase[i] * 180.0 / std::numbers::pi);
+    } else {
+      csv << "time [s],displacement [mm],force [N]\n";
+      const auto& h = sc.data[k].history();
+      for (std::size_t i = 0; i < h.force.size(); ++i)
+        csv << fmt::format("{:.17g},{:.17g},{:.17g}\n", h.drive.time[i], h.drive.displacement[i], h.force[i]);
+    }
+    const auto& offset = sc.data[k].force_offset;
+    const std::string declared = !offset.given ? ""
+                                 : offset.free ? ", force_offset = free"
+                                               : fmt::format(", force_offset = {:.17g} N", offset.value);
+    lines += fmt::format("  data \"{}\"{}\n", file, declared);
+  }
+  std::ofstream model(fmt::format("{}/{}.rheo", dir, name));
+  model << "# " << sc.truth << "\n" << sc.start << "fit start {\n" << lines << "}\n";
 }
 
 Outcome run(const gen::Scenario& sc, gen::Hidden hidden, unsigned seed) {
