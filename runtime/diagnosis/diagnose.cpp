@@ -217,7 +217,8 @@ class Diagnoser {
     simpler.screened.trial = *screened.simpler;
     simpler.element = element_name(*screened.simpler, screened.effect);
     const int fewer = added_parameter_count(screened.trial) - added_parameter_count(*screened.simpler);
-    simpler.limit_of = fmt::format("with {} parameter{} fewer, screened within the parsimony margin of it", fewer, fewer == 1 ? "" : "s");
+    simpler.limit_of = fmt::format("with {} parameter{} fewer, screened within the parsimony margin of it ({:.0f} % alone)", fewer,
+                                   fewer == 1 ? "" : "s", 100.0 * screened.simpler_gain);
     simpler.screened_as = trial_summary(screened.trial);
     refit_candidate(*screened.simpler, simpler, share);
   }
@@ -417,9 +418,12 @@ class Diagnoser {
       if (!positively_lower(richer.criterion, simpler.criterion, richer.parameters, d_.residual_terms)) both_at_maximum();
       return positively_lower(richer.criterion, simpler.criterion, richer.parameters, d_.residual_terms) != outcome_simpler;
     }
-    if (!d_.noise_weighted || !decisively_lower(richer.criterion, simpler.criterion, richer.parameters, d_.residual_terms) || stopped())
-      return outcome_simpler;
-    both_at_maximum();
+    if (!d_.noise_weighted || stopped()) return outcome_simpler;
+    // The richer's least first: where it is not decisively lower than the simpler's BIC as
+    // refitted (at or above its least), it is not at the maximum either.
+    if (!richer.at_likelihood_maximum)
+      at_likelihood_maximum(richer, outcome_simpler ? chosen_->result : result, outcome_simpler ? *chosen_->data : data, share);
+    if (decisively_lower(richer.criterion, simpler.criterion, richer.parameters, d_.residual_terms)) both_at_maximum();
     return decisively_lower(richer.criterion, simpler.criterion, richer.parameters, d_.residual_terms) != outcome_simpler;
   }
 

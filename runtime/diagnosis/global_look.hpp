@@ -9,8 +9,10 @@
 //                           (a history's loading rates)
 //   length (a slip)         [a_low / 30, a_high] over the measured amplitudes
 //   stiffness               [K / 300, 3 K], K the typical measured stiffness
-//   mass (an inerter)       [K / 300 / w_high^2, 3 K / w_low^2], w = 2 pi f: what resonates on
-//                           a stiffness of that range within the measured frequencies
+//   mass (an inerter)       [K / 300 / w_high^2, 3 K / w_low^2], w = 2 pi f: the masses that
+//                           resonate with some stiffness of that range within the measured
+//                           frequencies (each parameter is sampled on its own, so a sampled
+//                           pair may resonate outside them)
 //   damping (a dashpot)     [K / 300 / (3 w_high), 9 K / w_low]: c = k tau over those
 //                           stiffnesses and times (a column's channel: c = 2 zeta k / w)
 //   others (positive)       a decade either side of the start

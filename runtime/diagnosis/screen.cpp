@@ -381,11 +381,16 @@ std::vector<ScreenedEffect> screen(const FitResult& fit, const std::vector<FitDa
       const double gain = base > 0.0 ? std::max(0.0, 1.0 - value / base) : 0.0;
       if (gain > best.gain) best.gain = gain, best.trial = trial;
     }
-    // What the best leaves, and the simplest shape that leaves at most (1 + parsimony)^2 of it.
+    // What the best leaves, and the shape with the fewest parameters (of those, the lowest
+    // objective) that leaves at most (1 + parsimony)^2 of it.
     const double best_left = (1.0 - best.gain) * base, margin = (1.0 + parsimony) * (1.0 + parsimony);
-    for (const auto& [trial, value] : best_of_shape)
-      if (added_parameter_count(trial) < added_parameter_count(best.simpler ? *best.simpler : best.trial) && value <= margin * best_left)
-        best.simpler = trial;
+    double simpler_left = 0.0;
+    for (const auto& [trial, value] : best_of_shape) {
+      const int count = added_parameter_count(trial), fewest = added_parameter_count(best.simpler ? *best.simpler : best.trial);
+      if (value <= margin * best_left && (count < fewest || (best.simpler && count == fewest && value < simpler_left)))
+        best.simpler = trial, simpler_left = value;
+    }
+    if (best.simpler) best.simpler_gain = base > 0.0 ? std::max(0.0, 1.0 - simpler_left / base) : 0.0;
     out.push_back(best);
   }
   std::stable_sort(out.begin(), out.end(), [](const ScreenedEffect& a, const ScreenedEffect& b) { return a.gain > b.gain; });

@@ -50,14 +50,16 @@ struct ScreenedEffect {
   Trial trial;        // the family member with the largest gain, sized by its best a (stiffness)
   double gain = 0.0;  // share of the objective it removes, in [0, 1]
   int trials = 0;     // family members simulated
-  // The best member of a shape that adds fewer parameters than `trial` (added_parameter_count)
-  // where the objective it leaves is within (1 + parsimony)^2 of what `trial` leaves: a gap
+  // The member of the shape that adds the fewest parameters (added_parameter_count), fewer than
+  // `trial`, of those the best, where the objective it leaves is within (1 + parsimony)^2 of
+  // what `trial` leaves, and its own gain: a gap
   // within the verdict's parsimony margin, closer than the screen's one-factor sizing (the
   // model's own elements held) can rank them. Refitted beside `trial` (diagnose.hpp step 3), so
   // that the verdict's parsimony has both to choose from: the yield forces of the model's own
   // friction element made one-sided (1 parameter) screened within 0.2 % of an added one-sided
   // friction element (3).
   std::optional<Trial> simpler;
+  double simpler_gain = 0.0;
 };
 
 // FIT: the model fitted to DATA. Effects the model cannot take (a yeoh spring where the root

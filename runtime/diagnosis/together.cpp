@@ -38,7 +38,8 @@ std::optional<CandidateOutcome> played_and_split(const std::vector<CandidateOutc
   trial.slip = played->screened.trial.slip, trial.bias = played->screened.trial.bias;
   trial.replaces = element->name, trial.inner = joined(*inner);
   both.limit_of = fmt::format("free play in front of '{}' and its yield made one-sided, together: neither earned alone", element->name);
-  both.screened_as = trial_summary((backlash_first ? played : split)->screened.trial);
+  const CandidateOutcome& first = *(backlash_first ? played : split);  // its screened gain is the effect's best member's
+  both.screened_as = first.screened_as.empty() ? trial_summary(first.screened.trial) : first.screened_as;
   return both;
 }
 

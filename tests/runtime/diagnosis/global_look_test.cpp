@@ -92,6 +92,11 @@ TEST_CASE("global look: masses and dampings range over the columns that resonate
         CHECK(c <= c_hi);
       }
   CHECK(big_k == 330.0);
+  // No wider than those columns need: stiffnesses over 900 times, frequencies over 10 times
+  // (squared for a mass; a time's 3 either side for a damping). The parameters' own bounds
+  // span 18 decades.
+  CHECK(m_hi / m_lo == doctest::Approx(900.0 * 100.0).epsilon(1e-9));
+  CHECK(c_hi / c_lo == doctest::Approx(900.0 * 90.0).epsilon(1e-9));
   const double start_mass = start.parameter(test::parameter_index(start, "c.y.b.b"));
   const double at_10_hz = 30.0 / (two_pi * two_pi * 100.0);  // on the start's chamber
   CHECK(at_10_hz > 10.0 * start_mass);
