@@ -126,6 +126,23 @@ Outcome run(const gen::Scenario& sc, gen::Hidden hidden, unsigned seed) {
   return outcome(test::diagnose(sc.start, sc.data), sc, hidden, seed);
 }
 
+// A diagnosis of SC, with its outcome as the sweep counts it.
+struct Diagnosed {
+  dx::Diagnosis d;
+  Outcome o;
+};
+Diagnosed diagnosed(const gen::Scenario& sc, gen::Hidden hidden, unsigned seed) {
+  Diagnosed out{test::diagnose(sc.start, sc.data), {}};
+  out.o = outcome(out.d, sc, hidden, seed);
+  return out;
+}
+
+// The candidate D added (CandidateOutcome::chosen), or null.
+const dx::CandidateOutcome* chosen_candidate(const dx::Diagnosis& d) {
+  const auto it = std::find_if(d.candidates.begin(), d.candidates.end(), [](const dx::CandidateOutcome& c) { return c.chosen; });
+  return it == d.candidates.end() ? nullptr : &*it;
+}
+
 struct Tally {
   int runs = 0, wrong = 0, right = 0, invisible = 0;
   void add(const Outcome& o, bool visible) {
@@ -227,12 +244,10 @@ TEST_CASE("diagnose sweep: correlated pure noise in histories gives none, its si
 // than 10 times the residual's overdispersion, so the data decide (criterion.hpp
 // decisively_lower); the margin alone named nonlinear-elasticity.
 TEST_CASE("diagnose sweep: free play at the top amplitudes of a grid is backlash where a yeoh spring fits within the margin but decisively worse") {
-  const gen::Scenario sc = gen::harmonic_scenario(3, gen::Hidden::play);
-  const dx::Diagnosis d = test::diagnose(sc.start, sc.data);
-  const Outcome o = outcome(d, sc, gen::Hidden::play, 3);
-  INFO(o.line);
-  CHECK(o.named_right);
-  CHECK(d.reason.find("which the data decide") != std::string::npos);
+  const Diagnosed r = diagnosed(gen::harmonic_scenario(3, gen::Hidden::play), gen::Hidden::play, 3);
+  INFO(r.o.line);
+  CHECK(r.o.named_right);
+  CHECK(r.d.reason.find("which the data decide") != std::string::npos);
 }
 
 TEST_CASE("diagnose sweep over a second generator (RHEO_DIAGNOSE_SWEEP seeds)") {
@@ -274,12 +289,10 @@ TEST_CASE("diagnose noise estimate over pure-noise draws of the 6 x 6 grid (RHEO
 // over what resonates, and relaxes, within the measured band (global_look.hpp): err 0.00935, the
 // true structure's own fit.
 TEST_CASE("diagnose sweep: a column resonating inside the band far from where the screen sized it is inertia, at the true structure's gap") {
-  const gen::Scenario sc = gen::harmonic_scenario(4, gen::Hidden::column);
-  const dx::Diagnosis d = test::diagnose(sc.start, sc.data);
-  const Outcome o = outcome(d, sc, gen::Hidden::column, 4);
-  INFO(o.line);
-  CHECK(o.named_right);
-  CHECK(d.gap_after < 0.0105);  // the truth's structure fitted from the truth: 0.00935
+  const Diagnosed r = diagnosed(gen::harmonic_scenario(4, gen::Hidden::column), gen::Hidden::column, 4);
+  INFO(r.o.line);
+  CHECK(r.o.named_right);
+  CHECK(r.d.gap_after < 0.0105);  // the truth's structure fitted from the truth: 0.00935
 }
 
 // Yield forces of 10.4 N in tension and 19.6 N in compression (one file of slow sines): past its
@@ -290,17 +303,15 @@ TEST_CASE("diagnose sweep: a column resonating inside the band far from where th
 // (p 6, named offset). Refitted beside it (screen.hpp ScreenedEffect::simpler), the split
 // element reaches below the offset at the same p, its yield forces within 1 % of the truth's.
 TEST_CASE("diagnose sweep: split yield forces in one sine file are asymmetry, the model's own friction element split") {
-  const gen::Scenario sc = gen::history_scenario(3, gen::Hidden::split_yield);
-  const dx::Diagnosis d = test::diagnose(sc.start, sc.data);
-  const Outcome o = outcome(d, sc, gen::Hidden::split_yield, 3);
-  INFO(o.line);
-  CHECK(o.named_right);
-  REQUIRE(d.after.has_value());
-  const auto split = std::find_if(d.candidates.begin(), d.candidates.end(), [](const dx::CandidateOutcome& c) { return c.chosen; });
-  REQUIRE(split != d.candidates.end());
+  const Diagnosed r = diagnosed(gen::history_scenario(3, gen::Hidden::split_yield), gen::Hidden::split_yield, 3);
+  INFO(r.o.line);
+  CHECK(r.o.named_right);
+  REQUIRE(r.d.after.has_value());
+  const dx::CandidateOutcome* split = chosen_candidate(r.d);
+  REQUIRE(split != nullptr);
   CHECK(split->screened.trial.shape == dx::Shape::one_sided_element);
   CHECK(split->limit_of.find("parsimony margin") != std::string::npos);
-  const runtime::Network& after = d.after->network;
+  const runtime::Network& after = r.d.after->network;
   CHECK(after.parameter(test::parameter_index(after, "f.fy_pos")) == doctest::Approx(10.41).epsilon(0.01));
   CHECK(after.parameter(test::parameter_index(after, "f.fy_neg")) == doctest::Approx(19.59).epsilon(0.01));
 }
@@ -314,13 +325,11 @@ TEST_CASE("diagnose sweep: split yield forces in one sine file are asymmetry, th
 // element's, which is not positive evidence for its parameter (criterion.hpp positively_lower).
 TEST_CASE("diagnose sweep: hidden friction is amplitude-dependence where eq. 5.1's refits leave their chi^2 far apart") {
   for (const unsigned seed : {3u, 8u}) {
-    const gen::Scenario sc = gen::harmonic_scenario(seed, gen::Hidden::friction);
-    const dx::Diagnosis d = test::diagnose(sc.start, sc.data);
-    const Outcome o = outcome(d, sc, gen::Hidden::friction, seed);
-    INFO(o.line);
-    CHECK(o.named_right);
-    const auto chosen = std::find_if(d.candidates.begin(), d.candidates.end(), [](const dx::CandidateOutcome& c) { return c.chosen; });
-    REQUIRE(chosen != d.candidates.end());
+    const Diagnosed r = diagnosed(gen::harmonic_scenario(seed, gen::Hidden::friction), gen::Hidden::friction, seed);
+    INFO(r.o.line);
+    CHECK(r.o.named_right);
+    const dx::CandidateOutcome* chosen = chosen_candidate(r.d);
+    REQUIRE(chosen != nullptr);
     CHECK(chosen->at_likelihood_maximum);
   }
 }
