@@ -52,7 +52,7 @@ bool PwlPeriodicState::solve(const PwlBranch& branch, double u0, double omega, c
   cycles_ = 0;
   pieces_.clear(), switch_phases_.clear();
   last_piece_ = kNoPiece, recent_count_ = recent_next_ = 0;
-  start_.X0.resize(0), start_.mode.clear();
+  start_.X0.resize(0), start_.mode.clear(), start_.allowed.resize(0);
   Run run{*this, branch, period_ / kPwlGridPerCycle};
   // Only an odd branch is warm-started: its periodic state is unique (the half map flips a
   // never-slipping slider's offset, so its fixed point has none), where a full-period fixed
@@ -83,6 +83,7 @@ bool PwlPeriodicState::restore(Run& run, const Solved& solved) {
   storage_ = solved.storage, loss_ = solved.loss;
   start_.X0 = solved.start.X0;
   start_.mode.assign(solved.start.mode.begin(), solved.start.mode.end());
+  start_.allowed = solved.start.allowed;
   switch_phases_ = solved.switch_phases;
   grid_slopes_ = solved.grid_slopes;
   pieces_ = solved.pieces;
@@ -106,6 +107,7 @@ void PwlPeriodicState::remember(bool ok, bool warm) {
   s.grid_slopes = grid_slopes_;
   s.start.X0 = start_.X0;
   s.start.mode.assign(start_.mode.begin(), start_.mode.end());
+  s.start.allowed = start_.allowed;
   s.pieces = pieces_;
   s.codes.clear();
   for (Piece& piece : s.pieces) {
@@ -154,7 +156,8 @@ bool PwlPeriodicState::shoot(Run& run, const PwlStart* from) {
   // the map amplifies its start (a stiff, nearly undamped node: 2e-9 kg behind 1232 N/mm, whose
   // velocity answers its position by omega_n / omega ~ 1.5e6) rounding in the start alone leaves
   // more than kPeriodicTolerance in that velocity, and a test on the residual alone never passed.
-  PwlVector allowed = PwlVector::Constant(2 * n, kPeriodicTolerance);
+  // A warm start's first cycle is tested as the recorded closing cycle was (PwlStart::allowed).
+  PwlVector allowed = warm && from->allowed.size() == 2 * n ? from->allowed : PwlVector(PwlVector::Constant(2 * n, kPeriodicTolerance));
   // Every cycle is recorded (pieces, switches, first harmonic): the one that closes on itself
   // is the periodic cycle.
   for (cycles_ = 1; cycles_ <= kMaxCycles; ++cycles_) {
@@ -176,7 +179,8 @@ bool PwlPeriodicState::shoot(Run& run, const PwlStart* from) {
     const PwlVector residual = (X_T - X0).cwiseQuotient(scale);
     const double size = residual.cwiseAbs().maxCoeff();
     if (!std::isfinite(size)) return false;
-    if (size <= kPeriodicTolerance || (residual.cwiseAbs().array() <= allowed.array()).all()) return close(run, X0, start_mode);
+    if (size <= kPeriodicTolerance) return close(run, X0, start_mode, PwlVector());
+    if ((residual.cwiseAbs().array() <= allowed.array()).all()) return close(run, X0, start_mode, allowed);
     if (expect_closed) {  // it did not close: the same cycle again, with its sensitivities
       expect_closed = false;
       m = start_mode;
@@ -223,8 +227,9 @@ int PwlPeriodicState::next_start(Run& run, int end_mode) {
   return run.mode_index(mirrored);
 }
 
-bool PwlPeriodicState::close(Run& run, const PwlVector& X0, int start_mode) {
+bool PwlPeriodicState::close(Run& run, const PwlVector& X0, int start_mode, const PwlVector& allowed) {
   start_.X0 = X0;
+  start_.allowed = allowed;
   start_.mode.assign(system(start_mode).code.begin(), system(start_mode).code.end());
   run.first_harmonic();
   if (half_wave_) {
@@ -253,7 +258,7 @@ bool PwlPeriodicState::settle_by_cycles(Run& run, PwlVector X0, int start_mode, 
     X_T *= mirror;
     const double size = (X_T - X0).cwiseQuotient(scale).cwiseAbs().maxCoeff();
     if (!std::isfinite(size)) return false;
-    if (size <= kPeriodicTolerance) return close(run, X0, start_mode);
+    if (size <= kPeriodicTolerance) return close(run, X0, start_mode, PwlVector());
     m = next_start(run, m);
     if (m < 0) return false;
     start_mode = m;

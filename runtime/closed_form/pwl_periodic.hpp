@@ -172,7 +172,7 @@ class PwlPeriodicState {
   bool shoot(Run& run, const PwlStart* from);
   // Records the cycle just followed from X0 in START_MODE, which closed on itself, as the
   // periodic one. True.
-  bool close(Run& run, const PwlVector& X0, int start_mode);
+  bool close(Run& run, const PwlVector& X0, int start_mode, const PwlVector& allowed);  // allowed: PwlStart::allowed
   // The mode the next cycle starts in after one ending in END_MODE: that mode, mirrored on the
   // half map (its sliders' slip reversed). -1 where it cannot be built.
   int next_start(Run& run, int end_mode);

@@ -33,6 +33,7 @@ void PwlWarmStarts::record(double u0, double omega, int branch, const PwlStart& 
   e.u0 = u0, e.omega = omega, e.branch = branch;
   e.start.X0 = start.X0;
   e.start.mode.assign(start.mode.begin(), start.mode.end());
+  e.start.allowed = start.allowed;
 }
 
 void PwlWarmStarts::seal() {

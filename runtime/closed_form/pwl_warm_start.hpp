@@ -26,10 +26,14 @@
 namespace rheo::runtime {
 
 // Where a shooting starts: positions and velocities of the branch's nodes at the span's start
-// [mm, mm/s], and the mode settled from there (pwl_periodic.cpp).
+// [mm, mm/s], and the mode settled from there (pwl_periodic.cpp); for a periodic state, the
+// per-coordinate allowance of the periodic test its closing cycle passed (empty: the plain
+// test), which a warm solve from it applies to its first cycle, so that this cycle closes as
+// the recorded one did and gives the same bits whichever thread kept which solve.
 struct PwlStart {
   PwlVector X0;
   PwlModeCode mode;
+  PwlVector allowed;
 };
 
 class PwlWarmStarts {

@@ -438,6 +438,45 @@ TEST_CASE("a solve of the same branch at a drive solved before restores that res
   CHECK(std::abs(kept.loss() - fresh_other.loss()) > 1e-3 * std::abs(kept.loss()));
 }
 
+// A warm solve from a recorded start (pwl_warm_start.hpp) on a state that kept nothing gives the
+// bits of the solve that recorded it: its first cycle is the recorded closing cycle, tested as
+// that one was. Where the closing cycle passed the per-coordinate periodic test (PwlStart::
+// allowed) and the warm solve's first cycle met the plain test alone, it took a Newton step
+// instead, and a Jacobian column's point gave other bits on a thread that had not kept the base
+// solve than on one that had: `rheo diagnose --threads 2` printed other digits in about one run
+// of five on a loaded machine.
+TEST_CASE("a warm solve from a recorded start gives the recording solve's bits, also where that closed by the per-coordinate test") {
+  // The stiff column above (its velocity answers its position by omega_n / omega ~ 1.5e6).
+  const auto net = test::network_from(R"(
+    model col {
+      spring s (k = 488.5051437 N/mm)
+      series coupled {
+        slider cap (fy = 78.07226631 N)
+        spring chamber (k = 1231.56657 N/mm)
+        parallel column { inerter mass (b = 2.22631e-09 kg)  dashpot channel (c = 1.9885e-12 N*s/mm) }
+      }
+    })",
+                                      "col");
+  const runtime::PwlBranch branch = branch_of(net);
+  int relaxed = 0;
+  for (const double u0 : {0.03, 0.3, 1.0})
+    for (const double f : {0.8596, 3.0}) {
+      CAPTURE(u0);
+      CAPTURE(f);
+      const double omega = 2.0 * std::numbers::pi * f;
+      runtime::PwlPeriodicState cold, warm;
+      REQUIRE(cold.solve(branch, u0, omega));
+      const runtime::PwlStart recorded = cold.start();
+      relaxed += recorded.allowed.size() > 0 ? 1 : 0;
+      REQUIRE(warm.solve(branch, u0, omega, &recorded));
+      CHECK(warm.cycles() == 1);
+      CHECK(warm.storage() == cold.storage());
+      CHECK(warm.loss() == cold.loss());
+      CHECK(warm.switch_phases() == cold.switch_phases());
+    }
+  CHECK(relaxed > 0);  // the case the allowance carries
+}
+
 TEST_CASE("a branch with other values refills the storage of the last branch's modes: the same bits as a fresh state") {
   // The column's mass changes the modes' state block (its eigendecomposition, kept per mode):
   // a state that solved the first branch, then the second, then the first again gives each
