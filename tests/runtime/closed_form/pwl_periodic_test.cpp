@@ -228,14 +228,8 @@ TEST_CASE("fluid columns a fit visits: a slider that sticks at the drive's turni
   }
 }
 
-// Found by rheo diagnose on a pure-noise grid of the second generator (draw 18): a fluid
-// column's refit drove the mass to 2.2e-9 kg behind a 1232 N/mm chamber, an undamped mode at
-// 3.7 MHz under a 0.86 Hz drive. The map's Jacobian, in the shooting's scales, has rows of order
-// omega_n / omega ~ 1.5e6: the rank-revealing solve dropped the velocity's column and Newton's
-// step stayed at zero, and rounding in the positions alone left 1e-10 in that velocity, above
-// the periodic test's 1e-11; the point fell back to IDA, which took minutes to step the mode.
-TEST_CASE("a stiff, nearly undamped column closes on the event path: the Newton step and the periodic test follow the map's scales") {
-  const auto net = test::network_from(R"(
+// A stiff, nearly undamped fluid column (below): 2.2e-9 kg behind 1232 N/mm.
+constexpr const char* kStiffColumn = R"(
     model col {
       spring s (k = 488.5051437 N/mm)
       series coupled {
@@ -243,8 +237,16 @@ TEST_CASE("a stiff, nearly undamped column closes on the event path: the Newton 
         spring chamber (k = 1231.56657 N/mm)
         parallel column { inerter mass (b = 2.22631e-09 kg)  dashpot channel (c = 1.9885e-12 N*s/mm) }
       }
-    })",
-                                      "col");
+    })";
+
+// Found by rheo diagnose on a pure-noise grid of the second generator (draw 18): a fluid
+// column's refit drove the mass to 2.2e-9 kg behind a 1232 N/mm chamber, an undamped mode at
+// 3.7 MHz under a 0.86 Hz drive. The map's Jacobian, in the shooting's scales, has rows of order
+// omega_n / omega ~ 1.5e6: the rank-revealing solve dropped the velocity's column and Newton's
+// step stayed at zero, and rounding in the positions alone left 1e-10 in that velocity, above
+// the periodic test's 1e-11; the point fell back to IDA, which took minutes to step the mode.
+TEST_CASE("a stiff, nearly undamped column closes on the event path: the Newton step and the periodic test follow the map's scales") {
+  const auto net = test::network_from(kStiffColumn, "col");
   for (double u0 : {0.03, 1.0}) {
     const auto point = runtime::try_closed_form_harmonic_point(net, u0, 0.8596, HarmonicDefinition::thesis);
     CAPTURE(u0);
@@ -447,16 +449,7 @@ TEST_CASE("a solve of the same branch at a drive solved before restores that res
 // of five on a loaded machine.
 TEST_CASE("a warm solve from a recorded start gives the recording solve's bits, also where that closed by the per-coordinate test") {
   // The stiff column above (its velocity answers its position by omega_n / omega ~ 1.5e6).
-  const auto net = test::network_from(R"(
-    model col {
-      spring s (k = 488.5051437 N/mm)
-      series coupled {
-        slider cap (fy = 78.07226631 N)
-        spring chamber (k = 1231.56657 N/mm)
-        parallel column { inerter mass (b = 2.22631e-09 kg)  dashpot channel (c = 1.9885e-12 N*s/mm) }
-      }
-    })",
-                                      "col");
+  const auto net = test::network_from(kStiffColumn, "col");
   const runtime::PwlBranch branch = branch_of(net);
   int relaxed = 0;
   for (const double u0 : {0.03, 0.3, 1.0})
