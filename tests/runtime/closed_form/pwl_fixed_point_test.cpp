@@ -31,6 +31,14 @@ runtime::PwlVector vector_of(int n, double phase) {
   return v;
 }
 
+// The least-norm fixed point X0 - pinv(J - I) (Y - X0) by Eigen's SVD at the rank threshold
+// 1e-10: the second path the solver is checked against.
+Eigen::VectorXd least_norm_by_svd(const runtime::PwlMatrix& J, const runtime::PwlVector& X0, const runtime::PwlVector& Y) {
+  const Eigen::Index n = J.rows();
+  const Eigen::MatrixXd J_minus_I = Eigen::MatrixXd(J) - Eigen::MatrixXd::Identity(n, n);
+  return Eigen::VectorXd(X0) - J_minus_I.jacobiSvd(Eigen::ComputeThinU | Eigen::ComputeThinV).setThreshold(1e-10).solve(Eigen::VectorXd(Y - X0));
+}
+
 }  // namespace
 
 TEST_CASE("least_norm_fixed_point solves the Newton step of a regular map at sizes 4 and 6") {
@@ -60,9 +68,7 @@ TEST_CASE("least_norm_fixed_point takes the least-norm step where J has an eigen
     for (int i = 0; i < n; ++i) d[i] = i == 0 ? 0.0 : -0.5 - 0.3 * i;
     const runtime::PwlMatrix J = Eigen::MatrixXd::Identity(n, n) + Eigen::MatrixXd(Q) * d.asDiagonal() * Eigen::MatrixXd(Q).transpose();
     const runtime::PwlVector X0 = vector_of(n, 0.3), Y = vector_of(n, 2.1);
-    const Eigen::MatrixXd J_minus_I = Eigen::MatrixXd(J) - Eigen::MatrixXd::Identity(n, n);
-    const Eigen::VectorXd step = J_minus_I.jacobiSvd(Eigen::ComputeThinU | Eigen::ComputeThinV).setThreshold(1e-10).solve(Eigen::VectorXd(Y - X0));
-    const Eigen::VectorXd expected = Eigen::VectorXd(X0) - step;
+    const Eigen::VectorXd expected = least_norm_by_svd(J, X0, Y);
     const runtime::PwlVector X = runtime::least_norm_fixed_point(J, X0, Y);
     CAPTURE(n);
     REQUIRE(X.size() == n);
@@ -105,9 +111,7 @@ TEST_CASE("least_norm_fixed_point takes the least-norm step where J - I has a ze
     J.row(0).setZero();
     J(0, 0) = 1.0;
     const runtime::PwlVector X0 = vector_of(n, 0.3), Y = vector_of(n, 2.1);
-    const Eigen::MatrixXd J_minus_I = Eigen::MatrixXd(J) - Eigen::MatrixXd::Identity(n, n);
-    const Eigen::VectorXd step = J_minus_I.jacobiSvd(Eigen::ComputeThinU | Eigen::ComputeThinV).setThreshold(1e-10).solve(Eigen::VectorXd(Y - X0));
-    const Eigen::VectorXd expected = Eigen::VectorXd(X0) - step;
+    const Eigen::VectorXd expected = least_norm_by_svd(J, X0, Y);
     const runtime::PwlVector X = runtime::least_norm_fixed_point(J, X0, Y);
     CAPTURE(n);
     REQUIRE(X.size() == n);
