@@ -72,6 +72,7 @@ class Diagnoser {
     fit_model();
     refit_leading(screen_effects());
     if (!chosen_) refit_together();
+    if (!chosen_) refit_as_written();
     if (!chosen_) return finish_none();
     polish();
     return finish_refined();
@@ -287,6 +288,59 @@ class Diagnoser {
     refit_candidate(together, *both, 1.0);
   }
 
+  // Step 4 once more where no candidate earned and the residual is beyond the noise: the
+  // leading refitted shapes (one per shape, lowest gap first, at most `confirm`) fitted as the
+  // model was in step 1, every free parameter by rheo fit's strategy from the file's start
+  // values with the element as screened, not from the model's fit: that fit may have taken the
+  // missing effect into the model's own elements (a Maxwell element's tau at 132 ms for 7 ms, a
+  // friction element's k at 950 N/mm for 114, where a capped Maxwell arm was missing), which no
+  // local search from it gives back.
+  void refit_as_written() {
+    if (stopped() || !residual_beyond_noise()) return;
+    std::vector<CandidateOutcome> leading;
+    for (const CandidateOutcome& c : d_.candidates)
+      if (c.refitted && c.screened.trial.shape != Shape::force_offset) leading.push_back(c);
+    std::stable_sort(leading.begin(), leading.end(), [](const CandidateOutcome& a, const CandidateOutcome& b) { return a.gap_after < b.gap_after; });
+    std::vector<Shape> shapes;
+    std::erase_if(leading, [&](const CandidateOutcome& c) {
+      if (std::find(shapes.begin(), shapes.end(), c.screened.trial.shape) != shapes.end()) return true;
+      shapes.push_back(c.screened.trial.shape);
+      return false;
+    });
+    if (leading.size() > static_cast<std::size_t>(s_.confirm)) leading.resize(static_cast<std::size_t>(s_.confirm));
+    for (std::size_t k = 0; k < leading.size() && !stopped(); ++k) {
+      const auto started = std::chrono::steady_clock::now();
+      CandidateOutcome again;
+      again.screened = leading[k].screened;
+      again.element = leading[k].element;
+      again.screened_as = leading[k].screened_as.empty() ? trial_summary(leading[k].screened.trial) : leading[k].screened_as;
+      again.limit_of = fmt::format("fitted as the model was, from the file's start values (refitted from the model's fit it stopped at {:.4g})",
+                                   leading[k].gap_after);
+      const Trial& trial = again.screened.trial;
+      stage(fmt::format("fitting with {} for {} from the file's start values", trial_summary(trial), effect_name(again.screened.effect)));
+      const std::string comment = fmt::format("candidate for {}", effect_name(again.screened.effect));
+      Compiled candidate = compile(source_, with_trial(source_.text, *base_.model, trial, again.element, scales_.bounds, comment));
+      std::vector<int> free;
+      for (std::size_t i = 0; i < candidate.model->parameters.size(); ++i) {
+        const lang::Parameter& p = candidate.model->parameters[i];
+        if (std::find(kept_paths_.begin(), kept_paths_.end(), p.path) != kept_paths_.end() || (p.free && p.path.starts_with(again.element + ".")))
+          free.push_back(static_cast<int>(i));
+      }
+      const double share = 1.0 / static_cast<double>(leading.size() - k + 1);
+      FitSettings settings = within(share).fit;
+      settings.statistics = false;
+      FitResult result = fit(Network::compile(*candidate.model), free, data_, settings);
+      result.network = with_gaps_in_play(result.network);
+      again.unresolved = resolved_resonance(trial, *candidate.model, result.network, again.element, scales_);
+      judge(trial, again, share, started, std::move(candidate), std::move(result), data_);
+    }
+  }
+
+  // Whether the model's residual as fitted is beyond the estimated noise (unexplained, not none).
+  bool residual_beyond_noise() const {
+    return d_.noise.estimated && beyond_noise_ratio(residual_ratio(before_residual(), d_.noise, d_.residual_terms, d_.noise_weighted), d_.noise);
+  }
+
   // The name of TRIAL's element in the candidate model: a new root name (`backlash` for the
   // block that puts play in front of an element, also when refitted together with its
   // one-sided yield), or the element it replaces in place (a yeoh or poly_spring for a spring,
@@ -465,8 +519,7 @@ class Diagnoser {
   // No candidate earned: the model as fitted, its residual at the noise (none) or not (unexplained).
   Diagnosis finish_none() {
     d_.effect = Effect::none;
-    const bool beyond_noise = d_.noise.estimated &&
-                              beyond_noise_ratio(residual_ratio(before_residual(), d_.noise, d_.residual_terms, d_.noise_weighted), d_.noise);
+    const bool beyond_noise = residual_beyond_noise();
     d_.verdict = beyond_noise ? Verdict::unexplained : Verdict::none;
     if (beyond_noise) d_.unexplained = residual_shape(d_.before, data_);
     d_.reason = beyond_noise ? unexplained_reason(d_) : none_reason(d_, s_);

@@ -26,7 +26,12 @@
 //      at their likelihood's maximum too, and the richer only where its BIC is positively
 //      lower, criterion.hpp positively_lower). Where none earns but free
 //      play and asymmetry were both refitted, play in
-//      front of a friction element made one-sided is refitted as one more candidate.
+//      front of a friction element made one-sided is refitted as one more candidate. Where still
+//      none earns and the residual lies beyond the noise, the leading refitted shapes (one per
+//      shape, lowest gap first, at most `confirm`) are fitted as the model was in step 1: every
+//      free parameter by the fit's own strategy, from the file's start values (step 1's fit may
+//      have taken the missing effect into the model's own elements, which no search from it
+//      gives back).
 //      A resonance (the fluid-column shapes) earns only where the measurement
 //      resolves it: refitted to f_r = sqrt(k/b)/(2 pi), a measured frequency must lie at least
 //      10 % below and one 10 % above it; at the edge of the data a resonance is a relaxation's

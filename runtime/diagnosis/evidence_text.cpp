@@ -121,11 +121,15 @@ std::string outweighed_sentences(const Diagnosis& d, const CandidateOutcome& w, 
 }  // namespace
 
 std::string effect_reason(const Diagnosis& d, const CandidateOutcome& w, double parsimony) {
-  const std::string screened = w.limit_of.empty() ? fmt::format("{} alone would remove {:.0f} % of the objective", trial_summary(w.screened.trial),
-                                                                percent(w.screened.gain))
-                                                  : fmt::format("{} alone would remove {:.0f} % of the objective, and {}, {}, earns it",
-                                                                w.screened_as.empty() ? "a slider-capped fluid column" : w.screened_as,
-                                                                percent(w.screened.gain), trial_summary(w.screened.trial), w.limit_of);
+  // A candidate refitted otherwise than as screened (limit_of): what was screened, then how it was refitted; where that is
+  // the same element (fitted from the file's start values), it is named once.
+  const std::string summary = trial_summary(w.screened.trial);
+  const std::string screened = w.limit_of.empty() ? fmt::format("{} alone would remove {:.0f} % of the objective", summary, percent(w.screened.gain))
+                               : w.screened_as == summary ? fmt::format("{} alone would remove {:.0f} % of the objective and, {}, earns it",
+                                                                        summary, percent(w.screened.gain), w.limit_of)
+                                                          : fmt::format("{} alone would remove {:.0f} % of the objective, and {}, {}, earns it",
+                                                                        w.screened_as.empty() ? "a slider-capped fluid column" : w.screened_as,
+                                                                        percent(w.screened.gain), summary, w.limit_of);
   const int more = w.parameters - fitted_parameters(d.before);
   return fmt::format(
              "{}; {}; refitted with every parameter, {} fell from {:.4g} to {:.4g} ({:.2f} times lower) and BIC from {:.1f} to "

@@ -1,6 +1,7 @@
 // The sentences of runtime/diagnosis/evidence_text.hpp: a named effect's reason says which other
 // refitted candidates fit about as well (within the parsimony margin of its gap), and only those.
 #include "runtime/diagnosis/evidence_text.hpp"
+#include "runtime/diagnosis/trial.hpp"
 
 #include <doctest/doctest.h>
 
@@ -83,6 +84,31 @@ TEST_CASE("a named effect's reason says where the data decide against a candidat
   d.candidates[1].criterion = 92.0 + penalty_8 + 9.0;
   CHECK(alike_candidates(d, d.candidates.front(), 0.1).size() == 1);
   CHECK(effect_reason(d, d.candidates.front(), 0.1).find("which the data decide") == std::string::npos);
+}
+
+// A candidate refitted otherwise than screened (CandidateOutcome::limit_of) is named by what was
+// screened, then by what was refitted; where that is the same element (fitted from the file's
+// start values), it is named once.
+TEST_CASE("a named effect's reason names the screened element once where it was refitted as screened, otherwise both") {
+  Diagnosis d;
+  d.gap_name = "RMS force residual";
+  d.gap_before = 0.0386, d.criterion_before = -10000.0;
+  CandidateOutcome again = refitted(Effect::rate_dependence, Shape::maxwell, 0.0052, -18000.0, 7);
+  again.screened_as = trial_summary(again.screened.trial);
+  again.limit_of = "fitted as the model was, from the file's start values";
+  const std::string once = effect_reason(d, again, 0.1);
+  CAPTURE(once);
+  CHECK(once.find(again.screened_as +
+                  " alone would remove 60 % of the objective and, fitted as the model was, from the file's start values, earns it") !=
+        std::string::npos);
+  CHECK(once.find(again.screened_as) == once.rfind(again.screened_as));
+  CandidateOutcome limit = again;
+  limit.screened_as = "a slider-capped fluid column (k = 50 N/mm)";
+  limit.limit_of = "the limit without inertia of the fluid column before it";
+  const std::string both = effect_reason(d, limit, 0.1);
+  CAPTURE(both);
+  CHECK(both.find("a slider-capped fluid column (k = 50 N/mm) alone would remove 60 % of the objective, and " + again.screened_as +
+                  ", the limit without inertia of the fluid column before it, earns it") != std::string::npos);
 }
 
 }  // namespace evidence_text_test
