@@ -116,6 +116,17 @@ Trial column_from_limit(const Trial& column, const lang::CheckedModel& model, co
   return restart;
 }
 
+Trial friction_limit(const Trial& arm, const lang::CheckedModel& model, const Network& refitted, const std::string& element) {
+  auto value = [&](const std::string& path) { return refitted_value(model, refitted, element, path); };
+  Trial limit = arm;
+  limit.effect = Effect::amplitude_dependence;
+  limit.shape = Shape::friction;
+  limit.stiffness = value("arm.k");
+  limit.slip = value("cap.fy") / limit.stiffness;
+  limit.time = limit.frequency = limit.damping_ratio = 0.0;
+  return limit;
+}
+
 Trial bulged_column(const Trial& column, const lang::CheckedModel& model, const Network& refitted, const std::string& element) {
   auto value = [&](const std::string& path) { return refitted_value(model, refitted, element, path); };
   Trial bulged = column;

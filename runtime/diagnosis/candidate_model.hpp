@@ -47,6 +47,13 @@ Trial resonance_free_limit(const Trial& column, const lang::CheckedModel& model,
 // its basin; this is where to search it again.
 Trial column_from_limit(const Trial& column, const lang::CheckedModel& model, const Network& refitted, const std::string& element);
 
+// The limit tau -> infinity of a refitted slider-capped Maxwell arm ELEMENT (cap fy, arm k and
+// tau): a slider in series with the arm's spring, which is a friction element of k = arm.k and
+// uy = fy/k (eq. 2.9), one parameter fewer and named amplitude-dependence. An arm that hardly
+// relaxes while it sticks (tau long against the measured cycles' stick phases) gives the same
+// loops as this limit.
+Trial friction_limit(const Trial& arm, const lang::CheckedModel& model, const Network& refitted, const std::string& element);
+
 // The refitted slider-capped fluid column ELEMENT (cap fy, chamber k, mass b, channel c; no
 // walls' spring yet) with the chamber walls' compliance beside its mass and channel: a spring
 // `bulge` from the column's node to ground, k_b started at kBulgeStart k (the refit moves it

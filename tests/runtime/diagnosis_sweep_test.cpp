@@ -356,4 +356,32 @@ TEST_CASE("diagnose sweep: a capped Maxwell arm that the model's fit took into i
   CHECK(after.parameter(test::parameter_index(after, arm + ".arm.tau")) == doctest::Approx(0.1787).epsilon(0.02));
 }
 
+// A friction element hidden beside a spring and a Maxwell element, in two files of slow
+// triangles. Seed 6 (326.5 N/mm, 66.1 um): the screen ranked a friction element fourth (36.3 %
+// against 36.4 % for a capped fluid column), and only the first three are refitted; the
+// column's limit, a slider-capped Maxwell arm, refitted to tau = 2.4e5 s, a friction element
+// with one parameter more, and was named coupled. Seed 12 (159.9 N/mm, 51.9 um): the arm
+// refitted to tau = 8.4 s, within the files' cycles but long against their stick phases. The
+// arm's limit tau -> infinity (candidate_model.hpp friction_limit) is refitted beside it and
+// wins by parsimony, with the truth's values.
+TEST_CASE("diagnose sweep: friction hidden in slow triangles is amplitude-dependence, the limit tau -> infinity of a refitted capped arm") {
+  const struct {
+    unsigned seed;
+    double k, uy;  // the truth's [N/mm], [mm]
+  } cases[] = {{6, 326.5, 0.06614}, {12, 159.9, 0.05185}};
+  for (const auto& c : cases) {
+    const Diagnosed r = diagnosed(gen::history_scenario(c.seed, gen::Hidden::friction), gen::Hidden::friction, c.seed);
+    INFO(r.o.line);
+    CHECK(r.o.named_right);
+    const dx::CandidateOutcome* chosen = chosen_candidate(r.d);
+    REQUIRE(chosen != nullptr);
+    CHECK(chosen->screened.trial.shape == dx::Shape::friction);
+    CHECK(chosen->limit_of.find("tau -> infinity") != std::string::npos);
+    REQUIRE(r.d.after.has_value());
+    const runtime::Network& after = r.d.after->network;
+    CHECK(after.parameter(test::parameter_index(after, chosen->element + ".k")) == doctest::Approx(c.k).epsilon(0.03));
+    CHECK(after.parameter(test::parameter_index(after, chosen->element + ".uy")) == doctest::Approx(c.uy).epsilon(0.03));
+  }
+}
+
 }  // namespace diagnosis_sweep_test

@@ -118,4 +118,34 @@ TEST_CASE("a refitted fluid column restarts with its walls' spring: the column a
   CHECK(!runtime::diagnosis::resolved_resonance(bulged, walled.model(), walled, "c", around_column).empty());
 }
 
+// A slider (fy) in series with a Maxwell arm (k, tau) is, as tau -> infinity, a slider in series
+// with a spring: a friction element of k and uy = fy/k (eq. 2.9). Under sines of 1 Hz for 4 s
+// an arm of tau = 1e4 s relaxes by about 4e-4 of its force within the history, and the two give
+// the same forces to that.
+TEST_CASE("a capped Maxwell arm has a friction element as its limit tau -> infinity, with the arm's loop where tau is long") {
+  const std::string body = "spring s (k = 100 N/mm)  ";
+  const runtime::Network arm = test::network_from(
+      "model m { " + body + "series a { slider cap (fy = 30 N in [0.1, 1e5])  maxwell arm (k = 250 N/mm in [1, 1e4], tau = 1e4 s in [1e-5, 1e7]) } }",
+      "m");
+  runtime::diagnosis::Trial screened;
+  screened.effect = runtime::diagnosis::Effect::coupled_amplitude_frequency, screened.shape = runtime::diagnosis::Shape::capped_maxwell;
+  const auto limit = runtime::diagnosis::friction_limit(screened, arm.model(), arm, "a");
+  CHECK(limit.shape == runtime::diagnosis::Shape::friction);
+  CHECK(limit.effect == runtime::diagnosis::Effect::amplitude_dependence);
+  CHECK(limit.stiffness == 250.0);
+  CHECK(limit.slip == doctest::Approx(0.12).epsilon(1e-14));  // mm
+  CHECK(runtime::diagnosis::added_parameter_count(limit) == runtime::diagnosis::added_parameter_count(screened) - 1);
+  std::string text = "model m { " + body;
+  for (const std::string& line : runtime::diagnosis::trial_statement(limit, "a", {250.0, 1.0})) text += line + "\n";
+  const runtime::Network friction = test::network_from(text + "}", "m");
+  const runtime::Drive drive = runtime::quasistatic_sine({0.5, 0.2}, 1.0, 2, 400);
+  const auto a = runtime::run_history(arm, drive, false, runtime::SolverChoice::fixed).force;
+  const auto b = runtime::run_history(friction, drive, false, runtime::SolverChoice::fixed).force;
+  REQUIRE(a.size() == b.size());
+  double largest = 0.0, difference = 0.0;
+  for (std::size_t k = 0; k < a.size(); ++k) largest = std::max(largest, std::abs(a[k])), difference = std::max(difference, std::abs(a[k] - b[k]));
+  CHECK(largest > 50.0);
+  CHECK(difference <= 1e-3 * largest);
+}
+
 }  // namespace candidate_model_test
