@@ -127,6 +127,33 @@ Trial friction_limit(const Trial& arm, const lang::CheckedModel& model, const Ne
   return limit;
 }
 
+double longest_stick(const std::vector<FitDataSet>& data, double uy) {
+  double longest = 0.0;
+  for (const auto& set : data) {
+    if (set.is_harmonic()) {
+      const HarmonicData& h = set.harmonic();
+      for (std::size_t i = 0; i < h.amplitude.size(); ++i)
+        if (h.amplitude[i] > uy)
+          longest = std::max(longest, std::acos(1.0 - 2.0 * uy / h.amplitude[i]) / (2.0 * std::numbers::pi * h.frequency[i]));
+      continue;
+    }
+    const auto& u = set.history().drive.displacement;
+    const auto& t = set.history().drive.time;
+    for (std::size_t k = 1; k + 1 < u.size(); ++k) {
+      if (!((u[k] - u[k - 1]) * (u[k + 1] - u[k]) < 0.0)) continue;  // not a turning point
+      for (std::size_t j = k + 1; j < u.size(); ++j) {
+        if (const double moved = std::abs(u[j] - u[k]); moved >= 2.0 * uy) {  // between samples j - 1 and j, linearly
+          const double before = std::abs(u[j - 1] - u[k]);
+          longest = std::max(longest, t[j - 1] - t[k] + (t[j] - t[j - 1]) * (2.0 * uy - before) / (moved - before));
+          break;
+        }
+        if (j + 1 < u.size() && (u[j] - u[j - 1]) * (u[j + 1] - u[j]) < 0.0) break;  // turned again before slipping
+      }
+    }
+  }
+  return longest;
+}
+
 Trial bulged_column(const Trial& column, const lang::CheckedModel& model, const Network& refitted, const std::string& element) {
   auto value = [&](const std::string& path) { return refitted_value(model, refitted, element, path); };
   Trial bulged = column;

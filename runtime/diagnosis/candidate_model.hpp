@@ -4,6 +4,7 @@
 #pragma once
 
 #include "runtime/diagnosis/screen.hpp"
+#include "runtime/io/fit_data.hpp"
 #include "runtime/network/network.hpp"
 
 #include <string>
@@ -50,9 +51,15 @@ Trial column_from_limit(const Trial& column, const lang::CheckedModel& model, co
 // The limit tau -> infinity of a refitted slider-capped Maxwell arm ELEMENT (cap fy, arm k and
 // tau): a slider in series with the arm's spring, which is a friction element of k = arm.k and
 // uy = fy/k (eq. 2.9), one parameter fewer and named amplitude-dependence. An arm that hardly
-// relaxes while it sticks (tau long against the measured cycles' stick phases) gives the same
-// loops as this limit.
+// relaxes while it sticks (tau beyond longest_stick at its uy) gives the loops of this limit.
 Trial friction_limit(const Trial& arm, const lang::CheckedModel& model, const Network& refitted, const std::string& element);
+
+// The longest a friction element of slip UY [mm] sticks under the drives of DATA [s]: the time
+// the drive takes from a turning point to move 2 uy away from it, where the force goes from one
+// yield force to the other (eq. 2.9). A harmonic point of amplitude a > uy at frequency f:
+// acos(1 - 2 uy/a) / (2 pi f); a history: from each turning point of its displacement, to the
+// drive 2 uy away (linear between samples) before the next turning point. 0 where the drives never slip it.
+double longest_stick(const std::vector<FitDataSet>& data, double uy);
 
 // The refitted slider-capped fluid column ELEMENT (cap fy, chamber k, mass b, channel c; no
 // walls' spring yet) with the chamber walls' compliance beside its mass and channel: a spring

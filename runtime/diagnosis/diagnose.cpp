@@ -210,11 +210,12 @@ class Diagnoser {
     if (capped_arm_ && !stopped()) refit_friction_limit();
   }
 
-  // The refitted slider-capped Maxwell arm of the lowest gap, refitted as its limit tau ->
+  // Of the refitted slider-capped Maxwell arms whose tau exceeds the longest the drives stick them
+  // (candidate_model.hpp longest_stick), the one of the lowest gap, refitted as its limit tau ->
   // infinity, a friction element (candidate_model.hpp friction_limit): where the data cannot tell
   // the two apart, the friction element wins by parsimony. (Friction hidden in slow triangles was
-  // named coupled: an arm refitted to tau = 2.4e5 s, the friction element itself screened fourth,
-  // 36.3 % against 36.4 %, and not refitted.)
+  // named coupled: arms refitted to tau = 2.4e5 s and 8.4 s, sticking for at most 0.7 s, the
+  // friction element itself screened fourth, 36.3 % against 36.4 %, and not refitted.)
   void refit_friction_limit() {
     CandidateOutcome limit;
     limit.screened = capped_arm_->arm.screened;
@@ -223,8 +224,9 @@ class Diagnoser {
     limit.element = element_name(capped_arm_->limit, Effect::amplitude_dependence);
     limit.screened_as = capped_arm_->arm.screened_as.empty() ? trial_summary(capped_arm_->arm.screened.trial) : capped_arm_->arm.screened_as;
     limit.limit_of = fmt::format(
-        "the limit tau -> infinity of the capped Maxwell arm refitted before it (tau = {:.4g} s): a friction element, one parameter fewer",
-        capped_arm_->tau);
+        "the limit tau -> infinity of the capped Maxwell arm refitted before it (tau = {:.4g} s, beyond the {:.3g} s the drives stick it): a "
+        "friction element, one parameter fewer",
+        capped_arm_->tau, capped_arm_->stick);
     refit_candidate(capped_arm_->limit, limit, 0.5);
   }
 
@@ -412,9 +414,12 @@ class Diagnoser {
     if (trial.shape == Shape::capped_column && trial.bulge == 0.0 && bulged != nullptr)
       *bulged = bulged_column(trial, *candidate.model, result.network, outcome.element);
     if (column != nullptr) next = column_from_limit(*column, *candidate.model, result.network, outcome.element);
-    if (trial.shape == Shape::capped_maxwell && (!capped_arm_ || fit_gap(result) < capped_arm_->gap))
-      capped_arm_ = CappedArm{outcome, friction_limit(trial, *candidate.model, result.network, outcome.element), fit_gap(result),
-                              result.network.parameter(parameter_index(*candidate.model, outcome.element + ".arm.tau"))};
+    if (trial.shape == Shape::capped_maxwell) {
+      CappedArm arm{outcome, friction_limit(trial, *candidate.model, result.network, outcome.element), fit_gap(result),
+                    result.network.parameter(parameter_index(*candidate.model, outcome.element + ".arm.tau")), 0.0};
+      arm.stick = longest_stick(data_, arm.limit.slip);
+      if (arm.tau > arm.stick && (!capped_arm_ || arm.gap < capped_arm_->gap)) capped_arm_ = std::move(arm);
+    }
     judge(trial, outcome, share, started, std::move(candidate), std::move(result), data_);
     return next;
   }
@@ -610,12 +615,13 @@ class Diagnoser {
   DataScales scales_;
   std::optional<Chosen> chosen_;
   std::optional<std::vector<FitDataSet>> offset_data_;  // offset_data()
-  // The refitted slider-capped Maxwell arm of the lowest gap, and its friction limit (refit_friction_limit).
+  // The refitted slider-capped Maxwell arm slower than its sticking of the lowest gap, and its friction limit (refit_friction_limit).
   struct CappedArm {
     CandidateOutcome arm;
     Trial limit;
     double gap = 0.0;
-    double tau = 0.0;  // [s]
+    double tau = 0.0;    // [s]
+    double stick = 0.0;  // [s]: candidate_model.hpp longest_stick at the arm's fy/k
   };
   std::optional<CappedArm> capped_arm_;
 };

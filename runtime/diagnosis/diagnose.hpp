@@ -13,8 +13,9 @@
 //      two stages: the new parameters alone, sampled over the range the data support and
 //      searched locally from the best samples and the screened element, then every free
 //      parameter together from the best of those and from the screened element (refit.hpp).
-//      The refitted slider-capped Maxwell arm of the lowest gap is refitted once more as its
-//      limit tau -> infinity, a friction element (candidate_model.hpp friction_limit).
+//      Of the refitted slider-capped Maxwell arms slower than the drives stick them
+//      (candidate_model.hpp longest_stick), the one of the lowest gap is refitted once more as
+//      its limit tau -> infinity, a friction element (candidate_model.hpp friction_limit).
 //   4. Choose by the Bayesian information criterion over the N residual terms of the fit,
 //        BIC = -2 ln L + p ln(N),   p the free parameters (criterion.hpp): on harmonic data with
 //      a noise estimate, -2 ln L is the chi^2 of the residuals under the estimated stiffness and

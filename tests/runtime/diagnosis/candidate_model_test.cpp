@@ -133,7 +133,7 @@ TEST_CASE("a capped Maxwell arm has a friction element as its limit tau -> infin
   CHECK(limit.shape == runtime::diagnosis::Shape::friction);
   CHECK(limit.effect == runtime::diagnosis::Effect::amplitude_dependence);
   CHECK(limit.stiffness == 250.0);
-  CHECK(limit.slip == doctest::Approx(0.12).epsilon(1e-14));  // mm
+  CHECK(limit.slip == doctest::Approx(0.12).epsilon(1e-14).scale(0.0));  // mm
   CHECK(runtime::diagnosis::added_parameter_count(limit) == runtime::diagnosis::added_parameter_count(screened) - 1);
   std::string text = "model m { " + body;
   for (const std::string& line : runtime::diagnosis::trial_statement(limit, "a", {250.0, 1.0})) text += line + "\n";
@@ -146,6 +146,23 @@ TEST_CASE("a capped Maxwell arm has a friction element as its limit tau -> infin
   for (std::size_t k = 0; k < a.size(); ++k) largest = std::max(largest, std::abs(a[k])), difference = std::max(difference, std::abs(a[k] - b[k]));
   CHECK(largest > 50.0);
   CHECK(difference <= 1e-3 * largest);
+}
+
+// The longest a friction element of slip uy sticks: from a turning point until the drive has
+// moved 2 uy. A sine point of amplitude a at f: acos(1 - 2 uy/a)/(2 pi f); a point of a <= uy
+// never slips. A triangle at v: 2 uy/v.
+TEST_CASE("the longest a friction element sticks under the drives: a sine's acos(1 - 2 uy/a)/(2 pi f), a triangle's 2 uy/v") {
+  runtime::HarmonicData grid;
+  grid.amplitude = {1.0, 0.5, 0.05}, grid.frequency = {1.0, 10.0, 0.01};  // the last never slips at uy = 0.1 mm
+  const std::vector<runtime::FitDataSet> harmonic{runtime::FitDataSet{"grid", 1.0, grid, {}, {}}};
+  CHECK(runtime::diagnosis::longest_stick(harmonic, 0.1) == doctest::Approx(std::acos(0.8) / (2.0 * std::numbers::pi)).epsilon(1e-12));
+  CHECK(runtime::diagnosis::longest_stick(harmonic, 2.0) == 0.0);
+  runtime::HistoryData h;
+  h.drive = runtime::static_triangle({1.0}, 0.5, 2, 400);  // 0.01 mm and 0.02 s a sample
+  const std::vector<runtime::FitDataSet> history{runtime::FitDataSet{"triangle", 1.0, h, {}, {}}};
+  CHECK(runtime::diagnosis::longest_stick(history, 0.1) == doctest::Approx(0.4).epsilon(1e-9));
+  CHECK(runtime::diagnosis::longest_stick(history, 0.33) == doctest::Approx(1.32).epsilon(1e-9));  // between samples
+  CHECK(runtime::diagnosis::longest_stick(history, 1.1) == 0.0);  // 2.2 mm from a turning point at +-1 mm: never before the next
 }
 
 }  // namespace candidate_model_test
