@@ -155,12 +155,12 @@ TEST_CASE("the longest a friction element sticks under the drives: a sine's acos
   runtime::HarmonicData grid;
   grid.amplitude = {1.0, 0.5, 0.05}, grid.frequency = {1.0, 10.0, 0.01};  // the last never slips at uy = 0.1 mm
   const std::vector<runtime::FitDataSet> harmonic{runtime::FitDataSet{"grid", 1.0, grid, {}, {}}};
-  CHECK(runtime::diagnosis::longest_stick(harmonic, 0.1) == doctest::Approx(std::acos(0.8) / (2.0 * std::numbers::pi)).epsilon(1e-12));
+  CHECK(runtime::diagnosis::longest_stick(harmonic, 0.1) == doctest::Approx(std::acos(0.8) / (2.0 * std::numbers::pi)).epsilon(1e-12).scale(0.0));
   CHECK(runtime::diagnosis::longest_stick(harmonic, 2.0) == 0.0);
   runtime::HistoryData h;
   h.drive = runtime::static_triangle({1.0}, 0.5, 2, 400);  // 0.01 mm and 0.02 s a sample
   const std::vector<runtime::FitDataSet> history{runtime::FitDataSet{"triangle", 1.0, h, {}, {}}};
-  CHECK(runtime::diagnosis::longest_stick(history, 0.1) == doctest::Approx(0.4).epsilon(1e-9));
+  CHECK(runtime::diagnosis::longest_stick(history, 0.1) == doctest::Approx(0.4).epsilon(1e-9).scale(0.0));
   CHECK(runtime::diagnosis::longest_stick(history, 0.33) == doctest::Approx(1.32).epsilon(1e-9));  // between samples
   CHECK(runtime::diagnosis::longest_stick(history, 1.1) == 0.0);  // 2.2 mm from a turning point at +-1 mm: never before the next
 }
