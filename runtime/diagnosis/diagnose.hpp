@@ -142,7 +142,7 @@ struct CandidateOutcome {
   double wall_seconds = 0.0;
   std::string fitted;  // the added element's refitted values ("backlash.play.width = 0.91 mm, ..."); empty for the offset
   // Why the candidate cannot earn whatever it gains, or empty: a refitted resonance outside
-  // the measured frequencies (diagnose.cpp resolved_resonance).
+  // the measured frequencies (candidate_model.hpp resolved_resonance).
   std::string unresolved;
   // Empty, or why this trial was refitted although not screened: the limit without inertia of
   // the candidate before it (a refitted slider-capped fluid column becomes the slider-capped
