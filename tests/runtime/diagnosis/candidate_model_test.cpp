@@ -19,6 +19,26 @@ namespace candidate_model_test {
 
 using namespace rheo;
 
+namespace {
+
+struct ForceDifference {
+  double largest = 0.0;     // max |F_a| [N]
+  double difference = 0.0;  // max |F_a - F_b| [N]
+};
+
+// A and B driven by DRIVE on fixed steps: their forces compared sample by sample.
+ForceDifference force_difference(const runtime::Network& a, const runtime::Network& b, const runtime::Drive& drive) {
+  const auto fa = runtime::run_history(a, drive, false, runtime::SolverChoice::fixed).force;
+  const auto fb = runtime::run_history(b, drive, false, runtime::SolverChoice::fixed).force;
+  REQUIRE(fa.size() == fb.size());
+  ForceDifference d;
+  for (std::size_t k = 0; k < fa.size(); ++k)
+    d.largest = std::max(d.largest, std::abs(fa[k])), d.difference = std::max(d.difference, std::abs(fa[k] - fb[k]));
+  return d;
+}
+
+}  // namespace
+
 TEST_CASE("a refitted gap centre beyond half the width is written at the edge of the play, with the same predictions") {
   const runtime::Network network = test::network_from(
       "model g { spring s (k = 10 N/mm)  series b { gap p (width = 2 mm in [0.1, 10], center = 0.5 mm in [-5, 5])  friction f (k = 300 N/mm, fy = 200 N) } }",
@@ -30,14 +50,9 @@ TEST_CASE("a refitted gap centre beyond half the width is written at the edge of
   const runtime::Network written = runtime::diagnosis::with_gaps_in_play(beyond);
   CHECK(written.parameter(center) == 1.0);
   CHECK(runtime::diagnosis::with_gaps_in_play(network).parameter(center) == 0.5);  // within the play: kept
-  const runtime::Drive drive = runtime::quasistatic_sine({3.0, 1.5}, 1.0, 2, 200);
-  const auto a = runtime::run_history(beyond, drive, false, runtime::SolverChoice::fixed).force;
-  const auto b = runtime::run_history(written, drive, false, runtime::SolverChoice::fixed).force;
-  REQUIRE(a.size() == b.size());
-  double largest = 0.0, difference = 0.0;
-  for (std::size_t k = 0; k < a.size(); ++k) largest = std::max(largest, std::abs(a[k])), difference = std::max(difference, std::abs(a[k] - b[k]));
-  CHECK(largest > 100.0);
-  CHECK(difference <= 1e-9 * largest);
+  const ForceDifference d = force_difference(beyond, written, runtime::quasistatic_sine({3.0, 1.5}, 1.0, 2, 200));
+  CHECK(d.largest > 100.0);
+  CHECK(d.difference <= 1e-9 * d.largest);
   // An edge outside the bounds the centre was fitted in: it stays where it is.
   const runtime::Network bounded = test::network_from(
       "model g { series b { gap p (width = 2 mm in [0.1, 10], center = 0.5 mm in [0.2, 5])  spring k (k = 300 N/mm) } }", "g");
@@ -138,14 +153,9 @@ TEST_CASE("a capped Maxwell arm has a friction element as its limit tau -> infin
   std::string text = "model m { " + body;
   for (const std::string& line : runtime::diagnosis::trial_statement(limit, "a", {250.0, 1.0})) text += line + "\n";
   const runtime::Network friction = test::network_from(text + "}", "m");
-  const runtime::Drive drive = runtime::quasistatic_sine({0.5, 0.2}, 1.0, 2, 400);
-  const auto a = runtime::run_history(arm, drive, false, runtime::SolverChoice::fixed).force;
-  const auto b = runtime::run_history(friction, drive, false, runtime::SolverChoice::fixed).force;
-  REQUIRE(a.size() == b.size());
-  double largest = 0.0, difference = 0.0;
-  for (std::size_t k = 0; k < a.size(); ++k) largest = std::max(largest, std::abs(a[k])), difference = std::max(difference, std::abs(a[k] - b[k]));
-  CHECK(largest > 50.0);
-  CHECK(difference <= 1e-3 * largest);
+  const ForceDifference d = force_difference(arm, friction, runtime::quasistatic_sine({0.5, 0.2}, 1.0, 2, 400));
+  CHECK(d.largest > 50.0);
+  CHECK(d.difference <= 1e-3 * d.largest);
 }
 
 // The longest a friction element of slip uy sticks: from a turning point until the drive has
