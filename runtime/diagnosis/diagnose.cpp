@@ -133,6 +133,10 @@ void Diagnoser::polish() {
 
 Diagnosis Diagnoser::finish_none() {
   d_.effect = Effect::none;
+  // The closest candidate's BIC at its likelihood's maximum, as the model's is, for the reason's
+  // comparison (its refit's, by eq. 5.1, can lie far above: 12121 against the model's 1046).
+  if (closest_ && !stopped() && !d_.candidates[closest_->candidate].at_likelihood_maximum)
+    at_likelihood_maximum(d_.candidates[closest_->candidate], closest_->result, *closest_->data, 1.0);
   const bool beyond_noise = residual_beyond_noise();
   d_.verdict = beyond_noise ? Verdict::unexplained : Verdict::none;
   if (beyond_noise) d_.unexplained = residual_shape(d_.before, data_);

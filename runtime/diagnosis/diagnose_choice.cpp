@@ -54,6 +54,8 @@ void Diagnoser::judge(const Trial& trial, CandidateOutcome& outcome, double shar
   const bool earns = gains && outcome.criterion < d_.criterion_before;
   if (earns && (!chosen_ || preferred_to_choice(outcome, result, data, share)))
     chosen_ = Chosen{d_.candidates.size(), trial, std::move(candidate), std::move(result), &data};
+  else if (d_.noise_weighted && !outcome.at_likelihood_maximum && (!closest_ || outcome.gap_after < d_.candidates[closest_->candidate].gap_after))
+    closest_ = Chosen{d_.candidates.size(), trial, std::move(candidate), std::move(result), &data};
   d_.candidates.push_back(outcome);
 }
 

@@ -207,6 +207,9 @@ class Diagnoser {
   std::vector<std::string> kept_paths_;  // the free parameters of step 1, by path
   DataScales scales_;
   std::optional<Chosen> chosen_;
+  // Where the criterion is noise-weighted: the refitted candidate of the lowest gap that was not
+  // chosen and whose BIC is its refit's, kept for finish_none to take at its likelihood's maximum.
+  std::optional<Chosen> closest_;
   std::optional<std::vector<FitDataSet>> offset_data_;  // offset_data()
   // The refitted slider-capped Maxwell arm slower than its sticking of the lowest gap, and its friction limit (refit_friction_limit).
   struct CappedArm {

@@ -56,12 +56,16 @@ std::string candidate_table(const Diagnosis& d) {
     out += fmt::format("<tr{}><td>{}</td><td class=\"num\">{:.1f} %</td>", c.chosen ? " class=\"chosen\"" : "", effect_name(c.screened.effect),
                        100.0 * c.screened.gain);
     if (c.refitted)
-      out += fmt::format("<td class=\"num\">{:.4g}</td><td class=\"num\">{:.1f}</td><td class=\"num\">{}</td>", c.gap_after, c.criterion,
-                         c.parameters);
+      out += fmt::format("<td class=\"num\">{:.4g}</td><td class=\"num\">{:.1f}{}</td><td class=\"num\">{}</td>", c.gap_after, c.criterion,
+                         d.noise_weighted && !c.at_likelihood_maximum ? "*" : "", c.parameters);
     else out += "<td>not refitted</td><td></td><td></td>";
     out += fmt::format("<td>{}</td><td>{}</td></tr>\n", escape(trial_summary(c.screened.trial)), escape(note));
   }
-  return out + "</table>\n";
+  out += "</table>\n";
+  if (d.noise_weighted &&
+      std::any_of(d.candidates.begin(), d.candidates.end(), [](const CandidateOutcome& c) { return c.refitted && !c.at_likelihood_maximum; }))
+    out += "<p>* BIC of the refit as it ended (by eq. 5.1), an upper bound of its value at the likelihood's maximum, where the model's is taken.</p>\n";
+  return out;
 }
 
 std::string round_html(const Diagnosis& d, std::size_t index, bool several) {

@@ -4,6 +4,8 @@
 #include "runtime/fit/fit_report.hpp"
 
 #include <fmt/format.h>
+
+#include <algorithm>
 #include <nlohmann/json.hpp>
 
 #include <numbers>
@@ -32,12 +34,20 @@ std::string diagnosis_report_text(const std::string& source_file, const Diagnosi
   for (const auto& line : pattern_lines(d.patterns)) out += "  " + line + "\n";
   if (const std::string noise = noise_sentence(d); !noise.empty()) out += "  " + noise + "\n";
   out += "\ncandidates (screened: share of the objective the element removes alone; refitted: with every free parameter)\n";
-  out += fmt::format("  {:<28}  {:>8}  {:>12}  {:>10}  {}\n", "effect", "screened", d.gap_name, "BIC", "element");
+  // Where the model's BIC is at its likelihood's maximum and a candidate's is its refit's (an
+  // upper bound: diagnose.hpp step 4), the candidate's is marked.
+  const bool marked = d.noise_weighted && std::any_of(d.candidates.begin(), d.candidates.end(),
+                                                      [](const CandidateOutcome& c) { return c.refitted && !c.at_likelihood_maximum; });
+  out += fmt::format("  {:<28}  {:>8}  {:>12}  {:>10}{}  {}\n", "effect", "screened", d.gap_name, "BIC", marked ? " " : "", "element");
   for (const auto& c : d.candidates) {
-    const std::string refit = c.refitted ? fmt::format("{:>12.4g}  {:>10.1f}", c.gap_after, c.criterion) : fmt::format("{:>12}  {:>10}", "-", "-");
+    const std::string mark = !marked ? "" : c.refitted && !c.at_likelihood_maximum ? "*" : " ";
+    const std::string refit = c.refitted ? fmt::format("{:>12.4g}  {:>10.1f}{}", c.gap_after, c.criterion, mark)
+                                         : fmt::format("{:>12}  {:>10}{}", "-", "-", marked ? " " : "");
     out += fmt::format("  {:<28}  {:>6.1f} %  {}  {}{}\n", effect_name(c.screened.effect), 100.0 * c.screened.gain, refit,
                        trial_summary(c.screened.trial), c.chosen ? "  <- chosen" : "");
   }
+  if (marked)
+    out += "  * BIC of the refit as it ended (by eq. 5.1), an upper bound of its value at the likelihood's maximum, where the model's is taken\n";
   for (const auto& c : d.candidates)
     if (!c.unresolved.empty()) out += fmt::format("  {} cannot earn: {}\n", effect_name(c.screened.effect), c.unresolved);
     else if (!c.limit_of.empty())
@@ -87,7 +97,9 @@ std::string diagnosis_report_json(const std::string& source_file, const Diagnosi
            {"trial", trial_summary(c.screened.trial)}, {"refitted", c.refitted},           {"chosen", c.chosen}};
     if (!c.unresolved.empty()) e["unresolved"] = c.unresolved;
     if (!c.limit_of.empty()) e["limit_of"] = c.limit_of;
-    if (c.refitted) e["gap_after"] = c.gap_after, e["criterion"] = c.criterion, e["parameters"] = c.parameters, e["wall_seconds"] = c.wall_seconds;
+    if (c.refitted)
+      e["gap_after"] = c.gap_after, e["criterion"] = c.criterion, e["at_likelihood_maximum"] = c.at_likelihood_maximum,
+      e["parameters"] = c.parameters, e["wall_seconds"] = c.wall_seconds;
     if (c.refitted && !c.fitted.empty()) e["fitted"] = c.fitted;
     candidates.push_back(e);
   }
@@ -152,10 +164,7 @@ std::string diagnosis_report_json(const std::string& source_file, const Diagnosi
            {"resembles", d.unexplained->resembles ? json(resemblance_name(*d.unexplained->resembles)) : json(nullptr)},
            {"resembles_share", d.unexplained->resembles_share},
            {"best_candidate", nullptr}};
-    const CandidateOutcome* best = nullptr;
-    for (const auto& c : d.candidates)
-      if (c.refitted && (!best || c.criterion < best->criterion)) best = &c;
-    if (best)
+    if (const CandidateOutcome* best = best_candidate(d))
       u["best_candidate"] = {{"effect", effect_name(best->screened.effect)},
                              {"trial", trial_summary(best->screened.trial)},
                              {"gap_after", best->gap_after},

@@ -139,15 +139,17 @@ std::string effect_reason(const Diagnosis& d, const CandidateOutcome& w, double 
          alike_sentences(d, w, parsimony) + outweighed_sentences(d, w, parsimony);
 }
 
-namespace {
-
-// The refitted candidate of the lowest BIC, or null.
 const CandidateOutcome* best_candidate(const Diagnosis& d) {
   const CandidateOutcome* best = nullptr;
-  for (const auto& c : d.candidates)
-    if (c.refitted && (!best || c.criterion < best->criterion)) best = &c;
+  for (const auto& c : d.candidates) {
+    if (!c.refitted) continue;
+    const bool alike_taken = !d.noise_weighted || !best || c.at_likelihood_maximum == best->at_likelihood_maximum;
+    if (!best || (alike_taken ? c.criterion < best->criterion : c.at_likelihood_maximum)) best = &c;
+  }
   return best;
 }
+
+namespace {
 
 std::string without_noise(const Diagnosis& d, const DiagnoseSettings& s) {
   const CandidateOutcome* best = best_candidate(d);

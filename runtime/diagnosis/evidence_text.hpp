@@ -34,6 +34,11 @@ std::string none_reason(const Diagnosis& diagnosis, const DiagnoseSettings& sett
 // what it resembles, and the best candidate's numbers.
 std::string unexplained_reason(const Diagnosis& diagnosis);
 
+// The refitted candidate of the lowest BIC, or null; where the criterion is noise-weighted, of
+// those at their likelihood's maximum where any is (as the model's BIC is), so that the BICs a
+// reason compares are alike. The best candidate the `none` and `unexplained` reasons name.
+const CandidateOutcome* best_candidate(const Diagnosis& diagnosis);
+
 // The noise estimate in words: "measurement noise estimated from the residual's roughness over
 // the grid: 1.02 % in stiffness, 0.151 deg in phase; it leaves err (6.1) = 0.0021 (+-8 %), and the
 // gap is 1.04 times that"; empty without an estimate.

@@ -57,6 +57,21 @@ TEST_CASE("the diagnosis reports name an added parameter the refit left at its b
   CHECK(j.at("alike") == nlohmann::json::array({"amplitude-dependence"}));
   // Each refitted candidate's fitted values.
   CHECK(j.at("evidence").at("candidates").at(0).at("fitted") == "m3.k = 40 N/mm, m3.tau = 9999.93 ms");
+  CHECK(j.at("evidence").at("candidates").at(0).at("at_likelihood_maximum") == false);
+  // Not noise-weighted: every BIC is of its fit, none marked.
+  CHECK(text.find("* BIC of the refit") == std::string::npos);
+  // Noise-weighted: the model's BIC is at its likelihood's maximum, and a candidate's that is its
+  // refit's (an upper bound) is marked, with the legend under the table.
+  d.noise_weighted = true;
+  d.candidates.front().criterion = 12120.8;
+  dx::CandidateOutcome at_maximum = refitted;
+  at_maximum.criterion = 1220.6, at_maximum.at_likelihood_maximum = true;
+  d.candidates.push_back(at_maximum);
+  const std::string weighted = dx::diagnosis_report_text("m.rheo", d);
+  CAPTURE(weighted);
+  CHECK(weighted.find("     12120.8*  ") != std::string::npos);
+  CHECK(weighted.find("      1220.6   ") != std::string::npos);
+  CHECK(weighted.find("  * BIC of the refit as it ended (by eq. 5.1), an upper bound of its value at the likelihood's maximum") != std::string::npos);
 }
 
 }  // namespace diagnosis_report_test

@@ -111,4 +111,21 @@ TEST_CASE("a named effect's reason names the screened element once where it was 
                   ", the limit without inertia of the fluid column before it, earns it") != std::string::npos);
 }
 
+// Where the model's BIC is at its likelihood's maximum (noise-weighted), the best candidate a
+// reason names is of those whose BIC is too: a refit's BIC (eq. 5.1's fit, 12121 on a real
+// amplitude sweep against the model's 1046) is only an upper bound.
+TEST_CASE("the best candidate is the lowest BIC of those taken at the likelihood's maximum where the criterion is noise-weighted") {
+  Diagnosis d;
+  d.candidates.push_back(refitted(Effect::amplitude_dependence, Shape::friction, 0.047, 900.0, 10));  // as refitted
+  d.candidates.push_back(refitted(Effect::amplitude_dependence, Shape::friction, 0.047, 1220.0, 10));
+  d.candidates.back().at_likelihood_maximum = true;
+  d.candidates.push_back(refitted(Effect::rate_dependence, Shape::maxwell, 0.048, 1300.0, 10));
+  d.candidates.back().at_likelihood_maximum = true;
+  CHECK(best_candidate(d) == &d.candidates[0]);  // not noise-weighted: the lowest BIC
+  d.noise_weighted = true;
+  CHECK(best_candidate(d) == &d.candidates[1]);
+  d.candidates[1].at_likelihood_maximum = d.candidates[2].at_likelihood_maximum = false;
+  CHECK(best_candidate(d) == &d.candidates[0]);  // none at the maximum: the lowest
+}
+
 }  // namespace evidence_text_test
