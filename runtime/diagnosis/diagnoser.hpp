@@ -109,7 +109,6 @@ class Diagnoser {
   // BIC's parameter penalty p ln N of OUTCOME, and whether OUTCOME (its criterion less that
   // penalty the chi^2) reaches the noise as the verdict judges it (criterion.hpp reaches_noise).
   double penalty(const CandidateOutcome& outcome) const { return outcome.parameters * std::log(static_cast<double>(d_.residual_terms)); }
-
   bool outcome_reaches_noise(const CandidateOutcome& outcome) const;
 
   // Step 4 again where no candidate earned alone but both free play and asymmetry were
@@ -180,8 +179,8 @@ class Diagnoser {
   Residual before_residual() const { return {d_.gap_before, d_.chi_square_before, fitted_parameters(d_.before)}; }
 
   // Step 5: Levenberg-Marquardt over every free parameter of the chosen model again (refit.hpp
-  // local_search), kept when no worse; its
-  // gaps' centres written within their play (candidate_model.hpp with_gaps_in_play).
+  // local_search), kept when no worse; its gaps' centres written within their play
+  // (candidate_model.hpp with_gaps_in_play).
   void polish();
 
   // No candidate earned: the model as fitted, its residual at the noise (none) or not (unexplained).
@@ -211,7 +210,8 @@ class Diagnoser {
   // chosen and whose BIC is its refit's, kept for finish_none to take at its likelihood's maximum.
   std::optional<Chosen> closest_;
   std::optional<std::vector<FitDataSet>> offset_data_;  // offset_data()
-  // The refitted slider-capped Maxwell arm slower than its sticking of the lowest gap, and its friction limit (refit_friction_limit).
+  // Of the refitted slider-capped Maxwell arms slower than the drives stick them, the one of the
+  // lowest gap, and its friction limit (refit_friction_limit).
   struct CappedArm {
     CandidateOutcome arm;
     Trial limit;
