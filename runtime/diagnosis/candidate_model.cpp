@@ -127,6 +127,28 @@ Trial friction_limit(const Trial& arm, const lang::CheckedModel& model, const Ne
   return limit;
 }
 
+std::optional<std::vector<double>> roles_exchanged(const lang::CheckedModel& model, const Network& refitted, const std::string& element,
+                                                   const lang::Element& friction) {
+  if (friction.kind != lang::ElementKind::friction || friction.parameters.size() != 2) return std::nullopt;
+  const int arm_k = parameter_index(model, element + ".arm.k"), cap_fy = parameter_index(model, element + ".cap.fy");
+  const int friction_k = friction.parameters[0], friction_uy = parameter_index(model, friction.name + ".uy");
+  const int friction_yield = friction_uy >= 0 ? friction_uy : friction.parameters[1];  // uy where given, else fy
+  auto free = [&](int i) { return i >= 0 && model.parameters[static_cast<std::size_t>(i)].free; };
+  if (!free(arm_k) || !free(cap_fy) || !free(friction_k) || !free(friction_yield)) return std::nullopt;
+  std::vector<double> values = refitted.parameters();
+  auto at = [&](int i) -> double& { return values[static_cast<std::size_t>(i)]; };
+  const double k_arm = at(arm_k), fy_arm = at(cap_fy);
+  const double k_friction = at(friction_k), fy_friction = refitted.parameter(friction.parameters[1]);
+  auto set = [&](int i, double v) {  // within the parameter's bounds
+    const lang::Parameter& p = model.parameters[static_cast<std::size_t>(i)];
+    at(i) = std::clamp(v, p.lower, p.upper);
+  };
+  set(arm_k, k_friction), set(cap_fy, fy_friction);
+  set(friction_k, k_arm);
+  set(friction_yield, friction_uy >= 0 ? fy_arm / k_arm : fy_arm);
+  return values;
+}
+
 double longest_stick(const std::vector<FitDataSet>& data, double uy) {
   double longest = 0.0;
   for (const auto& set : data) {

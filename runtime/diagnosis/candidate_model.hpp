@@ -7,7 +7,9 @@
 #include "runtime/io/fit_data.hpp"
 #include "runtime/network/network.hpp"
 
+#include <optional>
 #include <string>
+#include <vector>
 
 namespace rheo::runtime::diagnosis {
 
@@ -53,6 +55,15 @@ Trial column_from_limit(const Trial& column, const lang::CheckedModel& model, co
 // uy = fy/k (eq. 2.9), one parameter fewer and named amplitude-dependence. An arm that hardly
 // relaxes while it sticks (tau beyond longest_stick at its uy) gives the loops of this limit.
 Trial friction_limit(const Trial& arm, const lang::CheckedModel& model, const Network& refitted, const std::string& element);
+
+// REFITTED's values with the yield forces and stiffnesses of the capped Maxwell arm ELEMENT (cap
+// fy, arm k; its tau kept) and of the root friction element FRICTION (k, fy, or k and uy = fy/k)
+// exchanged; nullopt where one of the four is not free or FRICTION's yield is one-sided. A fit
+// can end with the two in each other's roles: the friction element carrying a slow arm's cap
+// (634 N/mm, 226 N for the arm's 654 N/mm, 234 N) and the arm the friction element's slip, a
+// local minimum 3.9 times the noise; exchanged, the search reaches the truth.
+std::optional<std::vector<double>> roles_exchanged(const lang::CheckedModel& model, const Network& refitted, const std::string& element,
+                                                   const lang::Element& friction);
 
 // The longest a friction element of slip UY [mm] sticks under the drives of DATA [s]: the time
 // the drive takes from a turning point to move 2 uy away from it, where the force goes from one

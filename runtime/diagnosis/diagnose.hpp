@@ -15,7 +15,9 @@
 //      parameter together from the best of those and from the screened element (refit.hpp).
 //      Of the refitted slider-capped Maxwell arms slower than the drives stick them
 //      (candidate_model.hpp longest_stick), the one of the lowest gap is refitted once more as
-//      its limit tau -> infinity, a friction element (candidate_model.hpp friction_limit).
+//      its limit tau -> infinity, a friction element (candidate_model.hpp friction_limit); and
+//      such an arm's refit is searched again from each root friction element's roles exchanged
+//      with its own (candidate_model.hpp roles_exchanged).
 //   4. Choose by the Bayesian information criterion over the N residual terms of the fit,
 //        BIC = -2 ln L + p ln(N),   p the free parameters (criterion.hpp): on harmonic data with
 //      a noise estimate, -2 ln L is the chi^2 of the residuals under the estimated stiffness and

@@ -64,6 +64,26 @@ void Diagnoser::refit_leading(const std::vector<ScreenedEffect>& screened_effect
   if (capped_arm_ && !stopped()) refit_friction_limit();
 }
 
+void Diagnoser::exchange_roles(const lang::CheckedModel& model, const std::string& element, const std::vector<int>& free, double share,
+                               FitResult& result) {
+  auto value = [&](const std::string& path) { return result.network.parameter(parameter_index(model, element + "." + path)); };
+  if (!(value("arm.tau") > longest_stick(data_, value("cap.fy") / value("arm.k")))) return;
+  for (const lang::Element& e : model.root.children) {
+    if (stopped()) return;
+    const std::optional<std::vector<double>> start = roles_exchanged(model, result.network, element, e);
+    if (!start) continue;
+    const int budget = std::max(affordable_evaluations(result.network, data_, s_, 0) / 4, kLocalJacobians * (static_cast<int>(free.size()) + 1));
+    FitResult again = fit(result.network.with_parameters(*start), free, data_, local_search(within(share).fit, budget));
+    const int evaluations = result.evaluations + again.evaluations;
+    if (again.objective < result.objective) {
+      again.start_values = result.start_values;
+      again.wall_seconds += result.wall_seconds;
+      result = std::move(again);
+    }
+    result.evaluations = evaluations;
+  }
+}
+
 void Diagnoser::refit_friction_limit() {
   CandidateOutcome limit;
   limit.screened = capped_arm_->arm.screened;
@@ -208,6 +228,12 @@ std::optional<Trial> Diagnoser::refit_candidate(const Trial& trial, CandidateOut
     added.assign(1, walls);
   }
   FitResult result = staged_refit(Network::compile(*candidate.model), kept, added, data_, within(share));
+  if (trial.shape == Shape::capped_maxwell && !result.interrupted) {
+    std::vector<int> free = kept;
+    free.insert(free.end(), added.begin(), added.end());
+    std::sort(free.begin(), free.end());
+    exchange_roles(*candidate.model, outcome.element, free, share, result);
+  }
   result.network = with_gaps_in_play(result.network);  // the same predictions, as a file can state them
   outcome.unresolved = resolved_resonance(trial, *candidate.model, result.network, outcome.element, scales_);
   std::optional<Trial> next;

@@ -90,6 +90,11 @@ class Diagnoser {
   // friction element itself screened fourth, 36.3 % against 36.4 %, and not refitted.)
   void refit_friction_limit();
 
+  // RESULT, the refit of the capped Maxwell arm ELEMENT of MODEL over FREE, searched again where
+  // the arm outlasts its sticking (candidate_model.hpp longest_stick) from each root friction
+  // element's roles exchanged with the arm's (candidate_model.hpp roles_exchanged); the lower kept.
+  void exchange_roles(const lang::CheckedModel& model, const std::string& element, const std::vector<int>& free, double share, FitResult& result);
+
   // The screen's simpler member of the effect, which screened within the parsimony margin of its
   // best (screen.hpp ScreenedEffect::simpler), refitted beside it. (A capped fluid column's
   // simpler member, the capped Maxwell element, is its limit without inertia, refitted anyway.)

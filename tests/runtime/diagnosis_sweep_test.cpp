@@ -384,4 +384,23 @@ TEST_CASE("diagnose sweep: friction hidden in slow triangles is amplitude-depend
   }
 }
 
+// A slider-capped Maxwell arm (161.9 N; 416.6 N/mm, 9.7 s) hidden beside a spring, a Maxwell and
+// a friction element (326.5 N/mm, 66.1 um), under slow triangles: the refits ended with the two
+// in each other's roles (the arm at 30 N, the friction element carrying the cap), and its limit,
+// a friction element, was named. Searched again with their stiffnesses and yield forces
+// exchanged (candidate_model.hpp roles_exchanged), the arm takes the truth's values.
+TEST_CASE("diagnose sweep: a slow capped arm whose refit took the friction element's role is found with the roles exchanged") {
+  const Diagnosed r = diagnosed(gen::history_scenario(6, gen::Hidden::capped_maxwell), gen::Hidden::capped_maxwell, 6);
+  INFO(r.o.line);
+  CHECK(r.o.named_right);
+  const dx::CandidateOutcome* chosen = chosen_candidate(r.d);
+  REQUIRE(chosen != nullptr);
+  REQUIRE(chosen->screened.trial.shape == dx::Shape::capped_maxwell);
+  REQUIRE(r.d.after.has_value());
+  const runtime::Network& after = r.d.after->network;
+  CHECK(after.parameter(test::parameter_index(after, chosen->element + ".cap.fy")) == doctest::Approx(161.9).epsilon(0.03));
+  CHECK(after.parameter(test::parameter_index(after, chosen->element + ".arm.k")) == doctest::Approx(416.6).epsilon(0.03));
+  CHECK(after.parameter(test::parameter_index(after, "f.k")) == doctest::Approx(326.5).epsilon(0.03));
+}
+
 }  // namespace diagnosis_sweep_test

@@ -175,4 +175,36 @@ TEST_CASE("the longest a friction element sticks under the drives: a sine's acos
   CHECK(runtime::diagnosis::longest_stick(history, 1.1) == 0.0);  // 2.2 mm from a turning point at +-1 mm: never before the next
 }
 
+// A friction element and a capped Maxwell arm in each other's roles, exchanged: the arm takes the
+// friction element's stiffness and yield force, the friction element the arm's (its slip uy =
+// fy/k where it is given so), the arm's tau kept; a friction element with one-sided yield, or a
+// value held, has no exchange.
+TEST_CASE("a capped Maxwell arm and a root friction element exchange their stiffnesses and yield forces") {
+  const runtime::Network network = test::network_from(
+      "model m { spring s (k = 400 N/mm in [1, 1e4])  friction f (k = 634 N/mm in [1, 1e4], uy = 0.356 mm in [1e-4, 10])  "
+      "series a { slider cap (fy = 20 N in [0.1, 1e5])  maxwell arm (k = 267 N/mm in [1, 1e4], tau = 0.86 s in [1e-5, 1e7]) } }",
+      "m");
+  const lang::CheckedModel& model = network.model();
+  const auto exchanged = runtime::diagnosis::roles_exchanged(model, network, "a", model.root.children[1]);
+  REQUIRE(exchanged.has_value());
+  const runtime::Network swapped = network.with_parameters(*exchanged);
+  CHECK(swapped.parameter(test::parameter_index(swapped, "a.arm.k")) == doctest::Approx(634.0).epsilon(1e-12));
+  CHECK(swapped.parameter(test::parameter_index(swapped, "a.cap.fy")) == doctest::Approx(634.0 * 0.356).epsilon(1e-12));
+  CHECK(swapped.parameter(test::parameter_index(swapped, "f.k")) == doctest::Approx(267.0).epsilon(1e-12));
+  CHECK(swapped.parameter(test::parameter_index(swapped, "f.uy")) == doctest::Approx(20.0 / 267.0).epsilon(1e-12).scale(0.0));
+  CHECK(swapped.parameter(test::parameter_index(swapped, "a.arm.tau")) == doctest::Approx(0.86).epsilon(1e-12).scale(0.0));
+  CHECK(swapped.parameter(test::parameter_index(swapped, "s.k")) == 400.0);
+  CHECK_FALSE(runtime::diagnosis::roles_exchanged(model, network, "a", model.root.children[0]).has_value());  // a spring
+  const runtime::Network one_sided = test::network_from(
+      "model m { friction f (k = 634 N/mm in [1, 1e4], fy_pos = 200 N in [1, 1e4], fy_neg = 250 N in [1, 1e4])  "
+      "series a { slider cap (fy = 20 N in [0.1, 1e5])  maxwell arm (k = 267 N/mm in [1, 1e4], tau = 0.86 s in [1e-5, 1e7]) } }",
+      "m");
+  CHECK_FALSE(runtime::diagnosis::roles_exchanged(one_sided.model(), one_sided, "a", one_sided.model().root.children[0]).has_value());
+  const runtime::Network held = test::network_from(
+      "model m { friction f (k = 634 N/mm, uy = 0.356 mm in [1e-4, 10])  "
+      "series a { slider cap (fy = 20 N in [0.1, 1e5])  maxwell arm (k = 267 N/mm in [1, 1e4], tau = 0.86 s in [1e-5, 1e7]) } }",
+      "m");
+  CHECK_FALSE(runtime::diagnosis::roles_exchanged(held.model(), held, "a", held.model().root.children[0]).has_value());
+}
+
 }  // namespace candidate_model_test
