@@ -75,12 +75,15 @@ void Diagnoser::exchange_roles(const lang::CheckedModel& model, const std::strin
     const int budget = std::max(affordable_evaluations(result.network, data_, s_, 0) / 4, kLocalJacobians * (static_cast<int>(free.size()) + 1));
     FitResult again = fit(result.network.with_parameters(*start), free, data_, local_search(within(share).fit, budget));
     const int evaluations = result.evaluations + again.evaluations;
+    const bool interrupted = result.interrupted || again.interrupted, time_limited = result.time_limited || again.time_limited;
     if (again.objective < result.objective) {
       again.start_values = result.start_values;
+      again.yeoh_started = result.yeoh_started;
       again.wall_seconds += result.wall_seconds;
       result = std::move(again);
     }
-    result.evaluations = evaluations;
+    result.evaluations = evaluations, result.interrupted = interrupted, result.time_limited = time_limited;
+    if (interrupted) return;
   }
 }
 
