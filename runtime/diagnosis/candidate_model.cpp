@@ -127,6 +127,11 @@ Trial friction_limit(const Trial& arm, const lang::CheckedModel& model, const Ne
   return limit;
 }
 
+bool outlasts_sticking(const lang::CheckedModel& model, const Network& refitted, const std::string& element, const std::vector<FitDataSet>& data) {
+  auto value = [&](const std::string& path) { return refitted_value(model, refitted, element, path); };
+  return value("arm.tau") > longest_stick(data, value("cap.fy") / value("arm.k"));
+}
+
 std::optional<std::vector<double>> roles_exchanged(const lang::CheckedModel& model, const Network& refitted, const std::string& element,
                                                    const lang::Element& friction) {
   if (friction.kind != lang::ElementKind::friction || friction.parameters.size() != 2) return std::nullopt;

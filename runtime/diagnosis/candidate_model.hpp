@@ -56,6 +56,10 @@ Trial column_from_limit(const Trial& column, const lang::CheckedModel& model, co
 // relaxes while it sticks (tau beyond longest_stick at its uy) gives the loops of this limit.
 Trial friction_limit(const Trial& arm, const lang::CheckedModel& model, const Network& refitted, const std::string& element);
 
+// Whether the refitted capped Maxwell arm ELEMENT of MODEL relaxes more slowly than the drives of
+// DATA stick it: tau > longest_stick(data, fy/k) (below).
+bool outlasts_sticking(const lang::CheckedModel& model, const Network& refitted, const std::string& element, const std::vector<FitDataSet>& data);
+
 // REFITTED's values with the yield forces and stiffnesses of the capped Maxwell arm ELEMENT (cap
 // fy, arm k; its tau kept) and of the root friction element FRICTION (k, fy, or k and uy = fy/k)
 // exchanged; nullopt where one of the four is not free or FRICTION's yield is one-sided. A fit

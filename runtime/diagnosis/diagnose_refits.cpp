@@ -18,6 +18,18 @@
 
 namespace rheo::runtime::diagnosis {
 
+Diagnoser::CandidateParameters Diagnoser::candidate_parameters(const lang::CheckedModel& candidate, const std::string& element) const {
+  CandidateParameters out;
+  for (const auto& path : kept_paths_)
+    if (const int i = parameter_index(candidate, path); i >= 0) out.kept.push_back(i);
+  for (std::size_t i = 0; i < candidate.parameters.size(); ++i) {
+    const lang::Parameter& p = candidate.parameters[i];
+    if (p.free && p.path.starts_with(element + ".") && std::find(out.kept.begin(), out.kept.end(), static_cast<int>(i)) == out.kept.end())
+      out.added.push_back(static_cast<int>(i));
+  }
+  return out;
+}
+
 void Diagnoser::refit_leading(const std::vector<ScreenedEffect>& screened_effects) {
   const double leading_gain = screened_effects.empty() ? 0.0 : screened_effects.front().gain;
   int refitted = 0;
@@ -66,8 +78,7 @@ void Diagnoser::refit_leading(const std::vector<ScreenedEffect>& screened_effect
 
 void Diagnoser::exchange_roles(const lang::CheckedModel& model, const std::string& element, const std::vector<int>& free, double share,
                                FitResult& result) {
-  auto value = [&](const std::string& path) { return result.network.parameter(parameter_index(model, element + "." + path)); };
-  if (!(value("arm.tau") > longest_stick(data_, value("cap.fy") / value("arm.k")))) return;
+  if (!outlasts_sticking(model, result.network, element, data_)) return;
   for (const lang::Element& e : model.root.children) {
     if (stopped()) return;
     const std::optional<std::vector<double>> start = roles_exchanged(model, result.network, element, e);
@@ -181,12 +192,10 @@ void Diagnoser::refit_as_written() {
     stage(fmt::format("fitting with {} for {} from the file's start values", trial_summary(trial), effect_name(again.screened.effect)));
     const std::string comment = fmt::format("candidate for {}", effect_name(again.screened.effect));
     Compiled candidate = compile(source_, with_trial(source_.text, *base_.model, trial, again.element, scales_.bounds, comment));
-    std::vector<int> free;
-    for (std::size_t i = 0; i < candidate.model->parameters.size(); ++i) {
-      const lang::Parameter& p = candidate.model->parameters[i];
-      if (std::find(kept_paths_.begin(), kept_paths_.end(), p.path) != kept_paths_.end() || (p.free && p.path.starts_with(again.element + ".")))
-        free.push_back(static_cast<int>(i));
-    }
+    const auto [kept, added] = candidate_parameters(*candidate.model, again.element);
+    std::vector<int> free = kept;
+    free.insert(free.end(), added.begin(), added.end());
+    std::sort(free.begin(), free.end());
     const double share = 1.0 / static_cast<double>(leading.size() - k + 1);
     FitSettings settings = within(share).fit;
     settings.statistics = false;
@@ -213,14 +222,7 @@ std::optional<Trial> Diagnoser::refit_candidate(const Trial& trial, CandidateOut
   }
   const std::string comment = fmt::format("candidate for {}", effect_name(outcome.screened.effect));
   Compiled candidate = compile(source_, with_trial(fitted_text_, *fitted_.model, trial, outcome.element, scales_.bounds, comment));
-  std::vector<int> kept, added;
-  for (const auto& path : kept_paths_)
-    if (const int i = parameter_index(*candidate.model, path); i >= 0) kept.push_back(i);
-  for (std::size_t i = 0; i < candidate.model->parameters.size(); ++i) {
-    const lang::Parameter& p = candidate.model->parameters[i];
-    if (p.free && p.path.starts_with(outcome.element + ".") && std::find(kept.begin(), kept.end(), static_cast<int>(i)) == kept.end())
-      added.push_back(static_cast<int>(i));
-  }
+  auto [kept, added] = candidate_parameters(*candidate.model, outcome.element);
   if (trial.shape == Shape::capped_column && trial.bulge > 0.0) {
     // The column's own parameters start at its refitted optimum, kept: the global look searches
     // the walls' spring alone (over the whole column's bounds it reaches undamped corners whose
@@ -248,8 +250,9 @@ std::optional<Trial> Diagnoser::refit_candidate(const Trial& trial, CandidateOut
   if (trial.shape == Shape::capped_maxwell) {
     CappedArm arm{outcome, friction_limit(trial, *candidate.model, result.network, outcome.element), fit_gap(result),
                   result.network.parameter(parameter_index(*candidate.model, outcome.element + ".arm.tau")), 0.0};
-    arm.stick = longest_stick(data_, arm.limit.slip);
-    if (arm.tau > arm.stick && (!capped_arm_ || arm.gap < capped_arm_->gap)) capped_arm_ = std::move(arm);
+    arm.stick = longest_stick(data_, arm.limit.slip);  // for the reason
+    if (outlasts_sticking(*candidate.model, result.network, outcome.element, data_) && (!capped_arm_ || arm.gap < capped_arm_->gap))
+      capped_arm_ = std::move(arm);
   }
   judge(trial, outcome, share, started, std::move(candidate), std::move(result), data_);
   return next;

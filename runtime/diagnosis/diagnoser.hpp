@@ -77,6 +77,13 @@ class Diagnoser {
   // Step 2: every effect screened, leading first.
   std::vector<ScreenedEffect> screen_effects();
 
+  // The free parameters of a candidate model: those of step 1 it still has (kept, by path), and
+  // the free parameters of its element ELEMENT (added).
+  struct CandidateParameters {
+    std::vector<int> kept, added;
+  };
+  CandidateParameters candidate_parameters(const lang::CheckedModel& candidate, const std::string& element) const;
+
   // Step 3: the leading effects refitted (a refitted capped fluid column is followed by its limit
   // without inertia, and where it stops short of the noise by itself with its walls' spring);
   // the others recorded as screened only.

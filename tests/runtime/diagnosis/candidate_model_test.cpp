@@ -156,6 +156,15 @@ TEST_CASE("a capped Maxwell arm has a friction element as its limit tau -> infin
   const ForceDifference d = force_difference(arm, friction, runtime::quasistatic_sine({0.5, 0.2}, 1.0, 2, 400));
   CHECK(d.largest > 50.0);
   CHECK(d.difference <= 1e-3 * d.largest);
+  // The arm outlasts its sticking under those sines (uy = 0.12 mm: stuck acos(1 - 2 uy/a)/(2 pi f),
+  // 0.16 s at 0.5 mm and 0.28 s at 0.2 mm); an arm of 0.1 s does not.
+  runtime::HistoryData h;
+  h.drive = runtime::quasistatic_sine({0.5, 0.2}, 1.0, 2, 400);
+  const std::vector<runtime::FitDataSet> sines{runtime::FitDataSet{"sines", 1.0, h, {}, {}}};
+  CHECK(runtime::diagnosis::outlasts_sticking(arm.model(), arm, "a", sines));
+  std::vector<double> quick = arm.parameters();
+  quick[static_cast<std::size_t>(test::parameter_index(arm, "a.arm.tau"))] = 0.1;
+  CHECK_FALSE(runtime::diagnosis::outlasts_sticking(arm.model(), arm.with_parameters(quick), "a", sines));
 }
 
 // The longest a friction element of slip uy sticks: from a turning point until the drive has
