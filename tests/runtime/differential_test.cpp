@@ -5,7 +5,9 @@
 // tolerances of docs/numerics.md ("Verification", differential row). The suite runs kModels
 // models (fewer under AddressSanitizer, whose build CI also runs); tests/differential/run runs
 // more (RHEO_DIFFERENTIAL_MODELS, RHEO_DIFFERENTIAL_SEED; RHEO_DIFFERENTIAL_VERBOSE=1 prints
-// each model's CPU time by part; RHEO_DIFFERENTIAL_ONLY=i compares model i alone and prints its text).
+// each model's CPU time by part; RHEO_DIFFERENTIAL_ONLY=i compares model i alone and prints its text;
+// RHEO_DIFFERENTIAL_DEPTH sets the deepest nesting; RHEO_DIFFERENTIAL_DUMP=DIR writes each model
+// with a simulate block to DIR/model_I.rheo and compares nothing, for tests/differential/cli_run).
 //
 // Where the time goes (100 models, seed 2026): IDA, in the history (restarted at each of its
 // 100 samples) and in harmonic points; fixed steps take a few ms a model.
@@ -28,6 +30,7 @@
 #include <chrono>
 #include <cstdlib>
 #include <ctime>
+#include <fstream>
 #include <numbers>
 
 namespace differential_test {
@@ -68,6 +71,15 @@ runtime::Drive test_drive() {
     d.displacement.push_back(0.3 * std::sin(2 * std::numbers::pi * 10 * t) + 0.05 * std::sin(2 * std::numbers::pi * 37 * t));
   }
   return d;
+}
+
+// The protocols of a dumped model, as the command line runs them (tests/differential/cli_run
+// writes drive.csv beside it): a history and a 2 x 2 harmonic grid.
+void dump_model(const std::string& directory, long index, const std::string& source) {
+  const std::string path = fmt::format("{}/model_{:04d}.rheo", directory, index);
+  std::ofstream file(path);
+  file << source << "simulate {\n  history file = \"drive.csv\"\n  harmonic frequency = [2, 20] Hz, amplitude = [0.05, 0.4] mm\n}\n";
+  REQUIRE_MESSAGE(file.good(), "cannot write " << path);
 }
 
 // The same piecewise-linear drive with `r` samples per interval.
@@ -149,16 +161,23 @@ void compare(const std::string& source, double fastest_mass, Worst& worst) {
     const double amplitude = level.first, frequency = level.second;  // not a structured binding: Clang 14 cannot capture one
     CAPTURE(amplitude);
     CAPTURE(frequency);
-    options.steps_per_cycle = 2 * kStepsPerCycle;
-    options.solver = runtime::SolverChoice::sundials;
+    // IDA's point sampled as finely as the finer fixed-step run: K and d are formed from the
+    // samples, and where a gap or slider switches between two of them the energy's quadrature
+    // is first order (seed 31337, model 238: d 0.5396 from 256 samples a cycle, 0.5461 from
+    // 2048, fixed steps 0.5465 at 65536).
+    const auto ida_point = [&](int samples_per_cycle) {
+      options.steps_per_cycle = samples_per_cycle;
+      options.solver = runtime::SolverChoice::sundials;
+      runtime::HarmonicPoint p = runtime::simulate_harmonic_point(network, amplitude, frequency, options);
+      options.solver = runtime::SolverChoice::fixed;
+      return p;
+    };
     const double before = cpu_seconds();
-    const runtime::HarmonicPoint a = ida_harmonic ? runtime::simulate_harmonic_point(network, amplitude, frequency, options)
-                                                  : runtime::HarmonicPoint{};
+    runtime::HarmonicPoint a = ida_harmonic ? ida_point(2 * kStepsPerCycle) : runtime::HarmonicPoint{};
     const double between = cpu_seconds();
     // Extrapolated from N and 2N fixed steps per cycle; outside the tolerances (a gap or slider
-    // switching inside steps, as for the history) compared again at 4N and 16N, and judged on
-    // the first comparison within them, or the last.
-    options.solver = runtime::SolverChoice::fixed;
+    // switching inside steps, as for the history) compared again at 4N and 16N, IDA's samples
+    // refined alike, and judged on the first comparison within them, or the last.
     // Where IDA reached its periodic state, fixed steps must reach theirs too: a point that still
     // moves after kSettleBudget times the cycles is a fault of the fixed-step path (a drift that
     // its skip to the periodic state amplified went unnoticed here while such points were left
@@ -178,12 +197,14 @@ void compare(const std::string& source, double fastest_mass, Worst& worst) {
     double stiffness = 0.0, damping = 0.0;
     bool compared = false;
     for (int more = 1; more <= 16; more *= 4) {
+      if (more > 1 && ida_harmonic && a.converged) a = ida_point(2 * kStepsPerCycle * more);
       const runtime::HarmonicPoint b_fine = fixed_point(2 * kStepsPerCycle * more);
       const runtime::HarmonicPoint b_coarse = fixed_point(kStepsPerCycle * more);
       if (more == 1)
         worst.timing += fmt::format("; {} Hz: IDA {:.2f} s ({} cycles), fixed {:.2f} s ({} and {} cycles)", frequency, between - before, cycles(a),
                                     cpu_seconds() - between, cycles(b_fine), cycles(b_coarse));
-      for (const auto* p : {&a, &b_fine, &b_coarse}) REQUIRE(std::isfinite(p->measures.stiffness));
+      for (const runtime::HarmonicPoint* p : {static_cast<const runtime::HarmonicPoint*>(&a), &b_fine, &b_coarse})
+        REQUIRE(std::isfinite(p->measures.stiffness));
       if (!ida_harmonic || !a.converged || !b_fine.converged || !b_coarse.converged) break;
       // A point inside a gap's play carries no force on either side: it has no phase to compare.
       // IDA's may be a transient's rounding residue instead of 0 (seed 17, model 108: 9e-223 N
@@ -254,7 +275,9 @@ TEST_CASE("differential: random networks to depth 6 agree between fixed steps an
   const long models = environment("RHEO_DIFFERENTIAL_MODELS", kModels);
   const long only = environment("RHEO_DIFFERENTIAL_ONLY", -1);  // the models before it are still drawn
   const auto seed = static_cast<std::uint64_t>(environment("RHEO_DIFFERENTIAL_SEED", static_cast<long>(kSeed)));
-  test::RandomNetwork generator(seed, kMaxDepth);
+  const int depth = static_cast<int>(environment("RHEO_DIFFERENTIAL_DEPTH", kMaxDepth));
+  test::RandomNetwork generator(seed, depth);
+  const char* dump_directory = std::getenv("RHEO_DIFFERENTIAL_DUMP");
   const char* verbose_setting = std::getenv("RHEO_DIFFERENTIAL_VERBOSE");
   const bool verbose = verbose_setting && *verbose_setting;
   Worst worst;
@@ -271,6 +294,10 @@ TEST_CASE("differential: random networks to depth 6 agree between fixed steps an
     }
     if (only >= 0 && i != only) continue;
     if (only >= 0) MESSAGE(source);
+    if (dump_directory) {
+      dump_model(dump_directory, i, source);
+      continue;
+    }
     CAPTURE(i);
     CAPTURE(source);  // a failure prints the model: save it as a reproducer
     const auto before = std::chrono::steady_clock::now();
@@ -297,7 +324,7 @@ TEST_CASE("differential: random networks to depth 6 agree between fixed steps an
           " models that auto runs on fixed steps");
   // Few models are drawn again, and a fair share of points reach their periodic state within
   // the cycle budget: the comparison is not vacuous (for a whole run, not one model).
-  if (only >= 0) return;
+  if (only >= 0 || dump_directory) return;
   CHECK(refused * 5 <= models);
   CHECK(worst.harmonic_compared * 4 >= worst.harmonic_points);
 }
