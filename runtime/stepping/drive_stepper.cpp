@@ -57,12 +57,16 @@ DriveStepper::DriveStepper(const Network& network, bool elements, double toleran
   for (int root : t.subtrees) {
     if (!controlled(t, root)) continue;
     const TreeNode& r = t.nodes[static_cast<std::size_t>(root)];
-    Controlled c{r.state + 1, r.state, r.state + r.slots, r.linear, {}};
+    Controlled c{r.state + 1, r.state, r.state + r.slots, r.linear, {}, {}, 0.0};
     const auto span = [&](const auto& self, int node) -> void {
       const TreeNode& n = t.nodes[static_cast<std::size_t>(node)];
       c.first = std::min(c.first, n.state);
       c.last = std::max(c.last, n.state + n.slots);
       c.forces.push_back(n.state + 1);
+      if (n.kind == NodeKind::gap) c.gaps.push_back(n.state);
+      if (n.kind == NodeKind::spring || n.kind == NodeKind::maxwell || n.kind == NodeKind::friction || n.kind == NodeKind::poly_spring)
+        c.stiffness += std::abs(network.parameter(n.param[0]));
+      if (n.kind == NodeKind::yeoh) c.stiffness += 2.0 * std::abs(network.parameter(n.param[0]));
       for (int i = 0; i < n.child_count; ++i) self(self, t.children[static_cast<std::size_t>(n.first_child + i)]);
     };
     span(span, root);
@@ -141,6 +145,10 @@ void DriveStepper::refine(int level, const State& from, double t, double u, cons
     for (int slot : c.forces) {
       const auto i = static_cast<std::size_t>(slot);
       largest = std::max(largest, std::abs(end_[l].values[i] - coarse.values[i]));
+    }
+    for (int slot : c.gaps) {  // where a gap shuts next follows from its elongation now
+      const auto i = static_cast<std::size_t>(slot);
+      largest = std::max(largest, c.stiffness * std::abs(end_[l].values[i] - coarse.values[i]));
     }
     difference += (c.linear ? 1.0 : kUnextrapolatedWeight) * largest;
   }

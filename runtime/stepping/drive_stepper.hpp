@@ -66,6 +66,8 @@ class DriveStepper {
     int first = 0, last = 0;  // its state slots [first, last)
     bool linear = false;      // only springs, dashpots and Maxwell elements: extrapolated
     std::vector<int> forces;  // the force slot of each of its nodes
+    std::vector<int> gaps;    // the elongation slot of each of its gaps
+    double stiffness = 0.0;   // the sum of its springs' stiffnesses [N/mm]: a gap's elongation error as a force
   };
   std::vector<Controlled> controlled_;
   StepPlan plan_;                 // the sample's step
