@@ -57,7 +57,7 @@ DriveStepper::DriveStepper(const Network& network, bool elements, double toleran
   for (int root : t.subtrees) {
     if (!controlled(t, root)) continue;
     const TreeNode& r = t.nodes[static_cast<std::size_t>(root)];
-    Controlled c{r.state + 1, r.state, r.state + r.slots, r.linear, {}, {}, 0.0};
+    Controlled c{r.state, r.state + r.slots, r.linear, {}, {}, 0.0};
     const auto span = [&](const auto& self, int node) -> void {
       const TreeNode& n = t.nodes[static_cast<std::size_t>(node)];
       c.first = std::min(c.first, n.state);
@@ -160,10 +160,11 @@ void DriveStepper::refine(int level, const State& from, double t, double u, cons
     State& e = end_[l];
     for (const Controlled& c : controlled_) {
       if (!c.linear) continue;
-      const double before = e.values[static_cast<std::size_t>(c.force_slot)];
+      const auto root_force = static_cast<std::size_t>(c.forces.front());
+      const double before = e.values[root_force];
       for (auto i = static_cast<std::size_t>(c.first); i < static_cast<std::size_t>(c.last); ++i)
         e.values[i] = 2.0 * e.values[i] - coarse.values[i];
-      e.force += e.values[static_cast<std::size_t>(c.force_slot)] - before;
+      e.force += e.values[root_force] - before;
     }
     to = e;
     last_from_ = &mid_[l];

@@ -12,9 +12,10 @@
 // at the first sample, 2 % later, against IDA). Where the network has a subtree with a dashpot,
 // Maxwell element or quadratic dashpot whose step is not exact (drive_stepper.cpp, controlled:
 // not a slider-capped Maxwell arm, no inerter), each interval is taken as one step and as two
-// half steps (step doubling). Where the force of a node of those subtrees differs between them
-// by more than `tolerance` times the largest |F| so far (a tenth of it for a subtree that is not
-// linear), each half is treated so in turn, down to 2^kMaxHalvings steps an interval. A linear
+// half steps (step doubling). Where the force of a node of those subtrees, or a gap's elongation
+// in them times their springs' stiffness (where the gap shuts next follows from it), differs
+// between them by more than `tolerance` times the largest |F| so far (a tenth of it for a subtree
+// that is not linear), each half is treated so in turn, down to 2^kMaxHalvings steps an interval. A linear
 // subtree (springs, dashpots, Maxwell elements) keeps 2 x halves - one step (the extrapolated
 // implicit Euler step: second order, L-stable); another keeps the halves, whose first-order error
 // is about their difference. Other networks step once an interval, bit for bit as without the
@@ -60,12 +61,11 @@ class DriveStepper {
   const Network& network_;
   Simulator simulator_;
   bool elements_;
-  double tolerance_;   // 0: no error control
-  struct Controlled {  // a subtree one step may not give exactly
-    int force_slot = 0;
+  double tolerance_;          // 0: no error control
+  struct Controlled {         // a subtree one step may not give exactly
     int first = 0, last = 0;  // its state slots [first, last)
     bool linear = false;      // only springs, dashpots and Maxwell elements: extrapolated
-    std::vector<int> forces;  // the force slot of each of its nodes
+    std::vector<int> forces;  // the force slot of each of its nodes, its root's first
     std::vector<int> gaps;    // the elongation slot of each of its gaps
     double stiffness = 0.0;   // the sum of its springs' stiffnesses [N/mm]: a gap's elongation error as a force
   };
