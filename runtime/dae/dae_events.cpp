@@ -9,6 +9,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <numbers>
 #include <stdexcept>
 #include <utility>
 
@@ -257,9 +258,27 @@ bool DaeIntegrator::switch_modes(double t, double t_stop, const std::vector<int>
   return false;
 }
 
+double DaeIntegrator::stop_time(double t_out) const {
+  if (drive_.kind != DriveSignal::Kind::sine || !(drive_.omega > 0.0) || layout_.bouc_wen_states > 0) return t_out;
+  // u = offset + a sin(w t) reverses at w t = pi/2 + k pi: the first reversal after the present.
+  const double half_period = std::numbers::pi / drive_.omega, first = 0.5 * half_period;
+  const double k = std::floor((time_ - first) / half_period) + 1.0;
+  double reversal = first + k * half_period;
+  if (reversal <= time_ + 1e-12 * half_period) reversal += half_period;
+  return reversal < t_out ? t_out : reversal;
+}
+
 double DaeIntegrator::solve_to(double t_stop) {
   void* mem = solver_->ida.get();
-  sundials::check_ida(IDASetStopTime(mem, t_stop), "IDASetStopTime");
+  if (t_stop - time_ <= 4.0 * std::numeric_limits<double>::epsilon() * (std::abs(time_) + std::abs(t_stop))) {
+    // Within IDA's round-off of the present (IDASolve: "tout too close to t0", as after an event
+    // a few ulps before a sample): the state moves on by its rates.
+    for (int i = 0; i < layout_.size(); ++i) at(y_, i) += (t_stop - time_) * at(yp_, i);
+    time_ = t_stop;
+    return time_;
+  }
+  const double hard_stop = stop_time(t_stop);
+  sundials::check_ida(IDASetStopTime(mem, hard_stop), "IDASetStopTime");
   double t_reached = time_;
   int flag = IDA_SUCCESS;
   if (first_step_) {
@@ -277,7 +296,7 @@ double DaeIntegrator::solve_to(double t_stop) {
     flag = IDASolve(mem, t_stop, &t_reached, solver_->y.get(), solver_->yp.get(), IDA_ONE_STEP);
     if (suppress) sundials::check_ida(IDASetSuppressAlg(mem, SUNFALSE), "IDASetSuppressAlg");
   }
-  if (flag == IDA_SUCCESS && t_reached < t_stop) flag = IDASolve(mem, t_stop, &t_reached, solver_->y.get(), solver_->yp.get(), IDA_NORMAL);
+  if (flag == IDA_SUCCESS && t_reached != t_stop) flag = IDASolve(mem, t_stop, &t_reached, solver_->y.get(), solver_->yp.get(), IDA_NORMAL);
   if (flag == IDA_CONV_FAIL && !error_) {
     // The corrector failed with jacobian()'s tangents. A quadratic dashpot behind a spring whose
     // rate starts at 0 (from rest, or at a reversal) reaches v ~ sqrt(k u' t / cq): IDA's error
@@ -293,7 +312,7 @@ double DaeIntegrator::solve_to(double t_stop) {
     euler_step(time_, std::min(1e-3 * horizon, 0.5 * (t_stop - time_)));
     restart(time_, false);
     first_step_ = false;
-    sundials::check_ida(IDASetStopTime(mem, t_stop), "IDASetStopTime");
+    sundials::check_ida(IDASetStopTime(mem, hard_stop), "IDASetStopTime");
     flag = IDASolve(mem, t_stop, &t_reached, solver_->y.get(), solver_->yp.get(), IDA_NORMAL);
   }
   if (flag == IDA_CONV_FAIL && !error_) {
@@ -308,7 +327,7 @@ double DaeIntegrator::solve_to(double t_stop) {
     use_own_jacobian(false);
     restart(time_, false);
     first_step_ = false;
-    sundials::check_ida(IDASetStopTime(mem, t_stop), "IDASetStopTime");
+    sundials::check_ida(IDASetStopTime(mem, hard_stop), "IDASetStopTime");
     flag = IDASolve(mem, t_stop, &t_reached, solver_->y.get(), solver_->yp.get(), IDA_NORMAL);
     use_own_jacobian(true);
   }

@@ -102,6 +102,8 @@ std::vector<double> dae_start_positions(const Network& network, const DaeGraph& 
 
 namespace {
 
+constexpr double kSettlingNoise = 10.0 * kDaeRelativeTolerance;  // [-] of a component's scale
+
 template <class Run>
 auto with_softening_hint(const Network& network, Run run) {
   try {
@@ -145,13 +147,14 @@ HarmonicPoint harmonic_point(const Network& network, double amplitude, double fr
   double previous_change = std::numeric_limits<double>::infinity();
   StallWatch stall;
   // Slow tails (a springpot's chain behind a gap, a long Maxwell time) are skipped to their
-  // geometric limits component by component, positions by the amplitude, Bouc-Wen states by 1;
-  // changes below the tolerance are left alone (IDA's own error is near them). The cycle after a
-  // skip is not taken as converged: its change was measured from the moved state, its rate against
-  // the cycle before the move.
+  // geometric limits component by component, positions by the amplitude, Bouc-Wen states by 1,
+  // where the distance left is above the tolerance; changes below ten times IDA's relative
+  // tolerance are left alone (its own error is near them). The cycle after a skip is not taken as
+  // converged: its change was measured from the moved state, its rate against the cycle before
+  // the move.
   std::vector<double> settling_scales(static_cast<std::size_t>(graph.internal_nodes), amplitude);
   settling_scales.resize(integrator.settling_state().size(), 1.0);
-  ComponentSettling settling(std::move(settling_scales), tolerance);
+  ComponentSettling settling(std::move(settling_scales), tolerance, kSettlingNoise);
   std::vector<double> skipped, cycle_state;
   int first_check = 1;
   for (int cycle = 1; cycle <= options.max_cycles; ++cycle) {

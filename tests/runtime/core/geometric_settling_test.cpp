@@ -67,4 +67,24 @@ TEST_CASE("component settling: a skip the integrator could not take is not tried
   CHECK(target[1] == doctest::Approx(2.0).epsilon(1e-12));
 }
 
+TEST_CASE("component settling: a slow mode whose changes fell below the floor still jumps while its distance left is above it") {
+  // Component 0 contracts at 0.994 with changes of about 6e-8, below the floor of 1e-6 but 1e-5
+  // from its limit (differential seed 2026, model 0, on IDA); component 1 at the same rate with
+  // changes below the noise of 1e-8; component 2 at 0.5, its change at the fourth record 2.5e-8,
+  // as far from its limit.
+  ComponentSettling settling({1.0, 1.0, 1.0}, 1e-6, 1e-8);
+  std::vector<double> target;
+  const auto state = [](int n) {
+    return std::vector<double>{1.0 - 1e-5 * std::pow(0.994, n), 3.0 - 1e-7 * std::pow(0.994, n), 2.0 - 4e-7 * std::pow(0.5, n)};
+  };
+  for (int n = 0; n < 3; ++n) CHECK_FALSE(settling.record(state(n), target));
+  REQUIRE(settling.record(state(3), target));
+  CHECK(target[0] == doctest::Approx(1.0).epsilon(1e-10));  // a move of 1e-5 from changes known to 2e-9
+  CHECK(target[1] == state(3)[1]);
+  CHECK(target[2] == state(3)[2]);
+  // With the noise at the floor (the default), as before: none moves.
+  ComponentSettling floor_only({1.0, 1.0, 1.0}, 1e-6);
+  for (int n = 0; n < 4; ++n) CHECK_FALSE(floor_only.record(state(n), target));
+}
+
 }  // namespace geometric_settling_test

@@ -249,4 +249,33 @@ TEST_CASE("IDA harmonic point: a springpot behind a gap settles by the geometric
   }
 }
 
+// Differential seed 2026, model 0: a springpot beside a dashpot, a gap and a Maxwell element (and
+// a spring and an inerter-damper pair). IDA's point at 20 Hz, 0.05 mm settled by a contact mode
+// at 0.994 a cycle whose changes fell below the skip's floor while it lay 1e-5 from its limit:
+// 313 cycles at 2048 samples a cycle when each sample was a stop of IDA (18.7 s); with the samples
+// interpolated (dae_integrator.hpp), 400 cycles unconverged; with the skip judged by the distance
+// left, 66 cycles (2 s).
+TEST_CASE("IDA harmonic point: a slow contact mode below the change floor is skipped by its distance left (differential seed 2026, model 0)") {
+  const auto network = test::network_from(
+      "model m {\n series {\n  springpot (k = 5.8456 N/mm, alpha = 0.65348, tau = 3.81624 ms, f_low = 1 Hz, f_high = 100 Hz)\n"
+      "  series { spring (k = 14.422 N/mm) parallel { inerter (b = 0.152769 kg) dashpot (c = 0.271861 N*s/mm) } }\n }\n"
+      " series {\n  dashpot (c = 0.0110533 N*s/mm)\n  gap (width = 0.0223838 mm, center = -0.000276622 mm)\n"
+      "  maxwell (k = 8.45842 N/mm, c = 0.0454045 N*s/mm)\n }\n}",
+      "m");
+  runtime::HarmonicOptions options;
+  options.steady_state = runtime::SteadyState::time_stepping;
+  options.tolerance = 1e-6;
+  options.max_cycles = 400;
+  options.solver = runtime::SolverChoice::sundials;
+  options.steps_per_cycle = 2048;  // the default (at 256 samples the old skip settled in 48 cycles)
+  const auto ida = runtime::simulate_harmonic_point(network, 0.05, 20.0, options);
+  MESSAGE("cycles ", ida.cycles);
+  REQUIRE(ida.converged);
+  CHECK(ida.cycles <= 100);
+  const test::HarmonicGap gap = test::gap_to_extrapolated_fixed_point(network, ida, options);
+  MESSAGE("K ", gap.stiffness, ", d ", gap.damping);
+  CHECK(gap.stiffness < 1e-4);
+  CHECK(gap.damping < 1e-4);
+}
+
 }  // namespace dae_protocols_test
