@@ -19,12 +19,7 @@
 // flips and IDA goes on (the law is continuous there; dae_bouc_wen.cpp).
 //
 // The drive is a sine (its rate and acceleration exact) or piecewise linear: each sample is a
-// stop time at which the rate jumps, and the integration restarts there. A sine's samples are
-// output times that IDA interpolates within its steps, and its stop times are the drive's
-// reversals, so that its steps follow its error test alone (2048 samples a cycle had taken at
-// least 2048 steps: a springpot beside a dashpot, a gap and a Maxwell element, 60 against 24 ms
-// a cycle); with Bouc-Wen states, whose law reads the rates' signs, every sample stays a stop
-// (without, two bouc_wen in series lost their reversals: differential seed 41, model 38).
+// stop time at which the rate jumps, and the integration restarts there.
 #pragma once
 
 #include "runtime/dae/dae_graph.hpp"
@@ -208,11 +203,11 @@ class DaeIntegrator {
   // switched, that backward-Euler step passes the transient and IDA restarts at its end (false).
   // Not within 2 h of T_STOP, the next stop: there the slider sticks.
   bool switch_modes(double t, double t_stop, const std::vector<int>& found);
-  // Integrates to T_STOP (reached exactly, or interpolated within IDA's last step) or to the
-  // first event before it; returns the time reached.
+  // Integrates to T_STOP (a stop time of IDA) or to the first event before it; returns the time
+  // reached.
   double solve_to(double t_stop);
-  // The stop time for IDA while it integrates to T_OUT (see the drive above) [s].
-  double stop_time(double t_out) const;
+  // Restarts IDA at time_ from y_ and yp_ as they are, its step history dropped.
+  void resume();
   void collect_statistics();
   void stick_reversed_sliders();
   // IDA's Newton matrix from jacobian() (true), or from IDA's own difference quotient (false).

@@ -252,9 +252,7 @@ TEST_CASE("IDA harmonic point: a springpot behind a gap settles by the geometric
 // Differential seed 2026, model 0: a springpot beside a dashpot, a gap and a Maxwell element (and
 // a spring and an inerter-damper pair). IDA's point at 20 Hz, 0.05 mm settled by a contact mode
 // at 0.994 a cycle whose changes fell below the skip's floor while it lay 1e-5 from its limit:
-// 313 cycles at 2048 samples a cycle when each sample was a stop of IDA (18.7 s); with the samples
-// interpolated (dae_integrator.hpp), 400 cycles unconverged; with the skip judged by the distance
-// left, 66 cycles (2 s).
+// 313 cycles at 2048 samples a cycle; with the skip judged by the distance left, 64.
 TEST_CASE("IDA harmonic point: a slow contact mode below the change floor is skipped by its distance left (differential seed 2026, model 0)") {
   const auto network = test::network_from(
       "model m {\n series {\n  springpot (k = 5.8456 N/mm, alpha = 0.65348, tau = 3.81624 ms, f_low = 1 Hz, f_high = 100 Hz)\n"
