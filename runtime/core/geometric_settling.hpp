@@ -26,11 +26,12 @@ bool steady_contraction(double rate, double previous_rate);
 // dae_protocols.cpp), each settling at its own rate: a component moves only where its own last
 // three changes contract steadily (its two rates d_n/d_{n-1} and d_{n-1}/d_{n-2}, of one sign,
 // pass steady_contraction), its last change is above NOISE times its scale (below it, the
-// integrator's own error makes the rates noise) and its remaining distance d_n rho/(1 - rho)
+// integrator's own error makes the rates noise) and its remaining distance d_n rho/(1 - rho) is
 // above FLOOR times its scale (a mode at rho = 0.994 whose changes had fallen below the floor
-// still lay 160 changes from its limit: differential seed 2026, model 0, ran 400 cycles). A component that oscillates, drifts or settles
-// in another way keeps its value: one component's rate is never applied to another's (an
-// undamped mass's drift multiplied by a slow mode's factor grew without bound, cycle_groups.hpp).
+// still lay 160 changes from its limit: differential seed 2026, model 0, took 313 cycles). A
+// component that oscillates, drifts or settles in another way keeps its value: one component's
+// rate is never applied to another's (an undamped mass's drift multiplied by a slow mode's factor
+// grew without bound, cycle_groups.hpp).
 //
 // A skip can lead where the integrator finds no consistent state: differential seed 73, model
 // 243, a slider that ratchets (it slips further one way every cycle, in a chain with no static
