@@ -15,10 +15,10 @@
 // half steps (step doubling). Where the force of a node of those subtrees, or a gap's elongation
 // in them times their springs' stiffness (where the gap shuts next follows from it), differs
 // between them by more than `tolerance` times the largest |F| so far (a tenth of it for a subtree
-// that is not linear), each half is treated so in turn, down to 2^kMaxHalvings steps an interval. A linear
-// subtree (springs, dashpots, Maxwell elements) keeps 2 x halves - one step (the extrapolated
-// implicit Euler step: second order, L-stable); another keeps the halves, whose first-order error
-// is about their difference. Other networks step once an interval, bit for bit as without the
+// that is not linear), each half is treated so in turn, down to 2^kMaxHalvings steps an
+// interval. A linear subtree (springs, dashpots, Maxwell elements) keeps 2 x halves - one step
+// (the extrapolated implicit Euler step: second order, L-stable); another keeps the halves, whose
+// first-order error is about their difference. Other networks step once an interval, bit for bit as without the
 // control (docs/numerics.md, "Error control of fixed-step histories").
 #pragma once
 
@@ -67,7 +67,7 @@ class DriveStepper {
     bool linear = false;      // only springs, dashpots and Maxwell elements: extrapolated
     std::vector<int> forces;  // the force slot of each of its nodes, its root's first
     std::vector<int> gaps;    // the elongation slot of each of its gaps
-    double stiffness = 0.0;   // the sum of its springs' stiffnesses [N/mm]: a gap's elongation error as a force
+    double stiffness = 0.0;   // its springs' stiffnesses summed [N/mm]: a gap's elongation error as a force
   };
   std::vector<Controlled> controlled_;
   StepPlan plan_;                 // the sample's step
